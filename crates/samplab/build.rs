@@ -1,0 +1,67 @@
+//! Bakes the Joe–Kuo (2008) Sobol' direction numbers into a Rust table at build time.
+//!
+//! Input: `data/new-joe-kuo-6.1024.txt` (`d s a m_1..m_s` per line, dimensions 2..=1024).
+//! Output: `$OUT_DIR/sobol_directions.rs` holding `SOBOL_DIRECTIONS: [[u32; 32]; 1024]`,
+//! where entry [j][k] is the direction number v_k = m_k * 2^(31-k) of dimension j
+//! (dimension 0 is van der Corput: m_k = 1). Recurrence: Bratley & Fox (1988), eq. in
+//! Joe & Kuo (2008) section 2: m_k = 2a_1 m_{k-1} ^ 4a_2 m_{k-2} ^ ... ^ 2^s m_{k-s} ^ m_{k-s}.
+
+use std::fmt::Write as _;
+
+fn main() {
+    let src = "data/new-joe-kuo-6.1024.txt";
+    println!("cargo::rerun-if-changed={src}");
+    let text = std::fs::read_to_string(src).expect("reading the direction-number file");
+    let mut table: Vec<[u32; 32]> = vec![std::array::from_fn(|k| 1u32 << (31 - k))];
+    for (lineno, line) in text.lines().enumerate() {
+        if line.starts_with('#') || line.starts_with('d') || line.trim().is_empty() {
+            continue;
+        }
+        let f: Vec<u64> = line
+            .split_whitespace()
+            .map(|t| {
+                t.parse()
+                    .unwrap_or_else(|_| panic!("{src}:{}: not a number", lineno + 1))
+            })
+            .collect();
+        let (s, a) = (f[1] as usize, f[2]);
+        assert_eq!(
+            f.len(),
+            3 + s,
+            "{src}:{}: expected {s} initial m",
+            lineno + 1
+        );
+        let mut m = [0u64; 32];
+        m[..s].copy_from_slice(&f[3..]);
+        for k in s..32 {
+            let mut v = m[k - s] ^ (m[k - s] << s);
+            for i in 1..s {
+                if (a >> (s - 1 - i)) & 1 == 1 {
+                    v ^= m[k - i] << i;
+                }
+            }
+            m[k] = v;
+        }
+        table.push(std::array::from_fn(|k| (m[k] << (31 - k)) as u32));
+    }
+    let mut out = format!(
+        "/// Joe–Kuo direction numbers, {} dimensions x 32 bits.\n",
+        table.len()
+    );
+    writeln!(
+        out,
+        "pub(crate) static SOBOL_DIRECTIONS: [[u32; 32]; {}] = [",
+        table.len()
+    )
+    .unwrap();
+    for row in &table {
+        out.push('[');
+        for v in row {
+            write!(out, "{v:#x},").unwrap();
+        }
+        out.push_str("],\n");
+    }
+    out.push_str("];\n");
+    let dest = std::path::Path::new(&std::env::var("OUT_DIR").unwrap()).join("sobol_directions.rs");
+    std::fs::write(dest, out).expect("writing the direction table");
+}

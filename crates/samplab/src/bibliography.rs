@@ -1,0 +1,60 @@
+//! The one bibliography of samplab. Doc comments and registry entries cite these keys.
+
+/// A published work that a method implements.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Reference {
+    /// Stable key, e.g. `shirley1991`.
+    pub key: &'static str,
+    /// Authors, title, venue, year.
+    pub citation: &'static str,
+}
+
+macro_rules! bib {
+    ($($key:ident => $cite:expr),* $(,)?) => {
+        /// Every reference, in key order.
+        pub const ALL: &[Reference] = &[$(Reference { key: stringify!($key), citation: $cite }),*];
+    };
+}
+
+bib! {
+    bridson2007 => "R. Bridson. Fast Poisson disk sampling in arbitrary dimensions. SIGGRAPH sketches, 2007.",
+    burley2020 => "B. Burley. Practical hash-based Owen scrambling. JCGT 9(4), 2020.",
+    christensen2018 => "P. Christensen, A. Kensler, C. Kilpatrick. Progressive multi-jittered sample sequences. EGSR 2018.",
+    cook1986 => "R. L. Cook. Stochastic sampling in computer graphics. ACM TOG 5(1), 1986.",
+    cranley1976 => "R. Cranley, T. N. L. Patterson. Randomization of number theoretic methods for multiple integration. SIAM J. Numer. Anal. 13(6), 1976.",
+    ebeida2012 => "M. Ebeida, S. Mitchell, A. Patney, A. Davidson, J. Owens. A simple algorithm for maximal Poisson-disk sampling in high dimensions. Eurographics 2012.",
+    halton1960 => "J. H. Halton. On the efficiency of certain quasi-random sequences of points in evaluating multi-dimensional integrals. Numer. Math. 2, 1960.",
+    hammersley1964 => "J. M. Hammersley, D. C. Handscomb. Monte Carlo Methods. Methuen, 1964.",
+    helmer2021 => "A. Helmer, P. Christensen, A. Kensler. Stochastic generation of (t,s) sample sequences. EGSR 2021.",
+    joe2008 => "S. Joe, F. Y. Kuo. Constructing Sobol sequences with better two-dimensional projections. SIAM J. Sci. Comput. 30(5), 2008.",
+    kensler2013 => "A. Kensler. Correlated multi-jittered sampling. Pixar Technical Memo 13-01, 2013.",
+    laine2011 => "S. Laine, T. Karras. Stratified sampling for stochastic transparency. EGSR 2011.",
+    matousek1998 => "J. Matousek. On the L2-discrepancy for anchored boxes. J. Complexity 14, 1998 (random digit scrambling).",
+    mckay1979 => "M. D. McKay, R. J. Beckman, W. J. Conover. A comparison of three methods for selecting values of input variables. Technometrics 21(2), 1979.",
+    owen1995 => "A. B. Owen. Randomly permuted (t,m,s)-nets and (t,s)-sequences. Monte Carlo and Quasi-Monte Carlo Methods, 1995.",
+    purgathofer1994 => "W. Purgathofer, R. Tobler, M. Geiler. Forced random dithering: improved threshold matrices for ordered dithering. ICIP 1994.",
+    ramamoorthi2012 => "R. Ramamoorthi, J. Anderson, M. Meyer, D. Nowrouzezahrai. A theory of Monte Carlo visibility sampling. ACM TOG 31(5), 2012.",
+    sbert2006 => "M. Sbert, J. Rigau, M. Feixas, L. Neumann. Systematic sampling in image synthesis. ICCSA 2006.",
+    shirley1991 => "P. Shirley. Discrepancy as a quality measure for sample distributions. Eurographics 1991.",
+    shirley1997 => "P. Shirley, K. Chiu. A low distortion map between disk and square. JGT 2(3), 1997.",
+    sobol1967 => "I. M. Sobol'. On the distribution of points in a cube and the approximate evaluation of integrals. USSR Comput. Math. Math. Phys. 7(4), 1967.",
+    subr2013 => "K. Subr, J. Kautz. Fourier analysis of stochastic sampling strategies for assessing bias and variance in integration. ACM TOG 32(4), 2013.",
+    vegdahl2021 => "N. Vegdahl. Building a better LK hash. psychopath.io blog, 2021 (constants of the Owen hash).",
+}
+
+/// The reference for `key`, if it exists.
+pub fn lookup(key: &str) -> Option<&'static Reference> {
+    ALL.iter().find(|r| r.key == key)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn keys_unique_and_sorted() {
+        let keys: Vec<_> = super::ALL.iter().map(|r| r.key).collect();
+        let mut sorted = keys.clone();
+        sorted.sort();
+        sorted.dedup();
+        assert_eq!(keys, sorted);
+    }
+}

@@ -1,0 +1,142 @@
+//! The library's typed errors. Every message is one line that names what is wrong and where.
+
+use thiserror::Error;
+
+/// Everything that can go wrong in samplab's library calls.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum Error {
+    /// A sampler cannot make exactly `n` points (e.g. a grid sampler asked for a non-power).
+    #[error("{sampler}: cannot make {n} points in {dims}D: {reason}")]
+    InvalidCount {
+        /// The sampler's canonical name.
+        sampler: String,
+        /// The count asked for.
+        n: usize,
+        /// The dimension asked for.
+        dims: usize,
+        /// Why, and what would work instead.
+        reason: String,
+    },
+    /// A sampler does not support the dimension asked for.
+    #[error("{sampler}: {dims}D is not supported (supported: {supported})")]
+    InvalidDims {
+        /// The sampler's canonical name.
+        sampler: String,
+        /// The dimension asked for.
+        dims: usize,
+        /// The supported range, in words.
+        supported: String,
+    },
+    /// A name that no registry knows.
+    #[error("unknown {kind} '{name}'{}", suggest(.suggestions))]
+    UnknownName {
+        /// "sampler", "warp", "format", ...
+        kind: &'static str,
+        /// The name as given.
+        name: String,
+        /// The closest known names.
+        suggestions: Vec<String>,
+    },
+    /// A parameter that is unknown, malformed or out of range.
+    #[error("{owner}: parameter '{param}': {reason}")]
+    Param {
+        /// The sampler or warp the parameter belongs to.
+        owner: String,
+        /// The parameter's name (or its position).
+        param: String,
+        /// What is wrong, with the valid range.
+        reason: String,
+    },
+    /// A randomized construction that could not finish (e.g. Poisson disks that do not fit).
+    #[error("{sampler}: {reason}")]
+    Infeasible {
+        /// The sampler's canonical name.
+        sampler: String,
+        /// What could not be done, with numbers.
+        reason: String,
+    },
+    /// Malformed input data (a point file); `location` is `file:line` or similar.
+    #[error("{location}: {reason}")]
+    Parse {
+        /// Where: `path:line`, `path`, or a flag name.
+        location: String,
+        /// What is wrong there.
+        reason: String,
+    },
+    /// An operating-system I/O failure.
+    #[error("{path}: {reason}")]
+    Io {
+        /// The file involved.
+        path: String,
+        /// The OS error, as text.
+        reason: String,
+    },
+    /// Arguments that do not fit together (e.g. mismatched dimensions).
+    #[error("{0}")]
+    Invalid(String),
+}
+
+fn suggest(s: &[String]) -> String {
+    if s.is_empty() {
+        String::new()
+    } else {
+        format!(" (did you mean {}?)", s.join(", "))
+    }
+}
+
+/// Shorthand for results with [`Error`].
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// The known names closest to `name` (Levenshtein distance, at most three), best first.
+pub fn closest_names<'a>(name: &str, known: impl IntoIterator<Item = &'a str>) -> Vec<String> {
+    let name = name.to_ascii_lowercase();
+    let mut scored: Vec<(usize, &str)> = known
+        .into_iter()
+        .map(|k| (edit_distance(&name, &k.to_ascii_lowercase()), k))
+        .filter(|(d, k)| *d <= 3.max(name.len() / 3) || k.starts_with(name.as_str()))
+        .collect();
+    scored.sort();
+    scored.dedup_by(|a, b| a.1 == b.1);
+    scored
+        .into_iter()
+        .take(3)
+        .map(|(_, k)| k.to_string())
+        .collect()
+}
+
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diag = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let next = (diag + usize::from(ca != cb))
+                .min(row[j] + 1)
+                .min(row[j + 1] + 1);
+            diag = row[j + 1];
+            row[j + 1] = next;
+        }
+    }
+    row[b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn edit_distance_by_hand() {
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("", "abc"), 3);
+        assert_eq!(edit_distance("jitter", "jitter"), 0);
+    }
+
+    #[test]
+    fn closest_names_ranks_by_distance() {
+        let known = ["sobol", "halton", "hammersley", "jitter"];
+        assert_eq!(closest_names("sobl", known)[0], "sobol");
+        assert_eq!(closest_names("haltn", known)[0], "halton");
+        assert!(closest_names("zzzzzzzzzz", known).is_empty());
+    }
+}

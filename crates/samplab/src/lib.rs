@@ -1,0 +1,42 @@
+//! # samplab
+//!
+//! Sampling patterns for Monte Carlo integration in rendering: every strategy of
+//! Shirley 1991, Subr & Kautz 2013, Sbert et al. 2006 and Ramamoorthi et al. 2012, plus the
+//! modern low-discrepancy sequences, with warps to other domains and point-set I/O.
+//!
+//! ## Conventions (stated once, here)
+//!
+//! - Points are `f64`, in the half-open unit cube [0,1)^d, stored row-major in a
+//!   [`PointSet`]. Warped sets live in their warp's domain.
+//! - Randomness comes only from an explicit [`Seed`]. Realization `k` of a batch is seeded
+//!   with `seed.derive(k)` (a hash, never `seed + k`), so results are bit-identical
+//!   whatever the thread count. The RNG is PCG64 ([`seed::Rng`]).
+//! - Counts are never rounded: a sampler that cannot make exactly `n` points returns an
+//!   error naming the nearest counts it can make.
+//! - Samplers are named by specs `family[.variant][:key=value,...]`; see
+//!   [`sampler::registry`] and `samplab list samplers`.
+//! - Every method's documentation names its paper (keys in [`bibliography`]).
+//!
+//! ```
+//! use samplab::{Seed, sampler};
+//! let jitter = sampler::build("jitter.gaussian:sigma=0.25").unwrap();
+//! let points = jitter.generate(256, 2, Seed(7)).unwrap();
+//! assert_eq!(points.len(), 256);
+//! assert!(points.in_unit_cube());
+//! ```
+
+#![deny(missing_docs)]
+
+pub mod bibliography;
+pub mod error;
+pub mod io;
+pub mod points;
+pub mod sampler;
+pub mod seed;
+pub mod spec;
+pub mod warp;
+
+pub use error::{Error, Result};
+pub use points::PointSet;
+pub use sampler::{Sampler, Sequence};
+pub use seed::Seed;

@@ -1,0 +1,189 @@
+//! The grid family on n = k^d cells: regular, jittered, half-, box- and Gaussian-jittered,
+//! uniform jitter (systematic sampling) and its Gaussian combination, and a randomly
+//! rotated and translated regular grid.
+//!
+//! Cells are enumerated row-major: point i sits in cell (i_0, ..., i_{d-1}) with the
+//! last coordinate varying fastest. A count that is not a perfect d-th power is an
+//! error naming the two nearest valid counts; nothing is rounded.
+
+use std::f64::consts::TAU;
+use std::ops::RangeInclusive;
+
+use super::{Sampler, exact_root};
+use crate::error::{Error, Result};
+use crate::seed::{Rng, Seed, normal, uniform, wrap01};
+
+/// The largest f64 below one: where a rounding could land a coordinate on 1.0.
+pub(crate) const BELOW_ONE: f64 = 1.0 - f64::EPSILON / 2.0;
+
+/// How each grid point is displaced inside (or around) its cell. Offsets are fractions of
+/// the grid spacing 1/k.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Displacement {
+    /// Cell centres (Shirley 1991 "regular").
+    Regular,
+    /// Uniform in the whole cell (Cook 1986; Shirley 1991 "jittered").
+    Jitter,
+    /// Uniform in the central half of the cell along each axis (Shirley 1991
+    /// "half-jittered"): the box below with delta = 1/4.
+    Half,
+    /// Uniform in a centred box of half-width `delta`: delta = 0.25 is Shirley's
+    /// half-jittered, 0.5 is plain jitter (Subr & Kautz 2013 eqs. 10-11, "BJittered").
+    Box {
+        /// Half-width of the box, fraction of a cell, in [0, 0.5].
+        delta: f64,
+    },
+    /// Centre plus an independent normal offset of standard deviation `sigma` cells per
+    /// coordinate (Subr & Kautz 2013 section 4, "GJittered"). Points that leave the unit
+    /// cube are wrapped toroidally (`resample = false`) or their offset is redrawn.
+    Gaussian {
+        /// Standard deviation, fraction of a cell.
+        sigma: f64,
+        /// Redraw out-of-cube offsets instead of wrapping.
+        resample: bool,
+    },
+    /// One uniform offset shared by every point (systematic sampling, Sbert et al. 2006;
+    /// "uniform jitter", Ramamoorthi et al. 2012).
+    Uniform,
+    /// Shared offset alpha*(u - 1/2) plus per-point normal offsets of deviation sigma,
+    /// wrapped toroidally (Subr & Kautz 2013 Fig. 10).
+    UniformGaussian {
+        /// Scale of the shared uniform offset, in [0, 1] cells.
+        alpha: f64,
+        /// Standard deviation of the per-point offsets, fraction of a cell.
+        sigma: f64,
+    },
+}
+
+/// A grid sampler: `k^d` points, one per cell, displaced by `displacement`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Grid {
+    name: &'static str,
+    displacement: Displacement,
+}
+
+impl Grid {
+    /// A grid sampler registered under `name`.
+    pub fn new(name: &'static str, displacement: Displacement) -> Self {
+        Grid { name, displacement }
+    }
+}
+
+pub(crate) fn check_grid_count(spec: String, n: usize, dims: usize) -> Result<usize> {
+    exact_root(n, dims).map_err(|(lo, hi)| Error::InvalidCount {
+        sampler: spec,
+        n,
+        dims,
+        reason: format!(
+            "a {dims}D grid needs n = k^{dims}; the nearest valid counts are {lo} and {hi}"
+        ),
+    })
+}
+
+impl Sampler for Grid {
+    fn spec(&self) -> String {
+        match self.displacement {
+            Displacement::Box { delta } => format!("{}:delta={delta}", self.name),
+            Displacement::Gaussian { sigma, resample } => {
+                format!(
+                    "{}:sigma={sigma},edge={}",
+                    self.name,
+                    if resample { "resample" } else { "wrap" }
+                )
+            }
+            Displacement::UniformGaussian { alpha, sigma } => {
+                format!("{}:alpha={alpha},sigma={sigma}", self.name)
+            }
+            _ => self.name.into(),
+        }
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        1..=64
+    }
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        check_grid_count(self.spec(), n, dims).map(|_| ())
+    }
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let k = check_grid_count(self.spec(), n, dims)?;
+        let mut rng = seed.rng();
+        let inv = 1.0 / k as f64;
+        let shared: Vec<f64> = match self.displacement {
+            Displacement::Uniform => (0..dims).map(|_| uniform(&mut rng)).collect(),
+            Displacement::UniformGaussian { alpha, .. } => (0..dims)
+                .map(|_| 0.5 + alpha * (uniform(&mut rng) - 0.5))
+                .collect(),
+            _ => vec![0.5; dims],
+        };
+        for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+            let mut rest = i;
+            for d in (0..dims).rev() {
+                let cell = (rest % k) as f64;
+                rest /= k;
+                p[d] = self.place(cell, shared[d], inv, &mut rng);
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Grid {
+    /// The coordinate of a point in cell `cell` (of width `inv`), drawing from `rng`.
+    fn place(&self, cell: f64, shared: f64, inv: f64, rng: &mut Rng) -> f64 {
+        let within = |t: f64| ((cell + t) * inv).min(BELOW_ONE);
+        match self.displacement {
+            Displacement::Regular => within(0.5),
+            Displacement::Jitter => within(uniform(rng)),
+            Displacement::Half => within(0.25 + 0.5 * uniform(rng)),
+            Displacement::Box { delta } => within(0.5 + delta * (2.0 * uniform(rng) - 1.0)),
+            Displacement::Uniform => within(shared),
+            Displacement::Gaussian {
+                sigma,
+                resample: false,
+            } => wrap01((cell + 0.5 + sigma * normal(rng)) * inv),
+            Displacement::Gaussian {
+                sigma,
+                resample: true,
+            } => loop {
+                let x = (cell + 0.5 + sigma * normal(rng)) * inv;
+                if (0.0..1.0).contains(&x) {
+                    break x;
+                }
+            },
+            Displacement::UniformGaussian { sigma, .. } => {
+                wrap01((cell + shared + sigma * normal(rng)) * inv)
+            }
+        }
+    }
+}
+
+/// The cell centres of a regular k x k grid, rotated about the centre by a uniformly random
+/// angle, translated by a uniformly random offset and wrapped toroidally (Subr & Kautz 2013
+/// section 5: its periodogram looks like blue noise, yet every realization is regular). 2D.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RotatedGrid;
+
+impl Sampler for RotatedGrid {
+    fn spec(&self) -> String {
+        "regular.rotated".into()
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        2..=2
+    }
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        check_grid_count(self.spec(), n, dims).map(|_| ())
+    }
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let k = check_grid_count(self.spec(), n, dims)?;
+        let mut rng = seed.rng();
+        let (s, c) = (TAU * uniform(&mut rng)).sin_cos();
+        let (ox, oy) = (uniform(&mut rng), uniform(&mut rng));
+        let inv = 1.0 / k as f64;
+        for (i, p) in out.chunks_exact_mut(2).enumerate() {
+            let x = ((i / k) as f64 + 0.5) * inv - 0.5;
+            let y = ((i % k) as f64 + 0.5) * inv - 0.5;
+            p[0] = wrap01(c * x - s * y + ox);
+            p[1] = wrap01(s * x + c * y + oy);
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,133 @@
+//! Progressive multi-jittered (0,2) sequences (Christensen, Kensler & Kilpatrick 2018),
+//! generated with the stochastic construction of Helmer, Christensen & Kensler 2021, and
+//! correlated multi-jittered sampling (Kensler 2013).
+
+use std::ops::RangeInclusive;
+
+use rand_core::Rng as _;
+
+use super::Sampler;
+use super::scramble::{hash_unit, permute};
+use super::sobol::SOBOL_DIRECTIONS;
+use crate::error::Result;
+use crate::seed::Seed;
+
+/// pmj02: every prefix of 2^m points is a (0,m,2)-net in base 2 (one point in every
+/// elementary interval of area 2^-m), and so is every later block of 2^m points.
+///
+/// Stochastic construction (Helmer et al. 2021, section 4): point 0 is uniform; point i
+/// in [2^m, 2^(m+1)) copies the first m binary digits of an earlier "partner" point per
+/// axis, takes the opposite (m+1)-th digit, and draws every later digit at random. The
+/// x partner is i - 2^m (van der Corput structure); the y partner is i - 2^m XOR t_m,
+/// where t_m solves the Sobol' dimension-2 generator restricted to its first m digits
+/// (so that the new point fills the unoccupied half of each elementary interval). The
+/// result has the distribution of an Owen-scrambled (0,2)-sequence; it is O(n), uses no
+/// occupancy structure, and needs no rejection. 32-bit resolution, 2D, n <= 2^32.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Pmj02;
+
+/// t_m for m = 0..32: the index j < 2^m whose first m Sobol' dimension-2 digits equal
+/// those of the direction number v_m.
+fn partner_masks() -> [u32; 32] {
+    let v = &SOBOL_DIRECTIONS[1];
+    std::array::from_fn(|m| {
+        let top = if m == 0 { 0 } else { !0u32 << (32 - m) };
+        let mut target = v[m] & top;
+        let mut j = 0u32;
+        // v_k has its lowest set bit at 31-k, so solve from the lowest digit up
+        for k in (0..m).rev() {
+            if target & (1 << (31 - k)) != 0 {
+                target ^= v[k] & top;
+                j |= 1 << k;
+            }
+        }
+        debug_assert_eq!(target, 0);
+        j
+    })
+}
+
+impl Sampler for Pmj02 {
+    fn spec(&self) -> String {
+        "pmj02".into()
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        2..=2
+    }
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        super::sobol::Sobol::new(super::Randomization::None).check_count(n, dims)
+    }
+    fn fill(&self, n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let t = partner_masks();
+        let mut rng = seed.rng();
+        let mut xy: Vec<[u32; 2]> = Vec::with_capacity(n);
+        xy.push([rng.next_u32(), rng.next_u32()]);
+        for i in 1..n {
+            let m = i.ilog2() as usize;
+            let px = i ^ (1 << m);
+            let py = px ^ t[m] as usize;
+            let keep = if m == 0 { 0 } else { !0u32 << (32 - m) };
+            let flip = 1u32 << (31 - m);
+            let fresh = flip - 1;
+            let child = |parent: u32, r: u32| (parent & keep) | (!parent & flip) | (r & fresh);
+            let r = rng.next_u64();
+            xy.push([
+                child(xy[px][0], r as u32),
+                child(xy[py][1], (r >> 32) as u32),
+            ]);
+        }
+        for (p, q) in out.chunks_exact_mut(2).zip(&xy) {
+            p[0] = f64::from(q[0]) / 4_294_967_296.0;
+            p[1] = f64::from(q[1]) / 4_294_967_296.0;
+        }
+        Ok(())
+    }
+}
+
+/// Correlated multi-jittered sampling (Kensler 2013, section 4): an m x k arrangement of
+/// cells (m = floor(sqrt(n)), k = ceil(n / m)), the canonical N-rooks layout shuffled by
+/// one permutation per axis shared by all rows (resp. columns), then jittered inside each
+/// sub-cell; any n (when n < m*k, a random n of the cells are used). 2D.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Cmj;
+
+impl Sampler for Cmj {
+    fn spec(&self) -> String {
+        "cmj".into()
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        2..=2
+    }
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        if n > u32::MAX as usize {
+            return Err(crate::error::Error::InvalidCount {
+                sampler: self.spec(),
+                n,
+                dims,
+                reason: "at most 2^32 - 1 points".into(),
+            });
+        }
+        Ok(())
+    }
+    fn fill(&self, n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let m = (n as f64).sqrt().floor().max(1.0) as u32;
+        let k = (n as u32).div_ceil(m);
+        let key = |label: &str| seed.derive_str(label).bits32();
+        let (kidx, kx, ky) = (key("cmj index"), key("cmj x"), key("cmj y"));
+        let (jx, jy) = (
+            seed.derive_str("cmj jitter x").0,
+            seed.derive_str("cmj jitter y").0,
+        );
+        for (s, p) in out.chunks_exact_mut(2).enumerate() {
+            let s = permute(s as u32, n as u32, kidx);
+            let (col, row) = (s % m, s / m);
+            let sx = permute(col, m, kx);
+            let sy = permute(row, k, ky);
+            let (ux, uy) = (hash_unit(u64::from(s), jx), hash_unit(u64::from(s), jy));
+            p[0] = ((f64::from(col) + (f64::from(sy) + ux) / f64::from(k)) / f64::from(m))
+                .min(super::grid::BELOW_ONE);
+            p[1] = ((f64::from(row) + (f64::from(sx) + uy) / f64::from(m)) / f64::from(k))
+                .min(super::grid::BELOW_ONE);
+        }
+        Ok(())
+    }
+}

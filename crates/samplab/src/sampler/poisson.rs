@@ -1,0 +1,478 @@
+//! Poisson-disk sampling: every pair of points at least `radius` apart.
+//!
+//! - [`DartThrowing`] (Cook 1986; Shirley 1991 section 2): uniform candidates, accepted
+//!   when no earlier point lies within the radius; exactly n points; a bounded number of
+//!   consecutive misses per try, a few tries, then a clear error. 1D to 4D.
+//! - [`Bridson`] (Bridson 2007): grows the set from accepted points, trying k candidates
+//!   in the annulus [r, 2r] around an active point; radii are drawn as r*sqrt(3u + 1),
+//!   uniform in the annulus's area (not r*(1+u), a bias many implementations carry). It
+//!   fills the whole domain in O(n); when that gives more than n points a uniformly random
+//!   n of them are kept (the minimum distance still holds). 2D.
+//! - [`Maximal`]: Bridson, then gap filling on a quadtree of uncovered cells (in the manner
+//!   of Ebeida et al. 2012) until no disk of radius r fits anywhere (to cells of side
+//!   r*2^-24), with the radius bisected, for a fixed seed, until the maximal set has
+//!   exactly n points. The relative radius of such sets is about 0.77 of the hexagonal
+//!   packing radius (random sequential adsorption limit). 2D.
+//!
+//! Distances are toroidal by default (`edge=torus`); `edge=plain` measures them inside the
+//! square, as Shirley 1991 did.
+
+use std::f64::consts::{PI, TAU};
+use std::ops::RangeInclusive;
+
+use super::Sampler;
+use crate::error::{Error, Result};
+use crate::seed::{Rng, Seed, below, uniform, wrap01};
+
+/// The hexagonal-packing radius of n points in the unit torus (d = 2), and its analogues
+/// for d = 1, 3, 4 from the densest lattice packings: the largest possible minimum distance.
+pub fn packing_radius(n: usize, dims: usize) -> f64 {
+    let density = match dims {
+        1 => 1.0,
+        2 => PI / 12f64.sqrt(),
+        3 => PI / 18f64.sqrt(),
+        _ => PI * PI / 16.0,
+    };
+    // n balls of radius r/2 fill at most `density` of the unit volume
+    let unit_ball = PI.powf(dims as f64 / 2.0) / gamma_half(dims + 2);
+    2.0 * (density / (n as f64 * unit_ball)).powf(1.0 / dims as f64)
+}
+
+/// Gamma(k/2) for small whole k.
+fn gamma_half(k: usize) -> f64 {
+    match k {
+        1 => PI.sqrt(),
+        2 => 1.0,
+        _ => (k as f64 / 2.0 - 1.0) * gamma_half(k - 2),
+    }
+}
+
+/// Relative radius used when none is given: 0.7 of the packing radius for dart throwing,
+/// 0.72 for Bridson (which saturates near 0.75 with k = 30).
+const AUTO_RELATIVE: f64 = 0.7;
+
+/// A uniform grid over [0,1)^d with cells of side >= r: every neighbour within r of a
+/// point lies in the 3^d cells around it.
+struct NeighbourGrid {
+    dims: usize,
+    cells: usize,
+    torus: bool,
+    radius2: f64,
+    heads: Vec<u32>, // first point of each cell, u32::MAX when empty
+    next: Vec<u32>,  // next point in the same cell
+    points: Vec<f64>,
+}
+
+impl NeighbourGrid {
+    fn new(dims: usize, radius: f64, torus: bool, capacity: usize) -> Self {
+        let max_cells = ((1usize << 22) as f64).powf(1.0 / dims as f64) as usize;
+        let cells = ((1.0 / radius).floor() as usize).clamp(1, max_cells.max(1));
+        NeighbourGrid {
+            dims,
+            cells,
+            torus,
+            radius2: radius * radius,
+            heads: vec![u32::MAX; cells.pow(dims as u32)],
+            next: Vec::with_capacity(capacity),
+            points: Vec::with_capacity(capacity * dims),
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.next.len()
+    }
+
+    fn clear(&mut self) {
+        self.heads.fill(u32::MAX);
+        self.next.clear();
+        self.points.clear();
+    }
+
+    fn cell_of(&self, p: &[f64]) -> Vec<usize> {
+        p.iter()
+            .map(|&x| ((x * self.cells as f64) as usize).min(self.cells - 1))
+            .collect()
+    }
+
+    fn flat(&self, c: &[usize]) -> usize {
+        c.iter().fold(0, |acc, &i| acc * self.cells + i)
+    }
+
+    fn insert(&mut self, p: &[f64]) {
+        let cell = self.flat(&self.cell_of(p));
+        self.next.push(self.heads[cell]);
+        self.heads[cell] = (self.next.len() - 1) as u32;
+        self.points.extend_from_slice(p);
+    }
+
+    fn distance2(&self, a: &[f64], b: &[f64]) -> f64 {
+        a.iter()
+            .zip(b)
+            .map(|(&x, &y)| {
+                let mut d = (x - y).abs();
+                if self.torus && d > 0.5 {
+                    d = 1.0 - d;
+                }
+                d * d
+            })
+            .sum()
+    }
+
+    /// The nearest point within the radius of `p`, if any.
+    fn conflict(&self, p: &[f64]) -> bool {
+        let span = if self.cells < 3 { self.cells } else { 3 };
+        let centre = self.cell_of(p);
+        let mut offset = vec![0usize; self.dims];
+        let mut cell = vec![0usize; self.dims];
+        'cells: loop {
+            let mut inside = true;
+            for d in 0..self.dims {
+                let c = if span < 3 {
+                    offset[d]
+                } else {
+                    centre[d] + self.cells + offset[d] - 1
+                };
+                if !self.torus && span == 3 && (c < self.cells || c >= 2 * self.cells) {
+                    inside = false;
+                }
+                cell[d] = c % self.cells;
+            }
+            if inside {
+                let mut i = self.heads[self.flat(&cell)];
+                while i != u32::MAX {
+                    let q = &self.points[i as usize * self.dims..(i as usize + 1) * self.dims];
+                    if self.distance2(p, q) < self.radius2 {
+                        return true;
+                    }
+                    i = self.next[i as usize];
+                }
+            }
+            for d in 0..self.dims {
+                offset[d] += 1;
+                if offset[d] < span {
+                    continue 'cells;
+                }
+                offset[d] = 0;
+            }
+            return false;
+        }
+    }
+
+    /// Whether the square [x0,x0+s) x [y0,y0+s) lies inside one disk of radius r (2D).
+    fn covers_square(&self, x0: f64, y0: f64, s: f64) -> bool {
+        let centre = [wrap01(x0 + s / 2.0), wrap01(y0 + s / 2.0)];
+        let c = self.cell_of(&centre);
+        let span = self.cells.min(3);
+        for ox in 0..span {
+            for oy in 0..span {
+                let cx = if span < 3 {
+                    ox
+                } else {
+                    (c[0] + self.cells + ox - 1) % self.cells
+                };
+                let cy = if span < 3 {
+                    oy
+                } else {
+                    (c[1] + self.cells + oy - 1) % self.cells
+                };
+                let mut i = self.heads[cx * self.cells + cy];
+                while i != u32::MAX {
+                    let q = &self.points[i as usize * 2..i as usize * 2 + 2];
+                    let corners = [(x0, y0), (x0 + s, y0), (x0, y0 + s), (x0 + s, y0 + s)];
+                    if corners
+                        .iter()
+                        .all(|&(x, y)| self.distance2(&[wrap01(x), wrap01(y)], q) < self.radius2)
+                    {
+                        return true;
+                    }
+                    i = self.next[i as usize];
+                }
+            }
+        }
+        false
+    }
+}
+
+/// Whether an `edge` parameter word means toroidal distance.
+pub(crate) fn edge_is_torus(word: &str) -> bool {
+    word == "torus"
+}
+
+fn edge_word(torus: bool) -> &'static str {
+    if torus { "torus" } else { "plain" }
+}
+
+/// Keep a uniformly random `n` of the points (partial Fisher–Yates), in random order.
+fn keep_random(points: &[f64], dims: usize, n: usize, rng: &mut Rng, out: &mut [f64]) {
+    let m = points.len() / dims;
+    let mut idx: Vec<u32> = (0..m as u32).collect();
+    for i in 0..n {
+        let j = i + below(rng, (m - i) as u64) as usize;
+        idx.swap(i, j);
+        let k = idx[i] as usize;
+        out[i * dims..(i + 1) * dims].copy_from_slice(&points[k * dims..(k + 1) * dims]);
+    }
+}
+
+/// Dart throwing with a minimum distance (Shirley 1991's Poisson disk).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DartThrowing {
+    radius: Option<f64>,
+    torus: bool,
+    attempts: u64,
+}
+
+impl DartThrowing {
+    /// `radius` None means 0.7 x [`packing_radius`]; `attempts` is the number of
+    /// consecutive rejected candidates after which a try is abandoned (16 tries in all).
+    pub fn new(radius: Option<f64>, torus: bool, attempts: u64) -> Self {
+        DartThrowing {
+            radius,
+            torus,
+            attempts,
+        }
+    }
+}
+
+const TRIES: u64 = 16;
+
+impl Sampler for DartThrowing {
+    fn spec(&self) -> String {
+        let r = self.radius.map_or("auto".into(), |r| r.to_string());
+        format!(
+            "poisson:radius={r},edge={},attempts={}",
+            edge_word(self.torus),
+            self.attempts
+        )
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        1..=4
+    }
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        let r = self
+            .radius
+            .unwrap_or(AUTO_RELATIVE * packing_radius(n, dims));
+        // with plain edges the disks may poke out of the square by r/2
+        let room = if self.torus {
+            1.0
+        } else {
+            (1.0 + r).powi(dims as i32)
+        };
+        let most = (room * (packing_radius(1, dims) / r).powi(dims as i32)).floor();
+        if n as f64 > most {
+            return Err(Error::Infeasible {
+                sampler: self.spec(),
+                reason: format!(
+                    "radius {r} cannot fit {n} points in {dims}D: even the densest packing holds at most {most}; use a radius below {:.6}",
+                    packing_radius(n, dims) * room.powf(1.0 / dims as f64)
+                ),
+            });
+        }
+        Ok(())
+    }
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let r = self
+            .radius
+            .unwrap_or(AUTO_RELATIVE * packing_radius(n, dims));
+        let mut grid = NeighbourGrid::new(dims, r, self.torus, n);
+        let mut best = 0;
+        let mut cand = vec![0.0; dims];
+        for t in 0..TRIES {
+            let mut rng = seed.derive(t).rng();
+            grid.clear();
+            let mut misses = 0;
+            while grid.len() < n && misses <= self.attempts {
+                cand.iter_mut().for_each(|x| *x = uniform(&mut rng));
+                if grid.conflict(&cand) {
+                    misses += 1;
+                } else {
+                    grid.insert(&cand);
+                    misses = 0;
+                }
+            }
+            if grid.len() == n {
+                out.copy_from_slice(&grid.points);
+                return Ok(());
+            }
+            best = best.max(grid.len());
+        }
+        Err(Error::Infeasible {
+            sampler: self.spec(),
+            reason: format!(
+                "radius {r} is too large for {n} points: dart throwing placed at most {best} ({TRIES} tries, {} consecutive misses each); use a smaller radius (the packing limit is {:.6}) or more attempts",
+                self.attempts,
+                packing_radius(n, dims)
+            ),
+        })
+    }
+}
+
+/// Grow a Bridson set with radius r over the unit square (or torus).
+fn bridson(r: f64, torus: bool, k: u32, rng: &mut Rng, grid: &mut NeighbourGrid) {
+    let mut active: Vec<u32> = Vec::new();
+    let first = [uniform(rng), uniform(rng)];
+    grid.insert(&first);
+    active.push(0);
+    while !active.is_empty() {
+        let a = below(rng, active.len() as u64) as usize;
+        let i = active[a] as usize;
+        let (px, py) = (grid.points[2 * i], grid.points[2 * i + 1]);
+        let mut placed = false;
+        for _ in 0..k {
+            // uniform in the annulus's area: the radius CDF is (rho^2 - r^2) / (3 r^2)
+            let rho = r * (3.0 * uniform(rng) + 1.0).sqrt();
+            let (s, c) = (TAU * uniform(rng)).sin_cos();
+            let (mut x, mut y) = (px + rho * c, py + rho * s);
+            if torus {
+                x = wrap01(x);
+                y = wrap01(y);
+            } else if !(0.0..1.0).contains(&x) || !(0.0..1.0).contains(&y) {
+                continue;
+            }
+            if !grid.conflict(&[x, y]) {
+                grid.insert(&[x, y]);
+                active.push((grid.len() - 1) as u32);
+                placed = true;
+                break;
+            }
+        }
+        if !placed {
+            active.swap_remove(a);
+        }
+    }
+}
+
+/// Bridson's fast Poisson-disk sampling (2D), O(n).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bridson {
+    radius: Option<f64>,
+    torus: bool,
+    k: u32,
+}
+
+impl Bridson {
+    /// `radius` None means 0.72 x [`packing_radius`]; `k` candidates per active point.
+    pub fn new(radius: Option<f64>, torus: bool, k: u32) -> Self {
+        Bridson { radius, torus, k }
+    }
+}
+
+impl Sampler for Bridson {
+    fn spec(&self) -> String {
+        let r = self.radius.map_or("auto".into(), |r| r.to_string());
+        format!(
+            "poisson.fast:radius={r},edge={},k={}",
+            edge_word(self.torus),
+            self.k
+        )
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        2..=2
+    }
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let r = self.radius.unwrap_or(0.72 * packing_radius(n, dims));
+        let mut rng = seed.rng();
+        let mut grid = NeighbourGrid::new(2, r, self.torus, n + n / 4);
+        bridson(r, self.torus, self.k, &mut rng, &mut grid);
+        if grid.len() < n {
+            return Err(Error::Infeasible {
+                sampler: self.spec(),
+                reason: format!(
+                    "radius {r} fills the square with only {} points (Bridson, k = {}), fewer than {n}; use a smaller radius",
+                    grid.len(),
+                    self.k
+                ),
+            });
+        }
+        keep_random(&grid.points, 2, n, &mut rng, out);
+        Ok(())
+    }
+}
+
+/// Maximal Poisson-disk sampling with exactly n points (2D).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Maximal {
+    torus: bool,
+}
+
+impl Maximal {
+    /// A maximal sampler; the radius follows from n.
+    pub fn new(torus: bool) -> Self {
+        Maximal { torus }
+    }
+}
+
+/// Bridson followed by gap filling: a maximal set for radius r.
+fn maximal_set(r: f64, torus: bool, seed: Seed, capacity: usize) -> NeighbourGrid {
+    let mut rng = seed.rng();
+    let mut grid = NeighbourGrid::new(2, r, torus, capacity);
+    bridson(r, torus, 30, &mut rng, &mut grid);
+    // quadtree of cells that no single disk covers
+    let base = (2f64.sqrt() / r).ceil() as usize;
+    let mut side = 1.0 / base as f64;
+    let mut cells: Vec<(f64, f64)> = (0..base * base)
+        .map(|c| ((c / base) as f64 * side, (c % base) as f64 * side))
+        .collect();
+    for _depth in 0..24 {
+        cells.retain(|&(x, y)| !grid.covers_square(x, y, side));
+        if cells.is_empty() {
+            break;
+        }
+        // one dart per uncovered cell, in random order
+        for i in (1..cells.len()).rev() {
+            cells.swap(i, below(&mut rng, i as u64 + 1) as usize);
+        }
+        for &(x, y) in &cells {
+            let p = [x + side * uniform(&mut rng), y + side * uniform(&mut rng)];
+            let inside = torus || (p[0] < 1.0 && p[1] < 1.0);
+            if inside && !grid.conflict(&p) {
+                grid.insert(&p);
+            }
+        }
+        cells.retain(|&(x, y)| !grid.covers_square(x, y, side));
+        side /= 2.0;
+        cells = cells
+            .iter()
+            .flat_map(|&(x, y)| [(x, y), (x + side, y), (x, y + side), (x + side, y + side)])
+            .filter(|&(x, y)| x < 1.0 && y < 1.0)
+            .collect();
+    }
+    grid
+}
+
+impl Sampler for Maximal {
+    fn spec(&self) -> String {
+        format!("poisson.maximal:edge={}", edge_word(self.torus))
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        2..=2
+    }
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let rmax = packing_radius(n, dims);
+        for t in 0..8 {
+            let s = seed.derive(t);
+            let (mut lo, mut hi) = (0.5 * rmax, rmax);
+            for _ in 0..64 {
+                let r = 0.5 * (lo + hi);
+                let grid = maximal_set(r, self.torus, s, n + n / 4);
+                match grid.len().cmp(&n) {
+                    std::cmp::Ordering::Equal => {
+                        out.copy_from_slice(&grid.points);
+                        return Ok(());
+                    }
+                    std::cmp::Ordering::Greater => lo = r,
+                    std::cmp::Ordering::Less => hi = r,
+                }
+                if hi - lo < 1e-14 * rmax {
+                    break;
+                }
+            }
+        }
+        Err(Error::Infeasible {
+            sampler: self.spec(),
+            reason: format!(
+                "no radius gave a maximal set of exactly {n} points in 8 tries of 64 bisection steps"
+            ),
+        })
+    }
+}

@@ -1,0 +1,360 @@
+//! Radical-inverse constructions: the Halton sequence (Halton 1960, bases = the first d
+//! primes) and the Hammersley set (Hammersley & Handscomb 1964: i/n, then Halton), with
+//! the randomizations of [`Randomization`].
+//!
+//! A coordinate in base b is sum_j pi_j(a_j) b^-(j+1) over the base-b digits a_j of the
+//! index, for P_b = ceil(53 / log2 b) + 1 digit positions (enough to fill an f64); the
+//! digits beyond the index's length are zero, but a scramble maps zero to non-zero, so
+//! their contribution (the "tail") is precomputed. The sum is always formed from the
+//! least significant position up, so the batch path (an odometer that updates only the
+//! digits that change) and the random-access path give identical bits.
+
+use std::ops::RangeInclusive;
+use std::sync::LazyLock;
+
+use super::grid::BELOW_ONE;
+use super::scramble::{Randomization, hash_unit, hash2, owen_scramble_u32, permute};
+use super::{Sampler, Sequence};
+use crate::error::Result;
+use crate::seed::{Seed, below, wrap01};
+
+/// How many dimensions (primes) the Halton sequence supports.
+pub const HALTON_MAX_DIMS: usize = 1024;
+
+/// The first [`HALTON_MAX_DIMS`] primes.
+pub static PRIMES: LazyLock<Vec<u32>> = LazyLock::new(|| {
+    let mut primes = Vec::with_capacity(HALTON_MAX_DIMS);
+    let mut c = 2u32;
+    while primes.len() < HALTON_MAX_DIMS {
+        if primes
+            .iter()
+            .take_while(|&&p| p * p <= c)
+            .all(|&p| c % p != 0)
+        {
+            primes.push(c);
+        }
+        c += 1;
+    }
+    primes
+});
+
+/// The unscrambled radical inverse of `index` in `base` (van der Corput for base 2).
+pub fn radical_inverse(index: u64, base: u32) -> f64 {
+    DigitTable::new(base, None).value(index)
+}
+
+/// Tables for one coordinate: `scaled[j*b + a] = pi_j(a) b^-(j+1)` and `tail[m]`, the
+/// contribution of positions m..P when those digits are zero.
+#[derive(Debug, Clone)]
+struct DigitTable {
+    base: u32,
+    scaled: Vec<f64>,
+    tail: Vec<f64>,
+}
+
+fn positions(base: u32) -> usize {
+    (53.0 / f64::from(base).log2()).ceil() as usize + 1
+}
+
+impl DigitTable {
+    /// Identity digits (`perms = None`) or one random permutation per position.
+    fn new(base: u32, perm_seed: Option<Seed>) -> Self {
+        let b = base as usize;
+        let p = positions(base);
+        let mut rng = perm_seed.map(Seed::rng);
+        let mut scaled = Vec::with_capacity(p * b);
+        let mut weight = 1.0 / f64::from(base);
+        let mut perm: Vec<u32> = (0..base).collect();
+        for _ in 0..p {
+            if let Some(rng) = rng.as_mut() {
+                for i in (1..b).rev() {
+                    perm.swap(i, below(rng, i as u64 + 1) as usize);
+                }
+            }
+            scaled.extend(perm.iter().map(|&a| f64::from(a) * weight));
+            weight /= f64::from(base);
+        }
+        let mut tail = vec![0.0; p + 1];
+        for m in (0..p).rev() {
+            tail[m] = tail[m + 1] + scaled[m * b];
+        }
+        DigitTable { base, scaled, tail }
+    }
+
+    fn value(&self, mut index: u64) -> f64 {
+        let b = u64::from(self.base);
+        let mut digits = [0u32; 64];
+        let mut m = 0;
+        while index != 0 {
+            digits[m] = (index % b) as u32;
+            index /= b;
+            m += 1;
+        }
+        let mut v = self.tail[m];
+        for j in (0..m).rev() {
+            v += self.scaled[j * self.base as usize + digits[j] as usize];
+        }
+        v.min(BELOW_ONE)
+    }
+}
+
+/// An odometer over the digits of consecutive indices, keeping the partial sums from the
+/// most significant digit down, so that stepping to the next index costs O(1) amortized.
+struct Odometer<'a> {
+    table: &'a DigitTable,
+    digits: Vec<u32>,
+    partial: Vec<f64>, // partial[j] = tail[m] + sum over positions m-1..=j
+}
+
+impl<'a> Odometer<'a> {
+    fn new(table: &'a DigitTable, start: u64) -> Self {
+        let mut digits = Vec::new();
+        let mut i = start;
+        while i != 0 {
+            digits.push((i % u64::from(table.base)) as u32);
+            i /= u64::from(table.base);
+        }
+        let mut od = Odometer {
+            table,
+            partial: vec![0.0; digits.len() + 1],
+            digits,
+        };
+        od.refresh(od.digits.len());
+        od
+    }
+
+    /// Recompute partial sums for positions below `top` (inclusive of top-1 .. 0).
+    fn refresh(&mut self, top: usize) {
+        let m = self.digits.len();
+        self.partial.resize(m + 1, 0.0);
+        self.partial[m] = self.table.tail[m];
+        let b = self.table.base as usize;
+        for j in (0..top.min(m)).rev() {
+            self.partial[j] =
+                self.partial[j + 1] + self.table.scaled[j * b + self.digits[j] as usize];
+        }
+    }
+
+    fn value(&self) -> f64 {
+        self.partial[0].min(BELOW_ONE)
+    }
+
+    fn step(&mut self) {
+        let mut j = 0;
+        loop {
+            if j == self.digits.len() {
+                self.digits.push(1);
+                self.refresh(j + 1);
+                return;
+            }
+            self.digits[j] += 1;
+            if self.digits[j] < self.table.base {
+                self.refresh(j + 1);
+                return;
+            }
+            self.digits[j] = 0;
+            j += 1;
+        }
+    }
+}
+
+/// One randomized radical-inverse coordinate in a given base.
+#[derive(Debug, Clone)]
+struct Coordinate {
+    randomization: Randomization,
+    table: DigitTable,
+    owen_key: u32,
+    shift: f64,
+}
+
+impl Coordinate {
+    fn new(base: u32, randomization: Randomization, seed: Seed, dim: usize) -> Self {
+        let s = seed.derive(dim as u64);
+        let perms = (randomization == Randomization::Xor).then_some(s);
+        Coordinate {
+            randomization,
+            table: DigitTable::new(base, perms),
+            owen_key: s.bits32(),
+            shift: hash_unit(dim as u64, s.0),
+        }
+    }
+
+    fn value(&self, index: u64) -> f64 {
+        match self.randomization {
+            Randomization::Owen => self.owen(index),
+            Randomization::Shift => wrap01(self.table.value(index) + self.shift),
+            _ => self.table.value(index),
+        }
+    }
+
+    /// Owen scrambling in base b: the permutation of digit j is keyed by the digits
+    /// 0..j of the index (its value mod b^j), hashed with the dimension's key.
+    fn owen(&self, index: u64) -> f64 {
+        let b = u64::from(self.table.base);
+        let p = positions(self.table.base);
+        let mut digits = [0u32; 64];
+        let (mut rest, mut prefix, mut scale) = (index, 0u64, 1u64);
+        for (j, digit) in digits.iter_mut().enumerate().take(p) {
+            let a = (rest % b) as u32;
+            rest /= b;
+            let key = hash2(self.owen_key ^ j as u32, crate::seed::mix64(prefix) as u32);
+            *digit = permute(a, self.table.base, key);
+            prefix = prefix.wrapping_add(u64::from(a).wrapping_mul(scale));
+            scale = scale.wrapping_mul(b);
+        }
+        let mut v = 0.0;
+        let inv = 1.0 / b as f64;
+        for j in (0..p).rev() {
+            v = (v + f64::from(digits[j])) * inv;
+        }
+        v.min(BELOW_ONE)
+    }
+
+    /// Values for indices start..start+count, written with stride `dims` into `out`.
+    fn fill_strided(&self, start: u64, out: &mut [f64], dims: usize, offset: usize) {
+        if matches!(self.randomization, Randomization::Owen) {
+            for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+                p[offset] = self.owen(start + i as u64);
+            }
+            return;
+        }
+        let mut od = Odometer::new(&self.table, start);
+        for p in out.chunks_exact_mut(dims) {
+            let v = od.value();
+            p[offset] = if self.randomization == Randomization::Shift {
+                wrap01(v + self.shift)
+            } else {
+                v
+            };
+            od.step();
+        }
+    }
+}
+
+/// The Halton sequence: coordinate j of point i is the (randomized) radical inverse of i
+/// in the j-th prime base. Any n; 1..=1024 dimensions.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Halton {
+    randomization: Randomization,
+}
+
+impl Halton {
+    /// A Halton sampler with the given randomization.
+    pub fn new(randomization: Randomization) -> Self {
+        Halton { randomization }
+    }
+}
+
+fn variant_name(family: &str, r: Randomization) -> String {
+    match r {
+        Randomization::None => family.into(),
+        r => format!("{family}.{}", r.suffix()),
+    }
+}
+
+impl Sampler for Halton {
+    fn spec(&self) -> String {
+        variant_name("halton", self.randomization)
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        1..=HALTON_MAX_DIMS
+    }
+    fn fill(&self, _n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        for d in 0..dims {
+            Coordinate::new(PRIMES[d], self.randomization, seed, d).fill_strided(0, out, dims, d);
+        }
+        Ok(())
+    }
+}
+
+impl Sequence for Halton {
+    fn sample(&self, index: u64, dim: usize, seed: Seed) -> f64 {
+        Coordinate::new(PRIMES[dim], self.randomization, seed, dim).value(index)
+    }
+}
+
+/// The Hammersley set of n points: (i/n, Halton coordinates 0..d-2 of i). In base 2 with
+/// n = 2^m, the 2D set is a (0,m,2)-net. The first coordinate is randomized on its 32-bit
+/// binary expansion (XOR or Owen) or by a shift, like the others.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hammersley {
+    randomization: Randomization,
+}
+
+impl Hammersley {
+    /// A Hammersley sampler with the given randomization.
+    pub fn new(randomization: Randomization) -> Self {
+        Hammersley { randomization }
+    }
+}
+
+impl Sampler for Hammersley {
+    fn spec(&self) -> String {
+        variant_name("hammersley", self.randomization)
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        1..=HALTON_MAX_DIMS + 1
+    }
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        if n as u64 > 1 << 32 {
+            return Err(crate::error::Error::InvalidCount {
+                sampler: self.spec(),
+                n,
+                dims,
+                reason: "the first coordinate has 32-bit resolution: at most 2^32 points".into(),
+            });
+        }
+        Ok(())
+    }
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let s = seed.derive(u64::MAX);
+        let (bits, shift) = (s.bits32(), hash_unit(u64::MAX, s.0));
+        for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+            let fixed = ((i as u128) << 32).div_euclid(n as u128) as u32;
+            p[0] = match self.randomization {
+                Randomization::None => i as f64 / n as f64,
+                Randomization::Xor => f64::from(fixed ^ bits) / 4_294_967_296.0,
+                Randomization::Owen => f64::from(owen_scramble_u32(fixed, bits)) / 4_294_967_296.0,
+                Randomization::Shift => wrap01(i as f64 / n as f64 + shift),
+            };
+        }
+        for d in 1..dims {
+            Coordinate::new(PRIMES[d - 1], self.randomization, seed, d - 1)
+                .fill_strided(0, out, dims, d);
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn first_primes() {
+        assert_eq!(&PRIMES[..10], &[2, 3, 5, 7, 11, 13, 17, 19, 23, 29]);
+        assert_eq!(PRIMES[1023], 8161);
+    }
+
+    #[test]
+    fn odometer_equals_random_access_bit_for_bit() {
+        for base in [2u32, 3, 7, 8161] {
+            for r in [
+                Randomization::None,
+                Randomization::Xor,
+                Randomization::Shift,
+            ] {
+                let c = Coordinate::new(base, r, Seed(11), 3);
+                let mut out = vec![0.0; 3000];
+                c.fill_strided(17, &mut out, 1, 0);
+                for (i, v) in out.iter().enumerate() {
+                    assert_eq!(
+                        v.to_bits(),
+                        c.value(17 + i as u64).to_bits(),
+                        "base {base} {r:?} index {i}"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,25 @@
+//! Independent uniform sampling ("random", "Poisson sampling" in Sbert et al. 2006).
+
+use std::ops::RangeInclusive;
+
+use super::Sampler;
+use crate::error::Result;
+use crate::seed::{Seed, uniform};
+
+/// Every coordinate an independent uniform draw in [0, 1). Any n, any d.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Random;
+
+impl Sampler for Random {
+    fn spec(&self) -> String {
+        "random".into()
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        1..=usize::MAX
+    }
+    fn fill(&self, _n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let mut rng = seed.rng();
+        out.iter_mut().for_each(|x| *x = uniform(&mut rng));
+        Ok(())
+    }
+}

@@ -1,0 +1,131 @@
+//! The Sobol' sequence (Sobol' 1967) with Joe–Kuo direction numbers (Joe & Kuo 2008,
+//! new-joe-kuo-6.21201, first 1024 dimensions, baked in by `build.rs`), 32-bit
+//! resolution, at most 2^32 points; randomized by [`Randomization`].
+
+use std::ops::RangeInclusive;
+
+use super::scramble::{Randomization, hash_unit, owen_scramble_reversed};
+use super::{Sampler, Sequence};
+use crate::error::{Error, Result};
+use crate::seed::{Seed, wrap01};
+
+include!(concat!(env!("OUT_DIR"), "/sobol_directions.rs"));
+
+/// How many dimensions the baked-in table holds.
+pub const SOBOL_MAX_DIMS: usize = SOBOL_DIRECTIONS.len();
+
+const TO_UNIT: f64 = 1.0 / 4_294_967_296.0;
+
+/// Sobol' points in Gray-code order: coordinate j of point i is the XOR of the direction
+/// numbers v_{j,k} for the set bits k of gray(i) = i ^ (i >> 1), read as a 32-bit binary
+/// fraction (the order of Joe & Kuo's and scipy's generators; every prefix of 2^m points
+/// is the same set as in natural order). The first 2^m points of
+/// every pair of the first two dimensions form a (0,m,2)-net.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sobol {
+    randomization: Randomization,
+}
+
+impl Sobol {
+    /// A Sobol' sampler with the given randomization.
+    pub fn new(randomization: Randomization) -> Self {
+        Sobol { randomization }
+    }
+}
+
+/// The unscrambled 32-bit digits of coordinate `dim` of Sobol' point `index` in natural
+/// (not Gray-code) order.
+#[inline]
+pub fn sobol_u32(index: u32, dim: usize) -> u32 {
+    let v = &SOBOL_DIRECTIONS[dim];
+    let mut x = 0;
+    let mut i = index;
+    let mut k = 0;
+    while i != 0 {
+        if i & 1 == 1 {
+            x ^= v[k];
+        }
+        i >>= 1;
+        k += 1;
+    }
+    x
+}
+
+/// Per-dimension randomization state derived from the seed.
+#[derive(Clone, Copy)]
+struct DimKey {
+    bits: u32,
+    shift: f64,
+}
+
+impl DimKey {
+    fn new(seed: Seed, dim: usize) -> Self {
+        let s = seed.derive(dim as u64);
+        DimKey {
+            bits: s.bits32(),
+            shift: hash_unit(dim as u64, s.0),
+        }
+    }
+}
+
+impl Sobol {
+    /// Randomize the raw digits `x` (given bit-reversed as `rev` for Owen) of one coordinate.
+    #[inline]
+    fn finish(&self, x: u32, key: DimKey) -> f64 {
+        match self.randomization {
+            Randomization::None => f64::from(x) * TO_UNIT,
+            Randomization::Xor => f64::from(x ^ key.bits) * TO_UNIT,
+            Randomization::Owen => {
+                f64::from(owen_scramble_reversed(x.reverse_bits(), key.bits).reverse_bits())
+                    * TO_UNIT
+            }
+            Randomization::Shift => wrap01(f64::from(x) * TO_UNIT + key.shift),
+        }
+    }
+}
+
+impl Sampler for Sobol {
+    fn spec(&self) -> String {
+        match self.randomization {
+            Randomization::None => "sobol".into(),
+            r => format!("sobol.{}", r.suffix()),
+        }
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        1..=SOBOL_MAX_DIMS
+    }
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        if n as u64 > 1 << 32 {
+            return Err(Error::InvalidCount {
+                sampler: self.spec(),
+                n,
+                dims,
+                reason: "32-bit Sobol' points stop at 2^32".into(),
+            });
+        }
+        Ok(())
+    }
+    fn fill(&self, _n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let keys: Vec<DimKey> = (0..dims).map(|d| DimKey::new(seed, d)).collect();
+        // Gray-code order (Antonov & Saleev 1979), as Joe & Kuo's and scipy's generators:
+        // point i+1 is point i XOR v_c, c = trailing_zeros(i+1).
+        let mut state = vec![0u32; dims];
+        for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+            for d in 0..dims {
+                p[d] = self.finish(state[d], keys[d]);
+            }
+            let c = (i as u64 + 1).trailing_zeros().min(31) as usize;
+            for d in 0..dims {
+                state[d] ^= SOBOL_DIRECTIONS[d][c];
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Sequence for Sobol {
+    fn sample(&self, index: u64, dim: usize, seed: Seed) -> f64 {
+        let gray = (index ^ (index >> 1)) as u32;
+        self.finish(sobol_u32(gray, dim), DimKey::new(seed, dim))
+    }
+}

@@ -1,0 +1,337 @@
+//! Method specs (`family[.variant][:key=value,...]`) and typed, range-checked parameters.
+//!
+//! Parameters may be given by name (`jitter.gaussian:sigma=0.25`) or by position in the
+//! order the registry lists them (`jitter.gaussian:0.25`, `force-matrix:0.5,2`).
+
+use crate::error::{Error, Result};
+
+/// A spec split into its name and its raw arguments.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Spec {
+    /// The method name as written (case preserved, whitespace trimmed).
+    pub name: String,
+    /// `(Some(key), value)` for named arguments, `(None, value)` for positional ones.
+    pub args: Vec<(Option<String>, String)>,
+}
+
+impl Spec {
+    /// Split `text` at the first ':' and then at commas.
+    ///
+    /// # Errors
+    /// An empty name or an empty argument.
+    pub fn parse(text: &str) -> Result<Spec> {
+        let (name, rest) = match text.split_once(':') {
+            Some((n, r)) => (n.trim(), Some(r)),
+            None => (text.trim(), None),
+        };
+        if name.is_empty() {
+            return Err(Error::Parse {
+                location: format!("spec '{text}'"),
+                reason: "empty method name".into(),
+            });
+        }
+        let mut args = Vec::new();
+        for part in rest.into_iter().flat_map(|r| r.split(',')) {
+            let part = part.trim();
+            if part.is_empty() {
+                return Err(Error::Parse {
+                    location: format!("spec '{text}'"),
+                    reason: "empty parameter".into(),
+                });
+            }
+            args.push(match part.split_once('=') {
+                Some((k, v)) => (Some(k.trim().to_ascii_lowercase()), v.trim().to_string()),
+                None => (None, part.to_string()),
+            });
+        }
+        Ok(Spec {
+            name: name.to_string(),
+            args,
+        })
+    }
+}
+
+/// What values a parameter takes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Kind {
+    /// A real number in [min, max].
+    Real {
+        /// Smallest valid value.
+        min: f64,
+        /// Largest valid value.
+        max: f64,
+    },
+    /// A whole number in [min, max].
+    Int {
+        /// Smallest valid value.
+        min: u64,
+        /// Largest valid value.
+        max: u64,
+    },
+    /// One of a fixed list of words.
+    Choice(&'static [&'static str]),
+}
+
+/// The default of a parameter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Default {
+    /// A number.
+    Number(f64),
+    /// A word (for [`Kind::Choice`]).
+    Word(&'static str),
+    /// Chosen by the method from n and d; the text says how.
+    Auto(&'static str),
+}
+
+/// One parameter of a registry entry.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ParamSpec {
+    /// Its name in specs.
+    pub name: &'static str,
+    /// Valid values.
+    pub kind: Kind,
+    /// The value when not given.
+    pub default: Default,
+    /// One line: what it means, with its unit.
+    pub doc: &'static str,
+}
+
+impl ParamSpec {
+    /// The valid range or choices, in words.
+    pub fn range_text(&self) -> String {
+        match self.kind {
+            Kind::Real { min, max } => format!("a number in [{min}, {max}]"),
+            Kind::Int { min, max } => format!("a whole number in [{min}, {max}]"),
+            Kind::Choice(c) => format!("one of {}", c.join(", ")),
+        }
+    }
+
+    /// The default, in words.
+    pub fn default_text(&self) -> String {
+        match self.default {
+            Default::Number(x) => format!("{x}"),
+            Default::Word(w) => w.to_string(),
+            Default::Auto(how) => format!("auto ({how})"),
+        }
+    }
+}
+
+/// A resolved parameter value.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Value {
+    /// A number (Real or Int kinds).
+    Number(f64),
+    /// A word (Choice kind).
+    Word(String),
+    /// Left to the method.
+    Auto,
+}
+
+/// Parameters resolved against a [`ParamSpec`] table: every declared name has a value.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Params {
+    values: Vec<(&'static str, Value)>,
+}
+
+impl Params {
+    /// Resolve `args` for `owner` against `specs`.
+    ///
+    /// # Errors
+    /// An unknown name, too many positional values, a repeated parameter, a value that
+    /// does not parse, is not finite, or lies outside its range.
+    pub fn resolve(
+        owner: &str,
+        specs: &[ParamSpec],
+        args: &[(Option<String>, String)],
+    ) -> Result<Params> {
+        let mut given: Vec<Option<&str>> = vec![None; specs.len()];
+        for (pos, (key, raw)) in args.iter().enumerate() {
+            let idx = match key {
+                Some(k) => specs
+                    .iter()
+                    .position(|s| s.name == k)
+                    .ok_or_else(|| Error::Param {
+                        owner: owner.into(),
+                        param: k.clone(),
+                        reason: if specs.is_empty() {
+                            "this method takes no parameters".into()
+                        } else {
+                            format!(
+                                "unknown; valid: {}",
+                                specs.iter().map(|s| s.name).collect::<Vec<_>>().join(", ")
+                            )
+                        },
+                    })?,
+                None if pos < specs.len() => pos,
+                None => {
+                    return Err(Error::Param {
+                        owner: owner.into(),
+                        param: format!("#{}", pos + 1),
+                        reason: format!(
+                            "'{raw}' is one value too many: this method takes {} parameter(s)",
+                            specs.len()
+                        ),
+                    });
+                }
+            };
+            if given[idx].replace(raw).is_some() {
+                return Err(Error::Param {
+                    owner: owner.into(),
+                    param: specs[idx].name.into(),
+                    reason: "given twice".into(),
+                });
+            }
+        }
+        let values = specs
+            .iter()
+            .zip(given)
+            .map(|(spec, raw)| Ok((spec.name, parse_value(owner, spec, raw)?)))
+            .collect::<Result<_>>()?;
+        Ok(Params { values })
+    }
+
+    fn get(&self, name: &str) -> &Value {
+        &self
+            .values
+            .iter()
+            .find(|(n, _)| *n == name)
+            .unwrap_or_else(|| panic!("parameter '{name}' is not declared"))
+            .1
+    }
+
+    /// The number `name` holds, or None when it is `Auto`. Panics on an undeclared name
+    /// (a programming error caught by the registry conformance test).
+    pub fn number(&self, name: &str) -> Option<f64> {
+        match self.get(name) {
+            Value::Number(x) => Some(*x),
+            _ => None,
+        }
+    }
+
+    /// The word `name` holds. Panics on an undeclared or non-word parameter.
+    pub fn word(&self, name: &str) -> &str {
+        match self.get(name) {
+            Value::Word(w) => w,
+            v => panic!("parameter '{name}' is not a word: {v:?}"),
+        }
+    }
+
+    /// `name=value` pairs, for headers and logs.
+    pub fn describe(&self) -> String {
+        self.values
+            .iter()
+            .map(|(n, v)| match v {
+                Value::Number(x) => format!("{n}={x}"),
+                Value::Word(w) => format!("{n}={w}"),
+                Value::Auto => format!("{n}=auto"),
+            })
+            .collect::<Vec<_>>()
+            .join(",")
+    }
+}
+
+fn parse_value(owner: &str, spec: &ParamSpec, raw: Option<&str>) -> Result<Value> {
+    let bad = |reason: String| Error::Param {
+        owner: owner.into(),
+        param: spec.name.into(),
+        reason,
+    };
+    let Some(raw) = raw else {
+        return Ok(match spec.default {
+            Default::Number(x) => Value::Number(x),
+            Default::Word(w) => Value::Word(w.into()),
+            Default::Auto(_) => Value::Auto,
+        });
+    };
+    if raw.eq_ignore_ascii_case("auto") && matches!(spec.default, Default::Auto(_)) {
+        return Ok(Value::Auto);
+    }
+    match spec.kind {
+        Kind::Choice(choices) => choices
+            .iter()
+            .find(|c| c.eq_ignore_ascii_case(raw))
+            .map(|c| Value::Word((*c).into()))
+            .ok_or_else(|| bad(format!("'{raw}' is not {}", spec.range_text()))),
+        Kind::Real { min, max } => {
+            let x: f64 = raw.parse().map_err(|_| {
+                bad(format!(
+                    "'{raw}' is not a number; expected {}",
+                    spec.range_text()
+                ))
+            })?;
+            if !x.is_finite() || x < min || x > max {
+                return Err(bad(format!(
+                    "{raw} is out of range; expected {}",
+                    spec.range_text()
+                )));
+            }
+            Ok(Value::Number(x))
+        }
+        Kind::Int { min, max } => {
+            let x: u64 = raw.parse().map_err(|_| {
+                bad(format!(
+                    "'{raw}' is not a whole number; expected {}",
+                    spec.range_text()
+                ))
+            })?;
+            if x < min || x > max {
+                return Err(bad(format!(
+                    "{raw} is out of range; expected {}",
+                    spec.range_text()
+                )));
+            }
+            Ok(Value::Number(x as f64))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SPECS: &[ParamSpec] = &[
+        ParamSpec {
+            name: "sigma",
+            kind: Kind::Real { min: 0.0, max: 4.0 },
+            default: Default::Number(0.25),
+            doc: "",
+        },
+        ParamSpec {
+            name: "edge",
+            kind: Kind::Choice(&["wrap", "resample"]),
+            default: Default::Word("wrap"),
+            doc: "",
+        },
+    ];
+
+    #[test]
+    fn parses_named_and_positional() {
+        let s = Spec::parse("jitter.gaussian:sigma=0.5").unwrap();
+        assert_eq!(s.name, "jitter.gaussian");
+        let p = Params::resolve("g", SPECS, &s.args).unwrap();
+        assert_eq!(p.number("sigma"), Some(0.5));
+        assert_eq!(p.word("edge"), "wrap");
+        let s = Spec::parse("g:0.1,resample").unwrap();
+        let p = Params::resolve("g", SPECS, &s.args).unwrap();
+        assert_eq!(p.number("sigma"), Some(0.1));
+        assert_eq!(p.word("edge"), "resample");
+    }
+
+    #[test]
+    fn rejects_bad_parameters_with_their_name_and_range() {
+        let run = |t: &str| {
+            Params::resolve("g", SPECS, &Spec::parse(t).unwrap().args)
+                .unwrap_err()
+                .to_string()
+        };
+        assert!(run("g:sigma=9").contains("'sigma'") && run("g:sigma=9").contains("[0, 4]"));
+        assert!(run("g:sigma=nan").contains("out of range"));
+        assert!(run("g:sigma=abc").contains("not a number"));
+        assert!(run("g:width=1").contains("valid: sigma, edge"));
+        assert!(run("g:1,wrap,3").contains("one value too many"));
+        assert!(run("g:0.1,sigma=0.2").contains("given twice"));
+        assert!(run("g:edge=clamp").contains("one of wrap, resample"));
+        assert!(Spec::parse(":x").is_err());
+        assert!(Spec::parse("g:1,,2").is_err());
+    }
+}

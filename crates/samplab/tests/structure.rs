@@ -1,0 +1,382 @@
+//! Structural tests for every sampler family (STYLE.md's table): stratification counts,
+//! net properties, reference values from independent implementations, minimum distances,
+//! and batch == random access.
+
+use samplab::sampler::{self, Randomization, Sequence, radical, sobol::Sobol};
+use samplab::{PointSet, Seed};
+
+fn make(spec: &str, n: usize, d: usize, seed: u64) -> PointSet {
+    sampler::build(spec)
+        .unwrap()
+        .generate(n, d, Seed(seed))
+        .unwrap()
+}
+
+/// Every elementary interval of area 2^-m of base 2 in 2D holds exactly one point.
+fn assert_02_net(points: &[f64], m: u32, what: &str) {
+    assert_eq!(points.len(), 2 << m);
+    for a in 0..=m {
+        let (nx, ny) = (1usize << a, 1usize << (m - a));
+        let mut count = vec![0u8; 1 << m];
+        for p in points.chunks_exact(2) {
+            let cx = (p[0] * nx as f64) as usize;
+            let cy = (p[1] * ny as f64) as usize;
+            count[cx * ny + cy] += 1;
+        }
+        assert!(
+            count.iter().all(|&c| c == 1),
+            "{what}: m = {m}, intervals {nx}x{ny} not stratified"
+        );
+    }
+}
+
+#[test]
+fn jitter_family_one_point_per_cell() {
+    for spec in [
+        "regular",
+        "jitter",
+        "jitter.half",
+        "jitter.box:0.3",
+        "jitter.uniform",
+        "jitter.gaussian:sigma=0.1,edge=resample",
+    ] {
+        for (d, k) in [(1usize, 50usize), (2, 16), (3, 6)] {
+            let n = k.pow(d as u32);
+            let p = make(spec, n, d, 3);
+            let mut seen = vec![false; n];
+            let gaussian = spec.starts_with("jitter.gaussian");
+            let mut outside = 0;
+            for (i, x) in p.iter().enumerate() {
+                let cell = x
+                    .iter()
+                    .fold(0, |acc, &c| acc * k + (c * k as f64) as usize);
+                if gaussian {
+                    // a normal offset of 0.1 cells leaves the cell with probability ~ 1e-6 per axis
+                    outside += usize::from(cell != i);
+                    continue;
+                }
+                assert!(!seen[cell], "{spec} {d}D: two points in cell {cell}");
+                seen[cell] = true;
+            }
+            assert!(outside <= 1, "{spec}: {outside} points left their cell");
+        }
+    }
+}
+
+#[test]
+fn half_and_box_jitter_stay_in_their_boxes() {
+    let k = 8.0;
+    for (spec, delta) in [("jitter.half", 0.25), ("jitter.box:delta=0.1", 0.1)] {
+        for x in make(spec, 64, 2, 9).as_slice() {
+            let within = (x * k).fract() - 0.5;
+            assert!(within.abs() <= delta + 1e-12, "{spec}: offset {within}");
+        }
+    }
+}
+
+#[test]
+fn nrooks_one_per_row_and_column_in_every_pair_of_dimensions() {
+    for (n, d) in [(50usize, 3usize), (7, 5), (1000, 2)] {
+        let p = make("nrooks", n, d, 5);
+        for axis in 0..d {
+            let mut seen = vec![false; n];
+            for x in p.column(axis) {
+                let s = (x * n as f64) as usize;
+                assert!(!seen[s], "n={n} d={d} axis {axis}: slab {s} twice");
+                seen[s] = true;
+            }
+        }
+    }
+}
+
+#[test]
+fn digital_nets_for_m_1_to_12() {
+    let specs = [
+        "sobol",
+        "sobol.xor",
+        "sobol.owen",
+        "pmj02",
+        "hammersley",
+        "hammersley.xor",
+        "hammersley.owen",
+    ];
+    for spec in specs {
+        for seed in [1u64, 2] {
+            if spec.starts_with("hammersley") {
+                for m in 1..=12 {
+                    assert_02_net(make(spec, 1 << m, 2, seed).as_slice(), m, spec);
+                }
+                continue;
+            }
+            // progressive: every prefix of 2^m points, and every later block of 2^m
+            let p = make(spec, 1 << 12, 2, seed);
+            for m in 1..=12u32 {
+                let block = 2usize << m;
+                for chunk in p.as_slice().chunks_exact(block) {
+                    assert_02_net(chunk, m, spec);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn shift_is_a_toroidal_translate_not_a_net() {
+    let base = make("sobol", 256, 2, 1);
+    let shifted = make("sobol.shift", 256, 2, 1);
+    let off: Vec<f64> = (0..2)
+        .map(|d| (shifted.point(0)[d] - base.point(0)[d]).rem_euclid(1.0))
+        .collect();
+    for (a, b) in base.iter().zip(shifted.iter()) {
+        for d in 0..2 {
+            let diff = (b[d] - a[d] - off[d]).rem_euclid(1.0);
+            assert!(diff < 1e-12 || diff > 1.0 - 1e-12);
+        }
+    }
+}
+
+#[test]
+fn sobol_and_halton_equal_scipy() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/scipy_sobol.json"
+    ))
+    .unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let sobol = make("sobol", 1024, 16, 0);
+    for (i, row) in v["sobol_16d_first_1024"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .enumerate()
+    {
+        for (d, x) in row.as_array().unwrap().iter().enumerate() {
+            assert_eq!(
+                sobol.point(i)[d],
+                x.as_f64().unwrap(),
+                "sobol point {i} dim {d}"
+            );
+        }
+    }
+    let halton = make("halton", 64, 8, 0);
+    for (i, row) in v["halton_8d_first_64"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .enumerate()
+    {
+        for (d, x) in row.as_array().unwrap().iter().enumerate() {
+            let want = x.as_f64().unwrap();
+            assert!(
+                (halton.point(i)[d] - want).abs() <= 4.0 * f64::EPSILON,
+                "halton point {i} dim {d}: {} vs {want}",
+                halton.point(i)[d]
+            );
+        }
+    }
+}
+
+#[test]
+fn halton_first_points_by_hand() {
+    let h = make("halton", 8, 2, 0);
+    let base2 = [0.0, 0.5, 0.25, 0.75, 0.125, 0.625, 0.375, 0.875];
+    let base3 = [
+        0.0,
+        1.0 / 3.0,
+        2.0 / 3.0,
+        1.0 / 9.0,
+        4.0 / 9.0,
+        7.0 / 9.0,
+        2.0 / 9.0,
+        5.0 / 9.0,
+    ];
+    for i in 0..8 {
+        assert_eq!(h.point(i)[0], base2[i]);
+        assert!((h.point(i)[1] - base3[i]).abs() < 1e-15);
+    }
+    // radical inverse in base 2 is bit reversal
+    for i in 0u64..1000 {
+        let rev = (i.reverse_bits() >> 11) as f64 / (1u64 << 53) as f64;
+        assert_eq!(radical::radical_inverse(i, 2), rev);
+    }
+}
+
+#[test]
+fn batch_equals_random_access() {
+    for r in [
+        Randomization::None,
+        Randomization::Xor,
+        Randomization::Owen,
+        Randomization::Shift,
+    ] {
+        let seqs: [Box<dyn Sequence>; 2] =
+            [Box::new(Sobol::new(r)), Box::new(radical::Halton::new(r))];
+        for s in seqs {
+            let p = s.generate(300, 5, Seed(42)).unwrap();
+            for i in 0..300 {
+                for d in 0..5 {
+                    assert_eq!(
+                        p.point(i)[d].to_bits(),
+                        s.sample(i as u64, d, Seed(42)).to_bits(),
+                        "{} point {i} dim {d}",
+                        s.spec()
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn scrambled_halton_keeps_its_strata() {
+    // b^k consecutive points of a digit-scrambled radical inverse fill the b^k intervals
+    for spec in ["halton.xor", "halton.owen"] {
+        let p = make(spec, 243, 2, 7);
+        let mut seen = [false; 243];
+        for x in p.column(1) {
+            let c = (x * 243.0) as usize;
+            assert!(!seen[c], "{spec}: base-3 interval {c} twice");
+            seen[c] = true;
+        }
+    }
+}
+
+fn min_distance(p: &PointSet, torus: bool) -> f64 {
+    let mut best = f64::INFINITY;
+    for i in 0..p.len() {
+        for j in 0..i {
+            let d2: f64 = p
+                .point(i)
+                .iter()
+                .zip(p.point(j))
+                .map(|(a, b)| {
+                    let d = (a - b).abs();
+                    let d = if torus { d.min(1.0 - d) } else { d };
+                    d * d
+                })
+                .sum();
+            best = best.min(d2.sqrt());
+        }
+    }
+    best
+}
+
+#[test]
+fn poisson_sets_respect_the_minimum_distance() {
+    for (spec, n, d, torus) in [
+        ("poisson:radius=0.1", 16, 2, true),
+        ("poisson:radius=0.2,edge=plain", 16, 2, false),
+        ("poisson:radius=0.05", 100, 3, true),
+        ("poisson.fast:radius=0.03", 500, 2, true),
+        ("poisson.fast:radius=0.03,edge=plain", 500, 2, false),
+    ] {
+        let p = make(spec, n, d, 11);
+        let r: f64 = spec
+            .split("radius=")
+            .nth(1)
+            .unwrap()
+            .split(',')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!(
+            min_distance(&p, torus) >= r,
+            "{spec}: {}",
+            min_distance(&p, torus)
+        );
+    }
+}
+
+#[test]
+fn maximal_poisson_is_maximal_and_exact() {
+    let n = 300;
+    let p = make("poisson.maximal", n, 2, 3);
+    assert_eq!(p.len(), n);
+    let r_min = min_distance(&p, true);
+    let rel = r_min / sampler::poisson::packing_radius(n, 2);
+    assert!((0.70..0.85).contains(&rel), "relative radius {rel}");
+    // no room left: every probe point of a fine lattice lies within r of some point
+    let probes = 200;
+    for a in 0..probes {
+        for b in 0..probes {
+            let q = [
+                (a as f64 + 0.5) / probes as f64,
+                (b as f64 + 0.5) / probes as f64,
+            ];
+            let nearest = p
+                .iter()
+                .map(|x| {
+                    let dx = (x[0] - q[0]).abs().min(1.0 - (x[0] - q[0]).abs());
+                    let dy = (x[1] - q[1]).abs().min(1.0 - (x[1] - q[1]).abs());
+                    (dx * dx + dy * dy).sqrt()
+                })
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                nearest < r_min * (1.0 + 1e-9),
+                "gap at {q:?}: {nearest} >= {r_min}"
+            );
+        }
+    }
+}
+
+#[test]
+fn cmj_is_multi_jittered() {
+    // n = 16: a 4x4 arrangement; every column of width 1/16 and every 4x4 cell holds one point
+    let p = make("cmj", 256, 2, 4);
+    for axis in 0..2 {
+        let mut seen = [false; 256];
+        for x in p.column(axis) {
+            let s = (x * 256.0) as usize;
+            assert!(!seen[s]);
+            seen[s] = true;
+        }
+    }
+    let mut cells = [false; 256];
+    for x in p.iter() {
+        let c = (x[0] * 16.0) as usize * 16 + (x[1] * 16.0) as usize;
+        assert!(!cells[c]);
+        cells[c] = true;
+    }
+}
+
+#[test]
+fn force_matrix_is_spread_out() {
+    // n points chosen from a fine grid: distinct cells, and a minimum distance far above
+    // that of random points (expected ~ 0.5/n for n = 64 random points)
+    let p = make("force-matrix", 64, 2, 2);
+    let d = min_distance(&p, true);
+    assert!(
+        d > 0.5 * sampler::poisson::packing_radius(64, 2),
+        "min distance {d}"
+    );
+    // full grid: the limiting case is the systematic grid
+    let full = make("force-matrix:grid=8", 64, 2, 2);
+    let mut cells = [false; 64];
+    for x in full.iter() {
+        let c = (x[0] * 8.0) as usize * 8 + (x[1] * 8.0) as usize;
+        assert!(!cells[c]);
+        cells[c] = true;
+    }
+}
+
+#[test]
+fn rotated_grid_is_a_rigid_motion_of_the_grid() {
+    let p = make("regular.rotated", 64, 2, 8);
+    // nearest-neighbour distance of every point is the grid spacing 1/8 (toroidal seams aside,
+    // most points keep it)
+    let spacing = 1.0 / 8.0;
+    let mut exact = 0;
+    for i in 0..64 {
+        let nn = (0..64)
+            .filter(|&j| j != i)
+            .map(|j| {
+                let dx = (p.point(i)[0] - p.point(j)[0]).abs();
+                let dy = (p.point(i)[1] - p.point(j)[1]).abs();
+                (dx * dx + dy * dy).sqrt()
+            })
+            .fold(f64::INFINITY, f64::min);
+        exact += usize::from((nn - spacing).abs() < 1e-9);
+    }
+    assert!(exact >= 32, "{exact} points at exact grid spacing");
+}
