@@ -1,1 +1,457 @@
-//! Warps.
+//! Warps from the unit square (or cube) to other domains, each a triple of forward map,
+//! density and inverse (as pbrt's `SampleX` / `XPDF` / `InvertXSample`), so that every warp
+//! gets round-trip and density tests for free.
+//!
+//! Densities are with respect to area in the plane (disks, Gaussians, tents) or solid
+//! angle (hemispheres, directions with z >= 0).
+
+use std::f64::consts::{FRAC_PI_4, PI, TAU};
+use std::fmt::Debug;
+
+use crate::error::{Error, Result, closest_names};
+use crate::points::PointSet;
+
+/// A map from uniform points to another domain, with its density and inverse.
+pub trait Warp: Send + Sync + Debug {
+    /// Registry name.
+    fn name(&self) -> &'static str;
+    /// Input dimensions it takes (`None`: any, applied per axis).
+    fn input_dims(&self) -> Option<usize>;
+    /// Output dimensions for `input` input dimensions.
+    fn output_dims(&self, input: usize) -> usize;
+    /// Map `u` (in [0,1)^d) to `out`. Returns false when the point is rejected (only for
+    /// rejection warps).
+    fn forward(&self, u: &[f64], out: &mut [f64]) -> bool;
+    /// The density of warped points at `x` (zero outside the domain).
+    fn density(&self, x: &[f64]) -> f64;
+    /// Map a point of the domain back to the square; false when `x` is outside it.
+    fn inverse(&self, x: &[f64], out: &mut [f64]) -> bool;
+}
+
+/// Warp every point of `points`; rejected points are dropped.
+///
+/// # Errors
+/// The warp needs a different number of dimensions.
+pub fn apply(warp: &dyn Warp, points: &PointSet) -> Result<PointSet> {
+    if let Some(d) = warp.input_dims()
+        && d != points.dims()
+    {
+        return Err(Error::Invalid(format!("warp {} needs {d}D points, got {}D", warp.name(), points.dims())));
+    }
+    let out_dims = warp.output_dims(points.dims());
+    let mut data = Vec::with_capacity(points.len() * out_dims);
+    let mut buf = vec![0.0; out_dims];
+    for p in points.iter() {
+        if warp.forward(p, &mut buf) {
+            data.extend_from_slice(&buf);
+        }
+    }
+    Ok(PointSet::from_raw(out_dims, data))
+}
+
+/// Square to disk by polar coordinates: r = sqrt(u), phi = 2 pi v (Shirley 1991 section 4).
+#[derive(Debug, Clone, Copy)]
+pub struct PolarDisk;
+
+/// Shirley–Chiu concentric map from square to disk: area-preserving, low distortion
+/// (Shirley & Chiu 1997): concentric squares go to concentric circles.
+#[derive(Debug, Clone, Copy)]
+pub struct ConcentricDisk;
+
+/// Rejection to the disk: the square mapped to [-1,1)^2, points outside the unit disk dropped.
+#[derive(Debug, Clone, Copy)]
+pub struct RejectDisk;
+
+/// Tent filter (1-|x|) on [-1,1] per axis, by its inverse CDF (Shirley 1991 section 4,
+/// the separable tent (1-|x|)(1-|y|) in 2D). Any dimension.
+#[derive(Debug, Clone, Copy)]
+pub struct Tent;
+
+/// Standard normal in 2D by the Box–Muller polar map: r = sqrt(-2 ln(1-u)), phi = 2 pi v.
+#[derive(Debug, Clone, Copy)]
+pub struct Gaussian;
+
+/// Uniform directions on the hemisphere z >= 0: z = u, phi = 2 pi v; density 1/(2 pi) per sr.
+#[derive(Debug, Clone, Copy)]
+pub struct UniformHemisphere;
+
+/// Cosine-weighted hemisphere (Malley's method: concentric disk, then lift to z =
+/// sqrt(1 - r^2)); density cos(theta)/pi per sr.
+#[derive(Debug, Clone, Copy)]
+pub struct CosineHemisphere;
+
+fn angle01(y: f64, x: f64) -> f64 {
+    let a = y.atan2(x) / TAU;
+    crate::seed::wrap01(a)
+}
+
+impl Warp for PolarDisk {
+    fn name(&self) -> &'static str {
+        "disk.polar"
+    }
+    fn input_dims(&self) -> Option<usize> {
+        Some(2)
+    }
+    fn output_dims(&self, _: usize) -> usize {
+        2
+    }
+    fn forward(&self, u: &[f64], out: &mut [f64]) -> bool {
+        let r = u[0].sqrt();
+        let (s, c) = (TAU * u[1]).sin_cos();
+        out[0] = r * c;
+        out[1] = r * s;
+        true
+    }
+    fn density(&self, x: &[f64]) -> f64 {
+        if x[0] * x[0] + x[1] * x[1] < 1.0 { 1.0 / PI } else { 0.0 }
+    }
+    fn inverse(&self, x: &[f64], out: &mut [f64]) -> bool {
+        let r2 = x[0] * x[0] + x[1] * x[1];
+        out[0] = r2;
+        out[1] = angle01(x[1], x[0]);
+        r2 < 1.0
+    }
+}
+
+impl Warp for ConcentricDisk {
+    fn name(&self) -> &'static str {
+        "disk.concentric"
+    }
+    fn input_dims(&self) -> Option<usize> {
+        Some(2)
+    }
+    fn output_dims(&self, _: usize) -> usize {
+        2
+    }
+    fn forward(&self, u: &[f64], out: &mut [f64]) -> bool {
+        let (a, b) = (2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0);
+        if a == 0.0 && b == 0.0 {
+            out[0] = 0.0;
+            out[1] = 0.0;
+            return true;
+        }
+        // Shirley & Chiu 1997, eq. for the four triangular regions
+        let (r, phi) = if a.abs() > b.abs() { (a, FRAC_PI_4 * (b / a)) } else { (b, 2.0 * FRAC_PI_4 - FRAC_PI_4 * (a / b)) };
+        out[0] = r * phi.cos();
+        out[1] = r * phi.sin();
+        true
+    }
+    fn density(&self, x: &[f64]) -> f64 {
+        PolarDisk.density(x)
+    }
+    fn inverse(&self, x: &[f64], out: &mut [f64]) -> bool {
+        let r = x[0].hypot(x[1]);
+        let mut phi = x[1].atan2(x[0]); // (-pi, pi]
+        if phi < -FRAC_PI_4 {
+            phi += TAU; // [-pi/4, 7pi/4)
+        }
+        let (a, b) = if phi < FRAC_PI_4 {
+            (r, r * phi / FRAC_PI_4)
+        } else if phi < 3.0 * FRAC_PI_4 {
+            (-r * (phi - 2.0 * FRAC_PI_4) / FRAC_PI_4, r)
+        } else if phi < 5.0 * FRAC_PI_4 {
+            (-r, -r * (phi - 4.0 * FRAC_PI_4) / FRAC_PI_4)
+        } else {
+            (r * (phi - 6.0 * FRAC_PI_4) / FRAC_PI_4, -r)
+        };
+        out[0] = (a + 1.0) / 2.0;
+        out[1] = (b + 1.0) / 2.0;
+        r < 1.0
+    }
+}
+
+impl Warp for RejectDisk {
+    fn name(&self) -> &'static str {
+        "disk.reject"
+    }
+    fn input_dims(&self) -> Option<usize> {
+        Some(2)
+    }
+    fn output_dims(&self, _: usize) -> usize {
+        2
+    }
+    fn forward(&self, u: &[f64], out: &mut [f64]) -> bool {
+        out[0] = 2.0 * u[0] - 1.0;
+        out[1] = 2.0 * u[1] - 1.0;
+        out[0] * out[0] + out[1] * out[1] < 1.0
+    }
+    fn density(&self, x: &[f64]) -> f64 {
+        PolarDisk.density(x)
+    }
+    fn inverse(&self, x: &[f64], out: &mut [f64]) -> bool {
+        out[0] = (x[0] + 1.0) / 2.0;
+        out[1] = (x[1] + 1.0) / 2.0;
+        x[0] * x[0] + x[1] * x[1] < 1.0
+    }
+}
+
+/// The tent's inverse CDF on [-1,1].
+pub fn tent_inverse_cdf(u: f64) -> f64 {
+    if u < 0.5 { (2.0 * u).sqrt() - 1.0 } else { 1.0 - (2.0 - 2.0 * u).sqrt() }
+}
+
+/// The tent's CDF on [-1,1].
+pub fn tent_cdf(x: f64) -> f64 {
+    let x = x.clamp(-1.0, 1.0);
+    if x < 0.0 { 0.5 * (1.0 + x) * (1.0 + x) } else { 1.0 - 0.5 * (1.0 - x) * (1.0 - x) }
+}
+
+impl Warp for Tent {
+    fn name(&self) -> &'static str {
+        "tent"
+    }
+    fn input_dims(&self) -> Option<usize> {
+        None
+    }
+    fn output_dims(&self, input: usize) -> usize {
+        input
+    }
+    fn forward(&self, u: &[f64], out: &mut [f64]) -> bool {
+        for (o, &x) in out.iter_mut().zip(u) {
+            *o = tent_inverse_cdf(x);
+        }
+        true
+    }
+    fn density(&self, x: &[f64]) -> f64 {
+        x.iter().map(|&t| (1.0 - t.abs()).max(0.0)).product()
+    }
+    fn inverse(&self, x: &[f64], out: &mut [f64]) -> bool {
+        for (o, &t) in out.iter_mut().zip(x) {
+            *o = tent_cdf(t);
+        }
+        x.iter().all(|t| t.abs() <= 1.0)
+    }
+}
+
+impl Warp for Gaussian {
+    fn name(&self) -> &'static str {
+        "gaussian"
+    }
+    fn input_dims(&self) -> Option<usize> {
+        Some(2)
+    }
+    fn output_dims(&self, _: usize) -> usize {
+        2
+    }
+    fn forward(&self, u: &[f64], out: &mut [f64]) -> bool {
+        let r = (-2.0 * (-u[0]).ln_1p()).sqrt();
+        let (s, c) = (TAU * u[1]).sin_cos();
+        out[0] = r * c;
+        out[1] = r * s;
+        true
+    }
+    fn density(&self, x: &[f64]) -> f64 {
+        (-(x[0] * x[0] + x[1] * x[1]) / 2.0).exp() / TAU
+    }
+    fn inverse(&self, x: &[f64], out: &mut [f64]) -> bool {
+        out[0] = -(-(x[0] * x[0] + x[1] * x[1]) / 2.0).exp_m1();
+        out[1] = angle01(x[1], x[0]);
+        true
+    }
+}
+
+impl Warp for UniformHemisphere {
+    fn name(&self) -> &'static str {
+        "hemisphere.uniform"
+    }
+    fn input_dims(&self) -> Option<usize> {
+        Some(2)
+    }
+    fn output_dims(&self, _: usize) -> usize {
+        3
+    }
+    fn forward(&self, u: &[f64], out: &mut [f64]) -> bool {
+        let z = u[0];
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        let (s, c) = (TAU * u[1]).sin_cos();
+        out.copy_from_slice(&[r * c, r * s, z]);
+        true
+    }
+    fn density(&self, x: &[f64]) -> f64 {
+        if x[2] >= 0.0 { 1.0 / TAU } else { 0.0 }
+    }
+    fn inverse(&self, x: &[f64], out: &mut [f64]) -> bool {
+        out[0] = x[2];
+        out[1] = angle01(x[1], x[0]);
+        x[2] >= 0.0
+    }
+}
+
+impl Warp for CosineHemisphere {
+    fn name(&self) -> &'static str {
+        "hemisphere.cosine"
+    }
+    fn input_dims(&self) -> Option<usize> {
+        Some(2)
+    }
+    fn output_dims(&self, _: usize) -> usize {
+        3
+    }
+    fn forward(&self, u: &[f64], out: &mut [f64]) -> bool {
+        let mut d = [0.0; 2];
+        ConcentricDisk.forward(u, &mut d);
+        let z = (1.0 - d[0] * d[0] - d[1] * d[1]).max(0.0).sqrt();
+        out.copy_from_slice(&[d[0], d[1], z]);
+        true
+    }
+    fn density(&self, x: &[f64]) -> f64 {
+        x[2].max(0.0) / PI
+    }
+    fn inverse(&self, x: &[f64], out: &mut [f64]) -> bool {
+        ConcentricDisk.inverse(&x[..2], out);
+        x[2] >= 0.0
+    }
+}
+
+/// One registered warp.
+#[derive(Debug)]
+pub struct WarpEntry {
+    /// Canonical name.
+    pub name: &'static str,
+    /// Other accepted names.
+    pub aliases: &'static [&'static str],
+    /// One line: what it does.
+    pub summary: &'static str,
+    /// Input and output dimensions, in words.
+    pub dims: &'static str,
+    /// Bibliography keys.
+    pub references: &'static [&'static str],
+    /// The warp.
+    pub warp: &'static dyn Warp,
+}
+
+/// Every registered warp.
+pub static WARPS: &[WarpEntry] = &[
+    WarpEntry { name: "disk.polar", aliases: &["polar"], summary: "square to unit disk, r = sqrt(u), phi = 2 pi v", dims: "2 -> 2", references: &["shirley1991"], warp: &PolarDisk },
+    WarpEntry { name: "disk.concentric", aliases: &["concentric", "shirley-chiu"], summary: "square to unit disk, area-preserving low distortion", dims: "2 -> 2", references: &["shirley1997"], warp: &ConcentricDisk },
+    WarpEntry { name: "disk.reject", aliases: &["reject"], summary: "keep the points of [-1,1)^2 inside the unit disk", dims: "2 -> 2", references: &["shirley1991"], warp: &RejectDisk },
+    WarpEntry { name: "tent", aliases: &["tent-filter"], summary: "tent filter (1-|x|) on [-1,1] per axis, inverse CDF", dims: "d -> d", references: &["shirley1991"], warp: &Tent },
+    WarpEntry { name: "gaussian", aliases: &["normal", "box-muller"], summary: "standard normal in the plane (Box-Muller)", dims: "2 -> 2", references: &[], warp: &Gaussian },
+    WarpEntry { name: "hemisphere.uniform", aliases: &["hemisphere"], summary: "uniform directions, z >= 0", dims: "2 -> 3", references: &[], warp: &UniformHemisphere },
+    WarpEntry { name: "hemisphere.cosine", aliases: &["cosine"], summary: "cosine-weighted directions (concentric disk lifted)", dims: "2 -> 3", references: &["shirley1997", "sbert2006"], warp: &CosineHemisphere },
+];
+
+/// The warp called `name` (canonical or alias, case-insensitive).
+///
+/// # Errors
+/// An unknown name, with the closest known names.
+pub fn lookup(name: &str) -> Result<&'static dyn Warp> {
+    let want = name.to_ascii_lowercase();
+    WARPS
+        .iter()
+        .find(|e| e.name == want || e.aliases.contains(&want.as_str()))
+        .map(|e| e.warp)
+        .ok_or_else(|| Error::UnknownName {
+            kind: "warp",
+            name: name.into(),
+            suggestions: closest_names(name, WARPS.iter().flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied()))),
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::seed::{Seed, uniform};
+
+    fn bijective() -> impl Iterator<Item = &'static WarpEntry> {
+        WARPS.iter().filter(|e| e.name != "disk.reject")
+    }
+
+    #[test]
+    fn forward_then_inverse_round_trips() {
+        let mut rng = Seed(1).rng();
+        for e in WARPS {
+            for _ in 0..2000 {
+                let u = [uniform(&mut rng), uniform(&mut rng)];
+                let mut x = vec![0.0; e.warp.output_dims(2)];
+                if !e.warp.forward(&u, &mut x) {
+                    continue;
+                }
+                let mut back = [0.0; 2];
+                assert!(e.warp.inverse(&x, &mut back), "{}: {x:?} outside", e.name);
+                for d in 0..2 {
+                    let diff = (back[d] - u[d]).abs();
+                    // angles wrap: 0 and 1 are the same point
+                    assert!(diff.min(1.0 - diff) < 1e-9, "{}: {u:?} -> {x:?} -> {back:?}", e.name);
+                }
+            }
+        }
+    }
+
+    /// density(f(u)) times the area (or solid-angle) Jacobian of f at u is one: the warp
+    /// carries the uniform density to the stated one.
+    #[test]
+    fn density_matches_the_jacobian() {
+        let mut rng = Seed(2).rng();
+        let h = 1e-6;
+        for e in bijective() {
+            let m = e.warp.output_dims(2);
+            for _ in 0..500 {
+                let u = [0.01 + 0.98 * uniform(&mut rng), 0.01 + 0.98 * uniform(&mut rng)];
+                let f = |a: f64, b: f64| {
+                    let mut x = vec![0.0; m];
+                    e.warp.forward(&[a, b], &mut x);
+                    x
+                };
+                let x = f(u[0], u[1]);
+                let du: Vec<f64> = f(u[0] + h, u[1]).iter().zip(f(u[0] - h, u[1])).map(|(a, b)| (a - b) / (2.0 * h)).collect();
+                let dv: Vec<f64> = f(u[0], u[1] + h).iter().zip(f(u[0], u[1] - h)).map(|(a, b)| (a - b) / (2.0 * h)).collect();
+                let jac = if m == 2 {
+                    (du[0] * dv[1] - du[1] * dv[0]).abs()
+                } else {
+                    let c = [du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2], du[0] * dv[1] - du[1] * dv[0]];
+                    (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
+                };
+                let product = e.warp.density(&x) * jac;
+                assert!((product - 1.0).abs() < 1e-5, "{} at {u:?}: density x jacobian = {product}", e.name);
+            }
+        }
+    }
+
+    /// The densities integrate to one over their domains (midpoint rule).
+    #[test]
+    fn densities_integrate_to_one() {
+        let k = 2000;
+        let h = 1.0 / k as f64;
+        let cell = |i: usize| (i as f64 + 0.5) * h;
+        // planar densities over [-L, L]^2
+        for (e, half) in [("disk.polar", 1.0), ("disk.concentric", 1.0), ("disk.reject", 1.0), ("tent", 1.0), ("gaussian", 9.0)] {
+            let w = lookup(e).unwrap();
+            let mut sum = 0.0;
+            for i in 0..k {
+                for j in 0..k {
+                    let x = [half * (2.0 * cell(i) - 1.0), half * (2.0 * cell(j) - 1.0)];
+                    sum += w.density(&x);
+                }
+            }
+            let total = sum * (2.0 * half * h).powi(2);
+            assert!((total - 1.0).abs() < 2e-3, "{e}: {total}");
+        }
+        // hemispheres over (cos theta, phi): d omega = d(cos theta) d phi
+        for e in ["hemisphere.uniform", "hemisphere.cosine"] {
+            let w = lookup(e).unwrap();
+            let mut sum = 0.0;
+            for i in 0..k {
+                let z = cell(i);
+                let r = (1.0 - z * z).sqrt();
+                for j in 0..k {
+                    let phi = TAU * cell(j);
+                    sum += w.density(&[r * phi.cos(), r * phi.sin(), z]);
+                }
+            }
+            let total = sum * h * TAU * h;
+            assert!((total - 1.0).abs() < 1e-6, "{e}: {total}");
+        }
+    }
+
+    #[test]
+    fn names_unique_and_lookup_suggests() {
+        let mut names: Vec<&str> = WARPS.iter().flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied())).collect();
+        let before = names.len();
+        names.sort();
+        names.dedup();
+        assert_eq!(names.len(), before);
+        let e = lookup("disk.concentrc").unwrap_err().to_string();
+        assert!(e.contains("disk.concentric"), "{e}");
+    }
+}
