@@ -1,1 +1,64 @@
-fn main() {}
+//! `samplab`: generate, measure and plot sampling patterns for Monte Carlo integration.
+//!
+//! Thin glue over the `samplab` library. Every error is one line on stderr and exit
+//! code 2; nothing is written when a command fails.
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+mod generate;
+mod list;
+mod plot;
+
+/// Sampling patterns for Monte Carlo integration in rendering.
+#[derive(Parser)]
+#[command(name = "samplab", version, about, long_about = None, max_term_width = 100)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// List samplers, warps or file formats, with aliases, parameters and references.
+    List(list::Args),
+    /// Generate point sets with a sampler (text to stdout by default).
+    Generate(generate::Args),
+    /// Plot a point-set file as a scatter with 1D marginal histograms (PNG or SVG).
+    Plot(plot::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::List(a) => list::run(&a),
+        Command::Generate(a) => generate::run(&a),
+        Command::Plot(a) => plot::run(&a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            // one line: the chain of causes joined
+            let msg = format!("{e:#}").replace('\n', " ");
+            eprintln!("samplab: error: {msg}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// Write `bytes` to `path` atomically, or to stdout when there is no path.
+pub(crate) fn emit(path: Option<&std::path::Path>, bytes: &[u8]) -> anyhow::Result<()> {
+    use std::io::Write as _;
+    match path {
+        Some(p) => Ok(samplab::io::write_atomic(p, bytes)?),
+        None => {
+            let mut out = std::io::stdout().lock();
+            match out.write_all(bytes).and_then(|()| out.flush()) {
+                // a closed pipe (e.g. `| head`) is not an error of ours
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+                r => Ok(r?),
+            }
+        }
+    }
+}

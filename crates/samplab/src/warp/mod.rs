@@ -36,7 +36,11 @@ pub fn apply(warp: &dyn Warp, points: &PointSet) -> Result<PointSet> {
     if let Some(d) = warp.input_dims()
         && d != points.dims()
     {
-        return Err(Error::Invalid(format!("warp {} needs {d}D points, got {}D", warp.name(), points.dims())));
+        return Err(Error::Invalid(format!(
+            "warp {} needs {d}D points, got {}D",
+            warp.name(),
+            points.dims()
+        )));
     }
     let out_dims = warp.output_dims(points.dims());
     let mut data = Vec::with_capacity(points.len() * out_dims);
@@ -103,7 +107,11 @@ impl Warp for PolarDisk {
         true
     }
     fn density(&self, x: &[f64]) -> f64 {
-        if x[0] * x[0] + x[1] * x[1] < 1.0 { 1.0 / PI } else { 0.0 }
+        if x[0] * x[0] + x[1] * x[1] < 1.0 {
+            1.0 / PI
+        } else {
+            0.0
+        }
     }
     fn inverse(&self, x: &[f64], out: &mut [f64]) -> bool {
         let r2 = x[0] * x[0] + x[1] * x[1];
@@ -131,7 +139,11 @@ impl Warp for ConcentricDisk {
             return true;
         }
         // Shirley & Chiu 1997, eq. for the four triangular regions
-        let (r, phi) = if a.abs() > b.abs() { (a, FRAC_PI_4 * (b / a)) } else { (b, 2.0 * FRAC_PI_4 - FRAC_PI_4 * (a / b)) };
+        let (r, phi) = if a.abs() > b.abs() {
+            (a, FRAC_PI_4 * (b / a))
+        } else {
+            (b, 2.0 * FRAC_PI_4 - FRAC_PI_4 * (a / b))
+        };
         out[0] = r * phi.cos();
         out[1] = r * phi.sin();
         true
@@ -187,13 +199,21 @@ impl Warp for RejectDisk {
 
 /// The tent's inverse CDF on [-1,1].
 pub fn tent_inverse_cdf(u: f64) -> f64 {
-    if u < 0.5 { (2.0 * u).sqrt() - 1.0 } else { 1.0 - (2.0 - 2.0 * u).sqrt() }
+    if u < 0.5 {
+        (2.0 * u).sqrt() - 1.0
+    } else {
+        1.0 - (2.0 - 2.0 * u).sqrt()
+    }
 }
 
 /// The tent's CDF on [-1,1].
 pub fn tent_cdf(x: f64) -> f64 {
     let x = x.clamp(-1.0, 1.0);
-    if x < 0.0 { 0.5 * (1.0 + x) * (1.0 + x) } else { 1.0 - 0.5 * (1.0 - x) * (1.0 - x) }
+    if x < 0.0 {
+        0.5 * (1.0 + x) * (1.0 + x)
+    } else {
+        1.0 - 0.5 * (1.0 - x) * (1.0 - x)
+    }
 }
 
 impl Warp for Tent {
@@ -322,13 +342,62 @@ pub struct WarpEntry {
 
 /// Every registered warp.
 pub static WARPS: &[WarpEntry] = &[
-    WarpEntry { name: "disk.polar", aliases: &["polar"], summary: "square to unit disk, r = sqrt(u), phi = 2 pi v", dims: "2 -> 2", references: &["shirley1991"], warp: &PolarDisk },
-    WarpEntry { name: "disk.concentric", aliases: &["concentric", "shirley-chiu"], summary: "square to unit disk, area-preserving low distortion", dims: "2 -> 2", references: &["shirley1997"], warp: &ConcentricDisk },
-    WarpEntry { name: "disk.reject", aliases: &["reject"], summary: "keep the points of [-1,1)^2 inside the unit disk", dims: "2 -> 2", references: &["shirley1991"], warp: &RejectDisk },
-    WarpEntry { name: "tent", aliases: &["tent-filter"], summary: "tent filter (1-|x|) on [-1,1] per axis, inverse CDF", dims: "d -> d", references: &["shirley1991"], warp: &Tent },
-    WarpEntry { name: "gaussian", aliases: &["normal", "box-muller"], summary: "standard normal in the plane (Box-Muller)", dims: "2 -> 2", references: &[], warp: &Gaussian },
-    WarpEntry { name: "hemisphere.uniform", aliases: &["hemisphere"], summary: "uniform directions, z >= 0", dims: "2 -> 3", references: &[], warp: &UniformHemisphere },
-    WarpEntry { name: "hemisphere.cosine", aliases: &["cosine"], summary: "cosine-weighted directions (concentric disk lifted)", dims: "2 -> 3", references: &["shirley1997", "sbert2006"], warp: &CosineHemisphere },
+    WarpEntry {
+        name: "disk.polar",
+        aliases: &["polar"],
+        summary: "square to unit disk, r = sqrt(u), phi = 2 pi v",
+        dims: "2 -> 2",
+        references: &["shirley1991"],
+        warp: &PolarDisk,
+    },
+    WarpEntry {
+        name: "disk.concentric",
+        aliases: &["concentric", "shirley-chiu"],
+        summary: "square to unit disk, area-preserving low distortion",
+        dims: "2 -> 2",
+        references: &["shirley1997"],
+        warp: &ConcentricDisk,
+    },
+    WarpEntry {
+        name: "disk.reject",
+        aliases: &["reject"],
+        summary: "keep the points of [-1,1)^2 inside the unit disk",
+        dims: "2 -> 2",
+        references: &["shirley1991"],
+        warp: &RejectDisk,
+    },
+    WarpEntry {
+        name: "tent",
+        aliases: &["tent-filter"],
+        summary: "tent filter (1-|x|) on [-1,1] per axis, inverse CDF",
+        dims: "d -> d",
+        references: &["shirley1991"],
+        warp: &Tent,
+    },
+    WarpEntry {
+        name: "gaussian",
+        aliases: &["normal", "box-muller"],
+        summary: "standard normal in the plane (Box-Muller)",
+        dims: "2 -> 2",
+        references: &[],
+        warp: &Gaussian,
+    },
+    WarpEntry {
+        name: "hemisphere.uniform",
+        aliases: &["hemisphere"],
+        summary: "uniform directions, z >= 0",
+        dims: "2 -> 3",
+        references: &[],
+        warp: &UniformHemisphere,
+    },
+    WarpEntry {
+        name: "hemisphere.cosine",
+        aliases: &["cosine"],
+        summary: "cosine-weighted directions (concentric disk lifted)",
+        dims: "2 -> 3",
+        references: &["shirley1997", "sbert2006"],
+        warp: &CosineHemisphere,
+    },
 ];
 
 /// The warp called `name` (canonical or alias, case-insensitive).
@@ -344,7 +413,12 @@ pub fn lookup(name: &str) -> Result<&'static dyn Warp> {
         .ok_or_else(|| Error::UnknownName {
             kind: "warp",
             name: name.into(),
-            suggestions: closest_names(name, WARPS.iter().flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied()))),
+            suggestions: closest_names(
+                name,
+                WARPS
+                    .iter()
+                    .flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied())),
+            ),
         })
 }
 
@@ -372,7 +446,11 @@ mod tests {
                 for d in 0..2 {
                     let diff = (back[d] - u[d]).abs();
                     // angles wrap: 0 and 1 are the same point
-                    assert!(diff.min(1.0 - diff) < 1e-9, "{}: {u:?} -> {x:?} -> {back:?}", e.name);
+                    assert!(
+                        diff.min(1.0 - diff) < 1e-9,
+                        "{}: {u:?} -> {x:?} -> {back:?}",
+                        e.name
+                    );
                 }
             }
         }
@@ -387,23 +465,42 @@ mod tests {
         for e in bijective() {
             let m = e.warp.output_dims(2);
             for _ in 0..500 {
-                let u = [0.01 + 0.98 * uniform(&mut rng), 0.01 + 0.98 * uniform(&mut rng)];
+                let u = [
+                    0.01 + 0.98 * uniform(&mut rng),
+                    0.01 + 0.98 * uniform(&mut rng),
+                ];
                 let f = |a: f64, b: f64| {
                     let mut x = vec![0.0; m];
                     e.warp.forward(&[a, b], &mut x);
                     x
                 };
                 let x = f(u[0], u[1]);
-                let du: Vec<f64> = f(u[0] + h, u[1]).iter().zip(f(u[0] - h, u[1])).map(|(a, b)| (a - b) / (2.0 * h)).collect();
-                let dv: Vec<f64> = f(u[0], u[1] + h).iter().zip(f(u[0], u[1] - h)).map(|(a, b)| (a - b) / (2.0 * h)).collect();
+                let du: Vec<f64> = f(u[0] + h, u[1])
+                    .iter()
+                    .zip(f(u[0] - h, u[1]))
+                    .map(|(a, b)| (a - b) / (2.0 * h))
+                    .collect();
+                let dv: Vec<f64> = f(u[0], u[1] + h)
+                    .iter()
+                    .zip(f(u[0], u[1] - h))
+                    .map(|(a, b)| (a - b) / (2.0 * h))
+                    .collect();
                 let jac = if m == 2 {
                     (du[0] * dv[1] - du[1] * dv[0]).abs()
                 } else {
-                    let c = [du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2], du[0] * dv[1] - du[1] * dv[0]];
+                    let c = [
+                        du[1] * dv[2] - du[2] * dv[1],
+                        du[2] * dv[0] - du[0] * dv[2],
+                        du[0] * dv[1] - du[1] * dv[0],
+                    ];
                     (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
                 };
                 let product = e.warp.density(&x) * jac;
-                assert!((product - 1.0).abs() < 1e-5, "{} at {u:?}: density x jacobian = {product}", e.name);
+                assert!(
+                    (product - 1.0).abs() < 1e-5,
+                    "{} at {u:?}: density x jacobian = {product}",
+                    e.name
+                );
             }
         }
     }
@@ -415,7 +512,13 @@ mod tests {
         let h = 1.0 / k as f64;
         let cell = |i: usize| (i as f64 + 0.5) * h;
         // planar densities over [-L, L]^2
-        for (e, half) in [("disk.polar", 1.0), ("disk.concentric", 1.0), ("disk.reject", 1.0), ("tent", 1.0), ("gaussian", 9.0)] {
+        for (e, half) in [
+            ("disk.polar", 1.0),
+            ("disk.concentric", 1.0),
+            ("disk.reject", 1.0),
+            ("tent", 1.0),
+            ("gaussian", 9.0),
+        ] {
             let w = lookup(e).unwrap();
             let mut sum = 0.0;
             for i in 0..k {
@@ -446,7 +549,10 @@ mod tests {
 
     #[test]
     fn names_unique_and_lookup_suggests() {
-        let mut names: Vec<&str> = WARPS.iter().flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied())).collect();
+        let mut names: Vec<&str> = WARPS
+            .iter()
+            .flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied()))
+            .collect();
         let before = names.len();
         names.sort();
         names.dedup();

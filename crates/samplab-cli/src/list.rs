@@ -1,0 +1,75 @@
+//! `samplab list`: tables generated from the registries.
+
+use std::fmt::Write as _;
+
+use samplab::bibliography;
+use samplab::io::FORMATS;
+use samplab::sampler::registry;
+use samplab::warp::WARPS;
+
+/// What to list.
+#[derive(clap::Args)]
+pub struct Args {
+    /// samplers, warps, formats or references (all when omitted)
+    #[arg(value_parser = ["samplers", "warps", "formats", "references"])]
+    what: Option<String>,
+}
+
+pub fn run(args: &Args) -> anyhow::Result<()> {
+    let all = args.what.is_none();
+    let want = |w: &str| all || args.what.as_deref() == Some(w);
+    let mut out = String::new();
+    if want("samplers") {
+        out.push_str(
+            "SAMPLERS  (spec: name[:key=value,...] or name[:value,...] in the order listed)\n\n",
+        );
+        for e in registry::entries() {
+            writeln!(out, "{}  —  {}", e.name, e.summary).unwrap();
+            if !e.aliases.is_empty() {
+                writeln!(out, "    aliases: {}", e.aliases.join(", ")).unwrap();
+            }
+            writeln!(out, "    counts: {}; dimensions: {}", e.counts, e.dims).unwrap();
+            for p in e.params {
+                writeln!(
+                    out,
+                    "    {} = {}  ({}): {}",
+                    p.name,
+                    p.default_text(),
+                    p.range_text(),
+                    p.doc
+                )
+                .unwrap();
+            }
+            writeln!(out, "    references: {}", e.references.join(", ")).unwrap();
+        }
+        out.push('\n');
+    }
+    if want("warps") {
+        out.push_str("WARPS  (forward map, density and inverse)\n\n");
+        for e in WARPS {
+            writeln!(out, "{}  —  {}  [{}]", e.name, e.summary, e.dims).unwrap();
+            if !e.aliases.is_empty() {
+                writeln!(out, "    aliases: {}", e.aliases.join(", ")).unwrap();
+            }
+            if !e.references.is_empty() {
+                writeln!(out, "    references: {}", e.references.join(", ")).unwrap();
+            }
+        }
+        out.push('\n');
+    }
+    if want("formats") {
+        out.push_str("FORMATS\n\n");
+        for (name, _, doc) in FORMATS {
+            writeln!(out, "{name}  —  {doc}").unwrap();
+        }
+        out.push('\n');
+    }
+    if want("references") {
+        out.push_str("REFERENCES\n\n");
+        for r in bibliography::ALL {
+            writeln!(out, "{}  {}", r.key, r.citation).unwrap();
+        }
+    }
+    crate::emit(None, out.trim_end().as_bytes())?;
+    crate::emit(None, b"\n")
+}
