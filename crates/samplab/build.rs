@@ -19,18 +19,10 @@ fn main() {
         }
         let f: Vec<u64> = line
             .split_whitespace()
-            .map(|t| {
-                t.parse()
-                    .unwrap_or_else(|_| panic!("{src}:{}: not a number", lineno + 1))
-            })
+            .map(|t| t.parse().unwrap_or_else(|_| panic!("{src}:{}: not a number", lineno + 1)))
             .collect();
         let (s, a) = (f[1] as usize, f[2]);
-        assert_eq!(
-            f.len(),
-            3 + s,
-            "{src}:{}: expected {s} initial m",
-            lineno + 1
-        );
+        assert_eq!(f.len(), 3 + s, "{src}:{}: expected {s} initial m", lineno + 1);
         let mut m = [0u64; 32];
         m[..s].copy_from_slice(&f[3..]);
         for k in s..32 {
@@ -44,16 +36,8 @@ fn main() {
         }
         table.push(std::array::from_fn(|k| (m[k] << (31 - k)) as u32));
     }
-    let mut out = format!(
-        "/// Joe–Kuo direction numbers, {} dimensions x 32 bits.\n",
-        table.len()
-    );
-    writeln!(
-        out,
-        "pub(crate) static SOBOL_DIRECTIONS: [[u32; 32]; {}] = [",
-        table.len()
-    )
-    .unwrap();
+    let mut out = format!("/// Joe–Kuo direction numbers, {} dimensions x 32 bits.\n", table.len());
+    writeln!(out, "pub(crate) static SOBOL_DIRECTIONS: [[u32; 32]; {}] = [", table.len()).unwrap();
     for row in &table {
         out.push('[');
         for v in row {

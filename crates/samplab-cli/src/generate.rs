@@ -65,10 +65,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         .collect::<Result<_, _>>()?;
     bar.finish_and_clear();
     let sets = match w {
-        Some(w) => sets
-            .iter()
-            .map(|p| warp::apply(w, p))
-            .collect::<Result<Vec<_>, _>>()?,
+        Some(w) => sets.iter().map(|p| warp::apply(w, p)).collect::<Result<Vec<_>, _>>()?,
         None => sets,
     };
     let header = vec![format!(
@@ -92,10 +89,8 @@ pub(crate) fn progress(len: u64, unit: &str) -> ProgressBar {
     }
     let bar = ProgressBar::new(len);
     bar.set_style(
-        ProgressStyle::with_template(&format!(
-            "{{elapsed_precise}} [{{bar:40}}] {{pos}}/{{len}} {unit} (eta {{eta}})"
-        ))
-        .unwrap(),
+        ProgressStyle::with_template(&format!("{{elapsed_precise}} [{{bar:40}}] {{pos}}/{{len}} {unit} (eta {{eta}})"))
+            .unwrap(),
     );
     bar
 }

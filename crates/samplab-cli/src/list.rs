@@ -20,9 +20,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     let want = |w: &str| all || args.what.as_deref() == Some(w);
     let mut out = String::new();
     if want("samplers") {
-        out.push_str(
-            "SAMPLERS  (spec: name[:key=value,...] or name[:value,...] in the order listed)\n\n",
-        );
+        out.push_str("SAMPLERS  (spec: name[:key=value,...] or name[:value,...] in the order listed)\n\n");
         for e in registry::entries() {
             writeln!(out, "{}  —  {}", e.name, e.summary).unwrap();
             if !e.aliases.is_empty() {
@@ -30,15 +28,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
             }
             writeln!(out, "    counts: {}; dimensions: {}", e.counts, e.dims).unwrap();
             for p in e.params {
-                writeln!(
-                    out,
-                    "    {} = {}  ({}): {}",
-                    p.name,
-                    p.default_text(),
-                    p.range_text(),
-                    p.doc
-                )
-                .unwrap();
+                writeln!(out, "    {} = {}  ({}): {}", p.name, p.default_text(), p.range_text(), p.doc).unwrap();
             }
             writeln!(out, "    references: {}", e.references.join(", ")).unwrap();
         }

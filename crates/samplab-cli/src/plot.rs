@@ -10,9 +10,7 @@ use samplab::io::{self, Format};
 
 /// Plot a point set.
 #[derive(clap::Args)]
-#[command(
-    after_help = "Example:\n  samplab generate jitter -n 256 -o j.txt && samplab plot j.txt -o j.png --grid 16"
-)]
+#[command(after_help = "Example:\n  samplab generate jitter -n 256 -o j.txt && samplab plot j.txt -o j.png --grid 16")]
 pub struct Args {
     /// Point-set file (text, csv, npy or json)
     file: PathBuf,
@@ -42,18 +40,10 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     let format = a.format.as_deref().map(Format::from_name).transpose()?;
     let sets = io::read(&a.file, format)?;
     let Some(set) = sets.get(a.set) else {
-        bail!(
-            "--set {}: {} holds {} set(s)",
-            a.set,
-            a.file.display(),
-            sets.len()
-        );
+        bail!("--set {}: {} holds {} set(s)", a.set, a.file.display(), sets.len());
     };
     if let Some(&bad) = a.axes.iter().find(|&&d| d >= set.dims()) {
-        bail!(
-            "--axes: coordinate {bad} does not exist in {}D points",
-            set.dims()
-        );
+        bail!("--axes: coordinate {bad} does not exist in {}D points", set.dims());
     }
     if !(200..=8000).contains(&a.size) {
         bail!("--size {}: expected 200..=8000 pixels", a.size);
@@ -65,27 +55,19 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         "{} — {} points{}",
         a.file.file_name().unwrap_or_default().to_string_lossy(),
         set.len(),
-        if sets.len() > 1 {
-            format!(", set {}", a.set)
-        } else {
-            String::new()
-        }
+        if sets.len() > 1 { format!(", set {}", a.set) } else { String::new() }
     );
     let (w, h) = (a.size, a.size);
-    let ext = a
-        .output
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
+    // both backends lay text out with the bundled font, whatever family plotters asks for
+    for family in ["sans-serif", "serif", "monospace"] {
+        plotters::style::register_font(family, FontStyle::Normal, FONT)
+            .map_err(|_| anyhow::anyhow!("the bundled font is invalid"))?;
+    }
+    let ext = a.output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let bytes = match ext.as_deref() {
         Some("svg") => {
             let mut svg = String::new();
-            draw(
-                SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area(),
-                set,
-                a,
-                &title,
-            )?;
+            draw(SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area(), set, a, &title)?;
             svg.into_bytes()
         }
         Some("png") => {
@@ -95,32 +77,20 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
                     .map_err(|_| anyhow::anyhow!("the bundled font is invalid"))?;
             }
             let mut buf = vec![255u8; (w * h * 3) as usize];
-            draw(
-                BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area(),
-                set,
-                a,
-                &title,
-            )?;
+            draw(BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area(), set, a, &title)?;
             let img = image::RgbImage::from_raw(w, h, buf).context("image buffer")?;
             let mut png = std::io::Cursor::new(Vec::new());
             img.write_to(&mut png, image::ImageFormat::Png)?;
             png.into_inner()
         }
-        _ => bail!(
-            "-o {}: the output must end in .png or .svg",
-            a.output.display()
-        ),
+        _ => bail!("-o {}: the output must end in .png or .svg", a.output.display()),
     };
     Ok(samplab::io::write_atomic(&a.output, &bytes)?)
 }
 
 /// The plotted range of one coordinate: [0,1] for unit-cube sets, else the data's span.
 fn range(v: &[f64]) -> (f64, f64) {
-    let (lo, hi) = v
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| {
-            (l.min(x), h.max(x))
-        });
+    let (lo, hi) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| (l.min(x), h.max(x)));
     if lo >= 0.0 && hi <= 1.0 {
         (0.0, 1.0)
     } else {
@@ -141,12 +111,7 @@ fn histogram(v: &[f64], (lo, hi): (f64, f64), bins: usize) -> Vec<f64> {
     h
 }
 
-fn draw<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
-    set: &PointSet,
-    a: &Args,
-    title: &str,
-) -> anyhow::Result<()>
+fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, set: &PointSet, a: &Args, title: &str) -> anyhow::Result<()>
 where
     DB::ErrorType: 'static,
 {
@@ -185,12 +150,8 @@ where
         let grey = RGBColor(200, 200, 200);
         for i in 0..=k {
             let (gx, gy) = (rx.0 + i as f64 * step_x, ry.0 + i as f64 * step_y);
-            chart
-                .draw_series(LineSeries::new([(gx, ry.0), (gx, ry.1)], grey))
-                .map_err(err)?;
-            chart
-                .draw_series(LineSeries::new([(rx.0, gy), (rx.1, gy)], grey))
-                .map_err(err)?;
+            chart.draw_series(LineSeries::new([(gx, ry.0), (gx, ry.1)], grey)).map_err(err)?;
+            chart.draw_series(LineSeries::new([(rx.0, gy), (rx.1, gy)], grey)).map_err(err)?;
         }
     }
     let radius = if set.len() > 20_000 {
@@ -201,11 +162,7 @@ where
         3
     };
     chart
-        .draw_series(
-            xs.iter()
-                .zip(&ys)
-                .map(|(&x, &y)| Circle::new((x, y), radius, RGBColor(31, 119, 180).filled())),
-        )
+        .draw_series(xs.iter().zip(&ys).map(|(&x, &y)| Circle::new((x, y), radius, RGBColor(31, 119, 180).filled())))
         .map_err(err)?;
 
     // marginal histograms, as density relative to uniform (1 = flat)
@@ -226,12 +183,11 @@ where
         .map_err(err)?;
     let wx = (rx.1 - rx.0) / bins as f64;
     top_chart
-        .draw_series(hx.iter().enumerate().map(|(i, &c)| {
-            Rectangle::new(
-                [(rx.0 + i as f64 * wx, 0.0), (rx.0 + (i + 1) as f64 * wx, c)],
-                bar,
-            )
-        }))
+        .draw_series(
+            hx.iter()
+                .enumerate()
+                .map(|(i, &c)| Rectangle::new([(rx.0 + i as f64 * wx, 0.0), (rx.0 + (i + 1) as f64 * wx, c)], bar)),
+        )
         .map_err(err)?;
     let mut right_chart = ChartBuilder::on(&right)
         .margin(8)
@@ -249,12 +205,11 @@ where
         .map_err(err)?;
     let wy = (ry.1 - ry.0) / bins as f64;
     right_chart
-        .draw_series(hy.iter().enumerate().map(|(i, &c)| {
-            Rectangle::new(
-                [(0.0, ry.0 + i as f64 * wy), (c, ry.0 + (i + 1) as f64 * wy)],
-                bar,
-            )
-        }))
+        .draw_series(
+            hy.iter()
+                .enumerate()
+                .map(|(i, &c)| Rectangle::new([(0.0, ry.0 + i as f64 * wy), (c, ry.0 + (i + 1) as f64 * wy)], bar)),
+        )
         .map_err(err)?;
     root.present().map_err(err)?;
     Ok(())

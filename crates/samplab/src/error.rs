@@ -77,11 +77,7 @@ pub enum Error {
 }
 
 fn suggest(s: &[String]) -> String {
-    if s.is_empty() {
-        String::new()
-    } else {
-        format!(" (did you mean {}?)", s.join(", "))
-    }
+    if s.is_empty() { String::new() } else { format!(" (did you mean {}?)", s.join(", ")) }
 }
 
 /// Shorthand for results with [`Error`].
@@ -90,18 +86,19 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 /// The known names closest to `name` (Levenshtein distance, at most three), best first.
 pub fn closest_names<'a>(name: &str, known: impl IntoIterator<Item = &'a str>) -> Vec<String> {
     let name = name.to_ascii_lowercase();
+    // a name is also compared with its family (the part before '.'): "disc" finds "disk.polar"
     let mut scored: Vec<(usize, &str)> = known
         .into_iter()
-        .map(|k| (edit_distance(&name, &k.to_ascii_lowercase()), k))
+        .map(|k| {
+            let k_low = k.to_ascii_lowercase();
+            let family = k_low.split('.').next().unwrap_or("");
+            (edit_distance(&name, &k_low).min(edit_distance(&name, family) + 1), k)
+        })
         .filter(|(d, k)| *d <= 3.max(name.len() / 3) || k.starts_with(name.as_str()))
         .collect();
     scored.sort();
     scored.dedup_by(|a, b| a.1 == b.1);
-    scored
-        .into_iter()
-        .take(3)
-        .map(|(_, k)| k.to_string())
-        .collect()
+    scored.into_iter().take(3).map(|(_, k)| k.to_string()).collect()
 }
 
 fn edit_distance(a: &str, b: &str) -> usize {
@@ -111,9 +108,7 @@ fn edit_distance(a: &str, b: &str) -> usize {
         let mut diag = row[0];
         row[0] = i + 1;
         for (j, &cb) in b.iter().enumerate() {
-            let next = (diag + usize::from(ca != cb))
-                .min(row[j] + 1)
-                .min(row[j + 1] + 1);
+            let next = (diag + usize::from(ca != cb)).min(row[j] + 1).min(row[j + 1] + 1);
             diag = row[j + 1];
             row[j + 1] = next;
         }

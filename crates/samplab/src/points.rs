@@ -20,15 +20,10 @@ impl PointSet {
     /// `dims` is zero, `data.len()` is not a multiple of `dims`, or a coordinate is not finite.
     pub fn new(dims: usize, data: Vec<f64>) -> Result<Self> {
         if dims == 0 {
-            return Err(Error::Invalid(
-                "a point set needs at least one dimension".into(),
-            ));
+            return Err(Error::Invalid("a point set needs at least one dimension".into()));
         }
         if data.len() % dims != 0 {
-            return Err(Error::Invalid(format!(
-                "{} coordinates do not make whole {dims}D points",
-                data.len()
-            )));
+            return Err(Error::Invalid(format!("{} coordinates do not make whole {dims}D points", data.len())));
         }
         if let Some(i) = data.iter().position(|x| !x.is_finite()) {
             return Err(Error::Invalid(format!(

@@ -22,9 +22,7 @@ impl Seed {
 
     /// A sub-seed for `key`, by hashing (seed, key).
     pub fn derive(self, key: u64) -> Seed {
-        Seed(mix64(
-            mix64(self.0 ^ 0x9E37_79B9_7F4A_7C15).wrapping_add(key),
-        ))
+        Seed(mix64(mix64(self.0 ^ 0x9E37_79B9_7F4A_7C15).wrapping_add(key)))
     }
 
     /// A sub-seed for a named purpose (e.g. "offset", "permutation x").
@@ -40,10 +38,7 @@ impl Seed {
     pub fn rng(self) -> Rng {
         let hi = mix64(self.0);
         let lo = mix64(hi ^ self.0);
-        Rng::new(
-            (u128::from(hi) << 64) | u128::from(lo),
-            0xA02B_DBF7_BB3C_0A7A_C28F_A16A_64AB_F96D,
-        )
+        Rng::new((u128::from(hi) << 64) | u128::from(lo), 0xA02B_DBF7_BB3C_0A7A_C28F_A16A_64AB_F96D)
     }
 
     /// 32 hashed bits for stateless per-index randomness (scrambling seeds).
@@ -134,10 +129,7 @@ mod tests {
             counts[below(&mut rng, 3) as usize] += 1;
         }
         // each count ~ Binomial(30000, 1/3): sd ~ 82; 5 sd bound
-        assert!(
-            counts.iter().all(|&c| (c as i64 - 10_000).abs() < 410),
-            "{counts:?}"
-        );
+        assert!(counts.iter().all(|&c| (c as i64 - 10_000).abs() < 410), "{counts:?}");
     }
 
     #[test]

@@ -25,29 +25,20 @@ impl Spec {
             None => (text.trim(), None),
         };
         if name.is_empty() {
-            return Err(Error::Parse {
-                location: format!("spec '{text}'"),
-                reason: "empty method name".into(),
-            });
+            return Err(Error::Parse { location: format!("spec '{text}'"), reason: "empty method name".into() });
         }
         let mut args = Vec::new();
         for part in rest.into_iter().flat_map(|r| r.split(',')) {
             let part = part.trim();
             if part.is_empty() {
-                return Err(Error::Parse {
-                    location: format!("spec '{text}'"),
-                    reason: "empty parameter".into(),
-                });
+                return Err(Error::Parse { location: format!("spec '{text}'"), reason: "empty parameter".into() });
             }
             args.push(match part.split_once('=') {
                 Some((k, v)) => (Some(k.trim().to_ascii_lowercase()), v.trim().to_string()),
                 None => (None, part.to_string()),
             });
         }
-        Ok(Spec {
-            name: name.to_string(),
-            args,
-        })
+        Ok(Spec { name: name.to_string(), args })
     }
 }
 
@@ -139,29 +130,19 @@ impl Params {
     /// # Errors
     /// An unknown name, too many positional values, a repeated parameter, a value that
     /// does not parse, is not finite, or lies outside its range.
-    pub fn resolve(
-        owner: &str,
-        specs: &[ParamSpec],
-        args: &[(Option<String>, String)],
-    ) -> Result<Params> {
+    pub fn resolve(owner: &str, specs: &[ParamSpec], args: &[(Option<String>, String)]) -> Result<Params> {
         let mut given: Vec<Option<&str>> = vec![None; specs.len()];
         for (pos, (key, raw)) in args.iter().enumerate() {
             let idx = match key {
-                Some(k) => specs
-                    .iter()
-                    .position(|s| s.name == k)
-                    .ok_or_else(|| Error::Param {
-                        owner: owner.into(),
-                        param: k.clone(),
-                        reason: if specs.is_empty() {
-                            "this method takes no parameters".into()
-                        } else {
-                            format!(
-                                "unknown; valid: {}",
-                                specs.iter().map(|s| s.name).collect::<Vec<_>>().join(", ")
-                            )
-                        },
-                    })?,
+                Some(k) => specs.iter().position(|s| s.name == k).ok_or_else(|| Error::Param {
+                    owner: owner.into(),
+                    param: k.clone(),
+                    reason: if specs.is_empty() {
+                        "this method takes no parameters".into()
+                    } else {
+                        format!("unknown; valid: {}", specs.iter().map(|s| s.name).collect::<Vec<_>>().join(", "))
+                    },
+                })?,
                 None if pos < specs.len() => pos,
                 None => {
                     return Err(Error::Param {
@@ -191,12 +172,7 @@ impl Params {
     }
 
     fn get(&self, name: &str) -> &Value {
-        &self
-            .values
-            .iter()
-            .find(|(n, _)| *n == name)
-            .unwrap_or_else(|| panic!("parameter '{name}' is not declared"))
-            .1
+        &self.values.iter().find(|(n, _)| *n == name).unwrap_or_else(|| panic!("parameter '{name}' is not declared")).1
     }
 
     /// The number `name` holds, or None when it is `Auto`. Panics on an undeclared name
@@ -231,11 +207,7 @@ impl Params {
 }
 
 fn parse_value(owner: &str, spec: &ParamSpec, raw: Option<&str>) -> Result<Value> {
-    let bad = |reason: String| Error::Param {
-        owner: owner.into(),
-        param: spec.name.into(),
-        reason,
-    };
+    let bad = |reason: String| Error::Param { owner: owner.into(), param: spec.name.into(), reason };
     let Some(raw) = raw else {
         return Ok(match spec.default {
             Default::Number(x) => Value::Number(x),
@@ -253,32 +225,19 @@ fn parse_value(owner: &str, spec: &ParamSpec, raw: Option<&str>) -> Result<Value
             .map(|c| Value::Word((*c).into()))
             .ok_or_else(|| bad(format!("'{raw}' is not {}", spec.range_text()))),
         Kind::Real { min, max } => {
-            let x: f64 = raw.parse().map_err(|_| {
-                bad(format!(
-                    "'{raw}' is not a number; expected {}",
-                    spec.range_text()
-                ))
-            })?;
+            let x: f64 =
+                raw.parse().map_err(|_| bad(format!("'{raw}' is not a number; expected {}", spec.range_text())))?;
             if !x.is_finite() || x < min || x > max {
-                return Err(bad(format!(
-                    "{raw} is out of range; expected {}",
-                    spec.range_text()
-                )));
+                return Err(bad(format!("{raw} is out of range; expected {}", spec.range_text())));
             }
             Ok(Value::Number(x))
         }
         Kind::Int { min, max } => {
-            let x: u64 = raw.parse().map_err(|_| {
-                bad(format!(
-                    "'{raw}' is not a whole number; expected {}",
-                    spec.range_text()
-                ))
-            })?;
+            let x: u64 = raw
+                .parse()
+                .map_err(|_| bad(format!("'{raw}' is not a whole number; expected {}", spec.range_text())))?;
             if x < min || x > max {
-                return Err(bad(format!(
-                    "{raw} is out of range; expected {}",
-                    spec.range_text()
-                )));
+                return Err(bad(format!("{raw} is out of range; expected {}", spec.range_text())));
             }
             Ok(Value::Number(x as f64))
         }
@@ -290,18 +249,8 @@ mod tests {
     use super::*;
 
     const SPECS: &[ParamSpec] = &[
-        ParamSpec {
-            name: "sigma",
-            kind: Kind::Real { min: 0.0, max: 4.0 },
-            default: Default::Number(0.25),
-            doc: "",
-        },
-        ParamSpec {
-            name: "edge",
-            kind: Kind::Choice(&["wrap", "resample"]),
-            default: Default::Word("wrap"),
-            doc: "",
-        },
+        ParamSpec { name: "sigma", kind: Kind::Real { min: 0.0, max: 4.0 }, default: Default::Number(0.25), doc: "" },
+        ParamSpec { name: "edge", kind: Kind::Choice(&["wrap", "resample"]), default: Default::Word("wrap"), doc: "" },
     ];
 
     #[test]
@@ -319,11 +268,7 @@ mod tests {
 
     #[test]
     fn rejects_bad_parameters_with_their_name_and_range() {
-        let run = |t: &str| {
-            Params::resolve("g", SPECS, &Spec::parse(t).unwrap().args)
-                .unwrap_err()
-                .to_string()
-        };
+        let run = |t: &str| Params::resolve("g", SPECS, &Spec::parse(t).unwrap().args).unwrap_err().to_string();
         assert!(run("g:sigma=9").contains("'sigma'") && run("g:sigma=9").contains("[0, 4]"));
         assert!(run("g:sigma=nan").contains("out of range"));
         assert!(run("g:sigma=abc").contains("not a number"));

@@ -6,10 +6,7 @@ use samplab::sampler::{self, Randomization, Sequence, radical, sobol::Sobol};
 use samplab::{PointSet, Seed};
 
 fn make(spec: &str, n: usize, d: usize, seed: u64) -> PointSet {
-    sampler::build(spec)
-        .unwrap()
-        .generate(n, d, Seed(seed))
-        .unwrap()
+    sampler::build(spec).unwrap().generate(n, d, Seed(seed)).unwrap()
 }
 
 /// Every elementary interval of area 2^-m of base 2 in 2D holds exactly one point.
@@ -23,10 +20,7 @@ fn assert_02_net(points: &[f64], m: u32, what: &str) {
             let cy = (p[1] * ny as f64) as usize;
             count[cx * ny + cy] += 1;
         }
-        assert!(
-            count.iter().all(|&c| c == 1),
-            "{what}: m = {m}, intervals {nx}x{ny} not stratified"
-        );
+        assert!(count.iter().all(|&c| c == 1), "{what}: m = {m}, intervals {nx}x{ny} not stratified");
     }
 }
 
@@ -47,9 +41,7 @@ fn jitter_family_one_point_per_cell() {
             let gaussian = spec.starts_with("jitter.gaussian");
             let mut outside = 0;
             for (i, x) in p.iter().enumerate() {
-                let cell = x
-                    .iter()
-                    .fold(0, |acc, &c| acc * k + (c * k as f64) as usize);
+                let cell = x.iter().fold(0, |acc, &c| acc * k + (c * k as f64) as usize);
                 if gaussian {
                     // a normal offset of 0.1 cells leaves the cell with probability ~ 1e-6 per axis
                     outside += usize::from(cell != i);
@@ -91,15 +83,7 @@ fn nrooks_one_per_row_and_column_in_every_pair_of_dimensions() {
 
 #[test]
 fn digital_nets_for_m_1_to_12() {
-    let specs = [
-        "sobol",
-        "sobol.xor",
-        "sobol.owen",
-        "pmj02",
-        "hammersley",
-        "hammersley.xor",
-        "hammersley.owen",
-    ];
+    let specs = ["sobol", "sobol.xor", "sobol.owen", "pmj02", "hammersley", "hammersley.xor", "hammersley.owen"];
     for spec in specs {
         for seed in [1u64, 2] {
             if spec.starts_with("hammersley") {
@@ -124,47 +108,28 @@ fn digital_nets_for_m_1_to_12() {
 fn shift_is_a_toroidal_translate_not_a_net() {
     let base = make("sobol", 256, 2, 1);
     let shifted = make("sobol.shift", 256, 2, 1);
-    let off: Vec<f64> = (0..2)
-        .map(|d| (shifted.point(0)[d] - base.point(0)[d]).rem_euclid(1.0))
-        .collect();
+    let off: Vec<f64> = (0..2).map(|d| (shifted.point(0)[d] - base.point(0)[d]).rem_euclid(1.0)).collect();
     for (a, b) in base.iter().zip(shifted.iter()) {
         for d in 0..2 {
             let diff = (b[d] - a[d] - off[d]).rem_euclid(1.0);
-            assert!(diff < 1e-12 || diff > 1.0 - 1e-12);
+            assert!(!(1e-12..=1.0 - 1e-12).contains(&diff));
         }
     }
 }
 
 #[test]
 fn sobol_and_halton_equal_scipy() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/fixtures/scipy_sobol.json"
-    ))
-    .unwrap();
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/scipy_sobol.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&text).unwrap();
     let sobol = make("sobol", 1024, 16, 0);
-    for (i, row) in v["sobol_16d_first_1024"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .enumerate()
-    {
+    for (i, row) in v["sobol_16d_first_1024"].as_array().unwrap().iter().enumerate() {
         for (d, x) in row.as_array().unwrap().iter().enumerate() {
-            assert_eq!(
-                sobol.point(i)[d],
-                x.as_f64().unwrap(),
-                "sobol point {i} dim {d}"
-            );
+            assert_eq!(sobol.point(i)[d], x.as_f64().unwrap(), "sobol point {i} dim {d}");
         }
     }
     let halton = make("halton", 64, 8, 0);
-    for (i, row) in v["halton_8d_first_64"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .enumerate()
-    {
+    for (i, row) in v["halton_8d_first_64"].as_array().unwrap().iter().enumerate() {
         for (d, x) in row.as_array().unwrap().iter().enumerate() {
             let want = x.as_f64().unwrap();
             assert!(
@@ -180,16 +145,7 @@ fn sobol_and_halton_equal_scipy() {
 fn halton_first_points_by_hand() {
     let h = make("halton", 8, 2, 0);
     let base2 = [0.0, 0.5, 0.25, 0.75, 0.125, 0.625, 0.375, 0.875];
-    let base3 = [
-        0.0,
-        1.0 / 3.0,
-        2.0 / 3.0,
-        1.0 / 9.0,
-        4.0 / 9.0,
-        7.0 / 9.0,
-        2.0 / 9.0,
-        5.0 / 9.0,
-    ];
+    let base3 = [0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0 / 9.0, 4.0 / 9.0, 7.0 / 9.0, 2.0 / 9.0, 5.0 / 9.0];
     for i in 0..8 {
         assert_eq!(h.point(i)[0], base2[i]);
         assert!((h.point(i)[1] - base3[i]).abs() < 1e-15);
@@ -203,14 +159,8 @@ fn halton_first_points_by_hand() {
 
 #[test]
 fn batch_equals_random_access() {
-    for r in [
-        Randomization::None,
-        Randomization::Xor,
-        Randomization::Owen,
-        Randomization::Shift,
-    ] {
-        let seqs: [Box<dyn Sequence>; 2] =
-            [Box::new(Sobol::new(r)), Box::new(radical::Halton::new(r))];
+    for r in [Randomization::None, Randomization::Xor, Randomization::Owen, Randomization::Shift] {
+        let seqs: [Box<dyn Sequence>; 2] = [Box::new(Sobol::new(r)), Box::new(radical::Halton::new(r))];
         for s in seqs {
             let p = s.generate(300, 5, Seed(42)).unwrap();
             for i in 0..300 {
@@ -271,20 +221,8 @@ fn poisson_sets_respect_the_minimum_distance() {
         ("poisson.fast:radius=0.03,edge=plain", 500, 2, false),
     ] {
         let p = make(spec, n, d, 11);
-        let r: f64 = spec
-            .split("radius=")
-            .nth(1)
-            .unwrap()
-            .split(',')
-            .next()
-            .unwrap()
-            .parse()
-            .unwrap();
-        assert!(
-            min_distance(&p, torus) >= r,
-            "{spec}: {}",
-            min_distance(&p, torus)
-        );
+        let r: f64 = spec.split("radius=").nth(1).unwrap().split(',').next().unwrap().parse().unwrap();
+        assert!(min_distance(&p, torus) >= r, "{spec}: {}", min_distance(&p, torus));
     }
 }
 
@@ -300,10 +238,7 @@ fn maximal_poisson_is_maximal_and_exact() {
     let probes = 200;
     for a in 0..probes {
         for b in 0..probes {
-            let q = [
-                (a as f64 + 0.5) / probes as f64,
-                (b as f64 + 0.5) / probes as f64,
-            ];
+            let q = [(a as f64 + 0.5) / probes as f64, (b as f64 + 0.5) / probes as f64];
             let nearest = p
                 .iter()
                 .map(|x| {
@@ -312,10 +247,7 @@ fn maximal_poisson_is_maximal_and_exact() {
                     (dx * dx + dy * dy).sqrt()
                 })
                 .fold(f64::INFINITY, f64::min);
-            assert!(
-                nearest < r_min * (1.0 + 1e-9),
-                "gap at {q:?}: {nearest} >= {r_min}"
-            );
+            assert!(nearest < r_min * (1.0 + 1e-9), "gap at {q:?}: {nearest} >= {r_min}");
         }
     }
 }
@@ -346,10 +278,7 @@ fn force_matrix_is_spread_out() {
     // that of random points (expected ~ 0.5/n for n = 64 random points)
     let p = make("force-matrix", 64, 2, 2);
     let d = min_distance(&p, true);
-    assert!(
-        d > 0.5 * sampler::poisson::packing_radius(64, 2),
-        "min distance {d}"
-    );
+    assert!(d > 0.5 * sampler::poisson::packing_radius(64, 2), "min distance {d}");
     // full grid: the limiting case is the systematic grid
     let full = make("force-matrix:grid=8", 64, 2, 2);
     let mut cells = [false; 64];

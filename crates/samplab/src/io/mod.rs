@@ -35,26 +35,10 @@ pub enum Format {
 
 /// Format names, for `--format` and `samplab list formats`.
 pub const FORMATS: &[(&str, Format, &str)] = &[
-    (
-        "text",
-        Format::Text,
-        "white-space separated, one point per line, '#' line between sets (.txt, .pts, .dat)",
-    ),
-    (
-        "csv",
-        Format::Csv,
-        "comma separated with a header row x0,x1,... (.csv)",
-    ),
-    (
-        "npy",
-        Format::Npy,
-        "NumPy f64 array, (n, d) or (m, n, d) (.npy)",
-    ),
-    (
-        "json",
-        Format::Json,
-        "{\"sets\": [[[x, y], ...], ...]} with metadata (.json)",
-    ),
+    ("text", Format::Text, "white-space separated, one point per line, '#' line between sets (.txt, .pts, .dat)"),
+    ("csv", Format::Csv, "comma separated with a header row x0,x1,... (.csv)"),
+    ("npy", Format::Npy, "NumPy f64 array, (n, d) or (m, n, d) (.npy)"),
+    ("json", Format::Json, "{\"sets\": [[[x, y], ...], ...]} with metadata (.json)"),
 ];
 
 impl Format {
@@ -63,25 +47,18 @@ impl Format {
     /// # Errors
     /// An unknown name.
     pub fn from_name(name: &str) -> Result<Format> {
-        FORMATS
-            .iter()
-            .find(|(n, _, _)| n.eq_ignore_ascii_case(name))
-            .map(|(_, f, _)| *f)
-            .ok_or_else(|| Error::UnknownName {
+        FORMATS.iter().find(|(n, _, _)| n.eq_ignore_ascii_case(name)).map(|(_, f, _)| *f).ok_or_else(|| {
+            Error::UnknownName {
                 kind: "format",
                 name: name.into(),
                 suggestions: closest_names(name, FORMATS.iter().map(|(n, _, _)| *n)),
-            })
+            }
+        })
     }
 
     /// The format a file name implies by its extension (text when unknown).
     pub fn from_path(path: &Path) -> Format {
-        match path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase)
-            .as_deref()
-        {
+        match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
             Some("csv") => Format::Csv,
             Some("npy") => Format::Npy,
             Some("json") => Format::Json,
@@ -98,9 +75,7 @@ impl Format {
 pub fn encode(sets: &[PointSet], format: Format, header: &[String]) -> Result<Vec<u8>> {
     let dims = sets.first().map_or(1, PointSet::dims);
     if sets.iter().any(|s| s.dims() != dims) {
-        return Err(Error::Invalid(
-            "cannot write sets of different dimensions to one file".into(),
-        ));
+        return Err(Error::Invalid("cannot write sets of different dimensions to one file".into()));
     }
     let mut out = Vec::new();
     match format {
@@ -133,17 +108,11 @@ pub fn encode(sets: &[PointSet], format: Format, header: &[String]) -> Result<Ve
         Format::Npy => {
             let n = sets.first().map_or(0, PointSet::len);
             if sets.iter().any(|s| s.len() != n) {
-                return Err(Error::Invalid(
-                    "npy needs sets of equal size; use text, csv or json".into(),
-                ));
+                return Err(Error::Invalid("npy needs sets of equal size; use text, csv or json".into()));
             }
-            let shape = if sets.len() == 1 {
-                format!("({n}, {dims})")
-            } else {
-                format!("({}, {n}, {dims})", sets.len())
-            };
-            let mut dict =
-                format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}");
+            let shape =
+                if sets.len() == 1 { format!("({n}, {dims})") } else { format!("({}, {n}, {dims})", sets.len()) };
+            let mut dict = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}");
             // magic(6) + version(2) + len(2) + dict + '\n' is a multiple of 64
             while (10 + dict.len() + 1) % 64 != 0 {
                 dict.push(' ');
@@ -183,23 +152,12 @@ fn write_row(out: &mut Vec<u8>, p: &[f64], sep: &str) {
 /// # Errors
 /// The folder cannot be written.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let io = |e: std::io::Error| Error::Io {
-        path: path.display().to_string(),
-        reason: e.to_string(),
-    };
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path.file_name().ok_or_else(|| Error::Io {
-        path: path.display().to_string(),
-        reason: "not a file name".into(),
-    })?;
-    let tmp = dir.join(format!(
-        ".{}.{}.tmp",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
+    let io = |e: std::io::Error| Error::Io { path: path.display().to_string(), reason: e.to_string() };
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .ok_or_else(|| Error::Io { path: path.display().to_string(), reason: "not a file name".into() })?;
+    let tmp = dir.join(format!(".{}.{}.tmp", name.to_string_lossy(), std::process::id()));
     let result = std::fs::File::create(&tmp).and_then(|mut f| {
         f.write_all(bytes)?;
         f.sync_all()
@@ -219,15 +177,8 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 /// mixed dimensions, an empty file.
 pub fn read(path: &Path, format: Option<Format>) -> Result<Vec<PointSet>> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| Error::Io {
-        path: name.clone(),
-        reason: e.to_string(),
-    })?;
-    decode(
-        &bytes,
-        format.unwrap_or_else(|| Format::from_path(path)),
-        &name,
-    )
+    let bytes = std::fs::read(path).map_err(|e| Error::Io { path: name.clone(), reason: e.to_string() })?;
+    decode(&bytes, format.unwrap_or_else(|| Format::from_path(path)), &name)
 }
 
 /// Decode point sets from `bytes`; `name` is used in error messages.
@@ -241,23 +192,15 @@ pub fn decode(bytes: &[u8], format: Format, name: &str) -> Result<Vec<PointSet>>
         Format::Json => decode_json(bytes, name)?,
     };
     if sets.is_empty() || sets.iter().all(PointSet::is_empty) {
-        return Err(Error::Parse {
-            location: name.into(),
-            reason: "no points".into(),
-        });
+        return Err(Error::Parse { location: name.into(), reason: "no points".into() });
     }
     Ok(sets)
 }
 
 fn decode_delimited(bytes: &[u8], csv: bool, name: &str) -> Result<Vec<PointSet>> {
-    let text = std::str::from_utf8(bytes).map_err(|e| Error::Parse {
-        location: name.into(),
-        reason: format!("not UTF-8 text ({e})"),
-    })?;
-    let at = |line: usize, reason: String| Error::Parse {
-        location: format!("{name}:{line}"),
-        reason,
-    };
+    let text = std::str::from_utf8(bytes)
+        .map_err(|e| Error::Parse { location: name.into(), reason: format!("not UTF-8 text ({e})") })?;
+    let at = |line: usize, reason: String| Error::Parse { location: format!("{name}:{line}"), reason };
     let mut sets: Vec<PointSet> = Vec::new();
     let mut current: Vec<f64> = Vec::new();
     let mut dims = 0usize;
@@ -279,25 +222,16 @@ fn decode_delimited(bytes: &[u8], csv: bool, name: &str) -> Result<Vec<PointSet>
             finish(&mut current, dims, &mut sets);
             continue;
         }
-        let fields: Vec<&str> = if csv {
-            line.split(',').map(str::trim).collect()
-        } else {
-            line.split_whitespace().collect()
-        };
+        let fields: Vec<&str> =
+            if csv { line.split(',').map(str::trim).collect() } else { line.split_whitespace().collect() };
         if !header_seen {
             header_seen = true;
             if fields.iter().any(|f| f.parse::<f64>().is_err()) {
-                set_column = fields
-                    .first()
-                    .is_some_and(|f| f.eq_ignore_ascii_case("set"));
+                set_column = fields.first().is_some_and(|f| f.eq_ignore_ascii_case("set"));
                 continue;
             }
         }
-        let (set_id, coords) = if set_column {
-            (Some(fields[0]), &fields[1..])
-        } else {
-            (None, &fields[..])
-        };
+        let (set_id, coords) = if set_column { (Some(fields[0]), &fields[1..]) } else { (None, &fields[..]) };
         if set_column && current_set.as_deref() != set_id {
             finish(&mut current, dims, &mut sets);
             current_set = set_id.map(str::to_string);
@@ -308,26 +242,12 @@ fn decode_delimited(bytes: &[u8], csv: bool, name: &str) -> Result<Vec<PointSet>
                 return Err(at(lineno, "a row with no coordinates".into()));
             }
         } else if coords.len() != dims {
-            return Err(at(
-                lineno,
-                format!(
-                    "{} coordinates where earlier points have {dims}",
-                    coords.len()
-                ),
-            ));
+            return Err(at(lineno, format!("{} coordinates where earlier points have {dims}", coords.len())));
         }
         for (d, f) in coords.iter().enumerate() {
-            let x: f64 = f.parse().map_err(|_| {
-                at(
-                    lineno,
-                    format!("coordinate {} is not a number: '{f}'", d + 1),
-                )
-            })?;
+            let x: f64 = f.parse().map_err(|_| at(lineno, format!("coordinate {} is not a number: '{f}'", d + 1)))?;
             if !x.is_finite() {
-                return Err(at(
-                    lineno,
-                    format!("coordinate {} is not finite: '{f}'", d + 1),
-                ));
+                return Err(at(lineno, format!("coordinate {} is not finite: '{f}'", d + 1)));
             }
             current.push(x);
         }
@@ -337,33 +257,20 @@ fn decode_delimited(bytes: &[u8], csv: bool, name: &str) -> Result<Vec<PointSet>
 }
 
 fn decode_npy(bytes: &[u8], name: &str) -> Result<Vec<PointSet>> {
-    let bad = |reason: String| Error::Parse {
-        location: name.into(),
-        reason,
-    };
+    let bad = |reason: String| Error::Parse { location: name.into(), reason };
     if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
         return Err(bad("not an .npy file (bad magic)".into()));
     }
     let (header_len, start) = match bytes[6] {
         1 => (u16::from_le_bytes([bytes[8], bytes[9]]) as usize, 10),
-        2 | 3 if bytes.len() >= 12 => (
-            u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize,
-            12,
-        ),
+        2 | 3 if bytes.len() >= 12 => (u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize, 12),
         v => return Err(bad(format!("unsupported .npy version {v}"))),
     };
-    let header = bytes
-        .get(start..start + header_len)
-        .ok_or_else(|| bad("truncated header".into()))?;
+    let header = bytes.get(start..start + header_len).ok_or_else(|| bad("truncated header".into()))?;
     let header = std::str::from_utf8(header).map_err(|_| bad("header is not text".into()))?;
     let field = |key: &str| -> Option<&str> {
         let i = header.find(&format!("'{key}'"))? + key.len() + 2;
-        Some(
-            header[i..]
-                .trim_start()
-                .trim_start_matches(':')
-                .trim_start(),
-        )
+        Some(header[i..].trim_start().trim_start_matches(':').trim_start())
     };
     let descr = field("descr").ok_or_else(|| bad("header has no descr".into()))?;
     if !descr.starts_with("'<f8'") {
@@ -373,16 +280,10 @@ fn decode_npy(bytes: &[u8], name: &str) -> Result<Vec<PointSet>> {
         )));
     }
     if field("fortran_order").is_some_and(|v| v.starts_with("True")) {
-        return Err(bad(
-            "Fortran-order arrays are not supported; save with C order".into(),
-        ));
+        return Err(bad("Fortran-order arrays are not supported; save with C order".into()));
     }
     let shape_text = field("shape").ok_or_else(|| bad("header has no shape".into()))?;
-    let inner = shape_text
-        .trim_start_matches('(')
-        .split(')')
-        .next()
-        .unwrap_or("");
+    let inner = shape_text.trim_start_matches('(').split(')').next().unwrap_or("");
     let shape: Vec<usize> = inner
         .split(',')
         .map(str::trim)
@@ -394,22 +295,12 @@ fn decode_npy(bytes: &[u8], name: &str) -> Result<Vec<PointSet>> {
         [m, n, d] => (m, n, d),
         _ => return Err(bad(format!("shape ({inner}) is not (n, d) or (m, n, d)"))),
     };
-    let count = m
-        .checked_mul(n)
-        .and_then(|x| x.checked_mul(d))
-        .ok_or_else(|| bad("shape too large".into()))?;
+    let count = m.checked_mul(n).and_then(|x| x.checked_mul(d)).ok_or_else(|| bad("shape too large".into()))?;
     let body = &bytes[start + header_len..];
     if d == 0 || body.len() != count * 8 {
-        return Err(bad(format!(
-            "shape ({inner}) needs {} data bytes, file has {}",
-            count * 8,
-            body.len()
-        )));
+        return Err(bad(format!("shape ({inner}) needs {} data bytes, file has {}", count * 8, body.len())));
     }
-    let data: Vec<f64> = body
-        .chunks_exact(8)
-        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
-        .collect();
+    let data: Vec<f64> = body.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect();
     if let Some(i) = data.iter().position(|x| !x.is_finite()) {
         return Err(bad(format!(
             "element {i} (set {}, point {}, coordinate {}) is not finite",
@@ -418,24 +309,13 @@ fn decode_npy(bytes: &[u8], name: &str) -> Result<Vec<PointSet>> {
             i % d
         )));
     }
-    Ok(data
-        .chunks_exact((n * d).max(1))
-        .map(|c| PointSet::from_raw(d, c.to_vec()))
-        .collect())
+    Ok(data.chunks_exact((n * d).max(1)).map(|c| PointSet::from_raw(d, c.to_vec())).collect())
 }
 
 fn decode_json(bytes: &[u8], name: &str) -> Result<Vec<PointSet>> {
-    let bad = |reason: String| Error::Parse {
-        location: name.into(),
-        reason,
-    };
-    let v: serde_json::Value = serde_json::from_slice(bytes).map_err(|e| {
-        bad(format!(
-            "invalid JSON at line {}, column {}: {e}",
-            e.line(),
-            e.column()
-        ))
-    })?;
+    let bad = |reason: String| Error::Parse { location: name.into(), reason };
+    let v: serde_json::Value = serde_json::from_slice(bytes)
+        .map_err(|e| bad(format!("invalid JSON at line {}, column {}: {e}", e.line(), e.column())))?;
     let sets: Vec<&serde_json::Value> = match &v {
         serde_json::Value::Object(o) => match o.get("sets") {
             Some(serde_json::Value::Array(a)) => a.iter().collect(),
@@ -443,22 +323,16 @@ fn decode_json(bytes: &[u8], name: &str) -> Result<Vec<PointSet>> {
         },
         serde_json::Value::Array(_) => vec![&v],
         _ => {
-            return Err(bad(
-                "expected an object with \"sets\" or an array of points".into(),
-            ));
+            return Err(bad("expected an object with \"sets\" or an array of points".into()));
         }
     };
     let mut dims = 0;
     let mut out = Vec::new();
     for (k, set) in sets.iter().enumerate() {
-        let points = set
-            .as_array()
-            .ok_or_else(|| bad(format!("sets[{k}] is not an array")))?;
+        let points = set.as_array().ok_or_else(|| bad(format!("sets[{k}] is not an array")))?;
         let mut data = Vec::new();
         for (i, p) in points.iter().enumerate() {
-            let coords = p
-                .as_array()
-                .ok_or_else(|| bad(format!("sets[{k}][{i}] is not an array of numbers")))?;
+            let coords = p.as_array().ok_or_else(|| bad(format!("sets[{k}][{i}] is not an array of numbers")))?;
             if dims == 0 {
                 dims = coords.len();
             }
@@ -469,9 +343,10 @@ fn decode_json(bytes: &[u8], name: &str) -> Result<Vec<PointSet>> {
                 )));
             }
             for (d, c) in coords.iter().enumerate() {
-                let x = c.as_f64().filter(|x| x.is_finite()).ok_or_else(|| {
-                    bad(format!("sets[{k}][{i}][{d}] is not a finite number: {c}"))
-                })?;
+                let x = c
+                    .as_f64()
+                    .filter(|x| x.is_finite())
+                    .ok_or_else(|| bad(format!("sets[{k}][{i}][{d}] is not a finite number: {c}")))?;
                 data.push(x);
             }
         }
@@ -487,9 +362,7 @@ mod tests {
     use crate::seed::Seed;
 
     fn sets() -> Vec<PointSet> {
-        (0..3)
-            .map(|k| Random.generate(5, 3, Seed(k)).unwrap())
-            .collect()
+        (0..3).map(|k| Random.generate(5, 3, Seed(k)).unwrap()).collect()
     }
 
     #[test]
@@ -499,11 +372,7 @@ mod tests {
             let back = decode(&bytes, *f, "mem").unwrap();
             assert_eq!(back, sets(), "{f:?}");
             let one = encode(&sets()[..1], *f, &[]).unwrap();
-            assert_eq!(
-                decode(&one, *f, "mem").unwrap(),
-                sets()[..1].to_vec(),
-                "{f:?} single"
-            );
+            assert_eq!(decode(&one, *f, "mem").unwrap(), sets()[..1].to_vec(), "{f:?} single");
         }
     }
 
@@ -512,48 +381,24 @@ mod tests {
         let bytes = encode(&sets(), Format::Npy, &[]).unwrap();
         let len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
         assert_eq!((10 + len) % 64, 0);
-        assert!(
-            std::str::from_utf8(&bytes[10..10 + len])
-                .unwrap()
-                .contains("'shape': (3, 5, 3)")
-        );
+        assert!(std::str::from_utf8(&bytes[10..10 + len]).unwrap().contains("'shape': (3, 5, 3)"));
     }
 
     #[test]
     fn malformed_text_names_file_and_line() {
-        let err = |t: &str| {
-            decode(t.as_bytes(), Format::Text, "pts.txt")
-                .unwrap_err()
-                .to_string()
-        };
-        assert_eq!(
-            err("0.1 0.2\n0.3 nan\n"),
-            "pts.txt:2: coordinate 2 is not finite: 'nan'"
-        );
-        assert_eq!(
-            err("# c\n0.1 0.2\n0.3\n"),
-            "pts.txt:3: 1 coordinates where earlier points have 2"
-        );
-        assert_eq!(
-            err("0.1 abc\n"),
-            "pts.txt:1: coordinate 2 is not a number: 'abc'"
-        );
+        let err = |t: &str| decode(t.as_bytes(), Format::Text, "pts.txt").unwrap_err().to_string();
+        assert_eq!(err("0.1 0.2\n0.3 nan\n"), "pts.txt:2: coordinate 2 is not finite: 'nan'");
+        assert_eq!(err("# c\n0.1 0.2\n0.3\n"), "pts.txt:3: 1 coordinates where earlier points have 2");
+        assert_eq!(err("0.1 abc\n"), "pts.txt:1: coordinate 2 is not a number: 'abc'");
         assert_eq!(err("# only comments\n"), "pts.txt: no points");
         assert!(decode(b"0.1 0.2\n#\n0.3 0.4 0.5\n", Format::Text, "m").is_err());
-        let csv = decode(b"x0,x1\n0.1,0.2\n0.3,inf\n", Format::Csv, "a.csv")
-            .unwrap_err()
-            .to_string();
+        let csv = decode(b"x0,x1\n0.1,0.2\n0.3,inf\n", Format::Csv, "a.csv").unwrap_err().to_string();
         assert_eq!(csv, "a.csv:3: coordinate 2 is not finite: 'inf'");
     }
 
     #[test]
     fn text_separates_sets_with_hash_lines() {
-        let s = decode(
-            b"# header\n0.1 0.2\n0.3 0.4\n#\n0.5 0.6\n",
-            Format::Text,
-            "m",
-        )
-        .unwrap();
+        let s = decode(b"# header\n0.1 0.2\n0.3 0.4\n#\n0.5 0.6\n", Format::Text, "m").unwrap();
         assert_eq!(s.len(), 2);
         assert_eq!(s[1].point(0), &[0.5, 0.6]);
     }

@@ -29,8 +29,7 @@ impl ForceMatrix {
     }
 
     fn grid_size(&self, n: usize, dims: usize) -> usize {
-        self.grid
-            .unwrap_or_else(|| (4.0 * (n as f64).powf(1.0 / dims as f64)).ceil() as usize)
+        self.grid.unwrap_or_else(|| (4.0 * (n as f64).powf(1.0 / dims as f64)).ceil() as usize)
     }
 }
 

@@ -74,9 +74,7 @@ pub(crate) fn check_grid_count(spec: String, n: usize, dims: usize) -> Result<us
         sampler: spec,
         n,
         dims,
-        reason: format!(
-            "a {dims}D grid needs n = k^{dims}; the nearest valid counts are {lo} and {hi}"
-        ),
+        reason: format!("a {dims}D grid needs n = k^{dims}; the nearest valid counts are {lo} and {hi}"),
     })
 }
 
@@ -85,11 +83,7 @@ impl Sampler for Grid {
         match self.displacement {
             Displacement::Box { delta } => format!("{}:delta={delta}", self.name),
             Displacement::Gaussian { sigma, resample } => {
-                format!(
-                    "{}:sigma={sigma},edge={}",
-                    self.name,
-                    if resample { "resample" } else { "wrap" }
-                )
+                format!("{}:sigma={sigma},edge={}", self.name, if resample { "resample" } else { "wrap" })
             }
             Displacement::UniformGaussian { alpha, sigma } => {
                 format!("{}:alpha={alpha},sigma={sigma}", self.name)
@@ -109,9 +103,9 @@ impl Sampler for Grid {
         let inv = 1.0 / k as f64;
         let shared: Vec<f64> = match self.displacement {
             Displacement::Uniform => (0..dims).map(|_| uniform(&mut rng)).collect(),
-            Displacement::UniformGaussian { alpha, .. } => (0..dims)
-                .map(|_| 0.5 + alpha * (uniform(&mut rng) - 0.5))
-                .collect(),
+            Displacement::UniformGaussian { alpha, .. } => {
+                (0..dims).map(|_| 0.5 + alpha * (uniform(&mut rng) - 0.5)).collect()
+            }
             _ => vec![0.5; dims],
         };
         for (i, p) in out.chunks_exact_mut(dims).enumerate() {
@@ -136,22 +130,14 @@ impl Grid {
             Displacement::Half => within(0.25 + 0.5 * uniform(rng)),
             Displacement::Box { delta } => within(0.5 + delta * (2.0 * uniform(rng) - 1.0)),
             Displacement::Uniform => within(shared),
-            Displacement::Gaussian {
-                sigma,
-                resample: false,
-            } => wrap01((cell + 0.5 + sigma * normal(rng)) * inv),
-            Displacement::Gaussian {
-                sigma,
-                resample: true,
-            } => loop {
+            Displacement::Gaussian { sigma, resample: false } => wrap01((cell + 0.5 + sigma * normal(rng)) * inv),
+            Displacement::Gaussian { sigma, resample: true } => loop {
                 let x = (cell + 0.5 + sigma * normal(rng)) * inv;
                 if (0.0..1.0).contains(&x) {
                     break x;
                 }
             },
-            Displacement::UniformGaussian { sigma, .. } => {
-                wrap01((cell + shared + sigma * normal(rng)) * inv)
-            }
+            Displacement::UniformGaussian { sigma, .. } => wrap01((cell + shared + sigma * normal(rng)) * inv),
         }
     }
 }

@@ -98,18 +98,9 @@ pub trait Sequence: Sampler {
 ///
 /// # Errors
 /// As [`Sampler::generate`]; the first failing realization's error is returned.
-pub fn generate_sets(
-    sampler: &dyn Sampler,
-    n: usize,
-    dims: usize,
-    seed: Seed,
-    m: usize,
-) -> Result<Vec<PointSet>> {
+pub fn generate_sets(sampler: &dyn Sampler, n: usize, dims: usize, seed: Seed, m: usize) -> Result<Vec<PointSet>> {
     sampler.check(n, dims)?;
-    (0..m as u64)
-        .into_par_iter()
-        .map(|k| sampler.generate(n, dims, seed.derive(k)))
-        .collect()
+    (0..m as u64).into_par_iter().map(|k| sampler.generate(n, dims, seed.derive(k))).collect()
 }
 
 /// The integer k with k^d == n, if there is one; otherwise the two nearest valid counts.

@@ -35,8 +35,7 @@ impl Sampler for NRooks {
                 }
             }
             for (i, &p) in perm.iter().enumerate() {
-                out[i * dims + d] =
-                    ((p as f64 + uniform(&mut rng)) * inv).min(super::grid::BELOW_ONE);
+                out[i * dims + d] = ((p as f64 + uniform(&mut rng)) * inv).min(super::grid::BELOW_ONE);
             }
         }
         Ok(())

@@ -70,10 +70,7 @@ impl Sampler for Pmj02 {
             let fresh = flip - 1;
             let child = |parent: u32, r: u32| (parent & keep) | (!parent & flip) | (r & fresh);
             let r = rng.next_u64();
-            xy.push([
-                child(xy[px][0], r as u32),
-                child(xy[py][1], (r >> 32) as u32),
-            ]);
+            xy.push([child(xy[px][0], r as u32), child(xy[py][1], (r >> 32) as u32)]);
         }
         for (p, q) in out.chunks_exact_mut(2).zip(&xy) {
             p[0] = f64::from(q[0]) / 4_294_967_296.0;
@@ -113,20 +110,15 @@ impl Sampler for Cmj {
         let k = (n as u32).div_ceil(m);
         let key = |label: &str| seed.derive_str(label).bits32();
         let (kidx, kx, ky) = (key("cmj index"), key("cmj x"), key("cmj y"));
-        let (jx, jy) = (
-            seed.derive_str("cmj jitter x").0,
-            seed.derive_str("cmj jitter y").0,
-        );
+        let (jx, jy) = (seed.derive_str("cmj jitter x").0, seed.derive_str("cmj jitter y").0);
         for (s, p) in out.chunks_exact_mut(2).enumerate() {
             let s = permute(s as u32, n as u32, kidx);
             let (col, row) = (s % m, s / m);
             let sx = permute(col, m, kx);
             let sy = permute(row, k, ky);
             let (ux, uy) = (hash_unit(u64::from(s), jx), hash_unit(u64::from(s), jy));
-            p[0] = ((f64::from(col) + (f64::from(sy) + ux) / f64::from(k)) / f64::from(m))
-                .min(super::grid::BELOW_ONE);
-            p[1] = ((f64::from(row) + (f64::from(sx) + uy) / f64::from(m)) / f64::from(k))
-                .min(super::grid::BELOW_ONE);
+            p[0] = ((f64::from(col) + (f64::from(sy) + ux) / f64::from(k)) / f64::from(m)).min(super::grid::BELOW_ONE);
+            p[1] = ((f64::from(row) + (f64::from(sx) + uy) / f64::from(m)) / f64::from(k)).min(super::grid::BELOW_ONE);
         }
         Ok(())
     }

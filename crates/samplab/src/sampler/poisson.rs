@@ -17,7 +17,7 @@
 //! Distances are toroidal by default (`edge=torus`); `edge=plain` measures them inside the
 //! square, as Shirley 1991 did.
 
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::PI;
 use std::ops::RangeInclusive;
 
 use super::Sampler;
@@ -53,6 +53,9 @@ const AUTO_RELATIVE: f64 = 0.7;
 
 /// A uniform grid over [0,1)^d with cells of side >= r: every neighbour within r of a
 /// point lies in the 3^d cells around it.
+/// The most dimensions the grid supports.
+const MAX_DIMS: usize = 4;
+
 struct NeighbourGrid {
     dims: usize,
     cells: usize,
@@ -78,24 +81,22 @@ impl NeighbourGrid {
         }
     }
 
-    fn len(&self) -> usize {
-        self.next.len()
-    }
-
     fn clear(&mut self) {
         self.heads.fill(u32::MAX);
         self.next.clear();
         self.points.clear();
     }
 
-    fn cell_of(&self, p: &[f64]) -> Vec<usize> {
-        p.iter()
-            .map(|&x| ((x * self.cells as f64) as usize).min(self.cells - 1))
-            .collect()
+    fn cell_of(&self, p: &[f64]) -> [usize; MAX_DIMS] {
+        let mut c = [0; MAX_DIMS];
+        for (ci, &x) in c.iter_mut().zip(p) {
+            *ci = ((x * self.cells as f64) as usize).min(self.cells - 1);
+        }
+        c
     }
 
     fn flat(&self, c: &[usize]) -> usize {
-        c.iter().fold(0, |acc, &i| acc * self.cells + i)
+        c[..self.dims].iter().fold(0, |acc, &i| acc * self.cells + i)
     }
 
     fn insert(&mut self, p: &[f64]) {
@@ -105,91 +106,231 @@ impl NeighbourGrid {
         self.points.extend_from_slice(p);
     }
 
-    fn distance2(&self, a: &[f64], b: &[f64]) -> f64 {
-        a.iter()
-            .zip(b)
-            .map(|(&x, &y)| {
-                let mut d = (x - y).abs();
-                if self.torus && d > 0.5 {
-                    d = 1.0 - d;
-                }
-                d * d
-            })
-            .sum()
+    #[inline]
+    fn axis_distance(&self, x: f64, y: f64) -> f64 {
+        let d = (x - y).abs();
+        if self.torus && d > 0.5 { 1.0 - d } else { d }
     }
 
-    /// The nearest point within the radius of `p`, if any.
+    fn distance2(&self, a: &[f64], b: &[f64]) -> f64 {
+        a.iter().zip(b).map(|(&x, &y)| self.axis_distance(x, y).powi(2)).sum()
+    }
+
+    /// Whether a point of the set lies closer than the radius to `p`.
     fn conflict(&self, p: &[f64]) -> bool {
         let span = if self.cells < 3 { self.cells } else { 3 };
         let centre = self.cell_of(p);
-        let mut offset = vec![0usize; self.dims];
-        let mut cell = vec![0usize; self.dims];
+        let mut offset = [0usize; MAX_DIMS];
+        let mut cell = [0usize; MAX_DIMS];
         'cells: loop {
             let mut inside = true;
             for d in 0..self.dims {
-                let c = if span < 3 {
-                    offset[d]
-                } else {
-                    centre[d] + self.cells + offset[d] - 1
-                };
+                let c = if span < 3 { offset[d] } else { centre[d] + self.cells + offset[d] - 1 };
                 if !self.torus && span == 3 && (c < self.cells || c >= 2 * self.cells) {
                     inside = false;
                 }
                 cell[d] = c % self.cells;
             }
-            if inside {
-                let mut i = self.heads[self.flat(&cell)];
-                while i != u32::MAX {
-                    let q = &self.points[i as usize * self.dims..(i as usize + 1) * self.dims];
-                    if self.distance2(p, q) < self.radius2 {
-                        return true;
-                    }
-                    i = self.next[i as usize];
-                }
+            if inside && self.cell_conflict(self.flat(&cell), p) {
+                return true;
             }
-            for d in 0..self.dims {
-                offset[d] += 1;
-                if offset[d] < span {
+            for o in offset[..self.dims].iter_mut() {
+                *o += 1;
+                if *o < span {
                     continue 'cells;
                 }
-                offset[d] = 0;
+                *o = 0;
             }
             return false;
         }
     }
 
-    /// Whether the square [x0,x0+s) x [y0,y0+s) lies inside one disk of radius r (2D).
-    fn covers_square(&self, x0: f64, y0: f64, s: f64) -> bool {
-        let centre = [wrap01(x0 + s / 2.0), wrap01(y0 + s / 2.0)];
-        let c = self.cell_of(&centre);
-        let span = self.cells.min(3);
-        for ox in 0..span {
-            for oy in 0..span {
-                let cx = if span < 3 {
-                    ox
-                } else {
-                    (c[0] + self.cells + ox - 1) % self.cells
-                };
-                let cy = if span < 3 {
-                    oy
-                } else {
-                    (c[1] + self.cells + oy - 1) % self.cells
-                };
-                let mut i = self.heads[cx * self.cells + cy];
-                while i != u32::MAX {
-                    let q = &self.points[i as usize * 2..i as usize * 2 + 2];
-                    let corners = [(x0, y0), (x0 + s, y0), (x0, y0 + s), (x0 + s, y0 + s)];
-                    if corners
-                        .iter()
-                        .all(|&(x, y)| self.distance2(&[wrap01(x), wrap01(y)], q) < self.radius2)
-                    {
-                        return true;
-                    }
-                    i = self.next[i as usize];
-                }
+    #[inline]
+    fn cell_conflict(&self, cell: usize, p: &[f64]) -> bool {
+        let mut i = self.heads[cell];
+        while i != u32::MAX {
+            let q = &self.points[i as usize * self.dims..(i as usize + 1) * self.dims];
+            if self.distance2(p, q) < self.radius2 {
+                return true;
             }
+            i = self.next[i as usize];
         }
         false
+    }
+}
+
+/// The occupancy structure the constructions share.
+trait Occupancy {
+    fn len(&self) -> usize;
+    fn insert(&mut self, p: &[f64]);
+    fn conflict(&self, p: &[f64]) -> bool;
+    fn points(&self) -> &[f64];
+    fn clear(&mut self);
+}
+
+impl Occupancy for NeighbourGrid {
+    fn len(&self) -> usize {
+        self.next.len()
+    }
+    fn insert(&mut self, p: &[f64]) {
+        NeighbourGrid::insert(self, p);
+    }
+    fn conflict(&self, p: &[f64]) -> bool {
+        NeighbourGrid::conflict(self, p)
+    }
+    fn points(&self) -> &[f64] {
+        &self.points
+    }
+    fn clear(&mut self) {
+        NeighbourGrid::clear(self);
+    }
+}
+
+/// The 2D grid of Bridson 2007: cells of side at most r/sqrt(2), so a cell holds at most
+/// one point, stored inline (NaN when empty); a query reads the 5 x 5 cells around it,
+/// nearest first, so most rejected candidates stop at the first cell.
+struct DiskGrid {
+    g: usize,
+    gf: f64,
+    torus: bool,
+    radius2: f64,
+    slots: Vec<[f64; 2]>,
+    points: Vec<f64>,
+}
+
+/// Cell offsets of the 5 x 5 neighbourhood, by distance from the centre cell.
+const NEAREST_FIRST: [(i8, i8); 25] = [
+    (0, 0),
+    (1, 0),
+    (-1, 0),
+    (0, 1),
+    (0, -1),
+    (1, 1),
+    (-1, 1),
+    (1, -1),
+    (-1, -1),
+    (2, 0),
+    (-2, 0),
+    (0, 2),
+    (0, -2),
+    (2, 1),
+    (2, -1),
+    (-2, 1),
+    (-2, -1),
+    (1, 2),
+    (-1, 2),
+    (1, -2),
+    (-1, -2),
+    (2, 2),
+    (-2, 2),
+    (2, -2),
+    (-2, -2),
+];
+
+impl DiskGrid {
+    fn new(radius: f64, torus: bool, capacity: usize) -> Self {
+        let g = ((2f64.sqrt() / radius).ceil() as usize).max(1);
+        DiskGrid {
+            g,
+            gf: g as f64,
+            torus,
+            radius2: radius * radius,
+            // one more slot, always empty, stands for the cells off a plain square
+            slots: vec![[f64::NAN; 2]; g * g + 1],
+            points: Vec::with_capacity(2 * capacity),
+        }
+    }
+
+    #[inline]
+    fn cell(&self, x: f64) -> usize {
+        ((x * self.gf) as usize).min(self.g - 1)
+    }
+
+    #[inline]
+    fn axis(&self, a: f64, b: f64) -> f64 {
+        let d = (a - b).abs();
+        if self.torus { d.min(1.0 - d) } else { d }
+    }
+
+    /// Indices of the cells c-2..=c+2 along one axis, wrapped on the torus; usize::MAX
+    /// off a plain square.
+    #[inline]
+    fn around(&self, c: usize) -> [usize; 5] {
+        let g = self.g;
+        std::array::from_fn(|k| {
+            let i = c + g + k - 2; // in [g-2, 2g+1]
+            if i < g {
+                if self.torus { i } else { usize::MAX }
+            } else if i < 2 * g {
+                i - g
+            } else if self.torus {
+                i - 2 * g
+            } else {
+                usize::MAX
+            }
+        })
+    }
+
+    /// The slot of the cell in row r, column c (from [`DiskGrid::around`]); the
+    /// always-empty sentinel slot when either is off the square.
+    #[inline]
+    fn slot(&self, r: usize, c: usize) -> usize {
+        if r == usize::MAX || c == usize::MAX { self.g * self.g } else { r * self.g + c }
+    }
+
+    /// The cells of the 5 x 5 neighbourhood of `p`'s cell, nearest first.
+    #[inline]
+    fn neighbourhood(&self, x: f64, y: f64) -> impl Iterator<Item = usize> + '_ {
+        let (rows, cols) = (self.around(self.cell(x)), self.around(self.cell(y)));
+        NEAREST_FIRST.iter().filter_map(move |&(dx, dy)| {
+            let (r, c) = (rows[(dx + 2) as usize], cols[(dy + 2) as usize]);
+            (r != usize::MAX && c != usize::MAX).then_some(r * self.g + c)
+        })
+    }
+
+    /// Whether the square [x0,x0+s) x [y0,y0+s) lies inside one disk of radius r.
+    fn covers_square(&self, x0: f64, y0: f64, s: f64) -> bool {
+        let corners = [(x0, y0), (x0 + s, y0), (x0, y0 + s), (x0 + s, y0 + s)].map(|(x, y)| (wrap01(x), wrap01(y)));
+        self.neighbourhood(wrap01(x0 + s / 2.0), wrap01(y0 + s / 2.0)).any(|c| {
+            let q = self.slots[c];
+            !q[0].is_nan()
+                && corners.iter().all(|&(x, y)| self.axis(x, q[0]).powi(2) + self.axis(y, q[1]).powi(2) < self.radius2)
+        })
+    }
+}
+
+impl Occupancy for DiskGrid {
+    fn len(&self) -> usize {
+        self.points.len() / 2
+    }
+    fn insert(&mut self, p: &[f64]) {
+        let c = self.cell(p[0]) * self.g + self.cell(p[1]);
+        debug_assert!(self.slots[c][0].is_nan());
+        self.slots[c] = [p[0], p[1]];
+        self.points.extend_from_slice(p);
+    }
+    #[inline]
+    fn conflict(&self, p: &[f64]) -> bool {
+        let (x, y) = (p[0], p[1]);
+        let (rows, cols) = (self.around(self.cell(x)), self.around(self.cell(y)));
+        // all 25 cells, without early exit: no data-dependent branch to mispredict
+        let mut hit = false;
+        for r in rows {
+            for c in cols {
+                let q = self.slots[self.slot(r, c)];
+                // NaN compares false: empty cells never conflict
+                let (ax, ay) = (self.axis(x, q[0]), self.axis(y, q[1]));
+                hit |= ax * ax + ay * ay < self.radius2;
+            }
+        }
+        hit
+    }
+    fn points(&self) -> &[f64] {
+        &self.points
+    }
+    fn clear(&mut self) {
+        self.slots.fill([f64::NAN; 2]);
+        self.points.clear();
     }
 }
 
@@ -226,55 +367,16 @@ impl DartThrowing {
     /// `radius` None means 0.7 x [`packing_radius`]; `attempts` is the number of
     /// consecutive rejected candidates after which a try is abandoned (16 tries in all).
     pub fn new(radius: Option<f64>, torus: bool, attempts: u64) -> Self {
-        DartThrowing {
-            radius,
-            torus,
-            attempts,
-        }
+        DartThrowing { radius, torus, attempts }
     }
 }
 
 const TRIES: u64 = 16;
 
-impl Sampler for DartThrowing {
-    fn spec(&self) -> String {
-        let r = self.radius.map_or("auto".into(), |r| r.to_string());
-        format!(
-            "poisson:radius={r},edge={},attempts={}",
-            edge_word(self.torus),
-            self.attempts
-        )
-    }
-    fn dims(&self) -> RangeInclusive<usize> {
-        1..=4
-    }
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        let r = self
-            .radius
-            .unwrap_or(AUTO_RELATIVE * packing_radius(n, dims));
-        // with plain edges the disks may poke out of the square by r/2
-        let room = if self.torus {
-            1.0
-        } else {
-            (1.0 + r).powi(dims as i32)
-        };
-        let most = (room * (packing_radius(1, dims) / r).powi(dims as i32)).floor();
-        if n as f64 > most {
-            return Err(Error::Infeasible {
-                sampler: self.spec(),
-                reason: format!(
-                    "radius {r} cannot fit {n} points in {dims}D: even the densest packing holds at most {most}; use a radius below {:.6}",
-                    packing_radius(n, dims) * room.powf(1.0 / dims as f64)
-                ),
-            });
-        }
-        Ok(())
-    }
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let r = self
-            .radius
-            .unwrap_or(AUTO_RELATIVE * packing_radius(n, dims));
-        let mut grid = NeighbourGrid::new(dims, r, self.torus, n);
+impl DartThrowing {
+    /// Up to [`TRIES`] tries of dart throwing; the points land in `out` when one succeeds.
+    /// Returns the largest count placed.
+    fn throw(&self, grid: &mut impl Occupancy, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> usize {
         let mut best = 0;
         let mut cand = vec![0.0; dims];
         for t in 0..TRIES {
@@ -291,10 +393,48 @@ impl Sampler for DartThrowing {
                 }
             }
             if grid.len() == n {
-                out.copy_from_slice(&grid.points);
-                return Ok(());
+                out.copy_from_slice(grid.points());
+                return n;
             }
             best = best.max(grid.len());
+        }
+        best
+    }
+}
+
+impl Sampler for DartThrowing {
+    fn spec(&self) -> String {
+        let r = self.radius.map_or("auto".into(), |r| r.to_string());
+        format!("poisson:radius={r},edge={},attempts={}", edge_word(self.torus), self.attempts)
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        1..=4
+    }
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        let r = self.radius.unwrap_or(AUTO_RELATIVE * packing_radius(n, dims));
+        // with plain edges the disks may poke out of the square by r/2
+        let room = if self.torus { 1.0 } else { (1.0 + r).powi(dims as i32) };
+        let most = (room * (packing_radius(1, dims) / r).powi(dims as i32)).floor();
+        if n as f64 > most {
+            return Err(Error::Infeasible {
+                sampler: self.spec(),
+                reason: format!(
+                    "radius {r} cannot fit {n} points in {dims}D: even the densest packing holds at most {most}; use a radius below {:.6}",
+                    packing_radius(n, dims) * room.powf(1.0 / dims as f64)
+                ),
+            });
+        }
+        Ok(())
+    }
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let r = self.radius.unwrap_or(AUTO_RELATIVE * packing_radius(n, dims));
+        let best = if dims == 2 {
+            self.throw(&mut DiskGrid::new(r, self.torus, n), n, dims, seed, out)
+        } else {
+            self.throw(&mut NeighbourGrid::new(dims, r, self.torus, n), n, dims, seed, out)
+        };
+        if best == n {
+            return Ok(());
         }
         Err(Error::Infeasible {
             sampler: self.spec(),
@@ -307,8 +447,24 @@ impl Sampler for DartThrowing {
     }
 }
 
+/// An offset uniform in the area of the annulus r <= |d| < 2r: its radius has the CDF
+/// (rho^2 - r^2) / (3 r^2), i.e. rho = r sqrt(3u + 1) (not r (1 + u), which crowds the
+/// inner edge). Drawn by rejection from the bounding square (acceptance 3 pi / 16), which
+/// has exactly that law and needs neither a square root nor trigonometry.
+#[inline]
+fn annulus_offset(rng: &mut Rng, r: f64) -> (f64, f64) {
+    let (inner, outer) = (r * r, 4.0 * r * r);
+    loop {
+        let (a, b) = (r * (4.0 * uniform(rng) - 2.0), r * (4.0 * uniform(rng) - 2.0));
+        let q = a * a + b * b;
+        if q >= inner && q < outer {
+            return (a, b);
+        }
+    }
+}
+
 /// Grow a Bridson set with radius r over the unit square (or torus).
-fn bridson(r: f64, torus: bool, k: u32, rng: &mut Rng, grid: &mut NeighbourGrid) {
+fn bridson(r: f64, torus: bool, k: u32, rng: &mut Rng, grid: &mut DiskGrid) {
     let mut active: Vec<u32> = Vec::new();
     let first = [uniform(rng), uniform(rng)];
     grid.insert(&first);
@@ -316,16 +472,30 @@ fn bridson(r: f64, torus: bool, k: u32, rng: &mut Rng, grid: &mut NeighbourGrid)
     while !active.is_empty() {
         let a = below(rng, active.len() as u64) as usize;
         let i = active[a] as usize;
-        let (px, py) = (grid.points[2 * i], grid.points[2 * i + 1]);
+        let (px, py) = (grid.points()[2 * i], grid.points()[2 * i + 1]);
         let mut placed = false;
         for _ in 0..k {
-            // uniform in the annulus's area: the radius CDF is (rho^2 - r^2) / (3 r^2)
-            let rho = r * (3.0 * uniform(rng) + 1.0).sqrt();
-            let (s, c) = (TAU * uniform(rng)).sin_cos();
-            let (mut x, mut y) = (px + rho * c, py + rho * s);
+            let (dx, dy) = annulus_offset(rng, r);
+            let (mut x, mut y) = (px + dx, py + dy);
             if torus {
-                x = wrap01(x);
-                y = wrap01(y);
+                // |offset| < 2r < 1: one correction suffices (no floor call)
+                x = if x < 0.0 {
+                    x + 1.0
+                } else if x >= 1.0 {
+                    x - 1.0
+                } else {
+                    x
+                };
+                y = if y < 0.0 {
+                    y + 1.0
+                } else if y >= 1.0 {
+                    y - 1.0
+                } else {
+                    y
+                };
+                if x >= 1.0 || y >= 1.0 {
+                    continue; // -tiny + 1.0 rounded to 1.0
+                }
             } else if !(0.0..1.0).contains(&x) || !(0.0..1.0).contains(&y) {
                 continue;
             }
@@ -351,7 +521,8 @@ pub struct Bridson {
 }
 
 impl Bridson {
-    /// `radius` None means 0.72 x [`packing_radius`]; `k` candidates per active point.
+    /// `radius` None means 0.72 x [`packing_radius`], shrunk when a fill falls short of
+    /// n; `k` candidates per active point.
     pub fn new(radius: Option<f64>, torus: bool, k: u32) -> Self {
         Bridson { radius, torus, k }
     }
@@ -360,20 +531,22 @@ impl Bridson {
 impl Sampler for Bridson {
     fn spec(&self) -> String {
         let r = self.radius.map_or("auto".into(), |r| r.to_string());
-        format!(
-            "poisson.fast:radius={r},edge={},k={}",
-            edge_word(self.torus),
-            self.k
-        )
+        format!("poisson.fast:radius={r},edge={},k={}", edge_word(self.torus), self.k)
     }
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let r = self.radius.unwrap_or(0.72 * packing_radius(n, dims));
+        let mut r = self.radius.unwrap_or(0.72 * packing_radius(n, dims));
         let mut rng = seed.rng();
-        let mut grid = NeighbourGrid::new(2, r, self.torus, n + n / 4);
+        let mut grid = DiskGrid::new(r, self.torus, n + n / 4);
         bridson(r, self.torus, self.k, &mut rng, &mut grid);
+        // an automatic radius shrinks until the fill holds n points (small n fluctuate)
+        while grid.len() < n && self.radius.is_none() {
+            r *= 0.98 * (grid.len() as f64 / n as f64).sqrt();
+            grid = DiskGrid::new(r, self.torus, n + n / 4);
+            bridson(r, self.torus, self.k, &mut rng, &mut grid);
+        }
         if grid.len() < n {
             return Err(Error::Infeasible {
                 sampler: self.spec(),
@@ -384,7 +557,7 @@ impl Sampler for Bridson {
                 ),
             });
         }
-        keep_random(&grid.points, 2, n, &mut rng, out);
+        keep_random(grid.points(), 2, n, &mut rng, out);
         Ok(())
     }
 }
@@ -403,16 +576,15 @@ impl Maximal {
 }
 
 /// Bridson followed by gap filling: a maximal set for radius r.
-fn maximal_set(r: f64, torus: bool, seed: Seed, capacity: usize) -> NeighbourGrid {
+fn maximal_set(r: f64, torus: bool, seed: Seed, capacity: usize) -> DiskGrid {
     let mut rng = seed.rng();
-    let mut grid = NeighbourGrid::new(2, r, torus, capacity);
+    let mut grid = DiskGrid::new(r, torus, capacity);
     bridson(r, torus, 30, &mut rng, &mut grid);
     // quadtree of cells that no single disk covers
     let base = (2f64.sqrt() / r).ceil() as usize;
     let mut side = 1.0 / base as f64;
-    let mut cells: Vec<(f64, f64)> = (0..base * base)
-        .map(|c| ((c / base) as f64 * side, (c % base) as f64 * side))
-        .collect();
+    let mut cells: Vec<(f64, f64)> =
+        (0..base * base).map(|c| ((c / base) as f64 * side, (c % base) as f64 * side)).collect();
     for _depth in 0..24 {
         cells.retain(|&(x, y)| !grid.covers_square(x, y, side));
         if cells.is_empty() {
@@ -457,7 +629,7 @@ impl Sampler for Maximal {
                 let grid = maximal_set(r, self.torus, s, n + n / 4);
                 match grid.len().cmp(&n) {
                     std::cmp::Ordering::Equal => {
-                        out.copy_from_slice(&grid.points);
+                        out.copy_from_slice(grid.points());
                         return Ok(());
                     }
                     std::cmp::Ordering::Greater => lo = r,
@@ -470,9 +642,40 @@ impl Sampler for Maximal {
         }
         Err(Error::Infeasible {
             sampler: self.spec(),
-            reason: format!(
-                "no radius gave a maximal set of exactly {n} points in 8 tries of 64 bisection steps"
-            ),
+            reason: format!("no radius gave a maximal set of exactly {n} points in 8 tries of 64 bisection steps"),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn annulus_offsets_are_uniform_in_area() {
+        // Kolmogorov-Smirnov against the radius CDF (rho^2 - r^2) / (3 r^2) and the
+        // uniform angle; 1.63/sqrt(n) is the 1% critical value
+        let (r, n) = (0.3, 100_000);
+        let mut rng = Seed(4).rng();
+        let (mut radii, mut angles): (Vec<f64>, Vec<f64>) =
+            (0..n).map(|_| annulus_offset(&mut rng, r)).map(|(a, b)| (a.hypot(b), b.atan2(a))).unzip();
+        radii.sort_by(f64::total_cmp);
+        angles.sort_by(f64::total_cmp);
+        let ks = |v: &[f64], cdf: &dyn Fn(f64) -> f64| {
+            v.iter()
+                .enumerate()
+                .map(|(i, &x)| (cdf(x) - i as f64 / n as f64).abs().max((cdf(x) - (i + 1) as f64 / n as f64).abs()))
+                .fold(0.0, f64::max)
+        };
+        let crit = 1.63 / (n as f64).sqrt();
+        assert!(ks(&radii, &|x| (x * x - r * r) / (3.0 * r * r)) < crit);
+        assert!(ks(&angles, &|t| (t + PI) / (2.0 * PI)) < crit);
+        // and the naive r (1 + u) would fail the same test
+        let naive: Vec<f64> = {
+            let mut v: Vec<f64> = (0..n).map(|_| r * (1.0 + uniform(&mut rng))).collect();
+            v.sort_by(f64::total_cmp);
+            v
+        };
+        assert!(ks(&naive, &|x| (x * x - r * r) / (3.0 * r * r)) > 10.0 * crit);
     }
 }

@@ -26,11 +26,7 @@ pub static PRIMES: LazyLock<Vec<u32>> = LazyLock::new(|| {
     let mut primes = Vec::with_capacity(HALTON_MAX_DIMS);
     let mut c = 2u32;
     while primes.len() < HALTON_MAX_DIMS {
-        if primes
-            .iter()
-            .take_while(|&&p| p * p <= c)
-            .all(|&p| c % p != 0)
-        {
+        if primes.iter().take_while(|&&p| p * p <= c).all(|&p| c % p != 0) {
             primes.push(c);
         }
         c += 1;
@@ -114,11 +110,7 @@ impl<'a> Odometer<'a> {
             digits.push((i % u64::from(table.base)) as u32);
             i /= u64::from(table.base);
         }
-        let mut od = Odometer {
-            table,
-            partial: vec![0.0; digits.len() + 1],
-            digits,
-        };
+        let mut od = Odometer { table, partial: vec![0.0; digits.len() + 1], digits };
         od.refresh(od.digits.len());
         od
     }
@@ -130,8 +122,7 @@ impl<'a> Odometer<'a> {
         self.partial[m] = self.table.tail[m];
         let b = self.table.base as usize;
         for j in (0..top.min(m)).rev() {
-            self.partial[j] =
-                self.partial[j + 1] + self.table.scaled[j * b + self.digits[j] as usize];
+            self.partial[j] = self.partial[j + 1] + self.table.scaled[j * b + self.digits[j] as usize];
         }
     }
 
@@ -221,11 +212,7 @@ impl Coordinate {
         let mut od = Odometer::new(&self.table, start);
         for p in out.chunks_exact_mut(dims) {
             let v = od.value();
-            p[offset] = if self.randomization == Randomization::Shift {
-                wrap01(v + self.shift)
-            } else {
-                v
-            };
+            p[offset] = if self.randomization == Randomization::Shift { wrap01(v + self.shift) } else { v };
             od.step();
         }
     }
@@ -319,8 +306,7 @@ impl Sampler for Hammersley {
             };
         }
         for d in 1..dims {
-            Coordinate::new(PRIMES[d - 1], self.randomization, seed, d - 1)
-                .fill_strided(0, out, dims, d);
+            Coordinate::new(PRIMES[d - 1], self.randomization, seed, d - 1).fill_strided(0, out, dims, d);
         }
         Ok(())
     }
@@ -339,20 +325,12 @@ mod tests {
     #[test]
     fn odometer_equals_random_access_bit_for_bit() {
         for base in [2u32, 3, 7, 8161] {
-            for r in [
-                Randomization::None,
-                Randomization::Xor,
-                Randomization::Shift,
-            ] {
+            for r in [Randomization::None, Randomization::Xor, Randomization::Shift] {
                 let c = Coordinate::new(base, r, Seed(11), 3);
                 let mut out = vec![0.0; 3000];
                 c.fill_strided(17, &mut out, 1, 0);
                 for (i, v) in out.iter().enumerate() {
-                    assert_eq!(
-                        v.to_bits(),
-                        c.value(17 + i as u64).to_bits(),
-                        "base {base} {r:?} index {i}"
-                    );
+                    assert_eq!(v.to_bits(), c.value(17 + i as u64).to_bits(), "base {base} {r:?} index {i}");
                 }
             }
         }

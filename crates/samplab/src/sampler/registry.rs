@@ -41,9 +41,7 @@ pub struct SamplerEntry {
 
 impl std::fmt::Debug for SamplerEntry {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("SamplerEntry")
-            .field("name", &self.name)
-            .finish_non_exhaustive()
+        f.debug_struct("SamplerEntry").field("name", &self.name).finish_non_exhaustive()
     }
 }
 
@@ -145,12 +143,7 @@ static REGISTRY: LazyLock<Vec<SamplerEntry>> = LazyLock::new(|| {
                 doc: "half-width of the box, fraction of a cell"
             }],
             ["subr2013"],
-            |p| grid(
-                "jitter.box",
-                Displacement::Box {
-                    delta: number(p, "delta")
-                }
-            )
+            |p| grid("jitter.box", Displacement::Box { delta: number(p, "delta") })
         ),
         entry!(
             "jitter.gaussian",
@@ -175,10 +168,7 @@ static REGISTRY: LazyLock<Vec<SamplerEntry>> = LazyLock::new(|| {
             ["subr2013"],
             |p| grid(
                 "jitter.gaussian",
-                Displacement::Gaussian {
-                    sigma: number(p, "sigma"),
-                    resample: p.word("edge") == "resample"
-                }
+                Displacement::Gaussian { sigma: number(p, "sigma"), resample: p.word("edge") == "resample" }
             )
         ),
         entry!(
@@ -214,10 +204,7 @@ static REGISTRY: LazyLock<Vec<SamplerEntry>> = LazyLock::new(|| {
             ["subr2013"],
             |p| grid(
                 "jitter.uniform-gaussian",
-                Displacement::UniformGaussian {
-                    alpha: number(p, "alpha"),
-                    sigma: number(p, "sigma")
-                }
+                Displacement::UniformGaussian { alpha: number(p, "alpha"), sigma: number(p, "sigma") }
             )
         ),
         entry!(
@@ -239,20 +226,14 @@ static REGISTRY: LazyLock<Vec<SamplerEntry>> = LazyLock::new(|| {
             &[
                 ParamSpec {
                     name: "radius",
-                    kind: Kind::Real {
-                        min: 1e-9,
-                        max: 1.0
-                    },
+                    kind: Kind::Real { min: 1e-9, max: 1.0 },
                     default: Default::Auto("0.7 x the packing radius of n points"),
                     doc: "minimum distance between points"
                 },
                 EDGE,
                 ParamSpec {
                     name: "attempts",
-                    kind: Kind::Int {
-                        min: 1,
-                        max: 1_000_000_000
-                    },
+                    kind: Kind::Int { min: 1, max: 1_000_000_000 },
                     default: Default::Number(100_000.0),
                     doc: "consecutive misses before a try is abandoned (16 tries)"
                 }
@@ -273,30 +254,20 @@ static REGISTRY: LazyLock<Vec<SamplerEntry>> = LazyLock::new(|| {
             &[
                 ParamSpec {
                     name: "radius",
-                    kind: Kind::Real {
-                        min: 1e-6,
-                        max: 1.0
-                    },
+                    kind: Kind::Real { min: 1e-6, max: 1.0 },
                     default: Default::Auto("0.72 x the packing radius of n points"),
                     doc: "minimum distance between points"
                 },
                 EDGE,
                 ParamSpec {
                     name: "k",
-                    kind: Kind::Int {
-                        min: 1,
-                        max: 10_000
-                    },
+                    kind: Kind::Int { min: 1, max: 10_000 },
                     default: Default::Number(30.0),
                     doc: "candidates tried around each active point"
                 }
             ],
             ["bridson2007"],
-            |p| Ok(Box::new(Bridson::new(
-                p.number("radius"),
-                edge_is_torus(p.word("edge")),
-                number(p, "k") as u32
-            )))
+            |p| Ok(Box::new(Bridson::new(p.number("radius"), edge_is_torus(p.word("edge")), number(p, "k") as u32)))
         ),
         entry!(
             "poisson.maximal",
@@ -337,52 +308,30 @@ static REGISTRY: LazyLock<Vec<SamplerEntry>> = LazyLock::new(|| {
             &[
                 ParamSpec {
                     name: "s",
-                    kind: Kind::Real {
-                        min: 1e-3,
-                        max: 10.0
-                    },
+                    kind: Kind::Real { min: 1e-3, max: 10.0 },
                     default: Default::Number(0.5),
                     doc: "energy scale, in units of the mean spacing n^(-1/d)"
                 },
                 ParamSpec {
                     name: "p",
-                    kind: Kind::Real {
-                        min: 0.1,
-                        max: 16.0
-                    },
+                    kind: Kind::Real { min: 0.1, max: 16.0 },
                     default: Default::Number(2.0),
                     doc: "energy exponent"
                 },
                 ParamSpec {
                     name: "grid",
-                    kind: Kind::Int {
-                        min: 1,
-                        max: 1 << 24
-                    },
+                    kind: Kind::Int { min: 1, max: 1 << 24 },
                     default: Default::Auto("ceil(4 n^(1/d)) cells per axis"),
                     doc: "fine grid cells per axis"
                 }
             ],
             ["sbert2006", "purgathofer1994"],
-            |p| Ok(Box::new(ForceMatrix::new(
-                number(p, "s"),
-                number(p, "p"),
-                p.number("grid").map(|g| g as usize)
-            )))
+            |p| Ok(Box::new(ForceMatrix::new(number(p, "s"), number(p, "p"), p.number("grid").map(|g| g as usize))))
         ),
     ];
-    for rnd in [
-        Randomization::None,
-        Randomization::Xor,
-        Randomization::Owen,
-        Randomization::Shift,
-    ] {
+    for rnd in [Randomization::None, Randomization::Xor, Randomization::Owen, Randomization::Shift] {
         let suffix = |family: &str| {
-            if rnd == Randomization::None {
-                family.to_string()
-            } else {
-                format!("{family}.{}", rnd.suffix())
-            }
+            if rnd == Randomization::None { family.to_string() } else { format!("{family}.{}", rnd.suffix()) }
         };
         let how = match rnd {
             Randomization::None => "",
@@ -398,11 +347,7 @@ static REGISTRY: LazyLock<Vec<SamplerEntry>> = LazyLock::new(|| {
         };
         let refs = |base: &'static str| std::iter::once(base).chain(cite).collect::<Vec<_>>();
         let aliases = |a: &'static str| {
-            if rnd == Randomization::Owen {
-                vec![a]
-            } else {
-                vec![]
-            }
+            if rnd == Randomization::Owen { vec![a] } else { vec![] }
         };
         r.push(
             SamplerEntry {
@@ -486,19 +431,16 @@ pub fn entries() -> &'static [SamplerEntry] {
 /// An unknown name, with the closest known names as suggestions.
 pub fn lookup(name: &str) -> Result<&'static SamplerEntry> {
     let want = name.to_ascii_lowercase();
-    entries()
-        .iter()
-        .find(|e| e.name == want || e.aliases.iter().any(|a| *a == want))
-        .ok_or_else(|| Error::UnknownName {
+    entries().iter().find(|e| e.name == want || e.aliases.iter().any(|a| *a == want)).ok_or_else(|| {
+        Error::UnknownName {
             kind: "sampler",
             name: name.to_string(),
             suggestions: closest_names(
                 name,
-                entries().iter().flat_map(|e| {
-                    std::iter::once(e.name.as_str()).chain(e.aliases.iter().copied())
-                }),
+                entries().iter().flat_map(|e| std::iter::once(e.name.as_str()).chain(e.aliases.iter().copied())),
             ),
-        })
+        }
+    })
 }
 
 /// Build a sampler from a spec such as `jitter.gaussian:sigma=0.25` or `GJittered:0.25`.

@@ -125,11 +125,7 @@ mod tests {
         // Two inputs that share their top k bits give outputs that share their top k bits,
         // and the bit below differs in the output exactly when it differs in the input.
         let seed = 0x1234_5678;
-        for (a, b) in [
-            (0x8000_0000u32, 0xC000_0000u32),
-            (0x1234_0000, 0x1235_0000),
-            (5, 4),
-        ] {
+        for (a, b) in [(0x8000_0000u32, 0xC000_0000u32), (0x1234_0000, 0x1235_0000), (5, 4)] {
             let k = (a ^ b).leading_zeros();
             let (sa, sb) = (owen_scramble_u32(a, seed), owen_scramble_u32(b, seed));
             assert_eq!((sa ^ sb).leading_zeros(), k, "{a:x} {b:x}");

@@ -61,10 +61,7 @@ struct DimKey {
 impl DimKey {
     fn new(seed: Seed, dim: usize) -> Self {
         let s = seed.derive(dim as u64);
-        DimKey {
-            bits: s.bits32(),
-            shift: hash_unit(dim as u64, s.0),
-        }
+        DimKey { bits: s.bits32(), shift: hash_unit(dim as u64, s.0) }
     }
 }
 
@@ -76,8 +73,7 @@ impl Sobol {
             Randomization::None => f64::from(x) * TO_UNIT,
             Randomization::Xor => f64::from(x ^ key.bits) * TO_UNIT,
             Randomization::Owen => {
-                f64::from(owen_scramble_reversed(x.reverse_bits(), key.bits).reverse_bits())
-                    * TO_UNIT
+                f64::from(owen_scramble_reversed(x.reverse_bits(), key.bits).reverse_bits()) * TO_UNIT
             }
             Randomization::Shift => wrap01(f64::from(x) * TO_UNIT + key.shift),
         }

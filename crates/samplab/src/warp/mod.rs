@@ -36,11 +36,7 @@ pub fn apply(warp: &dyn Warp, points: &PointSet) -> Result<PointSet> {
     if let Some(d) = warp.input_dims()
         && d != points.dims()
     {
-        return Err(Error::Invalid(format!(
-            "warp {} needs {d}D points, got {}D",
-            warp.name(),
-            points.dims()
-        )));
+        return Err(Error::Invalid(format!("warp {} needs {d}D points, got {}D", warp.name(), points.dims())));
     }
     let out_dims = warp.output_dims(points.dims());
     let mut data = Vec::with_capacity(points.len() * out_dims);
@@ -107,11 +103,7 @@ impl Warp for PolarDisk {
         true
     }
     fn density(&self, x: &[f64]) -> f64 {
-        if x[0] * x[0] + x[1] * x[1] < 1.0 {
-            1.0 / PI
-        } else {
-            0.0
-        }
+        if x[0] * x[0] + x[1] * x[1] < 1.0 { 1.0 / PI } else { 0.0 }
     }
     fn inverse(&self, x: &[f64], out: &mut [f64]) -> bool {
         let r2 = x[0] * x[0] + x[1] * x[1];
@@ -139,11 +131,8 @@ impl Warp for ConcentricDisk {
             return true;
         }
         // Shirley & Chiu 1997, eq. for the four triangular regions
-        let (r, phi) = if a.abs() > b.abs() {
-            (a, FRAC_PI_4 * (b / a))
-        } else {
-            (b, 2.0 * FRAC_PI_4 - FRAC_PI_4 * (a / b))
-        };
+        let (r, phi) =
+            if a.abs() > b.abs() { (a, FRAC_PI_4 * (b / a)) } else { (b, 2.0 * FRAC_PI_4 - FRAC_PI_4 * (a / b)) };
         out[0] = r * phi.cos();
         out[1] = r * phi.sin();
         true
@@ -199,21 +188,13 @@ impl Warp for RejectDisk {
 
 /// The tent's inverse CDF on [-1,1].
 pub fn tent_inverse_cdf(u: f64) -> f64 {
-    if u < 0.5 {
-        (2.0 * u).sqrt() - 1.0
-    } else {
-        1.0 - (2.0 - 2.0 * u).sqrt()
-    }
+    if u < 0.5 { (2.0 * u).sqrt() - 1.0 } else { 1.0 - (2.0 - 2.0 * u).sqrt() }
 }
 
 /// The tent's CDF on [-1,1].
 pub fn tent_cdf(x: f64) -> f64 {
     let x = x.clamp(-1.0, 1.0);
-    if x < 0.0 {
-        0.5 * (1.0 + x) * (1.0 + x)
-    } else {
-        1.0 - 0.5 * (1.0 - x) * (1.0 - x)
-    }
+    if x < 0.0 { 0.5 * (1.0 + x) * (1.0 + x) } else { 1.0 - 0.5 * (1.0 - x) * (1.0 - x) }
 }
 
 impl Warp for Tent {
@@ -406,20 +387,16 @@ pub static WARPS: &[WarpEntry] = &[
 /// An unknown name, with the closest known names.
 pub fn lookup(name: &str) -> Result<&'static dyn Warp> {
     let want = name.to_ascii_lowercase();
-    WARPS
-        .iter()
-        .find(|e| e.name == want || e.aliases.contains(&want.as_str()))
-        .map(|e| e.warp)
-        .ok_or_else(|| Error::UnknownName {
+    WARPS.iter().find(|e| e.name == want || e.aliases.contains(&want.as_str())).map(|e| e.warp).ok_or_else(|| {
+        Error::UnknownName {
             kind: "warp",
             name: name.into(),
             suggestions: closest_names(
                 name,
-                WARPS
-                    .iter()
-                    .flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied())),
+                WARPS.iter().flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied())),
             ),
-        })
+        }
+    })
 }
 
 #[cfg(test)]
@@ -446,11 +423,7 @@ mod tests {
                 for d in 0..2 {
                     let diff = (back[d] - u[d]).abs();
                     // angles wrap: 0 and 1 are the same point
-                    assert!(
-                        diff.min(1.0 - diff) < 1e-9,
-                        "{}: {u:?} -> {x:?} -> {back:?}",
-                        e.name
-                    );
+                    assert!(diff.min(1.0 - diff) < 1e-9, "{}: {u:?} -> {x:?} -> {back:?}", e.name);
                 }
             }
         }
@@ -465,42 +438,26 @@ mod tests {
         for e in bijective() {
             let m = e.warp.output_dims(2);
             for _ in 0..500 {
-                let u = [
-                    0.01 + 0.98 * uniform(&mut rng),
-                    0.01 + 0.98 * uniform(&mut rng),
-                ];
+                let u = [0.01 + 0.98 * uniform(&mut rng), 0.01 + 0.98 * uniform(&mut rng)];
                 let f = |a: f64, b: f64| {
                     let mut x = vec![0.0; m];
                     e.warp.forward(&[a, b], &mut x);
                     x
                 };
                 let x = f(u[0], u[1]);
-                let du: Vec<f64> = f(u[0] + h, u[1])
-                    .iter()
-                    .zip(f(u[0] - h, u[1]))
-                    .map(|(a, b)| (a - b) / (2.0 * h))
-                    .collect();
-                let dv: Vec<f64> = f(u[0], u[1] + h)
-                    .iter()
-                    .zip(f(u[0], u[1] - h))
-                    .map(|(a, b)| (a - b) / (2.0 * h))
-                    .collect();
+                let du: Vec<f64> =
+                    f(u[0] + h, u[1]).iter().zip(f(u[0] - h, u[1])).map(|(a, b)| (a - b) / (2.0 * h)).collect();
+                let dv: Vec<f64> =
+                    f(u[0], u[1] + h).iter().zip(f(u[0], u[1] - h)).map(|(a, b)| (a - b) / (2.0 * h)).collect();
                 let jac = if m == 2 {
                     (du[0] * dv[1] - du[1] * dv[0]).abs()
                 } else {
-                    let c = [
-                        du[1] * dv[2] - du[2] * dv[1],
-                        du[2] * dv[0] - du[0] * dv[2],
-                        du[0] * dv[1] - du[1] * dv[0],
-                    ];
+                    let c =
+                        [du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2], du[0] * dv[1] - du[1] * dv[0]];
                     (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
                 };
                 let product = e.warp.density(&x) * jac;
-                assert!(
-                    (product - 1.0).abs() < 1e-5,
-                    "{} at {u:?}: density x jacobian = {product}",
-                    e.name
-                );
+                assert!((product - 1.0).abs() < 1e-5, "{} at {u:?}: density x jacobian = {product}", e.name);
             }
         }
     }
@@ -512,13 +469,9 @@ mod tests {
         let h = 1.0 / k as f64;
         let cell = |i: usize| (i as f64 + 0.5) * h;
         // planar densities over [-L, L]^2
-        for (e, half) in [
-            ("disk.polar", 1.0),
-            ("disk.concentric", 1.0),
-            ("disk.reject", 1.0),
-            ("tent", 1.0),
-            ("gaussian", 9.0),
-        ] {
+        for (e, half) in
+            [("disk.polar", 1.0), ("disk.concentric", 1.0), ("disk.reject", 1.0), ("tent", 1.0), ("gaussian", 9.0)]
+        {
             let w = lookup(e).unwrap();
             let mut sum = 0.0;
             for i in 0..k {
@@ -549,10 +502,8 @@ mod tests {
 
     #[test]
     fn names_unique_and_lookup_suggests() {
-        let mut names: Vec<&str> = WARPS
-            .iter()
-            .flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied()))
-            .collect();
+        let mut names: Vec<&str> =
+            WARPS.iter().flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied())).collect();
         let before = names.len();
         names.sort();
         names.dedup();

@@ -1,0 +1,158 @@
+//! The real `samplab` binary: acceptance commands, determinism across thread counts,
+//! bad input (exit 2, one line, no output), CLI == library.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+use samplab::io::{self, Format};
+use samplab::{Seed, sampler};
+
+fn samplab(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_samplab")).args(args).output().expect("running samplab")
+}
+
+fn samplab_env(args: &[&str], key: &str, value: &str) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_samplab")).args(args).env(key, value).output().expect("running samplab")
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("samplab-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn generate_acceptance_command() {
+    let args = ["generate", "jitter.gaussian:sigma=0.25", "-n", "256", "-d", "2", "--seed", "7"];
+    let a = samplab(&args);
+    assert!(a.status.success(), "{}", String::from_utf8_lossy(&a.stderr));
+    let sets = io::decode(&a.stdout, Format::Text, "stdout").unwrap();
+    assert_eq!(sets.len(), 1);
+    assert_eq!((sets[0].len(), sets[0].dims()), (256, 2));
+    assert!(sets[0].in_unit_cube());
+    let header = String::from_utf8_lossy(&a.stdout).lines().next().unwrap().to_string();
+    assert!(header.starts_with("# samplab ") && header.contains("seed=7") && header.contains("n=256"), "{header}");
+    assert_eq!(a.stdout, samplab(&args).stdout, "two runs differ");
+}
+
+#[test]
+fn many_sets_identical_whatever_the_thread_count() {
+    let args = ["generate", "jitter.gaussian:sigma=0.25", "-n", "256", "-d", "2", "--seed", "7", "--sets", "100"];
+    let one = samplab_env(&args, "RAYON_NUM_THREADS", "1");
+    let many = samplab_env(&args, "RAYON_NUM_THREADS", "4");
+    let default = samplab(&args);
+    assert!(one.status.success());
+    assert_eq!(one.stdout, many.stdout);
+    assert_eq!(one.stdout, default.stdout);
+    assert_eq!(io::decode(&one.stdout, Format::Text, "stdout").unwrap().len(), 100);
+}
+
+#[test]
+fn cli_equals_library() {
+    let out =
+        samplab(&["generate", "sobol.owen", "-n", "64", "-d", "3", "--seed", "99", "--sets", "3", "--format", "json"]);
+    let sets = io::decode(&out.stdout, Format::Json, "stdout").unwrap();
+    let s = sampler::build("sobol.owen").unwrap();
+    for (k, set) in sets.iter().enumerate() {
+        assert_eq!(*set, s.generate(64, 3, Seed(99).derive(k as u64)).unwrap());
+    }
+}
+
+fn assert_bad_input(args: &[&str], expect: &[&str]) {
+    let out = samplab(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(out.stdout.is_empty(), "{args:?}: partial output on stdout");
+    assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: not one line: {err}");
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+    for e in expect {
+        assert!(err.contains(e), "{args:?}: '{e}' not in: {err}");
+    }
+}
+
+#[test]
+fn bad_input_exit_2_with_one_line() {
+    assert_bad_input(&["generate", "jitter", "-n", "15"], &["9 and 16"]);
+    assert_bad_input(&["generate", "jittr", "-n", "16"], &["unknown sampler 'jittr'", "jitter"]);
+    assert_bad_input(&["generate", "jitter.gaussian:sigma=9", "-n", "16"], &["'sigma'", "[0, 8]"]);
+    assert_bad_input(&["generate", "jitter.gaussian:width=1", "-n", "16"], &["'width'", "valid: sigma, edge"]);
+    assert_bad_input(&["generate", "poisson:radius=0.4", "-n", "16"], &["radius 0.4 cannot fit 16 points"]);
+    assert_bad_input(&["generate", "random", "-n", "16", "--warp", "disc"], &["unknown warp", "disk"]);
+    assert_bad_input(&["generate", "random", "-n", "16", "--format", "xml"], &["unknown format 'xml'"]);
+    assert_bad_input(&["generate", "random", "-n", "16", "--warp", "hemisphere.cosine", "-d", "3"], &["needs 2D"]);
+    assert_bad_input(&["generate", "random", "-n", "0"], &["n must be"]);
+}
+
+#[test]
+fn failed_runs_leave_no_file() {
+    let dir = temp("nofile");
+    let out = dir.join("p.txt");
+    let r = samplab(&["generate", "jitter", "-n", "15", "-o", out.to_str().unwrap()]);
+    assert_eq!(r.status.code(), Some(2));
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+}
+
+#[test]
+fn every_format_through_the_cli_and_plot() {
+    let dir = temp("formats");
+    for ext in ["txt", "csv", "npy", "json"] {
+        let f = dir.join(format!("p.{ext}"));
+        let r = samplab(&["generate", "halton.owen", "-n", "100", "--sets", "2", "-o", f.to_str().unwrap()]);
+        assert!(r.status.success(), "{ext}: {}", String::from_utf8_lossy(&r.stderr));
+        let sets = io::read(&f, None).unwrap();
+        assert_eq!(sets.len(), 2, "{ext}");
+        for img in ["png", "svg"] {
+            let o = dir.join(format!("p-{ext}.{img}"));
+            let r = samplab(&["plot", f.to_str().unwrap(), "-o", o.to_str().unwrap(), "--set", "1", "--grid", "10"]);
+            assert!(r.status.success(), "{ext}->{img}: {}", String::from_utf8_lossy(&r.stderr));
+            let bytes = std::fs::read(&o).unwrap();
+            if img == "png" {
+                assert_eq!(&bytes[1..4], b"PNG");
+            } else {
+                assert!(String::from_utf8_lossy(&bytes).contains("<svg"));
+            }
+        }
+    }
+}
+
+#[test]
+fn plot_rejects_bad_files_with_file_and_line() {
+    let dir = temp("badplot");
+    let f = dir.join("bad.txt");
+    std::fs::write(&f, "0.1 0.2\n0.3 NaN\n").unwrap();
+    let out = samplab(&["plot", f.to_str().unwrap(), "-o", dir.join("x.png").to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("bad.txt:2") && err.contains("not finite"), "{err}");
+    std::fs::write(&f, "0.1 0.2\n0.3\n").unwrap();
+    let err = String::from_utf8_lossy(
+        &samplab(&["plot", f.to_str().unwrap(), "-o", dir.join("x.png").to_str().unwrap()]).stderr,
+    )
+    .to_string();
+    assert!(err.contains("bad.txt:2") && err.contains("1 coordinates where earlier points have 2"), "{err}");
+    assert!(!dir.join("x.png").exists());
+}
+
+#[test]
+fn list_is_generated_from_the_registries() {
+    let out = String::from_utf8(samplab(&["list"]).stdout).unwrap();
+    for e in sampler::registry::entries() {
+        assert!(out.contains(&format!("{}  —", e.name)), "{} missing", e.name);
+    }
+    for w in samplab::warp::WARPS {
+        assert!(out.contains(w.name));
+    }
+    assert!(out.contains("sigma = 0.25  (a number in [0, 8])"));
+}
+
+#[test]
+fn warps_apply() {
+    let out = samplab(&["generate", "jitter", "-n", "64", "--warp", "hemisphere.cosine"]);
+    let sets = io::decode(&out.stdout, Format::Text, "stdout").unwrap();
+    assert_eq!(sets[0].dims(), 3);
+    for p in sets[0].iter() {
+        let norm = p.iter().map(|x| x * x).sum::<f64>();
+        assert!((norm - 1.0).abs() < 1e-12 && p[2] >= 0.0);
+    }
+}
