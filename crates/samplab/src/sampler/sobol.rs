@@ -80,6 +80,50 @@ impl Sobol {
     }
 }
 
+/// Walk the first `out.len() / dims` points in Gray-code order (Antonov & Saleev 1979), as
+/// Joe & Kuo's and scipy's generators do: point i+1 is point i XOR v_c with c =
+/// trailing_zeros(i+1). `reversed` keeps the state bit-reversed. `finish` maps a state
+/// word of dimension d to the coordinate.
+#[inline]
+fn gray_walk(out: &mut [f64], dims: usize, reversed: bool, finish: impl Fn(u32, usize) -> f64) {
+    let directions: Vec<[u32; 32]> = (0..dims)
+        .map(|d| if reversed { SOBOL_DIRECTIONS[d].map(u32::reverse_bits) } else { SOBOL_DIRECTIONS[d] })
+        .collect();
+    match dims {
+        // fixed sizes let the compiler interleave the coordinates' work
+        1 => walk_fixed::<1>(out, &directions, &finish),
+        2 => walk_fixed::<2>(out, &directions, &finish),
+        3 => walk_fixed::<3>(out, &directions, &finish),
+        _ => {
+            let mut state = vec![0u32; dims];
+            for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+                for (d, x) in p.iter_mut().enumerate() {
+                    *x = finish(state[d], d);
+                }
+                let c = (i as u64 + 1).trailing_zeros().min(31) as usize;
+                for (s, v) in state.iter_mut().zip(&directions) {
+                    *s ^= v[c];
+                }
+            }
+        }
+    }
+}
+
+#[inline]
+fn walk_fixed<const D: usize>(out: &mut [f64], directions: &[[u32; 32]], finish: &impl Fn(u32, usize) -> f64) {
+    let v: [[u32; 32]; D] = std::array::from_fn(|d| directions[d]);
+    let mut state = [0u32; D];
+    for (i, p) in out.chunks_exact_mut(D).enumerate() {
+        for d in 0..D {
+            p[d] = finish(state[d], d);
+        }
+        let c = (i as u64 + 1).trailing_zeros().min(31) as usize;
+        for d in 0..D {
+            state[d] ^= v[d][c];
+        }
+    }
+}
+
 impl Sampler for Sobol {
     fn spec(&self) -> String {
         match self.randomization {
@@ -103,17 +147,15 @@ impl Sampler for Sobol {
     }
     fn fill(&self, _n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         let keys: Vec<DimKey> = (0..dims).map(|d| DimKey::new(seed, d)).collect();
-        // Gray-code order (Antonov & Saleev 1979), as Joe & Kuo's and scipy's generators:
-        // point i+1 is point i XOR v_c, c = trailing_zeros(i+1).
-        let mut state = vec![0u32; dims];
-        for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-            for d in 0..dims {
-                p[d] = self.finish(state[d], keys[d]);
-            }
-            let c = (i as u64 + 1).trailing_zeros().min(31) as usize;
-            for d in 0..dims {
-                state[d] ^= SOBOL_DIRECTIONS[d][c];
-            }
+        match self.randomization {
+            // Owen works in the bit-reversed domain: keep the state reversed, so each
+            // coordinate costs one hash and one reversal
+            Randomization::Owen => gray_walk(out, dims, true, |x, d| {
+                f64::from(owen_scramble_reversed(x, keys[d].bits).reverse_bits()) * TO_UNIT
+            }),
+            Randomization::None => gray_walk(out, dims, false, |x, _| f64::from(x) * TO_UNIT),
+            Randomization::Xor => gray_walk(out, dims, false, |x, d| f64::from(x ^ keys[d].bits) * TO_UNIT),
+            Randomization::Shift => gray_walk(out, dims, false, |x, d| wrap01(f64::from(x) * TO_UNIT + keys[d].shift)),
         }
         Ok(())
     }

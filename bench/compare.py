@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Side-by-side throughput of samplab and scipy.stats.qmc, one core, 2D points.
+
+Runs both in this one invocation on the same machine and prints medians and ratios.
+Usage: bench/compare            (installs scipy into bench/.venv, builds samplab)
+       bench/compare --quick    (PoissonDisk at n = 10^4 instead of 10^5: minutes less)
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+from scipy.stats import qmc
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXAMPLE = os.path.join(ROOT, "target", "release", "examples", "throughput")
+QUICK = "--quick" in sys.argv
+
+
+def median_time(fn, min_runs=5, min_seconds=1.0, max_runs=50):
+    times = []
+    start = time.perf_counter()
+    while len(times) < min_runs or (time.perf_counter() - start < min_seconds and len(times) < max_runs):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+    times.sort()
+    return times[len(times) // 2]
+
+
+def samplab(spec, n):
+    out = subprocess.run([EXAMPLE, "%s:%d" % (spec, n)], check=True, capture_output=True, text=True,
+                         env=dict(os.environ, RAYON_NUM_THREADS="1")).stdout
+    return json.loads(out.strip().splitlines()[-1])["seconds"]
+
+
+def packing_radius(n):
+    return math.sqrt(2.0 / (math.sqrt(3.0) * n))
+
+
+rows = []
+
+
+def compare(what, n, peer_name, peer_fn, spec, peer_runs=5):
+    peer = median_time(peer_fn, min_runs=peer_runs, min_seconds=0.0 if peer_runs == 1 else 1.0)
+    ours = samplab(spec, n)
+    rows.append((what, n, peer_name, peer, spec, ours))
+    print("%-34s n=%-8d %-40s %9.4f s %8.2f M/s | samplab %-28s %9.4f s %8.2f M/s | ratio %7.1fx"
+          % (what, n, peer_name, peer, n / peer / 1e6, spec, ours, n / ours / 1e6, peer / ours), flush=True)
+
+
+N = 1_000_000
+rng = np.random.default_rng(1)
+compare("Sobol, cheap scramble (LMS+shift)", N, "scipy Sobol(scramble=True)",
+        lambda: qmc.Sobol(d=2, scramble=True, seed=rng).random(N), "sobol.xor")
+compare("Sobol, Owen vs scipy's cheap scramble", N, "scipy Sobol(scramble=True)",
+        lambda: qmc.Sobol(d=2, scramble=True, seed=rng).random(N), "sobol.owen")
+compare("Halton, scrambled", N, "scipy Halton(scramble=True)",
+        lambda: qmc.Halton(d=2, scramble=True, seed=rng).random(N), "halton.xor")
+compare("Latin hypercube / N-rooks", N, "scipy LatinHypercube",
+        lambda: qmc.LatinHypercube(d=2, seed=rng).random(N), "nrooks")
+n_poisson = 10_000 if QUICK else 100_000
+radius = 0.72 * packing_radius(n_poisson)
+got = {}
+
+
+def scipy_poisson():
+    got["n"] = len(qmc.PoissonDisk(d=2, radius=radius, seed=rng).random(n_poisson))
+
+
+compare("Poisson disk, same radius %.5f" % radius, n_poisson, "scipy PoissonDisk.random",
+        scipy_poisson, "poisson.fast:radius=%r,edge=plain" % radius, peer_runs=1)
+print("(scipy PoissonDisk returned %d points; samplab returns exactly n)" % got["n"])
+t = samplab("poisson.fast", N)
+print("samplab poisson.fast, n = 10^6 (auto radius): %.3f s" % t)
