@@ -10,8 +10,8 @@ use samplab::warp::WARPS;
 /// What to list.
 #[derive(clap::Args)]
 pub struct Args {
-    /// samplers, warps, formats or references (all when omitted)
-    #[arg(value_parser = ["samplers", "warps", "formats", "references"])]
+    /// samplers, warps, metrics, formats or references (all when omitted)
+    #[arg(value_parser = ["samplers", "warps", "metrics", "formats", "references"])]
     what: Option<String>,
 }
 
@@ -43,6 +43,27 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
             }
             if !e.references.is_empty() {
                 writeln!(out, "    references: {}", e.references.join(", ")).unwrap();
+            }
+        }
+        out.push('\n');
+    }
+    if want("metrics") {
+        out.push_str("METRICS  (values are never squared)\n\n");
+        for e in samplab::discrepancy::METRICS {
+            writeln!(
+                out,
+                "{}  —  {}{}{}",
+                e.name,
+                e.summary,
+                if e.l2 { " [L2, closed form]" } else { "" },
+                if e.shift_invariant { " [toroidal-shift invariant]" } else { "" }
+            )
+            .unwrap();
+            if !e.aliases.is_empty() {
+                writeln!(out, "    aliases: {}", e.aliases.join(", ")).unwrap();
+            }
+            for p in e.params {
+                writeln!(out, "    {} = {}  ({}): {}", p.name, p.default_text(), p.range_text(), p.doc).unwrap();
             }
         }
         out.push('\n');

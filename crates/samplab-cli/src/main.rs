@@ -7,6 +7,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod discrepancy;
 mod generate;
 mod list;
 mod plot;
@@ -27,6 +28,8 @@ enum Command {
     Generate(generate::Args),
     /// Plot a point-set file as a scatter with 1D marginal histograms (PNG or SVG).
     Plot(plot::Args),
+    /// Discrepancies (star, extreme, L2 family, projected) of a file or of a sampler's sets.
+    Discrepancy(discrepancy::Args),
 }
 
 fn main() -> ExitCode {
@@ -35,6 +38,7 @@ fn main() -> ExitCode {
         Command::List(a) => list::run(&a),
         Command::Generate(a) => generate::run(&a),
         Command::Plot(a) => plot::run(&a),
+        Command::Discrepancy(a) => discrepancy::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

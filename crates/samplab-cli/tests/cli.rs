@@ -156,3 +156,35 @@ fn warps_apply() {
         assert!((norm - 1.0).abs() < 1e-12 && p[2] >= 0.0);
     }
 }
+
+#[test]
+fn discrepancy_of_a_file_and_of_a_sampler() {
+    let dir = temp("disc");
+    let f = dir.join("grid.txt");
+    assert!(samplab(&["generate", "regular", "-n", "16", "-o", f.to_str().unwrap()]).status.success());
+    let out = samplab(&["discrepancy", "star", "extreme", f.to_str().unwrap(), "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["metrics"][0]["values"][0].as_f64().unwrap(), 0.234375);
+    assert_eq!(v["metrics"][1]["values"][0].as_f64().unwrap(), 0.4375);
+    assert_eq!(v["metrics"][0]["squared"], false);
+    let args = ["discrepancy", "star", "wraparound", "--sampler", "jitter", "-n", "64", "--sets", "50", "--json"];
+    let one = samplab_env(&args, "RAYON_NUM_THREADS", "1");
+    assert_eq!(one.stdout, samplab(&args).stdout, "thread count changed the result");
+}
+
+#[test]
+fn discrepancy_bad_input() {
+    let dir = temp("discbad");
+    let f = dir.join("p.txt");
+    std::fs::write(&f, "0.1 0.2\n0.3 1.5\n").unwrap();
+    assert_bad_input(&["discrepancy", "star", f.to_str().unwrap()], &["point 1 coordinate 1 is 1.5"]);
+    std::fs::write(&f, "0.1 0.2\n0.3 nan\n").unwrap();
+    assert_bad_input(&["discrepancy", "star", f.to_str().unwrap()], &["p.txt:2", "not finite"]);
+    std::fs::write(&f, "0.1 0.2\n0.3\n").unwrap();
+    assert_bad_input(&["discrepancy", "star", f.to_str().unwrap()], &["p.txt:2"]);
+    std::fs::write(&f, "0.1 0.2\n#\n0.3 0.4 0.5\n").unwrap();
+    assert_bad_input(&["discrepancy", "star", f.to_str().unwrap()], &["p.txt:3"]);
+    assert_bad_input(&["discrepancy", "star", "--sampler", "random", "-n", "3000", "-d", "6"], &["--max-work"]);
+    assert_bad_input(&["discrepancy", "strr", "--sampler", "random", "-n", "16"], &["unknown metric", "star"]);
+}

@@ -28,6 +28,7 @@
 #![deny(missing_docs)]
 
 pub mod bibliography;
+pub mod discrepancy;
 pub mod error;
 pub mod io;
 pub mod points;

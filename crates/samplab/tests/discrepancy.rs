@@ -1,0 +1,305 @@
+//! Discrepancy: every fast algorithm against its brute-force reference on thousands of
+//! random sets (ties and boundary points included), the L2 closed forms against exact
+//! integrals and scipy, known values, and the paper's claims.
+
+use samplab::discrepancy::{self, Limits, Metric, extreme, l2, star};
+use samplab::seed::{Rng, Seed, below, uniform};
+use samplab::{PointSet, sampler};
+
+/// A random set whose coordinates are drawn from a coarse lattice (ties) mixed with
+/// uniform values, 0 and 1.
+fn nasty(rng: &mut Rng, n: usize, d: usize) -> Vec<f64> {
+    let levels = 1 + below(rng, 8);
+    (0..n * d)
+        .map(|_| match below(rng, 6) {
+            0 => 0.0,
+            1 => 1.0,
+            2 | 3 => below(rng, levels + 1) as f64 / levels as f64,
+            _ => uniform(rng),
+        })
+        .collect()
+}
+
+fn assert_close(a: f64, b: f64, what: &str) {
+    assert!((a - b).abs() <= 1e-12, "{what}: {a} vs {b}");
+}
+
+#[test]
+fn star_fast_equals_naive_1d_2d() {
+    let mut rng = Seed(1).rng();
+    for trial in 0..3000 {
+        let n = 1 + below(&mut rng, 64) as usize;
+        let x = nasty(&mut rng, n, 1);
+        assert_close(star::star_1d(&x), star::star_naive(&x, 1), &format!("1D trial {trial}"));
+        let p = nasty(&mut rng, n, 2);
+        let naive = star::star_naive(&p, 2);
+        assert_close(star::star_2d(&p), naive, &format!("2D kinetic, trial {trial}: {p:?}"));
+        assert_close(star::star_2d_sweep(&p), naive, &format!("2D sweep, trial {trial}"));
+    }
+}
+
+#[test]
+fn star_kinetic_equals_sweep_on_larger_sets() {
+    let mut rng = Seed(2).rng();
+    for n in [100usize, 500, 2000] {
+        for _ in 0..5 {
+            let p: Vec<f64> = (0..2 * n).map(|_| uniform(&mut rng)).collect();
+            assert_close(star::star_2d(&p), star::star_2d_sweep(&p), &format!("n = {n}"));
+            let q = nasty(&mut rng, n, 2);
+            assert_close(star::star_2d(&q), star::star_2d_sweep(&q), &format!("ties, n = {n}"));
+        }
+    }
+}
+
+/// Brute force 1D extreme discrepancy over intervals with ends at critical values.
+fn extreme_1d_naive(x: &[f64]) -> f64 {
+    let mut c: Vec<f64> = x.to_vec();
+    c.extend([0.0, 1.0]);
+    c.sort_by(f64::total_cmp);
+    c.dedup();
+    let n = x.len() as f64;
+    let mut worst: f64 = 0.0;
+    for (i, &lo) in c.iter().enumerate() {
+        for &hi in &c[i..] {
+            let open = x.iter().filter(|&&t| lo < t && t < hi).count() as f64;
+            let closed = x.iter().filter(|&&t| lo <= t && t <= hi).count() as f64;
+            worst = worst.max(hi - lo - open / n).max(closed / n - (hi - lo));
+        }
+    }
+    worst
+}
+
+#[test]
+fn extreme_fast_equals_naive_1d_2d() {
+    let mut rng = Seed(3).rng();
+    for trial in 0..2000 {
+        let n = 1 + below(&mut rng, if trial < 1800 { 24 } else { 64 }) as usize;
+        let x = nasty(&mut rng, n, 1);
+        assert_close(extreme::extreme_1d(&x), extreme_1d_naive(&x), &format!("1D trial {trial}: {x:?}"));
+        let p = nasty(&mut rng, n, 2);
+        assert_close(extreme::extreme_2d(&p), extreme::extreme_2d_naive(&p), &format!("2D trial {trial}: {p:?}"));
+    }
+}
+
+#[test]
+fn star_exact_equals_naive_in_3d_and_4d() {
+    let mut rng = Seed(7).rng();
+    for trial in 0..1500 {
+        let (d, cap) = if trial < 1200 { (3, 24) } else { (4, 10) };
+        let n = 1 + below(&mut rng, cap) as usize;
+        let p = nasty(&mut rng, n, d);
+        assert_close(star::star_exact(&p, d), star::star_naive(&p, d), &format!("{d}D trial {trial}: {p:?}"));
+    }
+}
+
+#[test]
+fn centred_grids_have_the_closed_form_star_discrepancy() {
+    // the cell centres of a k^d grid: D* = 1 - (1 - 1/(2k))^d (the closed box through the
+    // last centres holds every point)
+    for (k, d) in [(5usize, 1usize), (4, 2), (7, 2), (2, 3), (3, 3), (4, 3), (2, 4)] {
+        let g = sampler::build("regular").unwrap().generate(k.pow(d as u32), d, Seed(0)).unwrap();
+        let want = 1.0 - (1.0 - 0.5 / k as f64).powi(d as i32);
+        let got = discrepancy::compute(&Metric::Star, &g, Limits::default()).unwrap();
+        assert!((got - want).abs() < 1e-12, "k={k} d={d}: {got} vs {want}");
+    }
+}
+
+#[test]
+fn l2_star_fast_equals_warnock() {
+    let mut rng = Seed(5).rng();
+    for trial in 0..2000 {
+        let n = 1 + below(&mut rng, 64) as usize;
+        let p = nasty(&mut rng, n, 2);
+        assert_close(l2::l2_star_sq_2d(&p), l2::l2_star_sq(&p, 2), &format!("trial {trial}"));
+    }
+}
+
+/// The exact integral of (count(x < q)/N - q1 q2)^2 over the unit square, cell by cell of
+/// the critical grid (the count is constant on each cell).
+fn l2_star_sq_by_integration(p: &[f64]) -> f64 {
+    let n = (p.len() / 2) as f64;
+    let grid = |k: usize| {
+        let mut v: Vec<f64> = p.iter().skip(k).step_by(2).copied().chain([0.0, 1.0]).collect();
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+        v
+    };
+    let (gx, gy) = (grid(0), grid(1));
+    let mut total = 0.0;
+    for wx in gx.windows(2) {
+        for wy in gy.windows(2) {
+            let c = p.chunks_exact(2).filter(|q| q[0] <= wx[0] && q[1] <= wy[0]).count() as f64 / n;
+            // integral of (c - x y)^2 = c^2 A - 2c (X2 Y2) + X3 Y3, with Xk = (b^k - a^k)/k
+            let m = |w: &[f64], k: i32| (w[1].powi(k) - w[0].powi(k)) / k as f64;
+            total += c * c * m(wx, 1) * m(wy, 1) - 2.0 * c * m(wx, 2) * m(wy, 2) + m(wx, 3) * m(wy, 3);
+        }
+    }
+    total
+}
+
+#[test]
+fn warnock_equals_the_defining_integral() {
+    let mut rng = Seed(6).rng();
+    for _ in 0..300 {
+        let n = 1 + below(&mut rng, 20) as usize;
+        let p = nasty(&mut rng, n, 2);
+        assert!((l2::l2_star_sq(&p, 2) - l2_star_sq_by_integration(&p)).abs() < 1e-13);
+    }
+}
+
+#[test]
+fn l2_extreme_of_one_point_in_1d_by_integration() {
+    // mean over intervals u < v of (1[u <= x < v] - (v - u))^2: midpoint rule on a fine grid
+    for x in [0.1, 0.5, 0.93] {
+        let k = 2000;
+        let h = 1.0 / k as f64;
+        let mut s = 0.0;
+        for i in 0..k {
+            for j in i + 1..k {
+                let (u, v) = ((i as f64 + 0.5) * h, (j as f64 + 0.5) * h);
+                let ind = if u <= x && x < v { 1.0 } else { 0.0 };
+                s += (ind - (v - u)).powi(2);
+            }
+        }
+        let integral = s * h * h;
+        assert!(
+            (l2::l2_extreme_sq(&[x], 1) - integral).abs() < 2e-3,
+            "x = {x}: {} vs {integral}",
+            l2::l2_extreme_sq(&[x], 1)
+        );
+    }
+}
+
+#[test]
+fn equal_scipy_on_stored_fixtures() {
+    let text =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/scipy_discrepancy.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for case in v["cases"].as_array().unwrap() {
+        let d = case["dims"].as_u64().unwrap() as usize;
+        let pts: Vec<f64> = case["points"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(|r| r.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()))
+            .collect();
+        let rel = |ours: f64, theirs: f64, what: &str| {
+            assert!((ours - theirs).abs() <= 1e-10 * theirs.abs(), "{what} d={d}: ours {ours}, scipy {theirs}");
+        };
+        let s = &case["scipy"];
+        // scipy returns CD, WD, MD squared and L2-star unsquared
+        rel(l2::centered_sq(&pts, d), s["CD"].as_f64().unwrap(), "CD");
+        rel(l2::wraparound_sq(&pts, d), s["WD"].as_f64().unwrap(), "WD");
+        rel(l2::mixture_sq(&pts, d), s["MD"].as_f64().unwrap(), "MD");
+        let set = PointSet::new(d, pts.clone()).unwrap();
+        rel(
+            discrepancy::compute(&Metric::L2Star, &set, Limits::default()).unwrap(),
+            s["L2-star"].as_f64().unwrap(),
+            "L2-star",
+        );
+    }
+}
+
+#[test]
+fn regular_grid_known_values() {
+    let grid = sampler::build("regular").unwrap().generate(16, 2, Seed(0)).unwrap();
+    let m = |name: &str| discrepancy::compute(&Metric::parse(name).unwrap().0, &grid, Limits::default()).unwrap();
+    assert_close(m("star"), 0.234375, "D*");
+    assert_close(m("extreme"), 0.4375, "extreme");
+    // L2-star of the 4x4 grid by hand: 0.0597... (Shirley's S = 0.0600 rounded)
+    let s = m("l2-star");
+    assert!((s - 0.059_73).abs() < 5e-5, "{s}");
+    assert_close(s, l2_star_sq_by_integration(grid.as_slice()).sqrt(), "L2-star by integration");
+}
+
+#[test]
+fn wraparound_is_shift_invariant_and_star_is_not() {
+    let p = sampler::build("jitter").unwrap().generate(64, 2, Seed(1)).unwrap();
+    let shifted = PointSet::new(2, p.iter().flat_map(|q| [(q[0] + 0.3) % 1.0, (q[1] + 0.71) % 1.0]).collect()).unwrap();
+    let m = |metric: Metric, s: &PointSet| discrepancy::compute(&metric, s, Limits::default()).unwrap();
+    assert!((m(Metric::WrapAround, &p) - m(Metric::WrapAround, &shifted)).abs() < 1e-13);
+    assert!((m(Metric::Star, &p) - m(Metric::Star, &shifted)).abs() > 1e-6);
+}
+
+#[test]
+fn projected_discrepancy() {
+    let p = sampler::build("random").unwrap().generate(20_000, 2, Seed(2)).unwrap();
+    let m = |angle: f64, extreme: bool, s: &PointSet| {
+        discrepancy::compute(&Metric::Projected { angle, extreme }, s, Limits::default()).unwrap()
+    };
+    // angle 0 and 90: the 1D discrepancies of x and y
+    assert_close(m(0.0, false, &p), star::star_1d(&p.column(0)), "x");
+    assert!((m(90.0, false, &p) - star::star_1d(&p.column(1))).abs() < 1e-12);
+    // the projected CDF is right: uniform points pass a 1% Kolmogorov-Smirnov test at any angle
+    for angle in [17.0, 30.0, 45.0, 123.0, -60.0] {
+        let ks = m(angle, false, &p);
+        assert!(ks < 1.63 / (20_000f64).sqrt(), "angle {angle}: {ks}");
+    }
+    // a 16 x 16 grid seen at 0 degrees: 16 columns of 16 points; a zero-width interval on a
+    // column holds 1/16 of the points
+    let grid = sampler::build("regular").unwrap().generate(256, 2, Seed(0)).unwrap();
+    assert_close(m(0.0, true, &grid), 1.0 / 16.0, "grid at 0 degrees");
+}
+
+/// Shirley 1991 section 4: the generalized discrepancy (over rectangles of the warped
+/// domain, expected counts from the density) of a tent-warped set equals the extreme
+/// discrepancy of the original set. Checked by brute force in the warped domain.
+#[test]
+fn generalized_discrepancy_of_warped_set_equals_original() {
+    let tent = samplab::warp::lookup("tent").unwrap();
+    let cdf = samplab::warp::tent_cdf;
+    for seed in 0..5 {
+        let u = sampler::build("jitter").unwrap().generate(16, 2, Seed(seed)).unwrap();
+        let w = samplab::warp::apply(tent, &u).unwrap();
+        // brute force: rectangles with sides at the warped coordinates or the support's edges
+        let side = |k: usize| {
+            let mut v: Vec<f64> = w.column(k).into_iter().chain([-1.0, 1.0]).collect();
+            v.sort_by(f64::total_cmp);
+            v
+        };
+        let (xs, ys) = (side(0), side(1));
+        let n = 16.0;
+        let mut worst: f64 = 0.0;
+        let mut anchored: f64 = 0.0;
+        for (i, &x0) in xs.iter().enumerate() {
+            for &x1 in &xs[i..] {
+                for (j, &y0) in ys.iter().enumerate() {
+                    for &y1 in &ys[j..] {
+                        let mass = (cdf(x1) - cdf(x0)) * (cdf(y1) - cdf(y0));
+                        let open =
+                            w.iter().filter(|p| x0 < p[0] && p[0] < x1 && y0 < p[1] && p[1] < y1).count() as f64 / n;
+                        let closed = w.iter().filter(|p| x0 <= p[0] && p[0] <= x1 && y0 <= p[1] && p[1] <= y1).count()
+                            as f64
+                            / n;
+                        let here = (mass - open).max(closed - mass);
+                        worst = worst.max(here);
+                        if x0 == -1.0 && y0 == -1.0 {
+                            anchored = anchored.max(here);
+                        }
+                    }
+                }
+            }
+        }
+        let limits = Limits::default();
+        let ext = discrepancy::compute(&Metric::Extreme, &u, limits).unwrap();
+        let st = discrepancy::compute(&Metric::Star, &u, limits).unwrap();
+        assert!((worst - ext).abs() < 1e-12, "extreme: {worst} vs {ext}");
+        assert!((anchored - st).abs() < 1e-12, "star: {anchored} vs {st}");
+        let g = discrepancy::generalized(&w, &[&cdf, &cdf], false, limits).unwrap();
+        assert!((g - ext).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn bad_input_errors() {
+    let outside = PointSet::new(2, vec![0.5, 1.5]).unwrap();
+    let e = discrepancy::compute(&Metric::Star, &outside, Limits::default()).unwrap_err().to_string();
+    assert!(e.contains("point 0 coordinate 1 is 1.5"), "{e}");
+    let big = sampler::build("random").unwrap().generate(3000, 6, Seed(0)).unwrap();
+    let e = discrepancy::compute(&Metric::Star, &big, Limits::default()).unwrap_err().to_string();
+    assert!(e.contains("--max-work"), "{e}");
+    let e = Metric::parse("stra").unwrap_err().to_string();
+    assert!(e.contains("star"), "{e}");
+    let e = Metric::parse("projected:angle=400").unwrap_err().to_string();
+    assert!(e.contains("'angle'"), "{e}");
+}
