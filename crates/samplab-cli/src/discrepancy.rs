@@ -99,11 +99,9 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
 }
 
 /// Mean, standard deviation (n - 1) and maximum.
-pub(crate) fn summary(v: &[f64]) -> (f64, f64, f64) {
-    let n = v.len() as f64;
-    let mean = v.iter().sum::<f64>() / n;
-    let sd = if v.len() > 1 { (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt() } else { 0.0 };
-    (mean, sd, v.iter().copied().fold(f64::NEG_INFINITY, f64::max))
+fn summary(v: &[f64]) -> (f64, f64, f64) {
+    let s = samplab::stats::Summary::of(v);
+    (s.mean, s.sd, s.max)
 }
 
 fn table(metrics: &[(Metric, &MetricEntry)], values: &[Vec<f64>], source: &str) -> String {

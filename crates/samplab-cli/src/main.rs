@@ -11,6 +11,7 @@ mod discrepancy;
 mod generate;
 mod list;
 mod plot;
+mod reproduce;
 
 /// Sampling patterns for Monte Carlo integration in rendering.
 #[derive(Parser)]
@@ -22,6 +23,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Reproduce the four papers' tables and figures in an HTML report (the main job).
+    Reproduce(reproduce::Args),
     /// List samplers, warps or file formats, with aliases, parameters and references.
     List(list::Args),
     /// Generate point sets with a sampler (text to stdout by default).
@@ -35,6 +38,7 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Reproduce(a) => reproduce::run(&a),
         Command::List(a) => list::run(&a),
         Command::Generate(a) => generate::run(&a),
         Command::Plot(a) => plot::run(&a),

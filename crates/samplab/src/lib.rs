@@ -35,6 +35,7 @@ pub mod points;
 pub mod sampler;
 pub mod seed;
 pub mod spec;
+pub mod stats;
 pub mod warp;
 
 pub use error::{Error, Result};

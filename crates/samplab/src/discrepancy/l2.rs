@@ -9,14 +9,15 @@ use rayon::prelude::*;
 
 /// Neumaier's compensated sum.
 #[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct Sum {
+pub struct Sum {
     sum: f64,
     err: f64,
 }
 
 impl Sum {
+    /// Add `x`.
     #[inline]
-    pub(crate) fn add(&mut self, x: f64) {
+    pub fn add(&mut self, x: f64) {
         let t = self.sum + x;
         if self.sum.abs() >= x.abs() {
             self.err += (self.sum - t) + x;
@@ -25,11 +26,13 @@ impl Sum {
         }
         self.sum = t;
     }
-    pub(crate) fn merge(&mut self, other: Sum) {
+    /// Add another compensated sum.
+    pub fn merge(&mut self, other: Sum) {
         self.add(other.sum);
         self.add(other.err);
     }
-    pub(crate) fn value(&self) -> f64 {
+    /// The sum.
+    pub fn value(&self) -> f64 {
         self.sum + self.err
     }
 }

@@ -1,0 +1,199 @@
+//! The report's pages: `index.html`, one page per paper, `claims.json`, tables as CSV
+//! and JSON, figures as PNG and SVG. Plain HTML and CSS, no scripts.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use crate::{Claim, Done, Error, Options, Paper, Scale, Table, Verdict};
+
+/// Escape text for HTML.
+pub fn escape(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    std::fs::write(path, bytes).map_err(|e| Error::Io { path: path.display().to_string(), reason: e.to_string() })
+}
+
+const STYLE: &str =
+    "body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222;line-height:1.45}
+h1,h2,h3{line-height:1.2}table{border-collapse:collapse;margin:.8em 0;font-size:.92em}
+th,td{border:1px solid #ccc;padding:.3em .6em;text-align:right}th{background:#f3f3f3}
+td:first-child,th:first-child{text-align:left}figure{margin:1.2em 0}figure img{max-width:100%;border:1px solid #ddd}
+figcaption,.caption{color:#555;font-size:.9em}.reproduced{color:#17692b;font-weight:600}
+.not-reproduced{color:#b3261e;font-weight:600}.differs{color:#8a5a00;font-weight:600}
+.note{background:#f8f8f2;border-left:3px solid #bbb;padding:.4em .8em;margin:.5em 0}
+.pending{color:#666}code{background:#f3f3f3;padding:0 .2em}nav a{margin-right:1em}
+";
+
+fn verdict_html(v: &Verdict) -> String {
+    match v {
+        Verdict::Reproduced => "<span class=\"reproduced\">reproduced</span>".into(),
+        Verdict::NotReproduced => "<span class=\"not-reproduced\">not reproduced</span>".into(),
+        Verdict::DiffersBecause(why) => format!("<span class=\"differs\">differs because</span> {}", escape(why)),
+    }
+}
+
+fn claims_table(claims: &[&Claim]) -> String {
+    let mut h =
+        String::from("<table><tr><th>claim</th><th>published</th><th>ours</th><th>theory</th><th>verdict</th></tr>\n");
+    for c in claims {
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td style=\"text-align:left\">{}</td></tr>",
+            escape(&c.statement),
+            escape(&c.published),
+            escape(&c.ours),
+            escape(&c.theory),
+            verdict_html(&c.verdict)
+        );
+    }
+    h + "</table>\n"
+}
+
+fn table_html(t: &Table) -> String {
+    let mut h = format!("<table id=\"{}\"><tr>", escape(&t.id));
+    for c in &t.columns {
+        let _ = write!(h, "<th>{}</th>", escape(c));
+    }
+    h.push_str("</tr>\n");
+    for row in &t.rows {
+        h.push_str("<tr>");
+        for cell in row {
+            let _ = write!(h, "<td>{}</td>", escape(&cell.text()));
+        }
+        h.push_str("</tr>\n");
+    }
+    let _ = writeln!(
+        h,
+        "</table><p class=\"caption\">{} (<a href=\"tables/{id}.csv\">CSV</a>, <a href=\"tables/{id}.json\">JSON</a>)</p>",
+        escape(&t.caption),
+        id = escape(&t.id)
+    );
+    h
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
+}
+
+fn table_files(dir: &Path, t: &Table) -> Result<(), Error> {
+    let mut csv = t.columns.iter().map(|c| csv_field(c)).collect::<Vec<_>>().join(",") + "\n";
+    for row in &t.rows {
+        // CSV keeps full precision
+        let cells: Vec<String> = row
+            .iter()
+            .map(|c| match c {
+                crate::Cell::Num { value, .. } => format!("{value:?}"),
+                other => csv_field(&other.text()),
+            })
+            .collect();
+        csv += &(cells.join(",") + "\n");
+    }
+    write(&dir.join(format!("tables/{}.csv", t.id)), csv.as_bytes())?;
+    let json = serde_json::to_string_pretty(t).expect("tables are plain data");
+    write(&dir.join(format!("tables/{}.json", t.id)), json.as_bytes())
+}
+
+fn page(title: &str, nav: &str, body: &str) -> String {
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{t}</title><link rel=\"stylesheet\" href=\"style.css\"></head>\n<body><nav>{nav}</nav>\n<h1>{t}</h1>\n{body}</body></html>\n",
+        t = escape(title)
+    )
+}
+
+fn counts(claims: &[&Claim]) -> (usize, usize, usize) {
+    let r = claims.iter().filter(|c| c.verdict == Verdict::Reproduced).count();
+    let n = claims.iter().filter(|c| c.verdict == Verdict::NotReproduced).count();
+    (r, n, claims.len() - r - n)
+}
+
+/// Write every file of the report into `dir`; returns the claims with their paper keys.
+pub(crate) fn write_report(
+    dir: &Path,
+    results: &[(&Paper, Vec<Done>)],
+    options: &Options,
+) -> Result<Vec<(String, Claim)>, Error> {
+    write(&dir.join("style.css"), STYLE.as_bytes())?;
+    let mut nav = String::from("<a href=\"index.html\">summary</a>");
+    for (p, _) in results {
+        let _ = write!(nav, "<a href=\"{}.html\">{}</a>", p.key, escape(p.title));
+    }
+    let mut all_claims: Vec<(String, Claim)> = Vec::new();
+    let mut index_rows = String::new();
+    let mut total_seconds = 0.0;
+    for (paper, done) in results {
+        let cite = samplab::bibliography::lookup(paper.key).map_or(String::new(), |r| r.citation.to_string());
+        let claims: Vec<&Claim> = done.iter().flat_map(|d| &d.output.claims).collect();
+        let mut body = format!("<p>{}</p>\n<h2>Claims</h2>\n{}", escape(&cite), claims_table(&claims));
+        for d in done {
+            total_seconds += d.seconds;
+            let _ = write!(
+                body,
+                "<h2 id=\"{}\">{}</h2>\n<p class=\"caption\">Parameters: {}. Took {:.1} s.</p>\n",
+                d.experiment,
+                escape(&d.title),
+                escape(&d.parameters),
+                d.seconds
+            );
+            for note in &d.output.notes {
+                let _ = writeln!(body, "<p class=\"note\">{}</p>", escape(note));
+            }
+            for t in &d.output.tables {
+                table_files(dir, t)?;
+                body.push_str(&table_html(t));
+            }
+            for f in &d.output.figures {
+                write(&dir.join(format!("figures/{}.png", f.id)), &f.png)?;
+                write(&dir.join(format!("figures/{}.svg", f.id)), f.svg.as_bytes())?;
+                let _ = writeln!(
+                    body,
+                    "<figure><img src=\"figures/{id}.png\" alt=\"{cap}\"><figcaption>{cap} (<a href=\"figures/{id}.svg\">SVG</a>)</figcaption></figure>",
+                    id = escape(&f.id),
+                    cap = escape(&f.caption)
+                );
+            }
+        }
+        if !paper.pending.is_empty() {
+            body.push_str("<h2>Not reproduced yet</h2>\n<ul class=\"pending\">\n");
+            for (what, why) in &paper.pending {
+                let _ = writeln!(body, "<li>{}: {}</li>", escape(what), escape(why));
+            }
+            body.push_str("</ul>\n");
+        }
+        write(&dir.join(format!("{}.html", paper.key)), page(paper.title, &nav, &body).as_bytes())?;
+        let (r, n, d) = counts(&claims);
+        let _ = writeln!(
+            index_rows,
+            "<tr><td><a href=\"{key}.html\">{title}</a></td><td>{}</td><td>{r}</td><td>{n}</td><td>{d}</td><td>{}</td></tr>",
+            done.len(),
+            paper.pending.len(),
+            key = paper.key,
+            title = escape(paper.title)
+        );
+        all_claims.extend(claims.into_iter().map(|c| (paper.key.to_string(), c.clone())));
+    }
+    let refs: Vec<&Claim> = all_claims.iter().map(|(_, c)| c).collect();
+    let scale = if options.scale == Scale::Fast { "fast (default)" } else { "full (the papers' own scales)" };
+    let body = format!(
+        "<p>samplab {} reproduction, scale {scale}, seed {}; experiments took {:.1} s in all. Every number in a table comes from this run, except the published values, which are read from one data file with their sources.</p>\n\
+         <table><tr><th>paper</th><th>experiments</th><th>reproduced</th><th>not reproduced</th><th>differs</th><th>parts pending</th></tr>\n{index_rows}</table>\n\
+         <h2>All claims</h2>\n{}<p><a href=\"claims.json\">claims.json</a></p>\n",
+        env!("CARGO_PKG_VERSION"),
+        options.seed.0,
+        total_seconds,
+        claims_table(&refs)
+    );
+    let claims_json: Vec<serde_json::Value> = all_claims
+        .iter()
+        .map(|(paper, c)| {
+            let mut v = serde_json::to_value(c).expect("claims are plain data");
+            v["paper"] = paper.clone().into();
+            v
+        })
+        .collect();
+    write(&dir.join("claims.json"), serde_json::to_string_pretty(&claims_json).expect("plain data").as_bytes())?;
+    // the index last: a folder with an index is a finished report
+    write(&dir.join("index.html"), page("samplab: reproducing the papers", &nav, &body).as_bytes())?;
+    Ok(all_claims)
+}

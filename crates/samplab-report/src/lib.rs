@@ -1,0 +1,314 @@
+//! # samplab-report
+//!
+//! Plots, tables, and the reproduction of the four papers samplab builds on (one module
+//! per paper). `samplab reproduce` runs the experiments and writes an HTML report with
+//! every figure (PNG and SVG) and table (CSV and JSON) beside the published values and
+//! the theory, and a verdict on each claim (`claims.json`).
+//!
+//! The report is written into a temporary folder beside the target and renamed into
+//! place when complete, so an interrupted run never leaves a report that looks finished.
+
+#![deny(missing_docs)]
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
+use samplab::Seed;
+use serde::Serialize;
+
+pub mod html;
+pub mod paper;
+pub mod plot;
+pub mod published;
+
+/// Errors of the report crate.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A library error (sampler, metric, ...).
+    #[error(transparent)]
+    Samplab(#[from] samplab::Error),
+    /// A file could not be written.
+    #[error("{path}: {reason}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The OS error.
+        reason: String,
+    },
+    /// A plot could not be drawn.
+    #[error("plot: {0}")]
+    Plot(String),
+    /// Bad options (an unknown paper, ...).
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// Experiment scale: `Fast` (the default, minutes on two cores) or `Full` (the papers' own).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Scale {
+    /// Reduced parameters.
+    Fast,
+    /// The papers' parameters.
+    Full,
+}
+
+/// What an experiment gets: its scale, seed and progress bar.
+pub struct Ctx {
+    /// The scale.
+    pub scale: Scale,
+    /// The experiment's own seed (derived from the run's seed and the experiment id).
+    pub seed: Seed,
+    /// Progress of this experiment; set its length and increment it.
+    pub progress: ProgressBar,
+}
+
+impl Ctx {
+    /// `fast` or `full`, by the scale.
+    pub fn pick<T>(&self, fast: T, full: T) -> T {
+        if self.scale == Scale::Fast { fast } else { full }
+    }
+}
+
+/// A table cell.
+#[derive(Debug, Clone, Serialize)]
+#[serde(untagged)]
+pub enum Cell {
+    /// Text.
+    Text(String),
+    /// A number shown with `digits` significant decimals.
+    Num {
+        /// The value.
+        value: f64,
+        /// Decimals to show.
+        #[serde(skip)]
+        digits: usize,
+    },
+    /// Nothing.
+    Empty,
+}
+
+impl Cell {
+    /// A number cell.
+    pub fn num(value: f64, digits: usize) -> Cell {
+        Cell::Num { value, digits }
+    }
+    /// The cell as display text.
+    pub fn text(&self) -> String {
+        match self {
+            Cell::Text(t) => t.clone(),
+            Cell::Num { value, digits } => format!("{value:.digits$}"),
+            Cell::Empty => String::new(),
+        }
+    }
+}
+
+impl From<&str> for Cell {
+    fn from(s: &str) -> Cell {
+        Cell::Text(s.into())
+    }
+}
+
+impl From<String> for Cell {
+    fn from(s: String) -> Cell {
+        Cell::Text(s)
+    }
+}
+
+/// A table of results.
+#[derive(Debug, Clone, Serialize)]
+pub struct Table {
+    /// File-name stem, unique in the report.
+    pub id: String,
+    /// What it shows, with the source of any published column.
+    pub caption: String,
+    /// Column headers.
+    pub columns: Vec<String>,
+    /// Rows of cells.
+    pub rows: Vec<Vec<Cell>>,
+}
+
+/// A rendered figure.
+pub struct Figure {
+    /// File-name stem, unique in the report.
+    pub id: String,
+    /// What it shows.
+    pub caption: String,
+    /// PNG bytes.
+    pub png: Vec<u8>,
+    /// SVG text.
+    pub svg: String,
+}
+
+impl Figure {
+    /// Render `chart` at `size` as PNG and SVG.
+    ///
+    /// # Errors
+    /// A drawing failure.
+    pub fn render(id: &str, caption: &str, chart: &impl plot::Drawable, size: (u32, u32)) -> Result<Figure, Error> {
+        Ok(Figure {
+            id: id.into(),
+            caption: caption.into(),
+            png: plot::png(chart, size)?,
+            svg: plot::svg(chart, size)?,
+        })
+    }
+}
+
+/// The verdict on a claim.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "verdict", content = "reason", rename_all = "kebab-case")]
+pub enum Verdict {
+    /// Our measurement supports the claim.
+    Reproduced,
+    /// Our measurement contradicts the claim.
+    NotReproduced,
+    /// Ours differs from the published number for a stated reason.
+    DiffersBecause(String),
+}
+
+/// One of a paper's key claims, checked.
+#[derive(Debug, Clone, Serialize)]
+pub struct Claim {
+    /// Stable id.
+    pub id: String,
+    /// The claim in words.
+    pub statement: String,
+    /// The published number or statement, with its source.
+    pub published: String,
+    /// Our number.
+    pub ours: String,
+    /// The closed-form prediction, where there is one.
+    pub theory: String,
+    /// The verdict.
+    #[serde(flatten)]
+    pub verdict: Verdict,
+}
+
+/// What an experiment produces.
+#[derive(Default)]
+pub struct Output {
+    /// Tables.
+    pub tables: Vec<Table>,
+    /// Figures.
+    pub figures: Vec<Figure>,
+    /// Claims checked.
+    pub claims: Vec<Claim>,
+    /// Remarks shown under the experiment (method, parameters, caveats).
+    pub notes: Vec<String>,
+}
+
+/// One experiment of a paper.
+pub struct Experiment {
+    /// Stable id (used for seeds and file names).
+    pub id: &'static str,
+    /// Title.
+    pub title: &'static str,
+    /// Which tables or figures of the paper it reproduces.
+    pub source: &'static str,
+    /// The parameters at each scale, in words.
+    pub parameters: &'static str,
+    /// Run it.
+    pub run: fn(&Ctx) -> Result<Output, Error>,
+}
+
+/// One paper: its experiments and what is not reproduced yet.
+pub struct Paper {
+    /// Bibliography key (also the page's file name).
+    pub key: &'static str,
+    /// Short title.
+    pub title: &'static str,
+    /// Its experiments.
+    pub experiments: Vec<Experiment>,
+    /// Parts of the paper not reproduced yet, and why.
+    pub pending: Vec<(&'static str, &'static str)>,
+}
+
+/// Options of a reproduction run.
+#[derive(Debug, Clone)]
+pub struct Options {
+    /// Scale.
+    pub scale: Scale,
+    /// Seed of the whole run.
+    pub seed: Seed,
+    /// Where the report goes (replaced when the run completes).
+    pub out: PathBuf,
+}
+
+/// The outcome of one experiment, for the pages.
+pub struct Done {
+    /// The experiment.
+    pub experiment: &'static str,
+    /// Its title and source.
+    pub title: String,
+    /// Its parameters.
+    pub parameters: String,
+    /// Seconds it took.
+    pub seconds: f64,
+    /// What it produced.
+    pub output: Output,
+}
+
+/// Run `papers` and write the report. Returns the claims.
+///
+/// # Errors
+/// An experiment or a write fails; the target folder is then left as it was.
+pub fn reproduce(papers: &[&Paper], options: &Options) -> Result<Vec<(String, Claim)>, Error> {
+    let out = &options.out;
+    let parent = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = out
+        .file_name()
+        .ok_or_else(|| Error::Invalid(format!("--out {}: not a folder name", out.display())))?
+        .to_string_lossy()
+        .to_string();
+    let staging = parent.join(format!(".{name}.partial-{}", std::process::id()));
+    let io = |p: &Path, e: std::io::Error| Error::Io { path: p.display().to_string(), reason: e.to_string() };
+    let bars = MultiProgress::new();
+    let mut results: Vec<(&Paper, Vec<Done>)> = Vec::new();
+    for paper in papers {
+        let mut done = Vec::new();
+        for e in &paper.experiments {
+            let bar = bars.add(ProgressBar::new(1));
+            bar.set_style(
+                ProgressStyle::with_template("{prefix:40} [{bar:30}] {pos}/{len} {elapsed}").expect("valid template"),
+            );
+            bar.set_prefix(format!("{} {}", paper.key, e.id));
+            let ctx = Ctx {
+                scale: options.scale,
+                seed: options.seed.derive_str(&format!("{}/{}", paper.key, e.id)),
+                progress: bar.clone(),
+            };
+            let start = Instant::now();
+            let output = (e.run)(&ctx)?;
+            bar.finish();
+            done.push(Done {
+                experiment: e.id,
+                title: format!("{} — {}", e.title, e.source),
+                parameters: e.parameters.into(),
+                seconds: start.elapsed().as_secs_f64(),
+                output,
+            });
+        }
+        results.push((paper, done));
+    }
+    // everything is in memory: write it into a staging folder, then swap it into place
+    let write = || -> Result<Vec<(String, Claim)>, Error> {
+        std::fs::create_dir_all(parent).map_err(|e| io(parent, e))?;
+        let _ = std::fs::remove_dir_all(&staging);
+        for sub in ["figures", "tables"] {
+            std::fs::create_dir_all(staging.join(sub)).map_err(|e| io(&staging, e))?;
+        }
+        html::write_report(&staging, &results, options)
+    };
+    let claims = write().inspect_err(|_| {
+        let _ = std::fs::remove_dir_all(&staging);
+    })?;
+    // swap into place: the old report (if any) is removed only after the new one is complete
+    let old = parent.join(format!(".{name}.old-{}", std::process::id()));
+    if out.exists() {
+        std::fs::rename(out, &old).map_err(|e| io(out, e))?;
+    }
+    std::fs::rename(&staging, out).map_err(|e| io(out, e))?;
+    let _ = std::fs::remove_dir_all(&old);
+    Ok(claims)
+}

@@ -1,0 +1,469 @@
+//! Plots for the CLI and the reports: PNG (with the bundled DejaVu Sans, so no system
+//! fonts are needed) and SVG from one drawing routine. The same strategy has the same
+//! colour in every figure.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use samplab::PointSet;
+
+use crate::Error;
+
+const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+
+/// Something that can draw itself on any plotters backend.
+pub trait Drawable {
+    /// Draw on `root`.
+    ///
+    /// # Errors
+    /// A backend failure, as text.
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String>;
+}
+
+fn register_fonts() -> Result<(), Error> {
+    for family in ["sans-serif", "serif", "monospace"] {
+        plotters::style::register_font(family, FontStyle::Normal, FONT)
+            .map_err(|_| Error::Plot("the bundled font is invalid".into()))?;
+    }
+    Ok(())
+}
+
+/// The drawing as SVG text.
+///
+/// # Errors
+/// A drawing failure.
+pub fn svg(d: &impl Drawable, (w, h): (u32, u32)) -> Result<String, Error> {
+    register_fonts()?;
+    let mut out = String::new();
+    d.draw(SVGBackend::with_string(&mut out, (w, h)).into_drawing_area()).map_err(Error::Plot)?;
+    Ok(out)
+}
+
+/// The drawing as PNG bytes.
+///
+/// # Errors
+/// A drawing or encoding failure.
+pub fn png(d: &impl Drawable, (w, h): (u32, u32)) -> Result<Vec<u8>, Error> {
+    register_fonts()?;
+    let mut buf = vec![255u8; (w * h * 3) as usize];
+    d.draw(BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area()).map_err(Error::Plot)?;
+    let img = image::RgbImage::from_raw(w, h, buf).ok_or_else(|| Error::Plot("image buffer size".into()))?;
+    let mut out = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut out, image::ImageFormat::Png).map_err(|e| Error::Plot(e.to_string()))?;
+    Ok(out.into_inner())
+}
+
+/// The colour of a strategy, the same in every figure: a fixed table (tab20 colours)
+/// keyed by sampler family (the spec up to ':', variants of the low-discrepancy families
+/// sharing their family's colour), then a stable hash for anything else.
+pub fn colour(strategy: &str) -> RGBColor {
+    const TABLE: [(&str, RGBColor); 16] = [
+        ("random", RGBColor(31, 119, 180)),
+        ("regular", RGBColor(255, 127, 14)),
+        ("jitter", RGBColor(44, 160, 44)),
+        ("jitter.half", RGBColor(214, 39, 40)),
+        ("nrooks", RGBColor(148, 103, 189)),
+        ("poisson", RGBColor(140, 86, 75)),
+        ("jitter.uniform", RGBColor(227, 119, 194)),
+        ("jitter.gaussian", RGBColor(127, 127, 127)),
+        ("halton", RGBColor(188, 189, 34)),
+        ("sobol", RGBColor(23, 190, 207)),
+        ("pmj02", RGBColor(0, 0, 0)),
+        ("hammersley", RGBColor(174, 199, 232)),
+        ("cmj", RGBColor(255, 152, 150)),
+        ("jitter.box", RGBColor(152, 223, 138)),
+        ("force-matrix", RGBColor(197, 176, 213)),
+        ("regular.rotated", RGBColor(255, 187, 120)),
+    ];
+    let spec = strategy.split(':').next().unwrap_or(strategy);
+    let family = ["halton", "sobol", "hammersley", "poisson"].into_iter().find(|f| spec.starts_with(f)).unwrap_or(spec);
+    TABLE.iter().find(|(k, _)| *k == family).map(|(_, c)| *c).unwrap_or_else(|| {
+        let h = strategy.bytes().fold(2_166_136_261u32, |h, b| (h ^ u32::from(b)).wrapping_mul(16_777_619));
+        TABLE[(h % TABLE.len() as u32) as usize].1
+    })
+}
+
+fn err<E: std::fmt::Debug>(e: E) -> String {
+    format!("{e:?}")
+}
+
+/// A scatter plot of two coordinates of a set with its two 1D marginal histograms.
+pub struct Scatter<'a> {
+    /// The points.
+    pub set: &'a PointSet,
+    /// Which coordinates go on the x and y axes.
+    pub axes: [usize; 2],
+    /// Strata lines: k x k.
+    pub grid: Option<usize>,
+    /// The title.
+    pub title: String,
+}
+
+/// The plotted range of one coordinate: [0,1] for unit-cube sets, else the data's span.
+fn range(v: &[f64]) -> (f64, f64) {
+    let (lo, hi) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| (l.min(x), h.max(x)));
+    if lo >= 0.0 && hi <= 1.0 {
+        (0.0, 1.0)
+    } else {
+        let pad = 0.02 * (hi - lo).max(1e-9);
+        (lo - pad, hi + pad)
+    }
+}
+
+/// Counts per bin as a density relative to uniform (1 = exactly uniform).
+fn histogram(v: &[f64], (lo, hi): (f64, f64), bins: usize) -> Vec<f64> {
+    let mut h = vec![0.0; bins];
+    for &x in v {
+        let b = (((x - lo) / (hi - lo)) * bins as f64) as usize;
+        h[b.min(bins - 1)] += 1.0;
+    }
+    let expect = v.len() as f64 / bins as f64;
+    h.iter_mut().for_each(|c| *c /= expect);
+    h
+}
+
+impl Drawable for Scatter<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
+        root.fill(&WHITE).map_err(err)?;
+        let (xs, ys) = (self.set.column(self.axes[0]), self.set.column(self.axes[1]));
+        let (rx, ry) = (range(&xs), range(&ys));
+        let bins = ((self.set.len() as f64).sqrt() as usize).clamp(8, 64);
+        let (hx, hy) = (histogram(&xs, rx, bins), histogram(&ys, ry, bins));
+        let hmax = hx.iter().chain(&hy).fold(1.5f64, |m, &v| m.max(v)) * 1.05;
+        let root = root.titled(&self.title, ("sans-serif", 22)).map_err(err)?;
+        let (w, h) = root.dim_in_pixel();
+        let side = (w.min(h) as f64 * 0.2) as u32;
+        let (top, bottom) = root.split_vertically(side);
+        let (main, right) = bottom.split_horizontally(w - side);
+        let (top_hist, _) = top.split_horizontally(w - side);
+        let mut chart = ChartBuilder::on(&main)
+            .margin(8)
+            .x_label_area_size(40)
+            .y_label_area_size(50)
+            .build_cartesian_2d(rx.0..rx.1, ry.0..ry.1)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(format!("x{}", self.axes[0]))
+            .y_desc(format!("x{}", self.axes[1]))
+            .label_style(("sans-serif", 14))
+            .draw()
+            .map_err(err)?;
+        if let Some(k) = self.grid {
+            let grey = RGBColor(200, 200, 200);
+            for i in 0..=k {
+                let (gx, gy) = (rx.0 + i as f64 * (rx.1 - rx.0) / k as f64, ry.0 + i as f64 * (ry.1 - ry.0) / k as f64);
+                chart.draw_series(LineSeries::new([(gx, ry.0), (gx, ry.1)], grey)).map_err(err)?;
+                chart.draw_series(LineSeries::new([(rx.0, gy), (rx.1, gy)], grey)).map_err(err)?;
+            }
+        }
+        let radius = if self.set.len() > 20_000 {
+            1
+        } else if self.set.len() > 2000 {
+            2
+        } else {
+            3
+        };
+        chart
+            .draw_series(
+                xs.iter().zip(&ys).map(|(&x, &y)| Circle::new((x, y), radius, RGBColor(31, 119, 180).filled())),
+            )
+            .map_err(err)?;
+        let bar = RGBColor(120, 120, 120).filled();
+        let mut top_chart = ChartBuilder::on(&top_hist)
+            .margin(8)
+            .y_label_area_size(50)
+            .x_label_area_size(0)
+            .build_cartesian_2d(rx.0..rx.1, 0.0..hmax)
+            .map_err(err)?;
+        top_chart
+            .configure_mesh()
+            .disable_mesh()
+            .disable_x_axis()
+            .y_desc("density")
+            .label_style(("sans-serif", 12))
+            .draw()
+            .map_err(err)?;
+        let wx = (rx.1 - rx.0) / bins as f64;
+        top_chart
+            .draw_series(
+                hx.iter()
+                    .enumerate()
+                    .map(|(i, &c)| Rectangle::new([(rx.0 + i as f64 * wx, 0.0), (rx.0 + (i + 1) as f64 * wx, c)], bar)),
+            )
+            .map_err(err)?;
+        let mut right_chart = ChartBuilder::on(&right)
+            .margin(8)
+            .x_label_area_size(40)
+            .y_label_area_size(0)
+            .build_cartesian_2d(0.0..hmax, ry.0..ry.1)
+            .map_err(err)?;
+        right_chart
+            .configure_mesh()
+            .disable_mesh()
+            .disable_y_axis()
+            .x_desc("density")
+            .label_style(("sans-serif", 12))
+            .draw()
+            .map_err(err)?;
+        let wy = (ry.1 - ry.0) / bins as f64;
+        right_chart
+            .draw_series(
+                hy.iter()
+                    .enumerate()
+                    .map(|(i, &c)| Rectangle::new([(0.0, ry.0 + i as f64 * wy), (c, ry.0 + (i + 1) as f64 * wy)], bar)),
+            )
+            .map_err(err)?;
+        root.present().map_err(err)
+    }
+}
+
+/// One named curve.
+#[derive(Debug, Clone)]
+pub struct Series {
+    /// Legend label; also picks the colour (see [`colour`]) unless `colour_key` is set.
+    pub name: String,
+    /// The key for [`colour`] (defaults to the name).
+    pub colour_key: Option<String>,
+    /// (x, y) points.
+    pub points: Vec<(f64, f64)>,
+    /// Draw markers instead of a line.
+    pub markers: bool,
+    /// Dashed (for theory or published curves).
+    pub dashed: bool,
+}
+
+impl Series {
+    /// A solid line.
+    pub fn line(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Series { name: name.into(), colour_key: None, points, markers: false, dashed: false }
+    }
+}
+
+/// A line chart with a legend, optional log axes.
+pub struct LineChart {
+    /// Title.
+    pub title: String,
+    /// X axis label, with unit.
+    pub x_label: String,
+    /// Y axis label, with unit.
+    pub y_label: String,
+    /// The curves.
+    pub series: Vec<Series>,
+    /// Logarithmic y axis.
+    pub log_y: bool,
+    /// Draw in polar form: x is an angle in degrees, y a radius.
+    pub polar: bool,
+}
+
+impl Drawable for LineChart {
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
+        root.fill(&WHITE).map_err(err)?;
+        let all = self.series.iter().flat_map(|s| s.points.iter().copied());
+        let (mut x0, mut x1, mut y0, mut y1) = all
+            .fold((f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY), |(a, b, c, d), (x, y)| {
+                (a.min(x), b.max(x), c.min(y), d.max(y))
+            });
+        if !x0.is_finite() {
+            (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
+        }
+        if self.polar {
+            let r = y1.max(1e-12) * 1.05;
+            let mut chart = ChartBuilder::on(&root)
+                .caption(&self.title, ("sans-serif", 20))
+                .margin(12)
+                .x_label_area_size(36)
+                .y_label_area_size(56)
+                .build_cartesian_2d(-r..r, -r..r)
+                .map_err(err)?;
+            chart
+                .configure_mesh()
+                .disable_mesh()
+                .x_desc(self.y_label.as_str())
+                .y_desc(self.y_label.as_str())
+                .label_style(("sans-serif", 12))
+                .draw()
+                .map_err(err)?;
+            let grey = RGBColor(215, 215, 215);
+            for k in 1..=4 {
+                let rr = r * k as f64 / 4.0;
+                chart
+                    .draw_series(LineSeries::new(
+                        (0..=180).map(|t| {
+                            (rr * (t as f64 * 2.0).to_radians().cos(), rr * (t as f64 * 2.0).to_radians().sin())
+                        }),
+                        grey,
+                    ))
+                    .map_err(err)?;
+            }
+            for s in &self.series {
+                let c = colour(s.colour_key.as_deref().unwrap_or(&s.name));
+                // the projection at angle + 180 degrees is the same: draw both halves
+                let pts: Vec<(f64, f64)> = s
+                    .points
+                    .iter()
+                    .chain(s.points.iter())
+                    .enumerate()
+                    .map(|(i, &(a, v))| {
+                        let a = if i >= s.points.len() { a + 180.0 } else { a };
+                        (v * a.to_radians().cos(), v * a.to_radians().sin())
+                    })
+                    .collect();
+                chart
+                    .draw_series(LineSeries::new(pts, c.stroke_width(2)))
+                    .map_err(err)?
+                    .label(s.name.as_str())
+                    .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], c.stroke_width(2)));
+            }
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .label_font(("sans-serif", 13))
+                .position(SeriesLabelPosition::UpperRight)
+                .draw()
+                .map_err(err)?;
+            return root.present().map_err(err);
+        }
+        if x1 <= x0 {
+            x1 = x0 + 1.0;
+        }
+        let pad = 0.05 * (y1 - y0).abs().max(1e-12);
+        macro_rules! finish {
+            ($chart:expr) => {{
+                let mut chart = $chart;
+                chart
+                    .configure_mesh()
+                    .x_desc(self.x_label.as_str())
+                    .y_desc(self.y_label.as_str())
+                    .label_style(("sans-serif", 13))
+                    .light_line_style(RGBColor(235, 235, 235))
+                    .draw()
+                    .map_err(err)?;
+                for s in &self.series {
+                    let c = colour(s.colour_key.as_deref().unwrap_or(&s.name));
+                    let style = c.stroke_width(2);
+                    if s.markers {
+                        chart
+                            .draw_series(s.points.iter().map(|&p| Circle::new(p, 4, c.filled())))
+                            .map_err(err)?
+                            .label(s.name.as_str())
+                            .legend(move |(x, y)| Circle::new((x + 9, y), 4, c.filled()));
+                    } else if s.dashed {
+                        chart
+                            .draw_series(DashedLineSeries::new(s.points.iter().copied(), 6, 4, style))
+                            .map_err(err)?
+                            .label(s.name.as_str())
+                            .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], style));
+                    } else {
+                        chart
+                            .draw_series(LineSeries::new(s.points.iter().copied(), style))
+                            .map_err(err)?
+                            .label(s.name.as_str())
+                            .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], style));
+                    }
+                }
+                chart
+                    .configure_series_labels()
+                    .background_style(WHITE.mix(0.85))
+                    .border_style(BLACK)
+                    .label_font(("sans-serif", 13))
+                    .position(SeriesLabelPosition::UpperRight)
+                    .draw()
+                    .map_err(err)?;
+            }};
+        }
+        let mut builder = ChartBuilder::on(&root);
+        builder.caption(&self.title, ("sans-serif", 20)).margin(12).x_label_area_size(40).y_label_area_size(64);
+        if self.log_y {
+            let lo = self
+                .series
+                .iter()
+                .flat_map(|s| s.points.iter().map(|p| p.1))
+                .filter(|&y| y > 0.0)
+                .fold(f64::INFINITY, f64::min);
+            finish!(builder.build_cartesian_2d(x0..x1, (lo * 0.8..y1 * 1.25).log_scale()).map_err(err)?);
+        } else {
+            finish!(builder.build_cartesian_2d(x0..x1, (y0 - pad).min(0.0)..y1 + pad).map_err(err)?);
+        }
+        root.present().map_err(err)
+    }
+}
+
+/// One marker series of a [`DotChart`]: name, colour key, and per category a value with
+/// the half-width of its error bar (None: no value).
+pub type DotSeries = (String, String, Vec<Option<(f64, f64)>>);
+
+/// Values with error bars per category, one marker series per source (ours, published).
+pub struct DotChart {
+    /// Title.
+    pub title: String,
+    /// Y axis label.
+    pub y_label: String,
+    /// Category names along x.
+    pub categories: Vec<String>,
+    /// (series name, colour key, values with half-widths of the error bars, per category).
+    pub series: Vec<DotSeries>,
+}
+
+impl Drawable for DotChart {
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
+        root.fill(&WHITE).map_err(err)?;
+        let vals = self.series.iter().flat_map(|s| s.2.iter().flatten());
+        let (lo, hi) = vals.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &(v, e)| (l.min(v - e), h.max(v + e)));
+        let (lo, hi) = if lo.is_finite() { (0f64.min(lo), hi * 1.1) } else { (0.0, 1.0) };
+        let k = self.categories.len();
+        let mut chart = ChartBuilder::on(&root)
+            .caption(&self.title, ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(60)
+            .y_label_area_size(64)
+            .build_cartesian_2d(-0.5..(k as f64 - 0.5), lo..hi)
+            .map_err(err)?;
+        let cats = self.categories.clone();
+        chart
+            .configure_mesh()
+            .x_labels(k)
+            .x_label_formatter(&|x| {
+                let i = x.round();
+                if (x - i).abs() < 1e-6 && i >= 0.0 && (i as usize) < cats.len() {
+                    cats[i as usize].clone()
+                } else {
+                    String::new()
+                }
+            })
+            .y_desc(self.y_label.as_str())
+            .label_style(("sans-serif", 13))
+            .light_line_style(RGBColor(235, 235, 235))
+            .draw()
+            .map_err(err)?;
+        let m = self.series.len() as f64;
+        for (si, (name, key, values)) in self.series.iter().enumerate() {
+            let c = colour(key);
+            let dx = (si as f64 - (m - 1.0) / 2.0) * 0.18;
+            let pts: Vec<(f64, f64, f64)> =
+                values.iter().enumerate().filter_map(|(i, v)| v.map(|(y, e)| (i as f64 + dx, y, e))).collect();
+            chart
+                .draw_series(pts.iter().map(|&(x, y, e)| PathElement::new([(x, y - e), (x, y + e)], c.stroke_width(2))))
+                .map_err(err)?;
+            let filled = si == 0;
+            chart
+                .draw_series(
+                    pts.iter()
+                        .map(|&(x, y, _)| Circle::new((x, y), 5, if filled { c.filled() } else { c.stroke_width(2) })),
+                )
+                .map_err(err)?
+                .label(name.as_str())
+                .legend(move |(x, y)| Circle::new((x + 9, y), 5, if filled { c.filled() } else { c.stroke_width(2) }));
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 13))
+            .position(SeriesLabelPosition::UpperLeft)
+            .draw()
+            .map_err(err)?;
+        root.present().map_err(err)
+    }
+}
