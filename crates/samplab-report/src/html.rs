@@ -19,7 +19,7 @@ const STYLE: &str =
     "body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222;line-height:1.45}
 h1,h2,h3{line-height:1.2}table{border-collapse:collapse;margin:.8em 0;font-size:.92em}
 th,td{border:1px solid #ccc;padding:.3em .6em;text-align:right}th{background:#f3f3f3}
-td:first-child,th:first-child{text-align:left}figure{margin:1.2em 0}figure img{max-width:100%;border:1px solid #ddd}
+td:first-child,th:first-child,table.claims td,table.claims th{text-align:left}figure{margin:1.2em 0}figure img{max-width:100%;border:1px solid #ddd}
 figcaption,.caption{color:#555;font-size:.9em}.reproduced{color:#17692b;font-weight:600}
 .not-reproduced{color:#b3261e;font-weight:600}.differs{color:#8a5a00;font-weight:600}
 .note{background:#f8f8f2;border-left:3px solid #bbb;padding:.4em .8em;margin:.5em 0}
@@ -40,7 +40,7 @@ fn claims_table(claims: &[&Claim]) -> String {
     for c in claims {
         let _ = writeln!(
             h,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td style=\"text-align:left\">{}</td></tr>",
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
             escape(&c.statement),
             escape(&c.published),
             escape(&c.ours),
