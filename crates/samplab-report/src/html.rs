@@ -35,8 +35,9 @@ fn verdict_html(v: &Verdict) -> String {
 }
 
 fn claims_table(claims: &[&Claim]) -> String {
-    let mut h =
-        String::from("<table><tr><th>claim</th><th>published</th><th>ours</th><th>theory</th><th>verdict</th></tr>\n");
+    let mut h = String::from(
+        "<table class=\"claims\"><tr><th>claim</th><th>published</th><th>ours</th><th>theory</th><th>verdict</th></tr>\n",
+    );
     for c in claims {
         let _ = writeln!(
             h,
