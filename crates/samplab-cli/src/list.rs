@@ -10,8 +10,8 @@ use samplab::warp::WARPS;
 /// What to list.
 #[derive(clap::Args)]
 pub struct Args {
-    /// samplers, warps, metrics, formats or references (all when omitted)
-    #[arg(value_parser = ["samplers", "warps", "metrics", "formats", "references"])]
+    /// samplers, warps, metrics, integrands, formats or references (all when omitted)
+    #[arg(value_parser = ["samplers", "warps", "metrics", "integrands", "formats", "references"])]
     what: Option<String>,
 }
 
@@ -59,6 +59,19 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
                 if e.shift_invariant { " [toroidal-shift invariant]" } else { "" }
             )
             .unwrap();
+            if !e.aliases.is_empty() {
+                writeln!(out, "    aliases: {}", e.aliases.join(", ")).unwrap();
+            }
+            for p in e.params {
+                writeln!(out, "    {} = {}  ({}): {}", p.name, p.default_text(), p.range_text(), p.doc).unwrap();
+            }
+        }
+        out.push('\n');
+    }
+    if want("integrands") {
+        out.push_str("INTEGRANDS  (exact integrals; random families draw instance k from a hashed seed)\n\n");
+        for e in samplab::integrand::INTEGRANDS {
+            writeln!(out, "{}  —  {}  [{}D]", e.name, e.summary, e.dims).unwrap();
             if !e.aliases.is_empty() {
                 writeln!(out, "    aliases: {}", e.aliases.join(", ")).unwrap();
             }

@@ -9,6 +9,7 @@ use clap::{Parser, Subcommand};
 
 mod discrepancy;
 mod generate;
+mod integrate;
 mod list;
 mod plot;
 mod reproduce;
@@ -33,6 +34,8 @@ enum Command {
     Plot(plot::Args),
     /// Discrepancies (star, extreme, L2 family, projected) of a file or of a sampler's sets.
     Discrepancy(discrepancy::Args),
+    /// Bias, variance and convergence exponents of samplers on the papers' test integrands.
+    Integrate(integrate::Args),
 }
 
 fn main() -> ExitCode {
@@ -43,6 +46,7 @@ fn main() -> ExitCode {
         Command::Generate(a) => generate::run(&a),
         Command::Plot(a) => plot::run(&a),
         Command::Discrepancy(a) => discrepancy::run(&a),
+        Command::Integrate(a) => integrate::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -188,3 +188,42 @@ fn discrepancy_bad_input() {
     assert_bad_input(&["discrepancy", "star", "--sampler", "random", "-n", "3000", "-d", "6"], &["--max-work"]);
     assert_bad_input(&["discrepancy", "strr", "--sampler", "random", "-n", "16"], &["unknown metric", "star"]);
 }
+
+#[test]
+fn integrate_json_and_bad_input() {
+    let out = samplab(&[
+        "integrate",
+        "--sampler",
+        "random",
+        "--sampler",
+        "jitter",
+        "--integrand",
+        "quad",
+        "-n",
+        "16,64,256",
+        "--sets",
+        "10",
+        "--instances",
+        "3",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["rows"].as_array().unwrap().len(), 6);
+    for key in ["sampler", "integrand", "n", "relative_mean", "relative_variance", "rmse", "theory"] {
+        assert!(v["rows"][0].get(key).is_some(), "row without {key}");
+    }
+    assert_eq!(v["fits"].as_array().unwrap().len(), 2);
+    assert!(v["fits"][0]["ci"].as_array().is_some());
+    assert_bad_input(
+        &["integrate", "--sampler", "jitter", "--integrand", "quadd", "-n", "16"],
+        &["unknown integrand", "quad"],
+    );
+    assert_bad_input(&["integrate", "--sampler", "jitter", "--integrand", "quad", "-n", "15"], &["9 and 16"]);
+    assert_bad_input(
+        &["integrate", "--sampler", "jitter", "--integrand", "quad", "-n", "16", "--sets", "1"],
+        &["at least 2"],
+    );
+    assert_bad_input(&["integrate", "--sampler", "jitter", "--integrand", "disk:r=2", "-n", "16"], &["'r'"]);
+    assert_bad_input(&["integrate", "--sampler", "pmj02", "--integrand", "step", "-n", "16"], &["1D is not supported"]);
+}

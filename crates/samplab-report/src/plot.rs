@@ -252,6 +252,8 @@ pub struct LineChart {
     pub series: Vec<Series>,
     /// Logarithmic y axis.
     pub log_y: bool,
+    /// Logarithmic x axis.
+    pub log_x: bool,
     /// Draw in polar form: x is an angle in degrees, y a radius.
     pub polar: bool,
 }

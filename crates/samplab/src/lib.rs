@@ -30,12 +30,15 @@
 pub mod bibliography;
 pub mod discrepancy;
 pub mod error;
+pub mod experiment;
+pub mod integrand;
 pub mod io;
 pub mod points;
 pub mod sampler;
 pub mod seed;
 pub mod spec;
 pub mod stats;
+pub mod theory;
 pub mod warp;
 
 pub use error::{Error, Result};

@@ -440,6 +440,7 @@ fn projected(ctx: &Ctx) -> Result<Output, Error> {
         y_label: "mean extreme 1D discrepancy".into(),
         series: series.clone(),
         log_y: false,
+        log_x: false,
         polar: false,
     };
     let polar = LineChart {
@@ -448,6 +449,7 @@ fn projected(ctx: &Ctx) -> Result<Output, Error> {
         y_label: "discrepancy".into(),
         series,
         log_y: false,
+        log_x: false,
         polar: true,
     };
     Ok(Output {

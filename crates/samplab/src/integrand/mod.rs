@@ -1,0 +1,525 @@
+//! Test integrands with exact integrals: the papers' test cases (Subr & Kautz 2013
+//! section 4.2, Sbert et al. 2006 section 3.1, Ramamoorthi et al. 2012 section 4) and a
+//! few classics. Random families are instantiated from a seed: instance k of a family
+//! uses `seed.derive(k)`.
+//!
+//! 2D integrands live on the unit square, 1D ones on the unit interval; every `exact()`
+//! is the integral over that domain, in closed form or (for the zone plate) by a
+//! documented high-accuracy quadrature.
+
+use std::f64::consts::{PI, TAU};
+
+use crate::error::{Error, Result, closest_names};
+use crate::seed::{Rng, Seed, uniform};
+use crate::spec::{Default, Kind, ParamSpec, Params, Spec};
+
+mod delaunay;
+mod quadrature;
+
+pub use delaunay::Delaunay;
+
+/// A function on [0,1]^d with a known integral.
+pub trait Integrand: Send + Sync {
+    /// Dimensions (1 or 2).
+    fn dims(&self) -> usize;
+    /// The value at `x`.
+    fn eval(&self, x: &[f64]) -> f64;
+    /// The exact integral over [0,1]^d.
+    fn exact(&self) -> f64;
+    /// For an indicator function: the length of its region's boundary inside the domain
+    /// (Sbert et al.'s B), which the systematic-sampling law k B u^3 needs.
+    fn boundary_length(&self) -> Option<f64> {
+        None
+    }
+    /// For 1D visibility: the number of discontinuities (Ramamoorthi et al.'s theory).
+    fn discontinuities(&self) -> Option<usize> {
+        None
+    }
+}
+
+/// Test case I of Subr & Kautz 2013: 0 inside a quad whose four vertices lie one on each
+/// side of the unit square, 1 outside. Exact: 1 - the quad's area (shoelace formula).
+#[derive(Debug, Clone)]
+pub struct Quad {
+    v: [[f64; 2]; 4],
+}
+
+impl Quad {
+    /// The quad with vertices at (a,0), (1,b), (c,1), (0,d).
+    pub fn new(a: f64, b: f64, c: f64, d: f64) -> Self {
+        Quad { v: [[a, 0.0], [1.0, b], [c, 1.0], [0.0, d]] }
+    }
+    fn random(rng: &mut Rng) -> Self {
+        Quad::new(uniform(rng), uniform(rng), uniform(rng), uniform(rng))
+    }
+    fn area(&self) -> f64 {
+        (0..4).map(|i| self.v[i][0] * self.v[(i + 1) % 4][1] - self.v[(i + 1) % 4][0] * self.v[i][1]).sum::<f64>() / 2.0
+    }
+}
+
+impl Integrand for Quad {
+    fn dims(&self) -> usize {
+        2
+    }
+    fn eval(&self, x: &[f64]) -> f64 {
+        // counter-clockwise convex quad: inside when left of every edge
+        let inside = (0..4).all(|i| {
+            let (a, b) = (self.v[i], self.v[(i + 1) % 4]);
+            (b[0] - a[0]) * (x[1] - a[1]) - (b[1] - a[1]) * (x[0] - a[0]) >= 0.0
+        });
+        if inside { 0.0 } else { 1.0 }
+    }
+    fn exact(&self) -> f64 {
+        1.0 - self.area()
+    }
+    fn boundary_length(&self) -> Option<f64> {
+        Some((0..4).map(|i| (self.v[(i + 1) % 4][0] - self.v[i][0]).hypot(self.v[(i + 1) % 4][1] - self.v[i][1])).sum())
+    }
+}
+
+/// The indicator of a disk of radius r centred at c, inside the unit square (Sbert et
+/// al. 2006's circle). Exact: pi r^2.
+#[derive(Debug, Clone)]
+pub struct Disk {
+    centre: [f64; 2],
+    radius: f64,
+}
+
+impl Integrand for Disk {
+    fn dims(&self) -> usize {
+        2
+    }
+    fn eval(&self, x: &[f64]) -> f64 {
+        let (dx, dy) = (x[0] - self.centre[0], x[1] - self.centre[1]);
+        if dx * dx + dy * dy < self.radius * self.radius { 1.0 } else { 0.0 }
+    }
+    fn exact(&self) -> f64 {
+        PI * self.radius * self.radius
+    }
+    fn boundary_length(&self) -> Option<f64> {
+        Some(TAU * self.radius)
+    }
+}
+
+/// The indicator of the half-plane n.(x - p) > 0 through the point p at angle theta
+/// (normal n = (cos theta, sin theta)). Exact: the area of the clipped square (shoelace).
+#[derive(Debug, Clone)]
+pub struct HalfPlane {
+    normal: [f64; 2],
+    point: [f64; 2],
+}
+
+impl HalfPlane {
+    fn side(&self, x: &[f64]) -> f64 {
+        self.normal[0] * (x[0] - self.point[0]) + self.normal[1] * (x[1] - self.point[1])
+    }
+    /// The unit square clipped to the half-plane (Sutherland-Hodgman).
+    fn clipped(&self) -> Vec<[f64; 2]> {
+        let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let mut out = Vec::new();
+        for i in 0..4 {
+            let (a, b) = (square[i], square[(i + 1) % 4]);
+            let (sa, sb) = (self.side(&a), self.side(&b));
+            if sa > 0.0 {
+                out.push(a);
+            }
+            if (sa > 0.0) != (sb > 0.0) {
+                let t = sa / (sa - sb);
+                out.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
+            }
+        }
+        out
+    }
+}
+
+impl Integrand for HalfPlane {
+    fn dims(&self) -> usize {
+        2
+    }
+    fn eval(&self, x: &[f64]) -> f64 {
+        if self.side(x) > 0.0 { 1.0 } else { 0.0 }
+    }
+    fn exact(&self) -> f64 {
+        let p = self.clipped();
+        (0..p.len()).map(|i| p[i][0] * p[(i + 1) % p.len()][1] - p[(i + 1) % p.len()][0] * p[i][1]).sum::<f64>() / 2.0
+    }
+    fn boundary_length(&self) -> Option<f64> {
+        // the clipped polygon's edges that lie on the line
+        let p = self.clipped();
+        Some(
+            (0..p.len())
+                .map(|i| (p[i], p[(i + 1) % p.len()]))
+                .filter(|(a, b)| self.side(a).abs() < 1e-12 && self.side(b).abs() < 1e-12)
+                .map(|(a, b)| (b[0] - a[0]).hypot(b[1] - a[1]))
+                .sum(),
+        )
+    }
+}
+
+/// An isotropic Gaussian exp(-|x - c|^2 / (2 sigma^2)). Exact through erf.
+#[derive(Debug, Clone)]
+pub struct Gaussian {
+    centre: [f64; 2],
+    sigma: f64,
+}
+
+impl Integrand for Gaussian {
+    fn dims(&self) -> usize {
+        2
+    }
+    fn eval(&self, x: &[f64]) -> f64 {
+        let r2 = (x[0] - self.centre[0]).powi(2) + (x[1] - self.centre[1]).powi(2);
+        (-r2 / (2.0 * self.sigma * self.sigma)).exp()
+    }
+    fn exact(&self) -> f64 {
+        let s = self.sigma * 2f64.sqrt();
+        let axis = |c: f64| self.sigma * (PI / 2.0).sqrt() * (libm::erf((1.0 - c) / s) + libm::erf(c / s));
+        axis(self.centre[0]) * axis(self.centre[1])
+    }
+}
+
+/// A smooth, non-periodic function exp(a x + b y) (the regime where jittered sampling
+/// converges as N^-2 in 2D). Exact: (e^a - 1)/a * (e^b - 1)/b.
+#[derive(Debug, Clone)]
+pub struct Smooth {
+    a: f64,
+    b: f64,
+}
+
+impl Integrand for Smooth {
+    fn dims(&self) -> usize {
+        2
+    }
+    fn eval(&self, x: &[f64]) -> f64 {
+        (self.a * x[0] + self.b * x[1]).exp()
+    }
+    fn exact(&self) -> f64 {
+        (self.a.exp_m1() / self.a) * (self.b.exp_m1() / self.b)
+    }
+}
+
+/// The zone plate (1 + cos(a r^2)) / 2, r measured from the square's centre (Subr &
+/// Kautz 2013 Fig. 10). Exact: (1 + C^2 - S^2) / 2 with C, S the integrals of cos(a t^2)
+/// and sin(a t^2) over [-1/2, 1/2], by composite 16-point Gauss-Legendre quadrature
+/// with a panel per quarter oscillation (relative error below 1e-13).
+#[derive(Debug, Clone)]
+pub struct ZonePlate {
+    a: f64,
+}
+
+impl Integrand for ZonePlate {
+    fn dims(&self) -> usize {
+        2
+    }
+    fn eval(&self, x: &[f64]) -> f64 {
+        let r2 = (x[0] - 0.5).powi(2) + (x[1] - 0.5).powi(2);
+        0.5 * (1.0 + (self.a * r2).cos())
+    }
+    fn exact(&self) -> f64 {
+        let panels = 16 + (self.a / 2.0).ceil() as usize;
+        let c = quadrature::gauss_legendre(|t| (self.a * t * t).cos(), -0.5, 0.5, panels);
+        let s = quadrature::gauss_legendre(|t| (self.a * t * t).sin(), -0.5, 0.5, panels);
+        0.5 * (1.0 + c * c - s * s)
+    }
+}
+
+/// 1D visibility over a linear light (Ramamoorthi et al. 2012 section 4): 1 where the
+/// light is visible. Visibility starts at 1 (for `Step`, H(y - y0): 0 below y0) and
+/// flips at each discontinuity.
+#[derive(Debug, Clone)]
+pub struct Visibility {
+    /// Sorted discontinuity positions.
+    edges: Vec<f64>,
+    /// Value before the first discontinuity.
+    start: f64,
+}
+
+impl Integrand for Visibility {
+    fn dims(&self) -> usize {
+        1
+    }
+    fn eval(&self, x: &[f64]) -> f64 {
+        let flips = self.edges.partition_point(|&e| e <= x[0]);
+        if flips % 2 == 0 { self.start } else { 1.0 - self.start }
+    }
+    fn exact(&self) -> f64 {
+        let mut bounds = vec![0.0];
+        bounds.extend(&self.edges);
+        bounds.push(1.0);
+        bounds
+            .windows(2)
+            .enumerate()
+            .map(|(i, w)| (w[1] - w[0]) * if i % 2 == 0 { self.start } else { 1.0 - self.start })
+            .sum()
+    }
+    fn discontinuities(&self) -> Option<usize> {
+        Some(self.edges.len())
+    }
+}
+
+/// One registered integrand family.
+pub struct IntegrandEntry {
+    /// Canonical name.
+    pub name: &'static str,
+    /// Other accepted names.
+    pub aliases: &'static [&'static str],
+    /// One line: what it is.
+    pub summary: &'static str,
+    /// Parameters in positional order.
+    pub params: &'static [ParamSpec],
+    /// Dimensions.
+    pub dims: usize,
+    /// Bibliography keys.
+    pub references: &'static [&'static str],
+    build: fn(&Params, &mut Rng) -> Result<Box<dyn Integrand>>,
+}
+
+impl std::fmt::Debug for IntegrandEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("IntegrandEntry").field("name", &self.name).finish_non_exhaustive()
+    }
+}
+
+const fn auto(name: &'static str, min: f64, max: f64, how: &'static str, doc: &'static str) -> ParamSpec {
+    ParamSpec { name, kind: Kind::Real { min, max }, default: Default::Auto(how), doc }
+}
+
+fn or_random(p: &Params, name: &str, rng: &mut Rng, lo: f64, hi: f64) -> f64 {
+    // always draw, so that fixing one parameter leaves the others' streams unchanged
+    let r = lo + (hi - lo) * uniform(rng);
+    p.number(name).unwrap_or(r)
+}
+
+/// Every integrand family.
+pub static INTEGRANDS: &[IntegrandEntry] = &[
+    IntegrandEntry {
+        name: "quad",
+        aliases: &["test-i", "occlusion"],
+        summary: "Subr & Kautz test case I: 0 inside a random quad with one vertex on each side, 1 outside",
+        params: &[],
+        dims: 2,
+        references: &["subr2013"],
+        build: |_, rng| Ok(Box::new(Quad::random(rng))),
+    },
+    IntegrandEntry {
+        name: "delaunay-constant",
+        aliases: &["test-ii"],
+        summary: "Subr & Kautz test case II: piecewise constant over a Delaunay triangulation of sparse random points and the corners",
+        params: &[ParamSpec {
+            name: "points",
+            kind: Kind::Int { min: 0, max: 10_000 },
+            default: Default::Number(8.0),
+            doc: "random points besides the four corners",
+        }],
+        dims: 2,
+        references: &["subr2013"],
+        build: |p, rng| Ok(Box::new(Delaunay::random(p.number("points").unwrap_or(8.0) as usize, false, rng)?)),
+    },
+    IntegrandEntry {
+        name: "delaunay-linear",
+        aliases: &["test-iii"],
+        summary: "Subr & Kautz test case III: piecewise linear over a Delaunay triangulation, random weights per vertex",
+        params: &[ParamSpec {
+            name: "points",
+            kind: Kind::Int { min: 0, max: 10_000 },
+            default: Default::Number(8.0),
+            doc: "random points besides the four corners",
+        }],
+        dims: 2,
+        references: &["subr2013"],
+        build: |p, rng| Ok(Box::new(Delaunay::random(p.number("points").unwrap_or(8.0) as usize, true, rng)?)),
+    },
+    IntegrandEntry {
+        name: "zoneplate",
+        aliases: &["zone-plate"],
+        summary: "zone plate (1 + cos(a r^2)) / 2 about the square's centre",
+        params: &[ParamSpec {
+            name: "a",
+            kind: Kind::Real { min: 0.0, max: 1e5 },
+            default: Default::Number(200.0),
+            doc: "chirp rate, radians per unit r^2",
+        }],
+        dims: 2,
+        references: &["subr2013"],
+        build: |p, _| Ok(Box::new(ZonePlate { a: p.number("a").unwrap_or(200.0) })),
+    },
+    IntegrandEntry {
+        name: "disk",
+        aliases: &["circle"],
+        summary: "indicator of a disk inside the square (Sbert et al.'s circle)",
+        params: &[
+            auto(
+                "r",
+                0.0,
+                0.5,
+                "uniform in [0.1, 0.4], so that averages cover the radius (Sbert et al.'s Zitterbewegung)",
+                "radius",
+            ),
+            auto("cx", 0.0, 1.0, "random, keeping the disk inside the square", "centre x"),
+            auto("cy", 0.0, 1.0, "random, keeping the disk inside the square", "centre y"),
+        ],
+        dims: 2,
+        references: &["sbert2006"],
+        build: |p, rng| {
+            let r = or_random(p, "r", rng, 0.1, 0.4);
+            let (cx, cy) = (or_random(p, "cx", rng, r, 1.0 - r), or_random(p, "cy", rng, r, 1.0 - r));
+            if cx < r || cx > 1.0 - r || cy < r || cy > 1.0 - r {
+                return Err(Error::Param {
+                    owner: "disk".into(),
+                    param: "cx, cy".into(),
+                    reason: format!("a disk of radius {r} at ({cx}, {cy}) leaves the square"),
+                });
+            }
+            Ok(Box::new(Disk { centre: [cx, cy], radius: r }))
+        },
+    },
+    IntegrandEntry {
+        name: "halfplane",
+        aliases: &["edge"],
+        summary: "indicator of a half-plane at a random angle through a random point",
+        params: &[
+            auto("angle", -360.0, 360.0, "uniform", "direction of the normal, degrees"),
+            auto("x", 0.0, 1.0, "uniform", "a point on the line, x"),
+            auto("y", 0.0, 1.0, "uniform", "a point on the line, y"),
+        ],
+        dims: 2,
+        references: &["sbert2006"],
+        build: |p, rng| {
+            let angle = or_random(p, "angle", rng, 0.0, 360.0).to_radians();
+            let point = [or_random(p, "x", rng, 0.0, 1.0), or_random(p, "y", rng, 0.0, 1.0)];
+            Ok(Box::new(HalfPlane { normal: [angle.cos(), angle.sin()], point }))
+        },
+    },
+    IntegrandEntry {
+        name: "gaussian",
+        aliases: &[],
+        summary: "isotropic Gaussian bump at a random centre",
+        params: &[
+            ParamSpec {
+                name: "sigma",
+                kind: Kind::Real { min: 1e-3, max: 10.0 },
+                default: Default::Number(0.15),
+                doc: "standard deviation",
+            },
+            auto("cx", 0.0, 1.0, "uniform", "centre x"),
+            auto("cy", 0.0, 1.0, "uniform", "centre y"),
+        ],
+        dims: 2,
+        references: &[],
+        build: |p, rng| {
+            Ok(Box::new(Gaussian {
+                sigma: p.number("sigma").unwrap_or(0.15),
+                centre: [or_random(p, "cx", rng, 0.0, 1.0), or_random(p, "cy", rng, 0.0, 1.0)],
+            }))
+        },
+    },
+    IntegrandEntry {
+        name: "smooth",
+        aliases: &["exp"],
+        summary: "smooth non-periodic exp(a x + b y), a and b uniform in [0.5, 2]",
+        params: &[],
+        dims: 2,
+        references: &[],
+        build: |_, rng| Ok(Box::new(Smooth { a: 0.5 + 1.5 * uniform(rng), b: 0.5 + 1.5 * uniform(rng) })),
+    },
+    IntegrandEntry {
+        name: "step",
+        aliases: &["heaviside"],
+        summary: "1D visibility H(y - y0): one discontinuity (Ramamoorthi et al. eq. 5)",
+        params: &[auto("y0", 0.0, 1.0, "uniform", "discontinuity")],
+        dims: 1,
+        references: &["ramamoorthi2012"],
+        build: |p, rng| Ok(Box::new(Visibility { edges: vec![or_random(p, "y0", rng, 0.0, 1.0)], start: 0.0 })),
+    },
+    IntegrandEntry {
+        name: "box",
+        aliases: &["boxcar"],
+        summary: "1D visibility H(y - y0) - H(y - z0): two discontinuities (Ramamoorthi et al. eq. 13)",
+        params: &[
+            auto("y0", 0.0, 1.0, "the smaller of two uniform draws", "first discontinuity"),
+            auto("z0", 0.0, 1.0, "the larger", "second discontinuity"),
+        ],
+        dims: 1,
+        references: &["ramamoorthi2012"],
+        build: |p, rng| {
+            let (a, b) = (or_random(p, "y0", rng, 0.0, 1.0), or_random(p, "z0", rng, 0.0, 1.0));
+            let (y0, z0) =
+                if p.number("y0").is_some() || p.number("z0").is_some() { (a, b) } else { (a.min(b), a.max(b)) };
+            if z0 < y0 {
+                return Err(Error::Param {
+                    owner: "box".into(),
+                    param: "z0".into(),
+                    reason: format!("z0 = {z0} is below y0 = {y0}"),
+                });
+            }
+            Ok(Box::new(Visibility { edges: vec![y0, z0], start: 0.0 }))
+        },
+    },
+    IntegrandEntry {
+        name: "steps",
+        aliases: &["discontinuities"],
+        summary: "1D visibility with k discontinuities at uniform random positions (Ramamoorthi et al. Fig. 7)",
+        params: &[ParamSpec {
+            name: "k",
+            kind: Kind::Int { min: 0, max: 100_000 },
+            default: Default::Number(3.0),
+            doc: "number of discontinuities",
+        }],
+        dims: 1,
+        references: &["ramamoorthi2012"],
+        build: |p, rng| {
+            let k = p.number("k").unwrap_or(3.0) as usize;
+            let mut edges: Vec<f64> = (0..k).map(|_| uniform(rng)).collect();
+            edges.sort_by(f64::total_cmp);
+            Ok(Box::new(Visibility { edges, start: 0.0 }))
+        },
+    },
+];
+
+/// A parsed integrand family: its entry and resolved parameters.
+#[derive(Debug, Clone)]
+pub struct Family {
+    /// The registry entry.
+    pub entry: &'static IntegrandEntry,
+    params: Params,
+}
+
+impl Family {
+    /// Parse `quad`, `disk:r=0.2`, `steps:k=5`, ...
+    ///
+    /// # Errors
+    /// An unknown name (with suggestions) or bad parameters.
+    pub fn parse(text: &str) -> Result<Family> {
+        let spec = Spec::parse(text)?;
+        let want = spec.name.to_ascii_lowercase();
+        let entry =
+            INTEGRANDS.iter().find(|e| e.name == want || e.aliases.contains(&want.as_str())).ok_or_else(|| {
+                Error::UnknownName {
+                    kind: "integrand",
+                    name: spec.name.clone(),
+                    suggestions: closest_names(
+                        &spec.name,
+                        INTEGRANDS.iter().flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied())),
+                    ),
+                }
+            })?;
+        Ok(Family { entry, params: Params::resolve(entry.name, entry.params, &spec.args)? })
+    }
+
+    /// The canonical spec.
+    pub fn spec(&self) -> String {
+        if self.entry.params.is_empty() {
+            self.entry.name.into()
+        } else {
+            format!("{}:{}", self.entry.name, self.params.describe())
+        }
+    }
+
+    /// Instance `k` of the family for `seed`.
+    ///
+    /// # Errors
+    /// Parameters that make an impossible instance (e.g. a disk leaving the square).
+    pub fn instance(&self, seed: Seed, k: u64) -> Result<Box<dyn Integrand>> {
+        (self.entry.build)(&self.params, &mut seed.derive(k).rng())
+    }
+}

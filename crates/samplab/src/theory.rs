@@ -1,0 +1,81 @@
+//! Closed forms from the papers, for overlays and tests.
+
+/// Sbert et al. 2006 eq. 10: the constant k of the systematic-sampling variance law
+/// Var = k B u^3 (isotropic rotation assumed).
+pub const K_SYSTEMATIC: f64 = 0.0724;
+
+/// Variance of the mean of n independent uniform samples of an indicator of area p:
+/// p (1 - p) / n (Sbert et al. 2006 eq. 12 with A_T = 1).
+pub fn random_indicator_variance(p: f64, n: usize) -> f64 {
+    p * (1.0 - p) / n as f64
+}
+
+/// Systematic (uniform-jitter) sampling of a region with boundary length `b` on a square
+/// grid of n cells over the unit square (spacing u = n^-1/2): k B u^3 (Sbert et al. eq. 10-11).
+pub fn systematic_variance(b: f64, n: usize) -> f64 {
+    K_SYSTEMATIC * b * (n as f64).powf(-1.5)
+}
+
+/// Relative efficiency of systematic against independent sampling, Var_indep / Var_sys
+/// = sqrt(N) sqrt(p) (1 - p) / (k k'), with B = k' sqrt(A) (Sbert et al. eq. 15).
+pub fn systematic_efficiency(p: f64, n: usize, k_prime: f64) -> f64 {
+    (n as f64).sqrt() * p.sqrt() * (1.0 - p) / (K_SYSTEMATIC * k_prime)
+}
+
+/// The range of p where systematic sampling beats independent sampling, from the
+/// small-p and near-1 approximations (Sbert et al. eqs. 17 and 19):
+/// (k k')^2 / N <= p <= 1 - k k' / sqrt(N). For a square (k' = 4): 0.0838/N and 0.2896/sqrt(N) (eq. 20).
+pub fn systematic_break_even(n: usize, k_prime: f64) -> (f64, f64) {
+    let kk = K_SYSTEMATIC * k_prime;
+    (kk * kk / n as f64, 1.0 - kk / (n as f64).sqrt())
+}
+
+/// Ramamoorthi et al. 2012: the expected N^2 x squared error of 1D visibility with
+/// `discontinuities` discontinuities in distinct strata, over uniform random positions,
+/// for a sampler family (`regular` = their "uniform", `jitter` = "stratified",
+/// `jitter.uniform` = "uniform jitter"; eqs. 11-12, section 4.2, Fig. 7). None for other
+/// samplers.
+pub fn visibility_normalized_mse(sampler: &str, discontinuities: usize) -> Option<f64> {
+    let k = discontinuities as f64;
+    match sampler {
+        "regular" => Some(k / 12.0),
+        "jitter" => Some(k / 6.0),
+        // pairs of discontinuities behave as for uniform sampling; an odd one costs 1/12 more
+        "jitter.uniform" => Some(if discontinuities % 2 == 0 { k / 12.0 } else { (k + 1.0) / 12.0 }),
+        _ => None,
+    }
+}
+
+/// Ramamoorthi et al. Figs. 4 and 6: the worst-case N x |error| for one discontinuity
+/// (uniform 1/2, stratified 1) and for a box (uniform and uniform jitter 1, stratified 2).
+pub fn visibility_worst_case(sampler: &str, discontinuities: usize) -> Option<f64> {
+    match (sampler, discontinuities) {
+        ("regular", 1) => Some(0.5),
+        ("jitter" | "jitter.uniform", 1) => Some(1.0),
+        ("regular" | "jitter.uniform", 2) => Some(1.0),
+        ("jitter", 2) => Some(2.0),
+        _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sbert_eq_20_for_a_square() {
+        // k' = 4: the published 0.0838/N and 1 - 0.2896/sqrt(N)
+        let (lo, hi) = systematic_break_even(1, 4.0);
+        assert!((lo - 0.0838).abs() < 1e-4, "{lo}");
+        assert!((1.0 - hi - 0.2896).abs() < 1e-4, "{hi}");
+        // N = 20: 0.0042 <= p <= 0.9352
+        let (lo, hi) = systematic_break_even(20, 4.0);
+        assert!((lo - 0.0042).abs() < 1e-4 && (hi - 0.9352).abs() < 1e-4);
+    }
+
+    #[test]
+    fn efficiency_is_largest_at_one_third() {
+        let e = |p| systematic_efficiency(p, 100, 4.0);
+        assert!(e(1.0 / 3.0) > e(0.3) && e(1.0 / 3.0) > e(0.36));
+    }
+}

@@ -1,0 +1,129 @@
+//! Integrands and the estimator harness: exact integrals against brute-force quadrature
+//! of the same instance, and the papers' closed forms with statistical tolerances derived
+//! from the number of trials (fixed seeds).
+
+use samplab::experiment::{self, Row, Study};
+use samplab::integrand::{Family, INTEGRANDS};
+use samplab::{Sampler, Seed, sampler};
+
+/// Midpoint rule on a k^d grid.
+fn midpoint(f: &dyn samplab::integrand::Integrand, k: usize) -> f64 {
+    let h = 1.0 / k as f64;
+    if f.dims() == 1 {
+        return (0..k).map(|i| f.eval(&[(i as f64 + 0.5) * h])).sum::<f64>() * h;
+    }
+    let mut s = 0.0;
+    for i in 0..k {
+        for j in 0..k {
+            s += f.eval(&[(i as f64 + 0.5) * h, (j as f64 + 0.5) * h]);
+        }
+    }
+    s * h * h
+}
+
+#[test]
+fn exact_integrals_equal_brute_force_quadrature() {
+    for e in INTEGRANDS {
+        let family = Family::parse(e.name).unwrap();
+        for k in 0..4 {
+            let f = family.instance(Seed(11), k).unwrap();
+            let (grid, tol) = if f.dims() == 1 { (2_000_000, 2e-6) } else { (2000, 1e-4) };
+            let q = midpoint(f.as_ref(), grid);
+            assert!((f.exact() - q).abs() < tol, "{} instance {k}: exact {} vs quadrature {q}", e.name, f.exact());
+        }
+    }
+    // fixed parameters too
+    for spec in [
+        "zoneplate:a=1000",
+        "disk:r=0.45,cx=0.5,cy=0.5",
+        "gaussian:sigma=0.05",
+        "steps:k=20",
+        "halfplane:angle=30,x=0.2,y=0.9",
+    ] {
+        let f = Family::parse(spec).unwrap().instance(Seed(3), 0).unwrap();
+        let (grid, tol) = if f.dims() == 1 { (2_000_000, 2e-6) } else { (3000, 1e-4) };
+        assert!((f.exact() - midpoint(f.as_ref(), grid)).abs() < tol, "{spec}");
+    }
+}
+
+#[test]
+fn delaunay_piecewise_functions_are_continuous_or_constant_where_expected() {
+    // test case III is continuous: values on both sides of any point agree closely
+    let f = Family::parse("delaunay-linear").unwrap().instance(Seed(5), 0).unwrap();
+    for i in 1..200 {
+        let x = [i as f64 / 200.0, 0.37];
+        let (a, b) = (f.eval(&x), f.eval(&[x[0] + 1e-9, x[1]]));
+        assert!((a - b).abs() < 1e-6, "jump at {x:?}");
+    }
+}
+
+fn study(samplers: &[&str], integrand: &str, ns: &[usize], sets: usize, instances: usize, seed: u64) -> Vec<Row> {
+    let s: Vec<Box<dyn Sampler>> = samplers.iter().map(|x| sampler::build(x).unwrap()).collect();
+    let family = Family::parse(integrand).unwrap();
+    experiment::run(&Study { samplers: &s, family: &family, ns, sets, instances, seed: Seed(seed) }, &|| {}).unwrap()
+}
+
+#[test]
+fn random_sampling_of_an_indicator_matches_p_one_minus_p_over_n() {
+    // one fixed disk, M = 4000 realizations: the sample variance has relative standard
+    // error sqrt(2/(M-1)) = 2.2%; allow 4 of them
+    let rows = study(&["random"], "disk:r=0.3,cx=0.5,cy=0.5", &[64], 4000, 1, 1);
+    let t = rows[0].theory.as_ref().unwrap();
+    assert_eq!(t.statistic, "relative_variance");
+    let rel = rows[0].relative_variance / t.value;
+    assert!((rel - 1.0).abs() < 4.0 * (2.0f64 / 3999.0).sqrt(), "measured / theory = {rel}");
+}
+
+#[test]
+fn convergence_exponents_of_jitter_and_random() {
+    let ns = [16, 64, 256, 1024, 4096, 16384];
+    for integrand in ["disk", "quad"] {
+        let rows = study(&["jitter", "random"], integrand, &ns, 60, 10, 2);
+        let fits = experiment::fits(&rows);
+        let get = |s: &str| fits.iter().find(|f| f.sampler == s).unwrap().exponent;
+        assert!((get("jitter") + 1.5).abs() < 0.1, "{integrand}: jitter {}", get("jitter"));
+        assert!((get("random") + 1.0).abs() < 0.05, "{integrand}: random {}", get("random"));
+    }
+}
+
+#[test]
+fn systematic_sampling_of_disks_follows_k_b_u_cubed() {
+    // averaged over random centres and radii (the law holds on average: Sbert et al.)
+    let rows = study(&["jitter.uniform"], "disk", &[4096], 16, 400, 3);
+    let t = rows[0].theory.as_ref().unwrap();
+    let ratio = rows[0].relative_variance / t.value;
+    assert!((ratio - 1.0).abs() < 0.10, "Var / (k B u^3) = {ratio} x 0.0724");
+}
+
+#[test]
+fn ramamoorthi_normalized_variances() {
+    // N = 256, 4000 instances: N^2 MSE has a standard error under 2% of its mean
+    for (integrand, expect) in
+        [("step", [1.0 / 12.0, 1.0 / 6.0, 1.0 / 6.0]), ("box", [1.0 / 6.0, 1.0 / 3.0, 1.0 / 6.0])]
+    {
+        let rows = study(&["regular", "jitter", "jitter.uniform"], integrand, &[256], 2, 4000, 4);
+        for (row, want) in rows.iter().zip(expect) {
+            assert!(
+                (row.normalized_mse / want - 1.0).abs() < 0.05,
+                "{integrand} {}: {} vs {want}",
+                row.sampler,
+                row.normalized_mse
+            );
+            assert!((row.theory.as_ref().unwrap().value - want).abs() < 1e-12);
+        }
+    }
+}
+
+#[test]
+fn bad_studies_are_errors() {
+    let s: Vec<Box<dyn Sampler>> = vec![sampler::build("jitter").unwrap()];
+    let family = Family::parse("quad").unwrap();
+    let run = |ns: &[usize], sets: usize| {
+        experiment::run(&Study { samplers: &s, family: &family, ns, sets, instances: 2, seed: Seed(1) }, &|| {})
+    };
+    assert!(run(&[15], 10).unwrap_err().to_string().contains("9 and 16"));
+    assert!(run(&[16], 1).unwrap_err().to_string().contains("at least 2"));
+    assert!(Family::parse("quadd").unwrap_err().to_string().contains("quad"));
+    assert!(Family::parse("disk:r=0.9").unwrap_err().to_string().contains("'r'"));
+    assert!(Family::parse("disk:r=0.3,cx=0.1").unwrap().instance(Seed(1), 0).is_err());
+}
