@@ -16,3 +16,24 @@ pub fn all() -> Vec<Paper> {
 pub fn keys() -> Vec<&'static str> {
     all().iter().map(|p| p.key).collect()
 }
+
+use samplab::experiment::{self, Row, Study};
+use samplab::integrand::Family;
+use samplab::{Sampler, Seed, sampler};
+
+use crate::{Ctx, Error};
+
+/// Run an integration study for the report, advancing the experiment's progress bar.
+pub(crate) fn study(
+    ctx: &Ctx,
+    samplers: &[&str],
+    integrand: &str,
+    ns: &[usize],
+    sets: usize,
+    instances: usize,
+    seed: Seed,
+) -> Result<Vec<Row>, Error> {
+    let s: Vec<Box<dyn Sampler>> = samplers.iter().map(|x| sampler::build(x)).collect::<Result<_, _>>()?;
+    let family = Family::parse(integrand)?;
+    Ok(experiment::run(&Study { samplers: &s, family: &family, ns, sets, instances, seed }, &|| ctx.progress.inc(1))?)
+}
