@@ -227,13 +227,19 @@ fn discontinuities(ctx: &Ctx) -> Result<Output, Error> {
     let mut claims = Vec::new();
     let mut table_rows = Vec::new();
     for (which, ks) in [("7", &small), ("100", &large)] {
-        let mut curves: Vec<(String, String, Vec<(f64, f64)>)> =
-            STRATEGIES.iter().map(|(n, s)| (n.to_string(), s.to_string(), Vec::new())).collect();
+        let mut curves: Vec<Series> = STRATEGIES
+            .iter()
+            .map(|(name, spec)| Series {
+                markers: which == "7",
+                colour_key: Some(spec.to_string()),
+                ..Series::line(*name, Vec::new())
+            })
+            .collect();
         for &k in ks {
             let specs: Vec<&str> = STRATEGIES.iter().map(|s| s.1).collect();
             let rows = study(ctx, &specs, &format!("steps:k={k}"), &[256], 2, trials, ctx.seed.derive(k as u64))?;
             for (c, r) in curves.iter_mut().zip(&rows) {
-                c.2.push((k as f64, r.normalized_mse));
+                c.points.push((k as f64, r.normalized_mse));
             }
             if which == "7" {
                 let mut row = vec![Cell::num(k as f64, 0)];
@@ -246,14 +252,7 @@ fn discontinuities(ctx: &Ctx) -> Result<Output, Error> {
                 table_rows.push(row);
             }
         }
-        let mut series: Vec<Series> = curves
-            .iter()
-            .map(|(n, s, pts)| Series {
-                markers: which == "7",
-                colour_key: Some(s.clone()),
-                ..Series::line(n.clone(), pts.clone())
-            })
-            .collect();
+        let mut series = curves.clone();
         for (name, spec) in &STRATEGIES[..3] {
             let pts =
                 ks.iter().filter_map(|&k| theory::visibility_normalized_mse(spec, k).map(|t| (k as f64, t))).collect();
@@ -279,7 +278,7 @@ fn discontinuities(ctx: &Ctx) -> Result<Output, Error> {
             (900, 560),
         )?);
         if which == "100" {
-            let last = |i: usize| curves[i].2.last().expect("points").1;
+            let last = |i: usize| curves[i].points.last().expect("points").1;
             let ratio = last(1) / last(0);
             claims.push(Claim {
                 id: "stratified-twice-at-100".into(),
@@ -296,7 +295,7 @@ fn discontinuities(ctx: &Ctx) -> Result<Output, Error> {
                 },
             });
         } else {
-            let halton: Vec<f64> = curves[3].2.iter().map(|p| p.1).collect();
+            let halton: Vec<f64> = curves[3].points.iter().map(|p| p.1).collect();
             let zigzag = (1..halton.len() - 1)
                 .filter(|&i| (halton[i] - halton[i - 1]) * (halton[i + 1] - halton[i]) < 0.0)
                 .count();
