@@ -51,7 +51,7 @@ fn efficiency(ctx: &Ctx) -> Result<Output, Error> {
     let (mut inside, mut better) = (0, 0);
     for &n in &ns {
         let (lo, hi) = theory::systematic_break_even(n, K_PRIME_CIRCLE);
-        let mut curves = vec![Vec::new(), Vec::new()];
+        let mut curves = [Vec::new(), Vec::new()];
         let mut predicted = Vec::new();
         for (i, &r) in radii.iter().enumerate() {
             let p = PI * r * r;
