@@ -62,7 +62,7 @@ pub fn colour(strategy: &str) -> RGBColor {
         ("jitter", RGBColor(44, 160, 44)),
         ("jitter.half", RGBColor(214, 39, 40)),
         ("nrooks", RGBColor(148, 103, 189)),
-        ("poisson", RGBColor(140, 86, 75)),
+        ("poisson", RGBColor(0, 0, 128)),
         ("jitter.uniform", RGBColor(227, 119, 194)),
         ("jitter.gaussian", RGBColor(127, 127, 127)),
         ("halton", RGBColor(188, 189, 34)),
@@ -75,6 +75,17 @@ pub fn colour(strategy: &str) -> RGBColor {
         ("regular.rotated", RGBColor(255, 187, 120)),
     ];
     let spec = strategy.split(':').next().unwrap_or(strategy);
+    // Gaussian jitter: browns, darker for smaller sigma (the paper's colour for it)
+    if spec == "jitter.gaussian" {
+        let sigma = strategy
+            .split("sigma=")
+            .nth(1)
+            .and_then(|v| v.split(',').next())
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(0.25);
+        let t = (sigma.clamp(0.05, 1.0).ln() - 0.05f64.ln()) / (1.0f64.ln() - 0.05f64.ln());
+        return RGBColor((110.0 + 120.0 * t) as u8, (60.0 + 110.0 * t) as u8, (20.0 + 90.0 * t) as u8);
+    }
     let family = ["halton", "sobol", "hammersley", "poisson"].into_iter().find(|f| spec.starts_with(f)).unwrap_or(spec);
     TABLE.iter().find(|(k, _)| *k == family).map(|(_, c)| *c).unwrap_or_else(|| {
         let h = strategy.bytes().fold(2_166_136_261u32, |h, b| (h ^ u32::from(b)).wrapping_mul(16_777_619));
@@ -377,16 +388,19 @@ impl Drawable for LineChart {
         }
         let mut builder = ChartBuilder::on(&root);
         builder.caption(&self.title, ("sans-serif", 20)).margin(12).x_label_area_size(40).y_label_area_size(64);
-        if self.log_y {
-            let lo = self
-                .series
-                .iter()
-                .flat_map(|s| s.points.iter().map(|p| p.1))
-                .filter(|&y| y > 0.0)
-                .fold(f64::INFINITY, f64::min);
-            finish!(builder.build_cartesian_2d(x0..x1, (lo * 0.8..y1 * 1.25).log_scale()).map_err(err)?);
-        } else {
-            finish!(builder.build_cartesian_2d(x0..x1, (y0 - pad).min(0.0)..y1 + pad).map_err(err)?);
+        let ylo = self
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.1))
+            .filter(|&y| y > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        let (ylog, xlog) = (ylo * 0.8..y1 * 1.25, x0 * 0.8..x1 * 1.25);
+        let ylin = (y0 - pad).min(0.0)..y1 + pad;
+        match (self.log_x, self.log_y) {
+            (true, true) => finish!(builder.build_cartesian_2d(xlog.log_scale(), ylog.log_scale()).map_err(err)?),
+            (false, true) => finish!(builder.build_cartesian_2d(x0..x1, ylog.log_scale()).map_err(err)?),
+            (true, false) => finish!(builder.build_cartesian_2d(xlog.log_scale(), ylin).map_err(err)?),
+            (false, false) => finish!(builder.build_cartesian_2d(x0..x1, ylin).map_err(err)?),
         }
         root.present().map_err(err)
     }
