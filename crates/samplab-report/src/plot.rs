@@ -132,6 +132,54 @@ fn histogram(v: &[f64], (lo, hi): (f64, f64), bins: usize) -> Vec<f64> {
     h
 }
 
+/// A marginal histogram: bars along the data axis (`range`), heights up to `hmax`;
+/// `sideways` draws it on the right of the scatter, bars growing to the right.
+fn marginal<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    counts: &[f64],
+    range: (f64, f64),
+    hmax: f64,
+    sideways: bool,
+) -> Result<(), String> {
+    let bar = RGBColor(120, 120, 120).filled();
+    let w = (range.1 - range.0) / counts.len() as f64;
+    let bars = counts.iter().enumerate().map(|(i, &c)| (range.0 + i as f64 * w, range.0 + (i + 1) as f64 * w, c));
+    let mut builder = ChartBuilder::on(area);
+    builder.margin(8);
+    if sideways {
+        let mut chart = builder
+            .x_label_area_size(40)
+            .y_label_area_size(0)
+            .build_cartesian_2d(0.0..hmax, range.0..range.1)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .disable_y_axis()
+            .x_desc("density")
+            .label_style(("sans-serif", 12))
+            .draw()
+            .map_err(err)?;
+        chart.draw_series(bars.map(|(a, b, c)| Rectangle::new([(0.0, a), (c, b)], bar))).map_err(err)?;
+    } else {
+        let mut chart = builder
+            .y_label_area_size(50)
+            .x_label_area_size(0)
+            .build_cartesian_2d(range.0..range.1, 0.0..hmax)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .disable_x_axis()
+            .y_desc("density")
+            .label_style(("sans-serif", 12))
+            .draw()
+            .map_err(err)?;
+        chart.draw_series(bars.map(|(a, b, c)| Rectangle::new([(a, 0.0), (b, c)], bar))).map_err(err)?;
+    }
+    Ok(())
+}
+
 impl Drawable for Scatter<'_> {
     fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
         root.fill(&WHITE).map_err(err)?;
@@ -180,51 +228,8 @@ impl Drawable for Scatter<'_> {
                 xs.iter().zip(&ys).map(|(&x, &y)| Circle::new((x, y), radius, RGBColor(31, 119, 180).filled())),
             )
             .map_err(err)?;
-        let bar = RGBColor(120, 120, 120).filled();
-        let mut top_chart = ChartBuilder::on(&top_hist)
-            .margin(8)
-            .y_label_area_size(50)
-            .x_label_area_size(0)
-            .build_cartesian_2d(rx.0..rx.1, 0.0..hmax)
-            .map_err(err)?;
-        top_chart
-            .configure_mesh()
-            .disable_mesh()
-            .disable_x_axis()
-            .y_desc("density")
-            .label_style(("sans-serif", 12))
-            .draw()
-            .map_err(err)?;
-        let wx = (rx.1 - rx.0) / bins as f64;
-        top_chart
-            .draw_series(
-                hx.iter()
-                    .enumerate()
-                    .map(|(i, &c)| Rectangle::new([(rx.0 + i as f64 * wx, 0.0), (rx.0 + (i + 1) as f64 * wx, c)], bar)),
-            )
-            .map_err(err)?;
-        let mut right_chart = ChartBuilder::on(&right)
-            .margin(8)
-            .x_label_area_size(40)
-            .y_label_area_size(0)
-            .build_cartesian_2d(0.0..hmax, ry.0..ry.1)
-            .map_err(err)?;
-        right_chart
-            .configure_mesh()
-            .disable_mesh()
-            .disable_y_axis()
-            .x_desc("density")
-            .label_style(("sans-serif", 12))
-            .draw()
-            .map_err(err)?;
-        let wy = (ry.1 - ry.0) / bins as f64;
-        right_chart
-            .draw_series(
-                hy.iter()
-                    .enumerate()
-                    .map(|(i, &c)| Rectangle::new([(0.0, ry.0 + i as f64 * wy), (c, ry.0 + (i + 1) as f64 * wy)], bar)),
-            )
-            .map_err(err)?;
+        marginal(&top_hist, &hx, rx, hmax, false)?;
+        marginal(&right, &hy, ry, hmax, true)?;
         root.present().map_err(err)
     }
 }
