@@ -20,6 +20,8 @@
 use std::f64::consts::PI;
 use std::ops::RangeInclusive;
 
+use rand_core::Rng as _;
+
 use super::Sampler;
 use crate::error::{Error, Result};
 use crate::seed::{Rng, Seed, below, uniform, wrap01};
@@ -271,6 +273,22 @@ impl DiskGrid {
         })
     }
 
+    /// For the cells c-2..=c+2 of [`DiskGrid::around`]: the period to add to a neighbour's
+    /// coordinate when the torus wraps it (-1 below the seam, +1 above, 0 otherwise).
+    #[inline]
+    fn seam_shifts(&self, c: usize) -> [f64; 5] {
+        std::array::from_fn(|k| {
+            let i = c as i64 + k as i64 - 2;
+            if !self.torus || (0..self.g as i64).contains(&i) {
+                0.0
+            } else if i < 0 {
+                -1.0
+            } else {
+                1.0
+            }
+        })
+    }
+
     /// The slot of the cell in row r, column c (from [`DiskGrid::around`]); the
     /// always-empty sentinel slot when either is off the square.
     #[inline]
@@ -313,14 +331,17 @@ impl Occupancy for DiskGrid {
     fn conflict(&self, p: &[f64]) -> bool {
         let (x, y) = (p[0], p[1]);
         let (rows, cols) = (self.around(self.cell(x)), self.around(self.cell(y)));
-        // all 25 cells, without early exit: no data-dependent branch to mispredict
+        // a neighbour reached across the torus's seam is moved by one period instead of
+        // taking min(d, 1 - d) per cell; all 25 cells, without early exit: no
+        // data-dependent branch to mispredict
+        let (sx, sy) = (self.seam_shifts(self.cell(x)), self.seam_shifts(self.cell(y)));
         let mut hit = false;
-        for r in rows {
-            for c in cols {
+        for (r, shift_x) in rows.into_iter().zip(sx) {
+            for (c, shift_y) in cols.into_iter().zip(sy) {
                 let q = self.slots[self.slot(r, c)];
                 // NaN compares false: empty cells never conflict
-                let (ax, ay) = (self.axis(x, q[0]), self.axis(y, q[1]));
-                hit |= ax * ax + ay * ay < self.radius2;
+                let (dx, dy) = (x - (q[0] + shift_x), y - (q[1] + shift_y));
+                hit |= dx * dx + dy * dy < self.radius2;
             }
         }
         hit
@@ -454,8 +475,11 @@ impl Sampler for DartThrowing {
 #[inline]
 fn annulus_offset(rng: &mut Rng, r: f64) -> (f64, f64) {
     let (inner, outer) = (r * r, 4.0 * r * r);
+    // both coordinates from one 64-bit draw: 32 bits each resolve r / 2^30, ample for a candidate
+    let scale = 4.0 * r / 4_294_967_296.0;
     loop {
-        let (a, b) = (r * (4.0 * uniform(rng) - 2.0), r * (4.0 * uniform(rng) - 2.0));
+        let bits = rng.next_u64();
+        let (a, b) = (scale * (bits >> 32) as f64 - 2.0 * r, scale * (bits & 0xFFFF_FFFF) as f64 - 2.0 * r);
         let q = a * a + b * b;
         if q >= inner && q < outer {
             return (a, b);
