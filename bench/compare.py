@@ -17,6 +17,7 @@ from scipy.stats import qmc
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXAMPLE = os.path.join(ROOT, "target", "release", "examples", "throughput")
+DISCREPANCY = os.path.join(ROOT, "target", "release", "examples", "discrepancy_timing")
 QUICK = "--quick" in sys.argv
 
 
@@ -76,3 +77,42 @@ compare("Poisson disk, same radius %.5f" % radius, n_poisson, "scipy PoissonDisk
 print("(scipy PoissonDisk returned %d points; samplab returns exactly n)" % got["n"])
 t = samplab("poisson.fast", N)
 print("samplab poisson.fast, n = 10^6 (auto radius): %.3f s" % t)
+
+
+# discrepancies: scipy on the same points (samplab's random set, read back from its CLI)
+print()
+SAMPLAB = os.path.join(ROOT, "target", "release", "samplab")
+
+
+def samplab_disc(metric, n, d=2):
+    out = subprocess.run([DISCREPANCY, "%s:%d:%d" % (metric, n, d)], check=True, capture_output=True, text=True,
+                         env=dict(os.environ, RAYON_NUM_THREADS="1")).stdout
+    row = json.loads(out.strip().splitlines()[-1])
+    return row["seconds"], row["value"]
+
+
+def points(n, d=2):
+    out = subprocess.run([SAMPLAB, "generate", "random", "-n", str(n), "-d", str(d), "--seed", "1", "--format", "json"],
+                         check=True, capture_output=True, text=True).stdout
+    return np.array(json.loads(out)["sets"][0])
+
+
+for metric, method, squared, n in [("l2-star", "L2-star", False, 1 << 14), ("centered", "CD", True, 1 << 14), ("wraparound", "WD", True, 1 << 14)]:
+    x = points(n)
+    box = {}
+
+    def run():
+        box["v"] = qmc.discrepancy(x, method=method, workers=1)
+
+    peer = median_time(run, min_runs=3)
+    # the value on identical points (set 0 of seed 1) through the CLI; the timing from the example's own set
+    out = subprocess.run([SAMPLAB, "discrepancy", metric, "--sampler", "random", "-n", str(n), "--seed", "1", "--json"],
+                         check=True, capture_output=True, text=True).stdout
+    ours_value = json.loads(out)["metrics"][0]["values"][0]
+    ours_time, _ = samplab_disc(metric, n)
+    theirs = math.sqrt(box["v"]) if squared else box["v"]
+    print("%-10s n=%-6d scipy %9.4f s | samplab %9.5f s | ratio %8.1fx | values %.12g vs %.12g (rel. diff %.1e)"
+          % (metric, n, peer, ours_time, peer / ours_time, theirs, ours_value, abs(theirs - ours_value) / theirs), flush=True)
+for metric, n, d in [("star", 1000, 2), ("star", 100000, 2), ("star", 1000000, 2), ("l2-star", 1000000, 2), ("star", 2000, 3), ("star", 100, 5), ("extreme", 1000, 2)]:
+    t, v = samplab_disc(metric, n, d)
+    print("samplab %-8s n=%-8d d=%d: %.3f s (value %.6g)" % (metric, n, d, t, v), flush=True)
