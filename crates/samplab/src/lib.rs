@@ -37,6 +37,7 @@ pub mod points;
 pub mod sampler;
 pub mod seed;
 pub mod spec;
+pub mod spectrum;
 pub mod stats;
 pub mod theory;
 pub mod warp;

@@ -1,0 +1,210 @@
+//! Spectral statistics of sampling patterns over realizations (Subr & Kautz 2013 section 2).
+//!
+//! ## Conventions
+//!
+//! - The spectrum of one set of N points is S(w) = (1/N) sum_i exp(-2 pi i w.x_i), so the
+//!   DC value is 1, evaluated at the integer frequencies of a centred grid of even
+//!   resolution R: index k on each axis is frequency k - R/2, so index (R/2, R/2) is DC.
+//!   Grids are row-major (the first axis varies slowest).
+//! - Over M realizations: the periodogram <|S|^2>, the expected spectrum <S> (complex; its
+//!   amplitude |<S>| predicts bias, eq. 4/7), and the variance of the spectrum
+//!   V(S) = V(Re S) + V(Im S) (eq. 6; sample variance, divisor M - 1). Note
+//!   <|S|^2> = |<S>|^2 + V(S) (M - 1) / M.
+//! - Radial averages: bin r in 1..=R/2 - 1 holds the frequencies with round(|w|) = r (DC,
+//!   bin 0, is excluded; the corners beyond R/2 are left out).
+//! - Anisotropy (Lagae & Dutre 2008): per annulus, 10 log10(variance / mean^2) of the
+//!   statistic's values in it, in dB.
+
+use rayon::prelude::*;
+
+use crate::error::{Error, Result};
+use crate::points::PointSet;
+
+pub mod theory;
+
+/// A complex number (re, im).
+pub type Complex = [f64; 2];
+
+/// The direct DFT of one set: S(w) for every integer frequency of the centred grid of
+/// resolution `res` (even), in 1D or 2D; O(N R^d) with per-axis phase tables (separable).
+///
+/// # Errors
+/// `res` odd or zero, or a set that is not 1D or 2D.
+pub fn direct_dft(points: &PointSet, res: usize) -> Result<Vec<Complex>> {
+    check_res(res)?;
+    let (n, d) = (points.len(), points.dims());
+    let half = (res / 2) as f64;
+    let phases = |x: f64| -> Vec<Complex> {
+        (0..res)
+            .map(|k| {
+                let (s, c) = (-std::f64::consts::TAU * (k as f64 - half) * x).sin_cos();
+                [c, s]
+            })
+            .collect()
+    };
+    let inv = 1.0 / n as f64;
+    match d {
+        1 => {
+            let mut out = vec![[0.0; 2]; res];
+            for p in points.iter() {
+                for (o, e) in out.iter_mut().zip(phases(p[0])) {
+                    o[0] += e[0];
+                    o[1] += e[1];
+                }
+            }
+            Ok(out.into_iter().map(|c| [c[0] * inv, c[1] * inv]).collect())
+        }
+        2 => {
+            let mut out = vec![[0.0; 2]; res * res];
+            for p in points.iter() {
+                let (ex, ey) = (phases(p[0]), phases(p[1]));
+                for (row, a) in out.chunks_exact_mut(res).zip(&ex) {
+                    for (o, b) in row.iter_mut().zip(&ey) {
+                        o[0] += a[0] * b[0] - a[1] * b[1];
+                        o[1] += a[0] * b[1] + a[1] * b[0];
+                    }
+                }
+            }
+            Ok(out.into_iter().map(|c| [c[0] * inv, c[1] * inv]).collect())
+        }
+        _ => Err(Error::Invalid(format!("spectra are computed for 1D and 2D sets, not {d}D"))),
+    }
+}
+
+fn check_res(res: usize) -> Result<()> {
+    if res == 0 || res % 2 == 1 {
+        return Err(Error::Invalid(format!("resolution {res}: must be even and positive (index R/2 is DC)")));
+    }
+    Ok(())
+}
+
+/// The statistics of the spectra of M realizations.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Statistics {
+    /// Resolution R of each axis.
+    pub res: usize,
+    /// Dimensions (1 or 2).
+    pub dims: usize,
+    /// Points per set.
+    pub n: usize,
+    /// Realizations M.
+    pub sets: usize,
+    /// <|S|^2>.
+    pub periodogram: Vec<f64>,
+    /// |<S>|.
+    pub expected: Vec<f64>,
+    /// V(Re S) + V(Im S), divisor M - 1.
+    pub variance: Vec<f64>,
+}
+
+/// The statistics of `sets` (all of one size and dimension, at least two), in parallel
+/// over sets and folded in set order (Welford's update), so the result does not depend on
+/// the thread count.
+///
+/// # Errors
+/// Fewer than two sets, sets of different sizes or dimensions, a bad resolution.
+pub fn statistics(sets: &[PointSet], res: usize) -> Result<Statistics> {
+    check_res(res)?;
+    if sets.len() < 2 {
+        return Err(Error::Invalid(format!("the variance of the spectrum needs at least 2 sets, got {}", sets.len())));
+    }
+    let (n, d) = (sets[0].len(), sets[0].dims());
+    if let Some(k) = sets.iter().position(|s| s.len() != n || s.dims() != d) {
+        return Err(Error::Invalid(format!(
+            "set {k} has {} {}D points, set 0 has {n} {d}D points",
+            sets[k].len(),
+            sets[k].dims()
+        )));
+    }
+    let cells = res.pow(d as u32);
+    if cells > 1 << 26 {
+        return Err(Error::Invalid(format!(
+            "a {res}^{d} grid has {cells} frequencies, more than 2^26; lower the resolution"
+        )));
+    }
+    let spectra: Vec<Vec<Complex>> = sets.par_iter().map(|s| direct_dft(s, res)).collect::<Result<_>>()?;
+    let mut mean = vec![[0.0f64; 2]; cells];
+    let mut m2 = vec![0.0f64; cells];
+    let mut power = vec![0.0f64; cells];
+    for (k, spec) in spectra.iter().enumerate() {
+        let kf = (k + 1) as f64;
+        for ((m, q), (s, p)) in mean.iter_mut().zip(m2.iter_mut()).zip(spec.iter().zip(power.iter_mut())) {
+            let delta = [s[0] - m[0], s[1] - m[1]];
+            m[0] += delta[0] / kf;
+            m[1] += delta[1] / kf;
+            *q += delta[0] * (s[0] - m[0]) + delta[1] * (s[1] - m[1]);
+            *p += (s[0] * s[0] + s[1] * s[1] - *p) / kf;
+        }
+    }
+    let m = sets.len() as f64;
+    Ok(Statistics {
+        res,
+        dims: d,
+        n,
+        sets: sets.len(),
+        periodogram: power,
+        expected: mean.iter().map(|c| c[0].hypot(c[1])).collect(),
+        variance: m2.iter().map(|q| q / (m - 1.0)).collect(),
+    })
+}
+
+/// Radial average (bins 1..=R/2-1 by rounded |w|, DC excluded) and anisotropy in dB of
+/// a statistic on the centred grid.
+pub fn radial(values: &[f64], res: usize, dims: usize) -> (Vec<f64>, Vec<f64>) {
+    let bins = res / 2;
+    let (mut sum, mut sq, mut count) = (vec![0.0; bins], vec![0.0; bins], vec![0usize; bins]);
+    let half = (res / 2) as f64;
+    for (idx, &v) in values.iter().enumerate() {
+        let r = if dims == 1 {
+            (idx as f64 - half).abs()
+        } else {
+            let (i, j) = ((idx / res) as f64 - half, (idx % res) as f64 - half);
+            i.hypot(j)
+        };
+        let b = r.round() as usize;
+        if b >= 1 && b < bins {
+            sum[b] += v;
+            sq[b] += v * v;
+            count[b] += 1;
+        }
+    }
+    let mut mean = Vec::with_capacity(bins - 1);
+    let mut aniso = Vec::with_capacity(bins - 1);
+    for b in 1..bins {
+        let c = count[b].max(1) as f64;
+        let mu = sum[b] / c;
+        let var = (sq[b] / c - mu * mu).max(0.0);
+        mean.push(mu);
+        aniso.push(if mu > 0.0 && count[b] > 1 { 10.0 * (var / (mu * mu)).max(1e-30).log10() } else { f64::NAN });
+    }
+    (mean, aniso)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dc_is_one_and_single_points_have_unit_modulus() {
+        let p = PointSet::new(2, vec![0.3, 0.7]).unwrap();
+        let s = direct_dft(&p, 8).unwrap();
+        assert!((s[4 * 8 + 4][0] - 1.0).abs() < 1e-15 && s[4 * 8 + 4][1].abs() < 1e-15);
+        assert!(s.iter().all(|c| (c[0].hypot(c[1]) - 1.0).abs() < 1e-12));
+        // S(w) = exp(-2 pi i (wx 0.3 + wy 0.7)) at w = (1, -2): index (5, 2)
+        let w = -std::f64::consts::TAU * (0.3 - 2.0 * 0.7);
+        let c = s[5 * 8 + 2];
+        assert!((c[0] - w.cos()).abs() < 1e-12 && (c[1] - w.sin()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn power_decomposes_into_expected_and_variance() {
+        let sets: Vec<PointSet> =
+            (0..7).map(|k| crate::sampler::build("random").unwrap().generate(20, 2, crate::Seed(k)).unwrap()).collect();
+        let st = statistics(&sets, 8).unwrap();
+        let m = 7.0;
+        for i in 0..64 {
+            let want = st.expected[i].powi(2) + st.variance[i] * (m - 1.0) / m;
+            assert!((st.periodogram[i] - want).abs() < 1e-12);
+        }
+    }
+}

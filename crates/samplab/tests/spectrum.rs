@@ -1,0 +1,94 @@
+//! Spectral statistics: the direct DFT against single-frequency sums, and Subr & Kautz's
+//! central claims with tolerances derived from the number of realizations.
+
+use samplab::spectrum::{self, theory};
+use samplab::{PointSet, Seed, sampler};
+
+fn sets(spec: &str, n: usize, m: usize, seed: u64) -> Vec<PointSet> {
+    sampler::generate_sets(sampler::build(spec).unwrap().as_ref(), n, 2, Seed(seed), m).unwrap()
+}
+
+#[test]
+fn direct_dft_equals_the_defining_sum() {
+    let p = &sets("random", 37, 1, 1)[0];
+    let res = 10;
+    let s = spectrum::direct_dft(p, res).unwrap();
+    for (idx, c) in s.iter().enumerate() {
+        let (wx, wy) = ((idx / res) as f64 - 5.0, (idx % res) as f64 - 5.0);
+        let (mut re, mut im) = (0.0, 0.0);
+        for q in p.iter() {
+            let a = -std::f64::consts::TAU * (wx * q[0] + wy * q[1]);
+            re += a.cos();
+            im += a.sin();
+        }
+        assert!((c[0] - re / 37.0).abs() < 1e-13 && (c[1] - im / 37.0).abs() < 1e-13);
+    }
+}
+
+#[test]
+fn regular_and_uniform_jitter_share_a_periodogram_but_not_an_expected_spectrum() {
+    let (n, m, res) = (256, 100, 64);
+    let regular = spectrum::statistics(&sets("regular", n, m, 2), res).unwrap();
+    let uniform = spectrum::statistics(&sets("jitter.uniform", n, m, 3), res).unwrap();
+    // a shift multiplies every S(w) by a phase: identical periodograms, set by set
+    for (a, b) in regular.periodogram.iter().zip(&uniform.periodogram) {
+        assert!((a - b).abs() < 1e-12);
+    }
+    // away from DC, |<S>| of uniform jitter is Monte Carlo noise: at the grid's alias
+    // peaks (|S| = 1, uniform phase) its mean over m sets has modulus ~ 1/sqrt(m)
+    let dc = (res / 2) * res + res / 2;
+    let peak = (res / 2 + 16) * res + res / 2; // w = (16, 0), the first alias of a 16 x 16 grid
+    assert!((regular.expected[peak] - 1.0).abs() < 1e-9, "regular grid's alias peak {}", regular.expected[peak]);
+    assert!(uniform.expected[peak] < 4.0 / (m as f64).sqrt(), "uniform jitter at the peak: {}", uniform.expected[peak]);
+    let worst = uniform.expected.iter().enumerate().filter(|(i, _)| *i != dc).map(|(_, v)| *v).fold(0.0, f64::max);
+    assert!(worst < 5.0 / (m as f64).sqrt(), "uniform jitter's largest |<S>| off DC: {worst}");
+    assert!((uniform.expected[dc] - 1.0).abs() < 1e-12);
+}
+
+/// Gaussian jitter of sigma = 0.1 cells on a 16 x 16 grid (absolute s = 0.1/16): the
+/// second-order forms hold to x = 2 pi^2 s^2 w^2 relative, under 5% for |w| < 8. Below
+/// the grid frequency the expected spectrum vanishes and the variance is (1 - phi^2)/N;
+/// at the first alias peak |<S>| = phi(16).
+#[test]
+fn gaussian_jitter_matches_eqs_8_and_9_at_low_frequencies() {
+    let (n, m, res) = (256, 400, 64);
+    let s_abs = 0.1 / 16.0;
+    let st = spectrum::statistics(&sets("jitter.gaussian:sigma=0.1", n, m, 4), res).unwrap();
+    let half = (res / 2) as f64;
+    // variance, averaged over the annulus 2 <= |w| < 8: each value is a chi-square estimate
+    // with 2(m-1) degrees of freedom, relative sd 1/sqrt(m-1); averaging over the annulus
+    // reduces it further, so 5 single-value standard errors is generous
+    let (mut measured, mut exact, mut eq9, mut count) = (0.0, 0.0, 0.0, 0.0);
+    for (idx, v) in st.variance.iter().enumerate() {
+        let w = ((idx / res) as f64 - half).hypot((idx % res) as f64 - half);
+        if (2.0..8.0).contains(&w) {
+            measured += v;
+            exact += theory::gaussian_variance(w, s_abs, n);
+            eq9 += theory::gaussian_variance_eq9(w, s_abs, n);
+            count += 1.0;
+        }
+    }
+    let (measured, exact, eq9) = (measured / count, exact / count, eq9 / count);
+    let tol = 5.0 / ((m - 1) as f64).sqrt();
+    assert!((measured / exact - 1.0).abs() < tol, "V measured {measured}, exact {exact}");
+    assert!((measured / eq9 - 1.0).abs() < tol + 0.05, "V measured {measured}, eq. 9 {eq9}");
+    // expected spectrum at the alias peak w = (16, 0): phi(16), noise sqrt(V/m)
+    let peak = (res / 2 + 16) * res + res / 2;
+    let phi = theory::gaussian_ratio(16.0, s_abs);
+    let noise = (st.variance[peak] / m as f64).sqrt();
+    assert!((st.expected[peak] - phi).abs() < 5.0 * noise + 1e-3, "|<S>| {} vs {phi}", st.expected[peak]);
+    // at w = 16, x = 2 pi^2 s^2 w^2 = 0.197: eq. 8's second-order factor is off by about
+    // x^2 / 2 = 0.02 there, outside the low-frequency range where it holds to 5%
+    let x = 2.0 * std::f64::consts::PI.powi(2) * s_abs * s_abs * 256.0;
+    let gap = (theory::gaussian_ratio_eq8(16.0, s_abs) - phi).abs();
+    assert!(gap <= x * x / 2.0 && gap > x * x / 4.0, "gap {gap}, x {x}");
+}
+
+#[test]
+fn bad_input() {
+    let one = sets("random", 16, 1, 5);
+    assert!(spectrum::statistics(&one, 16).unwrap_err().to_string().contains("at least 2 sets"));
+    let two = sets("random", 16, 2, 5);
+    assert!(spectrum::statistics(&two, 15).unwrap_err().to_string().contains("even"));
+    assert!(spectrum::statistics(&two, 1 << 14).unwrap_err().to_string().contains("lower the resolution"));
+}
