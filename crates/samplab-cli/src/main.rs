@@ -13,6 +13,7 @@ mod integrate;
 mod list;
 mod plot;
 mod reproduce;
+mod spectrum;
 
 /// Sampling patterns for Monte Carlo integration in rendering.
 #[derive(Parser)]
@@ -36,6 +37,8 @@ enum Command {
     Discrepancy(discrepancy::Args),
     /// Bias, variance and convergence exponents of samplers on the papers' test integrands.
     Integrate(integrate::Args),
+    /// Periodogram, expected spectrum and spectrum variance over realizations (Subr & Kautz).
+    Spectrum(spectrum::Args),
 }
 
 fn main() -> ExitCode {
@@ -47,6 +50,7 @@ fn main() -> ExitCode {
         Command::Plot(a) => plot::run(&a),
         Command::Discrepancy(a) => discrepancy::run(&a),
         Command::Integrate(a) => integrate::run(&a),
+        Command::Spectrum(a) => spectrum::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -227,3 +227,42 @@ fn integrate_json_and_bad_input() {
     assert_bad_input(&["integrate", "--sampler", "jitter", "--integrand", "disk:r=2", "-n", "16"], &["'r'"]);
     assert_bad_input(&["integrate", "--sampler", "pmj02", "--integrand", "step", "-n", "16"], &["1D is not supported"]);
 }
+
+#[test]
+fn spectrum_writes_the_documented_layout() {
+    let dir = temp("spectrum");
+    let out = dir.join("spec");
+    let r = samplab(&[
+        "spectrum",
+        "--sampler",
+        "regular",
+        "-n",
+        "64",
+        "--sets",
+        "4",
+        "--res",
+        "32",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("spectrum.json")).unwrap()).unwrap();
+    assert_eq!((v["res"].as_u64(), v["n"].as_u64(), v["sets"].as_u64()), (Some(32), Some(64), Some(4)));
+    let grid = v["statistics"]["expected"]["grid"].as_array().unwrap();
+    assert_eq!(grid.len(), 32 * 32);
+    // DC at (R/2, R/2) is 1; a regular 8 x 8 grid has |S| = 1 at w = (8, 0): index (24, 16)
+    assert!((grid[16 * 32 + 16].as_f64().unwrap() - 1.0).abs() < 1e-12);
+    assert!((grid[24 * 32 + 16].as_f64().unwrap() - 1.0).abs() < 1e-9);
+    for f in ["periodogram.png", "variance.csv", "radial.csv", "radial.svg"] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    assert_bad_input(
+        &["spectrum", "--sampler", "jitter", "-n", "64", "--sets", "1", "-o", dir.join("x").to_str().unwrap()],
+        &["at least 2 sets"],
+    );
+    assert_bad_input(
+        &["spectrum", "--sampler", "jitter", "-n", "64", "--res", "31", "-o", dir.join("x").to_str().unwrap()],
+        &["must be even"],
+    );
+    assert!(!dir.join("x").exists());
+}

@@ -249,20 +249,46 @@ pub struct Done {
     pub output: Output,
 }
 
+fn io_error(p: &Path, e: std::io::Error) -> Error {
+    Error::Io { path: p.display().to_string(), reason: e.to_string() }
+}
+
+/// Fill the folder `out` atomically: `fill` writes into a hidden staging folder beside it,
+/// which replaces `out` only when `fill` succeeds; on failure `out` is left as it was and
+/// the staging folder is removed. An interruption leaves at most the hidden staging folder.
+///
+/// # Errors
+/// `fill` fails, or the folders cannot be created or renamed.
+pub fn write_folder(out: &Path, fill: impl FnOnce(&Path) -> Result<(), Error>) -> Result<(), Error> {
+    let parent = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = out
+        .file_name()
+        .ok_or_else(|| Error::Invalid(format!("{}: not a folder name", out.display())))?
+        .to_string_lossy()
+        .to_string();
+    let staging = parent.join(format!(".{name}.partial-{}", std::process::id()));
+    std::fs::create_dir_all(parent).map_err(|e| io_error(parent, e))?;
+    let _ = std::fs::remove_dir_all(&staging);
+    std::fs::create_dir_all(&staging).map_err(|e| io_error(&staging, e))?;
+    if let Err(e) = fill(&staging) {
+        let _ = std::fs::remove_dir_all(&staging);
+        return Err(e);
+    }
+    // the old folder (if any) is removed only after the new one is complete
+    let old = parent.join(format!(".{name}.old-{}", std::process::id()));
+    if out.exists() {
+        std::fs::rename(out, &old).map_err(|e| io_error(out, e))?;
+    }
+    std::fs::rename(&staging, out).map_err(|e| io_error(out, e))?;
+    let _ = std::fs::remove_dir_all(&old);
+    Ok(())
+}
+
 /// Run `papers` and write the report. Returns the claims.
 ///
 /// # Errors
 /// An experiment or a write fails; the target folder is then left as it was.
 pub fn reproduce(papers: &[&Paper], options: &Options) -> Result<Vec<(String, Claim)>, Error> {
-    let out = &options.out;
-    let parent = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = out
-        .file_name()
-        .ok_or_else(|| Error::Invalid(format!("--out {}: not a folder name", out.display())))?
-        .to_string_lossy()
-        .to_string();
-    let staging = parent.join(format!(".{name}.partial-{}", std::process::id()));
-    let io = |p: &Path, e: std::io::Error| Error::Io { path: p.display().to_string(), reason: e.to_string() };
     let bars = MultiProgress::new();
     let mut results: Vec<(&Paper, Vec<Done>)> = Vec::new();
     for paper in papers {
@@ -291,24 +317,13 @@ pub fn reproduce(papers: &[&Paper], options: &Options) -> Result<Vec<(String, Cl
         }
         results.push((paper, done));
     }
-    // everything is in memory: write it into a staging folder, then swap it into place
-    let write = || -> Result<Vec<(String, Claim)>, Error> {
-        std::fs::create_dir_all(parent).map_err(|e| io(parent, e))?;
-        let _ = std::fs::remove_dir_all(&staging);
+    let mut claims = Vec::new();
+    write_folder(&options.out, |staging| {
         for sub in ["figures", "tables"] {
-            std::fs::create_dir_all(staging.join(sub)).map_err(|e| io(&staging, e))?;
+            std::fs::create_dir_all(staging.join(sub)).map_err(|e| io_error(staging, e))?;
         }
-        html::write_report(&staging, &results, options)
-    };
-    let claims = write().inspect_err(|_| {
-        let _ = std::fs::remove_dir_all(&staging);
+        claims = html::write_report(staging, &results, options)?;
+        Ok(())
     })?;
-    // swap into place: the old report (if any) is removed only after the new one is complete
-    let old = parent.join(format!(".{name}.old-{}", std::process::id()));
-    if out.exists() {
-        std::fs::rename(out, &old).map_err(|e| io(out, e))?;
-    }
-    std::fs::rename(&staging, out).map_err(|e| io(out, e))?;
-    let _ = std::fs::remove_dir_all(&old);
     Ok(claims)
 }

@@ -488,3 +488,98 @@ impl Drawable for DotChart {
         root.present().map_err(err)
     }
 }
+
+/// Viridis (perceptually uniform), sampled at nine points and interpolated linearly.
+fn viridis(t: f64) -> RGBColor {
+    const STOPS: [(f64, f64, f64); 9] = [
+        (68.0, 1.0, 84.0),
+        (71.0, 44.0, 122.0),
+        (59.0, 81.0, 139.0),
+        (44.0, 113.0, 142.0),
+        (33.0, 144.0, 141.0),
+        (39.0, 173.0, 129.0),
+        (92.0, 200.0, 99.0),
+        (170.0, 220.0, 50.0),
+        (253.0, 231.0, 37.0),
+    ];
+    let x = t.clamp(0.0, 1.0) * 8.0;
+    let i = (x.floor() as usize).min(7);
+    let f = x - i as f64;
+    let (a, b) = (STOPS[i], STOPS[i + 1]);
+    let mix = |p: f64, q: f64| (p + (q - p) * f).round() as u8;
+    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
+/// A square grid of values on centred integer frequencies, log10 colour scale (viridis)
+/// with a colour bar.
+pub struct HeatMap {
+    /// Title.
+    pub title: String,
+    /// What the colours show.
+    pub label: String,
+    /// Row-major values, `res` x `res`; index (res/2, res/2) is the centre.
+    pub values: Vec<f64>,
+    /// Side of the grid.
+    pub res: usize,
+}
+
+impl Drawable for HeatMap {
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
+        root.fill(&WHITE).map_err(err)?;
+        let logs: Vec<f64> = self.values.iter().map(|&v| if v > 0.0 { v.log10() } else { f64::NAN }).collect();
+        let (lo, hi) = logs
+            .iter()
+            .filter(|v| v.is_finite())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+        let (lo, hi) = if lo.is_finite() { (lo.max(hi - 12.0), hi.max(lo + 1e-9)) } else { (0.0, 1.0) };
+        let (w, _) = root.dim_in_pixel();
+        let (map, bar) = root.split_horizontally(w - 110);
+        let half = (self.res / 2) as f64;
+        let mut chart = ChartBuilder::on(&map)
+            .caption(&self.title, ("sans-serif", 18))
+            .margin(10)
+            .x_label_area_size(36)
+            .y_label_area_size(48)
+            .build_cartesian_2d(-half..half, -half..half)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc("frequency (cycles per unit), axis 1")
+            .y_desc("frequency, axis 0")
+            .label_style(("sans-serif", 12))
+            .draw()
+            .map_err(err)?;
+        let res = self.res;
+        chart
+            .draw_series(logs.iter().enumerate().map(|(idx, &v)| {
+                let (i, j) = ((idx / res) as f64 - half, (idx % res) as f64 - half);
+                let c = if v.is_finite() { viridis((v - lo) / (hi - lo)) } else { viridis(0.0) };
+                Rectangle::new([(j - 0.5, i - 0.5), (j + 0.5, i + 0.5)], c.filled())
+            }))
+            .map_err(err)?;
+        let mut scale = ChartBuilder::on(&bar)
+            .margin_top(40)
+            .margin_bottom(46)
+            .margin_right(8)
+            .y_label_area_size(60)
+            .build_cartesian_2d(0.0..1.0, lo..hi)
+            .map_err(err)?;
+        scale
+            .configure_mesh()
+            .disable_mesh()
+            .disable_x_axis()
+            .y_desc(format!("log10 {}", self.label))
+            .label_style(("sans-serif", 11))
+            .draw()
+            .map_err(err)?;
+        let steps = 100;
+        scale
+            .draw_series((0..steps).map(|k| {
+                let (a, b) = (lo + (hi - lo) * k as f64 / steps as f64, lo + (hi - lo) * (k + 1) as f64 / steps as f64);
+                Rectangle::new([(0.0, a), (1.0, b)], viridis(k as f64 / (steps - 1) as f64).filled())
+            }))
+            .map_err(err)?;
+        root.present().map_err(err)
+    }
+}
