@@ -4,9 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::bail;
 use rayon::prelude::*;
+use samplab::PointSet;
 use samplab::discrepancy::{self, Limits, Metric, MetricEntry};
-use samplab::io::{self, Format};
-use samplab::{PointSet, Seed, sampler};
 
 /// Compute discrepancies.
 #[derive(clap::Args)]
@@ -18,24 +17,8 @@ pub struct Args {
     /// centered, wraparound, mixture, projected:angle=A,kind=star|extreme
     #[arg(required = true, num_args = 1..)]
     items: Vec<String>,
-    /// Generate the sets with this sampler instead of reading a file
-    #[arg(long)]
-    sampler: Option<String>,
-    /// Points per set (with --sampler)
-    #[arg(short, long)]
-    n: Option<usize>,
-    /// Dimensions (with --sampler)
-    #[arg(short, long, default_value_t = 2)]
-    dims: usize,
-    /// Number of sets (with --sampler)
-    #[arg(long, default_value_t = 1)]
-    sets: usize,
-    /// Seed (with --sampler)
-    #[arg(long, default_value_t = Seed::DEFAULT.0)]
-    seed: u64,
-    /// Input format (default: from the file's extension)
-    #[arg(long)]
-    format: Option<String>,
+    #[command(flatten)]
+    source: crate::sets::SetSource,
     /// Print JSON instead of a table
     #[arg(long)]
     json: bool,
@@ -47,7 +30,9 @@ pub struct Args {
 pub fn run(a: &Args) -> anyhow::Result<()> {
     // the last item is a file when it is not a metric
     let (metric_items, file) = match a.items.split_last() {
-        Some((last, rest)) if Metric::parse(last).is_err() && a.sampler.is_none() => (rest, Some(PathBuf::from(last))),
+        Some((last, rest)) if Metric::parse(last).is_err() && !a.source.generates() => {
+            (rest, Some(PathBuf::from(last)))
+        }
         _ => (&a.items[..], None),
     };
     if metric_items.is_empty() {
@@ -59,25 +44,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     if a.max_work.is_some_and(|w| w.is_nan() || w <= 0.0) {
         bail!("--max-work must be a positive number");
     }
-    let (sets, source) = match (&a.sampler, file) {
-        (Some(spec), None) => {
-            let n = a.n.ok_or_else(|| anyhow::anyhow!("--sampler needs -n"))?;
-            if a.sets == 0 {
-                bail!("--sets must be at least 1");
-            }
-            let s = sampler::build(spec)?;
-            (
-                sampler::generate_sets(s.as_ref(), n, a.dims, Seed(a.seed), a.sets)?,
-                format!("{} n={n} d={} sets={} seed={}", s.spec(), a.dims, a.sets, a.seed),
-            )
-        }
-        (None, Some(path)) => {
-            let format = a.format.as_deref().map(Format::from_name).transpose()?;
-            (io::read(&path, format)?, path.display().to_string())
-        }
-        (None, None) => bail!("give a point-set file or --sampler SPEC -n N"),
-        (Some(_), Some(_)) => unreachable!("a file is only taken without --sampler"),
-    };
+    let crate::sets::Loaded { sets, source, .. } = a.source.load(file.as_deref(), 1)?;
     let bar = crate::generate::progress((sets.len() * metrics.len()) as u64, "evaluations");
     // values[m][k]: metric m on set k, computed in parallel, deterministic
     let values: Vec<Vec<f64>> = metrics

@@ -13,6 +13,7 @@ mod integrate;
 mod list;
 mod plot;
 mod reproduce;
+mod sets;
 mod spectrum;
 
 /// Sampling patterns for Monte Carlo integration in rendering.

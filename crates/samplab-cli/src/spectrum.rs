@@ -4,9 +4,8 @@
 use std::path::PathBuf;
 
 use anyhow::bail;
-use samplab::io::{self, Format};
+use samplab::PointSet;
 use samplab::spectrum::{self, Statistics, theory};
-use samplab::{PointSet, Seed, sampler};
 use samplab_report::plot::{self as draw, HeatMap, LineChart, Series};
 
 /// Compute spectral statistics.
@@ -17,21 +16,8 @@ use samplab_report::plot::{self as draw, HeatMap, LineChart, Series};
 pub struct Args {
     /// A point-set file with at least two sets (instead of --sampler)
     file: Option<PathBuf>,
-    /// Sampler spec
-    #[arg(long)]
-    sampler: Option<String>,
-    /// Points per set (with --sampler)
-    #[arg(short, long)]
-    n: Option<usize>,
-    /// Dimensions, 1 or 2 (with --sampler)
-    #[arg(short, long, default_value_t = 2)]
-    dims: usize,
-    /// Realizations (with --sampler)
-    #[arg(long, default_value_t = 20)]
-    sets: usize,
-    /// Seed (with --sampler)
-    #[arg(long, default_value_t = Seed::DEFAULT.0)]
-    seed: u64,
+    #[command(flatten)]
+    source: crate::sets::SetSource,
     /// Frequencies per axis (even; DC at R/2)
     #[arg(long, default_value_t = 128)]
     res: usize,
@@ -41,9 +27,6 @@ pub struct Args {
     /// Overlay the closed forms for Gaussian and box jitter (Subr & Kautz eqs. 8-11)
     #[arg(long)]
     theory: bool,
-    /// Input format (default: from the file's extension)
-    #[arg(long)]
-    format: Option<String>,
     /// Output folder (replaced when complete)
     #[arg(short, long)]
     output: PathBuf,
@@ -57,22 +40,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
             bail!("--stat: unknown statistic '{s}' (periodogram, expected, variance)");
         }
     }
-    let (sets, source, spec) = match (&a.sampler, &a.file) {
-        (Some(spec), None) => {
-            let n = a.n.ok_or_else(|| anyhow::anyhow!("--sampler needs -n"))?;
-            let s = sampler::build(spec)?;
-            let bar = crate::generate::progress(a.sets as u64, "sets");
-            let sets = sampler::generate_sets(s.as_ref(), n, a.dims, Seed(a.seed), a.sets)?;
-            bar.finish_and_clear();
-            (sets, format!("{} n={n} d={} sets={} seed={}", s.spec(), a.dims, a.sets, a.seed), Some(s.spec()))
-        }
-        (None, Some(path)) => {
-            let format = a.format.as_deref().map(Format::from_name).transpose()?;
-            (io::read(path, format)?, path.display().to_string(), None)
-        }
-        (None, None) => bail!("give a point-set file or --sampler SPEC -n N"),
-        (Some(_), Some(_)) => bail!("give either a file or --sampler, not both"),
-    };
+    let crate::sets::Loaded { sets, source, spec } = a.source.load(a.file.as_deref(), 20)?;
     let st = spectrum::statistics(&sets, a.res)?;
     let theory_curves = if a.theory { spec.as_deref().and_then(|s| theory_for(s, &sets[0])) } else { None };
     samplab_report::write_folder(&a.output, |dir| {

@@ -1,0 +1,72 @@
+//! The point sets a measuring command works on: a file, or fresh realizations of a sampler.
+
+use std::path::Path;
+
+use anyhow::bail;
+use samplab::io::{self, Format};
+use samplab::{PointSet, Seed, sampler};
+
+/// Where the sets come from (flattened into `discrepancy` and `spectrum`).
+#[derive(clap::Args)]
+pub struct SetSource {
+    /// Generate the sets with this sampler instead of reading a file
+    #[arg(long)]
+    sampler: Option<String>,
+    /// Points per set (with --sampler)
+    #[arg(short, long)]
+    n: Option<usize>,
+    /// Dimensions (with --sampler)
+    #[arg(short, long, default_value_t = 2)]
+    dims: usize,
+    /// Number of sets (with --sampler; default 1 for discrepancy, 20 for spectrum)
+    #[arg(long)]
+    sets: Option<usize>,
+    /// Seed (with --sampler)
+    #[arg(long, default_value_t = Seed::DEFAULT.0)]
+    seed: u64,
+    /// Input format (default: from the file's extension)
+    #[arg(long)]
+    format: Option<String>,
+}
+
+/// Loaded sets: the sets, a one-line description, and the sampler's canonical spec.
+pub struct Loaded {
+    pub sets: Vec<PointSet>,
+    pub source: String,
+    pub spec: Option<String>,
+}
+
+impl SetSource {
+    /// Whether sets are to be generated (so a trailing argument is not a file).
+    pub fn generates(&self) -> bool {
+        self.sampler.is_some()
+    }
+
+    /// Read `file` or generate the sets (`default_sets` realizations unless --sets).
+    pub fn load(&self, file: Option<&Path>, default_sets: usize) -> anyhow::Result<Loaded> {
+        match (&self.sampler, file) {
+            (Some(spec), None) => {
+                let n = self.n.ok_or_else(|| anyhow::anyhow!("--sampler needs -n"))?;
+                let m = self.sets.unwrap_or(default_sets);
+                if m == 0 {
+                    bail!("--sets must be at least 1");
+                }
+                let s = sampler::build(spec)?;
+                let bar = crate::generate::progress(m as u64, "sets");
+                let sets = sampler::generate_sets(s.as_ref(), n, self.dims, Seed(self.seed), m)?;
+                bar.finish_and_clear();
+                Ok(Loaded {
+                    sets,
+                    source: format!("{} n={n} d={} sets={m} seed={}", s.spec(), self.dims, self.seed),
+                    spec: Some(s.spec()),
+                })
+            }
+            (None, Some(path)) => {
+                let format = self.format.as_deref().map(Format::from_name).transpose()?;
+                Ok(Loaded { sets: io::read(path, format)?, source: path.display().to_string(), spec: None })
+            }
+            (None, None) => bail!("give a point-set file or --sampler SPEC -n N"),
+            (Some(_), Some(_)) => bail!("give either a file or --sampler, not both"),
+        }
+    }
+}
