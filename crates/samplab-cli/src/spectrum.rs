@@ -24,6 +24,12 @@ pub struct Args {
     /// Statistics to write: periodogram, expected, variance
     #[arg(long, value_delimiter = ',', default_value = "periodogram,expected,variance")]
     stat: Vec<String>,
+    /// Tolerance of the fast path (non-uniform FFT), relative to DC
+    #[arg(long, default_value_t = 1e-9)]
+    tolerance: f64,
+    /// Use the direct DFT (the reference, O(N R^2)) instead of the fast path
+    #[arg(long)]
+    direct: bool,
     /// Overlay the closed forms for Gaussian and box jitter (Subr & Kautz eqs. 8-11)
     #[arg(long)]
     theory: bool,
@@ -41,7 +47,8 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         }
     }
     let crate::sets::Loaded { sets, source, spec } = a.source.load(a.file.as_deref(), 20)?;
-    let st = spectrum::statistics(&sets, a.res)?;
+    let method = if a.direct { spectrum::Method::Direct } else { spectrum::Method::Fast { tol: a.tolerance } };
+    let st = spectrum::statistics(&sets, a.res, method)?;
     let theory_curves = if a.theory { spec.as_deref().and_then(|s| theory_for(s, &sets[0])) } else { None };
     samplab_report::write_folder(&a.output, |dir| {
         write(dir, &st, a, &source, theory_curves.as_ref()).map_err(|e| samplab_report::Error::Invalid(e.to_string()))
