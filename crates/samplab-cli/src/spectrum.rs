@@ -113,8 +113,7 @@ fn write(
                 "expected" => "|<S>|",
                 _ => "V(S)",
             };
-            let map =
-                HeatMap { title: format!("{name} — {source}"), label: label.into(), values: v.to_vec(), res: st.res };
+            let map = HeatMap::centred(format!("{name} — {source}"), label.into(), v.to_vec(), st.res);
             std::fs::write(dir.join(format!("{name}.png")), draw::png(&map, (820, 700))?)?;
         }
         series.push(Series {

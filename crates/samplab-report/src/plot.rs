@@ -510,52 +510,103 @@ fn viridis(t: f64) -> RGBColor {
     RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
-/// A square grid of values on centred integer frequencies, log10 colour scale (viridis)
-/// with a colour bar.
+/// A grid of values drawn as coloured cells, log10 or linear colour scale (viridis), with
+/// a colour bar.
 pub struct HeatMap {
     /// Title.
     pub title: String,
     /// What the colours show.
     pub label: String,
-    /// Row-major values, `res` x `res`; index (res/2, res/2) is the centre.
+    /// Row-major values, `rows` x `cols`; row 0 is drawn at the bottom.
     pub values: Vec<f64>,
-    /// Side of the grid.
-    pub res: usize,
+    /// Number of rows (along y).
+    pub rows: usize,
+    /// Number of columns (along x).
+    pub cols: usize,
+    /// The x range the columns span.
+    pub x_range: (f64, f64),
+    /// The y range the rows span.
+    pub y_range: (f64, f64),
+    /// Axis labels.
+    pub x_label: String,
+    /// Axis labels.
+    pub y_label: String,
+    /// Colour by log10 of the values.
+    pub log: bool,
+}
+
+impl HeatMap {
+    /// A `res` x `res` grid of centred integer frequencies (index res/2 is 0 on both axes).
+    pub fn centred(title: String, label: String, values: Vec<f64>, res: usize) -> HeatMap {
+        let half = (res / 2) as f64;
+        HeatMap {
+            title,
+            label,
+            values,
+            rows: res,
+            cols: res,
+            x_range: (-half - 0.5, half - 0.5),
+            y_range: (-half - 0.5, half - 0.5),
+            x_label: "frequency (cycles per unit), axis 1".into(),
+            y_label: "frequency, axis 0".into(),
+            log: true,
+        }
+    }
 }
 
 impl Drawable for HeatMap {
     fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
         root.fill(&WHITE).map_err(err)?;
-        let logs: Vec<f64> = self.values.iter().map(|&v| if v > 0.0 { v.log10() } else { f64::NAN }).collect();
-        let (lo, hi) = logs
+        let scaled: Vec<f64> = self
+            .values
+            .iter()
+            .map(|&v| {
+                if !self.log {
+                    v
+                } else if v > 0.0 {
+                    v.log10()
+                } else {
+                    f64::NAN
+                }
+            })
+            .collect();
+        let (lo, hi) = scaled
             .iter()
             .filter(|v| v.is_finite())
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-        let (lo, hi) = if lo.is_finite() { (lo.max(hi - 12.0), hi.max(lo + 1e-9)) } else { (0.0, 1.0) };
+        let (lo, hi) = if !lo.is_finite() {
+            (0.0, 1.0)
+        } else if self.log {
+            (lo.max(hi - 12.0), hi.max(lo + 1e-9))
+        } else {
+            (lo, hi.max(lo + 1e-12))
+        };
         let (w, _) = root.dim_in_pixel();
         let (map, bar) = root.split_horizontally(w - 110);
-        let half = (self.res / 2) as f64;
+        let (x0, x1) = self.x_range;
+        let (y0, y1) = self.y_range;
         let mut chart = ChartBuilder::on(&map)
             .caption(&self.title, ("sans-serif", 18))
             .margin(10)
             .x_label_area_size(36)
-            .y_label_area_size(48)
-            .build_cartesian_2d(-half..half, -half..half)
+            .y_label_area_size(52)
+            .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(err)?;
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_desc("frequency (cycles per unit), axis 1")
-            .y_desc("frequency, axis 0")
+            .x_desc(self.x_label.as_str())
+            .y_desc(self.y_label.as_str())
             .label_style(("sans-serif", 12))
             .draw()
             .map_err(err)?;
-        let res = self.res;
+        let (dx, dy) = ((x1 - x0) / self.cols as f64, (y1 - y0) / self.rows as f64);
+        let cols = self.cols;
         chart
-            .draw_series(logs.iter().enumerate().map(|(idx, &v)| {
-                let (i, j) = ((idx / res) as f64 - half, (idx % res) as f64 - half);
+            .draw_series(scaled.iter().enumerate().map(|(idx, &v)| {
+                let (i, j) = ((idx / cols) as f64, (idx % cols) as f64);
                 let c = if v.is_finite() { viridis((v - lo) / (hi - lo)) } else { viridis(0.0) };
-                Rectangle::new([(j - 0.5, i - 0.5), (j + 0.5, i + 0.5)], c.filled())
+                Rectangle::new([(x0 + j * dx, y0 + i * dy), (x0 + (j + 1.0) * dx, y0 + (i + 1.0) * dy)], c.filled())
             }))
             .map_err(err)?;
         let mut scale = ChartBuilder::on(&bar)
@@ -569,7 +620,7 @@ impl Drawable for HeatMap {
             .configure_mesh()
             .disable_mesh()
             .disable_x_axis()
-            .y_desc(format!("log10 {}", self.label))
+            .y_desc(if self.log { format!("log10 {}", self.label) } else { self.label.clone() })
             .label_style(("sans-serif", 11))
             .draw()
             .map_err(err)?;
