@@ -234,6 +234,20 @@ impl Drawable for Scatter<'_> {
     }
 }
 
+/// A tick label: scientific notation on log axes, at most six significant digits
+/// otherwise (no floating-point noise such as 0.30000000000000004).
+fn tick(v: f64, log: bool) -> String {
+    if log {
+        format!("{v:.0e}")
+    } else if v == 0.0 {
+        "0".into()
+    } else {
+        let digits = (5 - v.abs().log10().floor() as i32).clamp(0, 12) as usize;
+        let s = format!("{v:.digits$}");
+        if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s }
+    }
+}
+
 /// One named curve.
 #[derive(Debug, Clone)]
 pub struct Series {
@@ -354,6 +368,8 @@ impl Drawable for LineChart {
                     .configure_mesh()
                     .x_desc(self.x_label.as_str())
                     .y_desc(self.y_label.as_str())
+                    .x_label_formatter(&|v| tick(*v, self.log_x))
+                    .y_label_formatter(&|v| tick(*v, self.log_y))
                     .label_style(("sans-serif", 13))
                     .light_line_style(RGBColor(235, 235, 235))
                     .draw()

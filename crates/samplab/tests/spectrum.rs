@@ -120,3 +120,46 @@ fn fast_path_equals_the_direct_dft_within_its_tolerance() {
         }
     }
 }
+
+/// Ramamoorthi et al. 2012 section 5: uniform sampling bands at k N / (beta - 1); uniform
+/// jitter and stratified sampling turn that error into noise spread over all frequencies.
+#[test]
+fn pixel_light_banding_frequencies() {
+    use samplab::spectrum::pixel_light::{self, Blocker, Pattern, Scene};
+    let (n, beta, pixels) = (16, 3.0, 512);
+    for blocker_seed in 1..6 {
+        let scene = Scene { beta, blocker: Blocker::random(6, 0.05, beta, Seed(blocker_seed)) };
+        let bands = pixel_light::banding_frequencies(n, beta, (pixels / 2) as f64);
+        assert_eq!(bands[0], 8.0);
+        // mean error energy at the banding frequencies over the mean elsewhere (w >= 1): the
+        // edges project into the light over limited ranges of x, so the banding is a windowed
+        // periodic signal, but it stands far above the floor; noise has a ratio near 1
+        let ratio = |pattern| {
+            let a = pixel_light::analyse(&scene, pattern, pixels, n, 32, Seed(2)).unwrap();
+            let is_band = |w: usize| bands.iter().any(|&f| f as usize == w);
+            let (mut band, mut nb, mut rest, mut nr) = (0.0, 0.0, 0.0, 0.0);
+            for (w, e) in a.error_spectrum.iter().enumerate().skip(1) {
+                if is_band(w) {
+                    band += e * e;
+                    nb += 1.0;
+                } else {
+                    rest += e * e;
+                    nr += 1.0;
+                }
+            }
+            (band / nb) / (rest / nr)
+        };
+        let (uniform, jitter, stratified) =
+            (ratio(Pattern::Uniform), ratio(Pattern::UniformJitter), ratio(Pattern::Stratified));
+        assert!(uniform > 8.0, "blocker {blocker_seed}: uniform {uniform}");
+        assert!(
+            jitter < 2.0 && stratified < 2.0,
+            "blocker {blocker_seed}: uniform jitter {jitter}, stratified {stratified}"
+        );
+        // the exact integral is right: the mean error of stratified sampling is near zero
+        let a = pixel_light::analyse(&scene, Pattern::Stratified, pixels, n, 32, Seed(3)).unwrap();
+        let mean = a.error.iter().sum::<f64>() / pixels as f64;
+        let sd = (a.error.iter().map(|e| e * e).sum::<f64>() / pixels as f64).sqrt();
+        assert!(mean.abs() < 4.0 * sd / (pixels as f64).sqrt(), "mean error {mean}, sd {sd}");
+    }
+}

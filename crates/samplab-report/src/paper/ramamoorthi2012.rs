@@ -3,10 +3,11 @@
 
 use samplab::integrand::Family;
 use samplab::sampler;
+use samplab::spectrum::pixel_light::{self, Blocker, Pattern, Scene};
 use samplab::theory;
 
 use super::study;
-use crate::plot::{LineChart, Series};
+use crate::plot::{HeatMap, LineChart, Series};
 use crate::{Cell, Claim, Ctx, Error, Experiment, Figure, Output, Paper, Table, Verdict};
 
 /// The paper's experiments.
@@ -30,6 +31,13 @@ pub fn paper() -> Paper {
                 run: tables,
             },
             Experiment {
+                id: "pixel-light",
+                title: "Pixel-light Fourier analysis of a linear light",
+                source: "Figures 10-11, section 5",
+                parameters: "a scanline of 512 pixels, N = 16 light samples each, blocker of 6 bars at depth ratio beta = 3; spectra on 64 x 64 integer frequencies (non-uniform FFT, tolerance 1e-9)",
+                run: pixel_light,
+            },
+            Experiment {
                 id: "discontinuities",
                 title: "Normalized variance against the number of discontinuities",
                 source: "Figure 7",
@@ -37,13 +45,10 @@ pub fn paper() -> Paper {
                 run: discontinuities,
             },
         ],
-        pending: vec![
-            ("Figures 10-11 (pixel-light spectra)", "needs the spectrum module (issue: spectral statistics)"),
-            (
-                "Figures 8, 13, 16-20 (square, circular and Gaussian lights)",
-                "needs the renderer (issue: soft-shadow renderer)",
-            ),
-        ],
+        pending: vec![(
+            "Figures 8, 13, 16-20 (square, circular and Gaussian lights)",
+            "needs the renderer (issue: soft-shadow renderer)",
+        )],
     }
 }
 
@@ -328,5 +333,115 @@ fn discontinuities(ctx: &Ctx) -> Result<Output, Error> {
         figures,
         claims,
         notes: vec![],
+    })
+}
+
+fn pixel_light(ctx: &Ctx) -> Result<Output, Error> {
+    let (n, beta, pixels, res) = (16usize, 3.0, 512usize, 64usize);
+    let scene = Scene { beta, blocker: Blocker::random(6, 0.05, beta, ctx.seed.derive(1)) };
+    let bands = pixel_light::banding_frequencies(n, beta, (pixels / 2) as f64);
+    let patterns = [
+        ("uniform", "regular", Pattern::Uniform),
+        ("uniform jitter", "jitter.uniform", Pattern::UniformJitter),
+        ("stratified", "jitter", Pattern::Stratified),
+    ];
+    ctx.progress.set_length(4);
+    let mut figures = Vec::new();
+    let mut series = Vec::new();
+    let mut rows = Vec::new();
+    let mut ratios = Vec::new();
+    let mut rms = Vec::new();
+    // the visibility alone, approximated by dense uniform sampling (256 samples per pixel)
+    let dense = pixel_light::analyse(&scene, Pattern::Uniform, pixels, 256, res, ctx.seed.derive(2))?;
+    let heat = |title: &str, values: Vec<f64>| {
+        let mut h = HeatMap::centred(title.into(), "|spectrum|".into(), values, res);
+        h.x_label = "light frequency".into();
+        h.y_label = "pixel (spatial) frequency".into();
+        h
+    };
+    figures.push(Figure::render(
+        "ramamoorthi2012-fig10-visibility",
+        "Fig. 10(a): spectrum of the visibility V(x, y) = G(x/beta + y(1 - 1/beta)), energy on a sheared line",
+        &heat("Fig. 10(a): visibility", dense.product.clone()),
+        (760, 640),
+    )?);
+    ctx.progress.inc(1);
+    for (i, (name, key, pattern)) in patterns.iter().enumerate() {
+        let a = pixel_light::analyse(&scene, *pattern, pixels, n, res, ctx.seed.derive(10 + i as u64))?;
+        if *pattern == Pattern::Uniform {
+            figures.push(Figure::render(
+                "ramamoorthi2012-fig10-pattern",
+                "Fig. 10(b): spectrum of uniform sampling: aliases along the light axis at multiples of N",
+                &heat("Fig. 10(b): uniform sampling pattern", a.pattern.clone()),
+                (760, 640),
+            )?);
+            figures.push(Figure::render(
+                "ramamoorthi2012-fig10-product",
+                "Fig. 10(c): visibility times the pattern: replicas of the sheared spectrum",
+                &heat("Fig. 10(c): visibility x uniform pattern", a.product.clone()),
+                (760, 640),
+            )?);
+        }
+        let is_band = |w: usize| bands.iter().any(|&f| f as usize == w);
+        let (mut band, mut nb, mut rest, mut nr) = (0.0, 0.0, 0.0, 0.0);
+        for (w, e) in a.error_spectrum.iter().enumerate().skip(1) {
+            if is_band(w) {
+                band += e * e;
+                nb += 1.0;
+            } else {
+                rest += e * e;
+                nr += 1.0;
+            }
+        }
+        let ratio = (band / nb) / (rest / nr);
+        let e_rms = (a.error.iter().map(|e| e * e).sum::<f64>() / pixels as f64).sqrt();
+        ratios.push(ratio);
+        rms.push(e_rms);
+        rows.push(vec![Cell::from(*name), Cell::num(e_rms, 5), Cell::num(ratio, 2)]);
+        series.push(Series {
+            colour_key: Some(key.to_string()),
+            ..Series::line(
+                *name,
+                a.error_spectrum.iter().enumerate().skip(1).map(|(w, &e)| (w as f64, e.max(1e-9))).collect(),
+            )
+        });
+        ctx.progress.inc(1);
+    }
+    let chart = LineChart {
+        title: format!(
+            "Fig. 10(d)/11: spectrum of the error along the scanline (bands at k N/(beta-1) = {:.0}k)",
+            bands[0]
+        ),
+        x_label: "spatial frequency (cycles per scanline)".into(),
+        y_label: "|error spectrum|".into(),
+        series,
+        log_y: true,
+        log_x: false,
+        polar: false,
+    };
+    figures.push(Figure::render("ramamoorthi2012-fig11", "Figs. 10(d) and 11: error spectra along the scanline: uniform sampling has spikes at k N/(beta - 1) (banding); uniform jitter and stratified spread the error into noise", &chart, (900, 520))?);
+    let claims = vec![
+        Claim {
+            id: "banding".into(),
+            statement: "Uniform sampling bands at the spatial frequencies k N/(beta - 1); uniform jitter spreads that error into noise".into(),
+            published: "eq. 25, Figs. 10-11".into(),
+            ours: format!("energy at the banding frequencies over the rest: uniform {:.1e}, uniform jitter {:.2}, stratified {:.2}", ratios[0], ratios[1], ratios[2]),
+            theory: format!("k N/(beta - 1) = {}", bands.iter().take(4).map(|f| format!("{f:.0}")).collect::<Vec<_>>().join(", ")),
+            verdict: if ratios[0] > 8.0 && ratios[1] < 2.0 && ratios[2] < 2.0 { Verdict::Reproduced } else { Verdict::NotReproduced },
+        },
+        Claim {
+            id: "uniform-jitter-less-noise".into(),
+            statement: "Uniform jitter has less error than stratified sampling on the grid-of-bars scanline, approaching uniform sampling".into(),
+            published: "Fig. 8 (images: uniform 3.97% error with banding, uniform jitter 4.21% without)".into(),
+            ours: format!("RMS error: uniform {:.4}, uniform jitter {:.4}, stratified {:.4}", rms[0], rms[1], rms[2]),
+            theory: "section 4.2: 1/6 against 1/3 per pair of discontinuities".into(),
+            verdict: if rms[1] < rms[2] { Verdict::Reproduced } else { Verdict::NotReproduced },
+        },
+    ];
+    Ok(Output {
+        tables: vec![Table { id: "ramamoorthi2012-pixel-light".into(), caption: "RMS error along the scanline and the banding ratio (mean error energy at k N/(beta-1) over the mean elsewhere)".into(), columns: ["pattern", "RMS error", "banding ratio"].map(String::from).to_vec(), rows }],
+        figures,
+        claims,
+        notes: vec!["The estimate per pixel is the mean visibility of its N samples; the exact value integrates the blocker pattern over the light analytically. Spectra over (pixel, light) use the samples as points in [0,1)^2 weighted by visibility.".into()],
     })
 }

@@ -448,6 +448,25 @@ fn spectra(ctx: &Ctx) -> Result<Output, Error> {
     let (u_max, r_max) = (off_dc(uniform), off_dc(regular));
     let gj = &stats[3];
     let jit = &stats[1];
+    // section 5: a randomly rotated and shifted grid, isotropic on average, regular in each set
+    let rotated = samplab::sampler::generate_sets(
+        samplab::sampler::build("regular.rotated")?.as_ref(),
+        256,
+        2,
+        ctx.seed.derive(99),
+        20,
+    )?;
+    let mean_aniso = |values: &[f64]| {
+        let (_, a) = spectrum::radial(values, res, 2);
+        let v: Vec<f64> = a[..res / 4].iter().copied().filter(|x| x.is_finite()).collect();
+        v.iter().sum::<f64>() / v.len() as f64
+    };
+    let per_strategy = mean_aniso(&spectrum::statistics(&rotated, res, Method::default())?.periodogram);
+    let per_set = rotated
+        .iter()
+        .map(|s| spectrum::periodogram(s, res, Method::default()).map(|p| mean_aniso(&p)))
+        .collect::<Result<Vec<f64>, _>>()?;
+    let per_set = per_set.iter().sum::<f64>() / per_set.len() as f64;
     let low = |st: &spectrum::Statistics| spectrum::radial(&st.variance, res, 2).0[..8].iter().sum::<f64>() / 8.0;
     let claims = vec![
         Claim {
@@ -465,6 +484,14 @@ fn spectra(ctx: &Ctx) -> Result<Output, Error> {
             ours: format!("mean V(S) over radial frequencies 1-8: GJittered:0.1 {:.2e}, jittered {:.2e}", low(gj), low(jit)),
             theory: "eq. 9: V ~ (2 pi w sigma)^2 / N".into(),
             verdict: if low(gj) < low(jit) { Verdict::Reproduced } else { Verdict::NotReproduced },
+        },
+        Claim {
+            id: "rotated-grid-anisotropy".into(),
+            statement: "A randomly rotated and shifted grid has a nearly isotropic periodogram on average, yet each realization is perfectly regular (highly anisotropic)".into(),
+            published: "section 5".into(),
+            ours: format!("mean anisotropy over radial bins 1..R/4: per strategy (20 sets) {per_strategy:.1} dB, per set {per_set:.1} dB"),
+            theory: String::new(),
+            verdict: if per_set > per_strategy + 6.0 { Verdict::Reproduced } else { Verdict::NotReproduced },
         },
     ];
     Ok(Output {

@@ -21,6 +21,7 @@ use crate::error::{Error, Result};
 use crate::points::PointSet;
 
 pub mod nufft;
+pub mod pixel_light;
 pub mod theory;
 
 /// A complex number (re, im).
@@ -141,6 +142,19 @@ impl Default for Method {
     fn default() -> Self {
         Method::Fast { tol: 1e-9 }
     }
+}
+
+/// The periodogram |S(w)|^2 of one set (its own anisotropy, as opposed to a strategy's,
+/// which averages over realizations: Subr & Kautz 2013 section 5).
+///
+/// # Errors
+/// A bad resolution or tolerance, or a set that is not 1D or 2D.
+pub fn periodogram(set: &PointSet, res: usize, method: Method) -> Result<Vec<f64>> {
+    let s = match method {
+        Method::Direct => direct_dft(set, res)?,
+        Method::Fast { tol } => nufft::Nufft::new(res, set.dims(), tol)?.transform(set)?,
+    };
+    Ok(s.iter().map(|c| c[0] * c[0] + c[1] * c[1]).collect())
 }
 
 /// The statistics of `sets` (all of one size and dimension, at least two), in parallel

@@ -89,6 +89,17 @@ impl Nufft {
     /// # Errors
     /// The set's dimension is not the planned one.
     pub fn transform(&self, points: &PointSet) -> Result<Vec<Complex>> {
+        self.transform_weighted(points, None)
+    }
+
+    /// (1/N) sum_j c_j exp(-2 pi i w.x_j) with weights c_j (all 1 when None).
+    ///
+    /// # Errors
+    /// The set's dimension is not the planned one, or the weights do not match the points.
+    pub fn transform_weighted(&self, points: &PointSet, weights: Option<&[f64]>) -> Result<Vec<Complex>> {
+        if weights.is_some_and(|w| w.len() != points.len()) {
+            return Err(Error::Invalid("one weight per point is needed".into()));
+        }
         if points.dims() != self.dims {
             return Err(Error::Invalid(format!("planned for {}D points, got {}D", self.dims, points.dims())));
         }
@@ -96,18 +107,20 @@ impl Nufft {
         let wrap = |i: i64| i.rem_euclid(g as i64) as usize;
         let mut grid = vec![C64::new(0.0, 0.0); g.pow(self.dims as u32)];
         let (mut wx, mut wy) = ([0.0; 16], [0.0; 16]);
-        for p in points.iter() {
+        for (j, p) in points.iter().enumerate() {
+            let c = weights.map_or(1.0, |w| w[j]);
             let fx = self.weights(p[0], &mut wx);
             if self.dims == 1 {
                 for (k, &w) in wx.iter().enumerate().take(self.width) {
-                    grid[wrap(fx + k as i64)].re += w;
+                    grid[wrap(fx + k as i64)].re += c * w;
                 }
             } else {
                 let fy = self.weights(p[1], &mut wy);
                 for (a, &u) in wx.iter().enumerate().take(self.width) {
                     let row = wrap(fx + a as i64) * g;
+                    let cu = c * u;
                     for (b, &v) in wy.iter().enumerate().take(self.width) {
-                        grid[row + wrap(fy + b as i64)].re += u * v;
+                        grid[row + wrap(fy + b as i64)].re += cu * v;
                     }
                 }
             }
