@@ -116,3 +116,12 @@ for metric, method, squared, n in [("l2-star", "L2-star", False, 1 << 14), ("cen
 for metric, n, d in [("star", 1000, 2), ("star", 100000, 2), ("star", 1000000, 2), ("l2-star", 1000000, 2), ("star", 2000, 3), ("star", 100, 5), ("extreme", 1000, 2)]:
     t, v = samplab_disc(metric, n, d)
     print("samplab %-8s n=%-8d d=%d: %.3f s (value %.6g)" % (metric, n, d, t, v), flush=True)
+
+# spectra: direct DFT against the non-uniform FFT at tolerance 1e-9 (one core)
+print()
+out = subprocess.run([os.path.join(ROOT, "target", "release", "examples", "spectrum_timing")], check=True, capture_output=True, text=True,
+                     env=dict(os.environ, RAYON_NUM_THREADS="1")).stdout
+for line in out.strip().splitlines():
+    r = json.loads(line)
+    print("spectrum n=%-6d sets=%-3d R=%-4d direct %8.3f s | fast %7.3f s | ratio %6.1fx | max periodogram error %.1e"
+          % (r["n"], r["sets"], r["res"], r["direct_seconds"], r["fast_seconds"], r["ratio"], r["max_periodogram_error"]), flush=True)
