@@ -125,41 +125,36 @@ impl Nufft {
                 }
             }
         }
-        // forward FFT along every axis
-        for row in grid.chunks_exact_mut(g) {
-            self.fft.process(row);
-        }
-        if self.dims == 2 {
-            let mut column = vec![C64::new(0.0, 0.0); g];
-            for c in 0..g {
-                for (r, v) in column.iter_mut().enumerate() {
-                    *v = grid[r * g + c];
-                }
-                self.fft.process(&mut column);
-                for (r, v) in column.iter().enumerate() {
-                    grid[r * g + c] = *v;
-                }
-            }
-        }
+        // forward FFT of every row in one batched call
+        self.fft.process(&mut grid);
         let inv = 1.0 / points.len() as f64;
         let half = (self.res / 2) as i64;
         let at = |k: usize| wrap(k as i64 - half);
-        Ok(if self.dims == 1 {
-            (0..self.res)
-                .map(|i| {
-                    let v = grid[at(i)] * (self.correction[i] * inv);
-                    [v.re, v.im]
-                })
-                .collect()
-        } else {
+        if self.dims == 2 {
+            // only the R columns of kept frequencies need the second pass: gather each
+            // into a contiguous row, transform them together, and read the result transposed
+            let mut cols = vec![C64::new(0.0, 0.0); self.res * g];
+            for (j, col) in cols.chunks_exact_mut(g).enumerate() {
+                let c = at(j);
+                for (r, v) in col.iter_mut().enumerate() {
+                    *v = grid[r * g + c];
+                }
+            }
+            self.fft.process(&mut cols);
             let mut out = Vec::with_capacity(self.res * self.res);
             for i in 0..self.res {
                 for j in 0..self.res {
-                    let v = grid[at(i) * g + at(j)] * (self.correction[i] * self.correction[j] * inv);
+                    let v = cols[j * g + at(i)] * (self.correction[i] * self.correction[j] * inv);
                     out.push([v.re, v.im]);
                 }
             }
-            out
-        })
+            return Ok(out);
+        }
+        Ok((0..self.res)
+            .map(|i| {
+                let v = grid[at(i)] * (self.correction[i] * inv);
+                [v.re, v.im]
+            })
+            .collect())
     }
 }
