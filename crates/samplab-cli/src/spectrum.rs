@@ -48,7 +48,9 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     }
     let crate::sets::Loaded { sets, source, spec } = a.source.load(a.file.as_deref(), 20)?;
     let method = if a.direct { spectrum::Method::Direct } else { spectrum::Method::Fast { tol: a.tolerance } };
-    let st = spectrum::statistics(&sets, a.res, method)?;
+    let bar = crate::generate::progress(sets.len() as u64, "spectra");
+    let st = spectrum::statistics_with_progress(&sets, a.res, method, &|| bar.inc(1))?;
+    bar.finish_and_clear();
     let theory_curves = if a.theory { spec.as_deref().and_then(|s| theory_for(s, &sets[0])) } else { None };
     samplab_report::write_folder(&a.output, |dir| {
         write(dir, &st, a, &source, theory_curves.as_ref()).map_err(|e| samplab_report::Error::Invalid(e.to_string()))

@@ -335,13 +335,31 @@ impl Occupancy for DiskGrid {
         // taking min(d, 1 - d) per cell; all 25 cells, without early exit: no
         // data-dependent branch to mispredict
         let (sx, sy) = (self.seam_shifts(self.cell(x)), self.seam_shifts(self.cell(y)));
+        let near = |a: usize, b: usize| {
+            let q = self.slots[self.slot(rows[a], cols[b])];
+            // NaN compares false: empty cells never conflict
+            let (dx, dy) = (x - (q[0] + sx[a]), y - (q[1] + sy[b]));
+            dx * dx + dy * dy < self.radius2
+        };
+        // the inner 3 x 3 cells first (most rejected candidates conflict there), then the
+        // outer ring; each group without data-dependent branches
         let mut hit = false;
-        for (r, shift_x) in rows.into_iter().zip(sx) {
-            for (c, shift_y) in cols.into_iter().zip(sy) {
-                let q = self.slots[self.slot(r, c)];
-                // NaN compares false: empty cells never conflict
-                let (dx, dy) = (x - (q[0] + shift_x), y - (q[1] + shift_y));
-                hit |= dx * dx + dy * dy < self.radius2;
+        for a in 1..4 {
+            for b in 1..4 {
+                hit |= near(a, b);
+            }
+        }
+        if hit {
+            return true;
+        }
+        for a in 0..5 {
+            for b in [0, 4] {
+                hit |= near(a, b);
+            }
+        }
+        for a in [0, 4] {
+            for b in 1..4 {
+                hit |= near(a, b);
             }
         }
         hit

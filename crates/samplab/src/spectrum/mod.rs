@@ -164,6 +164,19 @@ pub fn periodogram(set: &PointSet, res: usize, method: Method) -> Result<Vec<f64
 /// # Errors
 /// Fewer than two sets, sets of different sizes or dimensions, a bad resolution or tolerance.
 pub fn statistics(sets: &[PointSet], res: usize, method: Method) -> Result<Statistics> {
+    statistics_with_progress(sets, res, method, &|| {})
+}
+
+/// [`statistics`], calling `progress` once per set transformed.
+///
+/// # Errors
+/// As [`statistics`].
+pub fn statistics_with_progress(
+    sets: &[PointSet],
+    res: usize,
+    method: Method,
+    progress: &(dyn Fn() + Sync),
+) -> Result<Statistics> {
     check_res(res)?;
     if sets.len() < 2 {
         return Err(Error::Invalid(format!("the variance of the spectrum needs at least 2 sets, got {}", sets.len())));
@@ -183,10 +196,10 @@ pub fn statistics(sets: &[PointSet], res: usize, method: Method) -> Result<Stati
         )));
     }
     let spectra: Vec<Vec<Complex>> = match method {
-        Method::Direct => sets.par_iter().map(|s| direct_dft(s, res)).collect::<Result<_>>()?,
+        Method::Direct => sets.par_iter().map(|s| direct_dft(s, res).inspect(|_| progress())).collect::<Result<_>>()?,
         Method::Fast { tol } => {
             let plan = nufft::Nufft::new(res, d, tol)?;
-            sets.par_iter().map(|s| plan.transform(s)).collect::<Result<_>>()?
+            sets.par_iter().map(|s| plan.transform(s).inspect(|_| progress())).collect::<Result<_>>()?
         }
     };
     let mut mean = vec![[0.0f64; 2]; cells];
