@@ -82,9 +82,10 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     crate::emit(a.output.as_deref(), &bytes).with_context(|| "writing the points")
 }
 
-/// A progress bar on stderr, hidden when stderr is not a terminal or the job is small.
+/// A progress bar on stderr (indicatif hides it when stderr is not a terminal), or none
+/// for a single item.
 pub(crate) fn progress(len: u64, unit: &str) -> ProgressBar {
-    if len < 64 {
+    if len < 2 {
         return ProgressBar::hidden();
     }
     let bar = ProgressBar::new(len);
