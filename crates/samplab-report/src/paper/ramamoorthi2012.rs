@@ -432,7 +432,10 @@ fn pixel_light(ctx: &Ctx) -> Result<Output, Error> {
         Claim {
             id: "uniform-jitter-less-noise".into(),
             statement: "Uniform jitter has less error than stratified sampling on the grid-of-bars scanline, approaching uniform sampling".into(),
-            published: "Fig. 8 (images: uniform 3.97% error with banding, uniform jitter 4.21% without)".into(),
+            published: {
+                let f8 = crate::published::table("ramamoorthi2012", "fig8");
+                format!("{}: uniform {}% (banding), uniform jitter {}% (none)", f8.source, f8.row("uniform").expect("published")[0], f8.row("uniform jitter").expect("published")[0])
+            },
             ours: format!("RMS error: uniform {:.4}, uniform jitter {:.4}, stratified {:.4}", rms[0], rms[1], rms[2]),
             theory: "section 4.2: 1/6 against 1/3 per pair of discontinuities".into(),
             verdict: if rms[1] < rms[2] { Verdict::Reproduced } else { Verdict::NotReproduced },
