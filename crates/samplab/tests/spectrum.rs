@@ -136,18 +136,7 @@ fn pixel_light_banding_frequencies() {
         // periodic signal, but it stands far above the floor; noise has a ratio near 1
         let ratio = |pattern| {
             let a = pixel_light::analyse(&scene, pattern, pixels, n, 32, Seed(2)).unwrap();
-            let is_band = |w: usize| bands.iter().any(|&f| f as usize == w);
-            let (mut band, mut nb, mut rest, mut nr) = (0.0, 0.0, 0.0, 0.0);
-            for (w, e) in a.error_spectrum.iter().enumerate().skip(1) {
-                if is_band(w) {
-                    band += e * e;
-                    nb += 1.0;
-                } else {
-                    rest += e * e;
-                    nr += 1.0;
-                }
-            }
-            (band / nb) / (rest / nr)
+            a.banding_ratio(&bands)
         };
         let (uniform, jitter, stratified) =
             (ratio(Pattern::Uniform), ratio(Pattern::UniformJitter), ratio(Pattern::Stratified));

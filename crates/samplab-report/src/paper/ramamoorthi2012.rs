@@ -382,18 +382,7 @@ fn pixel_light(ctx: &Ctx) -> Result<Output, Error> {
                 (760, 640),
             )?);
         }
-        let is_band = |w: usize| bands.iter().any(|&f| f as usize == w);
-        let (mut band, mut nb, mut rest, mut nr) = (0.0, 0.0, 0.0, 0.0);
-        for (w, e) in a.error_spectrum.iter().enumerate().skip(1) {
-            if is_band(w) {
-                band += e * e;
-                nb += 1.0;
-            } else {
-                rest += e * e;
-                nr += 1.0;
-            }
-        }
-        let ratio = (band / nb) / (rest / nr);
+        let ratio = a.banding_ratio(&bands);
         let e_rms = (a.error.iter().map(|e| e * e).sum::<f64>() / pixels as f64).sqrt();
         ratios.push(ratio);
         rms.push(e_rms);

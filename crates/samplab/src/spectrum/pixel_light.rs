@@ -125,6 +125,25 @@ pub struct Analysis {
     pub error_spectrum: Vec<f64>,
 }
 
+impl Analysis {
+    /// Mean error energy at the banding frequencies `bands` over the mean at the other
+    /// non-zero frequencies of the scanline: large when the error bands, about 1 for noise.
+    pub fn banding_ratio(&self, bands: &[f64]) -> f64 {
+        let is_band = |w: usize| bands.iter().any(|&f| f as usize == w);
+        let (mut band, mut nb, mut rest, mut nr) = (0.0, 0.0, 0.0, 0.0);
+        for (w, e) in self.error_spectrum.iter().enumerate().skip(1) {
+            if is_band(w) {
+                band += e * e;
+                nb += 1.0;
+            } else {
+                rest += e * e;
+                nr += 1.0;
+            }
+        }
+        (band / nb) / (rest / nr)
+    }
+}
+
 /// Analyse `pattern` on `scene` with `pixels` pixels and `n` samples each; 2D spectra at
 /// `res` x `res` integer frequencies (first axis: pixel frequency, second: light).
 ///
