@@ -73,7 +73,10 @@ fn summary(v: &[f64]) -> (f64, f64, f64) {
 
 fn table(metrics: &[(Metric, &MetricEntry)], values: &[Vec<f64>], source: &str) -> String {
     let mut out = format!("# {source}\n");
-    let names: Vec<String> = metrics.iter().map(|(m, _)| m.spec()).collect();
+    let names: Vec<String> = metrics
+        .iter()
+        .map(|(m, e)| if e.lower_bound { format!("{} (lower bound)", m.spec()) } else { m.spec() })
+        .collect();
     if values[0].len() == 1 {
         for (name, v) in names.iter().zip(values) {
             out += &format!("{name:<28} {:.10}\n", v[0]);
@@ -99,6 +102,7 @@ fn json(metrics: &[(Metric, &MetricEntry)], values: &[Vec<f64>], sets: &[PointSe
                 "squared": false,
                 "l2_closed_form": e.l2,
                 "toroidal_shift_invariant": e.shift_invariant,
+                "lower_bound": e.lower_bound,
                 "values": v,
                 "mean": mean, "sd": sd, "max": max,
             })

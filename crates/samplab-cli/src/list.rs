@@ -59,6 +59,9 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
                 if e.shift_invariant { " [toroidal-shift invariant]" } else { "" }
             )
             .unwrap();
+            if e.lower_bound {
+                writeln!(out, "    a lower bound, not the exact value").unwrap();
+            }
             if !e.aliases.is_empty() {
                 writeln!(out, "    aliases: {}", e.aliases.join(", ")).unwrap();
             }

@@ -303,3 +303,31 @@ fn bad_input_errors() {
     let e = Metric::parse("projected:angle=400").unwrap_err().to_string();
     assert!(e.contains("'angle'"), "{e}");
 }
+
+#[test]
+fn threshold_accepting_is_a_lower_bound_and_usually_finds_the_maximum() {
+    use samplab::discrepancy::bound::star_lower_bound;
+    let mut rng = Seed(8).rng();
+    let (mut exact_hits, mut trials) = (0, 0);
+    for d in [2usize, 3, 4] {
+        for t in 0..40 {
+            let n = 5 + below(&mut rng, 20) as usize;
+            let p: Vec<f64> = (0..n * d).map(|_| uniform(&mut rng)).collect();
+            let exact = star::star_exact(&p, d);
+            let lb = star_lower_bound(&p, d, 4000, Seed(t));
+            assert!(lb <= exact + 1e-12, "{d}D: bound {lb} above exact {exact}");
+            assert!(lb >= 0.8 * exact, "{d}D: bound {lb} far below exact {exact}");
+            exact_hits += usize::from((lb - exact).abs() < 1e-12);
+            trials += 1;
+        }
+    }
+    assert!(exact_hits * 10 >= trials * 7, "the search found the exact value in only {exact_hits} of {trials}");
+    // high dimension, where no exact algorithm runs: deterministic for a seed, and above the
+    // trivial bound max_i (1 - prod x_i ...) given by any single critical box
+    let set = sampler::build("sobol.owen").unwrap().generate(256, 10, Seed(1)).unwrap();
+    let m = |s: u64| {
+        discrepancy::compute(&Metric::StarBound { iterations: 3000, seed: s }, &set, Limits::default()).unwrap()
+    };
+    assert_eq!(m(1).to_bits(), m(1).to_bits());
+    assert!(m(1) > 0.0 && m(1) < 1.0);
+}

@@ -19,11 +19,13 @@
 //! | `l2-star` | Warnock's closed form; 2D Fenwick-tree form | d n^2; n log n |
 //! | `l2-extreme`, `centered`, `wraparound`, `mixture` | Hickernell's closed forms | d n^2 |
 //! | `projected` | 1D star/extreme of the projections against their exact CDF | n log n |
+//! | `star-bound` | threshold accepting: a LOWER BOUND on the star discrepancy | iterations x n d |
 
 use crate::error::{Error, Result, closest_names};
 use crate::points::PointSet;
 use crate::spec::{Default, Kind, ParamSpec, Params, Spec};
 
+pub mod bound;
 pub mod extreme;
 mod kinetic;
 pub mod l2;
@@ -46,6 +48,14 @@ pub enum Metric {
     WrapAround,
     /// Mixture L2 discrepancy (Zhou, Fang & Ning 2013).
     Mixture,
+    /// A lower bound on the star discrepancy by threshold accepting (any dimension; for
+    /// high d and n where the exact algorithms are out of reach).
+    StarBound {
+        /// Search steps.
+        iterations: usize,
+        /// Seed of the search.
+        seed: u64,
+    },
     /// The 1D discrepancy of the projections onto the direction at `angle` degrees from
     /// the x axis, against the exact distribution of projected uniform points (2D).
     Projected {
@@ -71,6 +81,8 @@ pub struct MetricEntry {
     pub l2: bool,
     /// Whether the value is invariant under toroidal shifts of the set.
     pub shift_invariant: bool,
+    /// Whether the value is only a lower bound on the metric.
+    pub lower_bound: bool,
     /// Bibliography keys.
     pub references: &'static [&'static str],
 }
@@ -90,6 +102,21 @@ const PROJECTED_PARAMS: &[ParamSpec] = &[
     },
 ];
 
+const STAR_BOUND_PARAMS: &[ParamSpec] = &[
+    ParamSpec {
+        name: "iterations",
+        kind: Kind::Int { min: 1, max: 1_000_000_000 },
+        default: Default::Number(20000.0),
+        doc: "search steps (cost: iterations x n x d)",
+    },
+    ParamSpec {
+        name: "seed",
+        kind: Kind::Int { min: 0, max: u64::MAX },
+        default: Default::Number(0.0),
+        doc: "seed of the search",
+    },
+];
+
 /// Every metric, in listing order.
 pub static METRICS: &[MetricEntry] = &[
     MetricEntry {
@@ -99,6 +126,7 @@ pub static METRICS: &[MetricEntry] = &[
         params: &[],
         l2: false,
         shift_invariant: false,
+        lower_bound: false,
         references: &["shirley1991"],
     },
     MetricEntry {
@@ -108,6 +136,7 @@ pub static METRICS: &[MetricEntry] = &[
         params: &[],
         l2: false,
         shift_invariant: false,
+        lower_bound: false,
         references: &["shirley1991"],
     },
     MetricEntry {
@@ -117,6 +146,7 @@ pub static METRICS: &[MetricEntry] = &[
         params: &[],
         l2: true,
         shift_invariant: false,
+        lower_bound: false,
         references: &["shirley1991"],
     },
     MetricEntry {
@@ -126,6 +156,7 @@ pub static METRICS: &[MetricEntry] = &[
         params: &[],
         l2: true,
         shift_invariant: false,
+        lower_bound: false,
         references: &["shirley1991"],
     },
     MetricEntry {
@@ -135,6 +166,7 @@ pub static METRICS: &[MetricEntry] = &[
         params: &[],
         l2: true,
         shift_invariant: false,
+        lower_bound: false,
         references: &[],
     },
     MetricEntry {
@@ -144,6 +176,7 @@ pub static METRICS: &[MetricEntry] = &[
         params: &[],
         l2: true,
         shift_invariant: true,
+        lower_bound: false,
         references: &[],
     },
     MetricEntry {
@@ -153,6 +186,17 @@ pub static METRICS: &[MetricEntry] = &[
         params: &[],
         l2: true,
         shift_invariant: false,
+        lower_bound: false,
+        references: &[],
+    },
+    MetricEntry {
+        name: "star-bound",
+        aliases: &["star-ta", "threshold-accepting"],
+        summary: "LOWER BOUND on the star discrepancy by threshold accepting (high d and n)",
+        params: STAR_BOUND_PARAMS,
+        l2: false,
+        shift_invariant: false,
+        lower_bound: true,
         references: &[],
     },
     MetricEntry {
@@ -162,6 +206,7 @@ pub static METRICS: &[MetricEntry] = &[
         params: PROJECTED_PARAMS,
         l2: false,
         shift_invariant: false,
+        lower_bound: false,
         references: &["shirley1991"],
     },
 ];
@@ -193,6 +238,10 @@ impl Metric {
             "centered" => Metric::Centered,
             "wraparound" => Metric::WrapAround,
             "mixture" => Metric::Mixture,
+            "star-bound" => Metric::StarBound {
+                iterations: params.number("iterations").unwrap_or(20000.0) as usize,
+                seed: params.number("seed").unwrap_or(0.0) as u64,
+            },
             _ => Metric::Projected {
                 angle: params.number("angle").unwrap_or(0.0),
                 extreme: params.word("kind") == "extreme",
@@ -211,6 +260,7 @@ impl Metric {
             Metric::Centered => "centered".into(),
             Metric::WrapAround => "wraparound".into(),
             Metric::Mixture => "mixture".into(),
+            Metric::StarBound { iterations, seed } => format!("star-bound:iterations={iterations},seed={seed}"),
             Metric::Projected { angle, extreme } => {
                 format!("projected:angle={angle},kind={}", if *extreme { "extreme" } else { "star" })
             }
@@ -298,6 +348,7 @@ pub fn compute(metric: &Metric, points: &PointSet, limits: Limits) -> Result<f64
         Metric::Centered => root(l2::centered_sq(x, d)),
         Metric::WrapAround => root(l2::wraparound_sq(x, d)),
         Metric::Mixture => root(l2::mixture_sq(x, d)),
+        Metric::StarBound { iterations, seed } => bound::star_lower_bound(x, d, *iterations, crate::Seed(*seed)),
         Metric::Projected { angle, extreme } => {
             if d != 2 {
                 return Err(Error::Invalid(format!("projected discrepancy needs 2D points, got {d}D")));
