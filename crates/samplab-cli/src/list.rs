@@ -5,6 +5,7 @@ use std::fmt::Write as _;
 use samplab::bibliography;
 use samplab::io::FORMATS;
 use samplab::sampler::registry;
+use samplab::spec::ParamSpec;
 use samplab::warp::WARPS;
 
 /// What to list.
@@ -23,13 +24,9 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         out.push_str("SAMPLERS  (spec: name[:key=value,...] or name[:value,...] in the order listed)\n\n");
         for e in registry::entries() {
             writeln!(out, "{}  —  {}", e.name, e.summary).unwrap();
-            if !e.aliases.is_empty() {
-                writeln!(out, "    aliases: {}", e.aliases.join(", ")).unwrap();
-            }
+            aliases(&mut out, &e.aliases);
             writeln!(out, "    counts: {}; dimensions: {}", e.counts, e.dims).unwrap();
-            for p in e.params {
-                writeln!(out, "    {} = {}  ({}): {}", p.name, p.default_text(), p.range_text(), p.doc).unwrap();
-            }
+            params(&mut out, e.params);
             writeln!(out, "    references: {}", e.references.join(", ")).unwrap();
         }
         out.push('\n');
@@ -38,9 +35,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         out.push_str("WARPS  (forward map, density and inverse)\n\n");
         for e in WARPS {
             writeln!(out, "{}  —  {}  [{}]", e.name, e.summary, e.dims).unwrap();
-            if !e.aliases.is_empty() {
-                writeln!(out, "    aliases: {}", e.aliases.join(", ")).unwrap();
-            }
+            aliases(&mut out, e.aliases);
             if !e.references.is_empty() {
                 writeln!(out, "    references: {}", e.references.join(", ")).unwrap();
             }
@@ -62,12 +57,8 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
             if e.lower_bound {
                 writeln!(out, "    a lower bound, not the exact value").unwrap();
             }
-            if !e.aliases.is_empty() {
-                writeln!(out, "    aliases: {}", e.aliases.join(", ")).unwrap();
-            }
-            for p in e.params {
-                writeln!(out, "    {} = {}  ({}): {}", p.name, p.default_text(), p.range_text(), p.doc).unwrap();
-            }
+            aliases(&mut out, e.aliases);
+            params(&mut out, e.params);
         }
         out.push('\n');
     }
@@ -75,12 +66,8 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
         out.push_str("INTEGRANDS  (exact integrals; random families draw instance k from a hashed seed)\n\n");
         for e in samplab::integrand::INTEGRANDS {
             writeln!(out, "{}  —  {}  [{}D]", e.name, e.summary, e.dims).unwrap();
-            if !e.aliases.is_empty() {
-                writeln!(out, "    aliases: {}", e.aliases.join(", ")).unwrap();
-            }
-            for p in e.params {
-                writeln!(out, "    {} = {}  ({}): {}", p.name, p.default_text(), p.range_text(), p.doc).unwrap();
-            }
+            aliases(&mut out, e.aliases);
+            params(&mut out, e.params);
         }
         out.push('\n');
     }
@@ -99,4 +86,18 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     }
     crate::emit(None, out.trim_end().as_bytes())?;
     crate::emit(None, b"\n")
+}
+
+/// The "aliases:" line of an entry, when it has any.
+fn aliases(out: &mut String, list: &[&str]) {
+    if !list.is_empty() {
+        writeln!(out, "    aliases: {}", list.join(", ")).unwrap();
+    }
+}
+
+/// One line per parameter: name, default, valid range, meaning.
+fn params(out: &mut String, list: &[ParamSpec]) {
+    for p in list {
+        writeln!(out, "    {} = {}  ({}): {}", p.name, p.default_text(), p.range_text(), p.doc).unwrap();
+    }
 }
