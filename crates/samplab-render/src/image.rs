@@ -1,0 +1,246 @@
+//! Linear float images: OpenEXR in and out (RGB plus an optional visibility channel `V`),
+//! sRGB PNG out, error metrics against a reference and signed error images.
+
+use std::io::Cursor;
+use std::path::Path;
+
+use samplab::io::write_atomic;
+
+use crate::error::{Error, Result};
+
+/// A linear RGB image, row-major from the top left.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Image {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// R, G, B per pixel.
+    pub rgb: Vec<f32>,
+    /// The emission-weighted visible fraction of the lights per pixel, when known: it
+    /// marks the penumbra (0 < V < 1) for error metrics restricted to it.
+    pub visibility: Option<Vec<f32>>,
+}
+
+/// Errors of an image against a reference, on luminance (Rec. 709 weights).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Errors {
+    /// Pixels compared.
+    pub pixels: usize,
+    /// Mean squared error.
+    pub mse: f64,
+    /// Root mean squared error.
+    pub rmse: f64,
+    /// RMSE divided by the reference's mean luminance over the same pixels (the papers'
+    /// "fractional error").
+    pub relative: f64,
+    /// Mean absolute error (Shirley 1991, Tables 1-4: ave(|E|)).
+    pub mean_abs: f64,
+    /// Standard deviation of the absolute error (SD(|E|)).
+    pub sd_abs: f64,
+    /// Largest absolute error (max(|E|)).
+    pub max_abs: f64,
+    /// Mean signed error (bias).
+    pub mean_signed: f64,
+}
+
+/// Rec. 709 luminance.
+fn luminance(rgb: &[f32]) -> f64 {
+    0.2126 * f64::from(rgb[0]) + 0.7152 * f64::from(rgb[1]) + 0.0722 * f64::from(rgb[2])
+}
+
+fn srgb8(linear: f64) -> u8 {
+    let c = linear.clamp(0.0, 1.0);
+    let s = if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+    (s * 255.0).round() as u8
+}
+
+/// Bounds of the penumbra: pixels whose reference visible fraction lies strictly inside.
+const PENUMBRA: (f32, f32) = (1e-3, 1.0 - 1e-3);
+
+impl Image {
+    /// Luminance of every pixel.
+    pub fn luminance(&self) -> Vec<f64> {
+        self.rgb.chunks_exact(3).map(luminance).collect()
+    }
+
+    /// Errors of `self` against `reference`, over all pixels or only the reference's
+    /// penumbra.
+    ///
+    /// # Errors
+    /// Different sizes, a penumbra asked of a reference without a visibility channel, or
+    /// no pixel to compare.
+    pub fn errors(&self, reference: &Image, penumbra: bool) -> Result<Errors> {
+        let invalid = |m: String| Error::Invalid(m);
+        if (self.width, self.height) != (reference.width, reference.height) {
+            return Err(invalid(format!(
+                "the image is {}x{} but the reference is {}x{}",
+                self.width, self.height, reference.width, reference.height
+            )));
+        }
+        let mask: Vec<bool> = match (&reference.visibility, penumbra) {
+            (_, false) => vec![true; self.width * self.height],
+            (Some(v), true) => v.iter().map(|&v| v > PENUMBRA.0 && v < PENUMBRA.1).collect(),
+            (None, true) => return Err(invalid("the reference has no visibility channel V to find the penumbra".into())),
+        };
+        let (a, b) = (self.luminance(), reference.luminance());
+        let diffs: Vec<(f64, f64)> = a.iter().zip(&b).zip(&mask).filter(|(_, m)| **m).map(|((x, r), _)| (x - r, *r)).collect();
+        if diffs.is_empty() {
+            return Err(invalid("no pixel to compare (the reference has no penumbra)".into()));
+        }
+        let count = diffs.len() as f64;
+        let mse = diffs.iter().map(|(d, _)| d * d).sum::<f64>() / count;
+        let mean_abs = diffs.iter().map(|(d, _)| d.abs()).sum::<f64>() / count;
+        let sd_abs = (diffs.iter().map(|(d, _)| (d.abs() - mean_abs).powi(2)).sum::<f64>() / count).sqrt();
+        let reference_mean = diffs.iter().map(|(_, r)| r).sum::<f64>() / count;
+        Ok(Errors {
+            pixels: diffs.len(),
+            mse,
+            rmse: mse.sqrt(),
+            relative: mse.sqrt() / reference_mean,
+            mean_abs,
+            sd_abs,
+            max_abs: diffs.iter().map(|(d, _)| d.abs()).fold(0.0, f64::max),
+            mean_signed: diffs.iter().map(|(d, _)| d).sum::<f64>() / count,
+        })
+    }
+
+    /// The signed luminance error as an 8-bit RGB image: red where `self` is brighter than
+    /// the reference, green where darker, times `scale` (Ramamoorthi et al. 2012, Figs. 8
+    /// and 13 use 10).
+    ///
+    /// # Errors
+    /// Different sizes.
+    pub fn error_image(&self, reference: &Image, scale: f64) -> Result<image::RgbImage> {
+        self.errors(reference, false)?;
+        let (a, b) = (self.luminance(), reference.luminance());
+        let mut out = image::RgbImage::new(self.width as u32, self.height as u32);
+        for (i, px) in out.pixels_mut().enumerate() {
+            let e = (a[i] - b[i]) * scale;
+            let to8 = |v: f64| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+            *px = image::Rgb([to8(e), to8(-e), 0]);
+        }
+        Ok(out)
+    }
+
+    /// The image as 8-bit sRGB (clamped to [0, 1]).
+    pub fn to_srgb(&self) -> image::RgbImage {
+        let bytes = self.rgb.iter().map(|&c| srgb8(f64::from(c))).collect();
+        image::RgbImage::from_raw(self.width as u32, self.height as u32, bytes).expect("3 channels per pixel")
+    }
+
+    /// Write an OpenEXR file (32-bit float R, G, B and V when known), atomically.
+    ///
+    /// # Errors
+    /// The file cannot be written.
+    pub fn write_exr(&self, path: &Path) -> Result<()> {
+        use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, Layer, LayerAttributes, WritableImage};
+        let fail = |m: String| Error::Image { path: path.display().to_string(), message: m };
+        let w = self.width;
+        let channel = |name: &str, data: Vec<f32>| AnyChannel::new(name, FlatSamples::F32(data));
+        let plane = |k: usize| self.rgb.iter().skip(k).step_by(3).copied().collect::<Vec<f32>>();
+        let mut list = vec![channel("B", plane(2)), channel("G", plane(1)), channel("R", plane(0))];
+        if let Some(v) = &self.visibility {
+            list.push(channel("V", v.clone()));
+        }
+        let channels = AnyChannels::sort(list.into());
+        let layer = Layer::new((w, self.height), LayerAttributes::default(), Encoding::SMALL_LOSSLESS, channels);
+        let mut bytes = Cursor::new(Vec::new());
+        exr::image::Image::from_layer(layer).write().to_buffered(&mut bytes).map_err(|e| fail(e.to_string()))?;
+        write_atomic(path, bytes.get_ref()).map_err(|e| fail(e.to_string()))
+    }
+
+    /// Read an OpenEXR file's first layer: R, G, B (Y alone is read as grey) and V if there.
+    ///
+    /// # Errors
+    /// Not an EXR file, no R/G/B or Y channel, or a non-finite pixel.
+    pub fn read_exr(path: &Path) -> Result<Image> {
+        let fail = |m: String| Error::Image { path: path.display().to_string(), message: m };
+        let image = exr::prelude::read_all_flat_layers_from_file(path).map_err(|e| fail(e.to_string()))?;
+        let layer = image.layer_data.first().ok_or_else(|| fail("no layer".into()))?;
+        let (w, h) = (layer.size.width(), layer.size.height());
+        let find = |name: &str| -> Option<Vec<f32>> {
+            let c = layer.channel_data.list.iter().find(|c| c.name.eq_case_insensitive(name))?;
+            Some(c.sample_data.values_as_f32().collect())
+        };
+        let planes = match (find("R"), find("G"), find("B"), find("Y")) {
+            (Some(r), Some(g), Some(b), _) => [r, g, b],
+            (_, _, _, Some(y)) => [y.clone(), y.clone(), y],
+            _ => return Err(fail("no R, G, B or Y channel".into())),
+        };
+        let mut rgb = Vec::with_capacity(3 * w * h);
+        for i in 0..w * h {
+            for (k, p) in planes.iter().enumerate() {
+                if !p[i].is_finite() {
+                    return Err(fail(format!("pixel ({}, {}) channel {} is {}", i % w, i / w, ["R", "G", "B"][k], p[i])));
+                }
+                rgb.push(p[i]);
+            }
+        }
+        Ok(Image { width: w, height: h, rgb, visibility: find("V") })
+    }
+
+    /// Write the image in the format its extension names (.exr, or .png as sRGB), atomically.
+    ///
+    /// # Errors
+    /// Another extension, or the file cannot be written.
+    pub fn write(&self, path: &Path) -> Result<()> {
+        match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+            Some("exr") => self.write_exr(path),
+            Some("png") => write_png(&self.to_srgb(), path),
+            _ => Err(Error::Image { path: path.display().to_string(), message: "unknown image format (use .exr or .png)".into() }),
+        }
+    }
+}
+
+/// Encode an 8-bit RGB image as PNG, atomically.
+///
+/// # Errors
+/// The file cannot be written.
+pub fn write_png(img: &image::RgbImage, path: &Path) -> Result<()> {
+    let fail = |m: String| Error::Image { path: path.display().to_string(), message: m };
+    let mut bytes = Cursor::new(Vec::new());
+    img.write_to(&mut bytes, image::ImageFormat::Png).map_err(|e| fail(e.to_string()))?;
+    write_atomic(path, bytes.get_ref()).map_err(|e| fail(e.to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn image(values: &[f32], vis: Option<Vec<f32>>) -> Image {
+        Image { width: values.len(), height: 1, rgb: values.iter().flat_map(|&v| [v, v, v]).collect(), visibility: vis }
+    }
+
+    #[test]
+    fn errors_follow_their_definitions() {
+        let reference = image(&[1.0, 2.0, 3.0, 4.0], Some(vec![1.0, 0.5, 0.2, 0.0]));
+        let img = image(&[1.0, 2.5, 2.0, 4.0], None);
+        let e = img.errors(&reference, false).unwrap();
+        assert_eq!(e.pixels, 4);
+        assert!((e.mse - (0.25 + 1.0) / 4.0).abs() < 1e-6);
+        assert!((e.mean_abs - 1.5 / 4.0).abs() < 1e-6);
+        assert!((e.max_abs - 1.0).abs() < 1e-6);
+        assert!((e.relative - e.rmse / 2.5).abs() < 1e-6);
+        let p = img.errors(&reference, true).unwrap();
+        assert_eq!(p.pixels, 2);
+        assert!((p.mse - 1.25 / 2.0).abs() < 1e-6);
+        assert!(reference.errors(&img, true).is_err(), "no V channel");
+    }
+
+    #[test]
+    fn exr_round_trips_bit_for_bit() {
+        let dir = std::env::temp_dir().join(format!("samplab-exr-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("a.exr");
+        let img = Image {
+            width: 3,
+            height: 2,
+            rgb: (0..18).map(|i| i as f32 * 0.37 - 1.0).collect(),
+            visibility: Some(vec![0.0, 0.25, 0.5, 0.75, 1.0, 0.125]),
+        };
+        img.write(&path).unwrap();
+        assert_eq!(Image::read_exr(&path).unwrap(), img);
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+}

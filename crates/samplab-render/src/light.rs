@@ -1,0 +1,257 @@
+//! Area lights: a segment (Ramamoorthi et al. 2012's linear light), a parallelogram (square
+//! and rectangle lights), an elliptical disk (circular lights), each optionally with a
+//! Gaussian emission falloff (Ramamoorthi et al. 2012, section 5.3).
+//!
+//! A light maps a point of the unit square (the unit interval for a segment) to a point on
+//! the light, area-preserving, so the sampling pattern of a pixel is any samplab point set.
+
+use std::f64::consts::{FRAC_PI_2, PI};
+
+use glam::DVec3;
+use samplab::warp::{ConcentricDisk, PolarDisk, RejectDisk, Warp};
+
+use crate::geometry::{Ray, plane_hit};
+
+/// The light's geometry.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LightShape {
+    /// A segment from `a` to `b`, emitting equally in all directions (per unit length).
+    Segment {
+        /// One end.
+        a: DVec3,
+        /// The other end.
+        b: DVec3,
+    },
+    /// The parallelogram `corner + s u + t v`; it emits on the side of u x v.
+    Parallelogram {
+        /// One corner.
+        corner: DVec3,
+        /// First edge.
+        u: DVec3,
+        /// Second edge.
+        v: DVec3,
+    },
+    /// The ellipse `centre + x u + y v`, x^2 + y^2 <= 1 (a disk when u, v are orthogonal
+    /// and equally long); it emits on the side of u x v.
+    Disk {
+        /// Centre.
+        centre: DVec3,
+        /// First semi-axis.
+        u: DVec3,
+        /// Second semi-axis.
+        v: DVec3,
+    },
+}
+
+/// How the unit square is mapped to a disk light.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DiskMap {
+    /// Shirley & Chiu's concentric map (area-preserving, low distortion).
+    Concentric,
+    /// Polar map r = sqrt(u), phi = 2 pi v (Shirley 1991 section 4).
+    Polar,
+    /// The bounding square, points outside the disk rejected (Ramamoorthi et al. 2012,
+    /// section 7: "rejection sampling, with 25 original samples").
+    Reject,
+}
+
+impl DiskMap {
+    /// Every map, with its command-line name.
+    pub const ALL: [(&'static str, DiskMap); 3] =
+        [("concentric", DiskMap::Concentric), ("polar", DiskMap::Polar), ("reject", DiskMap::Reject)];
+}
+
+/// An area light.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Light {
+    /// Geometry.
+    pub shape: LightShape,
+    /// Emitted radiance (per unit length for a segment) at the light's centre.
+    pub radiance: DVec3,
+    /// Gaussian falloff: emission times exp(-(x^2 + y^2) / (2 sigma^2)) in the light's local
+    /// coordinates, which run over [-1, 1] from edge to edge (centre to rim for a disk).
+    pub falloff: Option<f64>,
+    /// Square-to-disk map for disk lights.
+    pub disk_map: DiskMap,
+}
+
+/// A point on a light.
+#[derive(Debug, Clone, Copy)]
+pub struct LightPoint {
+    /// Position.
+    pub position: DVec3,
+    /// Falloff at the point (1 without falloff).
+    pub weight: f64,
+}
+
+impl Light {
+    /// Dimensions of its sampling domain: 1 for a segment, 2 otherwise.
+    pub fn dims(&self) -> usize {
+        if matches!(self.shape, LightShape::Segment { .. }) { 1 } else { 2 }
+    }
+
+    /// Area (length for a segment).
+    pub fn area(&self) -> f64 {
+        match self.shape {
+            LightShape::Segment { a, b } => (b - a).length(),
+            LightShape::Parallelogram { u, v, .. } => u.cross(v).length(),
+            LightShape::Disk { u, v, .. } => PI * u.cross(v).length(),
+        }
+    }
+
+    /// The unit normal on the emitting side (None for a segment, which emits all round).
+    pub fn normal(&self) -> Option<DVec3> {
+        match self.shape {
+            LightShape::Segment { .. } => None,
+            LightShape::Parallelogram { u, v, .. } | LightShape::Disk { u, v, .. } => Some(u.cross(v).normalize()),
+        }
+    }
+
+    /// The centre of the light.
+    pub fn centre(&self) -> DVec3 {
+        match self.shape {
+            LightShape::Segment { a, b } => 0.5 * (a + b),
+            LightShape::Parallelogram { corner, u, v } => corner + 0.5 * (u + v),
+            LightShape::Disk { centre, .. } => centre,
+        }
+    }
+
+    /// The point for `u` in the unit square (interval), by the light's own disk map; None
+    /// when a rejection map drops it.
+    #[inline]
+    pub fn sample(&self, u: &[f64]) -> Option<LightPoint> {
+        self.sample_with(u, self.disk_map)
+    }
+
+    /// The point for `u` with the given disk map.
+    #[inline]
+    pub fn sample_with(&self, u: &[f64], map: DiskMap) -> Option<LightPoint> {
+        let (position, x, y) = match self.shape {
+            LightShape::Segment { a, b } => (a + u[0] * (b - a), 2.0 * u[0] - 1.0, 0.0),
+            LightShape::Parallelogram { corner, u: eu, v: ev } => {
+                (corner + u[0] * eu + u[1] * ev, 2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0)
+            }
+            LightShape::Disk { centre, u: eu, v: ev } => {
+                let mut d = [0.0; 2];
+                let kept = match map {
+                    DiskMap::Concentric => ConcentricDisk.forward(u, &mut d),
+                    DiskMap::Polar => PolarDisk.forward(u, &mut d),
+                    DiskMap::Reject => RejectDisk.forward(u, &mut d),
+                };
+                if !kept {
+                    return None;
+                }
+                (centre + d[0] * eu + d[1] * ev, d[0], d[1])
+            }
+        };
+        Some(LightPoint { position, weight: self.falloff_at(x, y) })
+    }
+
+    fn falloff_at(&self, x: f64, y: f64) -> f64 {
+        self.falloff.map_or(1.0, |s| (-(x * x + y * y) / (2.0 * s * s)).exp())
+    }
+
+    /// The falloff averaged over the light (exact), so that a uniform sample's weight divided
+    /// by it is an unbiased estimate of 1.
+    pub fn mean_weight(&self) -> f64 {
+        let Some(s) = self.falloff else { return 1.0 };
+        // mean of exp(-x^2 / 2 s^2) over [-1, 1]
+        let line = s * FRAC_PI_2.sqrt() * libm::erf(1.0 / (s * std::f64::consts::SQRT_2));
+        match self.shape {
+            LightShape::Segment { .. } => line,
+            LightShape::Parallelogram { .. } => line * line,
+            // (1/pi) * integral over the unit disk of exp(-r^2 / 2 s^2)
+            LightShape::Disk { .. } => 2.0 * s * s * (1.0 - (-1.0 / (2.0 * s * s)).exp()),
+        }
+    }
+
+    /// The geometric factor of light point `y` seen from `x` with unit normal `n`:
+    /// cos(theta_x) cos(theta_y) / |y - x|^2 (no light cosine for a segment), zero when
+    /// either side faces away.
+    #[inline]
+    pub fn geometry(&self, x: DVec3, n: DVec3, y: DVec3) -> f64 {
+        let d = y - x;
+        let d2 = d.length_squared();
+        let cos_x = n.dot(d);
+        if cos_x <= 0.0 {
+            return 0.0;
+        }
+        match self.normal() {
+            None => cos_x / (d2 * d2.sqrt()),
+            Some(ny) => {
+                let cos_y = -ny.dot(d);
+                if cos_y <= 0.0 { 0.0 } else { cos_x * cos_y / (d2 * d2) }
+            }
+        }
+    }
+
+    /// Where a camera ray meets the light (its emitting side), and the radiance seen there.
+    pub fn intersect(&self, ray: &Ray, t_max: f64) -> Option<(f64, DVec3)> {
+        let (origin, u, v, disk) = match self.shape {
+            LightShape::Segment { .. } => return None,
+            LightShape::Parallelogram { corner, u, v } => (corner, u, v, false),
+            LightShape::Disk { centre, u, v } => (centre, u, v, true),
+        };
+        let n = u.cross(v);
+        if ray.dir.dot(n) >= 0.0 {
+            return None;
+        }
+        let (t, p) = plane_hit(ray, origin, n, 0.0, t_max)?;
+        let w = n / n.length_squared();
+        let q = p - origin;
+        let (s, r) = (w.dot(q.cross(v)), w.dot(u.cross(q)));
+        let (x, y, inside) = if disk {
+            (s, r, s * s + r * r <= 1.0)
+        } else {
+            (2.0 * s - 1.0, 2.0 * r - 1.0, (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&r))
+        };
+        inside.then(|| (t, self.radiance * self.falloff_at(x, y)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn disk(falloff: Option<f64>) -> Light {
+        Light {
+            shape: LightShape::Disk { centre: DVec3::ZERO, u: DVec3::X, v: DVec3::Y },
+            radiance: DVec3::ONE,
+            falloff,
+            disk_map: DiskMap::Concentric,
+        }
+    }
+
+    #[test]
+    fn mean_weight_is_the_average_falloff() {
+        // midpoint rule on a fine grid of the square, through each light's own map
+        let shapes = [
+            disk(Some(0.4)),
+            Light { shape: LightShape::Parallelogram { corner: DVec3::ZERO, u: DVec3::X, v: DVec3::Y }, ..disk(Some(0.3)) },
+            Light { shape: LightShape::Segment { a: DVec3::ZERO, b: DVec3::X }, ..disk(Some(0.5)) },
+        ];
+        for light in shapes {
+            let k = 400;
+            let mut sum = 0.0;
+            for i in 0..k {
+                for j in 0..k {
+                    let u = [(i as f64 + 0.5) / k as f64, (j as f64 + 0.5) / k as f64];
+                    sum += light.sample(&u).unwrap().weight;
+                }
+            }
+            let mean = sum / (k * k) as f64;
+            assert!((mean / light.mean_weight() - 1.0).abs() < 1e-4, "{light:?}: {mean}");
+        }
+    }
+
+    #[test]
+    fn camera_rays_see_the_emitting_side_only() {
+        let light = disk(None);
+        let up = Ray { origin: DVec3::new(0.3, 0.3, -2.0), dir: DVec3::new(0.0, 0.0, 1.0), time: 0.0 };
+        assert!(light.intersect(&up, 10.0).is_none(), "u x v = +z: the light emits upward");
+        let down = Ray { origin: DVec3::new(0.3, 0.3, 2.0), dir: DVec3::new(0.0, 0.0, -1.0), time: 0.0 };
+        assert_eq!(light.intersect(&down, 10.0).map(|h| h.0), Some(2.0));
+        let outside = Ray { origin: DVec3::new(0.8, 0.8, 2.0), ..down };
+        assert!(light.intersect(&outside, 10.0).is_none());
+    }
+}

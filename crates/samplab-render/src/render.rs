@@ -1,0 +1,377 @@
+//! The renderer: per pixel, `spp` secondary estimates, each one camera ray and `n` shadow
+//! rays per light, the light samples an `n`-point pattern from any samplab sampler.
+//!
+//! Every random choice of a pixel is a pure function of (seed, pixel index): rows are
+//! rendered in parallel, and the image is the same bytes whatever the thread count.
+//!
+//! Two estimators (the issue's two modes):
+//! - **visibility** (Ramamoorthi et al. 2012, sections 3 and 5.3: "Monte Carlo only for
+//!   visibility"): the pixel is U(x) times the emission-weighted visible fraction of the
+//!   light, where U(x) is the unoccluded direct lighting by a fixed 16 x 16 midpoint rule
+//!   (the same for every strategy, so all the error is the visibility's), and the visible
+//!   fraction is (1/N) sum_i V(x, y_i) L(y_i) / mean(L), so a Gaussian light's falloff is
+//!   part of the sampled visibility as in their eq. 31;
+//! - **direct**: the standard light-sampling estimator, (A/N) sum_i L(y_i) (albedo/pi)
+//!   V(x, y_i) cos(theta_x) cos(theta_y) / |x - y_i|^2.
+//!
+//! With a rejection disk map, the sums run over the accepted samples and divide by their
+//! number (Ramamoorthi et al. 2012, section 7, footnote 8).
+
+use std::f64::consts::PI;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use glam::DVec3;
+use rayon::prelude::*;
+use samplab::seed::{Seed, permutation};
+use samplab::sampler::Sampler;
+
+use crate::error::{Error, Result};
+use crate::image::Image;
+use crate::light::{DiskMap, Light, LightPoint};
+use crate::scene::{Scene, Seen};
+
+/// What each light sample estimates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    /// Monte Carlo for visibility only; unoccluded shading by a fixed quadrature.
+    Visibility,
+    /// Full direct lighting by light sampling.
+    Direct,
+}
+
+/// Where in the pixel the camera rays go.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Footprint {
+    /// Every estimate through the pixel centre.
+    Centre,
+    /// Over the pixel's area (antialiasing) by the pixel strategy.
+    Area,
+}
+
+/// How light samples are grouped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pattern {
+    /// Each estimate draws its own `n`-point pattern (secondary estimates, Subr & Kautz
+    /// 2013 Fig. 8; offsets x points, Sbert et al. 2006 Table 1).
+    PerEstimate,
+    /// One `spp * n`-point pattern per pixel, dealt to the estimates in a random order
+    /// (Cook's pairing of pixel and light samples; Shirley 1991's 16 samples per pixel).
+    PerPixel,
+}
+
+/// How to render.
+#[derive(Debug)]
+pub struct Options {
+    /// The strategy of the light samples.
+    pub light: Box<dyn Sampler>,
+    /// Light samples per estimate and light.
+    pub n: usize,
+    /// Secondary estimates per pixel.
+    pub spp: usize,
+    /// Estimator.
+    pub mode: Mode,
+    /// Pixel centre or area.
+    pub footprint: Footprint,
+    /// Strategy over the pixel area (`spp` points).
+    pub pixel: Box<dyn Sampler>,
+    /// Strategy over the lens (`spp` points), used when the camera has an aperture.
+    pub lens: Box<dyn Sampler>,
+    /// Strategy over the shutter interval (`spp` points), used when something moves.
+    pub time: Box<dyn Sampler>,
+    /// Grouping of light samples.
+    pub pattern: Pattern,
+    /// Disk map override for every disk light (None: each light's own).
+    pub disk_map: Option<DiskMap>,
+    /// Image width.
+    pub width: usize,
+    /// Image height.
+    pub height: usize,
+    /// Seed of every random choice.
+    pub seed: Seed,
+}
+
+/// Largest image side accepted.
+pub const MAX_SIDE: usize = 1 << 14;
+/// Side of the midpoint rule for unoccluded shading in visibility mode.
+const QUADRATURE: usize = 16;
+
+/// A rendered image and what it cost.
+#[derive(Debug, Clone)]
+pub struct Rendered {
+    /// The image (with its visibility channel).
+    pub image: Image,
+    /// Camera rays traced.
+    pub camera_rays: u64,
+    /// Shadow rays traced.
+    pub shadow_rays: u64,
+}
+
+impl Options {
+    /// Options with the given light strategy and count and image size: one estimate per
+    /// pixel through its centre, visibility mode, Owen-scrambled Sobol' over pixel, lens
+    /// and time, the default seed.
+    ///
+    /// # Errors
+    /// A sampler spec that does not parse.
+    pub fn new(light: &str, n: usize, width: usize, height: usize) -> Result<Options> {
+        let sobol = || samplab::sampler::build("sobol.owen");
+        Ok(Options {
+            light: samplab::sampler::build(light)?,
+            n,
+            spp: 1,
+            mode: Mode::Visibility,
+            footprint: Footprint::Centre,
+            pixel: sobol()?,
+            lens: sobol()?,
+            time: sobol()?,
+            pattern: Pattern::PerEstimate,
+            disk_map: None,
+            width,
+            height,
+            seed: Seed::DEFAULT,
+        })
+    }
+
+    /// Check every count and size against the scene before any work.
+    ///
+    /// # Errors
+    /// A zero or oversized image, zero samples, or a sampler that cannot make the counts.
+    pub fn check(&self, scene: &Scene) -> Result<()> {
+        for (what, v) in [("width", self.width), ("height", self.height)] {
+            if v == 0 || v > MAX_SIDE {
+                return Err(Error::Invalid(format!("image {what} {v} is out of range 1..={MAX_SIDE}")));
+            }
+        }
+        if self.n == 0 || self.spp == 0 {
+            return Err(Error::Invalid("light samples (-n) and estimates per pixel (--spp) must be at least 1".into()));
+        }
+        let per_pattern = match self.pattern {
+            Pattern::PerEstimate => self.n,
+            Pattern::PerPixel => self.n.checked_mul(self.spp).ok_or_else(|| Error::Invalid("n x spp overflows".into()))?,
+        };
+        for light in &scene.lights {
+            self.light.check(per_pattern, light.dims())?;
+        }
+        if self.footprint == Footprint::Area {
+            self.pixel.check(self.spp, 2)?;
+        }
+        if scene.camera.aperture > 0.0 {
+            self.lens.check(self.spp, 2)?;
+        }
+        if scene.moving() {
+            self.time.check(self.spp, 1)?;
+        }
+        Ok(())
+    }
+}
+
+/// One light prepared for a render.
+struct Prepared {
+    light: Light,
+    /// Emission x area / mean falloff: the factor between the sample means and radiance.
+    mean_weight: f64,
+    /// Midpoint-rule points for the unoccluded shading (visibility mode).
+    quadrature: Vec<LightPoint>,
+}
+
+/// Per-thread scratch buffers.
+#[derive(Default)]
+struct Scratch {
+    pixel: Vec<f64>,
+    lens: Vec<f64>,
+    time: Vec<f64>,
+    light: Vec<f64>,
+    order: Vec<u32>,
+}
+
+/// Render `scene`; `progress` is called with the number of rows finished so far.
+///
+/// # Errors
+/// Options that do not fit the scene ([`Options::check`]).
+pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync)) -> Result<Rendered> {
+    options.check(scene)?;
+    let (w, h) = (options.width, options.height);
+    let lights: Vec<Prepared> = scene
+        .lights
+        .iter()
+        .map(|&l| {
+            let light = Light { disk_map: options.disk_map.unwrap_or(l.disk_map), ..l };
+            Prepared { light, mean_weight: light.mean_weight(), quadrature: quadrature(&light) }
+        })
+        .collect();
+    let frame = scene.camera.frame(w, h);
+    let keys = Keys::new(options.seed);
+    let done = AtomicUsize::new(0);
+    let mut rgb = vec![0f32; 3 * w * h];
+    let mut vis = vec![0f32; w * h];
+    let (camera_rays, shadow_rays) = rgb
+        .par_chunks_mut(3 * w)
+        .zip(vis.par_chunks_mut(w))
+        .enumerate()
+        .map_init(Scratch::default, |scratch, (row, (rgb_row, vis_row))| {
+            let mut rays = (0u64, 0u64);
+            for col in 0..w {
+                let pixel = Pixel { index: (row * w + col) as u64, col, row };
+                let (radiance, visible, r) = render_pixel(scene, options, &lights, &frame, &keys, pixel, scratch);
+                rgb_row[3 * col..3 * col + 3].copy_from_slice(&radiance.as_vec3().to_array());
+                vis_row[col] = visible as f32;
+                rays.0 += r.0;
+                rays.1 += r.1;
+            }
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+            rays
+        })
+        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+    Ok(Rendered { image: Image { width: w, height: h, rgb, visibility: Some(vis) }, camera_rays, shadow_rays })
+}
+
+/// The midpoint rule over the light's square (interval), through the concentric map for
+/// disks (area-preserving, so equal weights).
+fn quadrature(light: &Light) -> Vec<LightPoint> {
+    let k = QUADRATURE;
+    let mid = |i: usize| (i as f64 + 0.5) / k as f64;
+    if light.dims() == 1 {
+        (0..k * k).filter_map(|i| light.sample_with(&[(i as f64 + 0.5) / (k * k) as f64], DiskMap::Concentric)).collect()
+    } else {
+        (0..k * k).filter_map(|i| light.sample_with(&[mid(i % k), mid(i / k)], DiskMap::Concentric)).collect()
+    }
+}
+
+/// Sub-seeds of each purpose.
+struct Keys {
+    pixel: Seed,
+    lens: Seed,
+    time: Seed,
+    light: Seed,
+    deal: Seed,
+}
+
+impl Keys {
+    fn new(seed: Seed) -> Keys {
+        Keys {
+            pixel: seed.derive_str("pixel"),
+            lens: seed.derive_str("lens"),
+            time: seed.derive_str("time"),
+            light: seed.derive_str("light"),
+            deal: seed.derive_str("deal"),
+        }
+    }
+}
+
+#[derive(Clone, Copy)]
+struct Pixel {
+    index: u64,
+    col: usize,
+    row: usize,
+}
+
+/// A pixel's radiance, its visible fraction and the (camera, shadow) rays it traced.
+fn render_pixel(
+    scene: &Scene,
+    o: &Options,
+    lights: &[Prepared],
+    frame: &crate::camera::Frame,
+    keys: &Keys,
+    px: Pixel,
+    s: &mut Scratch,
+) -> (DVec3, f64, (u64, u64)) {
+    let spp = o.spp;
+    // The fills cannot fail: Options::check accepted these counts.
+    let fill = |sampler: &dyn Sampler, dims: usize, key: Seed, buf: &mut Vec<f64>| {
+        buf.resize(spp * dims, 0.0);
+        sampler.fill(spp, dims, key.derive(px.index), buf).expect("counts checked");
+    };
+    if o.footprint == Footprint::Area {
+        fill(o.pixel.as_ref(), 2, keys.pixel, &mut s.pixel);
+    }
+    let lens = scene.camera.aperture > 0.0;
+    if lens {
+        fill(o.lens.as_ref(), 2, keys.lens, &mut s.lens);
+    }
+    let moving = scene.moving();
+    if moving {
+        fill(o.time.as_ref(), 1, keys.time, &mut s.time);
+    }
+    let mut radiance = DVec3::ZERO;
+    let mut visible = 0.0;
+    let mut rays = (0u64, 0u64);
+    for e in 0..spp {
+        let (dx, dy) = if o.footprint == Footprint::Area { (s.pixel[2 * e], s.pixel[2 * e + 1]) } else { (0.5, 0.5) };
+        let lens_uv = if lens { [s.lens[2 * e], s.lens[2 * e + 1]] } else { [0.5, 0.5] };
+        let time = if moving { s.time[e] } else { 0.0 };
+        let ray = frame.ray((px.col as f64 + dx) / o.width as f64, (px.row as f64 + dy) / o.height as f64, lens_uv, time);
+        rays.0 += 1;
+        let (x, n, albedo) = match scene.trace(&ray) {
+            Seen::Nothing => continue,
+            Seen::Light(le) => {
+                radiance += le;
+                visible += 1.0;
+                continue;
+            }
+            Seen::Surface { position, normal, albedo, emission } => {
+                radiance += emission;
+                (position, normal, albedo)
+            }
+        };
+        let brdf = albedo / PI;
+        let mut vis_sum = 0.0;
+        for (l, p) in lights.iter().enumerate() {
+            let dims = p.light.dims();
+            let key = keys.light.derive(px.index).derive(l as u64);
+            let points: &[f64] = match o.pattern {
+                Pattern::PerEstimate => {
+                    s.light.resize(o.n * dims, 0.0);
+                    o.light.fill(o.n, dims, key.derive(e as u64), &mut s.light).expect("counts checked");
+                    &s.light
+                }
+                Pattern::PerPixel => {
+                    if e == 0 {
+                        s.light.resize(spp * o.n * dims, 0.0);
+                        o.light.fill(spp * o.n, dims, key, &mut s.light).expect("counts checked");
+                        s.order = permutation(&mut keys.deal.derive(px.index).derive(l as u64).rng(), spp);
+                    }
+                    let b = s.order[e] as usize * o.n * dims;
+                    &s.light[b..b + o.n * dims]
+                }
+            };
+            let unoccluded = match o.mode {
+                Mode::Visibility => {
+                    let g: f64 = p.quadrature.iter().map(|q| q.weight * p.light.geometry(x, n, q.position)).sum();
+                    g / p.quadrature.len() as f64
+                }
+                Mode::Direct => 1.0,
+            };
+            if unoccluded <= 0.0 {
+                continue;
+            }
+            let (mut accepted, mut shade, mut seen) = (0usize, 0.0, 0.0);
+            for u in points.chunks_exact(dims) {
+                let Some(y) = p.light.sample(u) else { continue };
+                accepted += 1;
+                let g = if o.mode == Mode::Direct { p.light.geometry(x, n, y.position) } else { 1.0 };
+                if g <= 0.0 {
+                    continue;
+                }
+                rays.1 += 1;
+                if !scene.occluded(x, n, y.position, time) {
+                    shade += y.weight * g;
+                    seen += y.weight;
+                }
+            }
+            if accepted == 0 {
+                continue;
+            }
+            let fraction = seen / (accepted as f64 * p.mean_weight);
+            vis_sum += fraction;
+            let integral = match o.mode {
+                Mode::Visibility => unoccluded * fraction,
+                Mode::Direct => shade / accepted as f64,
+            };
+            radiance += brdf * p.light.radiance * p.light.area() * integral;
+        }
+        // a scene without lights is all "visible" (nothing to shadow)
+        visible += if lights.is_empty() { 1.0 } else { vis_sum / lights.len() as f64 };
+    }
+    let inv = 1.0 / spp as f64;
+    (radiance * inv, visible * inv, rays)
+}

@@ -1,0 +1,363 @@
+//! Built-in scenes: one for each paper's set-up. The y axis points up; the ground is the
+//! plane y = 0; every light faces down. Lights are power-normalised: each kind (square,
+//! disk inscribed in the square, segment across it, Gaussian square) gives the same
+//! unoccluded irradiance straight below, so images of different lights are comparable.
+
+use std::f64::consts::PI;
+
+use glam::DVec3;
+
+use crate::bvh::{Bvh, Object};
+use crate::camera::Camera;
+use crate::error::{Error, Result};
+use crate::geometry::{Plane, Shape};
+use crate::light::{DiskMap, Light, LightShape};
+use crate::scene::{Material, Scene, Texture};
+
+/// The kinds of light a built-in scene can be lit by (`--light`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LightKind {
+    /// A square.
+    Square,
+    /// The disk inscribed in the square.
+    Disk,
+    /// A segment across the square, along x.
+    Linear,
+    /// The square with a Gaussian falloff (sigma = 0.5 of the half-width).
+    Gaussian,
+}
+
+impl LightKind {
+    /// Every kind, with its command-line name.
+    pub const ALL: [(&'static str, LightKind); 4] = [
+        ("square", LightKind::Square),
+        ("disk", LightKind::Disk),
+        ("linear", LightKind::Linear),
+        ("gaussian", LightKind::Gaussian),
+    ];
+
+    /// The kind called `name`.
+    ///
+    /// # Errors
+    /// An unknown name, listing the known ones.
+    pub fn parse(name: &str) -> Result<LightKind> {
+        Self::ALL.iter().find(|(n, _)| n.eq_ignore_ascii_case(name)).map(|(_, k)| *k).ok_or_else(|| {
+            Error::Invalid(format!(
+                "unknown light '{name}' (known: {})",
+                Self::ALL.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+            ))
+        })
+    }
+}
+
+/// Gaussian falloff of `LightKind::Gaussian`, in half-widths.
+pub const GAUSSIAN_SIGMA: f64 = 0.5;
+/// Unoccluded irradiance straight below every built-in light, at the ground.
+const IRRADIANCE: f64 = 2.5;
+
+/// A light of `kind` centred at `centre`, `size` across, facing down.
+pub fn overhead_light(kind: LightKind, centre: DVec3, size: f64) -> Light {
+    let (u, v) = (DVec3::X * size, DVec3::Z * size); // x cross z = -y: facing down
+    let shape = match kind {
+        LightKind::Square | LightKind::Gaussian => LightShape::Parallelogram { corner: centre - 0.5 * (u + v), u, v },
+        LightKind::Disk => LightShape::Disk { centre, u: 0.5 * u, v: 0.5 * v },
+        LightKind::Linear => LightShape::Segment { a: centre - 0.5 * u, b: centre + 0.5 * u },
+    };
+    let falloff = (kind == LightKind::Gaussian).then_some(GAUSSIAN_SIGMA);
+    let mut light = Light { shape, radiance: DVec3::ONE, falloff, disk_map: DiskMap::Concentric };
+    // small-light irradiance at height h: L * A * mean falloff / h^2 (cos = 1)
+    let h = centre.y;
+    light.radiance = DVec3::splat(IRRADIANCE * h * h / (light.area() * light.mean_weight()));
+    light
+}
+
+/// A built-in scene: its name, what it is for, and its default light.
+pub struct Builtin {
+    /// Name on the command line.
+    pub name: &'static str,
+    /// One line: what it shows and which paper uses it.
+    pub summary: &'static str,
+    /// The light it has unless `--light` says otherwise (None: its lights are fixed).
+    pub default_light: Option<LightKind>,
+    build: fn(LightKind) -> Scene,
+}
+
+/// Every built-in scene.
+pub static BUILTINS: &[Builtin] = &[
+    Builtin {
+        name: "spheres",
+        summary: "two spheres above a ground plane (Ramamoorthi et al. 2012, Fig. 13)",
+        default_light: Some(LightKind::Square),
+        build: spheres,
+    },
+    Builtin {
+        name: "sphere-box",
+        summary: "a sphere and a box on a plane (Ramamoorthi et al. 2012, Figs. 16 and 18)",
+        default_light: Some(LightKind::Disk),
+        build: sphere_box,
+    },
+    Builtin {
+        name: "grids",
+        summary: "three grids of bars above a plane (Ramamoorthi et al. 2012, Figs. 8, 17, 19, 20)",
+        default_light: Some(LightKind::Linear),
+        build: grids,
+    },
+    Builtin {
+        name: "occluder",
+        summary: "a disc light above a square occluder (Subr & Kautz 2013, Fig. 8)",
+        default_light: Some(LightKind::Disk),
+        build: occluder,
+    },
+    Builtin {
+        name: "checker",
+        summary: "an infinite black-and-white checkerboard to the horizon (Shirley 1991, Table 1)",
+        default_light: None,
+        build: |_| checker(0.0),
+    },
+    Builtin {
+        name: "checker-45",
+        summary: "the checkerboard rotated 45 degrees (Shirley 1991, Table 2)",
+        default_light: None,
+        build: |_| checker(45.0),
+    },
+    Builtin {
+        name: "ball",
+        summary: "a ball lit by two square lights (Shirley 1991, Table 3)",
+        default_light: Some(LightKind::Square),
+        build: ball,
+    },
+    Builtin {
+        name: "defocus",
+        summary: "spheres at five depths and small bright beads, thin lens (Subr & Kautz 2013, Fig. 7)",
+        default_light: Some(LightKind::Disk),
+        build: defocus,
+    },
+    Builtin {
+        name: "motion",
+        summary: "a sphere moving across the frame during the shutter (Subr & Kautz 2013, Fig. 9)",
+        default_light: Some(LightKind::Disk),
+        build: motion,
+    },
+    Builtin {
+        name: "sphere-box-mesh",
+        summary: "the sphere-and-box scene with the sphere as a 1-million-triangle mesh (BVH benchmark)",
+        default_light: Some(LightKind::Disk),
+        build: sphere_box_mesh,
+    },
+];
+
+/// The built-in scene `name`, lit by `light` (or its default).
+///
+/// # Errors
+/// An unknown name (with the known ones), or a light asked of a scene whose lights are fixed.
+pub fn builtin(name: &str, light: Option<LightKind>) -> Result<Scene> {
+    let entry = BUILTINS.iter().find(|b| b.name.eq_ignore_ascii_case(name)).ok_or_else(|| {
+        Error::Invalid(format!(
+            "unknown scene '{name}' (built-in: {}; or a Mitsuba .xml file)",
+            BUILTINS.iter().map(|b| b.name).collect::<Vec<_>>().join(", ")
+        ))
+    })?;
+    let kind = match (entry.default_light, light) {
+        (Some(default), chosen) => chosen.unwrap_or(default),
+        (None, None) => LightKind::Square,
+        (None, Some(_)) => return Err(Error::Invalid(format!("scene '{}' has no area light to replace", entry.name))),
+    };
+    Ok((entry.build)(kind))
+}
+
+const GREY: DVec3 = DVec3::splat(0.7);
+
+fn diffuse(c: DVec3) -> Material {
+    Material { albedo: Texture::Constant(c), emission: Texture::Constant(DVec3::ZERO) }
+}
+
+fn sphere(centre: DVec3, radius: f64) -> Shape {
+    Shape::Sphere { centre, radius, velocity: DVec3::ZERO }
+}
+
+/// The six faces of a box with edges `a`, `b`, `c` from `corner` (a right-handed triple),
+/// normals outward.
+fn cuboid(corner: DVec3, a: DVec3, b: DVec3, c: DVec3) -> [Shape; 6] {
+    let quad = |corner, u, v| Shape::Parallelogram { corner, u, v };
+    [
+        quad(corner, b, a),
+        quad(corner + c, a, b),
+        quad(corner, a, c),
+        quad(corner + b, c, a),
+        quad(corner, c, b),
+        quad(corner + a, b, c),
+    ]
+}
+
+fn scene(camera: Camera, shapes: Vec<(Shape, u32)>, materials: Vec<Material>, lights: Vec<Light>) -> Scene {
+    let objects = shapes.into_iter().map(|(shape, material)| Object { shape, material }).collect();
+    Scene {
+        camera,
+        materials,
+        bvh: Bvh::new(objects),
+        planes: vec![(Plane { point: DVec3::ZERO, normal: DVec3::Y }, 0)],
+        lights,
+        resolution: (256, 192),
+    }
+}
+
+fn look(eye: [f64; 3], target: [f64; 3], fov: f64) -> Camera {
+    Camera { eye: eye.into(), target: target.into(), up: DVec3::Y, fov, aperture: 0.0, focus: 1.0 }
+}
+
+fn spheres(kind: LightKind) -> Scene {
+    let shapes = vec![(sphere(DVec3::new(-0.55, 0.75, 0.1), 0.42), 1), (sphere(DVec3::new(0.6, 0.45, -0.25), 0.38), 1)];
+    let light = overhead_light(kind, DVec3::new(0.0, 2.4, 0.0), 1.0);
+    scene(look([0.0, 2.6, 3.6], [0.0, 0.3, 0.0], 50.0), shapes, vec![diffuse(GREY), diffuse(GREY)], vec![light])
+}
+
+fn sphere_box_shapes() -> Vec<(Shape, u32)> {
+    let (s, c) = (30f64.to_radians().sin(), 30f64.to_radians().cos());
+    let (a, b) = (DVec3::new(0.7 * c, 0.0, 0.7 * s), DVec3::new(0.0, 0.7, 0.0));
+    let depth = a.cross(b).normalize() * 0.7;
+    let mut shapes: Vec<(Shape, u32)> =
+        cuboid(DVec3::new(0.15, 0.0, -0.1), a, b, depth).into_iter().map(|f| (f, 2)).collect();
+    shapes.push((sphere(DVec3::new(-0.55, 0.5, 0.1), 0.5), 1));
+    shapes
+}
+
+fn sphere_box_lit(kind: LightKind, shapes: Vec<(Shape, u32)>) -> Scene {
+    let light = overhead_light(kind, DVec3::new(0.3, 2.4, 0.5), 1.0);
+    let materials = vec![diffuse(GREY), diffuse(DVec3::new(0.75, 0.6, 0.5)), diffuse(DVec3::new(0.5, 0.6, 0.75))];
+    scene(look([0.4, 2.2, 3.4], [0.0, 0.35, 0.0], 50.0), shapes, materials, vec![light])
+}
+
+fn sphere_box(kind: LightKind) -> Scene {
+    sphere_box_lit(kind, sphere_box_shapes())
+}
+
+/// The sphere-and-box scene with the sphere tessellated into 2 x 708 x 706 triangles
+/// (999,696), a benchmark for the BVH.
+fn sphere_box_mesh(kind: LightKind) -> Scene {
+    let mut shapes: Vec<(Shape, u32)> = sphere_box_shapes().into_iter().filter(|(s, _)| !matches!(s, Shape::Sphere { .. })).collect();
+    let (centre, radius) = (DVec3::new(-0.55, 0.5, 0.1), 0.5);
+    let (slices, stacks) = (708usize, 707usize);
+    let vertex = |i: usize, j: usize| {
+        let (theta, phi) = (PI * j as f64 / stacks as f64, 2.0 * PI * i as f64 / slices as f64);
+        centre + radius * DVec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin())
+    };
+    for j in 0..stacks {
+        for i in 0..slices {
+            let (p00, p10, p01, p11) = (vertex(i, j), vertex(i + 1, j), vertex(i, j + 1), vertex(i + 1, j + 1));
+            for (p, q, r) in [(p00, p10, p11), (p00, p11, p01)] {
+                if (q - p).cross(r - p).length_squared() > 0.0 {
+                    shapes.push((Shape::Triangle { p, e1: q - p, e2: r - p }, 1));
+                }
+            }
+        }
+    }
+    sphere_box_lit(kind, shapes)
+}
+
+fn grids(kind: LightKind) -> Scene {
+    // three grids of thin bars at three heights, in three orientations (Ramamoorthi et al.
+    // 2012 show three grids of bars casting overlapping soft shadows)
+    let mut shapes = Vec::new();
+    for (k, (height, angle)) in [(0.45, 0.0f64), (0.8, 90.0), (1.15, 45.0)].into_iter().enumerate() {
+        let (s, c) = angle.to_radians().sin_cos();
+        let (along, across) = (DVec3::new(c, 0.0, s), DVec3::new(-s, 0.0, c));
+        for bar in 0..9 {
+            let offset = -0.8 + 0.2 * bar as f64 + 0.05 * k as f64;
+            let corner = DVec3::new(0.0, height, 0.0) - 1.0 * along + (offset - 0.03) * across;
+            for face in cuboid(corner, 2.0 * along, DVec3::Y * 0.03, 0.06 * across) {
+                shapes.push((face, 1));
+            }
+        }
+    }
+    let light = overhead_light(kind, DVec3::new(0.0, 2.2, 0.0), 1.0);
+    scene(look([0.0, 3.2, 2.2], [0.0, 0.0, 0.0], 55.0), shapes, vec![diffuse(GREY), diffuse(GREY)], vec![light])
+}
+
+fn occluder(kind: LightKind) -> Scene {
+    let square = Shape::Parallelogram {
+        corner: DVec3::new(-0.3, 0.6, -0.3),
+        u: DVec3::new(0.0, 0.0, 0.6),
+        v: DVec3::new(0.6, 0.0, 0.0),
+    };
+    let light = overhead_light(kind, DVec3::new(0.0, 1.6, 0.0), 0.8);
+    scene(look([0.0, 2.4, 1.6], [0.0, 0.0, 0.0], 60.0), vec![(square, 1)], vec![diffuse(GREY), diffuse(GREY)], vec![light])
+}
+
+fn checker(angle: f64) -> Scene {
+    let board = Material {
+        albedo: Texture::Constant(DVec3::ZERO),
+        emission: Texture::Checker { even: DVec3::ONE, odd: DVec3::ZERO, size: 1.0, angle },
+    };
+    let mut s = scene(look([0.0, 1.0, 0.0], [0.0, 0.6, -4.0], 60.0), vec![], vec![board], vec![]);
+    s.resolution = (128, 96);
+    s
+}
+
+fn ball(_: LightKind) -> Scene {
+    let lights = vec![
+        overhead_light(LightKind::Square, DVec3::new(-1.2, 2.0, 0.6), 0.6),
+        overhead_light(LightKind::Square, DVec3::new(1.3, 1.7, -0.4), 0.6),
+    ];
+    let mut s = scene(
+        look([0.0, 1.3, 3.0], [0.0, 0.4, 0.0], 45.0),
+        vec![(sphere(DVec3::new(0.0, 0.5, 0.0), 0.5), 1)],
+        vec![diffuse(GREY), diffuse(DVec3::new(0.8, 0.5, 0.4))],
+        lights,
+    );
+    s.resolution = (128, 96);
+    s
+}
+
+fn defocus(kind: LightKind) -> Scene {
+    let mut shapes = Vec::new();
+    for k in 0..5 {
+        let z = 1.0 - 1.0 * k as f64;
+        shapes.push((sphere(DVec3::new(-1.0 + 0.5 * k as f64, 0.3, z), 0.3), 1));
+        shapes.push((sphere(DVec3::new(1.2 - 0.3 * k as f64, 0.9, z - 0.5), 0.04), 2));
+    }
+    let bead = Material { albedo: Texture::Constant(DVec3::ZERO), emission: Texture::Constant(DVec3::splat(20.0)) };
+    let mut camera = look([0.0, 0.9, 3.0], [0.0, 0.3, -1.0], 45.0);
+    camera.aperture = 0.12;
+    camera.focus = (camera.target - camera.eye).length();
+    let light = overhead_light(kind, DVec3::new(0.0, 2.5, 0.0), 1.0);
+    scene(camera, shapes, vec![diffuse(GREY), diffuse(DVec3::new(0.8, 0.3, 0.3)), bead], vec![light])
+}
+
+fn motion(kind: LightKind) -> Scene {
+    let moving = Shape::Sphere { centre: DVec3::new(-0.6, 0.4, 0.0), radius: 0.35, velocity: DVec3::new(1.2, 0.0, 0.0) };
+    let still = sphere(DVec3::new(0.5, 0.3, -0.8), 0.3);
+    let light = overhead_light(kind, DVec3::new(0.0, 2.2, 0.3), 0.8);
+    scene(look([0.0, 1.4, 2.8], [0.0, 0.3, 0.0], 45.0), vec![(moving, 1), (still, 1)], vec![diffuse(GREY), diffuse(GREY)], vec![light])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_builtin_builds_with_every_light_it_accepts() {
+        for b in BUILTINS.iter().filter(|b| b.name != "sphere-box-mesh") {
+            let kinds: Vec<Option<LightKind>> = if b.default_light.is_some() {
+                LightKind::ALL.iter().map(|(_, k)| Some(*k)).collect()
+            } else {
+                vec![None]
+            };
+            for k in kinds {
+                let s = builtin(b.name, k).unwrap();
+                assert!(s.camera.fov > 0.0);
+            }
+        }
+        assert!(builtin("checker", Some(LightKind::Disk)).is_err());
+        assert!(builtin("nope", None).is_err());
+    }
+
+    #[test]
+    fn cuboid_normals_point_outward() {
+        let corner = DVec3::ZERO;
+        for face in cuboid(corner, DVec3::X, DVec3::Y, DVec3::Z) {
+            let Shape::Parallelogram { corner, u, v } = face else { unreachable!() };
+            let centre = corner + 0.5 * (u + v);
+            assert!(u.cross(v).dot(centre - DVec3::splat(0.5)) > 0.0, "{face:?}");
+        }
+    }
+}
