@@ -96,7 +96,13 @@ impl Bvh {
     /// Visit the leaves the ray may reach, near child first; `leaf` returns true to stop
     /// and may shrink the search distance. Returns whether a leaf stopped the walk.
     #[inline]
-    fn walk(&self, origin: DVec3, inv: DVec3, mut leaf: impl FnMut(usize, usize, &mut f64) -> bool, t_max: f64) -> bool {
+    fn walk(
+        &self,
+        origin: DVec3,
+        inv: DVec3,
+        mut leaf: impl FnMut(usize, usize, &mut f64) -> bool,
+        t_max: f64,
+    ) -> bool {
         let Some(root) = self.nodes.first() else { return false };
         let mut t_max = t_max;
         if root.bounds.hit(origin, inv, t_max).is_none() {

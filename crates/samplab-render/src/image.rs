@@ -81,10 +81,13 @@ impl Image {
         let mask: Vec<bool> = match (&reference.visibility, penumbra) {
             (_, false) => vec![true; self.width * self.height],
             (Some(v), true) => v.iter().map(|&v| v > PENUMBRA.0 && v < PENUMBRA.1).collect(),
-            (None, true) => return Err(invalid("the reference has no visibility channel V to find the penumbra".into())),
+            (None, true) => {
+                return Err(invalid("the reference has no visibility channel V to find the penumbra".into()));
+            }
         };
         let (a, b) = (self.luminance(), reference.luminance());
-        let diffs: Vec<(f64, f64)> = a.iter().zip(&b).zip(&mask).filter(|(_, m)| **m).map(|((x, r), _)| (x - r, *r)).collect();
+        let diffs: Vec<(f64, f64)> =
+            a.iter().zip(&b).zip(&mask).filter(|(_, m)| **m).map(|((x, r), _)| (x - r, *r)).collect();
         if diffs.is_empty() {
             return Err(invalid("no pixel to compare (the reference has no penumbra)".into()));
         }
@@ -172,7 +175,13 @@ impl Image {
         for i in 0..w * h {
             for (k, p) in planes.iter().enumerate() {
                 if !p[i].is_finite() {
-                    return Err(fail(format!("pixel ({}, {}) channel {} is {}", i % w, i / w, ["R", "G", "B"][k], p[i])));
+                    return Err(fail(format!(
+                        "pixel ({}, {}) channel {} is {}",
+                        i % w,
+                        i / w,
+                        ["R", "G", "B"][k],
+                        p[i]
+                    )));
                 }
                 rgb.push(p[i]);
             }
@@ -188,7 +197,10 @@ impl Image {
         match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
             Some("exr") => self.write_exr(path),
             Some("png") => write_png(&self.to_srgb(), path),
-            _ => Err(Error::Image { path: path.display().to_string(), message: "unknown image format (use .exr or .png)".into() }),
+            _ => Err(Error::Image {
+                path: path.display().to_string(),
+                message: "unknown image format (use .exr or .png)".into(),
+            }),
         }
     }
 }

@@ -227,7 +227,10 @@ mod tests {
         // midpoint rule on a fine grid of the square, through each light's own map
         let shapes = [
             disk(Some(0.4)),
-            Light { shape: LightShape::Parallelogram { corner: DVec3::ZERO, u: DVec3::X, v: DVec3::Y }, ..disk(Some(0.3)) },
+            Light {
+                shape: LightShape::Parallelogram { corner: DVec3::ZERO, u: DVec3::X, v: DVec3::Y },
+                ..disk(Some(0.3))
+            },
             Light { shape: LightShape::Segment { a: DVec3::ZERO, b: DVec3::X }, ..disk(Some(0.5)) },
         ];
         for light in shapes {

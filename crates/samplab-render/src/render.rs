@@ -9,8 +9,9 @@
 //!   visibility"): the pixel is U(x) times the emission-weighted visible fraction of the
 //!   light, where U(x) is the unoccluded direct lighting by a fixed 16 x 16 midpoint rule
 //!   (the same for every strategy, so all the error is the visibility's), and the visible
-//!   fraction is (1/N) sum_i V(x, y_i) L(y_i) / mean(L), so a Gaussian light's falloff is
-//!   part of the sampled visibility as in their eq. 31;
+//!   fraction is sum_i V(x, y_i) L(y_i) / sum_i L(y_i): a Gaussian light's falloff weighs
+//!   the sampled visibility as in their eq. 31, and the estimate is exact wherever the
+//!   light is wholly visible or wholly hidden;
 //! - **direct**: the standard light-sampling estimator, (A/N) sum_i L(y_i) (albedo/pi)
 //!   V(x, y_i) cos(theta_x) cos(theta_y) / |x - y_i|^2.
 //!
@@ -22,8 +23,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use glam::DVec3;
 use rayon::prelude::*;
-use samplab::seed::{Seed, permutation};
 use samplab::sampler::Sampler;
+use samplab::seed::{Seed, permutation};
 
 use crate::error::{Error, Result};
 use crate::image::Image;
@@ -147,7 +148,9 @@ impl Options {
         }
         let per_pattern = match self.pattern {
             Pattern::PerEstimate => self.n,
-            Pattern::PerPixel => self.n.checked_mul(self.spp).ok_or_else(|| Error::Invalid("n x spp overflows".into()))?,
+            Pattern::PerPixel => {
+                self.n.checked_mul(self.spp).ok_or_else(|| Error::Invalid("n x spp overflows".into()))?
+            }
         };
         for light in &scene.lights {
             self.light.check(per_pattern, light.dims())?;
@@ -168,8 +171,6 @@ impl Options {
 /// One light prepared for a render.
 struct Prepared {
     light: Light,
-    /// Emission x area / mean falloff: the factor between the sample means and radiance.
-    mean_weight: f64,
     /// Midpoint-rule points for the unoccluded shading (visibility mode).
     quadrature: Vec<LightPoint>,
 }
@@ -196,7 +197,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
         .iter()
         .map(|&l| {
             let light = Light { disk_map: options.disk_map.unwrap_or(l.disk_map), ..l };
-            Prepared { light, mean_weight: light.mean_weight(), quadrature: quadrature(&light) }
+            Prepared { light, quadrature: quadrature(&light) }
         })
         .collect();
     let frame = scene.camera.frame(w, h);
@@ -231,7 +232,9 @@ fn quadrature(light: &Light) -> Vec<LightPoint> {
     let k = QUADRATURE;
     let mid = |i: usize| (i as f64 + 0.5) / k as f64;
     if light.dims() == 1 {
-        (0..k * k).filter_map(|i| light.sample_with(&[(i as f64 + 0.5) / (k * k) as f64], DiskMap::Concentric)).collect()
+        (0..k * k)
+            .filter_map(|i| light.sample_with(&[(i as f64 + 0.5) / (k * k) as f64], DiskMap::Concentric))
+            .collect()
     } else {
         (0..k * k).filter_map(|i| light.sample_with(&[mid(i % k), mid(i / k)], DiskMap::Concentric)).collect()
     }
@@ -299,7 +302,8 @@ fn render_pixel(
         let (dx, dy) = if o.footprint == Footprint::Area { (s.pixel[2 * e], s.pixel[2 * e + 1]) } else { (0.5, 0.5) };
         let lens_uv = if lens { [s.lens[2 * e], s.lens[2 * e + 1]] } else { [0.5, 0.5] };
         let time = if moving { s.time[e] } else { 0.0 };
-        let ray = frame.ray((px.col as f64 + dx) / o.width as f64, (px.row as f64 + dy) / o.height as f64, lens_uv, time);
+        let ray =
+            frame.ray((px.col as f64 + dx) / o.width as f64, (px.row as f64 + dy) / o.height as f64, lens_uv, time);
         rays.0 += 1;
         let (x, n, albedo) = match scene.trace(&ray) {
             Seen::Nothing => continue,
@@ -344,10 +348,11 @@ fn render_pixel(
             if unoccluded <= 0.0 {
                 continue;
             }
-            let (mut accepted, mut shade, mut seen) = (0usize, 0.0, 0.0);
+            let (mut accepted, mut shade, mut seen, mut weight) = (0usize, 0.0, 0.0, 0.0);
             for u in points.chunks_exact(dims) {
                 let Some(y) = p.light.sample(u) else { continue };
                 accepted += 1;
+                weight += y.weight;
                 let g = if o.mode == Mode::Direct { p.light.geometry(x, n, y.position) } else { 1.0 };
                 if g <= 0.0 {
                     continue;
@@ -361,7 +366,7 @@ fn render_pixel(
             if accepted == 0 {
                 continue;
             }
-            let fraction = seen / (accepted as f64 * p.mean_weight);
+            let fraction = seen / weight;
             vis_sum += fraction;
             let integral = match o.mode {
                 Mode::Visibility => unoccluded * fraction,

@@ -95,7 +95,10 @@ const RAY_EPSILON: f64 = 1e-9;
 impl Scene {
     /// Whether any shape moves during the shutter interval.
     pub fn moving(&self) -> bool {
-        self.bvh.objects().iter().any(|o| matches!(o.shape, crate::geometry::Shape::Sphere { velocity, .. } if velocity != DVec3::ZERO))
+        self.bvh
+            .objects()
+            .iter()
+            .any(|o| matches!(o.shape, crate::geometry::Shape::Sphere { velocity, .. } if velocity != DVec3::ZERO))
     }
 
     /// The number of bounded shapes.
@@ -145,4 +148,3 @@ impl Scene {
             || self.bvh.occluded(&ray, RAY_EPSILON, t_max)
     }
 }
-

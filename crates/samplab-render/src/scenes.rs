@@ -234,7 +234,8 @@ fn sphere_box(kind: LightKind) -> Scene {
 /// The sphere-and-box scene with the sphere tessellated into 2 x 708 x 706 triangles
 /// (999,696), a benchmark for the BVH.
 fn sphere_box_mesh(kind: LightKind) -> Scene {
-    let mut shapes: Vec<(Shape, u32)> = sphere_box_shapes().into_iter().filter(|(s, _)| !matches!(s, Shape::Sphere { .. })).collect();
+    let mut shapes: Vec<(Shape, u32)> =
+        sphere_box_shapes().into_iter().filter(|(s, _)| !matches!(s, Shape::Sphere { .. })).collect();
     let (centre, radius) = (DVec3::new(-0.55, 0.5, 0.1), 0.5);
     let (slices, stacks) = (708usize, 707usize);
     let vertex = |i: usize, j: usize| {
@@ -280,7 +281,12 @@ fn occluder(kind: LightKind) -> Scene {
         v: DVec3::new(0.6, 0.0, 0.0),
     };
     let light = overhead_light(kind, DVec3::new(0.0, 1.6, 0.0), 0.8);
-    scene(look([0.0, 2.4, 1.6], [0.0, 0.0, 0.0], 60.0), vec![(square, 1)], vec![diffuse(GREY), diffuse(GREY)], vec![light])
+    scene(
+        look([0.0, 2.4, 1.6], [0.0, 0.0, 0.0], 60.0),
+        vec![(square, 1)],
+        vec![diffuse(GREY), diffuse(GREY)],
+        vec![light],
+    )
 }
 
 fn checker(angle: f64) -> Scene {
@@ -324,10 +330,16 @@ fn defocus(kind: LightKind) -> Scene {
 }
 
 fn motion(kind: LightKind) -> Scene {
-    let moving = Shape::Sphere { centre: DVec3::new(-0.6, 0.4, 0.0), radius: 0.35, velocity: DVec3::new(1.2, 0.0, 0.0) };
+    let moving =
+        Shape::Sphere { centre: DVec3::new(-0.6, 0.4, 0.0), radius: 0.35, velocity: DVec3::new(1.2, 0.0, 0.0) };
     let still = sphere(DVec3::new(0.5, 0.3, -0.8), 0.3);
     let light = overhead_light(kind, DVec3::new(0.0, 2.2, 0.3), 0.8);
-    scene(look([0.0, 1.4, 2.8], [0.0, 0.3, 0.0], 45.0), vec![(moving, 1), (still, 1)], vec![diffuse(GREY), diffuse(GREY)], vec![light])
+    scene(
+        look([0.0, 1.4, 2.8], [0.0, 0.3, 0.0], 45.0),
+        vec![(moving, 1), (still, 1)],
+        vec![diffuse(GREY), diffuse(GREY)],
+        vec![light],
+    )
 }
 
 #[cfg(test)]

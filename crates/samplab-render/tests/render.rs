@@ -1,0 +1,155 @@
+//! The renderer against closed forms (radiometry) and the papers' claims on the built-in
+//! scenes.
+
+use std::f64::consts::PI;
+
+use glam::DVec3;
+use samplab::seed::Seed;
+use samplab_render::bvh::Bvh;
+use samplab_render::camera::Camera;
+use samplab_render::geometry::Plane;
+use samplab_render::light::{DiskMap, Light, LightShape};
+use samplab_render::scene::{Material, Texture};
+use samplab_render::scenes::{LightKind, builtin};
+use samplab_render::{Image, Mode, Options, Scene, render};
+
+/// A white ground seen straight down through one pixel at the origin, under `light`.
+fn ground_point(light: Light) -> Scene {
+    Scene {
+        camera: Camera {
+            eye: DVec3::new(0.0, 0.1, 0.0),
+            target: DVec3::ZERO,
+            up: DVec3::Z,
+            fov: 1.0,
+            aperture: 0.0,
+            focus: 1.0,
+        },
+        materials: vec![Material { albedo: Texture::Constant(DVec3::ONE), emission: Texture::Constant(DVec3::ZERO) }],
+        bvh: Bvh::new(vec![]),
+        planes: vec![(Plane { point: DVec3::ZERO, normal: DVec3::Y }, 0)],
+        lights: vec![light],
+        resolution: (1, 1),
+    }
+}
+
+fn pixel(scene: &Scene, mode: Mode, n: usize) -> f64 {
+    let mut o = Options::new("sobol.owen", n, 1, 1).unwrap();
+    o.mode = mode;
+    f64::from(render(scene, &o, &|_| {}).unwrap().image.rgb[0])
+}
+
+#[test]
+fn a_disk_light_gives_the_closed_form_irradiance() {
+    // irradiance under a parallel disk of radius R at height h: pi L R^2 / (h^2 + R^2);
+    // a white Lambertian surface reflects E / pi
+    let (radius, height, radiance) = (0.7, 1.3, 3.0);
+    let light = Light {
+        shape: LightShape::Disk { centre: DVec3::new(0.0, height, 0.0), u: DVec3::X * radius, v: DVec3::Z * radius },
+        radiance: DVec3::splat(radiance),
+        falloff: None,
+        disk_map: DiskMap::Concentric,
+    };
+    let exact = radiance * radius * radius / (height * height + radius * radius);
+    let scene = ground_point(light);
+    let direct = pixel(&scene, Mode::Direct, 1 << 14);
+    assert!((direct / exact - 1.0).abs() < 2e-4, "direct {direct} vs {exact}");
+    let visibility = pixel(&scene, Mode::Visibility, 16);
+    assert!((visibility / exact - 1.0).abs() < 2e-3, "visibility-mode quadrature {visibility} vs {exact}");
+    // the light faces down: flipped, it lights nothing
+    let flipped =
+        Light { shape: LightShape::Disk { centre: DVec3::new(0.0, height, 0.0), u: DVec3::Z, v: DVec3::X }, ..light };
+    assert_eq!(pixel(&ground_point(flipped), Mode::Direct, 64), 0.0);
+}
+
+#[test]
+fn a_rectangle_light_gives_the_analytic_form_factor() {
+    // differential area below the corner of a parallel a x b rectangle at height h:
+    // F = 1/(2 pi) [X/sqrt(1+X^2) atan(Y/sqrt(1+X^2)) + Y/sqrt(1+Y^2) atan(X/sqrt(1+Y^2))],
+    // X = a/h, Y = b/h; irradiance pi L F, reflected radiance L F
+    let (a, b, h, radiance): (f64, f64, f64, f64) = (0.8, 1.7, 1.1, 2.0);
+    let (x, y) = (a / h, b / h);
+    let f = (x / (1.0 + x * x).sqrt() * (y / (1.0 + x * x).sqrt()).atan()
+        + y / (1.0 + y * y).sqrt() * (x / (1.0 + y * y).sqrt()).atan())
+        / (2.0 * PI);
+    let light = Light {
+        shape: LightShape::Parallelogram { corner: DVec3::new(0.0, h, 0.0), u: DVec3::X * a, v: DVec3::Z * b },
+        radiance: DVec3::splat(radiance),
+        falloff: None,
+        disk_map: DiskMap::Concentric,
+    };
+    let direct = pixel(&ground_point(light), Mode::Direct, 1 << 14);
+    assert!((direct / (radiance * f) - 1.0).abs() < 2e-4, "{direct} vs {}", radiance * f);
+}
+
+fn mse(scene: &Scene, reference: &Image, spec: &str, n: usize, map: DiskMap, seeds: u64) -> f64 {
+    (0..seeds)
+        .map(|s| {
+            let (w, h) = (reference.width, reference.height);
+            let mut o = Options::new(spec, n, w, h).unwrap();
+            o.disk_map = Some(map);
+            o.seed = Seed(s);
+            render(scene, &o, &|_| {}).unwrap().image.errors(reference, false).unwrap().mse
+        })
+        .sum::<f64>()
+        / seeds as f64
+}
+
+fn reference(scene: &Scene, w: usize, h: usize) -> Image {
+    render(scene, &Options::new("sobol.owen", 2048, w, h).unwrap(), &|_| {}).unwrap().image
+}
+
+#[test]
+fn uniform_jitter_beats_stratified_on_round_and_gaussian_lights_but_not_square_ones() {
+    // Ramamoorthi et al. 2012, Fig. 13 (two spheres above a plane); disks by rejection from
+    // a 5 x 5 pattern as in their section 7
+    for (kind, uniform_wins) in [(LightKind::Square, false), (LightKind::Disk, true), (LightKind::Gaussian, true)] {
+        let scene = builtin("spheres", Some(kind)).unwrap();
+        let r = reference(&scene, 80, 60);
+        let stratified = mse(&scene, &r, "jitter", 25, DiskMap::Reject, 3);
+        let uniform = mse(&scene, &r, "jitter.uniform", 25, DiskMap::Reject, 3);
+        assert_eq!(
+            uniform < stratified,
+            uniform_wins,
+            "{kind:?}: uniform jitter {uniform:.3e}, stratified {stratified:.3e}"
+        );
+    }
+}
+
+#[test]
+fn stratified_variance_is_about_twice_uniform_jitter_on_the_grids_with_a_linear_light() {
+    // Ramamoorthi et al. 2012, section 4.2.3: 83% more variance for stratified, theory 2x
+    let scene = builtin("grids", Some(LightKind::Linear)).unwrap();
+    let r = reference(&scene, 80, 60);
+    let ratio = mse(&scene, &r, "jitter", 16, DiskMap::Concentric, 3)
+        / mse(&scene, &r, "jitter.uniform", 16, DiskMap::Concentric, 3);
+    assert!((1.5..2.6).contains(&ratio), "stratified / uniform jitter MSE = {ratio}");
+}
+
+#[test]
+fn images_do_not_depend_on_the_thread_count() {
+    let scene = builtin("defocus", None).unwrap();
+    let mut o = Options::new("jitter.uniform", 9, 48, 36).unwrap();
+    o.spp = 4;
+    o.footprint = samplab_render::Footprint::Area;
+    o.mode = Mode::Direct;
+    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let a = one.install(|| render(&scene, &o, &|_| {}).unwrap().image);
+    let b = render(&scene, &o, &|_| {}).unwrap().image;
+    assert_eq!(a, b);
+    let motion = builtin("motion", None).unwrap();
+    let a = one.install(|| render(&motion, &o, &|_| {}).unwrap().image);
+    assert_eq!(a, render(&motion, &o, &|_| {}).unwrap().image);
+}
+
+#[test]
+fn counts_a_strategy_cannot_make_are_refused_before_any_work() {
+    let scene = builtin("spheres", None).unwrap();
+    let o = Options::new("jitter", 15, 8, 8).unwrap();
+    let e = render(&scene, &o, &|_| panic!("no row may start")).unwrap_err().to_string();
+    assert!(e.contains("jitter") && e.contains("15"), "{e}");
+    let mut o = Options::new("jitter", 16, 8, 8).unwrap();
+    o.footprint = samplab_render::Footprint::Area;
+    o.spp = 3;
+    o.pixel = samplab::sampler::build("jitter").unwrap();
+    assert!(render(&scene, &o, &|_| {}).is_err());
+}
