@@ -14,6 +14,8 @@ pub mod error;
 pub mod geometry;
 pub mod image;
 pub mod light;
+pub mod mitsuba;
+pub mod obj;
 pub mod render;
 pub mod scene;
 pub mod scenes;

@@ -177,7 +177,7 @@ fn sphere(centre: DVec3, radius: f64) -> Shape {
 
 /// The six faces of a box with edges `a`, `b`, `c` from `corner` (a right-handed triple),
 /// normals outward.
-fn cuboid(corner: DVec3, a: DVec3, b: DVec3, c: DVec3) -> [Shape; 6] {
+pub(crate) fn cuboid(corner: DVec3, a: DVec3, b: DVec3, c: DVec3) -> [Shape; 6] {
     let quad = |corner, u, v| Shape::Parallelogram { corner, u, v };
     [
         quad(corner, b, a),
