@@ -12,6 +12,7 @@ mod generate;
 mod integrate;
 mod list;
 mod plot;
+mod render;
 mod reproduce;
 mod sets;
 mod spectrum;
@@ -40,6 +41,8 @@ enum Command {
     Integrate(integrate::Args),
     /// Periodogram, expected spectrum and spectrum variance over realizations (Subr & Kautz).
     Spectrum(spectrum::Args),
+    /// Render soft shadows with any strategy per pixel, against a reference (EXR/PNG).
+    Render(render::Args),
 }
 
 fn main() -> ExitCode {
@@ -52,6 +55,7 @@ fn main() -> ExitCode {
         Command::Discrepancy(a) => discrepancy::run(&a),
         Command::Integrate(a) => integrate::run(&a),
         Command::Spectrum(a) => spectrum::run(&a),
+        Command::Render(a) => render::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

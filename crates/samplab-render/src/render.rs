@@ -202,6 +202,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
         .collect();
     let frame = scene.camera.frame(w, h);
     let keys = Keys::new(options.seed);
+    let setup = Setup { lights: &lights, frame: &frame, keys: &keys, moving: scene.moving() };
     let done = AtomicUsize::new(0);
     let mut rgb = vec![0f32; 3 * w * h];
     let mut vis = vec![0f32; w * h];
@@ -213,7 +214,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
             let mut rays = (0u64, 0u64);
             for col in 0..w {
                 let pixel = Pixel { index: (row * w + col) as u64, col, row };
-                let (radiance, visible, r) = render_pixel(scene, options, &lights, &frame, &keys, pixel, scratch);
+                let (radiance, visible, r) = render_pixel(scene, options, &setup, pixel, scratch);
                 rgb_row[3 * col..3 * col + 3].copy_from_slice(&radiance.as_vec3().to_array());
                 vis_row[col] = visible as f32;
                 rays.0 += r.0;
@@ -261,6 +262,14 @@ impl Keys {
     }
 }
 
+/// What every pixel of a render shares.
+struct Setup<'a> {
+    lights: &'a [Prepared],
+    frame: &'a crate::camera::Frame,
+    keys: &'a Keys,
+    moving: bool,
+}
+
 #[derive(Clone, Copy)]
 struct Pixel {
     index: u64,
@@ -272,12 +281,11 @@ struct Pixel {
 fn render_pixel(
     scene: &Scene,
     o: &Options,
-    lights: &[Prepared],
-    frame: &crate::camera::Frame,
-    keys: &Keys,
+    setup: &Setup,
     px: Pixel,
     s: &mut Scratch,
 ) -> (DVec3, f64, (u64, u64)) {
+    let Setup { lights, frame, keys, moving } = *setup;
     let spp = o.spp;
     // The fills cannot fail: Options::check accepted these counts.
     let fill = |sampler: &dyn Sampler, dims: usize, key: Seed, buf: &mut Vec<f64>| {
@@ -291,7 +299,6 @@ fn render_pixel(
     if lens {
         fill(o.lens.as_ref(), 2, keys.lens, &mut s.lens);
     }
-    let moving = scene.moving();
     if moving {
         fill(o.time.as_ref(), 1, keys.time, &mut s.time);
     }

@@ -80,20 +80,23 @@ impl Sobol {
     }
 }
 
+/// The direction numbers bit-reversed, for Owen scrambling's reversed domain (computed once,
+/// so that many small fills, as a renderer's per-pixel patterns, pay nothing per call).
+static REVERSED_DIRECTIONS: std::sync::LazyLock<Vec<[u32; 32]>> =
+    std::sync::LazyLock::new(|| SOBOL_DIRECTIONS.iter().map(|v| v.map(u32::reverse_bits)).collect());
+
 /// Walk the first `out.len() / dims` points in Gray-code order (Antonov & Saleev 1979), as
 /// Joe & Kuo's and scipy's generators do: point i+1 is point i XOR v_c with c =
 /// trailing_zeros(i+1). `reversed` keeps the state bit-reversed. `finish` maps a state
 /// word of dimension d to the coordinate.
 #[inline]
 fn gray_walk(out: &mut [f64], dims: usize, reversed: bool, finish: impl Fn(u32, usize) -> f64) {
-    let directions: Vec<[u32; 32]> = (0..dims)
-        .map(|d| if reversed { SOBOL_DIRECTIONS[d].map(u32::reverse_bits) } else { SOBOL_DIRECTIONS[d] })
-        .collect();
+    let directions: &[[u32; 32]] = if reversed { &REVERSED_DIRECTIONS[..dims] } else { &SOBOL_DIRECTIONS[..dims] };
     match dims {
         // fixed sizes let the compiler interleave the coordinates' work
-        1 => walk_fixed::<1>(out, &directions, &finish),
-        2 => walk_fixed::<2>(out, &directions, &finish),
-        3 => walk_fixed::<3>(out, &directions, &finish),
+        1 => walk_fixed::<1>(out, directions, &finish),
+        2 => walk_fixed::<2>(out, directions, &finish),
+        3 => walk_fixed::<3>(out, directions, &finish),
         _ => {
             let mut state = vec![0u32; dims];
             for (i, p) in out.chunks_exact_mut(dims).enumerate() {
@@ -101,7 +104,7 @@ fn gray_walk(out: &mut [f64], dims: usize, reversed: bool, finish: impl Fn(u32, 
                     *x = finish(state[d], d);
                 }
                 let c = (i as u64 + 1).trailing_zeros().min(31) as usize;
-                for (s, v) in state.iter_mut().zip(&directions) {
+                for (s, v) in state.iter_mut().zip(directions) {
                     *s ^= v[c];
                 }
             }
@@ -146,7 +149,18 @@ impl Sampler for Sobol {
         Ok(())
     }
     fn fill(&self, _n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let keys: Vec<DimKey> = (0..dims).map(|d| DimKey::new(seed, d)).collect();
+        // keys on the stack for the usual few dimensions: small fills stay allocation-free
+        let mut few = [DimKey { bits: 0, shift: 0.0 }; 4];
+        let many: Vec<DimKey>;
+        let keys: &[DimKey] = if dims <= few.len() {
+            for (d, k) in few.iter_mut().enumerate().take(dims) {
+                *k = DimKey::new(seed, d);
+            }
+            &few[..dims]
+        } else {
+            many = (0..dims).map(|d| DimKey::new(seed, d)).collect();
+            &many
+        };
         match self.randomization {
             // Owen works in the bit-reversed domain: keep the state reversed, so each
             // coordinate costs one hash and one reversal

@@ -1,0 +1,226 @@
+//! `samplab render`: soft shadows with any strategy per pixel, against a reference.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, bail};
+use samplab::seed::Seed;
+use samplab_render::light::DiskMap;
+use samplab_render::scenes::{self, LightKind};
+use samplab_render::{Footprint, Image, Mode, Options, Pattern, Scene, render};
+
+/// Render a scene with a sampling strategy per pixel.
+#[derive(clap::Args)]
+#[command(after_help = "Examples:\n  samplab render spheres --light disk --sampler jitter.uniform -n 25 --disk-map reject -o uj.exr \
+                     --reference ref.exr --error-image err.png\n  samplab render grids --light linear --sampler jitter -n 16 -o strat.png\n  \
+                     samplab render scene.xml --sampler sobol.owen -n 4 --spp 16 --pixel area --mode direct -o out.exr\n\n\
+                     SCENE is a built-in scene or a Mitsuba 3 XML file. Built-in scenes:\n  \
+                     spheres, sphere-box, grids, occluder, checker, checker-45, ball, defocus, motion, sphere-box-mesh\n\
+                     A missing --reference file is rendered (sobol.owen, --reference-samples light samples, 64 pixel \
+                     samples in area mode) and kept for the next run.")]
+pub struct Args {
+    /// A built-in scene name or a Mitsuba 3 .xml file
+    scene: String,
+    /// Replace a built-in scene's light: square, disk, linear, gaussian
+    #[arg(long)]
+    light: Option<String>,
+    /// Strategy of the light samples (any sampler spec; see `samplab list samplers`)
+    #[arg(long, default_value = "jitter")]
+    sampler: String,
+    /// Light samples per estimate and light
+    #[arg(short, default_value_t = 16)]
+    n: usize,
+    /// Secondary estimates per pixel (each one camera ray and n shadow rays per light)
+    #[arg(long, default_value_t = 1)]
+    spp: usize,
+    /// visibility (Monte Carlo for visibility only) or direct (full light sampling)
+    #[arg(long, default_value = "visibility")]
+    mode: String,
+    /// Camera rays through the pixel centre or over its area
+    #[arg(long, default_value = "center")]
+    pixel: String,
+    /// Strategy over the pixel area (spp points)
+    #[arg(long, default_value = "sobol.owen")]
+    pixel_sampler: String,
+    /// Strategy over the lens (spp points), for scenes with an aperture
+    #[arg(long, default_value = "sobol.owen")]
+    lens_sampler: String,
+    /// Strategy over the shutter time (spp points), for scenes that move
+    #[arg(long, default_value = "sobol.owen")]
+    time_sampler: String,
+    /// estimate: an n-point pattern per estimate; pixel: one spp x n pattern per pixel dealt out
+    #[arg(long, default_value = "estimate")]
+    pattern: String,
+    /// Square-to-disk map for disk lights: concentric, polar, reject
+    #[arg(long)]
+    disk_map: Option<String>,
+    /// Image size WxH (default: the scene's)
+    #[arg(long)]
+    res: Option<String>,
+    /// Seed of every random choice
+    #[arg(long, default_value_t = Seed::DEFAULT.0)]
+    seed: u64,
+    /// Output image (.exr linear with a visibility channel V, or .png sRGB)
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Reference image (.exr) to measure the error against; rendered and kept if missing
+    #[arg(long)]
+    reference: Option<PathBuf>,
+    /// Light samples per estimate of a reference rendered here
+    #[arg(long, default_value_t = 4096)]
+    reference_samples: usize,
+    /// Restrict the error to the reference's penumbra (0 < V < 1)
+    #[arg(long)]
+    penumbra: bool,
+    /// Write the signed error (red: too bright, green: too dark) as a PNG
+    #[arg(long)]
+    error_image: Option<PathBuf>,
+    /// Scale of the error image
+    #[arg(long, default_value_t = 10.0)]
+    error_scale: f64,
+    /// Print the summary as JSON on stdout
+    #[arg(long)]
+    json: bool,
+}
+
+fn choose<T: Copy>(flag: &str, value: &str, table: &[(&str, T)]) -> anyhow::Result<T> {
+    table.iter().find(|(n, _)| n.eq_ignore_ascii_case(value)).map(|(_, v)| *v).with_context(|| {
+        format!("{flag}: unknown value '{value}' (one of: {})", table.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "))
+    })
+}
+
+/// The scene a command line names: a built-in or a Mitsuba file.
+fn load_scene(name: &str, light: Option<&str>) -> anyhow::Result<Scene> {
+    let kind = light.map(LightKind::parse).transpose()?;
+    if name.to_ascii_lowercase().ends_with(".xml") {
+        if kind.is_some() {
+            bail!("--light replaces a built-in scene's light; a Mitsuba scene brings its own");
+        }
+        return Ok(samplab_render::mitsuba::load(Path::new(name))?);
+    }
+    Ok(scenes::builtin(name, kind)?)
+}
+
+fn resolution(text: &str) -> anyhow::Result<(usize, usize)> {
+    let parse = || {
+        let (w, h) = text.split_once(['x', 'X'])?;
+        Some((w.trim().parse().ok()?, h.trim().parse().ok()?))
+    };
+    parse().with_context(|| format!("--res: '{text}' is not WIDTHxHEIGHT (e.g. 256x192)"))
+}
+
+fn check_extension(flag: &str, path: &Path, allowed: &[&str]) -> anyhow::Result<()> {
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    if !allowed.contains(&ext.as_str()) {
+        bail!("{flag}: {} must end in .{}", path.display(), allowed.join(" or ."));
+    }
+    Ok(())
+}
+
+pub fn run(a: &Args) -> anyhow::Result<()> {
+    check_extension("--output", &a.output, &["exr", "png"])?;
+    if let Some(p) = &a.reference {
+        check_extension("--reference", p, &["exr"])?;
+    }
+    if let Some(p) = &a.error_image {
+        check_extension("--error-image", p, &["png"])?;
+        if a.reference.is_none() {
+            bail!("--error-image needs --reference");
+        }
+    }
+    if a.penumbra && a.reference.is_none() {
+        bail!("--penumbra needs --reference");
+    }
+    if !(a.error_scale.is_finite() && a.error_scale > 0.0) {
+        bail!("--error-scale: {} must be a positive number", a.error_scale);
+    }
+    let scene = load_scene(&a.scene, a.light.as_deref())?;
+    let (width, height) = a.res.as_deref().map(resolution).transpose()?.unwrap_or(scene.resolution);
+    let sampler = |flag: &str, spec: &str| samplab::sampler::build(spec).with_context(|| flag.to_string());
+    let options = Options {
+        light: sampler("--sampler", &a.sampler)?,
+        n: a.n,
+        spp: a.spp,
+        mode: choose("--mode", &a.mode, &[("visibility", Mode::Visibility), ("direct", Mode::Direct)])?,
+        footprint: choose("--pixel", &a.pixel, &[("center", Footprint::Centre), ("centre", Footprint::Centre), ("area", Footprint::Area)])?,
+        pixel: sampler("--pixel-sampler", &a.pixel_sampler)?,
+        lens: sampler("--lens-sampler", &a.lens_sampler)?,
+        time: sampler("--time-sampler", &a.time_sampler)?,
+        pattern: choose("--pattern", &a.pattern, &[("estimate", Pattern::PerEstimate), ("pixel", Pattern::PerPixel)])?,
+        disk_map: a.disk_map.as_deref().map(|m| choose("--disk-map", m, &DiskMap::ALL)).transpose()?,
+        width,
+        height,
+        seed: Seed(a.seed),
+    };
+    options.check(&scene)?;
+    let reference = match &a.reference {
+        Some(path) if path.exists() => Some((Image::read_exr(path)?, false)),
+        Some(path) => {
+            let r = render_reference(&scene, &options, a.reference_samples)?;
+            r.write_exr(path)?;
+            Some((r, true))
+        }
+        None => None,
+    };
+    let started = Instant::now();
+    let bar = crate::generate::progress(height as u64, "rows");
+    let rendered = render(&scene, &options, &|_| bar.inc(1))?;
+    bar.finish_and_clear();
+    let seconds = started.elapsed().as_secs_f64();
+    let errors = match &reference {
+        Some((r, _)) => Some(rendered.image.errors(r, a.penumbra).context("--reference")?),
+        None => None,
+    };
+    // every output is checked before any is written; each is written atomically
+    let error_image = match (&a.error_image, &reference) {
+        (Some(_), Some((r, _))) => Some(rendered.image.error_image(r, a.error_scale)?),
+        _ => None,
+    };
+    rendered.image.write(&a.output)?;
+    if let (Some(path), Some(img)) = (&a.error_image, &error_image) {
+        samplab_render::image::write_png(img, path)?;
+    }
+    let rays = rendered.camera_rays + rendered.shadow_rays;
+    let summary = serde_json::json!({
+        "scene": a.scene, "sampler": options.light.spec(), "n": a.n, "spp": a.spp, "mode": a.mode,
+        "pixel": a.pixel, "width": width, "height": height, "seed": a.seed, "seconds": seconds,
+        "camera_rays": rendered.camera_rays, "shadow_rays": rendered.shadow_rays,
+        "rays_per_second": rays as f64 / seconds, "errors": errors,
+        "penumbra_only": a.penumbra,
+        "reference_rendered": reference.as_ref().map(|r| r.1),
+    });
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&summary)?);
+    }
+    let error_text = errors.map_or(String::new(), |e| {
+        format!("; vs reference{}: RMSE {:.4e}, relative {:.2}%, mean |E| {:.4e}", if a.penumbra { " (penumbra)" } else { "" }, e.rmse, 100.0 * e.relative, e.mean_abs)
+    });
+    eprintln!(
+        "{} {width}x{height}, {} x{} x{} spp, seed {}: {seconds:.2} s, {:.1} M rays/s{error_text} -> {}",
+        a.scene,
+        options.light.spec(),
+        a.n,
+        a.spp,
+        a.seed,
+        rays as f64 / seconds / 1e6,
+        a.output.display()
+    );
+    Ok(())
+}
+
+/// A converged reference for `options`: Owen-scrambled Sobol' light samples, and 64 pixel
+/// samples when the footprint is the pixel area (or the lens or shutter are sampled).
+fn render_reference(scene: &Scene, options: &Options, samples: usize) -> anyhow::Result<Image> {
+    let needs_estimates = options.footprint == Footprint::Area || scene.camera.aperture > 0.0 || scene.moving();
+    let spp = if needs_estimates { options.spp.max(64) } else { 1 };
+    let mut reference = Options::new("sobol.owen", samples, options.width, options.height)?;
+    reference.spp = spp;
+    reference.mode = options.mode;
+    reference.footprint = options.footprint;
+    reference.disk_map = options.disk_map;
+    reference.seed = options.seed.derive_str("reference");
+    let bar = crate::generate::progress(options.height as u64, "reference rows");
+    let r = render(scene, &reference, &|_| bar.inc(1))?;
+    bar.finish_and_clear();
+    Ok(r.image)
+}
