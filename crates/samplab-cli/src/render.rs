@@ -11,13 +11,15 @@ use samplab_render::{Footprint, Image, Mode, Options, Pattern, Scene, render};
 
 /// Render a scene with a sampling strategy per pixel.
 #[derive(clap::Args)]
-#[command(after_help = "Examples:\n  samplab render spheres --light disk --sampler jitter.uniform -n 25 --disk-map reject -o uj.exr \
+#[command(
+    after_help = "Examples:\n  samplab render spheres --light disk --sampler jitter.uniform -n 25 --disk-map reject -o uj.exr \
                      --reference ref.exr --error-image err.png\n  samplab render grids --light linear --sampler jitter -n 16 -o strat.png\n  \
                      samplab render scene.xml --sampler sobol.owen -n 4 --spp 16 --pixel area --mode direct -o out.exr\n\n\
                      SCENE is a built-in scene or a Mitsuba 3 XML file. Built-in scenes:\n  \
                      spheres, sphere-box, grids, occluder, checker, checker-45, ball, defocus, motion, sphere-box-mesh\n\
                      A missing --reference file is rendered (sobol.owen, --reference-samples light samples, 64 pixel \
-                     samples in area mode) and kept for the next run.")]
+                     samples in area mode) and kept for the next run."
+)]
 pub struct Args {
     /// A built-in scene name or a Mitsuba 3 .xml file
     scene: String,
@@ -85,7 +87,10 @@ pub struct Args {
 
 fn choose<T: Copy>(flag: &str, value: &str, table: &[(&str, T)]) -> anyhow::Result<T> {
     table.iter().find(|(n, _)| n.eq_ignore_ascii_case(value)).map(|(_, v)| *v).with_context(|| {
-        format!("{flag}: unknown value '{value}' (one of: {})", table.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "))
+        format!(
+            "{flag}: unknown value '{value}' (one of: {})",
+            table.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+        )
     })
 }
 
@@ -142,7 +147,11 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         n: a.n,
         spp: a.spp,
         mode: choose("--mode", &a.mode, &[("visibility", Mode::Visibility), ("direct", Mode::Direct)])?,
-        footprint: choose("--pixel", &a.pixel, &[("center", Footprint::Centre), ("centre", Footprint::Centre), ("area", Footprint::Area)])?,
+        footprint: choose(
+            "--pixel",
+            &a.pixel,
+            &[("center", Footprint::Centre), ("centre", Footprint::Centre), ("area", Footprint::Area)],
+        )?,
         pixel: sampler("--pixel-sampler", &a.pixel_sampler)?,
         lens: sampler("--lens-sampler", &a.lens_sampler)?,
         time: sampler("--time-sampler", &a.time_sampler)?,
@@ -193,7 +202,13 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string_pretty(&summary)?);
     }
     let error_text = errors.map_or(String::new(), |e| {
-        format!("; vs reference{}: RMSE {:.4e}, relative {:.2}%, mean |E| {:.4e}", if a.penumbra { " (penumbra)" } else { "" }, e.rmse, 100.0 * e.relative, e.mean_abs)
+        format!(
+            "; vs reference{}: RMSE {:.4e}, relative {:.2}%, mean |E| {:.4e}",
+            if a.penumbra { " (penumbra)" } else { "" },
+            e.rmse,
+            100.0 * e.relative,
+            e.mean_abs
+        )
     });
     eprintln!(
         "{} {width}x{height}, {} x{} x{} spp, seed {}: {seconds:.2} s, {:.1} M rays/s{error_text} -> {}",

@@ -182,7 +182,8 @@ struct Scratch {
     lens: Vec<f64>,
     time: Vec<f64>,
     light: Vec<f64>,
-    order: Vec<u32>,
+    /// Per light: the pixel's whole pattern and the order it is dealt in (per-pixel patterns).
+    shared: Vec<(Vec<f64>, Vec<u32>)>,
 }
 
 /// Render `scene`; `progress` is called with the number of rows finished so far.
@@ -278,13 +279,7 @@ struct Pixel {
 }
 
 /// A pixel's radiance, its visible fraction and the (camera, shadow) rays it traced.
-fn render_pixel(
-    scene: &Scene,
-    o: &Options,
-    setup: &Setup,
-    px: Pixel,
-    s: &mut Scratch,
-) -> (DVec3, f64, (u64, u64)) {
+fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Scratch) -> (DVec3, f64, (u64, u64)) {
     let Setup { lights, frame, keys, moving } = *setup;
     let spp = o.spp;
     // The fills cannot fail: Options::check accepted these counts.
@@ -301,6 +296,16 @@ fn render_pixel(
     }
     if moving {
         fill(o.time.as_ref(), 1, keys.time, &mut s.time);
+    }
+    if o.pattern == Pattern::PerPixel {
+        s.shared.resize_with(lights.len(), Default::default);
+        for (l, p) in lights.iter().enumerate() {
+            let (pattern, order) = &mut s.shared[l];
+            pattern.resize(spp * o.n * p.light.dims(), 0.0);
+            let key = keys.light.derive(px.index).derive(l as u64);
+            o.light.fill(spp * o.n, p.light.dims(), key, pattern).expect("counts checked");
+            *order = permutation(&mut keys.deal.derive(px.index).derive(l as u64).rng(), spp);
+        }
     }
     let mut radiance = DVec3::ZERO;
     let mut visible = 0.0;
@@ -336,13 +341,9 @@ fn render_pixel(
                     &s.light
                 }
                 Pattern::PerPixel => {
-                    if e == 0 {
-                        s.light.resize(spp * o.n * dims, 0.0);
-                        o.light.fill(spp * o.n, dims, key, &mut s.light).expect("counts checked");
-                        s.order = permutation(&mut keys.deal.derive(px.index).derive(l as u64).rng(), spp);
-                    }
-                    let b = s.order[e] as usize * o.n * dims;
-                    &s.light[b..b + o.n * dims]
+                    let (pattern, order) = &s.shared[l];
+                    let b = order[e] as usize * o.n * dims;
+                    &pattern[b..b + o.n * dims]
                 }
             };
             let unoccluded = match o.mode {

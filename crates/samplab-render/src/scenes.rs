@@ -256,10 +256,11 @@ fn sphere_box_mesh(kind: LightKind) -> Scene {
 }
 
 fn grids(kind: LightKind) -> Scene {
-    // three grids of thin bars at three heights, in three orientations (Ramamoorthi et al.
-    // 2012 show three grids of bars casting overlapping soft shadows)
+    // three grids of thin bars at three heights, in three orientations, none parallel to
+    // the light's edges (Ramamoorthi et al. 2012 show three grids casting overlapping soft
+    // shadows; bars parallel to a square light's sample rows favour stratified sampling)
     let mut shapes = Vec::new();
-    for (k, (height, angle)) in [(0.45, 0.0f64), (0.8, 90.0), (1.15, 45.0)].into_iter().enumerate() {
+    for (k, (height, angle)) in [(0.45, 20.0f64), (0.8, 80.0), (1.15, 140.0)].into_iter().enumerate() {
         let (s, c) = angle.to_radians().sin_cos();
         let (along, across) = (DVec3::new(c, 0.0, s), DVec3::new(-s, 0.0, c));
         for bar in 0..9 {

@@ -139,6 +139,14 @@ fn images_do_not_depend_on_the_thread_count() {
     let motion = builtin("motion", None).unwrap();
     let a = one.install(|| render(&motion, &o, &|_| {}).unwrap().image);
     assert_eq!(a, render(&motion, &o, &|_| {}).unwrap().image);
+    // one pattern per pixel dealt to the estimates; pixels whose first estimate misses
+    // every surface still deal the rest
+    o.pattern = samplab_render::Pattern::PerPixel;
+    o.n = 1;
+    o.light = samplab::sampler::build("jitter").unwrap();
+    let ball = builtin("ball", None).unwrap();
+    let a = one.install(|| render(&ball, &o, &|_| {}).unwrap().image);
+    assert_eq!(a, render(&ball, &o, &|_| {}).unwrap().image);
 }
 
 #[test]

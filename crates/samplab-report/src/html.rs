@@ -146,11 +146,17 @@ pub(crate) fn write_report(
             }
             for f in &d.output.figures {
                 write(&dir.join(format!("figures/{}.png", f.id)), &f.png)?;
-                write(&dir.join(format!("figures/{}.svg", f.id)), f.svg.as_bytes())?;
+                let id = escape(&f.id);
+                let svg_link = match &f.svg {
+                    Some(svg) => {
+                        write(&dir.join(format!("figures/{}.svg", f.id)), svg.as_bytes())?;
+                        format!(" (<a href=\"figures/{id}.svg\">SVG</a>)")
+                    }
+                    None => String::new(),
+                };
                 let _ = writeln!(
                     body,
-                    "<figure><img src=\"figures/{id}.png\" alt=\"{cap}\"><figcaption>{cap} (<a href=\"figures/{id}.svg\">SVG</a>)</figcaption></figure>",
-                    id = escape(&f.id),
+                    "<figure><img src=\"figures/{id}.png\" alt=\"{cap}\"><figcaption>{cap}{svg_link}</figcaption></figure>",
                     cap = escape(&f.caption)
                 );
             }

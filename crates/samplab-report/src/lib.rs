@@ -136,8 +136,8 @@ pub struct Figure {
     pub caption: String,
     /// PNG bytes.
     pub png: Vec<u8>,
-    /// SVG text.
-    pub svg: String,
+    /// SVG text (None for a rendered image, which is only a PNG).
+    pub svg: Option<String>,
 }
 
 impl Figure {
@@ -150,8 +150,13 @@ impl Figure {
             id: id.into(),
             caption: caption.into(),
             png: plot::png(chart, size)?,
-            svg: plot::svg(chart, size)?,
+            svg: Some(plot::svg(chart, size)?),
         })
+    }
+
+    /// A rendered image (already PNG-encoded), shown as it is.
+    pub fn picture(id: &str, caption: &str, png: Vec<u8>) -> Figure {
+        Figure { id: id.into(), caption: caption.into(), png, svg: None }
     }
 }
 

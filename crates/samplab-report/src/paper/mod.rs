@@ -4,6 +4,7 @@ use crate::Paper;
 
 pub mod ramamoorthi2012;
 pub mod sbert2006;
+pub(crate) mod shadows;
 pub mod shirley1991;
 pub mod subr2013;
 

@@ -1,0 +1,120 @@
+//! What the rendering experiments share: references, errors over seeds, and images.
+
+use samplab::seed::Seed;
+use samplab_render::light::DiskMap;
+use samplab_render::{Errors, Footprint, Image, Mode, Options, Pattern, Scene, render};
+
+use crate::{Error, Figure};
+
+/// One rendering configuration of an experiment.
+#[derive(Clone, Copy)]
+pub(crate) struct Setup<'a> {
+    pub scene: &'a Scene,
+    pub size: (usize, usize),
+    pub mode: Mode,
+    pub footprint: Footprint,
+    pub pattern: Pattern,
+    pub disk_map: DiskMap,
+    /// Strategy over the pixel area (area footprint only).
+    pub pixel: &'a str,
+}
+
+impl<'a> Setup<'a> {
+    /// Visibility mode through pixel centres (Ramamoorthi et al. 2012, section 7).
+    pub fn visibility(scene: &'a Scene, size: (usize, usize), disk_map: DiskMap) -> Setup<'a> {
+        Setup {
+            scene,
+            size,
+            mode: Mode::Visibility,
+            footprint: Footprint::Centre,
+            pattern: Pattern::PerEstimate,
+            disk_map,
+            pixel: "sobol.owen",
+        }
+    }
+
+    fn options(&self, light: &str, n: usize, spp: usize, seed: Seed) -> Result<Options, Error> {
+        let build = |spec: &str| samplab::sampler::build(spec).map_err(|e| Error::Invalid(e.to_string()));
+        let mut o = Options::new("sobol.owen", n, self.size.0, self.size.1).map_err(render_error)?;
+        o.light = build(light)?;
+        o.pixel = build(self.pixel)?;
+        o.spp = spp;
+        o.mode = self.mode;
+        o.footprint = self.footprint;
+        o.pattern = self.pattern;
+        o.disk_map = Some(self.disk_map);
+        o.seed = seed;
+        Ok(o)
+    }
+
+    /// Render with `light` x `n` light samples and `spp` estimates per pixel.
+    pub fn render(&self, light: &str, n: usize, spp: usize, seed: Seed) -> Result<Image, Error> {
+        let o = self.options(light, n, spp, seed)?;
+        Ok(render(self.scene, &o, &|_| {}).map_err(render_error)?.image)
+    }
+
+    /// A converged reference: Owen-scrambled Sobol' with `n` light samples and `spp`
+    /// estimates, pixel samples Sobol' too.
+    pub fn reference(&self, n: usize, spp: usize, seed: Seed) -> Result<Image, Error> {
+        Setup { pixel: "sobol.owen", pattern: Pattern::PerEstimate, ..*self }.render("sobol.owen", n, spp, seed)
+    }
+
+    /// Errors against `reference`, averaged over `seeds` renders (each field the mean).
+    pub fn errors(
+        &self,
+        reference: &Image,
+        light: &str,
+        n: usize,
+        spp: usize,
+        seeds: u64,
+        seed: Seed,
+    ) -> Result<Errors, Error> {
+        let mut all = Vec::new();
+        for s in 0..seeds {
+            let img = self.render(light, n, spp, seed.derive(s))?;
+            all.push(img.errors(reference, false).map_err(render_error)?);
+        }
+        Ok(mean(&all))
+    }
+}
+
+fn render_error(e: samplab_render::Error) -> Error {
+    Error::Invalid(e.to_string())
+}
+
+/// Field-wise mean of several error summaries.
+fn mean(all: &[Errors]) -> Errors {
+    let m = |f: fn(&Errors) -> f64| all.iter().map(f).sum::<f64>() / all.len() as f64;
+    Errors {
+        pixels: all[0].pixels,
+        mse: m(|e| e.mse),
+        rmse: m(|e| e.rmse),
+        relative: m(|e| e.relative),
+        mean_abs: m(|e| e.mean_abs),
+        sd_abs: m(|e| e.sd_abs),
+        max_abs: m(|e| e.max_abs),
+        mean_signed: m(|e| e.mean_signed),
+    }
+}
+
+fn png(img: &image::RgbImage) -> Result<Vec<u8>, Error> {
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut bytes, image::ImageFormat::Png).map_err(|e| Error::Plot(e.to_string()))?;
+    Ok(bytes.into_inner())
+}
+
+/// A rendered image as a figure (sRGB PNG).
+pub(crate) fn picture(id: &str, caption: &str, img: &Image) -> Result<Figure, Error> {
+    Ok(Figure::picture(id, caption, png(&img.to_srgb())?))
+}
+
+/// A signed error image (red: too bright, green: too dark, times `scale`) as a figure.
+pub(crate) fn error_picture(
+    id: &str,
+    caption: &str,
+    img: &Image,
+    reference: &Image,
+    scale: f64,
+) -> Result<Figure, Error> {
+    Ok(Figure::picture(id, caption, png(&img.error_image(reference, scale).map_err(render_error)?)?))
+}
