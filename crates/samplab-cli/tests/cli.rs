@@ -267,3 +267,61 @@ fn spectrum_writes_the_documented_layout() {
     );
     assert!(!dir.join("x").exists());
 }
+
+#[test]
+fn render_is_identical_whatever_the_thread_count_and_measures_against_a_reference() {
+    let dir = temp("render");
+    let out = |name: &str| dir.join(name).display().to_string();
+    let (a, b, r, e) = (out("a.exr"), out("b.exr"), out("ref.exr"), out("err.png"));
+    let args = |o: &str| {
+        [
+            "render",
+            "spheres",
+            "--light",
+            "disk",
+            "--sampler",
+            "jitter.uniform",
+            "-n",
+            "25",
+            "--disk-map",
+            "reject",
+            "--res",
+            "40x30",
+            "-o",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .chain([o.to_string()])
+        .collect::<Vec<_>>()
+    };
+    let run = |args: Vec<String>, threads: &str| {
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        samplab_env(&refs, "RAYON_NUM_THREADS", threads)
+    };
+    assert!(run(args(&a), "1").status.success());
+    let mut with_reference = args(&b);
+    with_reference
+        .extend(["--reference", &r, "--reference-samples", "256", "--error-image", &e, "--json"].map(String::from));
+    let o = run(with_reference, "2");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap(), "1 and 2 threads differ");
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(summary["errors"]["rmse"].as_f64().unwrap() > 0.0 && summary["reference_rendered"] == true);
+    assert!(std::path::Path::new(&e).exists());
+}
+
+#[test]
+fn render_bad_input_exit_2_and_no_image() {
+    let dir = temp("render-bad");
+    let o = dir.join("x.exr").display().to_string();
+    let xml = dir.join("bad.xml");
+    std::fs::write(&xml, "<scene>\n<sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/></sensor>\n<shape type=\"ply\"/>\n</scene>\n").unwrap();
+    let xml = xml.display().to_string();
+    assert_bad_input(&["render", "spheres", "--sampler", "jitter", "-n", "15", "-o", &o], &["jitter", "15", "16"]);
+    assert_bad_input(&["render", "spheres", "--light", "tube", "-o", &o], &["unknown light 'tube'"]);
+    assert_bad_input(&["render", "spheres", "--sampler", "jiter", "-o", &o], &["unknown sampler 'jiter'"]);
+    assert_bad_input(&["render", &xml, "-o", &o], &["bad.xml:3", "<shape type=\"ply\">"]);
+    assert_bad_input(&["render", "spheres", "--res", "0x10", "-o", &o], &["width 0"]);
+    assert_bad_input(&["render", "spheres", "-o", &dir.join("x.tif").display().to_string()], &[".exr or .png"]);
+    assert!(!std::path::Path::new(&o).exists());
+}
