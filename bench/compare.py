@@ -8,8 +8,10 @@ Usage: bench/compare            (installs scipy into bench/.venv, builds samplab
 import json
 import math
 import os
+import statistics
 import subprocess
 import sys
+import tempfile
 import time
 
 import numpy as np
@@ -125,3 +127,20 @@ for line in out.strip().splitlines():
     r = json.loads(line)
     print("spectrum n=%-6d sets=%-3d R=%-4d direct %8.3f s | fast %7.3f s | ratio %6.1fx | max periodogram error %.1e"
           % (r["n"], r["sets"], r["res"], r["direct_seconds"], r["fast_seconds"], r["ratio"], r["max_periodogram_error"]), flush=True)
+
+# renderer: samples per CPU-second (one camera ray and one shadow ray per sample, pixel-area
+# mode, sphere-and-box scene at 256x256, one thread), and the 1-million-triangle mesh scene.
+# Mitsuba 3 (pip mitsuba, llvm_ad_rgb variant) measured about 1e7 samples per CPU-second on
+# this kind of machine (issue #6); it is not installed here, so the figure is quoted, not run.
+print()
+for scene, spp in [("sphere-box", 64), ("sphere-box-mesh", 16)]:
+    times = []
+    for _ in range(3):
+        out = subprocess.run([SAMPLAB, "render", scene, "--sampler", "sobol.owen", "-n", "1", "--spp", str(spp), "--pixel", "area",
+                              "--mode", "direct", "--res", "256x256", "-o", os.path.join(tempfile.gettempdir(), "samplab-bench.exr"), "--json"],
+                             check=True, capture_output=True, text=True, env=dict(os.environ, RAYON_NUM_THREADS="1")).stdout
+        times.append(json.loads(out)["seconds"])
+    t = statistics.median(times)
+    samples = 256 * 256 * spp
+    print("render %-16s 256x256 x %-3d spp, one thread: %.3f s (median of 3) = %.2f M samples per CPU-second (Mitsuba 3 quoted: ~10)"
+          % (scene, spp, t, samples / t / 1e6), flush=True)
