@@ -211,9 +211,17 @@ impl Image {
 /// The file cannot be written.
 pub fn write_png(img: &image::RgbImage, path: &Path) -> Result<()> {
     let fail = |m: String| Error::Image { path: path.display().to_string(), message: m };
+    write_atomic(path, &png_bytes(img).map_err(|e| fail(e.to_string()))?).map_err(|e| fail(e.to_string()))
+}
+
+/// Encode an 8-bit RGB image as PNG bytes.
+///
+/// # Errors
+/// The encoder fails.
+pub fn png_bytes(img: &image::RgbImage) -> std::result::Result<Vec<u8>, image::ImageError> {
     let mut bytes = Cursor::new(Vec::new());
-    img.write_to(&mut bytes, image::ImageFormat::Png).map_err(|e| fail(e.to_string()))?;
-    write_atomic(path, bytes.get_ref()).map_err(|e| fail(e.to_string()))
+    img.write_to(&mut bytes, image::ImageFormat::Png)?;
+    Ok(bytes.into_inner())
 }
 
 #[cfg(test)]

@@ -27,12 +27,7 @@ use crate::scenes::cuboid;
 /// The file cannot be read or parsed, or uses an element this subset does not support;
 /// the message names the file, line and element.
 pub fn load(path: &Path) -> Result<Scene> {
-    let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| Error::Scene {
-        file: file.clone(),
-        line: 0,
-        message: format!("cannot read: {e}"),
-    })?;
+    let (file, text) = crate::obj::read_scene_file(path)?;
     parse(&text, &file, path.parent().unwrap_or(Path::new(".")))
 }
 

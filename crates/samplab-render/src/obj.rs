@@ -15,13 +15,20 @@ use crate::error::{Error, Result};
 /// out of range, a face has fewer than three vertices, or a keyword is unknown; the error
 /// names the file and line.
 pub fn load(path: &Path) -> Result<Vec<[DVec3; 3]>> {
-    let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| Error::Scene {
-        file: file.clone(),
-        line: 0,
-        message: format!("cannot read: {e}"),
-    })?;
+    let (file, text) = read_scene_file(path)?;
     parse(&text, &file)
+}
+
+/// A scene file's name (for errors) and text.
+///
+/// # Errors
+/// The file cannot be read.
+pub(crate) fn read_scene_file(path: &Path) -> Result<(String, String)> {
+    let file = path.display().to_string();
+    match std::fs::read_to_string(path) {
+        Ok(text) => Ok((file, text)),
+        Err(e) => Err(Error::Scene { file, line: 0, message: format!("cannot read: {e}") }),
+    }
 }
 
 /// Parse OBJ text; `file` names it in errors.

@@ -98,9 +98,7 @@ fn mean(all: &[Errors]) -> Errors {
 }
 
 fn png(img: &image::RgbImage) -> Result<Vec<u8>, Error> {
-    let mut bytes = std::io::Cursor::new(Vec::new());
-    img.write_to(&mut bytes, image::ImageFormat::Png).map_err(|e| Error::Plot(e.to_string()))?;
-    Ok(bytes.into_inner())
+    samplab_render::image::png_bytes(img).map_err(|e| Error::Plot(e.to_string()))
 }
 
 /// A rendered image as a figure (sRGB PNG).
