@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
-"""Side-by-side throughput of samplab and scipy.stats.qmc, one core, 2D points.
+"""Side-by-side throughput of samplab and its peers (scipy.stats.qmc, Mitsuba 3), one core.
 
 Runs both in this one invocation on the same machine and prints medians and ratios.
-Usage: bench/compare            (installs scipy into bench/.venv, builds samplab)
-       bench/compare --quick    (PoissonDisk at n = 10^4 instead of 10^5: minutes less)
+Usage: bench/compare [--quick] [SECTION...]
+  installs the peers (bench/requirements.txt: scipy, Mitsuba 3) into bench/.venv, builds
+  samplab, and runs the sections named (all by default): samplers, discrepancy, spectrum,
+  render. --quick: PoissonDisk at n = 10^4 instead of 10^5 (minutes less).
 """
 import json
 import math
@@ -20,7 +22,13 @@ from scipy.stats import qmc
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXAMPLE = os.path.join(ROOT, "target", "release", "examples", "throughput")
 DISCREPANCY = os.path.join(ROOT, "target", "release", "examples", "discrepancy_timing")
+SAMPLAB = os.path.join(ROOT, "target", "release", "samplab")
 QUICK = "--quick" in sys.argv
+SECTIONS = [a for a in sys.argv[1:] if not a.startswith("--")]
+
+
+def want(section):
+    return not SECTIONS or section in SECTIONS
 
 
 def median_time(fn, min_runs=5, min_seconds=1.0, max_runs=50):
@@ -55,92 +63,127 @@ def compare(what, n, peer_name, peer_fn, spec, peer_runs=5):
           % (what, n, peer_name, peer, n / peer / 1e6, spec, ours, n / ours / 1e6, peer / ours), flush=True)
 
 
-N = 1 << 20  # a power of two: scipy warns otherwise
-rng = np.random.default_rng(1)
-compare("Sobol, cheap scramble (LMS+shift)", N, "scipy Sobol(scramble=True)",
-        lambda: qmc.Sobol(d=2, scramble=True, seed=rng).random(N), "sobol.xor")
-compare("Sobol, Owen vs scipy's cheap scramble", N, "scipy Sobol(scramble=True)",
-        lambda: qmc.Sobol(d=2, scramble=True, seed=rng).random(N), "sobol.owen")
-compare("Halton, scrambled", N, "scipy Halton(scramble=True)",
-        lambda: qmc.Halton(d=2, scramble=True, seed=rng).random(N), "halton.xor")
-compare("Latin hypercube / N-rooks", N, "scipy LatinHypercube",
-        lambda: qmc.LatinHypercube(d=2, seed=rng).random(N), "nrooks")
-n_poisson = 10_000 if QUICK else 100_000
-radius = 0.72 * packing_radius(n_poisson)
-got = {}
+if want("samplers"):
+    N = 1 << 20  # a power of two: scipy warns otherwise
+    rng = np.random.default_rng(1)
+    compare("Sobol, cheap scramble (LMS+shift)", N, "scipy Sobol(scramble=True)",
+            lambda: qmc.Sobol(d=2, scramble=True, seed=rng).random(N), "sobol.xor")
+    compare("Sobol, Owen vs scipy's cheap scramble", N, "scipy Sobol(scramble=True)",
+            lambda: qmc.Sobol(d=2, scramble=True, seed=rng).random(N), "sobol.owen")
+    compare("Halton, scrambled", N, "scipy Halton(scramble=True)",
+            lambda: qmc.Halton(d=2, scramble=True, seed=rng).random(N), "halton.xor")
+    compare("Latin hypercube / N-rooks", N, "scipy LatinHypercube",
+            lambda: qmc.LatinHypercube(d=2, seed=rng).random(N), "nrooks")
+    n_poisson = 10_000 if QUICK else 100_000
+    radius = 0.72 * packing_radius(n_poisson)
+    got = {}
 
 
-def scipy_poisson():
-    got["n"] = len(qmc.PoissonDisk(d=2, radius=radius, seed=rng).random(n_poisson))
+    def scipy_poisson():
+        got["n"] = len(qmc.PoissonDisk(d=2, radius=radius, seed=rng).random(n_poisson))
 
 
-compare("Poisson disk, same radius %.5f" % radius, n_poisson, "scipy PoissonDisk.random",
-        scipy_poisson, "poisson.fast:radius=%r,edge=plain" % radius, peer_runs=1)
-print("(scipy PoissonDisk returned %d points; samplab returns exactly n)" % got["n"])
-t = samplab("poisson.fast", N)
-print("samplab poisson.fast, n = 10^6 (auto radius): %.3f s" % t)
+    compare("Poisson disk, same radius %.5f" % radius, n_poisson, "scipy PoissonDisk.random",
+            scipy_poisson, "poisson.fast:radius=%r,edge=plain" % radius, peer_runs=1)
+    print("(scipy PoissonDisk returned %d points; samplab returns exactly n)" % got["n"])
+    t = samplab("poisson.fast", N)
+    print("samplab poisson.fast, n = 10^6 (auto radius): %.3f s" % t)
 
 
-# discrepancies: scipy on the same points (samplab's random set, read back from its CLI)
-print()
-SAMPLAB = os.path.join(ROOT, "target", "release", "samplab")
+if want("discrepancy"):
+    # discrepancies: scipy on the same points (samplab's random set, read back from its CLI)
+    print()
 
 
-def samplab_disc(metric, n, d=2):
-    out = subprocess.run([DISCREPANCY, "%s:%d:%d" % (metric, n, d)], check=True, capture_output=True, text=True,
+    def samplab_disc(metric, n, d=2):
+        out = subprocess.run([DISCREPANCY, "%s:%d:%d" % (metric, n, d)], check=True, capture_output=True, text=True,
+                             env=dict(os.environ, RAYON_NUM_THREADS="1")).stdout
+        row = json.loads(out.strip().splitlines()[-1])
+        return row["seconds"], row["value"]
+
+
+    def points(n, d=2):
+        out = subprocess.run([SAMPLAB, "generate", "random", "-n", str(n), "-d", str(d), "--seed", "1", "--format", "json"],
+                             check=True, capture_output=True, text=True).stdout
+        return np.array(json.loads(out)["sets"][0])
+
+
+    for metric, method, squared, n in [("l2-star", "L2-star", False, 1 << 14), ("centered", "CD", True, 1 << 14), ("wraparound", "WD", True, 1 << 14)]:
+        x = points(n)
+        box = {}
+
+        def run():
+            box["v"] = qmc.discrepancy(x, method=method, workers=1)
+
+        peer = median_time(run, min_runs=3)
+        # the value on identical points (set 0 of seed 1) through the CLI; the timing from the example's own set
+        out = subprocess.run([SAMPLAB, "discrepancy", metric, "--sampler", "random", "-n", str(n), "--seed", "1", "--json"],
+                             check=True, capture_output=True, text=True).stdout
+        ours_value = json.loads(out)["metrics"][0]["values"][0]
+        ours_time, _ = samplab_disc(metric, n)
+        theirs = math.sqrt(box["v"]) if squared else box["v"]
+        print("%-10s n=%-6d scipy %9.4f s | samplab %9.5f s | ratio %8.1fx | values %.12g vs %.12g (rel. diff %.1e)"
+              % (metric, n, peer, ours_time, peer / ours_time, theirs, ours_value, abs(theirs - ours_value) / theirs), flush=True)
+    for metric, n, d in [("star", 1000, 2), ("star", 100000, 2), ("star", 1000000, 2), ("l2-star", 1000000, 2), ("star", 2000, 3), ("star", 100, 5), ("extreme", 1000, 2)]:
+        t, v = samplab_disc(metric, n, d)
+        print("samplab %-8s n=%-8d d=%d: %.3f s (value %.6g)" % (metric, n, d, t, v), flush=True)
+
+if want("spectrum"):
+    # spectra: direct DFT against the non-uniform FFT at tolerance 1e-9 (one core)
+    print()
+    out = subprocess.run([os.path.join(ROOT, "target", "release", "examples", "spectrum_timing")], check=True, capture_output=True, text=True,
                          env=dict(os.environ, RAYON_NUM_THREADS="1")).stdout
-    row = json.loads(out.strip().splitlines()[-1])
-    return row["seconds"], row["value"]
+    for line in out.strip().splitlines():
+        r = json.loads(line)
+        print("spectrum n=%-6d sets=%-3d R=%-4d direct %8.3f s | fast %7.3f s | ratio %6.1fx | max periodogram error %.1e"
+              % (r["n"], r["sets"], r["res"], r["direct_seconds"], r["fast_seconds"], r["ratio"], r["max_periodogram_error"]), flush=True)
+
+if want("render"):
+    # renderer: samples per CPU-second, one thread, 256x256, pixel area, one camera ray and one
+    # shadow ray per sample (direct lighting, one light sample per estimate, the pixel's 64 light
+    # samples one Owen-scrambled Sobol' pattern): the same Mitsuba 3 scene file rendered by
+    # samplab and by Mitsuba 3 (llvm_ad_rgb, `direct` integrator with one emitter sample and no
+    # BSDF sample, box filter, one Dr.Jit thread); then the built-in scenes, among them the
+    # 1-million-triangle mesh.
+    SCENE_XML = os.path.join(ROOT, "crates", "samplab-render", "tests", "scenes", "sphere-box.xml")
 
 
-def points(n, d=2):
-    out = subprocess.run([SAMPLAB, "generate", "random", "-n", str(n), "-d", str(d), "--seed", "1", "--format", "json"],
-                         check=True, capture_output=True, text=True).stdout
-    return np.array(json.loads(out)["sets"][0])
+    def samplab_render(scene, spp):
+        times = []
+        for _ in range(3):
+            out = subprocess.run([SAMPLAB, "render", scene, "--sampler", "sobol.owen", "-n", "1", "--spp", str(spp), "--pixel", "area",
+                                  "--pattern", "pixel", "--mode", "direct", "--res", "256x256",
+                                  "-o", os.path.join(tempfile.gettempdir(), "samplab-bench.exr"), "--json"],
+                                 check=True, capture_output=True, text=True, env=dict(os.environ, RAYON_NUM_THREADS="1")).stdout
+            times.append(json.loads(out)["seconds"])
+        return statistics.median(times)
 
 
-for metric, method, squared, n in [("l2-star", "L2-star", False, 1 << 14), ("centered", "CD", True, 1 << 14), ("wraparound", "WD", True, 1 << 14)]:
-    x = points(n)
-    box = {}
+    def mitsuba_render(spp):
+        import drjit as dr
+        import mitsuba as mi
+        mi.set_variant("llvm_ad_rgb")
+        dr.set_thread_count(1)
+        scene = mi.load_file(SCENE_XML, res=256, height=256)
+        integrator = mi.load_dict({"type": "direct", "emitter_samples": 1, "bsdf_samples": 0})
+        times = []
+        for run in range(4):  # the first run compiles the kernels: dropped
+            start = time.process_time()
+            image = mi.render(scene, integrator=integrator, spp=spp, seed=run)
+            dr.eval(image)
+            dr.sync_thread()
+            times.append(time.process_time() - start)
+        return statistics.median(times[1:])
 
-    def run():
-        box["v"] = qmc.discrepancy(x, method=method, workers=1)
 
-    peer = median_time(run, min_runs=3)
-    # the value on identical points (set 0 of seed 1) through the CLI; the timing from the example's own set
-    out = subprocess.run([SAMPLAB, "discrepancy", metric, "--sampler", "random", "-n", str(n), "--seed", "1", "--json"],
-                         check=True, capture_output=True, text=True).stdout
-    ours_value = json.loads(out)["metrics"][0]["values"][0]
-    ours_time, _ = samplab_disc(metric, n)
-    theirs = math.sqrt(box["v"]) if squared else box["v"]
-    print("%-10s n=%-6d scipy %9.4f s | samplab %9.5f s | ratio %8.1fx | values %.12g vs %.12g (rel. diff %.1e)"
-          % (metric, n, peer, ours_time, peer / ours_time, theirs, ours_value, abs(theirs - ours_value) / theirs), flush=True)
-for metric, n, d in [("star", 1000, 2), ("star", 100000, 2), ("star", 1000000, 2), ("l2-star", 1000000, 2), ("star", 2000, 3), ("star", 100, 5), ("extreme", 1000, 2)]:
-    t, v = samplab_disc(metric, n, d)
-    print("samplab %-8s n=%-8d d=%d: %.3f s (value %.6g)" % (metric, n, d, t, v), flush=True)
-
-# spectra: direct DFT against the non-uniform FFT at tolerance 1e-9 (one core)
-print()
-out = subprocess.run([os.path.join(ROOT, "target", "release", "examples", "spectrum_timing")], check=True, capture_output=True, text=True,
-                     env=dict(os.environ, RAYON_NUM_THREADS="1")).stdout
-for line in out.strip().splitlines():
-    r = json.loads(line)
-    print("spectrum n=%-6d sets=%-3d R=%-4d direct %8.3f s | fast %7.3f s | ratio %6.1fx | max periodogram error %.1e"
-          % (r["n"], r["sets"], r["res"], r["direct_seconds"], r["fast_seconds"], r["ratio"], r["max_periodogram_error"]), flush=True)
-
-# renderer: samples per CPU-second (one camera ray and one shadow ray per sample, pixel-area
-# mode, sphere-and-box scene at 256x256, one thread), and the 1-million-triangle mesh scene.
-# Mitsuba 3 (pip mitsuba, llvm_ad_rgb variant) measured about 1e7 samples per CPU-second on
-# this kind of machine (issue #6); it is not installed here, so the figure is quoted, not run.
-print()
-for scene, spp in [("sphere-box", 64), ("sphere-box-mesh", 16)]:
-    times = []
-    for _ in range(3):
-        out = subprocess.run([SAMPLAB, "render", scene, "--sampler", "sobol.owen", "-n", "1", "--spp", str(spp), "--pixel", "area",
-                              "--mode", "direct", "--res", "256x256", "-o", os.path.join(tempfile.gettempdir(), "samplab-bench.exr"), "--json"],
-                             check=True, capture_output=True, text=True, env=dict(os.environ, RAYON_NUM_THREADS="1")).stdout
-        times.append(json.loads(out)["seconds"])
-    t = statistics.median(times)
+    print()
+    spp = 64
     samples = 256 * 256 * spp
-    print("render %-16s 256x256 x %-3d spp, one thread: %.3f s (median of 3) = %.2f M samples per CPU-second (Mitsuba 3 quoted: ~10)"
-          % (scene, spp, t, samples / t / 1e6), flush=True)
+    ours = samples / samplab_render(SCENE_XML, spp)
+    theirs = samples / mitsuba_render(spp)
+    print("render sphere-box.xml 256x256 x %d spp, one thread: samplab %.2f M samples per CPU-second | Mitsuba 3 %.2f M | ratio %.2fx"
+          % (spp, ours / 1e6, theirs / 1e6, ours / theirs), flush=True)
+    for scene, spp in [("sphere-box", 64), ("sphere-box-mesh", 16)]:
+        t = samplab_render(scene, spp)
+        print("render %-16s 256x256 x %-3d spp, one thread: %.3f s (median of 3) = %.2f M samples per CPU-second"
+              % (scene, spp, t, 256 * 256 * spp / t / 1e6), flush=True)

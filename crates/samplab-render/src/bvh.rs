@@ -5,7 +5,7 @@
 
 use glam::DVec3;
 
-use crate::geometry::{Aabb, Hit, Ray, Shape};
+use crate::geometry::{Aabb, Ray, Shape};
 
 /// A shape and the index of its material.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -69,14 +69,14 @@ impl Bvh {
         self.nodes.first().map_or(Aabb::EMPTY, |n| n.bounds)
     }
 
-    /// The nearest hit in (t_min, t_max) and the object it belongs to.
-    pub fn closest(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(Hit, &Object)> {
+    /// The ray parameter of the nearest hit in (t_min, t_max) and the object hit.
+    pub fn closest(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, &Object)> {
         let mut best = None;
         let leaf = |first: usize, count: usize, t_now: &mut f64| {
             for o in &self.objects[first..first + count] {
-                if let Some(h) = o.shape.intersect(ray, t_min, *t_now) {
-                    *t_now = h.t;
-                    best = Some((h, o));
+                if let Some(t) = o.shape.intersect(ray, t_min, *t_now) {
+                    *t_now = t;
+                    best = Some((t, o));
                 }
             }
             false
@@ -256,9 +256,9 @@ mod tests {
             let t_max = 5.0 + 50.0 * r();
             let brute = objects
                 .iter()
-                .filter_map(|o| o.shape.intersect(&ray, 0.0, t_max).map(|h| (h.t, o.material)))
+                .filter_map(|o| o.shape.intersect(&ray, 0.0, t_max).map(|t| (t, o.material)))
                 .min_by(|a, b| a.0.total_cmp(&b.0));
-            let fast = bvh.closest(&ray, 0.0, t_max).map(|(h, o)| (h.t, o.material));
+            let fast = bvh.closest(&ray, 0.0, t_max).map(|(t, o)| (t, o.material));
             assert_eq!(brute, fast);
             assert_eq!(bvh.occluded(&ray, 0.0, t_max), brute.is_some());
         }

@@ -107,15 +107,6 @@ pub enum Shape {
     },
 }
 
-/// Where a ray meets a shape.
-#[derive(Debug, Clone, Copy)]
-pub struct Hit {
-    /// Ray parameter.
-    pub t: f64,
-    /// Unit geometric normal (not flipped toward the ray).
-    pub normal: DVec3,
-}
-
 impl Shape {
     /// The box holding the shape over the whole shutter interval.
     pub fn bounds(&self) -> Aabb {
@@ -137,13 +128,13 @@ impl Shape {
         }
     }
 
-    /// The nearest intersection with parameter in (t_min, t_max).
+    /// The ray parameter of the nearest intersection in (t_min, t_max).
     #[inline]
-    pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
+    pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
+        let inside = |t: f64| t > t_min && t < t_max;
         match *self {
             Shape::Sphere { centre, radius, velocity } => {
-                let c = centre + ray.time * velocity;
-                let oc = ray.origin - c;
+                let oc = ray.origin - (centre + ray.time * velocity);
                 let a = ray.dir.length_squared();
                 let half_b = oc.dot(ray.dir);
                 let cterm = oc.length_squared() - radius * radius;
@@ -151,58 +142,51 @@ impl Shape {
                 if disc < 0.0 {
                     return None;
                 }
-                let root = disc.sqrt();
                 // the numerically stable pair of roots
-                let q = -(half_b + root.copysign(half_b));
-                let (mut t0, mut t1) = (q / a, cterm / q);
-                if t0 > t1 {
-                    std::mem::swap(&mut t0, &mut t1);
-                }
-                let t = if t0 > t_min && t0 < t_max {
-                    t0
-                } else if t1 > t_min && t1 < t_max {
-                    t1
-                } else {
-                    return None;
-                };
-                Some(Hit { t, normal: (ray.at(t) - c) / radius })
+                let q = -(half_b + disc.sqrt().copysign(half_b));
+                let (t0, t1) = (q / a, cterm / q);
+                let (t0, t1) = if t0 > t1 { (t1, t0) } else { (t0, t1) };
+                if inside(t0) { Some(t0) } else { inside(t1).then_some(t1) }
             }
-            Shape::Parallelogram { corner, u, v } => {
-                let n = u.cross(v);
-                let (t, p) = plane_hit(ray, corner, n, t_min, t_max)?;
-                let q = p - corner;
-                let w = n / n.length_squared();
-                let s = w.dot(q.cross(v));
-                let r = w.dot(u.cross(q));
-                ((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&r)).then(|| Hit { t, normal: n.normalize() })
-            }
+            Shape::Parallelogram { corner, u, v } => edge_hit(ray, corner, u, v, true).filter(|&t| inside(t)),
             Shape::Disk { centre, normal, radius } => {
                 let (t, p) = plane_hit(ray, centre, normal, t_min, t_max)?;
-                ((p - centre).length_squared() <= radius * radius).then_some(Hit { t, normal })
+                ((p - centre).length_squared() <= radius * radius).then_some(t)
             }
-            Shape::Triangle { p, e1, e2 } => {
-                // Moller & Trumbore 1997
-                let pv = ray.dir.cross(e2);
-                let det = e1.dot(pv);
-                if det == 0.0 {
-                    return None;
-                }
-                let inv = 1.0 / det;
-                let tv = ray.origin - p;
-                let a = tv.dot(pv) * inv;
-                if !(0.0..=1.0).contains(&a) {
-                    return None;
-                }
-                let qv = tv.cross(e1);
-                let b = ray.dir.dot(qv) * inv;
-                if b < 0.0 || a + b > 1.0 {
-                    return None;
-                }
-                let t = e2.dot(qv) * inv;
-                (t > t_min && t < t_max).then(|| Hit { t, normal: e1.cross(e2).normalize() })
-            }
+            Shape::Triangle { p, e1, e2 } => edge_hit(ray, p, e1, e2, false).filter(|&t| inside(t)),
         }
     }
+
+    /// The unit geometric normal at the surface point `p` at shutter `time` (not flipped
+    /// toward any ray): computed once for the closest hit, not for every candidate.
+    pub fn normal(&self, p: DVec3, time: f64) -> DVec3 {
+        match *self {
+            Shape::Sphere { centre, radius, velocity } => (p - (centre + time * velocity)) / radius,
+            Shape::Parallelogram { u: e1, v: e2, .. } | Shape::Triangle { e1, e2, .. } => e1.cross(e2).normalize(),
+            Shape::Disk { normal, .. } => normal,
+        }
+    }
+}
+
+/// The ray parameter where it meets the triangle `p + a e1 + b e2` (a, b >= 0, a + b <= 1)
+/// or, with `parallelogram`, the parallelogram (a, b in [0, 1]), by Moller & Trumbore 1997.
+#[inline]
+fn edge_hit(ray: &Ray, p: DVec3, e1: DVec3, e2: DVec3, parallelogram: bool) -> Option<f64> {
+    let pv = ray.dir.cross(e2);
+    let det = e1.dot(pv);
+    if det == 0.0 {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let tv = ray.origin - p;
+    let a = tv.dot(pv) * inv;
+    if !(0.0..=1.0).contains(&a) {
+        return None;
+    }
+    let qv = tv.cross(e1);
+    let b = ray.dir.dot(qv) * inv;
+    let outside = if parallelogram { !(0.0..=1.0).contains(&b) } else { b < 0.0 || a + b > 1.0 };
+    if outside { None } else { Some(e2.dot(qv) * inv) }
 }
 
 /// The ray's crossing of the plane through `point` with normal `n`, if within (t_min, t_max).
@@ -226,9 +210,9 @@ pub struct Plane {
 }
 
 impl Plane {
-    /// The intersection with parameter in (t_min, t_max).
-    pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<Hit> {
-        plane_hit(ray, self.point, self.normal, t_min, t_max).map(|(t, _)| Hit { t, normal: self.normal })
+    /// The ray parameter of the intersection, if in (t_min, t_max).
+    pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
+        plane_hit(ray, self.point, self.normal, t_min, t_max).map(|(t, _)| t)
     }
 }
 
@@ -252,10 +236,10 @@ mod tests {
     fn every_shape_is_hit_where_its_definition_says() {
         let r = ray([0.2, 0.3, 5.0], [0.0, 0.0, -1.0]);
         let sphere = Shape::Sphere { centre: DVec3::ZERO, radius: 1.0, velocity: DVec3::ZERO };
-        let h = sphere.intersect(&r, 0.0, f64::INFINITY).unwrap();
-        assert!((h.t - (5.0 - (1.0f64 - 0.04 - 0.09).sqrt())).abs() < 1e-12);
+        let t = sphere.intersect(&r, 0.0, f64::INFINITY).unwrap();
+        assert!((t - (5.0 - (1.0f64 - 0.04 - 0.09).sqrt())).abs() < 1e-12);
         let quad = Shape::Parallelogram { corner: DVec3::ZERO, u: DVec3::X, v: DVec3::Y };
-        assert!((quad.intersect(&r, 0.0, 10.0).unwrap().t - 5.0).abs() < 1e-12);
+        assert!((quad.intersect(&r, 0.0, 10.0).unwrap() - 5.0).abs() < 1e-12);
         let outside = ray([1.2, 0.3, 5.0], [0.0, 0.0, -1.0]);
         assert!(quad.intersect(&outside, 0.0, 10.0).is_none());
         let disk = Shape::Disk { centre: DVec3::ZERO, normal: DVec3::Z, radius: 0.37 };

@@ -110,14 +110,14 @@ impl Scene {
     pub fn trace(&self, ray: &Ray) -> Seen {
         let mut t_max = f64::INFINITY;
         let mut hit: Option<(f64, DVec3, u32)> = None;
-        if let Some((h, o)) = self.bvh.closest(ray, 0.0, t_max) {
-            t_max = h.t;
-            hit = Some((h.t, h.normal, o.material));
+        if let Some((t, o)) = self.bvh.closest(ray, 0.0, t_max) {
+            t_max = t;
+            hit = Some((t, o.shape.normal(ray.at(t), ray.time), o.material));
         }
         for (plane, material) in &self.planes {
-            if let Some(h) = plane.intersect(ray, 0.0, t_max) {
-                t_max = h.t;
-                hit = Some((h.t, h.normal, *material));
+            if let Some(t) = plane.intersect(ray, 0.0, t_max) {
+                t_max = t;
+                hit = Some((t, plane.normal, *material));
             }
         }
         let mut light_hit = None;

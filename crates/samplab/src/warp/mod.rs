@@ -113,6 +113,34 @@ impl Warp for PolarDisk {
     }
 }
 
+/// 1/k! for k = 0..=16.
+const INV_FACTORIAL: [f64; 17] = {
+    let mut a = [1.0; 17];
+    let mut k = 1;
+    while k < 17 {
+        a[k] = a[k - 1] / k as f64;
+        k += 1;
+    }
+    a
+};
+
+/// sin and cos of |x| <= pi/4 by their Taylor series to x^15 and x^16 (the first omitted
+/// terms are below 5e-17 there): several times faster than libm's `sin_cos`, where the
+/// concentric map would otherwise spend most of its time.
+#[inline]
+fn sin_cos_quarter(x: f64) -> (f64, f64) {
+    let x2 = x * x;
+    let mut s = INV_FACTORIAL[15];
+    let mut c = INV_FACTORIAL[16];
+    for k in (0..8).rev() {
+        if k > 0 {
+            s = INV_FACTORIAL[2 * k - 1] - x2 * s;
+        }
+        c = INV_FACTORIAL[2 * k] - x2 * c;
+    }
+    (x * s, c)
+}
+
 impl Warp for ConcentricDisk {
     fn name(&self) -> &'static str {
         "disk.concentric"
@@ -130,11 +158,15 @@ impl Warp for ConcentricDisk {
             out[1] = 0.0;
             return true;
         }
-        // Shirley & Chiu 1997, eq. for the four triangular regions
-        let (r, phi) =
-            if a.abs() > b.abs() { (a, FRAC_PI_4 * (b / a)) } else { (b, 2.0 * FRAC_PI_4 - FRAC_PI_4 * (a / b)) };
-        out[0] = r * phi.cos();
-        out[1] = r * phi.sin();
+        // Shirley & Chiu 1997, eq. for the four triangular regions: the angle is
+        // pi/4 * (b/a), or pi/2 - pi/4 * (a/b), so only |psi| <= pi/4 needs sin and cos
+        if a.abs() > b.abs() {
+            let (s, c) = sin_cos_quarter(FRAC_PI_4 * (b / a));
+            (out[0], out[1]) = (a * c, a * s);
+        } else {
+            let (s, c) = sin_cos_quarter(FRAC_PI_4 * (a / b));
+            (out[0], out[1]) = (b * s, b * c);
+        }
         true
     }
     fn density(&self, x: &[f64]) -> f64 {
@@ -406,6 +438,15 @@ mod tests {
 
     fn bijective() -> impl Iterator<Item = &'static WarpEntry> {
         WARPS.iter().filter(|e| e.name != "disk.reject")
+    }
+
+    #[test]
+    fn quarter_sin_cos_matches_libm() {
+        for i in 0..=10_000 {
+            let x = FRAC_PI_4 * (2.0 * i as f64 / 10_000.0 - 1.0);
+            let (s, c) = sin_cos_quarter(x);
+            assert!((s - x.sin()).abs() <= 2.3e-16 && (c - x.cos()).abs() <= 2.3e-16, "{x}: {s} {c}");
+        }
     }
 
     #[test]
