@@ -185,7 +185,10 @@ fn discrepancy_bad_input() {
     assert_bad_input(&["discrepancy", "star", f.to_str().unwrap()], &["p.txt:2"]);
     std::fs::write(&f, "0.1 0.2\n#\n0.3 0.4 0.5\n").unwrap();
     assert_bad_input(&["discrepancy", "star", f.to_str().unwrap()], &["p.txt:3"]);
-    assert_bad_input(&["discrepancy", "star", "--sampler", "random", "-n", "3000", "-d", "6"], &["--max-work"]);
+    assert_bad_input(
+        &["discrepancy", "star", "--sampler", "random", "-n", "3000", "-d", "6", "--max-work", "1e5"],
+        &["--max-work"],
+    );
     assert_bad_input(&["discrepancy", "strr", "--sampler", "random", "-n", "16"], &["unknown metric", "star"]);
 }
 

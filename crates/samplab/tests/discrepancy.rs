@@ -82,13 +82,22 @@ fn extreme_fast_equals_naive_1d_2d() {
 }
 
 #[test]
-fn star_exact_equals_naive_in_3d_and_4d() {
+fn star_exact_equals_naive_in_3d_4d_and_5d() {
     let mut rng = Seed(7).rng();
     for trial in 0..1500 {
-        let (d, cap) = if trial < 1200 { (3, 24) } else { (4, 10) };
+        let (d, cap) = if trial < 1200 {
+            (3, 24)
+        } else if trial < 1400 {
+            (4, 10)
+        } else {
+            (5, 6)
+        };
         let n = 1 + below(&mut rng, cap) as usize;
         let p = nasty(&mut rng, n, d);
-        assert_close(star::star_exact(&p, d), star::star_naive(&p, d), &format!("{d}D trial {trial}: {p:?}"));
+        let naive = star::star_naive(&p, d);
+        assert_close(star::star_exact(&p, d), naive, &format!("{d}D trial {trial}: {p:?}"));
+        let branch = star::star_branch(&p, d, u64::MAX).expect("no budget");
+        assert_close(branch, naive, &format!("{d}D branch and bound, trial {trial}: {p:?}"));
     }
 }
 
@@ -295,9 +304,13 @@ fn bad_input_errors() {
     let outside = PointSet::new(2, vec![0.5, 1.5]).unwrap();
     let e = discrepancy::compute(&Metric::Star, &outside, Limits::default()).unwrap_err().to_string();
     assert!(e.contains("point 0 coordinate 1 is 1.5"), "{e}");
-    let big = sampler::build("random").unwrap().generate(3000, 6, Seed(0)).unwrap();
+    // 3D: refused before any work; 5D branch and bound: stopped when it reaches the limit
+    let big = sampler::build("random").unwrap().generate(200_000, 3, Seed(0)).unwrap();
     let e = discrepancy::compute(&Metric::Star, &big, Limits::default()).unwrap_err().to_string();
     assert!(e.contains("--max-work"), "{e}");
+    let five = sampler::build("random").unwrap().generate(400, 5, Seed(0)).unwrap();
+    let e = discrepancy::compute(&Metric::Star, &five, Limits { max_work: 1e5 }).unwrap_err().to_string();
+    assert!(e.contains("--max-work") && e.contains("5D"), "{e}");
     let e = Metric::parse("stra").unwrap_err().to_string();
     assert!(e.contains("star"), "{e}");
     let e = Metric::parse("projected:angle=400").unwrap_err().to_string();

@@ -271,8 +271,9 @@ impl Metric {
 /// Limits on the exact algorithms whose cost grows fastest; `--max-work` raises them.
 #[derive(Debug, Clone, Copy)]
 pub struct Limits {
-    /// The largest number of elementary steps (n^(d-1) log^2 n for d-D star, n^3 for 2D
-    /// extreme) an exact algorithm may take.
+    /// The largest number of elementary steps an exact algorithm may take: estimated before
+    /// the work for the 3D star sweep (n^2 log^2 n) and the 2D extreme (n^3), counted as it
+    /// goes for the d-D star branch and bound (d >= 4).
     pub max_work: f64,
 }
 
@@ -319,13 +320,20 @@ pub fn compute(metric: &Metric, points: &PointSet, limits: Limits) -> Result<f64
         Metric::Star => match d {
             1 => star::star_1d(x),
             2 => star::star_2d(x),
-            _ => {
-                let work = n.powi(d as i32 - 1) * n.log2().max(1.0).powi(2);
+            3 => {
+                let work = n * n * n.log2().max(1.0).powi(2);
                 if work > limits.max_work {
                     return too_big("the exact star discrepancy", work);
                 }
                 star::star_exact(x, d)
             }
+            _ => star::star_branch(x, d, limits.max_work as u64).ok_or_else(|| {
+                Error::Invalid(format!(
+                    "the exact star discrepancy of {} points in {d}D stopped at the limit of {:.1e} steps; raise it with --max-work (or max_work in Limits)",
+                    points.len(),
+                    limits.max_work
+                ))
+            })?,
         },
         Metric::Extreme => match d {
             1 => extreme::extreme_1d(x),

@@ -236,3 +236,125 @@ pub fn star_exact(points: &[f64], dims: usize) -> f64 {
     let (open, closed) = weighted(points, dims, 1.0, (points.len() / dims) as f64);
     open.max(closed).max(0.0)
 }
+
+/// One side of the d-D star discrepancy on the integer grid of critical corners: corner
+/// `i` (an index into each axis's critical values) has volume prod_k axes_k[i_k], and
+/// counts the points whose key `a` (ranks) satisfies a <= i in every coordinate.
+struct Corners<'a> {
+    axes: &'a [Vec<f64>],
+    /// Row-major keys, `dims` per point.
+    keys: Vec<u32>,
+    dims: usize,
+    n: f64,
+    /// +1: maximise volume - count / n (open boxes); -1: count / n - volume (closed).
+    sign: f64,
+    best: f64,
+    /// Steps taken (a cell costs one per partial point) and allowed.
+    work: u64,
+    budget: u64,
+}
+
+impl Corners<'_> {
+    fn volume(&self, corner: &[u32]) -> f64 {
+        corner.iter().zip(self.axes).map(|(&i, a)| a[i as usize]).product()
+    }
+
+    fn value(&self, corner: &[u32], count: usize) -> f64 {
+        self.sign * (self.volume(corner) - count as f64 / self.n)
+    }
+
+    /// The best value over the cell lo <= i <= hi, where `inside` points count at every
+    /// corner of the cell and the `partial` ones at some; false when over budget.
+    fn solve(&mut self, lo: &mut [u32], hi: &mut [u32], inside: usize, partial: &[u32]) -> bool {
+        self.work += 1 + partial.len() as u64;
+        if self.work > self.budget {
+            return false;
+        }
+        // the corners lo (fewest points, least volume) and hi (most of both) are exact
+        let (at_lo, at_hi) = (self.value(lo, inside), self.value(hi, inside + partial.len()));
+        self.best = self.best.max(at_lo).max(at_hi);
+        // no corner of the cell beats the largest volume with the fewest points (open), or
+        // the most points with the least volume (closed)
+        let bound = if self.sign > 0.0 { self.value(hi, inside) } else { self.value(lo, inside + partial.len()) };
+        if partial.is_empty() || bound <= self.best {
+            return true;
+        }
+        // split the axis where the cell's volume ratio is largest, at the median key of
+        // the partial points inside its range
+        let d = self.dims;
+        let axis = (0..d)
+            .filter(|&k| partial.iter().any(|&p| self.keys[p as usize * d + k] > lo[k]))
+            .max_by(|&a, &b| {
+                let r = |k: usize| self.axes[k][lo[k] as usize] / self.axes[k][hi[k] as usize];
+                r(b).total_cmp(&r(a))
+            })
+            .expect("a partial point lies above lo on some axis");
+        let mut keys: Vec<u32> =
+            partial.iter().map(|&p| self.keys[p as usize * d + axis]).filter(|&a| a > lo[axis]).collect();
+        let mid = keys.len() / 2;
+        let split = *keys.select_nth_unstable(mid).1;
+        let (old_lo, old_hi) = (lo[axis], hi[axis]);
+        // upper half [split, hi]: points at or below split on this axis no longer vary here
+        lo[axis] = split;
+        let mut extra = 0;
+        let upper: Vec<u32> = partial
+            .iter()
+            .copied()
+            .filter(|&p| {
+                let a = &self.keys[p as usize * d..p as usize * d + d];
+                let covered = a.iter().zip(lo.iter()).all(|(x, l)| x <= l);
+                extra += usize::from(covered);
+                !covered
+            })
+            .collect();
+        let ok = self.solve(lo, hi, inside + extra, &upper);
+        lo[axis] = old_lo;
+        if !ok {
+            return false;
+        }
+        // lower half [lo, split - 1]: points whose key reaches split never count there
+        hi[axis] = split - 1;
+        let lower: Vec<u32> = partial.iter().copied().filter(|&p| self.keys[p as usize * d + axis] < split).collect();
+        let ok = self.solve(lo, hi, inside, &lower);
+        hi[axis] = old_hi;
+        ok
+    }
+}
+
+/// Exact star discrepancy in d dimensions by branch and bound over the grid of critical
+/// corners (a k-d split of corner space in the spirit of Dobkin, Eppstein & Mitchell 1996,
+/// section 5, whose cells are pruned by the bound each cell's extreme corners give). The
+/// worst case is the whole grid, O(n^(d+1)); on the low-discrepancy and random sets
+/// measured it visits far fewer cells: 5D, n = 400 takes 1.7 s on a random set and 18 s on
+/// Owen-scrambled Sobol' points, whose small discrepancy prunes less. Each cell costs one
+/// step per point that may count in it; None when the steps would exceed `max_work`.
+pub fn star_branch(points: &[f64], dims: usize, max_work: u64) -> Option<f64> {
+    let n = points.len() / dims;
+    let axes: Vec<Vec<f64>> = (0..dims).map(|d| critical(points.iter().skip(d).step_by(dims).copied())).collect();
+    let rank = |k: usize, x: f64| axes[k].binary_search_by(|c| c.total_cmp(&x)).expect("a critical value") as u32;
+    let mut best = 0.0;
+    let mut work = 0;
+    // open boxes [0, q): a point counts when its rank is below the corner's (key rank + 1);
+    // closed boxes [0, q]: when at or below it (key rank)
+    for (shift, sign) in [(1u32, 1.0), (0, -1.0)] {
+        let keys: Vec<u32> = points.iter().enumerate().map(|(i, &x)| rank(i % dims, x) + shift).collect();
+        let mut lo = vec![0u32; dims];
+        let mut hi: Vec<u32> = axes.iter().map(|a| a.len() as u32 - 1).collect();
+        let mut inside = 0;
+        let mut partial = Vec::with_capacity(n);
+        for p in 0..n {
+            let a = &keys[p * dims..p * dims + dims];
+            if a.iter().all(|&x| x == 0) {
+                inside += 1;
+            } else if a.iter().zip(&hi).all(|(x, h)| x <= h) {
+                partial.push(p as u32);
+            }
+        }
+        let mut c = Corners { axes: &axes, keys, dims, n: n as f64, sign, best, work, budget: max_work };
+        if !c.solve(&mut lo, &mut hi, inside, &partial) {
+            return None;
+        }
+        (best, work) = (c.best, c.work);
+    }
+    Some(best)
+}
