@@ -9,9 +9,9 @@ use samplab::spectrum::pixel_light::{self, Blocker, Pattern, Scene};
 use samplab::theory;
 
 use samplab_render::light::DiskMap;
-use samplab_render::scenes::{LightKind, builtin};
+use samplab_render::scenes::LightKind;
 
-use super::shadows::{self, Setup};
+use super::shadows::{self, Setup, scene};
 use super::study;
 use crate::plot::{HeatMap, LineChart, Series};
 use crate::published;
@@ -466,16 +466,12 @@ fn pixel_light(ctx: &Ctx) -> Result<Output, Error> {
     })
 }
 
-fn scene(name: &str, kind: LightKind) -> Result<samplab_render::Scene, Error> {
-    builtin(name, Some(kind)).map_err(|e| Error::Invalid(e.to_string()))
-}
-
 /// Stratified, uniform jitter and uniform sampling of a linear light on the grids scene.
 fn grids_linear(ctx: &Ctx) -> Result<Output, Error> {
     let (size, seeds, reference_n) = (ctx.pick((96, 72), (256, 192)), ctx.pick(4, 8), ctx.pick(2048, 8192));
     let strategies = [("uniform", "regular"), ("uniform jitter", "jitter.uniform"), ("stratified", "jitter")];
     ctx.progress.set_length((strategies.len() as u64) * seeds + 1);
-    let grids = scene("grids", LightKind::Linear)?;
+    let grids = scene("grids", Some(LightKind::Linear))?;
     let setup = Setup::visibility(&grids, size, DiskMap::Concentric);
     let reference = setup.reference(reference_n, 1, ctx.seed.derive_str("reference"))?;
     ctx.progress.inc(1);
@@ -544,7 +540,7 @@ fn planar_lights(ctx: &Ctx) -> Result<Output, Error> {
     let mut figures = Vec::new();
     for (scene_name, figure) in [("spheres", "13"), ("sphere-box", "16 and 18")] {
         for (light_name, kind) in lights {
-            let s = scene(scene_name, kind)?;
+            let s = scene(scene_name, Some(kind))?;
             let setup = Setup::visibility(&s, size, DiskMap::Reject);
             let reference = setup.reference(reference_n, 1, ctx.seed.derive_str("reference"))?;
             ctx.progress.inc(1);
@@ -620,7 +616,7 @@ fn error_vs_n(ctx: &Ctx) -> Result<Output, Error> {
     let mut claims = Vec::new();
     let mut rows = Vec::new();
     for (light_name, kind) in [("circular", LightKind::Disk), ("Gaussian", LightKind::Gaussian)] {
-        let s = scene("grids", kind)?;
+        let s = scene("grids", Some(kind))?;
         let setup = Setup::visibility(&s, size, DiskMap::Reject);
         let reference = setup.reference(ctx.pick(2048, 8192), 1, ctx.seed.derive_str("reference"))?;
         ctx.progress.inc(1);

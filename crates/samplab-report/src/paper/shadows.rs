@@ -2,6 +2,7 @@
 
 use samplab::seed::Seed;
 use samplab_render::light::DiskMap;
+use samplab_render::scenes::{LightKind, builtin};
 use samplab_render::{Errors, Footprint, Image, Mode, Options, Pattern, Scene, render};
 
 use crate::{Error, Figure};
@@ -76,6 +77,11 @@ impl<'a> Setup<'a> {
         }
         Ok(mean(&all))
     }
+}
+
+/// A built-in scene (`kind`: its light, None for the scene's own).
+pub(crate) fn scene(name: &str, kind: Option<LightKind>) -> Result<Scene, Error> {
+    builtin(name, kind).map_err(render_error)
 }
 
 fn render_error(e: samplab_render::Error) -> Error {

@@ -11,7 +11,7 @@ use crate::plot::{DotChart, LineChart, Series};
 use samplab_render::light::DiskMap;
 use samplab_render::{Footprint, Mode, Pattern};
 
-use super::shadows::Setup;
+use super::shadows::{self, Setup};
 use crate::published::{self, PublishedTable};
 use crate::{Cell, Claim, Ctx, Error, Experiment, Figure, Output, Paper, Table, Verdict};
 
@@ -488,7 +488,7 @@ fn pixel_errors(ctx: &Ctx) -> Result<Output, Error> {
     ctx.progress.set_length((scenes.len() * (1 + STRATEGIES.len())) as u64);
     let mut out = Output::default();
     for (scene_name, table_id) in scenes {
-        let scene = samplab_render::scenes::builtin(scene_name, None).map_err(|e| Error::Invalid(e.to_string()))?;
+        let scene = shadows::scene(scene_name, None)?;
         let setup = Setup {
             mode: Mode::Direct,
             footprint: Footprint::Area,
