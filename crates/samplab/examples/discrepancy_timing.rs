@@ -1,4 +1,5 @@
-//! Median wall time of a discrepancy metric on a fixed random set: METRIC:N[:D] arguments;
+//! Median wall time of a discrepancy metric on a fixed set: METRIC:N[:D[:SAMPLER]] arguments
+//! (the sampler defaults to random);
 //! one JSON object per line. Used by `bench/compare`.
 //!
 //! cargo run --release -p samplab --example discrepancy_timing -- star:100000 l2-star:1000000
@@ -12,9 +13,10 @@ fn main() {
     for arg in std::env::args().skip(1) {
         let mut parts = arg.split(':');
         let (name, n, d) = (parts.next().unwrap(), parts.next().unwrap(), parts.next().unwrap_or("2"));
+        let spec = parts.next().unwrap_or("random");
         let (n, d): (usize, usize) = (n.parse().unwrap(), d.parse().unwrap());
         let (metric, _) = Metric::parse(name).unwrap_or_else(|e| panic!("{e}"));
-        let set = sampler::build("random").unwrap().generate(n, d, Seed(1)).unwrap();
+        let set = sampler::build(spec).unwrap().generate(n, d, Seed(1)).unwrap();
         let limits = Limits { max_work: f64::INFINITY };
         let mut times = Vec::new();
         let mut value = 0.0;

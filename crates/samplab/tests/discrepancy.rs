@@ -96,8 +96,21 @@ fn star_exact_equals_naive_in_3d_4d_and_5d() {
         let p = nasty(&mut rng, n, d);
         let naive = star::star_naive(&p, d);
         assert_close(star::star_exact(&p, d), naive, &format!("{d}D trial {trial}: {p:?}"));
-        let branch = star::star_branch(&p, d, u64::MAX).expect("no budget");
-        assert_close(branch, naive, &format!("{d}D branch and bound, trial {trial}: {p:?}"));
+        assert_close(star::star_dem(&p, d), naive, &format!("{d}D DEM, trial {trial}: {p:?}"));
+    }
+}
+
+#[test]
+fn star_dem_equals_the_recursive_sweep_on_larger_sets() {
+    // many slabs per axis, so the cuts, the knapsack and the parallel first axis all work
+    for (spec, n, d) in [("random", 300, 3), ("sobol", 256, 3), ("halton", 200, 3), ("random", 60, 4), ("sobol", 64, 4)]
+    {
+        let p = sampler::build(spec).unwrap().generate(n, d, Seed(3)).unwrap();
+        let x = p.as_slice();
+        assert_close(star::star_dem(x, d), star::star_exact(x, d), &format!("{spec} n = {n}, {d}D"));
+        // ties: the coordinates rounded to a coarse grid
+        let q: Vec<f64> = x.iter().map(|v| (v * 8.0).round() / 8.0).collect();
+        assert_close(star::star_dem(&q, d), star::star_exact(&q, d), &format!("{spec} n = {n}, {d}D, ties"));
     }
 }
 
@@ -304,7 +317,7 @@ fn bad_input_errors() {
     let outside = PointSet::new(2, vec![0.5, 1.5]).unwrap();
     let e = discrepancy::compute(&Metric::Star, &outside, Limits::default()).unwrap_err().to_string();
     assert!(e.contains("point 0 coordinate 1 is 1.5"), "{e}");
-    // 3D: refused before any work; 5D branch and bound: stopped when it reaches the limit
+    // refused before any work, naming the override
     let big = sampler::build("random").unwrap().generate(200_000, 3, Seed(0)).unwrap();
     let e = discrepancy::compute(&Metric::Star, &big, Limits::default()).unwrap_err().to_string();
     assert!(e.contains("--max-work"), "{e}");

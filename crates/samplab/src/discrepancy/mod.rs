@@ -14,7 +14,7 @@
 //!
 //! | metric | algorithm | cost |
 //! |---|---|---|
-//! | `star` | 1D closed form; 2D sweep + kinetic segment tree; d-D recursive sweep down to it | n log n; n log^2 n; n^(d-1) log^2 n |
+//! | `star` | 1D closed form; 2D sweep + kinetic segment tree; d >= 3 Dobkin-Eppstein-Mitchell cells + knapsack | n log n; n log^2 n; n^(1+d/2) |
 //! | `extreme` | 1D closed form; 2D slab sweep | n log n; n^3 |
 //! | `l2-star` | Warnock's closed form; 2D Fenwick-tree form | d n^2; n log n |
 //! | `l2-extreme`, `centered`, `wraparound`, `mixture` | Hickernell's closed forms | d n^2 |
@@ -271,9 +271,8 @@ impl Metric {
 /// Limits on the exact algorithms whose cost grows fastest; `--max-work` raises them.
 #[derive(Debug, Clone, Copy)]
 pub struct Limits {
-    /// The largest number of elementary steps an exact algorithm may take: estimated before
-    /// the work for the 3D star sweep (n^2 log^2 n) and the 2D extreme (n^3), counted as it
-    /// goes for the d-D star branch and bound (d >= 4).
+    /// The largest number of elementary steps an exact algorithm may take, estimated before
+    /// the work: n^(1 + d/2) for the d-D star discrepancy (d >= 3), n^3 for the 2D extreme.
     pub max_work: f64,
 }
 
@@ -320,20 +319,13 @@ pub fn compute(metric: &Metric, points: &PointSet, limits: Limits) -> Result<f64
         Metric::Star => match d {
             1 => star::star_1d(x),
             2 => star::star_2d(x),
-            3 => {
-                let work = n * n * n.log2().max(1.0).powi(2);
+            _ => {
+                let work = star::star_dem_work(points.len(), d);
                 if work > limits.max_work {
                     return too_big("the exact star discrepancy", work);
                 }
-                star::star_exact(x, d)
+                star::star_dem(x, d)
             }
-            _ => star::star_branch(x, d, limits.max_work as u64).ok_or_else(|| {
-                Error::Invalid(format!(
-                    "the exact star discrepancy of {} points in {d}D stopped at the limit of {:.1e} steps; raise it with --max-work (or max_work in Limits)",
-                    points.len(),
-                    limits.max_work
-                ))
-            })?,
         },
         Metric::Extreme => match d {
             1 => extreme::extreme_1d(x),
