@@ -43,6 +43,7 @@ const CHUNK: usize = 64;
 /// every closed form here is a product over coordinates.
 fn sums(points: &[f64], dims: usize, f: impl Fn(f64) -> f64 + Sync, g: impl Fn(f64, f64) -> f64 + Sync) -> (f64, f64) {
     let n = points.len() / dims;
+    let columns: Vec<Vec<f64>> = (0..dims).map(|k| points.iter().skip(k).step_by(dims).copied().collect()).collect();
     let parts: Vec<(Sum, Sum)> = (0..n)
         .into_par_iter()
         .step_by(CHUNK)
@@ -52,9 +53,7 @@ fn sums(points: &[f64], dims: usize, f: impl Fn(f64) -> f64 + Sync, g: impl Fn(f
                 let p = &points[i * dims..(i + 1) * dims];
                 single.add(p.iter().map(|&x| f(x)).product());
                 pair.add(p.iter().map(|&x| g(x, x)).product());
-                let rest = &points[(i + 1) * dims..];
-                let off = if dims == 2 { row_sum_2d(p[0], p[1], rest, &g) } else { row_sum(p, rest, dims, &g) };
-                pair.add(2.0 * off);
+                pair.add(2.0 * row_sum(p, &columns, i + 1, &g));
             }
             (single, pair)
         })
@@ -67,61 +66,89 @@ fn sums(points: &[f64], dims: usize, f: impl Fn(f64) -> f64 + Sync, g: impl Fn(f
     (single.value() / n as f64, pair.value() / (n * n) as f64)
 }
 
-/// Kahan-compensated accumulation in four lanes (which the compiler can vectorize),
-/// merged with Neumaier's sum.
-#[derive(Default)]
+/// Independent Kahan-compensated accumulators: enough of them that the compiler can keep
+/// several vector registers busy, merged with Neumaier's sum.
+const LANES: usize = 16;
+
 struct Lanes {
-    sum: [f64; 4],
-    comp: [f64; 4],
+    sum: [f64; LANES],
+    comp: [f64; LANES],
 }
 
 impl Lanes {
-    #[inline]
-    fn add(&mut self, l: usize, v: f64) {
-        let y = v - self.comp[l];
-        let t = self.sum[l] + y;
-        self.comp[l] = (t - self.sum[l]) - y;
-        self.sum[l] = t;
+    fn new() -> Lanes {
+        Lanes { sum: [0.0; LANES], comp: [0.0; LANES] }
     }
+
+    #[inline(always)]
+    fn add(&mut self, values: [f64; LANES]) {
+        for ((sum, comp), v) in self.sum.iter_mut().zip(&mut self.comp).zip(values) {
+            let y = v - *comp;
+            let t = *sum + y;
+            *comp = (t - *sum) - y;
+            *sum = t;
+        }
+    }
+
     fn total(&self) -> Sum {
         let mut s = Sum::default();
-        for l in 0..4 {
-            s.add(self.sum[l]);
-            s.add(-self.comp[l]);
+        for (&sum, &comp) in self.sum.iter().zip(&self.comp) {
+            s.add(sum);
+            s.add(-comp);
         }
         s
     }
 }
 
-/// sum over the points q of `rest` of prod_k g(p_k, q_k).
-fn row_sum(p: &[f64], rest: &[f64], dims: usize, g: &impl Fn(f64, f64) -> f64) -> f64 {
-    let mut lanes = Lanes::default();
-    let mut quads = rest.chunks_exact(4 * dims);
-    for q in &mut quads {
-        for l in 0..4 {
-            lanes.add(l, p.iter().zip(&q[l * dims..(l + 1) * dims]).map(|(&a, &b)| g(a, b)).product());
+/// sum over the points j >= `from` of prod_k g(p_k, columns_k[j]), the coordinates stored
+/// by column so that consecutive j vectorize. With AVX-512 or AVX2 where the processor has
+/// them (chosen at run time): the same operations in the same order, so the same value,
+/// only wider.
+fn row_sum(p: &[f64], columns: &[Vec<f64>], from: usize, g: &impl Fn(f64, f64) -> f64) -> f64 {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the processor supports AVX-512F, checked just above.
+            return unsafe { row_sum_avx512(p, columns, from, g) };
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor supports AVX2, checked just above.
+            return unsafe { row_sum_avx2(p, columns, from, g) };
         }
     }
-    let mut total = lanes.total();
-    for q in quads.remainder().chunks_exact(dims) {
-        total.add(p.iter().zip(q).map(|(&a, &b)| g(a, b)).product());
-    }
-    total.value()
+    row_sum_any(p, columns, from, g)
 }
 
-/// [`row_sum`] for 2D points, reading the coordinates directly.
-#[inline]
-fn row_sum_2d(x: f64, y: f64, rest: &[f64], g: &impl Fn(f64, f64) -> f64) -> f64 {
-    let mut lanes = Lanes::default();
-    let mut quads = rest.chunks_exact(8);
-    for q in &mut quads {
-        for l in 0..4 {
-            lanes.add(l, g(x, q[2 * l]) * g(y, q[2 * l + 1]));
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+fn row_sum_avx512(p: &[f64], columns: &[Vec<f64>], from: usize, g: &impl Fn(f64, f64) -> f64) -> f64 {
+    row_sum_any(p, columns, from, g)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn row_sum_avx2(p: &[f64], columns: &[Vec<f64>], from: usize, g: &impl Fn(f64, f64) -> f64) -> f64 {
+    row_sum_any(p, columns, from, g)
+}
+
+#[inline(always)]
+fn row_sum_any(p: &[f64], columns: &[Vec<f64>], from: usize, g: &impl Fn(f64, f64) -> f64) -> f64 {
+    let n = columns[0].len();
+    let mut lanes = Lanes::new();
+    let mut j = from;
+    while j + LANES <= n {
+        let mut v = [1.0; LANES];
+        for (&a, column) in p.iter().zip(columns) {
+            for (x, &b) in v.iter_mut().zip(&column[j..j + LANES]) {
+                *x *= g(a, b);
+            }
         }
+        lanes.add(v);
+        j += LANES;
     }
     let mut total = lanes.total();
-    for q in quads.remainder().chunks_exact(2) {
-        total.add(g(x, q[0]) * g(y, q[1]));
+    for j in j..n {
+        total.add(p.iter().zip(columns).map(|(&a, column)| g(a, column[j])).product());
     }
     total.value()
 }
@@ -192,17 +219,25 @@ pub fn mixture_sq(points: &[f64], dims: usize) -> f64 {
 pub fn l2_star_sq_2d(points: &[f64]) -> f64 {
     let n = points.len() / 2;
     let mut pts: Vec<(f64, f64)> = points.chunks_exact(2).map(|p| (p[0], p[1])).collect();
-    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let mut ys: Vec<f64> = pts.iter().map(|p| p.1).collect();
-    ys.sort_by(f64::total_cmp);
-    ys.dedup();
+    pts.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+    // the rank of each point's y among the distinct y values, in x order
+    let mut by_y: Vec<u32> = (0..n as u32).collect();
+    by_y.sort_unstable_by(|&a, &b| pts[a as usize].1.total_cmp(&pts[b as usize].1));
+    let mut rank = vec![0usize; n];
+    let mut distinct = 0;
+    for (k, &i) in by_y.iter().enumerate() {
+        if k > 0 && pts[i as usize].1 != pts[by_y[k - 1] as usize].1 {
+            distinct += 1;
+        }
+        rank[i as usize] = distinct;
+    }
+    let ys = distinct + 1;
     // per y rank: the count of earlier points and the sum of their (1 - y)
-    let mut tree = Fenwick::new(ys.len());
+    let mut tree = Fenwick::new(ys);
     let mut total_tail = 0.0;
     let (mut single, mut pair) = (Sum::default(), Sum::default());
-    for &(x, y) in &pts {
+    for (&(x, y), &r) in pts.iter().zip(&rank) {
         single.add((1.0 - x * x) * (1.0 - y * y));
-        let r = ys.partition_point(|&t| t < y);
         // earlier points j have x_j <= x: (1 - x)(1 - max(y, y_j))
         let [le, tail_le] = tree.prefix(r + 1);
         let inner = le * (1.0 - y) + (total_tail - tail_le);
@@ -240,5 +275,39 @@ impl Fenwick {
             i -= i & i.wrapping_neg();
         }
         s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_instruction_set_gives_the_same_bits() {
+        let mut rng = crate::Seed(11).rng();
+        for dims in [1, 2, 3, 5] {
+            let columns: Vec<Vec<f64>> =
+                (0..dims).map(|_| (0..203).map(|_| crate::seed::uniform(&mut rng)).collect()).collect();
+            let g = |x: f64, y: f64| 1.5 - (x - y).abs() * (1.0 - (x - y).abs());
+            for (i, from) in [0, 1, 17, 190].into_iter().enumerate() {
+                let p: Vec<f64> = columns.iter().map(|c| c[i]).collect();
+                let any = row_sum_any(&p, &columns, from, &g);
+                // the plain sum, to a tolerance: the lanes reorder it
+                let plain: f64 =
+                    (from..203).map(|j| columns.iter().zip(&p).map(|(c, &a)| g(a, c[j])).product::<f64>()).sum();
+                assert!((any - plain).abs() <= 1e-12 * plain.abs(), "{any} vs {plain}");
+                #[cfg(target_arch = "x86_64")]
+                {
+                    if std::arch::is_x86_feature_detected!("avx2") {
+                        // SAFETY: checked just above.
+                        assert_eq!(unsafe { row_sum_avx2(&p, &columns, from, &g) }.to_bits(), any.to_bits());
+                    }
+                    if std::arch::is_x86_feature_detected!("avx512f") {
+                        // SAFETY: checked just above.
+                        assert_eq!(unsafe { row_sum_avx512(&p, &columns, from, &g) }.to_bits(), any.to_bits());
+                    }
+                }
+            }
+        }
     }
 }
