@@ -75,9 +75,12 @@ pub struct Options {
     pub footprint: Footprint,
     /// Strategy over the pixel area (`spp` points).
     pub pixel: Box<dyn Sampler>,
-    /// Strategy over the lens (`spp` points), used when the camera has an aperture.
+    /// Strategy over the lens (`spp` points), used when the camera has an aperture; dealt
+    /// to the estimates in a random order per pixel, so that it is not correlated with the
+    /// pixel strategy.
     pub lens: Box<dyn Sampler>,
-    /// Strategy over the shutter interval (`spp` points), used when something moves.
+    /// Strategy over the shutter interval (`spp` points), used when something moves; dealt
+    /// in a random order of its own.
     pub time: Box<dyn Sampler>,
     /// Grouping of light samples.
     pub pattern: Pattern,
@@ -290,12 +293,20 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
     if o.footprint == Footprint::Area {
         fill(o.pixel.as_ref(), 2, keys.pixel, &mut s.pixel);
     }
+    // the lens and time patterns are dealt to the estimates in an order of their own, so
+    // that two strategies built alike (Sobol' over the pixel and over the lens, say) are not
+    // correlated across dimensions ("padding")
+    let deal = |what: &str| permutation(&mut keys.deal.derive(px.index).derive_str(what).rng(), spp);
     let lens = scene.camera.aperture > 0.0;
+    let mut lens_order = Vec::new();
     if lens {
         fill(o.lens.as_ref(), 2, keys.lens, &mut s.lens);
+        lens_order = deal("lens");
     }
+    let mut time_order = Vec::new();
     if moving {
         fill(o.time.as_ref(), 1, keys.time, &mut s.time);
+        time_order = deal("time");
     }
     if o.pattern == Pattern::PerPixel {
         s.shared.resize_with(lights.len(), Default::default);
@@ -312,8 +323,13 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
     let mut rays = (0u64, 0u64);
     for e in 0..spp {
         let (dx, dy) = if o.footprint == Footprint::Area { (s.pixel[2 * e], s.pixel[2 * e + 1]) } else { (0.5, 0.5) };
-        let lens_uv = if lens { [s.lens[2 * e], s.lens[2 * e + 1]] } else { [0.5, 0.5] };
-        let time = if moving { s.time[e] } else { 0.0 };
+        let lens_uv = if lens {
+            let i = lens_order[e] as usize;
+            [s.lens[2 * i], s.lens[2 * i + 1]]
+        } else {
+            [0.5, 0.5]
+        };
+        let time = if moving { s.time[time_order[e] as usize] } else { 0.0 };
         let ray =
             frame.ray((px.col as f64 + dx) / o.width as f64, (px.row as f64 + dy) / o.height as f64, lens_uv, time);
         rays.0 += 1;

@@ -18,6 +18,10 @@ pub(crate) struct Setup<'a> {
     pub disk_map: DiskMap,
     /// Strategy over the pixel area (area footprint only).
     pub pixel: &'a str,
+    /// Strategy over the lens (scenes with an aperture only).
+    pub lens: &'a str,
+    /// Strategy over the shutter interval (scenes that move only).
+    pub time: &'a str,
 }
 
 impl<'a> Setup<'a> {
@@ -31,6 +35,8 @@ impl<'a> Setup<'a> {
             pattern: Pattern::PerEstimate,
             disk_map,
             pixel: "sobol.owen",
+            lens: "sobol.owen",
+            time: "sobol.owen",
         }
     }
 
@@ -39,6 +45,8 @@ impl<'a> Setup<'a> {
         let mut o = Options::new("sobol.owen", n, self.size.0, self.size.1).map_err(render_error)?;
         o.light = build(light)?;
         o.pixel = build(self.pixel)?;
+        o.lens = build(self.lens)?;
+        o.time = build(self.time)?;
         o.spp = spp;
         o.mode = self.mode;
         o.footprint = self.footprint;
@@ -55,9 +63,15 @@ impl<'a> Setup<'a> {
     }
 
     /// A converged reference: Owen-scrambled Sobol' with `n` light samples and `spp`
-    /// estimates, pixel samples Sobol' too.
+    /// estimates, pixel, lens and time samples Sobol' too.
     pub fn reference(&self, n: usize, spp: usize, seed: Seed) -> Result<Image, Error> {
-        Setup { pixel: "sobol.owen", pattern: Pattern::PerEstimate, ..*self }.render("sobol.owen", n, spp, seed)
+        self.converged().render("sobol.owen", n, spp, seed)
+    }
+
+    /// This set-up with Owen-scrambled Sobol' over the pixel, lens and time, one pattern per
+    /// estimate: what a reference is rendered with.
+    pub fn converged(&self) -> Setup<'a> {
+        Setup { pixel: "sobol.owen", lens: "sobol.owen", time: "sobol.owen", pattern: Pattern::PerEstimate, ..*self }
     }
 
     /// Errors against `reference`, averaged over `seeds` renders (each field the mean).

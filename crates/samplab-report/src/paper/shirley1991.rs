@@ -495,11 +495,7 @@ fn pixel_errors(ctx: &Ctx) -> Result<Output, Error> {
             pattern: Pattern::PerPixel,
             ..Setup::visibility(&scene, (128, 96), DiskMap::Concentric)
         };
-        let reference = Setup { pattern: Pattern::PerEstimate, ..setup }.reference(
-            4,
-            ctx.pick(256, 1024),
-            ctx.seed.derive_str("reference"),
-        )?;
+        let reference = setup.reference(4, ctx.pick(256, 1024), ctx.seed.derive_str("reference"))?;
         ctx.progress.inc(1);
         let published = published::table("shirley1991", table_id);
         let mut rows = Vec::new();
