@@ -42,7 +42,7 @@ enum Command {
     /// Periodogram, expected spectrum and spectrum variance over realizations (Subr & Kautz).
     Spectrum(spectrum::Args),
     /// Render soft shadows with any strategy per pixel, against a reference (EXR/PNG).
-    Render(render::Args),
+    Render(Box<render::Args>),
 }
 
 fn main() -> ExitCode {

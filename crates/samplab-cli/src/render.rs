@@ -50,6 +50,9 @@ pub struct Args {
     /// Strategy over the shutter time (spp points), for scenes that move
     #[arg(long, default_value = "sobol.owen")]
     time_sampler: String,
+    /// Strategy over the glossy lobe (spp points), for scenes with an imperfect mirror
+    #[arg(long, default_value = "sobol.owen")]
+    gloss_sampler: String,
     /// estimate: an n-point pattern per estimate; pixel: one spp x n pattern per pixel dealt out
     #[arg(long, default_value = "estimate")]
     pattern: String,
@@ -155,6 +158,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         pixel: sampler("--pixel-sampler", &a.pixel_sampler)?,
         lens: sampler("--lens-sampler", &a.lens_sampler)?,
         time: sampler("--time-sampler", &a.time_sampler)?,
+        gloss: sampler("--gloss-sampler", &a.gloss_sampler)?,
         pattern: choose("--pattern", &a.pattern, &[("estimate", Pattern::PerEstimate), ("pixel", Pattern::PerPixel)])?,
         disk_map: a.disk_map.as_deref().map(|m| choose("--disk-map", m, &DiskMap::ALL)).transpose()?,
         width,

@@ -1,6 +1,7 @@
 //! The subset of the Mitsuba 3 XML scene format these experiments need: a `perspective`
 //! or `thinlens` sensor (`lookat` or matrix `to_world`, `fov`, `fov_axis`, film size),
-//! `diffuse` BSDFs (also inside `twosided`, by `id` and `ref`), shapes `rectangle`, `disk`,
+//! `diffuse`, `conductor` (a perfect mirror) and `roughconductor` (Beckmann alpha as a
+//! Phong gloss) BSDFs (also inside `twosided`, by `id` and `ref`), shapes `rectangle`, `disk`,
 //! `sphere`, `cube` and `obj` with `to_world` transforms (`translate`, `scale`, `rotate`,
 //! `matrix`, `lookat`), `area` emitters with a radiance on rectangles and disks, and
 //! `<default>` parameters with `$name` substitution. Anything else is refused with its
@@ -18,7 +19,7 @@ use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::geometry::Shape;
 use crate::light::{DiskMap, Light, LightShape};
-use crate::scene::{Material, Scene, Texture};
+use crate::scene::{Finish, Material, Scene, Texture};
 use crate::scenes::cuboid;
 
 /// Load a Mitsuba 3 XML scene.
@@ -61,7 +62,7 @@ struct Built {
 }
 
 fn grey(v: f64) -> Material {
-    Material { albedo: Texture::Constant(DVec3::splat(v)), emission: Texture::Constant(DVec3::ZERO) }
+    Material::diffuse(DVec3::splat(v))
 }
 
 impl Reader<'_, '_> {
@@ -282,7 +283,29 @@ impl Reader<'_, '_> {
                 }
                 Ok(m)
             }
-            _ => Err(self.unsupported(node, "only diffuse BSDFs are supported")),
+            // a perfect mirror (Mitsuba's default material "none"), and a rough one whose
+            // Beckmann roughness alpha maps to the Phong exponent 2 / alpha^2 - 2 (Walter et
+            // al. 2007, eq. 32)
+            kind @ ("conductor" | "roughconductor") => {
+                let (mut reflectance, mut alpha) = (DVec3::ONE, 0.1);
+                for c in node.children().filter(Node::is_element) {
+                    match (kind, c.attribute("name").unwrap_or("")) {
+                        (_, "specular_reflectance") => reflectance = self.colour(c)?,
+                        ("roughconductor", "alpha") => alpha = self.number(c, "value")?,
+                        ("roughconductor", "distribution") if c.attribute("value") == Some("beckmann") => {}
+                        _ => return Err(self.unsupported(c, &format!("not supported in a {kind} BSDF"))),
+                    }
+                }
+                let finish = if kind == "conductor" {
+                    Finish::Mirror
+                } else if alpha > 0.0 && alpha < 1.0 {
+                    Finish::Glossy { exponent: 2.0 / (alpha * alpha) - 2.0 }
+                } else {
+                    return Err(self.fail(node, format!("alpha {alpha} is outside (0, 1)")));
+                };
+                Ok(Material { finish, ..Material::diffuse(reflectance) })
+            }
+            _ => Err(self.unsupported(node, "only diffuse, conductor and roughconductor BSDFs are supported")),
         }
     }
 

@@ -24,12 +24,13 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use glam::DVec3;
 use rayon::prelude::*;
 use samplab::sampler::Sampler;
-use samplab::seed::{Seed, permutation};
+use samplab::seed::{Seed, permutation, uniform};
 
 use crate::error::{Error, Result};
+use crate::geometry::Ray;
 use crate::image::Image;
 use crate::light::{DiskMap, Light, LightPoint};
-use crate::scene::{Scene, Seen};
+use crate::scene::{Finish, Scene, Seen};
 
 /// What each light sample estimates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -82,6 +83,9 @@ pub struct Options {
     /// Strategy over the shutter interval (`spp` points), used when something moves; dealt
     /// in a random order of its own.
     pub time: Box<dyn Sampler>,
+    /// Strategy over the glossy lobe (`spp` points), for the first glossy bounce of each
+    /// estimate when a material is glossy; dealt in a random order of its own.
+    pub gloss: Box<dyn Sampler>,
     /// Grouping of light samples.
     pub pattern: Pattern,
     /// Disk map override for every disk light (None: each light's own).
@@ -96,6 +100,8 @@ pub struct Options {
 
 /// Largest image side accepted.
 pub const MAX_SIDE: usize = 1 << 14;
+/// Mirror and glossy reflections followed before a path is dropped.
+const MAX_BOUNCES: usize = 8;
 /// Side of the midpoint rule for unoccluded shading in visibility mode.
 const QUADRATURE: usize = 16;
 
@@ -128,6 +134,7 @@ impl Options {
             pixel: sobol()?,
             lens: sobol()?,
             time: sobol()?,
+            gloss: sobol()?,
             pattern: Pattern::PerEstimate,
             disk_map: None,
             width,
@@ -167,6 +174,9 @@ impl Options {
         if scene.moving() {
             self.time.check(self.spp, 1)?;
         }
+        if scene.glossy() {
+            self.gloss.check(self.spp, 2)?;
+        }
         Ok(())
     }
 }
@@ -184,6 +194,7 @@ struct Scratch {
     pixel: Vec<f64>,
     lens: Vec<f64>,
     time: Vec<f64>,
+    gloss: Vec<f64>,
     light: Vec<f64>,
     /// Per light: the pixel's whole pattern and the order it is dealt in (per-pixel patterns).
     shared: Vec<(Vec<f64>, Vec<u32>)>,
@@ -206,7 +217,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
         .collect();
     let frame = scene.camera.frame(w, h);
     let keys = Keys::new(options.seed);
-    let setup = Setup { lights: &lights, frame: &frame, keys: &keys, moving: scene.moving() };
+    let setup = Setup { lights: &lights, frame: &frame, keys: &keys, moving: scene.moving(), glossy: scene.glossy() };
     let done = AtomicUsize::new(0);
     let mut rgb = vec![0f32; 3 * w * h];
     let mut vis = vec![0f32; w * h];
@@ -250,6 +261,7 @@ struct Keys {
     pixel: Seed,
     lens: Seed,
     time: Seed,
+    gloss: Seed,
     light: Seed,
     deal: Seed,
 }
@@ -260,6 +272,7 @@ impl Keys {
             pixel: seed.derive_str("pixel"),
             lens: seed.derive_str("lens"),
             time: seed.derive_str("time"),
+            gloss: seed.derive_str("gloss"),
             light: seed.derive_str("light"),
             deal: seed.derive_str("deal"),
         }
@@ -272,6 +285,7 @@ struct Setup<'a> {
     frame: &'a crate::camera::Frame,
     keys: &'a Keys,
     moving: bool,
+    glossy: bool,
 }
 
 #[derive(Clone, Copy)]
@@ -283,7 +297,7 @@ struct Pixel {
 
 /// A pixel's radiance, its visible fraction and the (camera, shadow) rays it traced.
 fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Scratch) -> (DVec3, f64, (u64, u64)) {
-    let Setup { lights, frame, keys, moving } = *setup;
+    let Setup { lights, frame, keys, moving, glossy } = *setup;
     let spp = o.spp;
     // The fills cannot fail: Options::check accepted these counts.
     let fill = |sampler: &dyn Sampler, dims: usize, key: Seed, buf: &mut Vec<f64>| {
@@ -308,6 +322,11 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
         fill(o.time.as_ref(), 1, keys.time, &mut s.time);
         time_order = deal("time");
     }
+    let mut gloss_order = Vec::new();
+    if glossy {
+        fill(o.gloss.as_ref(), 2, keys.gloss, &mut s.gloss);
+        gloss_order = deal("gloss");
+    }
     if o.pattern == Pattern::PerPixel {
         s.shared.resize_with(lights.len(), Default::default);
         for (l, p) in lights.iter().enumerate() {
@@ -330,21 +349,55 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
             [0.5, 0.5]
         };
         let time = if moving { s.time[time_order[e] as usize] } else { 0.0 };
-        let ray =
+        let mut ray =
             frame.ray((px.col as f64 + dx) / o.width as f64, (px.row as f64 + dy) / o.height as f64, lens_uv, time);
-        rays.0 += 1;
-        let (x, n, albedo) = match scene.trace(&ray) {
-            Seen::Nothing => continue,
-            Seen::Light(le) => {
-                radiance += le;
-                visible += 1.0;
-                continue;
-            }
-            Seen::Surface { position, normal, albedo, emission } => {
-                radiance += emission;
-                (position, normal, albedo)
-            }
+        // follow mirror and glossy reflections to the first diffuse surface, with the
+        // strategy's gloss sample at the first glossy bounce and independent ones after
+        let mut throughput = DVec3::ONE;
+        let mut gloss = if glossy {
+            let i = gloss_order[e] as usize;
+            Some([s.gloss[2 * i], s.gloss[2 * i + 1]])
+        } else {
+            None
         };
+        let mut later = None;
+        let mut bounces = 0;
+        let surface = loop {
+            rays.0 += 1;
+            let (position, normal, albedo, finish) = match scene.trace(&ray) {
+                Seen::Nothing => break None,
+                Seen::Light(le) => {
+                    radiance += throughput * le;
+                    visible += 1.0;
+                    break None;
+                }
+                Seen::Surface { position, normal, albedo, emission, finish } => {
+                    radiance += throughput * emission;
+                    (position, normal, albedo, finish)
+                }
+            };
+            let mirror = ray.dir - 2.0 * ray.dir.dot(normal) * normal;
+            let dir = match finish {
+                Finish::Diffuse => break Some((position, normal, throughput * albedo)),
+                _ if bounces == MAX_BOUNCES => break None,
+                Finish::Mirror => mirror,
+                Finish::Glossy { exponent } => {
+                    let u = gloss.take().unwrap_or_else(|| {
+                        let rng = later.get_or_insert_with(|| keys.gloss.derive(px.index).derive(e as u64).rng());
+                        [uniform(rng), uniform(rng)]
+                    });
+                    let d = phong_lobe(mirror.normalize(), exponent, u);
+                    if d.dot(normal) <= 0.0 {
+                        break None;
+                    }
+                    d
+                }
+            };
+            throughput *= albedo;
+            bounces += 1;
+            ray = Ray { origin: Scene::offset(position, normal), dir, time };
+        };
+        let Some((x, n, albedo)) = surface else { continue };
         let brdf = albedo / PI;
         let mut vis_sum = 0.0;
         for (l, p) in lights.iter().enumerate() {
@@ -403,4 +456,39 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
     }
     let inv = 1.0 / spp as f64;
     (radiance * inv, visible * inv, rays)
+}
+
+/// A direction about the unit `axis` from the normalized Phong lobe (n + 1) / (2 pi)
+/// cos^n(alpha) by inversion: cos(alpha) = u0^(1 / (n + 1)), azimuth 2 pi u1.
+fn phong_lobe(axis: DVec3, exponent: f64, u: [f64; 2]) -> DVec3 {
+    let cos = u[0].powf(1.0 / (exponent + 1.0));
+    let sin = (1.0 - cos * cos).max(0.0).sqrt();
+    let (a, b) = axis.any_orthonormal_pair();
+    let (s, c) = (2.0 * PI * u[1]).sin_cos();
+    (a * c + b * s) * sin + axis * cos
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_phong_lobe_has_the_mean_cosine_of_its_density() {
+        // for density (n + 1) / (2 pi) cos^n about the axis, E[cos] = (n + 1) / (n + 2)
+        let axis = DVec3::new(0.3, -0.5, 0.8).normalize();
+        for exponent in [0.0, 1.0, 4.0, 10.0] {
+            let k = 400;
+            let mut sum = 0.0;
+            for i in 0..k * k {
+                let u = [((i % k) as f64 + 0.5) / k as f64, ((i / k) as f64 + 0.5) / k as f64];
+                let d = phong_lobe(axis, exponent, u);
+                assert!((d.length() - 1.0).abs() < 1e-12);
+                sum += d.dot(axis);
+            }
+            let mean = sum / (k * k) as f64;
+            let exact = (exponent + 1.0) / (exponent + 2.0);
+            // the midpoint rule errs by about 4e-5 on u^(1/(n+1)); a wrong exponent by 1e-3
+            assert!((mean - exact).abs() < 1e-4, "n = {exponent}: {mean} vs {exact}");
+        }
+    }
 }

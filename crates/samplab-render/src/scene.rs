@@ -42,14 +42,43 @@ impl Texture {
     }
 }
 
-/// A Lambertian material: reflected radiance = albedo / pi x irradiance, plus a
-/// self-emission that lights nothing else (Shirley's unlit checkerboards, bright beads).
+/// How a surface reflects.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Finish {
+    /// Lambertian: reflected radiance = albedo / pi x irradiance.
+    Diffuse,
+    /// A perfect mirror reflecting `albedo` of the radiance from the mirror direction.
+    Mirror,
+    /// An imperfect mirror (Cook, Porter & Carpenter 1984's gloss): the reflected direction
+    /// spread about the mirror direction by the normalized Phong lobe
+    /// (n + 1) / (2 pi) cos^n, sampled with one 2D sample per estimate.
+    Glossy {
+        /// The Phong exponent n: larger is sharper.
+        exponent: f64,
+    },
+}
+
+/// A material: a finish with its reflectance, plus a self-emission that lights nothing
+/// else (Shirley's unlit checkerboards, bright beads).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Material {
-    /// Diffuse reflectance.
+    /// Reflectance (diffuse or specular, as the finish says).
     pub albedo: Texture,
     /// Radiance the surface emits toward the camera.
     pub emission: Texture,
+    /// How it reflects.
+    pub finish: Finish,
+}
+
+impl Material {
+    /// A Lambertian material of constant reflectance that emits nothing.
+    pub fn diffuse(albedo: DVec3) -> Material {
+        Material {
+            albedo: Texture::Constant(albedo),
+            emission: Texture::Constant(DVec3::ZERO),
+            finish: Finish::Diffuse,
+        }
+    }
 }
 
 /// A surface point seen by a camera ray.
@@ -59,7 +88,7 @@ pub enum Seen {
     Nothing,
     /// An emitter, with the radiance it sends along the ray.
     Light(DVec3),
-    /// A diffuse surface.
+    /// A surface.
     Surface {
         /// Position.
         position: DVec3,
@@ -69,6 +98,8 @@ pub enum Seen {
         albedo: DVec3,
         /// Self-emitted radiance there.
         emission: DVec3,
+        /// How it reflects.
+        finish: Finish,
     },
 }
 
@@ -134,14 +165,30 @@ impl Scene {
         let position = ray.at(t);
         let normal = if normal.dot(ray.dir) > 0.0 { -normal } else { normal };
         let m = &self.materials[material as usize];
-        Seen::Surface { position, normal, albedo: m.albedo.at(position), emission: m.emission.at(position) }
+        Seen::Surface {
+            position,
+            normal,
+            albedo: m.albedo.at(position),
+            emission: m.emission.at(position),
+            finish: m.finish,
+        }
+    }
+
+    /// Whether any material is glossy (and so needs a gloss sample per estimate).
+    pub fn glossy(&self) -> bool {
+        self.materials.iter().any(|m| matches!(m.finish, Finish::Glossy { .. }))
+    }
+
+    /// The origin of a ray leaving surface point `x` on the side of `n`, off the surface.
+    #[inline]
+    pub fn offset(x: DVec3, n: DVec3) -> DVec3 {
+        x + n * (RAY_EPSILON * (1.0 + x.abs().max_element()) * 100.0)
     }
 
     /// Whether the segment from surface point `x` (normal `n`) to light point `y` is blocked.
     #[inline]
     pub fn occluded(&self, x: DVec3, n: DVec3, y: DVec3, time: f64) -> bool {
-        let scale = 1.0 + x.abs().max_element();
-        let origin = x + n * (RAY_EPSILON * scale * 100.0);
+        let origin = Scene::offset(x, n);
         let ray = Ray { origin, dir: y - origin, time };
         let t_max = 1.0 - RAY_EPSILON;
         self.planes.iter().any(|(p, _)| p.intersect(&ray, RAY_EPSILON, t_max).is_some())

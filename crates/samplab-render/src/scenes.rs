@@ -12,7 +12,7 @@ use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::geometry::{Plane, Shape};
 use crate::light::{DiskMap, Light, LightShape};
-use crate::scene::{Material, Scene, Texture};
+use crate::scene::{Finish, Material, Scene, Texture};
 
 /// The kinds of light a built-in scene can be lit by (`--light`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -127,6 +127,12 @@ pub static BUILTINS: &[Builtin] = &[
         build: ball,
     },
     Builtin {
+        name: "all",
+        summary: "a ball, a perfect mirror and an imperfect mirror through a thin lens, two square lights (Shirley 1991, Table 4)",
+        default_light: None,
+        build: |_| all(),
+    },
+    Builtin {
         name: "defocus",
         summary: "spheres at five depths and small bright beads, thin lens (Subr & Kautz 2013, Fig. 7)",
         default_light: Some(LightKind::Disk),
@@ -167,10 +173,6 @@ pub fn builtin(name: &str, light: Option<LightKind>) -> Result<Scene> {
 
 const GREY: DVec3 = DVec3::splat(0.7);
 
-fn diffuse(c: DVec3) -> Material {
-    Material { albedo: Texture::Constant(c), emission: Texture::Constant(DVec3::ZERO) }
-}
-
 fn sphere(centre: DVec3, radius: f64) -> Shape {
     Shape::Sphere { centre, radius, velocity: DVec3::ZERO }
 }
@@ -208,7 +210,12 @@ fn look(eye: [f64; 3], target: [f64; 3], fov: f64) -> Camera {
 fn spheres(kind: LightKind) -> Scene {
     let shapes = vec![(sphere(DVec3::new(-0.55, 0.75, 0.1), 0.42), 1), (sphere(DVec3::new(0.6, 0.45, -0.25), 0.38), 1)];
     let light = overhead_light(kind, DVec3::new(0.0, 2.4, 0.0), 1.0);
-    scene(look([0.0, 2.6, 3.6], [0.0, 0.3, 0.0], 50.0), shapes, vec![diffuse(GREY), diffuse(GREY)], vec![light])
+    scene(
+        look([0.0, 2.6, 3.6], [0.0, 0.3, 0.0], 50.0),
+        shapes,
+        vec![Material::diffuse(GREY), Material::diffuse(GREY)],
+        vec![light],
+    )
 }
 
 fn sphere_box_shapes() -> Vec<(Shape, u32)> {
@@ -223,7 +230,11 @@ fn sphere_box_shapes() -> Vec<(Shape, u32)> {
 
 fn sphere_box_lit(kind: LightKind, shapes: Vec<(Shape, u32)>) -> Scene {
     let light = overhead_light(kind, DVec3::new(0.3, 2.4, 0.5), 1.0);
-    let materials = vec![diffuse(GREY), diffuse(DVec3::new(0.75, 0.6, 0.5)), diffuse(DVec3::new(0.5, 0.6, 0.75))];
+    let materials = vec![
+        Material::diffuse(GREY),
+        Material::diffuse(DVec3::new(0.75, 0.6, 0.5)),
+        Material::diffuse(DVec3::new(0.5, 0.6, 0.75)),
+    ];
     scene(look([0.4, 2.2, 3.4], [0.0, 0.35, 0.0], 50.0), shapes, materials, vec![light])
 }
 
@@ -272,7 +283,12 @@ fn grids(kind: LightKind) -> Scene {
         }
     }
     let light = overhead_light(kind, DVec3::new(0.0, 2.2, 0.0), 1.0);
-    scene(look([0.0, 3.2, 2.2], [0.0, 0.0, 0.0], 55.0), shapes, vec![diffuse(GREY), diffuse(GREY)], vec![light])
+    scene(
+        look([0.0, 3.2, 2.2], [0.0, 0.0, 0.0], 55.0),
+        shapes,
+        vec![Material::diffuse(GREY), Material::diffuse(GREY)],
+        vec![light],
+    )
 }
 
 fn occluder(kind: LightKind) -> Scene {
@@ -285,15 +301,15 @@ fn occluder(kind: LightKind) -> Scene {
     scene(
         look([0.0, 2.4, 1.6], [0.0, 0.0, 0.0], 60.0),
         vec![(square, 1)],
-        vec![diffuse(GREY), diffuse(GREY)],
+        vec![Material::diffuse(GREY), Material::diffuse(GREY)],
         vec![light],
     )
 }
 
 fn checker(angle: f64) -> Scene {
     let board = Material {
-        albedo: Texture::Constant(DVec3::ZERO),
         emission: Texture::Checker { even: DVec3::ONE, odd: DVec3::ZERO, size: 1.0, angle },
+        ..Material::diffuse(DVec3::ZERO)
     };
     let mut s = scene(look([0.0, 1.0, 0.0], [0.0, 0.6, -4.0], 60.0), vec![], vec![board], vec![]);
     s.resolution = (128, 96);
@@ -308,10 +324,32 @@ fn ball(_: LightKind) -> Scene {
     let mut s = scene(
         look([0.0, 1.3, 3.0], [0.0, 0.4, 0.0], 45.0),
         vec![(sphere(DVec3::new(0.0, 0.5, 0.0), 0.5), 1)],
-        vec![diffuse(GREY), diffuse(DVec3::new(0.8, 0.5, 0.4))],
+        vec![Material::diffuse(GREY), Material::diffuse(DVec3::new(0.8, 0.5, 0.4))],
         lights,
     );
     s.resolution = (128, 96);
+    s
+}
+
+/// Shirley's "all": the ball scene's lights and ball, with a perfect mirror behind on the
+/// left, a glossy one on the right turned toward the ball, and a lens focused on the ball.
+fn all() -> Scene {
+    let mut s = ball(LightKind::Square);
+    let upright =
+        |corner: DVec3, across: DVec3| Shape::Parallelogram { corner, u: across, v: DVec3::new(0.0, 1.4, 0.0) };
+    let mirror = Material { finish: Finish::Mirror, ..Material::diffuse(DVec3::splat(0.9)) };
+    let glossy =
+        Material { finish: Finish::Glossy { exponent: 60.0 }, ..Material::diffuse(DVec3::new(0.8, 0.75, 0.6)) };
+    s.materials.extend([mirror, glossy]);
+    let ball = s.bvh.objects()[0];
+    let objects = vec![
+        ball,
+        Object { shape: upright(DVec3::new(-1.9, 0.0, -0.9), DVec3::new(1.7, 0.0, -0.5)), material: 2 },
+        Object { shape: upright(DVec3::new(0.3, 0.0, -1.4), DVec3::new(1.5, 0.0, 0.7)), material: 3 },
+    ];
+    s.bvh = Bvh::new(objects);
+    s.camera.aperture = 0.05;
+    s.camera.focus = (DVec3::new(0.0, 0.5, 0.0) - s.camera.eye).length();
     s
 }
 
@@ -322,12 +360,17 @@ fn defocus(kind: LightKind) -> Scene {
         shapes.push((sphere(DVec3::new(-1.0 + 0.5 * k as f64, 0.3, z), 0.3), 1));
         shapes.push((sphere(DVec3::new(1.2 - 0.3 * k as f64, 0.9, z - 0.5), 0.04), 2));
     }
-    let bead = Material { albedo: Texture::Constant(DVec3::ZERO), emission: Texture::Constant(DVec3::splat(20.0)) };
+    let bead = Material { emission: Texture::Constant(DVec3::splat(20.0)), ..Material::diffuse(DVec3::ZERO) };
     let mut camera = look([0.0, 0.9, 3.0], [0.0, 0.3, -1.0], 45.0);
     camera.aperture = 0.12;
     camera.focus = (camera.target - camera.eye).length();
     let light = overhead_light(kind, DVec3::new(0.0, 2.5, 0.0), 1.0);
-    scene(camera, shapes, vec![diffuse(GREY), diffuse(DVec3::new(0.8, 0.3, 0.3)), bead], vec![light])
+    scene(
+        camera,
+        shapes,
+        vec![Material::diffuse(GREY), Material::diffuse(DVec3::new(0.8, 0.3, 0.3)), bead],
+        vec![light],
+    )
 }
 
 fn motion(kind: LightKind) -> Scene {
@@ -338,7 +381,7 @@ fn motion(kind: LightKind) -> Scene {
     scene(
         look([0.0, 1.4, 2.8], [0.0, 0.3, 0.0], 45.0),
         vec![(moving, 1), (still, 1)],
-        vec![diffuse(GREY), diffuse(GREY)],
+        vec![Material::diffuse(GREY), Material::diffuse(GREY)],
         vec![light],
     )
 }

@@ -6,6 +6,7 @@ use std::path::Path;
 use glam::DVec3;
 use samplab_render::light::LightShape;
 use samplab_render::mitsuba::{load, parse};
+use samplab_render::scene::{Finish, Texture};
 use samplab_render::{Mode, Options, render};
 
 #[test]
@@ -31,7 +32,15 @@ fn unsupported_or_malformed_scenes_name_the_element_and_line() {
     let sensor = "<sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/></sensor>";
     for (body, want) in [
         (format!("{sensor}\n<emitter type=\"envmap\"/>"), "s.xml:3: <emitter type=\"envmap\">"),
-        (format!("{sensor}\n<bsdf type=\"conductor\" id=\"m\"/>"), "s.xml:3: <bsdf type=\"conductor\">: only diffuse"),
+        (format!("{sensor}\n<bsdf type=\"plastic\" id=\"m\"/>"), "s.xml:3: <bsdf type=\"plastic\">: only diffuse"),
+        (
+            format!("{sensor}\n<bsdf type=\"conductor\" id=\"m\"><string name=\"material\" value=\"Au\"/></bsdf>"),
+            "s.xml:3: <string>: not supported in a conductor",
+        ),
+        (
+            format!("{sensor}\n<bsdf type=\"roughconductor\" id=\"m\"><float name=\"alpha\" value=\"1.5\"/></bsdf>"),
+            "s.xml:3: alpha 1.5 is outside",
+        ),
         (format!("{sensor}\n<shape type=\"rectangle\"><ref id=\"nope\"/></shape>"), "s.xml:3: no <bsdf id=\"nope\">"),
         (
             format!("{sensor}\n<shape type=\"sphere\"><float name=\"radius\" value=\"x1\"/></shape>"),
@@ -54,4 +63,22 @@ fn unsupported_or_malformed_scenes_name_the_element_and_line() {
         let e = parse(&wrap(&body), "s.xml", Path::new(".")).map(|_| ()).unwrap_err().to_string();
         assert!(e.starts_with(want), "{e}\n  wanted: {want}");
     }
+}
+
+#[test]
+fn conductors_are_mirrors_and_rough_ones_glossy() {
+    let xml = r#"<scene version="3.0.0">
+<sensor type="perspective"><float name="fov" value="40"/></sensor>
+<bsdf type="conductor" id="m"><rgb name="specular_reflectance" value="0.8"/></bsdf>
+<bsdf type="roughconductor" id="g"><float name="alpha" value="0.2"/><string name="distribution" value="beckmann"/></bsdf>
+<shape type="rectangle"><ref id="m"/></shape>
+<shape type="rectangle"><ref id="g"/></shape>
+</scene>"#;
+    let scene = parse(xml, "s.xml", Path::new(".")).unwrap();
+    let finishes: Vec<Finish> = scene.materials.iter().map(|m| m.finish).collect();
+    assert!(finishes.contains(&Finish::Mirror), "{finishes:?}");
+    // Beckmann alpha 0.2 is Phong exponent 2 / 0.04 - 2 = 48
+    assert!(finishes.iter().any(|f| matches!(f, Finish::Glossy { exponent } if (exponent - 48.0).abs() < 1e-9)));
+    assert!(scene.materials.iter().any(|m| m.albedo == Texture::Constant(DVec3::splat(0.8))));
+    assert!(scene.glossy());
 }

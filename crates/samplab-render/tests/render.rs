@@ -9,7 +9,7 @@ use samplab_render::bvh::Bvh;
 use samplab_render::camera::Camera;
 use samplab_render::geometry::Plane;
 use samplab_render::light::{DiskMap, Light, LightShape};
-use samplab_render::scene::{Material, Texture};
+use samplab_render::scene::{Finish, Material, Texture};
 use samplab_render::scenes::{LightKind, builtin};
 use samplab_render::{Image, Mode, Options, Scene, render};
 
@@ -24,7 +24,7 @@ fn ground_point(light: Light) -> Scene {
             aperture: 0.0,
             focus: 1.0,
         },
-        materials: vec![Material { albedo: Texture::Constant(DVec3::ONE), emission: Texture::Constant(DVec3::ZERO) }],
+        materials: vec![Material::diffuse(DVec3::ONE)],
         bvh: Bvh::new(vec![]),
         planes: vec![(Plane { point: DVec3::ZERO, normal: DVec3::Y }, 0)],
         lights: vec![light],
@@ -59,6 +59,38 @@ fn a_disk_light_gives_the_closed_form_irradiance() {
     let flipped =
         Light { shape: LightShape::Disk { centre: DVec3::new(0.0, height, 0.0), u: DVec3::Z, v: DVec3::X }, ..light };
     assert_eq!(pixel(&ground_point(flipped), Mode::Direct, 64), 0.0);
+}
+
+#[test]
+fn mirrors_reflect_their_albedo_of_what_they_face() {
+    // looking straight down at a mirror (reflectance 0.5) under an emitting ceiling of
+    // radiance 1: the pixel is 0.5, for a perfect mirror and, at normal incidence, for any
+    // gloss (its whole lobe reaches the ceiling)
+    for finish in [Finish::Mirror, Finish::Glossy { exponent: 20.0 }, Finish::Glossy { exponent: 1.0 }] {
+        let ceiling = Material { emission: Texture::Constant(DVec3::ONE), ..Material::diffuse(DVec3::ZERO) };
+        let scene = Scene {
+            camera: Camera {
+                eye: DVec3::new(0.0, 1.0, 0.0),
+                target: DVec3::ZERO,
+                up: DVec3::Z,
+                fov: 1.0,
+                aperture: 0.0,
+                focus: 1.0,
+            },
+            materials: vec![Material { finish, ..Material::diffuse(DVec3::splat(0.5)) }, ceiling],
+            bvh: Bvh::new(vec![]),
+            planes: vec![
+                (Plane { point: DVec3::ZERO, normal: DVec3::Y }, 0),
+                (Plane { point: DVec3::new(0.0, 2.0, 0.0), normal: -DVec3::Y }, 1),
+            ],
+            lights: vec![],
+            resolution: (1, 1),
+        };
+        let mut o = Options::new("sobol.owen", 1, 1, 1).unwrap();
+        o.spp = 64;
+        let v = f64::from(render(&scene, &o, &|_| {}).unwrap().image.rgb[0]);
+        assert!((v - 0.5).abs() < 1e-6, "{finish:?}: {v}");
+    }
 }
 
 #[test]

@@ -22,6 +22,8 @@ pub(crate) struct Setup<'a> {
     pub lens: &'a str,
     /// Strategy over the shutter interval (scenes that move only).
     pub time: &'a str,
+    /// Strategy over the glossy lobe (scenes with an imperfect mirror only).
+    pub gloss: &'a str,
 }
 
 impl<'a> Setup<'a> {
@@ -37,6 +39,7 @@ impl<'a> Setup<'a> {
             pixel: "sobol.owen",
             lens: "sobol.owen",
             time: "sobol.owen",
+            gloss: "sobol.owen",
         }
     }
 
@@ -47,6 +50,7 @@ impl<'a> Setup<'a> {
         o.pixel = build(self.pixel)?;
         o.lens = build(self.lens)?;
         o.time = build(self.time)?;
+        o.gloss = build(self.gloss)?;
         o.spp = spp;
         o.mode = self.mode;
         o.footprint = self.footprint;
@@ -63,15 +67,16 @@ impl<'a> Setup<'a> {
     }
 
     /// A converged reference: Owen-scrambled Sobol' with `n` light samples and `spp`
-    /// estimates, pixel, lens and time samples Sobol' too.
+    /// estimates, pixel, lens, time and gloss samples Sobol' too.
     pub fn reference(&self, n: usize, spp: usize, seed: Seed) -> Result<Image, Error> {
         self.converged().render("sobol.owen", n, spp, seed)
     }
 
-    /// This set-up with Owen-scrambled Sobol' over the pixel, lens and time, one pattern per
-    /// estimate: what a reference is rendered with.
+    /// This set-up with Owen-scrambled Sobol' over the pixel, lens, time and gloss, one
+    /// pattern per estimate: what a reference is rendered with.
     pub fn converged(&self) -> Setup<'a> {
-        Setup { pixel: "sobol.owen", lens: "sobol.owen", time: "sobol.owen", pattern: Pattern::PerEstimate, ..*self }
+        let sobol = "sobol.owen";
+        Setup { pixel: sobol, lens: sobol, time: sobol, gloss: sobol, pattern: Pattern::PerEstimate, ..*self }
     }
 
     /// Errors against `reference`, averaged over `seeds` renders (each field the mean).

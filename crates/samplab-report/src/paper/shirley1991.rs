@@ -1,6 +1,7 @@
-//! Shirley 1991, "Discrepancy as a quality measure for sample distributions": Tables 5,
-//! 6 and 7 (star, RMS and Stroud discrepancies of 100 sets of 16 points per strategy)
-//! and the projected discrepancy of section 3.1 and the conclusion's open question.
+//! Shirley 1991, "Discrepancy as a quality measure for sample distributions": Tables 1-4
+//! (pixel luminance errors on the checker, checker-45, ball and all images), Tables 5, 6
+//! and 7 (star, RMS and Stroud discrepancies of 100 sets of 16 points per strategy) and
+//! the projected discrepancy of section 3.1 and the conclusion's open question.
 
 use samplab::discrepancy::{self, Limits, Metric};
 use samplab::sampler;
@@ -24,8 +25,8 @@ pub fn paper() -> Paper {
             Experiment {
                 id: "pixel-errors",
                 title: "Pixel luminance errors of 16 samples per pixel",
-                source: "Tables 1, 2 and 3",
-                parameters: "128 x 96 pixels (the paper's), 16 samples per pixel from each strategy over the pixel area (and, for the ball, the same strategy over each light, dealt to the pixel samples in a random order); reference 256 (fast) or 1024 (full) Owen-scrambled Sobol' samples per pixel",
+                source: "Tables 1, 2, 3 and 4",
+                parameters: "128 x 96 pixels (the paper's), 16 samples per pixel from each strategy over the pixel area (and, for the ball and all, the same strategy over each light, the lens and the gloss, dealt to the pixel samples in random orders); reference 256 (fast) or 1024 (full) Owen-scrambled Sobol' samples per pixel",
                 run: pixel_errors,
             },
             Experiment {
@@ -43,10 +44,7 @@ pub fn paper() -> Paper {
                 run: projected,
             },
         ],
-        pending: vec![(
-            "Table 4 (the \"all\" scene)",
-            "its mirrors need specular reflection, which the soft-shadow testbed does not trace",
-        )],
+        pending: vec![],
     }
 }
 
@@ -482,9 +480,9 @@ fn projected(ctx: &Ctx) -> Result<Output, Error> {
     })
 }
 
-/// Tables 1-3: mean, SD and max of the absolute luminance error per pixel.
+/// Tables 1-4: mean, SD and max of the absolute luminance error per pixel.
 fn pixel_errors(ctx: &Ctx) -> Result<Output, Error> {
-    let scenes = [("checker", "table1"), ("checker-45", "table2"), ("ball", "table3")];
+    let scenes = [("checker", "table1"), ("checker-45", "table2"), ("ball", "table3"), ("all", "table4")];
     ctx.progress.set_length((scenes.len() * (1 + STRATEGIES.len())) as u64);
     let mut out = Output::default();
     for (scene_name, table_id) in scenes {
@@ -501,7 +499,9 @@ fn pixel_errors(ctx: &Ctx) -> Result<Output, Error> {
         let mut rows = Vec::new();
         let mut means = Vec::new();
         for (name, spec) in STRATEGIES {
-            let e = Setup { pixel: spec, ..setup }.errors(&reference, spec, 1, N, 1, ctx.seed)?;
+            // one strategy for every dimension the scene has: pixel, light, lens and gloss
+            let e =
+                Setup { pixel: spec, lens: spec, gloss: spec, ..setup }.errors(&reference, spec, 1, N, 1, ctx.seed)?;
             ctx.progress.inc(1);
             means.push((name, e.mean_abs));
             let mut row =
@@ -511,16 +511,30 @@ fn pixel_errors(ctx: &Ctx) -> Result<Output, Error> {
         }
         means.sort_by(|a, b| a.1.total_cmp(&b.1));
         let order: Vec<&str> = means.iter().map(|m| m.0).collect();
+        // the paper: separate best on three images, and on "all" behind regular and
+        // half-jittered only; read from the published table, checked against ours
+        let mean_of = |name: &str| published.row(name).expect("every strategy is in the table")[0];
+        let ahead_published: Vec<&str> =
+            STRATEGIES.iter().map(|s| s.0).filter(|&name| mean_of(name) < mean_of("separate")).collect();
+        let ahead_ours = &order[..order.iter().position(|&name| name == "separate").expect("listed")];
         out.claims.push(Claim {
-            id: format!("{scene_name}-separate-best"),
-            statement: format!("{scene_name}: separate (N-rooks) sampling has the lowest average absolute error"),
-            published: format!("{}: separate first", published.source),
+            id: format!("{scene_name}-separate-rank"),
+            statement: if ahead_published.is_empty() {
+                format!("{scene_name}: separate (N-rooks) sampling has the lowest average absolute error")
+            } else {
+                format!("{scene_name}: separate (N-rooks) sampling is outperformed only by {}", ahead_published.join(" and "))
+            },
+            published: format!("{}: ranking by ave|E| {}", published.source, {
+                let mut p: Vec<&str> = STRATEGIES.iter().map(|s| s.0).collect();
+                p.sort_by(|a, b| mean_of(a).total_cmp(&mean_of(b)));
+                p.join(" < ")
+            }),
             ours: format!("ranking by mean |E|: {}", order.join(" < ")),
             theory: String::new(),
-            verdict: if order[0] == "separate" {
+            verdict: if ahead_ours.iter().all(|name| ahead_published.contains(name)) {
                 Verdict::Reproduced
             } else {
-                Verdict::DiffersBecause(format!("{} ranks first here; our scenes are re-creations (the paper's camera, light and ball positions are not given), and one image per strategy makes close ranks noisy", order[0]))
+                Verdict::DiffersBecause(format!("{} rank ahead of separate here; our scenes are re-creations (the paper's camera, light and ball positions are not given), and one image per strategy makes close ranks noisy", ahead_ours.join(" and ")))
             },
         });
         out.tables.push(Table {
@@ -540,6 +554,6 @@ fn pixel_errors(ctx: &Ctx) -> Result<Output, Error> {
             rows,
         });
     }
-    out.notes.push("The checkerboards are self-luminous (black 0, white 1) so the error is the antialiasing error alone; the ball is lit by two square lights (direct lighting).".into());
+    out.notes.push("The checkerboards are self-luminous (black 0, white 1) so the error is the antialiasing error alone; the ball is lit by two square lights (direct lighting); \"all\" adds a perfect mirror, a glossy mirror (Phong exponent 60) and a thin lens focused on the ball, every dimension sampled by the strategy (the lens and gloss samples dealt to the pixel samples in random orders).".into());
     Ok(out)
 }
