@@ -4,6 +4,8 @@
 //! faces pass through points or the cube's faces; degenerate closed boxes (zero width,
 //! points on them) count, as limits of half-open boxes.
 
+use rayon::prelude::*;
+
 use super::star::critical;
 
 /// 1D closed form: max_i (i/N - x_(i)) + max_i (x_(i) - (i-1)/N) over sorted x
@@ -73,7 +75,7 @@ pub fn extreme_2d_naive(points: &[f64]) -> f64 {
 /// Exact 2D extreme discrepancy in O(n^3): for every left side, sweep the right side
 /// through the points in x order, keeping the slab's y values sorted; for each slab the
 /// best lower and upper sides come from one linear scan (a running minimum for open
-/// boxes, a running maximum for closed ones).
+/// boxes, a running maximum for closed ones). The left sides run in parallel.
 pub fn extreme_2d(points: &[f64]) -> f64 {
     let n = points.len() / 2;
     let inv = 1.0 / n as f64;
@@ -82,42 +84,49 @@ pub fn extreme_2d(points: &[f64]) -> f64 {
     let mut lefts: Vec<f64> = vec![0.0];
     lefts.extend(pts.iter().map(|p| p.0));
     lefts.dedup();
-    let mut worst: f64 = 0.0;
-    let mut slab: Vec<f64> = Vec::with_capacity(n);
-    for &c in &lefts {
-        // open slabs (c, a): points with x > c; closed slabs [c, a]: points with x >= c
-        let first_open = pts.partition_point(|p| p.0 <= c);
-        let first_closed = pts.partition_point(|p| p.0 < c);
-        // open boxes: the right side a runs over the x values above c, then 1
-        slab.clear();
-        let mut i = first_open;
-        loop {
-            let a = if i < n { pts[i].0 } else { 1.0 };
-            worst = worst.max(open_slab(&slab, a - c, inv));
-            if i >= n {
-                break;
-            }
-            while i < n && pts[i].0 == a {
-                insert_sorted(&mut slab, pts[i].1);
-                i += 1;
-            }
-            if i >= n && a == 1.0 {
-                break;
-            }
-        }
-        // closed boxes: the right side a runs over the x values at or above c
-        slab.clear();
-        let mut i = first_closed;
-        while i < n {
-            let a = pts[i].0;
-            while i < n && pts[i].0 == a {
-                insert_sorted(&mut slab, pts[i].1);
-                i += 1;
-            }
-            worst = worst.max(closed_slab(&slab, a - c, inv));
-        }
-    }
-    worst
+    // the left sides are independent: in parallel, each with its own slab (a maximum, so
+    // the same value whatever the thread count)
+    lefts
+        .par_iter()
+        .map_init(
+            || Vec::with_capacity(n),
+            |slab: &mut Vec<f64>, &c| {
+                let mut worst: f64 = 0.0;
+                // open slabs (c, a): points with x > c; closed slabs [c, a]: points with x >= c
+                let first_open = pts.partition_point(|p| p.0 <= c);
+                let first_closed = pts.partition_point(|p| p.0 < c);
+                // open boxes: the right side a runs over the x values above c, then 1
+                slab.clear();
+                let mut i = first_open;
+                loop {
+                    let a = if i < n { pts[i].0 } else { 1.0 };
+                    worst = worst.max(open_slab(slab, a - c, inv));
+                    if i >= n {
+                        break;
+                    }
+                    while i < n && pts[i].0 == a {
+                        insert_sorted(slab, pts[i].1);
+                        i += 1;
+                    }
+                    if i >= n && a == 1.0 {
+                        break;
+                    }
+                }
+                // closed boxes: the right side a runs over the x values at or above c
+                slab.clear();
+                let mut i = first_closed;
+                while i < n {
+                    let a = pts[i].0;
+                    while i < n && pts[i].0 == a {
+                        insert_sorted(slab, pts[i].1);
+                        i += 1;
+                    }
+                    worst = worst.max(closed_slab(slab, a - c, inv));
+                }
+                worst
+            },
+        )
+        .reduce(|| 0.0, f64::max)
 }
 
 fn insert_sorted(v: &mut Vec<f64>, y: f64) {
