@@ -9,17 +9,22 @@ use samplab_render::light::DiskMap;
 use samplab_render::scenes::{self, LightKind};
 use samplab_render::{Footprint, Image, Mode, Options, Pattern, Scene, render};
 
+/// The examples, and the built-in scenes with what each shows (from the scene registry).
+fn after_help() -> String {
+    let scenes: String = scenes::BUILTINS.iter().map(|b| format!("  {:<16}{}\n", b.name, b.summary)).collect();
+    format!(
+        "Examples:\n  samplab render spheres --light disk --sampler jitter.uniform -n 25 --disk-map reject -o uj.exr \
+         --reference ref.exr --error-image err.png\n  samplab render grids --light linear --sampler jitter -n 16 -o strat.png\n  \
+         samplab render scene.xml --sampler sobol.owen -n 4 --spp 16 --pixel area --mode direct -o out.exr\n\n\
+         SCENE is a built-in scene or a Mitsuba 3 XML file. Built-in scenes:\n{scenes}\n\
+         A missing --reference file is rendered (sobol.owen, --reference-samples light samples, 64 pixel \
+         samples in area mode) and kept for the next run."
+    )
+}
+
 /// Render a scene with a sampling strategy per pixel.
 #[derive(clap::Args)]
-#[command(
-    after_help = "Examples:\n  samplab render spheres --light disk --sampler jitter.uniform -n 25 --disk-map reject -o uj.exr \
-                     --reference ref.exr --error-image err.png\n  samplab render grids --light linear --sampler jitter -n 16 -o strat.png\n  \
-                     samplab render scene.xml --sampler sobol.owen -n 4 --spp 16 --pixel area --mode direct -o out.exr\n\n\
-                     SCENE is a built-in scene or a Mitsuba 3 XML file. Built-in scenes:\n  \
-                     spheres, sphere-box, grids, occluder, checker, checker-45, ball, defocus, motion, sphere-box-mesh\n\
-                     A missing --reference file is rendered (sobol.owen, --reference-samples light samples, 64 pixel \
-                     samples in area mode) and kept for the next run."
-)]
+#[command(after_help = after_help())]
 pub struct Args {
     /// A built-in scene name or a Mitsuba 3 .xml file
     scene: String,

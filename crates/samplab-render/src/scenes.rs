@@ -128,7 +128,7 @@ pub static BUILTINS: &[Builtin] = &[
     },
     Builtin {
         name: "all",
-        summary: "a ball, a perfect mirror and an imperfect mirror through a thin lens, two square lights (Shirley 1991, Table 4)",
+        summary: "a ball, a mirror and a glossy mirror, thin lens, two lights (Shirley 1991, Table 4)",
         default_light: None,
         build: |_| all(),
     },
