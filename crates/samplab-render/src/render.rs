@@ -192,12 +192,38 @@ struct Prepared {
 #[derive(Default)]
 struct Scratch {
     pixel: Vec<f64>,
-    lens: Vec<f64>,
-    time: Vec<f64>,
-    gloss: Vec<f64>,
+    lens: Dealt,
+    time: Dealt,
+    gloss: Dealt,
     light: Vec<f64>,
-    /// Per light: the pixel's whole pattern and the order it is dealt in (per-pixel patterns).
-    shared: Vec<(Vec<f64>, Vec<u32>)>,
+    /// Per light: the pixel's whole pattern (per-pixel patterns).
+    shared: Vec<Dealt>,
+}
+
+/// A pixel's pattern of `spp` blocks and the random order they are dealt to its estimates
+/// in, so that strategies built alike for different dimensions (Sobol' over the pixel and
+/// over the lens, say) are not correlated ("padding").
+#[derive(Default)]
+struct Dealt {
+    points: Vec<f64>,
+    order: Vec<u32>,
+}
+
+impl Dealt {
+    /// Fill with `spp` blocks of `per_block` points of `dims` coordinates from `sampler`
+    /// (one pattern, seeded by `key`), and draw the order from `order_key`.
+    fn deal(&mut self, sampler: &dyn Sampler, spp: usize, per_block: usize, dims: usize, key: Seed, order_key: Seed) {
+        self.points.resize(spp * per_block * dims, 0.0);
+        // cannot fail: Options::check accepted these counts
+        sampler.fill(spp * per_block, dims, key, &mut self.points).expect("counts checked");
+        self.order = permutation(&mut order_key.rng(), spp);
+    }
+
+    /// Estimate e's block of `len` values.
+    fn block(&self, e: usize, len: usize) -> &[f64] {
+        let b = self.order[e] as usize * len;
+        &self.points[b..b + len]
+    }
 }
 
 /// Render `scene`; `progress` is called with the number of rows finished so far.
@@ -299,42 +325,28 @@ struct Pixel {
 fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Scratch) -> (DVec3, f64, (u64, u64)) {
     let Setup { lights, frame, keys, moving, glossy } = *setup;
     let spp = o.spp;
-    // The fills cannot fail: Options::check accepted these counts.
-    let fill = |sampler: &dyn Sampler, dims: usize, key: Seed, buf: &mut Vec<f64>| {
-        buf.resize(spp * dims, 0.0);
-        sampler.fill(spp, dims, key.derive(px.index), buf).expect("counts checked");
-    };
     if o.footprint == Footprint::Area {
-        fill(o.pixel.as_ref(), 2, keys.pixel, &mut s.pixel);
+        s.pixel.resize(spp * 2, 0.0);
+        // cannot fail: Options::check accepted these counts
+        o.pixel.fill(spp, 2, keys.pixel.derive(px.index), &mut s.pixel).expect("counts checked");
     }
-    // the lens and time patterns are dealt to the estimates in an order of their own, so
-    // that two strategies built alike (Sobol' over the pixel and over the lens, say) are not
-    // correlated across dimensions ("padding")
-    let deal = |what: &str| permutation(&mut keys.deal.derive(px.index).derive_str(what).rng(), spp);
+    let deal_key = |what: &str| keys.deal.derive(px.index).derive_str(what);
     let lens = scene.camera.aperture > 0.0;
-    let mut lens_order = Vec::new();
     if lens {
-        fill(o.lens.as_ref(), 2, keys.lens, &mut s.lens);
-        lens_order = deal("lens");
+        s.lens.deal(o.lens.as_ref(), spp, 1, 2, keys.lens.derive(px.index), deal_key("lens"));
     }
-    let mut time_order = Vec::new();
     if moving {
-        fill(o.time.as_ref(), 1, keys.time, &mut s.time);
-        time_order = deal("time");
+        s.time.deal(o.time.as_ref(), spp, 1, 1, keys.time.derive(px.index), deal_key("time"));
     }
-    let mut gloss_order = Vec::new();
     if glossy {
-        fill(o.gloss.as_ref(), 2, keys.gloss, &mut s.gloss);
-        gloss_order = deal("gloss");
+        s.gloss.deal(o.gloss.as_ref(), spp, 1, 2, keys.gloss.derive(px.index), deal_key("gloss"));
     }
     if o.pattern == Pattern::PerPixel {
         s.shared.resize_with(lights.len(), Default::default);
         for (l, p) in lights.iter().enumerate() {
-            let (pattern, order) = &mut s.shared[l];
-            pattern.resize(spp * o.n * p.light.dims(), 0.0);
             let key = keys.light.derive(px.index).derive(l as u64);
-            o.light.fill(spp * o.n, p.light.dims(), key, pattern).expect("counts checked");
-            *order = permutation(&mut keys.deal.derive(px.index).derive(l as u64).rng(), spp);
+            let order_key = keys.deal.derive(px.index).derive(l as u64);
+            s.shared[l].deal(o.light.as_ref(), spp, o.n, p.light.dims(), key, order_key);
         }
     }
     let mut radiance = DVec3::ZERO;
@@ -343,20 +355,20 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
     for e in 0..spp {
         let (dx, dy) = if o.footprint == Footprint::Area { (s.pixel[2 * e], s.pixel[2 * e + 1]) } else { (0.5, 0.5) };
         let lens_uv = if lens {
-            let i = lens_order[e] as usize;
-            [s.lens[2 * i], s.lens[2 * i + 1]]
+            let u = s.lens.block(e, 2);
+            [u[0], u[1]]
         } else {
             [0.5, 0.5]
         };
-        let time = if moving { s.time[time_order[e] as usize] } else { 0.0 };
+        let time = if moving { s.time.block(e, 1)[0] } else { 0.0 };
         let mut ray =
             frame.ray((px.col as f64 + dx) / o.width as f64, (px.row as f64 + dy) / o.height as f64, lens_uv, time);
         // follow mirror and glossy reflections to the first diffuse surface, with the
         // strategy's gloss sample at the first glossy bounce and independent ones after
         let mut throughput = DVec3::ONE;
         let mut gloss = if glossy {
-            let i = gloss_order[e] as usize;
-            Some([s.gloss[2 * i], s.gloss[2 * i + 1]])
+            let u = s.gloss.block(e, 2);
+            Some([u[0], u[1]])
         } else {
             None
         };
@@ -376,17 +388,16 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
                     (position, normal, albedo, finish)
                 }
             };
-            let mirror = ray.dir - 2.0 * ray.dir.dot(normal) * normal;
             let dir = match finish {
                 Finish::Diffuse => break Some((position, normal, throughput * albedo)),
                 _ if bounces == MAX_BOUNCES => break None,
-                Finish::Mirror => mirror,
+                Finish::Mirror => ray.dir.reflect(normal),
                 Finish::Glossy { exponent } => {
                     let u = gloss.take().unwrap_or_else(|| {
                         let rng = later.get_or_insert_with(|| keys.gloss.derive(px.index).derive(e as u64).rng());
                         [uniform(rng), uniform(rng)]
                     });
-                    let d = phong_lobe(mirror.normalize(), exponent, u);
+                    let d = phong_lobe(ray.dir.reflect(normal).normalize(), exponent, u);
                     if d.dot(normal) <= 0.0 {
                         break None;
                     }
@@ -409,11 +420,7 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
                     o.light.fill(o.n, dims, key.derive(e as u64), &mut s.light).expect("counts checked");
                     &s.light
                 }
-                Pattern::PerPixel => {
-                    let (pattern, order) = &s.shared[l];
-                    let b = order[e] as usize * o.n * dims;
-                    &pattern[b..b + o.n * dims]
-                }
+                Pattern::PerPixel => s.shared[l].block(e, o.n * dims),
             };
             let unoccluded = match o.mode {
                 Mode::Visibility => {
