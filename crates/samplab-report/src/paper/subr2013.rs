@@ -576,39 +576,31 @@ fn jitter_theory(ctx: &Ctx) -> Result<Output, Error> {
     // Fig. 11: box against Gaussian, exact and second order, for equal parameters
     let ws: Vec<f64> = (0..=200).map(|i| 3.0 * k * i as f64 / 200.0).collect();
     let mut series = Vec::new();
-    for (p, key) in [(0.1, "jitter.gaussian:sigma=0.1"), (0.25, "jitter.gaussian:sigma=0.25")] {
-        series.push(Series {
-            colour_key: Some(key.into()),
-            ..Series::line(
-                format!("Gaussian sigma = {p}"),
-                ws.iter().map(|&w| (w / k, theory::gaussian_ratio(w, p / k))).collect(),
-            )
-        });
-        series.push(Series {
-            dashed: true,
-            colour_key: Some(key.into()),
-            ..Series::line(
-                format!("Gaussian sigma = {p}, eq. 8"),
-                ws.iter().map(|&w| (w / k, theory::gaussian_ratio_eq8(w, p / k))).collect(),
-            )
-        });
-    }
-    for (p, key) in [(0.1, "jitter.box"), (0.25, "cmj")] {
-        series.push(Series {
-            colour_key: Some(key.into()),
-            ..Series::line(
-                format!("box half-width {p}"),
-                ws.iter().map(|&w| (w / k, theory::box_ratio(w, p / k))).collect(),
-            )
-        });
-        series.push(Series {
-            dashed: true,
-            colour_key: Some(key.into()),
-            ..Series::line(
-                format!("box half-width {p}, eq. 10"),
-                ws.iter().map(|&w| (w / k, theory::box_ratio_eq10(w, p / k))).collect(),
-            )
-        });
+    // each family exactly (solid) and to second order (dashed), in the colour of its strategy
+    // (label prefix, second-order equation, exact ratio, second-order ratio, parameters)
+    type Family<'a> = (&'a str, &'a str, fn(f64, f64) -> f64, fn(f64, f64) -> f64, [(f64, &'a str); 2]);
+    let families: [Family; 2] = [
+        (
+            "Gaussian sigma = ",
+            "eq. 8",
+            theory::gaussian_ratio,
+            theory::gaussian_ratio_eq8,
+            [(0.1, "jitter.gaussian:sigma=0.1"), (0.25, "jitter.gaussian:sigma=0.25")],
+        ),
+        ("box half-width ", "eq. 10", theory::box_ratio, theory::box_ratio_eq10, [(0.1, "jitter.box"), (0.25, "cmj")]),
+    ];
+    for (name, eq, exact, second_order, cases) in families {
+        for (p, key) in cases {
+            for (dashed, label, ratio) in
+                [(false, format!("{name}{p}"), exact), (true, format!("{name}{p}, {eq}"), second_order)]
+            {
+                series.push(Series {
+                    dashed,
+                    colour_key: Some(key.into()),
+                    ..Series::line(label, ws.iter().map(|&w| (w / k, ratio(w, p / k))).collect())
+                });
+            }
+        }
     }
     let chart = LineChart {
         title: "Fig. 11: ratio of expected spectra, box against Gaussian jitter".into(),
