@@ -44,7 +44,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     if a.max_work.is_some_and(|w| w.is_nan() || w <= 0.0) {
         bail!("--max-work must be a positive number");
     }
-    let crate::sets::Loaded { sets, source, .. } = a.source.load(file.as_deref(), 1)?;
+    let crate::sets::Loaded { sets, source, .. } = a.source.load(file.as_deref(), 1, &(0.0..=1.0))?;
     let bar = crate::generate::progress((sets.len() * metrics.len()) as u64, "evaluations");
     // values[m][k]: metric m on set k, computed in parallel, deterministic
     let values: Vec<Vec<f64>> = metrics

@@ -1,5 +1,6 @@
 //! The point sets a measuring command works on: a file, or fresh realizations of a sampler.
 
+use std::ops::RangeInclusive;
 use std::path::Path;
 
 use anyhow::bail;
@@ -42,8 +43,14 @@ impl SetSource {
         self.sampler.is_some()
     }
 
-    /// Read `file` or generate the sets (`default_sets` realizations unless --sets).
-    pub fn load(&self, file: Option<&Path>, default_sets: usize) -> anyhow::Result<Loaded> {
+    /// Read `file` or generate the sets (`default_sets` realizations unless --sets); a file
+    /// with a coordinate outside `domain` is refused with its line.
+    pub fn load(
+        &self,
+        file: Option<&Path>,
+        default_sets: usize,
+        domain: &RangeInclusive<f64>,
+    ) -> anyhow::Result<Loaded> {
         match (&self.sampler, file) {
             (Some(spec), None) => {
                 let n = self.n.ok_or_else(|| anyhow::anyhow!("--sampler needs -n"))?;
@@ -63,7 +70,8 @@ impl SetSource {
             }
             (None, Some(path)) => {
                 let format = self.format.as_deref().map(Format::from_name).transpose()?;
-                Ok(Loaded { sets: io::read(path, format)?, source: path.display().to_string(), spec: None })
+                let sets = io::read_within(path, format, domain)?;
+                Ok(Loaded { sets, source: path.display().to_string(), spec: None })
             }
             (None, None) => bail!("give a point-set file or --sampler SPEC -n N"),
             (Some(_), Some(_)) => bail!("give either a file or --sampler, not both"),

@@ -46,7 +46,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
             bail!("--stat: unknown statistic '{s}' (periodogram, expected, variance)");
         }
     }
-    let crate::sets::Loaded { sets, source, spec } = a.source.load(a.file.as_deref(), 20)?;
+    let crate::sets::Loaded { sets, source, spec } = a.source.load(a.file.as_deref(), 20, &samplab::io::ANY)?;
     let method = if a.direct { spectrum::Method::Direct } else { spectrum::Method::Fast { tol: a.tolerance } };
     let bar = crate::generate::progress(sets.len() as u64, "spectra");
     let st = spectrum::statistics_with_progress(&sets, a.res, method, &|| bar.inc(1))?;

@@ -178,7 +178,7 @@ fn discrepancy_bad_input() {
     let dir = temp("discbad");
     let f = dir.join("p.txt");
     std::fs::write(&f, "0.1 0.2\n0.3 1.5\n").unwrap();
-    assert_bad_input(&["discrepancy", "star", f.to_str().unwrap()], &["point 1 coordinate 1 is 1.5"]);
+    assert_bad_input(&["discrepancy", "star", f.to_str().unwrap()], &["p.txt:2: coordinate 2 is 1.5, outside [0, 1]"]);
     std::fs::write(&f, "0.1 0.2\n0.3 nan\n").unwrap();
     assert_bad_input(&["discrepancy", "star", f.to_str().unwrap()], &["p.txt:2", "not finite"]);
     std::fs::write(&f, "0.1 0.2\n0.3\n").unwrap();

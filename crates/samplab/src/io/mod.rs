@@ -15,6 +15,7 @@
 //! a failed or interrupted write never leaves a partial file.
 
 use std::io::Write as _;
+use std::ops::RangeInclusive;
 use std::path::Path;
 
 use crate::error::{Error, Result, closest_names};
@@ -176,9 +177,21 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
 /// element) and what is wrong there: a non-number, a non-finite value, a ragged line,
 /// mixed dimensions, an empty file.
 pub fn read(path: &Path, format: Option<Format>) -> Result<Vec<PointSet>> {
+    read_within(path, format, &ANY)
+}
+
+/// Any finite coordinate: the domain of [`read`].
+pub const ANY: RangeInclusive<f64> = f64::MIN..=f64::MAX;
+
+/// [`read`], refusing any coordinate outside `domain` (for example [0, 1] for a
+/// discrepancy) with the file and line (or element) where it is.
+///
+/// # Errors
+/// As [`read`], and a coordinate outside `domain`.
+pub fn read_within(path: &Path, format: Option<Format>, domain: &RangeInclusive<f64>) -> Result<Vec<PointSet>> {
     let name = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|e| Error::Io { path: name.clone(), reason: e.to_string() })?;
-    decode(&bytes, format.unwrap_or_else(|| Format::from_path(path)), &name)
+    decode_within(&bytes, format.unwrap_or_else(|| Format::from_path(path)), &name, domain)
 }
 
 /// Decode point sets from `bytes`; `name` is used in error messages.
@@ -186,10 +199,25 @@ pub fn read(path: &Path, format: Option<Format>) -> Result<Vec<PointSet>> {
 /// # Errors
 /// As [`read`].
 pub fn decode(bytes: &[u8], format: Format, name: &str) -> Result<Vec<PointSet>> {
+    decode_within(bytes, format, name, &ANY)
+}
+
+/// Why coordinate `x` may not be read, if it may not: not finite, or outside `domain`.
+fn refuse(x: f64, domain: &RangeInclusive<f64>) -> Option<String> {
+    if !x.is_finite() {
+        Some("is not finite".into())
+    } else if !domain.contains(&x) {
+        Some(format!("is {x}, outside [{}, {}]", domain.start(), domain.end()))
+    } else {
+        None
+    }
+}
+
+fn decode_within(bytes: &[u8], format: Format, name: &str, domain: &RangeInclusive<f64>) -> Result<Vec<PointSet>> {
     let sets = match format {
-        Format::Text | Format::Csv => decode_delimited(bytes, format == Format::Csv, name)?,
-        Format::Npy => decode_npy(bytes, name)?,
-        Format::Json => decode_json(bytes, name)?,
+        Format::Text | Format::Csv => decode_delimited(bytes, format == Format::Csv, name, domain)?,
+        Format::Npy => decode_npy(bytes, name, domain)?,
+        Format::Json => decode_json(bytes, name, domain)?,
     };
     if sets.is_empty() || sets.iter().all(PointSet::is_empty) {
         return Err(Error::Parse { location: name.into(), reason: "no points".into() });
@@ -197,7 +225,7 @@ pub fn decode(bytes: &[u8], format: Format, name: &str) -> Result<Vec<PointSet>>
     Ok(sets)
 }
 
-fn decode_delimited(bytes: &[u8], csv: bool, name: &str) -> Result<Vec<PointSet>> {
+fn decode_delimited(bytes: &[u8], csv: bool, name: &str, domain: &RangeInclusive<f64>) -> Result<Vec<PointSet>> {
     let text = std::str::from_utf8(bytes)
         .map_err(|e| Error::Parse { location: name.into(), reason: format!("not UTF-8 text ({e})") })?;
     let at = |line: usize, reason: String| Error::Parse { location: format!("{name}:{line}"), reason };
@@ -246,8 +274,8 @@ fn decode_delimited(bytes: &[u8], csv: bool, name: &str) -> Result<Vec<PointSet>
         }
         for (d, f) in coords.iter().enumerate() {
             let x: f64 = f.parse().map_err(|_| at(lineno, format!("coordinate {} is not a number: '{f}'", d + 1)))?;
-            if !x.is_finite() {
-                return Err(at(lineno, format!("coordinate {} is not finite: '{f}'", d + 1)));
+            if let Some(why) = refuse(x, domain) {
+                return Err(at(lineno, format!("coordinate {} {why}: '{f}'", d + 1)));
             }
             current.push(x);
         }
@@ -256,7 +284,7 @@ fn decode_delimited(bytes: &[u8], csv: bool, name: &str) -> Result<Vec<PointSet>
     Ok(sets)
 }
 
-fn decode_npy(bytes: &[u8], name: &str) -> Result<Vec<PointSet>> {
+fn decode_npy(bytes: &[u8], name: &str, domain: &RangeInclusive<f64>) -> Result<Vec<PointSet>> {
     let bad = |reason: String| Error::Parse { location: name.into(), reason };
     if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
         return Err(bad("not an .npy file (bad magic)".into()));
@@ -301,18 +329,13 @@ fn decode_npy(bytes: &[u8], name: &str) -> Result<Vec<PointSet>> {
         return Err(bad(format!("shape ({inner}) needs {} data bytes, file has {}", count * 8, body.len())));
     }
     let data: Vec<f64> = body.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect();
-    if let Some(i) = data.iter().position(|x| !x.is_finite()) {
-        return Err(bad(format!(
-            "element {i} (set {}, point {}, coordinate {}) is not finite",
-            i / (n * d),
-            i / d % n,
-            i % d
-        )));
+    if let Some((i, why)) = data.iter().enumerate().find_map(|(i, &x)| refuse(x, domain).map(|why| (i, why))) {
+        return Err(bad(format!("element {i} (set {}, point {}, coordinate {}) {why}", i / (n * d), i / d % n, i % d)));
     }
     Ok(data.chunks_exact((n * d).max(1)).map(|c| PointSet::from_raw(d, c.to_vec())).collect())
 }
 
-fn decode_json(bytes: &[u8], name: &str) -> Result<Vec<PointSet>> {
+fn decode_json(bytes: &[u8], name: &str, domain: &RangeInclusive<f64>) -> Result<Vec<PointSet>> {
     let bad = |reason: String| Error::Parse { location: name.into(), reason };
     let v: serde_json::Value = serde_json::from_slice(bytes)
         .map_err(|e| bad(format!("invalid JSON at line {}, column {}: {e}", e.line(), e.column())))?;
@@ -343,10 +366,10 @@ fn decode_json(bytes: &[u8], name: &str) -> Result<Vec<PointSet>> {
                 )));
             }
             for (d, c) in coords.iter().enumerate() {
-                let x = c
-                    .as_f64()
-                    .filter(|x| x.is_finite())
-                    .ok_or_else(|| bad(format!("sets[{k}][{i}][{d}] is not a finite number: {c}")))?;
+                let x = c.as_f64().ok_or_else(|| bad(format!("sets[{k}][{i}][{d}] is not a number: {c}")))?;
+                if let Some(why) = refuse(x, domain) {
+                    return Err(bad(format!("sets[{k}][{i}][{d}] {why}")));
+                }
                 data.push(x);
             }
         }
@@ -394,6 +417,11 @@ mod tests {
         assert!(decode(b"0.1 0.2\n#\n0.3 0.4 0.5\n", Format::Text, "m").is_err());
         let csv = decode(b"x0,x1\n0.1,0.2\n0.3,inf\n", Format::Csv, "a.csv").unwrap_err().to_string();
         assert_eq!(csv, "a.csv:3: coordinate 2 is not finite: 'inf'");
+        let within = |t: &[u8], f| decode_within(t, f, "p", &(0.0..=1.0)).unwrap_err().to_string();
+        assert_eq!(within(b"0.1 0.2\n\n0.3 1.5\n", Format::Text), "p:3: coordinate 2 is 1.5, outside [0, 1]: '1.5'");
+        assert_eq!(within(br#"[[0.5, -0.25]]"#, Format::Json), "p: sets[0][0][1] is -0.25, outside [0, 1]");
+        let npy = encode(&[PointSet::new(2, vec![0.5, 0.5, 2.0, 0.5]).unwrap()], Format::Npy, &[]).unwrap();
+        assert_eq!(within(&npy, Format::Npy), "p: element 2 (set 0, point 1, coordinate 0) is 2, outside [0, 1]");
     }
 
     #[test]
