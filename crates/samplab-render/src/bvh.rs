@@ -1,11 +1,11 @@
 //! A bounding volume hierarchy over the scene's shapes: binned surface-area-heuristic build
 //! (Wald 2007, "On fast construction of SAH-based bounding volume hierarchies"), flattened
-//! depth-first, traversed near child first for the closest hit and in any order for
-//! shadow rays.
+//! depth-first, traced by packets of rays (crate::packet).
 
 use glam::DVec3;
 
-use crate::geometry::{Aabb, Ray, Shape};
+use crate::geometry::{Aabb, Shape};
+use crate::packet::Packet;
 
 /// A shape and the index of its material.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -69,79 +69,55 @@ impl Bvh {
         self.nodes.first().map_or(Aabb::EMPTY, |n| n.bounds)
     }
 
-    /// The ray parameter of the nearest hit in (t_min, t_max) and the object hit.
-    pub fn closest(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, &Object)> {
-        let mut best = None;
-        let leaf = |first: usize, count: usize, t_now: &mut f64| {
-            for o in &self.objects[first..first + count] {
-                if let Some(t) = o.shape.intersect(ray, t_min, *t_now) {
-                    *t_now = t;
-                    best = Some((t, o));
-                }
-            }
-            false
-        };
-        self.walk(ray.origin, ray.dir.recip(), leaf, t_max);
-        best
-    }
-
-    /// Whether anything blocks the ray in (t_min, t_max).
-    pub fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64) -> bool {
-        let leaf = |first: usize, count: usize, _: &mut f64| {
-            self.objects[first..first + count].iter().any(|o| o.shape.intersect(ray, t_min, t_max).is_some())
-        };
-        self.walk(ray.origin, ray.dir.recip(), leaf, t_max)
-    }
-
-    /// Visit the leaves the ray may reach, near child first; `leaf` returns true to stop
-    /// and may shrink the search distance. Returns whether a leaf stopped the walk.
-    #[inline]
-    fn walk(
-        &self,
-        origin: DVec3,
-        inv: DVec3,
-        mut leaf: impl FnMut(usize, usize, &mut f64) -> bool,
-        t_max: f64,
-    ) -> bool {
-        let Some(root) = self.nodes.first() else { return false };
-        let mut t_max = t_max;
-        if root.bounds.hit(origin, inv, t_max).is_none() {
-            return false;
+    /// Trace a packet: each ray's nearest hit in (t_min, t[i]) sets t[i] and hit[i] (the
+    /// index in [`Bvh::objects`]); with `ANY` (shadow rays) any hit sets t[i] = -inf. The
+    /// packet descends into a node when any of its rays meets the node's box, nearer child
+    /// first along the first ray's direction, and a shadow packet stops when every ray is
+    /// blocked.
+    #[inline(always)]
+    pub(crate) fn trace<const ANY: bool>(&self, p: &Packet, t_min: f64, t: &mut [f64], hit: &mut [u32]) {
+        let Some(root) = self.nodes.first() else { return };
+        if !p.meets(&root.bounds, t) {
+            return;
         }
+        let d0 = p.dir(0);
         let mut stack = [0u32; 64];
         let mut top = 0;
         let mut at = 0usize;
         loop {
             let node = &self.nodes[at];
             if node.count > 0 {
-                if leaf(node.index as usize, node.count as usize, &mut t_max) {
-                    return true;
+                let first = node.index as usize;
+                for (k, o) in self.objects[first..first + node.count as usize].iter().enumerate() {
+                    p.shape::<ANY>(&o.shape, (first + k) as u32, t_min, t, hit);
+                }
+                if ANY && t[..p.len()].iter().all(|&x| x == f64::NEG_INFINITY) {
+                    return;
                 }
             } else {
                 let (a, b) = (at + 1, node.index as usize);
-                let ta = self.nodes[a].bounds.hit(origin, inv, t_max);
-                let tb = self.nodes[b].bounds.hit(origin, inv, t_max);
-                match (ta, tb) {
-                    (Some(x), Some(y)) => {
-                        let (near, far) = if x <= y { (a, b) } else { (b, a) };
+                let (na, nb) = (&self.nodes[a].bounds, &self.nodes[b].bounds);
+                match (p.meets(na, t), p.meets(nb, t)) {
+                    (true, true) => {
+                        let (near, far) = if (nb.centre() - na.centre()).dot(d0) >= 0.0 { (a, b) } else { (b, a) };
                         stack[top] = far as u32;
                         top += 1;
                         at = near;
                         continue;
                     }
-                    (Some(_), None) => {
+                    (true, false) => {
                         at = a;
                         continue;
                     }
-                    (None, Some(_)) => {
+                    (false, true) => {
                         at = b;
                         continue;
                     }
-                    (None, None) => {}
+                    (false, false) => {}
                 }
             }
             if top == 0 {
-                return false;
+                return;
             }
             top -= 1;
             at = stack[top] as usize;
@@ -230,37 +206,77 @@ impl Build {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::Ray;
+    use crate::packet::{Rays, WIDTH, on_each_instruction_set};
     use samplab::seed::{Seed, uniform};
 
     #[test]
-    fn closest_and_occluded_agree_with_testing_every_shape() {
+    fn packets_find_what_testing_every_shape_finds() {
         let mut rng = Seed(7).rng();
         let mut r = || uniform(&mut rng);
         let objects: Vec<Object> = (0..500)
             .map(|k| {
                 let p = DVec3::new(r(), r(), r()) * 10.0;
-                let shape = if k % 2 == 0 {
-                    Shape::Sphere { centre: p, radius: 0.05 + 0.3 * r(), velocity: DVec3::ZERO }
-                } else {
-                    Shape::Triangle { p, e1: DVec3::new(r(), r(), r()) - 0.5, e2: DVec3::new(r(), r(), r()) - 0.5 }
+                let shape = match k % 4 {
+                    0 => Shape::Sphere { centre: p, radius: 0.05 + 0.3 * r(), velocity: DVec3::new(r(), 0.0, 0.0) },
+                    1 => Shape::Disk { centre: p, normal: DVec3::new(r(), r(), 0.5).normalize(), radius: 0.4 * r() },
+                    2 => Shape::Parallelogram { corner: p, u: DVec3::new(r(), 0.0, r()) - 0.5, v: DVec3::Y * r() },
+                    _ => {
+                        Shape::Triangle { p, e1: DVec3::new(r(), r(), r()) - 0.5, e2: DVec3::new(r(), r(), r()) - 0.5 }
+                    }
                 };
                 Object { shape, material: k }
             })
             .collect();
         let bvh = Bvh::new(objects.clone());
         assert_eq!(bvh.objects().len(), objects.len());
-        for _ in 0..2000 {
-            let origin = DVec3::new(r(), r(), r()) * 12.0 - 1.0;
-            let dir = DVec3::new(r(), r(), r()) - 0.5;
-            let ray = Ray { origin, dir, time: 0.0 };
-            let t_max = 5.0 + 50.0 * r();
-            let brute = objects
-                .iter()
-                .filter_map(|o| o.shape.intersect(&ray, 0.0, t_max).map(|t| (t, o.material)))
-                .min_by(|a, b| a.0.total_cmp(&b.0));
-            let fast = bvh.closest(&ray, 0.0, t_max).map(|(t, o)| (t, o.material));
-            assert_eq!(brute, fast);
-            assert_eq!(bvh.occluded(&ray, 0.0, t_max), brute.is_some());
+        // packets of 1 to WIDTH rays, some from one point in nearby directions (a pixel's
+        // rays), some unrelated, each with its own limit and time
+        for size in [1, 3, 17, WIDTH, WIDTH, WIDTH] {
+            for coherent in [true, false] {
+                let mut rays = Rays::default();
+                let mut t_max = Vec::new();
+                let (origin, dir) = (DVec3::new(r(), r(), r()) * 12.0 - 1.0, DVec3::new(r(), r(), r()) - 0.5);
+                for _ in 0..size {
+                    let ray = if coherent {
+                        Ray { origin, dir: dir + 0.05 * (DVec3::new(r(), r(), r()) - 0.5), time: r() }
+                    } else {
+                        Ray {
+                            origin: DVec3::new(r(), r(), r()) * 12.0 - 1.0,
+                            dir: DVec3::new(r(), r(), r()) - 0.5,
+                            time: r(),
+                        }
+                    };
+                    rays.push(ray);
+                    t_max.push(5.0 + 50.0 * r());
+                }
+                let runs = on_each_instruction_set(
+                    #[inline(always)]
+                    || {
+                        let p = rays.packet(0, size);
+                        let (mut t, mut hit) = ([0.0; WIDTH], [u32::MAX; WIDTH]);
+                        t[..size].copy_from_slice(&t_max);
+                        bvh.trace::<false>(&p, 0.0, &mut t, &mut hit);
+                        let mut blocked = [0.0; WIDTH];
+                        blocked[..size].copy_from_slice(&t_max);
+                        bvh.trace::<true>(&p, 0.0, &mut blocked, &mut [0; WIDTH]);
+                        (t.map(f64::to_bits), hit, blocked.map(f64::to_bits))
+                    },
+                );
+                // the same bits on every instruction set
+                assert!(runs.iter().all(|r| *r == runs[0]));
+                let (t, hit, blocked) = (runs[0].0.map(f64::from_bits), runs[0].1, runs[0].2.map(f64::from_bits));
+                for i in 0..size {
+                    let ray = rays.get(i);
+                    let brute = objects
+                        .iter()
+                        .filter_map(|o| o.shape.intersect(&ray, 0.0, t_max[i]).map(|t| (t, o.material)))
+                        .min_by(|a, b| a.0.total_cmp(&b.0));
+                    let fast = (hit[i] != u32::MAX).then(|| (t[i], bvh.objects()[hit[i] as usize].material));
+                    assert_eq!(brute, fast);
+                    assert_eq!(blocked[i] == f64::NEG_INFINITY, brute.is_some());
+                }
+            }
         }
     }
 }

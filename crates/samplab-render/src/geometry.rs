@@ -131,29 +131,21 @@ impl Shape {
     /// The ray parameter of the nearest intersection in (t_min, t_max).
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
-        let inside = |t: f64| t > t_min && t < t_max;
+        let t = self.hit(ray.origin, ray.dir, ray.time, t_min, t_max);
+        (t < t_max).then_some(t)
+    }
+
+    /// The nearest intersection in (t_min, t_max) of the ray `o + t d` at shutter `time`,
+    /// or infinity.
+    #[inline(always)]
+    pub(crate) fn hit(&self, o: DVec3, d: DVec3, time: f64, t_min: f64, t_max: f64) -> f64 {
         match *self {
             Shape::Sphere { centre, radius, velocity } => {
-                let oc = ray.origin - (centre + ray.time * velocity);
-                let a = ray.dir.length_squared();
-                let half_b = oc.dot(ray.dir);
-                let cterm = oc.length_squared() - radius * radius;
-                let disc = half_b * half_b - a * cterm;
-                if disc < 0.0 {
-                    return None;
-                }
-                // the numerically stable pair of roots
-                let q = -(half_b + disc.sqrt().copysign(half_b));
-                let (t0, t1) = (q / a, cterm / q);
-                let (t0, t1) = if t0 > t1 { (t1, t0) } else { (t0, t1) };
-                if inside(t0) { Some(t0) } else { inside(t1).then_some(t1) }
+                sphere_hit(centre, radius, velocity, o, d, time, t_min, t_max)
             }
-            Shape::Parallelogram { corner, u, v } => edge_hit(ray, corner, u, v, true).filter(|&t| inside(t)),
-            Shape::Disk { centre, normal, radius } => {
-                let (t, p) = plane_hit(ray, centre, normal, t_min, t_max)?;
-                ((p - centre).length_squared() <= radius * radius).then_some(t)
-            }
-            Shape::Triangle { p, e1, e2 } => edge_hit(ray, p, e1, e2, false).filter(|&t| inside(t)),
+            Shape::Parallelogram { corner, u, v } => edge_hit(corner, u, v, true, o, d, t_min, t_max),
+            Shape::Disk { centre, normal, radius } => disk_hit(centre, normal, radius, o, d, t_min, t_max),
+            Shape::Triangle { p, e1, e2 } => edge_hit(p, e1, e2, false, o, d, t_min, t_max),
         }
     }
 
@@ -168,36 +160,67 @@ impl Shape {
     }
 }
 
-/// The ray parameter where it meets the triangle `p + a e1 + b e2` (a, b >= 0, a + b <= 1)
-/// or, with `parallelogram`, the parallelogram (a, b in [0, 1]), by Moller & Trumbore 1997.
-#[inline]
-fn edge_hit(ray: &Ray, p: DVec3, e1: DVec3, e2: DVec3, parallelogram: bool) -> Option<f64> {
-    let pv = ray.dir.cross(e2);
-    let det = e1.dot(pv);
-    if det == 0.0 {
-        return None;
-    }
-    let inv = 1.0 / det;
-    let tv = ray.origin - p;
-    let a = tv.dot(pv) * inv;
-    if !(0.0..=1.0).contains(&a) {
-        return None;
-    }
-    let qv = tv.cross(e1);
-    let b = ray.dir.dot(qv) * inv;
-    let outside = if parallelogram { !(0.0..=1.0).contains(&b) } else { b < 0.0 || a + b > 1.0 };
-    if outside { None } else { Some(e2.dot(qv) * inv) }
+// Each shape's intersection, written once and branch-free, so that a loop over the lanes
+// of a packet (crate::packet) vectorizes: the nearest t in (t_min, t_max), or infinity.
+
+/// A sphere whose centre moves by `velocity` over the shutter interval; the numerically
+/// stable pair of roots.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn sphere_hit(c: DVec3, r: f64, v: DVec3, o: DVec3, d: DVec3, time: f64, t_min: f64, t_max: f64) -> f64 {
+    let inside = |t: f64| t > t_min && t < t_max;
+    let oc = o - (c + time * v);
+    let a = d.length_squared();
+    let half_b = oc.dot(d);
+    let cterm = oc.length_squared() - r * r;
+    let disc = half_b * half_b - a * cterm;
+    let q = -(half_b + disc.max(0.0).sqrt().copysign(half_b));
+    let (t0, t1) = (q / a, cterm / q);
+    let (t0, t1) = if t0 > t1 { (t1, t0) } else { (t0, t1) };
+    let t = if inside(t0) { t0 } else { t1 };
+    if disc >= 0.0 && inside(t) { t } else { f64::INFINITY }
 }
 
-/// The ray's crossing of the plane through `point` with normal `n`, if within (t_min, t_max).
-#[inline]
-pub(crate) fn plane_hit(ray: &Ray, point: DVec3, n: DVec3, t_min: f64, t_max: f64) -> Option<(f64, DVec3)> {
-    let denom = ray.dir.dot(n);
-    if denom == 0.0 {
-        return None;
-    }
-    let t = (point - ray.origin).dot(n) / denom;
-    (t > t_min && t < t_max).then(|| (t, ray.at(t)))
+/// The triangle `p + a e1 + b e2` (a, b >= 0, a + b <= 1) or, with `parallelogram`, the
+/// parallelogram (a, b in [0, 1]), by Moller & Trumbore 1997.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn edge_hit(
+    p: DVec3,
+    e1: DVec3,
+    e2: DVec3,
+    parallelogram: bool,
+    o: DVec3,
+    d: DVec3,
+    t_min: f64,
+    t_max: f64,
+) -> f64 {
+    let pv = d.cross(e2);
+    let det = e1.dot(pv);
+    // a ray parallel to the plane makes every coordinate NaN, which no test below accepts
+    let inv = if det == 0.0 { f64::NAN } else { 1.0 / det };
+    let tv = o - p;
+    let qv = tv.cross(e1);
+    let (t, a, b) = (e2.dot(qv) * inv, tv.dot(pv) * inv, d.dot(qv) * inv);
+    let within =
+        (0.0..=1.0).contains(&a) && if parallelogram { (0.0..=1.0).contains(&b) } else { !(b < 0.0 || a + b > 1.0) };
+    if within && t > t_min && t < t_max { t } else { f64::INFINITY }
+}
+
+/// A flat disk.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn disk_hit(c: DVec3, n: DVec3, r: f64, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> f64 {
+    let t = plane_t(o, d, c, n);
+    let within = (o + t * d - c).length_squared() <= r * r;
+    if within && t > t_min && t < t_max { t } else { f64::INFINITY }
+}
+
+/// The ray parameter where `o + t d` crosses the plane through `point` with normal `n`
+/// (NaN or infinite when the ray is parallel to it).
+#[inline(always)]
+pub(crate) fn plane_t(o: DVec3, d: DVec3, point: DVec3, n: DVec3) -> f64 {
+    (point - o).dot(n) / d.dot(n)
 }
 
 /// An infinite plane (the papers' ground planes and Shirley's checkerboard).
@@ -212,7 +235,15 @@ pub struct Plane {
 impl Plane {
     /// The ray parameter of the intersection, if in (t_min, t_max).
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
-        plane_hit(ray, self.point, self.normal, t_min, t_max).map(|(t, _)| t)
+        let t = self.hit(ray.origin, ray.dir, t_min, t_max);
+        (t < t_max).then_some(t)
+    }
+
+    /// The crossing of `o + t d` in (t_min, t_max), or infinity (branch-free).
+    #[inline(always)]
+    pub(crate) fn hit(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> f64 {
+        let t = plane_t(o, d, self.point, self.normal);
+        if t > t_min && t < t_max { t } else { f64::INFINITY }
     }
 }
 

@@ -10,7 +10,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use glam::DVec3;
 use samplab::warp::{ConcentricDisk, PolarDisk, RejectDisk, Warp};
 
-use crate::geometry::{Ray, plane_hit};
+use crate::geometry::{Ray, plane_t};
 
 /// The light's geometry.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -170,42 +170,76 @@ impl Light {
     /// either side faces away.
     #[inline]
     pub fn geometry(&self, x: DVec3, n: DVec3, y: DVec3) -> f64 {
-        let d = y - x;
-        let d2 = d.length_squared();
-        let cos_x = n.dot(d);
-        if cos_x <= 0.0 {
-            return 0.0;
-        }
-        match self.normal() {
-            None => cos_x / (d2 * d2.sqrt()),
-            Some(ny) => {
-                let cos_y = -ny.dot(d);
-                if cos_y <= 0.0 { 0.0 } else { cos_x * cos_y / (d2 * d2) }
-            }
-        }
+        geometry(self.normal(), x, n, y)
     }
 
     /// Where a camera ray meets the light (its emitting side), and the radiance seen there.
     pub fn intersect(&self, ray: &Ray, t_max: f64) -> Option<(f64, DVec3)> {
-        let (origin, u, v, disk) = match self.shape {
-            LightShape::Segment { .. } => return None,
-            LightShape::Parallelogram { corner, u, v } => (corner, u, v, false),
-            LightShape::Disk { centre, u, v } => (centre, u, v, true),
-        };
-        let n = u.cross(v);
-        if ray.dir.dot(n) >= 0.0 {
-            return None;
+        let t = self.hit(ray.origin, ray.dir, t_max);
+        (t < t_max).then(|| (t, self.radiance_at(ray.at(t))))
+    }
+
+    /// The plane the light lies in: origin, edges and whether it is a disk (None for a
+    /// segment, which a ray never meets).
+    #[inline(always)]
+    fn plane(&self) -> Option<(DVec3, DVec3, DVec3, bool)> {
+        match self.shape {
+            LightShape::Segment { .. } => None,
+            LightShape::Parallelogram { corner, u, v } => Some((corner, u, v, false)),
+            LightShape::Disk { centre, u, v } => Some((centre, u, v, true)),
         }
-        let (t, p) = plane_hit(ray, origin, n, 0.0, t_max)?;
+    }
+
+    /// The light's local coordinates of point `p` in its plane (running over [-1, 1] edge
+    /// to edge, centre to rim for a disk) and whether `p` is on the light.
+    #[inline(always)]
+    fn local(origin: DVec3, u: DVec3, v: DVec3, disk: bool, p: DVec3) -> (f64, f64, bool) {
+        let n = u.cross(v);
         let w = n / n.length_squared();
         let q = p - origin;
         let (s, r) = (w.dot(q.cross(v)), w.dot(u.cross(q)));
-        let (x, y, inside) = if disk {
+        if disk {
             (s, r, s * s + r * r <= 1.0)
         } else {
             (2.0 * s - 1.0, 2.0 * r - 1.0, (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&r))
-        };
-        inside.then(|| (t, self.radiance * self.falloff_at(x, y)))
+        }
+    }
+
+    /// Where the ray `o + t d` meets the emitting side in (0, t_max), or infinity
+    /// (branch-free, for packets).
+    #[inline(always)]
+    pub(crate) fn hit(&self, o: DVec3, d: DVec3, t_max: f64) -> f64 {
+        let Some((origin, u, v, disk)) = self.plane() else { return f64::INFINITY };
+        let n = u.cross(v);
+        let t = plane_t(o, d, origin, n);
+        let (_, _, inside) = Light::local(origin, u, v, disk, o + t * d);
+        if d.dot(n) < 0.0 && t > 0.0 && t < t_max && inside { t } else { f64::INFINITY }
+    }
+
+    /// The radiance emitted at point `p` of the light.
+    pub(crate) fn radiance_at(&self, p: DVec3) -> DVec3 {
+        let Some((origin, u, v, disk)) = self.plane() else { return self.radiance };
+        let (x, y, _) = Light::local(origin, u, v, disk, p);
+        self.radiance * self.falloff_at(x, y)
+    }
+}
+
+/// The geometric factor of [`Light::geometry`] for a light whose emitting side has the unit
+/// normal `light_normal` (None: a segment, emitting all round).
+#[inline]
+pub(crate) fn geometry(light_normal: Option<DVec3>, x: DVec3, n: DVec3, y: DVec3) -> f64 {
+    let d = y - x;
+    let d2 = d.length_squared();
+    let cos_x = n.dot(d);
+    if cos_x <= 0.0 {
+        return 0.0;
+    }
+    match light_normal {
+        None => cos_x / (d2 * d2.sqrt()),
+        Some(ny) => {
+            let cos_y = -ny.dot(d);
+            if cos_y <= 0.0 { 0.0 } else { cos_x * cos_y / (d2 * d2) }
+        }
     }
 }
 

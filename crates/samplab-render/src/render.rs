@@ -24,12 +24,13 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use glam::DVec3;
 use rayon::prelude::*;
 use samplab::sampler::Sampler;
-use samplab::seed::{Seed, permutation, uniform};
+use samplab::seed::{Rng, Seed, permutation, uniform};
 
 use crate::error::{Error, Result};
 use crate::geometry::Ray;
 use crate::image::Image;
-use crate::light::{DiskMap, Light, LightPoint};
+use crate::light::{DiskMap, Light, LightPoint, geometry};
+use crate::packet::Rays;
 use crate::scene::{Finish, Scene, Seen};
 
 /// What each light sample estimates.
@@ -184,6 +185,9 @@ impl Options {
 /// One light prepared for a render.
 struct Prepared {
     light: Light,
+    /// Its emitting side's unit normal and its area, computed once.
+    normal: Option<DVec3>,
+    area: f64,
     /// Midpoint-rule points for the unoccluded shading (visibility mode).
     quadrature: Vec<LightPoint>,
 }
@@ -198,6 +202,18 @@ struct Scratch {
     light: Vec<f64>,
     /// Per light: the pixel's whole pattern (per-pixel patterns).
     shared: Vec<Dealt>,
+    estimates: Vec<Estimate>,
+    /// The rays of the current wave, the estimates they belong to, and the next wave's;
+    /// then the shadow rays.
+    rays: Rays,
+    active: Vec<u32>,
+    next: Rays,
+    next_active: Vec<u32>,
+    seen: Vec<Seen>,
+    groups: Vec<Group>,
+    /// Per shadow ray: the light point's falloff weight and geometric factor.
+    samples: Vec<(f64, f64)>,
+    blocked: Vec<bool>,
 }
 
 /// A pixel's pattern of `spp` blocks and the random order they are dealt to its estimates
@@ -238,7 +254,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
         .iter()
         .map(|&l| {
             let light = Light { disk_map: options.disk_map.unwrap_or(l.disk_map), ..l };
-            Prepared { light, quadrature: quadrature(&light) }
+            Prepared { light, normal: light.normal(), area: light.area(), quadrature: quadrature(&light) }
         })
         .collect();
     let frame = scene.camera.frame(w, h);
@@ -321,7 +337,42 @@ struct Pixel {
     row: usize,
 }
 
-/// A pixel's radiance, its visible fraction and the (camera, shadow) rays it traced.
+/// The state of one estimate (one camera ray and its light samples) of a pixel.
+#[derive(Clone)]
+struct Estimate {
+    /// Radiance gathered so far.
+    radiance: DVec3,
+    /// Visible fraction of the lights (1 where a light is seen directly).
+    visible: f64,
+    /// Product of the specular reflectances along the path.
+    throughput: DVec3,
+    /// The strategy's gloss sample, until the first glossy bounce takes it.
+    gloss: Option<[f64; 2]>,
+    /// Independent gloss samples for later glossy bounces.
+    later: Option<Rng>,
+    /// Shutter time.
+    time: f64,
+    /// The diffuse surface the path ends on: position, normal, throughput x albedo.
+    surface: Option<(DVec3, DVec3, DVec3)>,
+}
+
+/// The shadow rays of one estimate and light, with what their sum needs.
+struct Group {
+    estimate: usize,
+    light: usize,
+    /// Unoccluded shading (visibility mode; 1 in direct mode).
+    unoccluded: f64,
+    /// Samples the disk map kept, and their summed falloff weight.
+    accepted: usize,
+    weight: f64,
+    /// Its shadow rays: `first..first + count` of the pixel's.
+    first: usize,
+    count: usize,
+}
+
+/// A pixel's radiance, its visible fraction and the (camera, shadow) rays it traced: its
+/// camera rays traced as packets, then the reflected rays of the mirror and glossy hits wave
+/// by wave, then all its shadow rays as packets.
 fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Scratch) -> (DVec3, f64, (u64, u64)) {
     let Setup { lights, frame, keys, moving, glossy } = *setup;
     let spp = o.spp;
@@ -349,9 +400,11 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
             s.shared[l].deal(o.light.as_ref(), spp, o.n, p.light.dims(), key, order_key);
         }
     }
-    let mut radiance = DVec3::ZERO;
-    let mut visible = 0.0;
     let mut rays = (0u64, 0u64);
+    // camera rays
+    s.estimates.clear();
+    s.rays.clear();
+    s.active.clear();
     for e in 0..spp {
         let (dx, dy) = if o.footprint == Footprint::Area { (s.pixel[2 * e], s.pixel[2 * e + 1]) } else { (0.5, 0.5) };
         let lens_uv = if lens {
@@ -361,56 +414,85 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
             [0.5, 0.5]
         };
         let time = if moving { s.time.block(e, 1)[0] } else { 0.0 };
-        let mut ray =
-            frame.ray((px.col as f64 + dx) / o.width as f64, (px.row as f64 + dy) / o.height as f64, lens_uv, time);
-        // follow mirror and glossy reflections to the first diffuse surface, with the
-        // strategy's gloss sample at the first glossy bounce and independent ones after
-        let mut throughput = DVec3::ONE;
-        let mut gloss = if glossy {
+        let gloss = glossy.then(|| {
             let u = s.gloss.block(e, 2);
-            Some([u[0], u[1]])
-        } else {
-            None
-        };
-        let mut later = None;
-        let mut bounces = 0;
-        let surface = loop {
-            rays.0 += 1;
-            let (position, normal, albedo, finish) = match scene.trace(&ray) {
-                Seen::Nothing => break None,
+            [u[0], u[1]]
+        });
+        s.rays.push(frame.ray(
+            (px.col as f64 + dx) / o.width as f64,
+            (px.row as f64 + dy) / o.height as f64,
+            lens_uv,
+            time,
+        ));
+        s.active.push(e as u32);
+        s.estimates.push(Estimate {
+            radiance: DVec3::ZERO,
+            visible: 0.0,
+            throughput: DVec3::ONE,
+            gloss,
+            later: None,
+            time,
+            surface: None,
+        });
+    }
+    // follow mirror and glossy reflections to the first diffuse surface, with the strategy's
+    // gloss sample at the first glossy bounce and independent ones after
+    for bounces in 0..=MAX_BOUNCES {
+        if s.rays.is_empty() {
+            break;
+        }
+        rays.0 += s.rays.len() as u64;
+        scene.trace(&s.rays, &mut s.seen);
+        s.next.clear();
+        s.next_active.clear();
+        for (k, seen) in s.seen.iter().enumerate() {
+            let e = s.active[k] as usize;
+            let est = &mut s.estimates[e];
+            let (position, normal, albedo, finish) = match *seen {
+                Seen::Nothing => continue,
                 Seen::Light(le) => {
-                    radiance += throughput * le;
-                    visible += 1.0;
-                    break None;
+                    est.radiance += est.throughput * le;
+                    est.visible += 1.0;
+                    continue;
                 }
                 Seen::Surface { position, normal, albedo, emission, finish } => {
-                    radiance += throughput * emission;
+                    est.radiance += est.throughput * emission;
                     (position, normal, albedo, finish)
                 }
             };
+            let dir = s.rays.get(k).dir;
             let dir = match finish {
-                Finish::Diffuse => break Some((position, normal, throughput * albedo)),
-                _ if bounces == MAX_BOUNCES => break None,
-                Finish::Mirror => ray.dir.reflect(normal),
+                Finish::Diffuse => {
+                    est.surface = Some((position, normal, est.throughput * albedo));
+                    continue;
+                }
+                _ if bounces == MAX_BOUNCES => continue,
+                Finish::Mirror => dir.reflect(normal),
                 Finish::Glossy { exponent } => {
-                    let u = gloss.take().unwrap_or_else(|| {
-                        let rng = later.get_or_insert_with(|| keys.gloss.derive(px.index).derive(e as u64).rng());
+                    let u = est.gloss.take().unwrap_or_else(|| {
+                        let rng = est.later.get_or_insert_with(|| keys.gloss.derive(px.index).derive(e as u64).rng());
                         [uniform(rng), uniform(rng)]
                     });
-                    let d = phong_lobe(ray.dir.reflect(normal).normalize(), exponent, u);
+                    let d = phong_lobe(dir.reflect(normal).normalize(), exponent, u);
                     if d.dot(normal) <= 0.0 {
-                        break None;
+                        continue;
                     }
                     d
                 }
             };
-            throughput *= albedo;
-            bounces += 1;
-            ray = Ray { origin: Scene::offset(position, normal), dir, time };
-        };
-        let Some((x, n, albedo)) = surface else { continue };
-        let brdf = albedo / PI;
-        let mut vis_sum = 0.0;
+            est.throughput *= albedo;
+            s.next.push(Ray { origin: Scene::offset(position, normal), dir, time: est.time });
+            s.next_active.push(e as u32);
+        }
+        std::mem::swap(&mut s.rays, &mut s.next);
+        std::mem::swap(&mut s.active, &mut s.next_active);
+    }
+    // the light samples of every estimate that ended on a diffuse surface
+    s.rays.clear();
+    s.groups.clear();
+    s.samples.clear();
+    for (e, est) in s.estimates.iter().enumerate() {
+        let Some((x, n, _)) = est.surface else { continue };
         for (l, p) in lights.iter().enumerate() {
             let dims = p.light.dims();
             let key = keys.light.derive(px.index).derive(l as u64);
@@ -424,7 +506,7 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
             };
             let unoccluded = match o.mode {
                 Mode::Visibility => {
-                    let g: f64 = p.quadrature.iter().map(|q| q.weight * p.light.geometry(x, n, q.position)).sum();
+                    let g: f64 = p.quadrature.iter().map(|q| q.weight * geometry(p.normal, x, n, q.position)).sum();
                     g / p.quadrature.len() as f64
                 }
                 Mode::Direct => 1.0,
@@ -432,34 +514,62 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
             if unoccluded <= 0.0 {
                 continue;
             }
-            let (mut accepted, mut shade, mut seen, mut weight) = (0usize, 0.0, 0.0, 0.0);
+            let mut group =
+                Group { estimate: e, light: l, unoccluded, accepted: 0, weight: 0.0, first: s.rays.len(), count: 0 };
             for u in points.chunks_exact(dims) {
                 let Some(y) = p.light.sample(u) else { continue };
-                accepted += 1;
-                weight += y.weight;
-                let g = if o.mode == Mode::Direct { p.light.geometry(x, n, y.position) } else { 1.0 };
+                group.accepted += 1;
+                group.weight += y.weight;
+                let g = if o.mode == Mode::Direct { geometry(p.normal, x, n, y.position) } else { 1.0 };
                 if g <= 0.0 {
                     continue;
                 }
-                rays.1 += 1;
-                if !scene.occluded(x, n, y.position, time) {
-                    shade += y.weight * g;
-                    seen += y.weight;
-                }
+                s.rays.push(Scene::shadow_ray(x, n, y.position, est.time));
+                s.samples.push((y.weight, g));
+                group.count += 1;
             }
-            if accepted == 0 {
-                continue;
-            }
-            let fraction = seen / weight;
-            vis_sum += fraction;
-            let integral = match o.mode {
-                Mode::Visibility => unoccluded * fraction,
-                Mode::Direct => shade / accepted as f64,
-            };
-            radiance += brdf * p.light.radiance * p.light.area() * integral;
+            s.groups.push(group);
         }
+    }
+    rays.1 += s.rays.len() as u64;
+    scene.occluded(&s.rays, &mut s.blocked);
+    // each estimate's light sums, in the order of the lights
+    let mut vis_sums = vec![0.0; 0];
+    vis_sums.resize(spp, 0.0);
+    for g in &s.groups {
+        if g.accepted == 0 {
+            continue;
+        }
+        let (mut shade, mut seen) = (0.0, 0.0);
+        for r in g.first..g.first + g.count {
+            if !s.blocked[r] {
+                let (weight, geometry) = s.samples[r];
+                shade += weight * geometry;
+                seen += weight;
+            }
+        }
+        let p = &lights[g.light];
+        let fraction = seen / g.weight;
+        vis_sums[g.estimate] += fraction;
+        let integral = match o.mode {
+            Mode::Visibility => g.unoccluded * fraction,
+            Mode::Direct => shade / g.accepted as f64,
+        };
+        let est = &mut s.estimates[g.estimate];
+        let (_, _, albedo) = est.surface.expect("groups come from surfaces");
+        est.radiance += albedo / PI * p.light.radiance * p.area * integral;
+    }
+    let mut radiance = DVec3::ZERO;
+    let mut visible = 0.0;
+    for (est, vis_sum) in s.estimates.iter().zip(&vis_sums) {
+        radiance += est.radiance;
         // a scene without lights is all "visible" (nothing to shadow)
-        visible += if lights.is_empty() { 1.0 } else { vis_sum / lights.len() as f64 };
+        visible += est.visible
+            + match est.surface {
+                None => 0.0,
+                Some(_) if lights.is_empty() => 1.0,
+                Some(_) => vis_sum / lights.len() as f64,
+            };
     }
     let inv = 1.0 / spp as f64;
     (radiance * inv, visible * inv, rays)

@@ -6,6 +6,7 @@ use crate::bvh::Bvh;
 use crate::camera::Camera;
 use crate::geometry::{Plane, Ray};
 use crate::light::Light;
+use crate::packet::{Rays, WIDTH};
 
 /// A surface colour that may vary with position.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -137,32 +138,46 @@ impl Scene {
         self.bvh.objects().len()
     }
 
-    /// What a camera ray sees first.
-    pub fn trace(&self, ray: &Ray) -> Seen {
-        let mut t_max = f64::INFINITY;
-        let mut hit: Option<(f64, DVec3, u32)> = None;
-        if let Some((t, o)) = self.bvh.closest(ray, 0.0, t_max) {
-            t_max = t;
-            hit = Some((t, o.shape.normal(ray.at(t), ray.time), o.material));
-        }
-        for (plane, material) in &self.planes {
-            if let Some(t) = plane.intersect(ray, 0.0, t_max) {
-                t_max = t;
-                hit = Some((t, plane.normal, *material));
-            }
-        }
-        let mut light_hit = None;
-        for light in &self.lights {
-            if let Some((t, radiance)) = light.intersect(ray, t_max) {
-                t_max = t;
-                light_hit = Some(radiance);
-            }
-        }
-        if let Some(radiance) = light_hit {
-            return Seen::Light(radiance);
-        }
-        let Some((t, normal, material)) = hit else { return Seen::Nothing };
+    /// What each ray sees first, in `seen` (cleared first): the BVH, the planes and the
+    /// lights traced by packets.
+    pub fn trace(&self, rays: &Rays, seen: &mut Vec<Seen>) {
+        seen.clear();
+        let planes_from = self.bvh.objects().len();
+        let lights_from = (planes_from + self.planes.len()) as u32;
+        rays.each_packet(
+            #[inline(always)]
+            |start, p| {
+                let (mut t, mut hit) = ([f64::INFINITY; WIDTH], [u32::MAX; WIDTH]);
+                self.bvh.trace::<false>(p, 0.0, &mut t, &mut hit);
+                for (k, (plane, _)) in self.planes.iter().enumerate() {
+                    let index = (planes_from + k) as u32;
+                    p.each::<false>(index, &mut t, &mut hit, |o, d, _, t_max| plane.hit(o, d, 0.0, t_max));
+                }
+                for (k, light) in self.lights.iter().enumerate() {
+                    let index = lights_from + k as u32;
+                    p.each::<false>(index, &mut t, &mut hit, |o, d, _, t_max| light.hit(o, d, t_max));
+                }
+                seen.extend((0..p.len()).map(|i| self.seen(&rays.get(start + i), t[i], hit[i])));
+            },
+        );
+    }
+
+    /// What `ray` sees given its nearest hit `t` on `hit`: a BVH object, then the planes,
+    /// then the lights; u32::MAX for nothing.
+    fn seen(&self, ray: &Ray, t: f64, hit: u32) -> Seen {
+        let objects = self.bvh.objects();
         let position = ray.at(t);
+        let (normal, material) = match hit as usize {
+            i if i < objects.len() => (objects[i].shape.normal(position, ray.time), objects[i].material),
+            i if i < objects.len() + self.planes.len() => {
+                let (plane, material) = self.planes[i - objects.len()];
+                (plane.normal, material)
+            }
+            i => match self.lights.get(i - objects.len() - self.planes.len()) {
+                Some(light) => return Seen::Light(light.radiance_at(position)),
+                None => return Seen::Nothing,
+            },
+        };
         let normal = if normal.dot(ray.dir) > 0.0 { -normal } else { normal };
         let m = &self.materials[material as usize];
         Seen::Surface {
@@ -185,13 +200,28 @@ impl Scene {
         x + n * (RAY_EPSILON * (1.0 + x.abs().max_element()) * 100.0)
     }
 
-    /// Whether the segment from surface point `x` (normal `n`) to light point `y` is blocked.
+    /// The shadow ray from surface point `x` (normal `n`) to light point `y`: it reaches
+    /// `y` at t = 1.
     #[inline]
-    pub fn occluded(&self, x: DVec3, n: DVec3, y: DVec3, time: f64) -> bool {
+    pub fn shadow_ray(x: DVec3, n: DVec3, y: DVec3, time: f64) -> Ray {
         let origin = Scene::offset(x, n);
-        let ray = Ray { origin, dir: y - origin, time };
-        let t_max = 1.0 - RAY_EPSILON;
-        self.planes.iter().any(|(p, _)| p.intersect(&ray, RAY_EPSILON, t_max).is_some())
-            || self.bvh.occluded(&ray, RAY_EPSILON, t_max)
+        Ray { origin, dir: y - origin, time }
+    }
+
+    /// Whether each shadow ray ([`Scene::shadow_ray`]) is blocked before its light point,
+    /// in `blocked` (cleared first).
+    pub fn occluded(&self, rays: &Rays, blocked: &mut Vec<bool>) {
+        blocked.clear();
+        rays.each_packet(
+            #[inline(always)]
+            |_, p| {
+                let (mut t, mut hit) = ([1.0 - RAY_EPSILON; WIDTH], [0; WIDTH]);
+                for (plane, _) in &self.planes {
+                    p.each::<true>(0, &mut t, &mut hit, |o, d, _, t_max| plane.hit(o, d, RAY_EPSILON, t_max));
+                }
+                self.bvh.trace::<true>(p, RAY_EPSILON, &mut t, &mut hit);
+                blocked.extend(t[..p.len()].iter().map(|&x| x == f64::NEG_INFINITY));
+            },
+        );
     }
 }

@@ -1,0 +1,231 @@
+//! Rays traced together (Wald et al. 2001, "Interactive rendering with coherent ray
+//! tracing"): runs of up to [`WIDTH`] rays in structure-of-arrays form, each query (a BVH
+//! box, a shape, a plane) one loop over the lanes that the compiler vectorizes. One pixel's
+//! rays leave from nearly one point in nearly one direction, so they visit nearly the same
+//! nodes, and a node or shape is tested once for all of them.
+//!
+//! The queries are compiled for AVX-512 or AVX2 where the processor has them, chosen at run
+//! time ([`wide`]); every lane does the same operations in the same order whatever the
+//! instruction set (no fused multiply-adds), so the results are the same bits.
+
+use glam::DVec3;
+
+use crate::geometry::{Aabb, Ray, Shape, disk_hit, edge_hit, sphere_hit};
+
+/// Most rays in one packet.
+pub(crate) const WIDTH: usize = 64;
+
+/// Rays in structure-of-arrays form.
+#[derive(Debug, Default, Clone)]
+pub struct Rays {
+    origin: [Vec<f64>; 3],
+    dir: [Vec<f64>; 3],
+    time: Vec<f64>,
+}
+
+impl Rays {
+    /// Remove every ray.
+    pub fn clear(&mut self) {
+        self.origin.iter_mut().chain(&mut self.dir).for_each(Vec::clear);
+        self.time.clear();
+    }
+
+    /// Append a ray.
+    pub fn push(&mut self, ray: Ray) {
+        for k in 0..3 {
+            self.origin[k].push(ray.origin[k]);
+            self.dir[k].push(ray.dir[k]);
+        }
+        self.time.push(ray.time);
+    }
+
+    /// The number of rays.
+    pub fn len(&self) -> usize {
+        self.time.len()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.time.is_empty()
+    }
+
+    /// Ray `i`.
+    pub fn get(&self, i: usize) -> Ray {
+        let at = |c: &[Vec<f64>; 3]| DVec3::new(c[0][i], c[1][i], c[2][i]);
+        Ray { origin: at(&self.origin), dir: at(&self.dir), time: self.time[i] }
+    }
+
+    /// `f(start, packet)` for the packets of rays `start..start + WIDTH` in turn, compiled
+    /// wide ([`wide`]; `f` must be `#[inline(always)]`).
+    #[inline(always)]
+    pub(crate) fn each_packet(&self, mut f: impl FnMut(usize, &Packet)) {
+        wide(
+            #[inline(always)]
+            || {
+                for start in (0..self.len()).step_by(WIDTH) {
+                    f(start, &self.packet(start, (start + WIDTH).min(self.len())));
+                }
+            },
+        );
+    }
+
+    /// The packet of rays `start..end` (at most [`WIDTH`] of them).
+    #[inline(always)]
+    pub(crate) fn packet(&self, start: usize, end: usize) -> Packet<'_> {
+        debug_assert!(end - start <= WIDTH);
+        let [ox, oy, oz] = &self.origin;
+        let [dx, dy, dz] = &self.dir;
+        let o = [&ox[start..end], &oy[start..end], &oz[start..end]];
+        let d = [&dx[start..end], &dy[start..end], &dz[start..end]];
+        let mut inv = [[0.0; WIDTH]; 3];
+        for k in 0..3 {
+            for (r, &x) in inv[k].iter_mut().zip(d[k]) {
+                *r = 1.0 / x;
+            }
+        }
+        Packet { o, d, time: &self.time[start..end], inv }
+    }
+}
+
+/// Up to [`WIDTH`] consecutive rays, with their inverse directions for the box tests.
+pub(crate) struct Packet<'a> {
+    o: [&'a [f64]; 3],
+    d: [&'a [f64]; 3],
+    time: &'a [f64],
+    inv: [[f64; WIDTH]; 3],
+}
+
+impl Packet<'_> {
+    /// The number of rays.
+    #[inline(always)]
+    pub(crate) fn len(&self) -> usize {
+        self.time.len()
+    }
+
+    #[inline(always)]
+    fn origin(&self, i: usize) -> DVec3 {
+        DVec3::new(self.o[0][i], self.o[1][i], self.o[2][i])
+    }
+
+    /// Direction of ray `i`.
+    #[inline(always)]
+    pub(crate) fn dir(&self, i: usize) -> DVec3 {
+        DVec3::new(self.d[0][i], self.d[1][i], self.d[2][i])
+    }
+
+    /// Whether any ray meets the box before its own `t[i]` (slab test; a ray with
+    /// t[i] = -inf meets nothing).
+    #[inline(always)]
+    pub(crate) fn meets(&self, b: &Aabb, t: &[f64]) -> bool {
+        let m = self.len();
+        let t = &t[..m];
+        let [ox, oy, oz] = self.o;
+        let (ix, iy, iz) = (&self.inv[0][..m], &self.inv[1][..m], &self.inv[2][..m]);
+        let (ox, oy, oz) = (&ox[..m], &oy[..m], &oz[..m]);
+        let mut any = false;
+        for i in 0..m {
+            let (x0, x1) = ((b.min.x - ox[i]) * ix[i], (b.max.x - ox[i]) * ix[i]);
+            let (y0, y1) = ((b.min.y - oy[i]) * iy[i], (b.max.y - oy[i]) * iy[i]);
+            let (z0, z1) = ((b.min.z - oz[i]) * iz[i], (b.max.z - oz[i]) * iz[i]);
+            let near = x0.min(x1).max(y0.min(y1)).max(z0.min(z1)).max(0.0);
+            let far = x0.max(x1).min(y0.max(y1)).min(z0.max(z1)).min(t[i]);
+            any |= near <= far;
+        }
+        any
+    }
+
+    /// Test every ray against `shape` (index `index`) in (t_min, t[i]): a nearer hit sets
+    /// t[i] and hit[i], or with `ANY` (shadow rays) sets t[i] = -inf, "blocked".
+    #[inline(always)]
+    pub(crate) fn shape<const ANY: bool>(&self, shape: &Shape, index: u32, t_min: f64, t: &mut [f64], hit: &mut [u32]) {
+        match *shape {
+            Shape::Sphere { centre, radius, velocity } => self.each::<ANY>(index, t, hit, |o, d, time, t_max| {
+                sphere_hit(centre, radius, velocity, o, d, time, t_min, t_max)
+            }),
+            Shape::Parallelogram { corner, u, v } => {
+                self.each::<ANY>(index, t, hit, |o, d, _, t_max| edge_hit(corner, u, v, true, o, d, t_min, t_max))
+            }
+            Shape::Disk { centre, normal, radius } => {
+                self.each::<ANY>(index, t, hit, |o, d, _, t_max| disk_hit(centre, normal, radius, o, d, t_min, t_max))
+            }
+            Shape::Triangle { p, e1, e2 } => {
+                self.each::<ANY>(index, t, hit, |o, d, _, t_max| edge_hit(p, e1, e2, false, o, d, t_min, t_max))
+            }
+        }
+    }
+
+    /// For each ray, `f(origin, dir, time, t[i])` (a hit in (t_min, t[i]) or infinity),
+    /// kept as [`Packet::shape`] says.
+    #[inline(always)]
+    pub(crate) fn each<const ANY: bool>(
+        &self,
+        index: u32,
+        t: &mut [f64],
+        hit: &mut [u32],
+        f: impl Fn(DVec3, DVec3, f64, f64) -> f64,
+    ) {
+        let m = self.len();
+        let (t, hit, time) = (&mut t[..m], &mut hit[..m], &self.time[..m]);
+        for i in 0..m {
+            let c = f(self.origin(i), self.dir(i), time[i], t[i]);
+            if c < t[i] {
+                if ANY {
+                    t[i] = f64::NEG_INFINITY;
+                } else {
+                    t[i] = c;
+                    hit[i] = index;
+                }
+            }
+        }
+    }
+}
+
+/// `f()` compiled for the widest vector instructions the processor has (AVX-512, AVX2 or the
+/// baseline), chosen at run time; `f` and what it calls must be inlined into it, as the
+/// packet queries are (`#[inline(always)]`).
+#[inline(always)]
+pub(crate) fn wide<R>(f: impl FnOnce() -> R) -> R {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the processor supports AVX-512F, checked just above.
+            return unsafe { avx512(f) };
+        }
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor supports AVX2, checked just above.
+            return unsafe { avx2(f) };
+        }
+    }
+    f()
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn avx512<R>(f: impl FnOnce() -> R) -> R {
+    f()
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn avx2<R>(f: impl FnOnce() -> R) -> R {
+    f()
+}
+
+/// `f()` run on every instruction set this processor has (baseline, AVX2, AVX-512), for
+/// tests that the results are the same bits.
+#[cfg(test)]
+pub(crate) fn on_each_instruction_set<R>(f: impl Fn() -> R) -> Vec<R> {
+    let mut out = vec![f()];
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor supports AVX2, checked just above.
+            out.push(unsafe { avx2(&f) });
+        }
+        if std::arch::is_x86_feature_detected!("avx512f") {
+            // SAFETY: the processor supports AVX-512F, checked just above.
+            out.push(unsafe { avx512(&f) });
+        }
+    }
+    out
+}
