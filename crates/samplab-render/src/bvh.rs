@@ -207,7 +207,7 @@ impl Build {
 mod tests {
     use super::*;
     use crate::geometry::Ray;
-    use crate::packet::{Rays, WIDTH, on_each_instruction_set};
+    use crate::packet::{Packet, WIDTH, on_each_instruction_set};
     use samplab::seed::{Seed, uniform};
 
     #[test]
@@ -234,7 +234,7 @@ mod tests {
         // rays), some unrelated, each with its own limit and time
         for size in [1, 3, 17, WIDTH, WIDTH, WIDTH] {
             for coherent in [true, false] {
-                let mut rays = Rays::default();
+                let mut rays = Vec::new();
                 let mut t_max = Vec::new();
                 let (origin, dir) = (DVec3::new(r(), r(), r()) * 12.0 - 1.0, DVec3::new(r(), r(), r()) - 0.5);
                 for _ in 0..size {
@@ -253,7 +253,7 @@ mod tests {
                 let runs = on_each_instruction_set(
                     #[inline(always)]
                     || {
-                        let p = rays.packet(0, size);
+                        let p = Packet::new(&rays);
                         let (mut t, mut hit) = ([0.0; WIDTH], [u32::MAX; WIDTH]);
                         t[..size].copy_from_slice(&t_max);
                         bvh.trace::<false>(&p, 0.0, &mut t, &mut hit);
@@ -267,7 +267,7 @@ mod tests {
                 assert!(runs.iter().all(|r| *r == runs[0]));
                 let (t, hit, blocked) = (runs[0].0.map(f64::from_bits), runs[0].1, runs[0].2.map(f64::from_bits));
                 for i in 0..size {
-                    let ray = rays.get(i);
+                    let ray = rays[i];
                     let brute = objects
                         .iter()
                         .filter_map(|o| o.shape.intersect(&ray, 0.0, t_max[i]).map(|t| (t, o.material)))

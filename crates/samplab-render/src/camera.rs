@@ -1,7 +1,7 @@
 //! A perspective camera with an optional thin lens (Subr & Kautz 2013, Fig. 7's defocus).
 
 use glam::DVec3;
-use samplab::warp::{ConcentricDisk, Warp};
+use samplab::warp::concentric;
 
 use crate::geometry::Ray;
 
@@ -67,9 +67,8 @@ impl Frame {
             return Ray { origin: self.eye, dir, time };
         }
         let focus_point = self.eye + dir * self.focus;
-        let mut d = [0.0; 2];
-        ConcentricDisk.forward(&lens, &mut d);
-        let origin = self.eye + self.aperture * (d[0] * self.right + d[1] * self.up);
+        let (x, y) = concentric(lens[0], lens[1]);
+        let origin = self.eye + self.aperture * (x * self.right + y * self.up);
         Ray { origin, dir: focus_point - origin, time }
     }
 }

@@ -8,7 +8,7 @@
 use std::f64::consts::{FRAC_PI_2, PI};
 
 use glam::DVec3;
-use samplab::warp::{ConcentricDisk, PolarDisk, RejectDisk, Warp};
+use samplab::warp::{PolarDisk, RejectDisk, Warp, concentric};
 
 use crate::geometry::{Ray, plane_t};
 
@@ -124,7 +124,7 @@ impl Light {
     }
 
     /// The point for `u` with the given disk map.
-    #[inline]
+    #[inline(always)]
     pub fn sample_with(&self, u: &[f64], map: DiskMap) -> Option<LightPoint> {
         let (position, x, y) = match self.shape {
             LightShape::Segment { a, b } => (a + u[0] * (b - a), 2.0 * u[0] - 1.0, 0.0),
@@ -132,19 +132,51 @@ impl Light {
                 (corner + u[0] * eu + u[1] * ev, 2.0 * u[0] - 1.0, 2.0 * u[1] - 1.0)
             }
             LightShape::Disk { centre, u: eu, v: ev } => {
-                let mut d = [0.0; 2];
-                let kept = match map {
-                    DiskMap::Concentric => ConcentricDisk.forward(u, &mut d),
-                    DiskMap::Polar => PolarDisk.forward(u, &mut d),
-                    DiskMap::Reject => RejectDisk.forward(u, &mut d),
+                let (x, y) = match map {
+                    DiskMap::Concentric => concentric(u[0], u[1]),
+                    DiskMap::Polar => {
+                        let mut d = [0.0; 2];
+                        PolarDisk.forward(u, &mut d);
+                        (d[0], d[1])
+                    }
+                    DiskMap::Reject => {
+                        let mut d = [0.0; 2];
+                        if !RejectDisk.forward(u, &mut d) {
+                            return None;
+                        }
+                        (d[0], d[1])
+                    }
                 };
-                if !kept {
-                    return None;
-                }
-                (centre + d[0] * eu + d[1] * ev, d[0], d[1])
+                (centre + x * eu + y * ev, x, y)
             }
         };
         Some(LightPoint { position, weight: self.falloff_at(x, y) })
+    }
+
+    /// The points for `u` (`dims()` coordinates each) by the light's own disk map, in order,
+    /// in `out` (resized to fit): one loop per light shape and map, which vectorizes for the
+    /// concentric map and the square.
+    #[inline(always)]
+    pub(crate) fn sample_all(&self, u: &[f64], out: &mut Vec<Option<LightPoint>>) {
+        let dims = self.dims();
+        out.resize(u.len() / dims, None);
+        match (self.shape, self.disk_map) {
+            (LightShape::Disk { .. }, DiskMap::Concentric) => {
+                for (y, u) in out.iter_mut().zip(u.chunks_exact(2)) {
+                    *y = self.sample_with(u, DiskMap::Concentric);
+                }
+            }
+            (LightShape::Parallelogram { .. }, _) => {
+                for (y, u) in out.iter_mut().zip(u.chunks_exact(2)) {
+                    *y = self.sample(u);
+                }
+            }
+            _ => {
+                for (y, u) in out.iter_mut().zip(u.chunks_exact(dims)) {
+                    *y = self.sample(u);
+                }
+            }
+        }
     }
 
     fn falloff_at(&self, x: f64, y: f64) -> f64 {

@@ -15,91 +15,56 @@ use crate::geometry::{Aabb, Ray, Shape, disk_hit, edge_hit, sphere_hit};
 /// Most rays in one packet.
 pub(crate) const WIDTH: usize = 64;
 
-/// Rays in structure-of-arrays form.
-#[derive(Debug, Default, Clone)]
-pub struct Rays {
-    origin: [Vec<f64>; 3],
-    dir: [Vec<f64>; 3],
-    time: Vec<f64>,
-}
-
-impl Rays {
-    /// Remove every ray.
-    pub fn clear(&mut self) {
-        self.origin.iter_mut().chain(&mut self.dir).for_each(Vec::clear);
-        self.time.clear();
-    }
-
-    /// Append a ray.
-    pub fn push(&mut self, ray: Ray) {
-        for k in 0..3 {
-            self.origin[k].push(ray.origin[k]);
-            self.dir[k].push(ray.dir[k]);
-        }
-        self.time.push(ray.time);
-    }
-
-    /// The number of rays.
-    pub fn len(&self) -> usize {
-        self.time.len()
-    }
-
-    /// Whether there are none.
-    pub fn is_empty(&self) -> bool {
-        self.time.is_empty()
-    }
-
-    /// Ray `i`.
-    pub fn get(&self, i: usize) -> Ray {
-        let at = |c: &[Vec<f64>; 3]| DVec3::new(c[0][i], c[1][i], c[2][i]);
-        Ray { origin: at(&self.origin), dir: at(&self.dir), time: self.time[i] }
-    }
-
-    /// `f(start, packet)` for the packets of rays `start..start + WIDTH` in turn, compiled
-    /// wide ([`wide`]; `f` must be `#[inline(always)]`).
-    #[inline(always)]
-    pub(crate) fn each_packet(&self, mut f: impl FnMut(usize, &Packet)) {
-        wide(
-            #[inline(always)]
-            || {
-                for start in (0..self.len()).step_by(WIDTH) {
-                    f(start, &self.packet(start, (start + WIDTH).min(self.len())));
-                }
-            },
-        );
-    }
-
-    /// The packet of rays `start..end` (at most [`WIDTH`] of them).
-    #[inline(always)]
-    pub(crate) fn packet(&self, start: usize, end: usize) -> Packet<'_> {
-        debug_assert!(end - start <= WIDTH);
-        let [ox, oy, oz] = &self.origin;
-        let [dx, dy, dz] = &self.dir;
-        let o = [&ox[start..end], &oy[start..end], &oz[start..end]];
-        let d = [&dx[start..end], &dy[start..end], &dz[start..end]];
-        let mut inv = [[0.0; WIDTH]; 3];
-        for k in 0..3 {
-            for (r, &x) in inv[k].iter_mut().zip(d[k]) {
-                *r = 1.0 / x;
+/// `f(start, packet)` for the packets of `rays[start..start + WIDTH]` in turn, compiled wide
+/// ([`wide`]; `f` must be `#[inline(always)]`).
+#[inline(always)]
+pub(crate) fn packets(rays: &[Ray], mut f: impl FnMut(usize, &Packet)) {
+    wide(
+        #[inline(always)]
+        || {
+            for (k, chunk) in rays.chunks(WIDTH).enumerate() {
+                f(k * WIDTH, &Packet::new(chunk));
             }
-        }
-        Packet { o, d, time: &self.time[start..end], inv }
-    }
+        },
+    );
 }
 
-/// Up to [`WIDTH`] consecutive rays, with their inverse directions for the box tests.
-pub(crate) struct Packet<'a> {
-    o: [&'a [f64]; 3],
-    d: [&'a [f64]; 3],
-    time: &'a [f64],
+/// Up to [`WIDTH`] rays in structure-of-arrays form, with their inverse directions for the
+/// box tests.
+pub(crate) struct Packet {
+    len: usize,
+    o: [[f64; WIDTH]; 3],
+    d: [[f64; WIDTH]; 3],
     inv: [[f64; WIDTH]; 3],
+    time: [f64; WIDTH],
 }
 
-impl Packet<'_> {
+impl Packet {
+    /// The packet of `rays` (at most [`WIDTH`]).
+    #[inline(always)]
+    pub(crate) fn new(rays: &[Ray]) -> Packet {
+        let mut p = Packet {
+            len: rays.len(),
+            o: [[0.0; WIDTH]; 3],
+            d: [[0.0; WIDTH]; 3],
+            inv: [[0.0; WIDTH]; 3],
+            time: [0.0; WIDTH],
+        };
+        for (i, r) in rays[..rays.len().min(WIDTH)].iter().enumerate() {
+            for k in 0..3 {
+                p.o[k][i] = r.origin[k];
+                p.d[k][i] = r.dir[k];
+                p.inv[k][i] = 1.0 / r.dir[k];
+            }
+            p.time[i] = r.time;
+        }
+        p
+    }
+
     /// The number of rays.
     #[inline(always)]
     pub(crate) fn len(&self) -> usize {
-        self.time.len()
+        self.len
     }
 
     #[inline(always)]
@@ -119,9 +84,8 @@ impl Packet<'_> {
     pub(crate) fn meets(&self, b: &Aabb, t: &[f64]) -> bool {
         let m = self.len();
         let t = &t[..m];
-        let [ox, oy, oz] = self.o;
         let (ix, iy, iz) = (&self.inv[0][..m], &self.inv[1][..m], &self.inv[2][..m]);
-        let (ox, oy, oz) = (&ox[..m], &oy[..m], &oz[..m]);
+        let (ox, oy, oz) = (&self.o[0][..m], &self.o[1][..m], &self.o[2][..m]);
         let mut any = false;
         for i in 0..m {
             let (x0, x1) = ((b.min.x - ox[i]) * ix[i], (b.max.x - ox[i]) * ix[i]);

@@ -30,8 +30,8 @@ use crate::error::{Error, Result};
 use crate::geometry::Ray;
 use crate::image::Image;
 use crate::light::{DiskMap, Light, LightPoint, geometry};
-use crate::packet::Rays;
-use crate::scene::{Finish, Scene, Seen};
+use crate::packet::wide;
+use crate::scene::{Finish, Hit, Scene, Seen};
 
 /// What each light sample estimates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -199,21 +199,26 @@ struct Scratch {
     lens: Dealt,
     time: Dealt,
     gloss: Dealt,
+    /// An estimate's light pattern and its points on the light (per-estimate patterns).
     light: Vec<f64>,
-    /// Per light: the pixel's whole pattern (per-pixel patterns).
+    light_points: Vec<Option<LightPoint>>,
+    /// Per light: the pixel's whole pattern and its points on the light (per-pixel patterns).
     shared: Vec<Dealt>,
+    shared_points: Vec<Vec<Option<LightPoint>>>,
     estimates: Vec<Estimate>,
     /// The rays of the current wave, the estimates they belong to, and the next wave's;
     /// then the shadow rays.
-    rays: Rays,
+    rays: Vec<Ray>,
     active: Vec<u32>,
-    next: Rays,
+    next: Vec<Ray>,
     next_active: Vec<u32>,
-    seen: Vec<Seen>,
+    hits: Vec<Hit>,
     groups: Vec<Group>,
     /// Per shadow ray: the light point's falloff weight and geometric factor.
     samples: Vec<(f64, f64)>,
     blocked: Vec<bool>,
+    /// Per estimate: the sum of the lights' visible fractions.
+    vis_sums: Vec<f64>,
 }
 
 /// A pixel's pattern of `spp` blocks and the random order they are dealt to its estimates
@@ -235,9 +240,14 @@ impl Dealt {
         self.order = permutation(&mut order_key.rng(), spp);
     }
 
+    /// Where estimate e's block starts, in blocks of `len`.
+    fn start(&self, e: usize, len: usize) -> usize {
+        self.order[e] as usize * len
+    }
+
     /// Estimate e's block of `len` values.
     fn block(&self, e: usize, len: usize) -> &[f64] {
-        let b = self.order[e] as usize * len;
+        let b = self.start(e, len);
         &self.points[b..b + len]
     }
 }
@@ -399,6 +409,13 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
             let order_key = keys.deal.derive(px.index).derive(l as u64);
             s.shared[l].deal(o.light.as_ref(), spp, o.n, p.light.dims(), key, order_key);
         }
+        s.shared_points.resize_with(lights.len(), Default::default);
+        for ((p, dealt), points) in lights.iter().zip(&s.shared).zip(&mut s.shared_points) {
+            wide(
+                #[inline(always)]
+                || p.light.sample_all(&dealt.points, points),
+            );
+        }
     }
     let mut rays = (0u64, 0u64);
     // camera rays
@@ -442,13 +459,14 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
             break;
         }
         rays.0 += s.rays.len() as u64;
-        scene.trace(&s.rays, &mut s.seen);
+        scene.trace(&s.rays, &mut s.hits);
         s.next.clear();
         s.next_active.clear();
-        for (k, seen) in s.seen.iter().enumerate() {
+        for (k, &hit) in s.hits.iter().enumerate() {
             let e = s.active[k] as usize;
             let est = &mut s.estimates[e];
-            let (position, normal, albedo, finish) = match *seen {
+            let ray = s.rays[k];
+            let (position, normal, albedo, finish) = match scene.seen(&ray, hit) {
                 Seen::Nothing => continue,
                 Seen::Light(le) => {
                     est.radiance += est.throughput * le;
@@ -460,20 +478,19 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
                     (position, normal, albedo, finish)
                 }
             };
-            let dir = s.rays.get(k).dir;
             let dir = match finish {
                 Finish::Diffuse => {
                     est.surface = Some((position, normal, est.throughput * albedo));
                     continue;
                 }
                 _ if bounces == MAX_BOUNCES => continue,
-                Finish::Mirror => dir.reflect(normal),
+                Finish::Mirror => ray.dir.reflect(normal),
                 Finish::Glossy { exponent } => {
                     let u = est.gloss.take().unwrap_or_else(|| {
                         let rng = est.later.get_or_insert_with(|| keys.gloss.derive(px.index).derive(e as u64).rng());
                         [uniform(rng), uniform(rng)]
                     });
-                    let d = phong_lobe(dir.reflect(normal).normalize(), exponent, u);
+                    let d = phong_lobe(ray.dir.reflect(normal).normalize(), exponent, u);
                     if d.dot(normal) <= 0.0 {
                         continue;
                     }
@@ -494,15 +511,21 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
     for (e, est) in s.estimates.iter().enumerate() {
         let Some((x, n, _)) = est.surface else { continue };
         for (l, p) in lights.iter().enumerate() {
-            let dims = p.light.dims();
-            let key = keys.light.derive(px.index).derive(l as u64);
-            let points: &[f64] = match o.pattern {
+            let points: &[Option<LightPoint>] = match o.pattern {
                 Pattern::PerEstimate => {
+                    let (dims, key) = (p.light.dims(), keys.light.derive(px.index).derive(l as u64));
                     s.light.resize(o.n * dims, 0.0);
                     o.light.fill(o.n, dims, key.derive(e as u64), &mut s.light).expect("counts checked");
-                    &s.light
+                    wide(
+                        #[inline(always)]
+                        || p.light.sample_all(&s.light, &mut s.light_points),
+                    );
+                    &s.light_points
                 }
-                Pattern::PerPixel => s.shared[l].block(e, o.n * dims),
+                Pattern::PerPixel => {
+                    let b = s.shared[l].start(e, o.n);
+                    &s.shared_points[l][b..b + o.n]
+                }
             };
             let unoccluded = match o.mode {
                 Mode::Visibility => {
@@ -516,8 +539,8 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
             }
             let mut group =
                 Group { estimate: e, light: l, unoccluded, accepted: 0, weight: 0.0, first: s.rays.len(), count: 0 };
-            for u in points.chunks_exact(dims) {
-                let Some(y) = p.light.sample(u) else { continue };
+            for y in points {
+                let Some(y) = y else { continue };
                 group.accepted += 1;
                 group.weight += y.weight;
                 let g = if o.mode == Mode::Direct { geometry(p.normal, x, n, y.position) } else { 1.0 };
@@ -534,8 +557,8 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
     rays.1 += s.rays.len() as u64;
     scene.occluded(&s.rays, &mut s.blocked);
     // each estimate's light sums, in the order of the lights
-    let mut vis_sums = vec![0.0; 0];
-    vis_sums.resize(spp, 0.0);
+    s.vis_sums.clear();
+    s.vis_sums.resize(spp, 0.0);
     for g in &s.groups {
         if g.accepted == 0 {
             continue;
@@ -550,7 +573,7 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
         }
         let p = &lights[g.light];
         let fraction = seen / g.weight;
-        vis_sums[g.estimate] += fraction;
+        s.vis_sums[g.estimate] += fraction;
         let integral = match o.mode {
             Mode::Visibility => g.unoccluded * fraction,
             Mode::Direct => shade / g.accepted as f64,
@@ -561,7 +584,7 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
     }
     let mut radiance = DVec3::ZERO;
     let mut visible = 0.0;
-    for (est, vis_sum) in s.estimates.iter().zip(&vis_sums) {
+    for (est, vis_sum) in s.estimates.iter().zip(&s.vis_sums) {
         radiance += est.radiance;
         // a scene without lights is all "visible" (nothing to shadow)
         visible += est.visible

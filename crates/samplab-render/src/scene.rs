@@ -6,7 +6,7 @@ use crate::bvh::Bvh;
 use crate::camera::Camera;
 use crate::geometry::{Plane, Ray};
 use crate::light::Light;
-use crate::packet::{Rays, WIDTH};
+use crate::packet::{WIDTH, packets};
 
 /// A surface colour that may vary with position.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -104,6 +104,16 @@ pub enum Seen {
     },
 }
 
+/// A ray's nearest hit.
+#[derive(Debug, Clone, Copy)]
+pub struct Hit {
+    /// The ray parameter (infinity for none).
+    pub t: f64,
+    /// What it hit: a BVH object's index, then the planes', then the lights'; u32::MAX for
+    /// nothing.
+    pub what: u32,
+}
+
 /// Everything a render needs.
 #[derive(Debug, Clone)]
 pub struct Scene {
@@ -138,13 +148,14 @@ impl Scene {
         self.bvh.objects().len()
     }
 
-    /// What each ray sees first, in `seen` (cleared first): the BVH, the planes and the
-    /// lights traced by packets.
-    pub fn trace(&self, rays: &Rays, seen: &mut Vec<Seen>) {
-        seen.clear();
+    /// Each ray's nearest hit, in `hits` (resized to fit): the BVH, the planes and the
+    /// lights traced by packets; [`Scene::seen`] tells what was hit.
+    pub fn trace(&self, rays: &[Ray], hits: &mut Vec<Hit>) {
+        hits.resize(rays.len(), Hit { t: f64::INFINITY, what: u32::MAX });
         let planes_from = self.bvh.objects().len();
         let lights_from = (planes_from + self.planes.len()) as u32;
-        rays.each_packet(
+        packets(
+            rays,
             #[inline(always)]
             |start, p| {
                 let (mut t, mut hit) = ([f64::INFINITY; WIDTH], [u32::MAX; WIDTH]);
@@ -157,14 +168,16 @@ impl Scene {
                     let index = lights_from + k as u32;
                     p.each::<false>(index, &mut t, &mut hit, |o, d, _, t_max| light.hit(o, d, t_max));
                 }
-                seen.extend((0..p.len()).map(|i| self.seen(&rays.get(start + i), t[i], hit[i])));
+                for (i, h) in hits[start..start + p.len()].iter_mut().enumerate() {
+                    *h = Hit { t: t[i], what: hit[i] };
+                }
             },
         );
     }
 
-    /// What `ray` sees given its nearest hit `t` on `hit`: a BVH object, then the planes,
-    /// then the lights; u32::MAX for nothing.
-    fn seen(&self, ray: &Ray, t: f64, hit: u32) -> Seen {
+    /// What `ray` sees at its nearest hit ([`Scene::trace`]).
+    pub fn seen(&self, ray: &Ray, hit: Hit) -> Seen {
+        let Hit { t, what: hit } = hit;
         let objects = self.bvh.objects();
         let position = ray.at(t);
         let (normal, material) = match hit as usize {
@@ -210,9 +223,10 @@ impl Scene {
 
     /// Whether each shadow ray ([`Scene::shadow_ray`]) is blocked before its light point,
     /// in `blocked` (cleared first).
-    pub fn occluded(&self, rays: &Rays, blocked: &mut Vec<bool>) {
+    pub fn occluded(&self, rays: &[Ray], blocked: &mut Vec<bool>) {
         blocked.clear();
-        rays.each_packet(
+        packets(
+            rays,
             #[inline(always)]
             |_, p| {
                 let (mut t, mut hit) = ([1.0 - RAY_EPSILON; WIDTH], [0; WIDTH]);
