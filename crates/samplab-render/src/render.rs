@@ -269,7 +269,15 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
         .collect();
     let frame = scene.camera.frame(w, h);
     let keys = Keys::new(options.seed);
-    let setup = Setup { lights: &lights, frame: &frame, keys: &keys, moving: scene.moving(), glossy: scene.glossy() };
+    let setup = Setup {
+        scene,
+        options,
+        lights: &lights,
+        frame: &frame,
+        keys: &keys,
+        moving: scene.moving(),
+        glossy: scene.glossy(),
+    };
     let done = AtomicUsize::new(0);
     let mut rgb = vec![0f32; 3 * w * h];
     let mut vis = vec![0f32; w * h];
@@ -281,7 +289,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
             let mut rays = (0u64, 0u64);
             for col in 0..w {
                 let pixel = Pixel { index: (row * w + col) as u64, col, row };
-                let (radiance, visible, r) = render_pixel(scene, options, &setup, pixel, scratch);
+                let (radiance, visible, r) = render_pixel(&setup, pixel, scratch);
                 rgb_row[3 * col..3 * col + 3].copy_from_slice(&radiance.as_vec3().to_array());
                 vis_row[col] = visible as f32;
                 rays.0 += r.0;
@@ -333,6 +341,8 @@ impl Keys {
 
 /// What every pixel of a render shares.
 struct Setup<'a> {
+    scene: &'a Scene,
+    options: &'a Options,
     lights: &'a [Prepared],
     frame: &'a crate::camera::Frame,
     keys: &'a Keys,
@@ -383,8 +393,21 @@ struct Group {
 /// A pixel's radiance, its visible fraction and the (camera, shadow) rays it traced: its
 /// camera rays traced as packets, then the reflected rays of the mirror and glossy hits wave
 /// by wave, then all its shadow rays as packets.
-fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Scratch) -> (DVec3, f64, (u64, u64)) {
-    let Setup { lights, frame, keys, moving, glossy } = *setup;
+fn render_pixel(setup: &Setup, px: Pixel, s: &mut Scratch) -> (DVec3, f64, (u64, u64)) {
+    deal(setup, px, s);
+    camera_rays(setup, px, s);
+    let camera = follow(setup, px, s);
+    light_samples(setup, px, s);
+    setup.scene.occluded(&s.rays, &mut s.blocked);
+    let (radiance, visible) = gather(setup, s);
+    let inv = 1.0 / setup.options.spp as f64;
+    (radiance * inv, visible * inv, (camera, s.rays.len() as u64))
+}
+
+/// Draw the pixel's patterns: pixel area, lens, time, gloss, and the per-pixel light
+/// patterns with their points on the lights.
+fn deal(setup: &Setup, px: Pixel, s: &mut Scratch) {
+    let Setup { scene, options: o, lights, keys, moving, glossy, .. } = *setup;
     let spp = o.spp;
     if o.footprint == Footprint::Area {
         s.pixel.resize(spp * 2, 0.0);
@@ -417,12 +440,16 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
             );
         }
     }
-    let mut rays = (0u64, 0u64);
-    // camera rays
+}
+
+/// The camera ray of each estimate, and its state.
+fn camera_rays(setup: &Setup, px: Pixel, s: &mut Scratch) {
+    let Setup { scene, options: o, frame, moving, glossy, .. } = *setup;
+    let lens = scene.camera.aperture > 0.0;
     s.estimates.clear();
     s.rays.clear();
     s.active.clear();
-    for e in 0..spp {
+    for e in 0..o.spp {
         let (dx, dy) = if o.footprint == Footprint::Area { (s.pixel[2 * e], s.pixel[2 * e + 1]) } else { (0.5, 0.5) };
         let lens_uv = if lens {
             let u = s.lens.block(e, 2);
@@ -452,13 +479,19 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
             surface: None,
         });
     }
-    // follow mirror and glossy reflections to the first diffuse surface, with the strategy's
-    // gloss sample at the first glossy bounce and independent ones after
+}
+
+/// Trace the camera rays, then follow mirror and glossy reflections to the first diffuse
+/// surface wave by wave, with the strategy's gloss sample at the first glossy bounce and
+/// independent ones after. Returns the rays traced.
+fn follow(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
+    let Setup { scene, keys, .. } = *setup;
+    let mut traced = 0;
     for bounces in 0..=MAX_BOUNCES {
         if s.rays.is_empty() {
             break;
         }
-        rays.0 += s.rays.len() as u64;
+        traced += s.rays.len() as u64;
         scene.trace(&s.rays, &mut s.hits);
         s.next.clear();
         s.next_active.clear();
@@ -504,7 +537,13 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
         std::mem::swap(&mut s.rays, &mut s.next);
         std::mem::swap(&mut s.active, &mut s.next_active);
     }
-    // the light samples of every estimate that ended on a diffuse surface
+    traced
+}
+
+/// The shadow rays of every estimate that ended on a diffuse surface, grouped by estimate
+/// and light.
+fn light_samples(setup: &Setup, px: Pixel, s: &mut Scratch) {
+    let Setup { options: o, lights, keys, .. } = *setup;
     s.rays.clear();
     s.groups.clear();
     s.samples.clear();
@@ -554,11 +593,14 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
             s.groups.push(group);
         }
     }
-    rays.1 += s.rays.len() as u64;
-    scene.occluded(&s.rays, &mut s.blocked);
-    // each estimate's light sums, in the order of the lights
+}
+
+/// Each estimate's light sums, in the order of the lights, once the shadow rays are traced;
+/// returns the pixel's summed radiance and visible fraction.
+fn gather(setup: &Setup, s: &mut Scratch) -> (DVec3, f64) {
+    let Setup { options: o, lights, .. } = *setup;
     s.vis_sums.clear();
-    s.vis_sums.resize(spp, 0.0);
+    s.vis_sums.resize(o.spp, 0.0);
     for g in &s.groups {
         if g.accepted == 0 {
             continue;
@@ -594,8 +636,7 @@ fn render_pixel(scene: &Scene, o: &Options, setup: &Setup, px: Pixel, s: &mut Sc
                 Some(_) => vis_sum / lights.len() as f64,
             };
     }
-    let inv = 1.0 / spp as f64;
-    (radiance * inv, visible * inv, rays)
+    (radiance, visible)
 }
 
 /// A direction about the unit `axis` from the normalized Phong lobe (n + 1) / (2 pi)
