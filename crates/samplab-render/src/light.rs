@@ -153,32 +153,6 @@ impl Light {
         Some(LightPoint { position, weight: self.falloff_at(x, y) })
     }
 
-    /// The points for `u` (`dims()` coordinates each) by the light's own disk map, in order,
-    /// in `out` (resized to fit): one loop per light shape and map, which vectorizes for the
-    /// concentric map and the square.
-    #[inline(always)]
-    pub(crate) fn sample_all(&self, u: &[f64], out: &mut Vec<Option<LightPoint>>) {
-        let dims = self.dims();
-        out.resize(u.len() / dims, None);
-        match (self.shape, self.disk_map) {
-            (LightShape::Disk { .. }, DiskMap::Concentric) => {
-                for (y, u) in out.iter_mut().zip(u.chunks_exact(2)) {
-                    *y = self.sample_with(u, DiskMap::Concentric);
-                }
-            }
-            (LightShape::Parallelogram { .. }, _) => {
-                for (y, u) in out.iter_mut().zip(u.chunks_exact(2)) {
-                    *y = self.sample(u);
-                }
-            }
-            _ => {
-                for (y, u) in out.iter_mut().zip(u.chunks_exact(dims)) {
-                    *y = self.sample(u);
-                }
-            }
-        }
-    }
-
     fn falloff_at(&self, x: f64, y: f64) -> f64 {
         self.falloff.map_or(1.0, |s| (-(x * x + y * y) / (2.0 * s * s)).exp())
     }
@@ -253,6 +227,54 @@ impl Light {
         let Some((origin, u, v, disk)) = self.plane() else { return self.radiance };
         let (x, y, _) = Light::local(origin, u, v, disk, p);
         self.radiance * self.falloff_at(x, y)
+    }
+}
+
+/// A pattern's points on a light, in the pattern's order, with whether a rejection map kept
+/// each.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct LightPoints {
+    points: Vec<LightPoint>,
+    kept: Vec<bool>,
+}
+
+impl LightPoints {
+    /// The points of `light` for `u` (`light.dims()` coordinates each), by its own disk map:
+    /// [`Light::sample`] for each, with loops that vectorize (no branch, no optional
+    /// result) for the concentric disk and the parallelogram without falloff.
+    #[inline(always)]
+    pub(crate) fn fill(&mut self, light: &Light, u: &[f64]) {
+        let count = u.len() / light.dims();
+        self.points.resize(count, LightPoint { position: DVec3::ZERO, weight: 1.0 });
+        self.kept.clear();
+        self.kept.resize(count, true);
+        match (light.shape, light.disk_map, light.falloff) {
+            (LightShape::Disk { centre, u: eu, v: ev }, DiskMap::Concentric, None) => {
+                for (y, u) in self.points.iter_mut().zip(u.chunks_exact(2)) {
+                    let (a, b) = concentric(u[0], u[1]);
+                    *y = LightPoint { position: centre + a * eu + b * ev, weight: 1.0 };
+                }
+            }
+            (LightShape::Parallelogram { corner, u: eu, v: ev }, _, None) => {
+                for (y, u) in self.points.iter_mut().zip(u.chunks_exact(2)) {
+                    *y = LightPoint { position: corner + u[0] * eu + u[1] * ev, weight: 1.0 };
+                }
+            }
+            _ => {
+                for ((y, kept), u) in self.points.iter_mut().zip(&mut self.kept).zip(u.chunks_exact(light.dims())) {
+                    match light.sample(u) {
+                        Some(p) => *y = p,
+                        None => *kept = false,
+                    }
+                }
+            }
+        }
+    }
+
+    /// Point `i`, None where the map rejected it.
+    #[inline]
+    pub(crate) fn get(&self, i: usize) -> Option<LightPoint> {
+        self.kept[i].then_some(self.points[i])
     }
 }
 

@@ -29,7 +29,7 @@ use samplab::seed::{Rng, Seed, permutation, uniform};
 use crate::error::{Error, Result};
 use crate::geometry::Ray;
 use crate::image::Image;
-use crate::light::{DiskMap, Light, LightPoint, geometry};
+use crate::light::{DiskMap, Light, LightPoint, LightPoints, geometry};
 use crate::packet::wide;
 use crate::scene::{Finish, Hit, Scene, Seen};
 
@@ -201,10 +201,10 @@ struct Scratch {
     gloss: Dealt,
     /// An estimate's light pattern and its points on the light (per-estimate patterns).
     light: Vec<f64>,
-    light_points: Vec<Option<LightPoint>>,
+    light_points: LightPoints,
     /// Per light: the pixel's whole pattern and its points on the light (per-pixel patterns).
     shared: Vec<Dealt>,
-    shared_points: Vec<Vec<Option<LightPoint>>>,
+    shared_points: Vec<LightPoints>,
     estimates: Vec<Estimate>,
     /// The rays of the current wave, the estimates they belong to, and the next wave's;
     /// then the shadow rays.
@@ -436,7 +436,7 @@ fn deal(setup: &Setup, px: Pixel, s: &mut Scratch) {
         for ((p, dealt), points) in lights.iter().zip(&s.shared).zip(&mut s.shared_points) {
             wide(
                 #[inline(always)]
-                || p.light.sample_all(&dealt.points, points),
+                || points.fill(&p.light, &dealt.points),
             );
         }
     }
@@ -550,20 +550,20 @@ fn light_samples(setup: &Setup, px: Pixel, s: &mut Scratch) {
     for (e, est) in s.estimates.iter().enumerate() {
         let Some((x, n, _)) = est.surface else { continue };
         for (l, p) in lights.iter().enumerate() {
-            let points: &[Option<LightPoint>] = match o.pattern {
+            let (points, range) = match o.pattern {
                 Pattern::PerEstimate => {
                     let (dims, key) = (p.light.dims(), keys.light.derive(px.index).derive(l as u64));
                     s.light.resize(o.n * dims, 0.0);
                     o.light.fill(o.n, dims, key.derive(e as u64), &mut s.light).expect("counts checked");
                     wide(
                         #[inline(always)]
-                        || p.light.sample_all(&s.light, &mut s.light_points),
+                        || s.light_points.fill(&p.light, &s.light),
                     );
-                    &s.light_points
+                    (&s.light_points, 0..o.n)
                 }
                 Pattern::PerPixel => {
                     let b = s.shared[l].start(e, o.n);
-                    &s.shared_points[l][b..b + o.n]
+                    (&s.shared_points[l], b..b + o.n)
                 }
             };
             let unoccluded = match o.mode {
@@ -578,8 +578,8 @@ fn light_samples(setup: &Setup, px: Pixel, s: &mut Scratch) {
             }
             let mut group =
                 Group { estimate: e, light: l, unoccluded, accepted: 0, weight: 0.0, first: s.rays.len(), count: 0 };
-            for y in points {
-                let Some(y) = y else { continue };
+            for i in range {
+                let Some(y) = points.get(i) else { continue };
                 group.accepted += 1;
                 group.weight += y.weight;
                 let g = if o.mode == Mode::Direct { geometry(p.normal, x, n, y.position) } else { 1.0 };
