@@ -207,8 +207,9 @@ impl Build {
 mod tests {
     use super::*;
     use crate::geometry::Ray;
-    use crate::packet::{Packet, WIDTH, on_each_instruction_set};
+    use crate::packet::{Packet, WIDTH};
     use samplab::seed::{Seed, uniform};
+    use samplab::simd::on_each_instruction_set;
 
     #[test]
     fn packets_find_what_testing_every_shape_finds() {

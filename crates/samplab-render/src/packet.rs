@@ -5,10 +5,11 @@
 //! nodes, and a node or shape is tested once for all of them.
 //!
 //! The queries are compiled for AVX-512 or AVX2 where the processor has them, chosen at run
-//! time ([`wide`]); every lane does the same operations in the same order whatever the
-//! instruction set (no fused multiply-adds), so the results are the same bits.
+//! time (`samplab::simd::wide`), with the same bits on each.
 
 use glam::DVec3;
+
+use samplab::simd::wide;
 
 use crate::geometry::{Aabb, Ray, Shape, disk_hit, edge_hit, sphere_hit};
 
@@ -143,54 +144,4 @@ impl Packet {
             }
         }
     }
-}
-
-/// `f()` compiled for the widest vector instructions the processor has (AVX-512, AVX2 or the
-/// baseline), chosen at run time; `f` and what it calls must be inlined into it, as the
-/// packet queries are (`#[inline(always)]`).
-#[inline(always)]
-pub(crate) fn wide<R>(f: impl FnOnce() -> R) -> R {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::arch::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the processor supports AVX-512F, checked just above.
-            return unsafe { avx512(f) };
-        }
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the processor supports AVX2, checked just above.
-            return unsafe { avx2(f) };
-        }
-    }
-    f()
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-unsafe fn avx512<R>(f: impl FnOnce() -> R) -> R {
-    f()
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn avx2<R>(f: impl FnOnce() -> R) -> R {
-    f()
-}
-
-/// `f()` run on every instruction set this processor has (baseline, AVX2, AVX-512), for
-/// tests that the results are the same bits.
-#[cfg(test)]
-pub(crate) fn on_each_instruction_set<R>(f: impl Fn() -> R) -> Vec<R> {
-    let mut out = vec![f()];
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the processor supports AVX2, checked just above.
-            out.push(unsafe { avx2(&f) });
-        }
-        if std::arch::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the processor supports AVX-512F, checked just above.
-            out.push(unsafe { avx512(&f) });
-        }
-    }
-    out
 }

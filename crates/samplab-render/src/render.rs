@@ -30,8 +30,8 @@ use crate::error::{Error, Result};
 use crate::geometry::Ray;
 use crate::image::Image;
 use crate::light::{DiskMap, Light, LightPoint, LightPoints, geometry};
-use crate::packet::wide;
 use crate::scene::{Finish, Hit, Scene, Seen};
+use samplab::simd::wide;
 
 /// What each light sample estimates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -36,6 +36,7 @@ pub mod io;
 pub mod points;
 pub mod sampler;
 pub mod seed;
+pub mod simd;
 pub mod spec;
 pub mod spectrum;
 pub mod stats;

@@ -105,30 +105,10 @@ impl Lanes {
 /// them (chosen at run time): the same operations in the same order, so the same value,
 /// only wider.
 fn row_sum(p: &[f64], columns: &[Vec<f64>], from: usize, g: &impl Fn(f64, f64) -> f64) -> f64 {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::arch::is_x86_feature_detected!("avx512f") {
-            // SAFETY: the processor supports AVX-512F, checked just above.
-            return unsafe { row_sum_avx512(p, columns, from, g) };
-        }
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the processor supports AVX2, checked just above.
-            return unsafe { row_sum_avx2(p, columns, from, g) };
-        }
-    }
-    row_sum_any(p, columns, from, g)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f")]
-fn row_sum_avx512(p: &[f64], columns: &[Vec<f64>], from: usize, g: &impl Fn(f64, f64) -> f64) -> f64 {
-    row_sum_any(p, columns, from, g)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn row_sum_avx2(p: &[f64], columns: &[Vec<f64>], from: usize, g: &impl Fn(f64, f64) -> f64) -> f64 {
-    row_sum_any(p, columns, from, g)
+    crate::simd::wide(
+        #[inline(always)]
+        || row_sum_any(p, columns, from, g),
+    )
 }
 
 #[inline(always)]
@@ -296,17 +276,11 @@ mod tests {
                 let plain: f64 =
                     (from..203).map(|j| columns.iter().zip(&p).map(|(c, &a)| g(a, c[j])).product::<f64>()).sum();
                 assert!((any - plain).abs() <= 1e-12 * plain.abs(), "{any} vs {plain}");
-                #[cfg(target_arch = "x86_64")]
-                {
-                    if std::arch::is_x86_feature_detected!("avx2") {
-                        // SAFETY: checked just above.
-                        assert_eq!(unsafe { row_sum_avx2(&p, &columns, from, &g) }.to_bits(), any.to_bits());
-                    }
-                    if std::arch::is_x86_feature_detected!("avx512f") {
-                        // SAFETY: checked just above.
-                        assert_eq!(unsafe { row_sum_avx512(&p, &columns, from, &g) }.to_bits(), any.to_bits());
-                    }
-                }
+                let runs = crate::simd::on_each_instruction_set(
+                    #[inline(always)]
+                    || row_sum_any(&p, &columns, from, &g).to_bits(),
+                );
+                assert!(runs.iter().all(|&r| r == any.to_bits()));
             }
         }
     }
