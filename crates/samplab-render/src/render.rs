@@ -24,7 +24,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use glam::DVec3;
 use rayon::prelude::*;
 use samplab::sampler::Sampler;
-use samplab::seed::{Rng, Seed, permutation, uniform};
+use samplab::seed::{Rng, Seed, shuffle, uniform};
 
 use crate::error::{Error, Result};
 use crate::geometry::Ray;
@@ -237,7 +237,9 @@ impl Dealt {
         self.points.resize(spp * per_block * dims, 0.0);
         // cannot fail: Options::check accepted these counts
         sampler.fill(spp * per_block, dims, key, &mut self.points).expect("counts checked");
-        self.order = permutation(&mut order_key.rng(), spp);
+        self.order.clear();
+        self.order.extend(0..spp as u32);
+        shuffle(&mut order_key.rng(), &mut self.order);
     }
 
     /// Where estimate e's block starts, in blocks of `len`.

@@ -82,11 +82,16 @@ pub fn normal(rng: &mut Rng) -> f64 {
 /// A uniformly random permutation of 0..n (Fisher–Yates).
 pub fn permutation(rng: &mut Rng, n: usize) -> Vec<u32> {
     let mut p: Vec<u32> = (0..n as u32).collect();
-    for i in (1..n).rev() {
-        let j = below(rng, i as u64 + 1) as usize;
-        p.swap(i, j);
-    }
+    shuffle(rng, &mut p);
     p
+}
+
+/// Shuffle `items` in place by the same draws as [`permutation`] (Fisher–Yates).
+pub fn shuffle<T>(rng: &mut Rng, items: &mut [T]) {
+    for i in (1..items.len()).rev() {
+        let j = below(rng, i as u64 + 1) as usize;
+        items.swap(i, j);
+    }
 }
 
 /// Wrap a real number into [0, 1) (toroidal boundary).
