@@ -280,21 +280,20 @@ impl LightPoints {
 
 /// The geometric factor of [`Light::geometry`] for a light whose emitting side has the unit
 /// normal `light_normal` (None: a segment, emitting all round).
-#[inline]
+#[inline(always)]
 pub(crate) fn geometry(light_normal: Option<DVec3>, x: DVec3, n: DVec3, y: DVec3) -> f64 {
     let d = y - x;
     let d2 = d.length_squared();
     let cos_x = n.dot(d);
-    if cos_x <= 0.0 {
-        return 0.0;
-    }
-    match light_normal {
+    // selects rather than early returns, so that loops of it vectorize
+    let g = match light_normal {
         None => cos_x / (d2 * d2.sqrt()),
         Some(ny) => {
             let cos_y = -ny.dot(d);
             if cos_y <= 0.0 { 0.0 } else { cos_x * cos_y / (d2 * d2) }
         }
-    }
+    };
+    if cos_x <= 0.0 { 0.0 } else { g }
 }
 
 #[cfg(test)]
