@@ -16,7 +16,7 @@ pub mod image;
 pub mod light;
 pub mod mitsuba;
 pub mod obj;
-pub mod packet;
+mod packet;
 pub mod render;
 pub mod scene;
 pub mod scenes;

@@ -80,7 +80,7 @@ fn suggest(s: &[String]) -> String {
     if s.is_empty() { String::new() } else { format!(" (did you mean {}?)", s.join(", ")) }
 }
 
-/// Shorthand for results with [`Error`].
+/// Shorthand for results with [`enum@Error`].
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 /// The known names closest to `name` (Levenshtein distance, at most three), best first.

@@ -3,7 +3,7 @@
 //!
 //! ## Conventions
 //!
-//! - Points must lie in the closed unit cube [0,1]^d (1.0 is allowed and handled).
+//! - Points must lie in the closed unit cube \[0,1\]^d (1.0 is allowed and handled).
 //! - Every value is reported **unsquared**. The L2 family is computed squared in closed
 //!   form and the root taken after clamping at zero (the closed forms cancel heavily; the
 //!   sums are compensated). Beware when comparing: `scipy.stats.qmc.discrepancy` returns
@@ -298,7 +298,7 @@ pub fn check_unit_cube(points: &PointSet) -> Result<()> {
 /// The discrepancy `metric` of `points` (unsquared).
 ///
 /// # Errors
-/// Points outside [0,1]^d, an empty set, a metric that needs another dimension, or an
+/// Points outside \[0,1\]^d, an empty set, a metric that needs another dimension, or an
 /// exact algorithm whose cost would exceed `limits` (the message names `--max-work`).
 pub fn compute(metric: &Metric, points: &PointSet, limits: Limits) -> Result<f64> {
     check_unit_cube(points)?;

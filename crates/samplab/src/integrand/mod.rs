@@ -18,13 +18,13 @@ pub(crate) mod quadrature;
 
 pub use delaunay::Delaunay;
 
-/// A function on [0,1]^d with a known integral.
+/// A function on \[0,1\]^d with a known integral.
 pub trait Integrand: Send + Sync {
     /// Dimensions (1 or 2).
     fn dims(&self) -> usize;
     /// The value at `x`.
     fn eval(&self, x: &[f64]) -> f64;
-    /// The exact integral over [0,1]^d.
+    /// The exact integral over \[0,1\]^d.
     fn exact(&self) -> f64;
     /// For an indicator function: the length of its region's boundary inside the domain
     /// (Sbert et al.'s B), which the systematic-sampling law k B u^3 needs.

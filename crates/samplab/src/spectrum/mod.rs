@@ -6,10 +6,10 @@
 //!   DC value is 1, evaluated at the integer frequencies of a centred grid of even
 //!   resolution R: index k on each axis is frequency k - R/2, so index (R/2, R/2) is DC.
 //!   Grids are row-major (the first axis varies slowest).
-//! - Over M realizations: the periodogram <|S|^2>, the expected spectrum <S> (complex; its
-//!   amplitude |<S>| predicts bias, eq. 4/7), and the variance of the spectrum
+//! - Over M realizations: the periodogram `<|S|^2>`, the expected spectrum `<S>` (complex; its
+//!   amplitude `|<S>|` predicts bias, eq. 4/7), and the variance of the spectrum
 //!   V(S) = V(Re S) + V(Im S) (eq. 6; sample variance, divisor M - 1). Note
-//!   <|S|^2> = |<S>|^2 + V(S) (M - 1) / M.
+//!   `<|S|^2> = |<S>|^2 + V(S) (M - 1) / M`.
 //! - Radial averages: bin r in 1..=R/2 - 1 holds the frequencies with round(|w|) = r (DC,
 //!   bin 0, is excluded; the corners beyond R/2 are left out).
 //! - Anisotropy (Lagae & Dutre 2008): per annulus, 10 log10(variance / mean^2) of the
@@ -119,7 +119,7 @@ pub struct Statistics {
     pub sets: usize,
     /// <|S|^2>.
     pub periodogram: Vec<f64>,
-    /// |<S>|.
+    /// `|<S>|`.
     pub expected: Vec<f64>,
     /// V(Re S) + V(Im S), divisor M - 1.
     pub variance: Vec<f64>,
