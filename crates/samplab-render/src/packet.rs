@@ -45,6 +45,7 @@ impl Packet {
     /// The packet of `rays` (at most [`WIDTH`]).
     #[inline(always)]
     pub(crate) fn new(rays: &[Ray]) -> Packet {
+        let rays = &rays[..rays.len().min(WIDTH)];
         let mut p = Packet {
             len: rays.len(),
             o: [[0.0; WIDTH]; 3],
@@ -52,7 +53,7 @@ impl Packet {
             inv: [[0.0; WIDTH]; 3],
             time: [0.0; WIDTH],
         };
-        for (i, r) in rays[..rays.len().min(WIDTH)].iter().enumerate() {
+        for (i, r) in rays.iter().enumerate() {
             for k in 0..3 {
                 p.o[k][i] = r.origin[k];
                 p.d[k][i] = r.dir[k];
