@@ -582,6 +582,7 @@ fn light_samples(setup: &Setup, px: Pixel, s: &mut Scratch) {
     s.samples.clear();
     for (e, est) in s.estimates.iter().enumerate() {
         let Some((x, n, _)) = est.surface else { continue };
+        let origin = Scene::offset(x, n);
         for (l, p) in lights.iter().enumerate() {
             let (points, range) = match o.pattern {
                 Pattern::PerEstimate => {
@@ -616,7 +617,7 @@ fn light_samples(setup: &Setup, px: Pixel, s: &mut Scratch) {
                 if g <= 0.0 {
                     continue;
                 }
-                s.rays.push(Scene::shadow_ray(x, n, y.position, est.time));
+                s.rays.push(Scene::shadow_ray(origin, y.position, est.time));
                 s.samples.push((y.weight, g));
                 group.count += 1;
             }

@@ -213,11 +213,10 @@ impl Scene {
         x + n * (RAY_EPSILON * (1.0 + x.abs().max_element()) * 100.0)
     }
 
-    /// The shadow ray from surface point `x` (normal `n`) to light point `y`: it reaches
-    /// `y` at t = 1.
+    /// The shadow ray to light point `y` from `origin`, a surface point moved off the
+    /// surface by [`Scene::offset`] (once for all its light samples): it reaches `y` at t = 1.
     #[inline]
-    pub fn shadow_ray(x: DVec3, n: DVec3, y: DVec3, time: f64) -> Ray {
-        let origin = Scene::offset(x, n);
+    pub fn shadow_ray(origin: DVec3, y: DVec3, time: f64) -> Ray {
         Ray { origin, dir: y - origin, time }
     }
 
