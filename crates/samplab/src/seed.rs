@@ -60,17 +60,20 @@ pub fn uniform(rng: &mut Rng) -> f64 {
     (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
-/// A uniform integer in [0, bound), without modulo bias (Lemire 2019).
+/// A uniform integer in [0, bound), without modulo bias (Lemire 2019, "Fast random integer
+/// generation in an interval", Algorithm 5): the division that sets the rejection threshold
+/// is done only when the low word falls below `bound`, which the threshold never exceeds.
 #[inline]
 pub fn below(rng: &mut Rng, bound: u64) -> u64 {
     debug_assert!(bound > 0);
-    loop {
-        let m = u128::from(rng.next_u64()) * u128::from(bound);
-        let lo = m as u64;
-        if lo >= bound.wrapping_neg() % bound {
-            return (m >> 64) as u64;
+    let mut m = u128::from(rng.next_u64()) * u128::from(bound);
+    if (m as u64) < bound {
+        let threshold = bound.wrapping_neg() % bound;
+        while (m as u64) < threshold {
+            m = u128::from(rng.next_u64()) * u128::from(bound);
         }
     }
+    (m >> 64) as u64
 }
 
 /// A standard normal draw (Ziggurat, rand_distr).
