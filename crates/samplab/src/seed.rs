@@ -98,7 +98,7 @@ pub fn shuffle<T>(rng: &mut Rng, items: &mut [T]) {
 }
 
 /// Wrap a real number into [0, 1) (toroidal boundary).
-#[inline]
+#[inline(always)]
 pub fn wrap01(x: f64) -> f64 {
     let y = x - x.floor();
     // x.floor() can round so that y == 1.0 for tiny negative x

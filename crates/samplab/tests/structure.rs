@@ -161,10 +161,12 @@ fn halton_first_points_by_hand() {
 fn batch_equals_random_access() {
     for r in [Randomization::None, Randomization::Xor, Randomization::Owen, Randomization::Shift] {
         let seqs: [Box<dyn Sequence>; 2] = [Box::new(Sobol::new(r)), Box::new(radical::Halton::new(r))];
-        for s in seqs {
-            let p = s.generate(300, 5, Seed(42)).unwrap();
-            for i in 0..300 {
-                for d in 0..5 {
+        // each walk the fill has (one to three dimensions, more), whole blocks and a tail
+        for (s, (n, dims)) in seqs.iter().flat_map(|s| [(300, 5), (64, 1), (64, 2), (77, 2), (301, 3)].map(|c| (s, c)))
+        {
+            let p = s.generate(n, dims, Seed(42)).unwrap();
+            for i in 0..n {
+                for d in 0..dims {
                     assert_eq!(
                         p.point(i)[d].to_bits(),
                         s.sample(i as u64, d, Seed(42)).to_bits(),

@@ -43,7 +43,7 @@ pub fn owen_scramble_u32(x: u32, seed: u32) -> u32 {
 /// The same scramble applied in the bit-reversed domain (bit 0 is the most significant
 /// digit), where it is a Laine–Karras style hash: every operation lets bit k depend only
 /// on bits below k. Constants from Vegdahl 2021.
-#[inline]
+#[inline(always)]
 pub fn owen_scramble_reversed(mut x: u32, seed: u32) -> u32 {
     x ^= x.wrapping_mul(0x3d20_adea);
     x = x.wrapping_add(seed);

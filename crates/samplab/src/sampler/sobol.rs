@@ -8,6 +8,7 @@ use super::scramble::{Randomization, hash_unit, owen_scramble_reversed};
 use super::{Sampler, Sequence};
 use crate::error::{Error, Result};
 use crate::seed::{Seed, wrap01};
+use crate::simd::wide;
 
 include!(concat!(env!("OUT_DIR"), "/sobol_directions.rs"));
 
@@ -89,7 +90,7 @@ static REVERSED_DIRECTIONS: std::sync::LazyLock<Vec<[u32; 32]>> =
 /// Joe & Kuo's and scipy's generators do: point i+1 is point i XOR v_c with c =
 /// trailing_zeros(i+1). `reversed` keeps the state bit-reversed. `finish` maps a state
 /// word of dimension d to the coordinate.
-#[inline]
+#[inline(always)]
 fn gray_walk(out: &mut [f64], dims: usize, reversed: bool, finish: impl Fn(u32, usize) -> f64) {
     let directions: &[[u32; 32]] = if reversed { &REVERSED_DIRECTIONS[..dims] } else { &SOBOL_DIRECTIONS[..dims] };
     match dims {
@@ -112,15 +113,48 @@ fn gray_walk(out: &mut [f64], dims: usize, reversed: bool, finish: impl Fn(u32, 
     }
 }
 
-#[inline]
+/// Points walked per block: state(8j + k) = state(8j) ^ state(k) for k < 8, because
+/// gray(8j + k) = gray(8j) ^ gray(k) and the digits are linear in the Gray code.
+const BLOCK: usize = 8;
+
+/// The walk for a fixed number of dimensions, a block of points at a time: each block's
+/// coordinates are one loop over its lanes (the finishing hash and reversal vectorize), and
+/// the state steps once per block.
+#[inline(always)]
 fn walk_fixed<const D: usize>(out: &mut [f64], directions: &[[u32; 32]], finish: &impl Fn(u32, usize) -> f64) {
     let v: [[u32; 32]; D] = std::array::from_fn(|d| directions[d]);
+    let mut low = [[0u32; BLOCK]; D];
+    for (low, v) in low.iter_mut().zip(&v) {
+        for k in 1..BLOCK {
+            low[k] = low[k - 1] ^ v[k.trailing_zeros() as usize];
+        }
+    }
     let mut state = [0u32; D];
-    for (i, p) in out.chunks_exact_mut(D).enumerate() {
+    let first = out.len() / D / BLOCK * BLOCK;
+    let mut blocks = out.chunks_exact_mut(BLOCK * D);
+    for (j, block) in (&mut blocks).enumerate() {
+        let mut x = [[0.0; BLOCK]; D];
+        for d in 0..D {
+            for k in 0..BLOCK {
+                x[d][k] = finish(state[d] ^ low[d][k], d);
+            }
+        }
+        for (k, p) in block.chunks_exact_mut(D).enumerate() {
+            for d in 0..D {
+                p[d] = x[d][k];
+            }
+        }
+        // on from point 8j + 7 to point 8j + 8
+        let c = ((j as u64 + 1) * BLOCK as u64).trailing_zeros().min(31) as usize;
+        for d in 0..D {
+            state[d] ^= low[d][BLOCK - 1] ^ v[d][c];
+        }
+    }
+    for (i, p) in blocks.into_remainder().chunks_exact_mut(D).enumerate() {
         for d in 0..D {
             p[d] = finish(state[d], d);
         }
-        let c = (i as u64 + 1).trailing_zeros().min(31) as usize;
+        let c = (first as u64 + i as u64 + 1).trailing_zeros().min(31) as usize;
         for d in 0..D {
             state[d] ^= v[d][c];
         }
@@ -161,16 +195,42 @@ impl Sampler for Sobol {
             many = (0..dims).map(|d| DimKey::new(seed, d)).collect();
             &many
         };
-        match self.randomization {
-            // Owen works in the bit-reversed domain: keep the state reversed, so each
-            // coordinate costs one hash and one reversal
-            Randomization::Owen => gray_walk(out, dims, true, |x, d| {
-                f64::from(owen_scramble_reversed(x, keys[d].bits).reverse_bits()) * TO_UNIT
-            }),
-            Randomization::None => gray_walk(out, dims, false, |x, _| f64::from(x) * TO_UNIT),
-            Randomization::Xor => gray_walk(out, dims, false, |x, d| f64::from(x ^ keys[d].bits) * TO_UNIT),
-            Randomization::Shift => gray_walk(out, dims, false, |x, d| wrap01(f64::from(x) * TO_UNIT + keys[d].shift)),
-        }
+        // compiled wide: a block's coordinates are computed in vector lanes
+        wide(
+            #[inline(always)]
+            || match self.randomization {
+                // Owen works in the bit-reversed domain: keep the state reversed, so each
+                // coordinate costs one hash and one reversal
+                Randomization::Owen => gray_walk(
+                    out,
+                    dims,
+                    true,
+                    #[inline(always)]
+                    |x, d| f64::from(owen_scramble_reversed(x, keys[d].bits).reverse_bits()) * TO_UNIT,
+                ),
+                Randomization::None => gray_walk(
+                    out,
+                    dims,
+                    false,
+                    #[inline(always)]
+                    |x, _| f64::from(x) * TO_UNIT,
+                ),
+                Randomization::Xor => gray_walk(
+                    out,
+                    dims,
+                    false,
+                    #[inline(always)]
+                    |x, d| f64::from(x ^ keys[d].bits) * TO_UNIT,
+                ),
+                Randomization::Shift => gray_walk(
+                    out,
+                    dims,
+                    false,
+                    #[inline(always)]
+                    |x, d| wrap01(f64::from(x) * TO_UNIT + keys[d].shift),
+                ),
+            },
+        );
         Ok(())
     }
 }
