@@ -205,15 +205,25 @@ struct Scratch {
     /// Per light: the pixel's whole pattern and its points on the light (per-pixel patterns).
     shared: Vec<Dealt>,
     shared_points: Vec<LightPoints>,
-    estimates: Vec<Estimate>,
-    /// The rays of the current wave, the estimates they belong to, and the next wave's;
-    /// then the shadow rays.
+    /// Per estimate: the radiance gathered so far, and the visible fraction of the lights
+    /// (1 where a light is seen directly).
+    radiance: Vec<DVec3>,
+    visible: Vec<f64>,
+    /// Per estimate, when a material is glossy: the strategy's gloss sample until the first
+    /// glossy bounce takes it, and independent samples for later glossy bounces.
+    gloss_u: Vec<Option<[f64; 2]>>,
+    later: Vec<Option<Rng>>,
+    /// The rays of the current wave and their paths, and the next wave's; then the shadow
+    /// rays of one light.
     rays: Vec<Ray>,
-    active: Vec<u32>,
+    paths: Vec<Path>,
     next: Vec<Ray>,
-    next_active: Vec<u32>,
+    next_paths: Vec<Path>,
     hits: Vec<Hit>,
-    groups: Vec<Group>,
+    /// Where paths ended on a diffuse surface.
+    ends: Vec<End>,
+    /// Per end: the current light's sample sums.
+    sums: Vec<Sums>,
     /// Per shadow ray: the light point's falloff weight and geometric factor.
     samples: Vec<(f64, f64)>,
     blocked: Vec<bool>,
@@ -390,51 +400,64 @@ struct Pixel {
     row: usize,
 }
 
-/// The state of one estimate (one camera ray and its light samples) of a pixel.
-#[derive(Clone)]
-struct Estimate {
-    /// Radiance gathered so far.
-    radiance: DVec3,
-    /// Visible fraction of the lights (1 where a light is seen directly).
-    visible: f64,
-    /// Product of the specular reflectances along the path.
+/// A path of an estimate being followed: its estimate and the product of the specular
+/// reflectances so far.
+#[derive(Clone, Copy)]
+struct Path {
+    estimate: u32,
     throughput: DVec3,
-    /// The strategy's gloss sample, until the first glossy bounce takes it.
-    gloss: Option<[f64; 2]>,
-    /// Independent gloss samples for later glossy bounces.
-    later: Option<Rng>,
-    /// Shutter time.
-    time: f64,
-    /// The diffuse surface the path ends on: position, normal, throughput x albedo.
-    surface: Option<(DVec3, DVec3, DVec3)>,
 }
 
-/// The shadow rays of one estimate and light, with what their sum needs.
-struct Group {
-    estimate: usize,
-    light: usize,
+/// Where an estimate's path ended on a diffuse surface: position, normal facing the path,
+/// throughput x albedo, shutter time.
+#[derive(Clone, Copy)]
+struct End {
+    estimate: u32,
+    position: DVec3,
+    normal: DVec3,
+    albedo: DVec3,
+    time: f64,
+}
+
+/// One end's samples of one light.
+#[derive(Clone, Copy)]
+struct Sums {
     /// Unoccluded shading (visibility mode; 1 in direct mode).
     unoccluded: f64,
     /// Samples the disk map kept, and their summed falloff weight.
-    accepted: usize,
+    accepted: u32,
     weight: f64,
-    /// Its shadow rays: `first..first + count` of the pixel's.
-    first: usize,
-    count: usize,
+    /// Its shadow rays: `first..first + count` of the light's.
+    first: u32,
+    count: u32,
 }
 
 /// A pixel's radiance, its visible fraction and the (camera, shadow) rays it traced: its
 /// camera rays traced as packets, then the reflected rays of the mirror and glossy hits wave
-/// by wave, then all its shadow rays as packets.
+/// by wave, then each light's shadow rays as packets.
 fn render_pixel(setup: &Setup, px: Pixel, s: &mut Scratch) -> (DVec3, f64, (u64, u64)) {
     deal(setup, px, s);
     camera_rays(setup, px, s);
     let camera = follow(setup, px, s);
-    light_samples(setup, px, s);
-    setup.scene.occluded(&s.rays, &mut s.blocked);
-    let (radiance, visible) = gather(setup, s);
+    s.vis_sums.clear();
+    s.vis_sums.resize(setup.options.spp, 0.0);
+    let mut shadow = 0;
+    for l in 0..setup.lights.len() {
+        light_samples(setup, px, s, l);
+        setup.scene.occluded(&s.rays, &mut s.blocked);
+        shadow += s.rays.len() as u64;
+        gather(setup, s, l);
+    }
+    // a scene without lights is all "visible" (nothing to shadow)
+    let lights = setup.lights.len();
+    for end in &s.ends {
+        let e = end.estimate as usize;
+        s.visible[e] += if lights == 0 { 1.0 } else { s.vis_sums[e] / lights as f64 };
+    }
+    let radiance = s.radiance.iter().fold(DVec3::ZERO, |a, &r| a + r);
+    let visible = s.visible.iter().fold(0.0, |a, &v| a + v);
     let inv = 1.0 / setup.options.spp as f64;
-    (radiance * inv, visible * inv, (camera, s.rays.len() as u64))
+    (radiance * inv, visible * inv, (camera, shadow))
 }
 
 /// Draw the pixel's patterns: pixel area, lens, time, gloss, and the per-pixel light
@@ -475,13 +498,16 @@ fn deal(setup: &Setup, px: Pixel, s: &mut Scratch) {
     }
 }
 
-/// The camera ray of each estimate, and its state.
+/// The camera ray of each estimate, and its path.
 fn camera_rays(setup: &Setup, px: Pixel, s: &mut Scratch) {
     let Setup { scene, options: o, frame, moving, glossy, .. } = *setup;
     let lens = scene.camera.aperture > 0.0;
-    s.estimates.clear();
+    s.radiance.clear();
+    s.radiance.resize(o.spp, DVec3::ZERO);
+    s.visible.clear();
+    s.visible.resize(o.spp, 0.0);
     s.rays.clear();
-    s.active.clear();
+    s.paths.clear();
     for e in 0..o.spp {
         let (dx, dy) = if o.footprint == Footprint::Area { (s.pixel[2 * e], s.pixel[2 * e + 1]) } else { (0.5, 0.5) };
         let lens_uv = if lens {
@@ -491,26 +517,22 @@ fn camera_rays(setup: &Setup, px: Pixel, s: &mut Scratch) {
             [0.5, 0.5]
         };
         let time = if moving { s.time.block(e, 1)[0] } else { 0.0 };
-        let gloss = glossy.then(|| {
-            let u = s.gloss.block(e, 2);
-            [u[0], u[1]]
-        });
         s.rays.push(frame.ray(
             (px.col as f64 + dx) / o.width as f64,
             (px.row as f64 + dy) / o.height as f64,
             lens_uv,
             time,
         ));
-        s.active.push(e as u32);
-        s.estimates.push(Estimate {
-            radiance: DVec3::ZERO,
-            visible: 0.0,
-            throughput: DVec3::ONE,
-            gloss,
-            later: None,
-            time,
-            surface: None,
-        });
+        s.paths.push(Path { estimate: e as u32, throughput: DVec3::ONE });
+    }
+    if glossy {
+        s.gloss_u.clear();
+        s.gloss_u.extend((0..o.spp).map(|e| {
+            let u = s.gloss.block(e, 2);
+            Some([u[0], u[1]])
+        }));
+        s.later.clear();
+        s.later.resize(o.spp, None);
     }
 }
 
@@ -520,6 +542,7 @@ fn camera_rays(setup: &Setup, px: Pixel, s: &mut Scratch) {
 fn follow(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
     let Setup { scene, keys, .. } = *setup;
     let mut traced = 0;
+    s.ends.clear();
     for bounces in 0..=MAX_BOUNCES {
         if s.rays.is_empty() {
             break;
@@ -527,33 +550,32 @@ fn follow(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
         traced += s.rays.len() as u64;
         scene.trace(&s.rays, &mut s.hits);
         s.next.clear();
-        s.next_active.clear();
-        for (k, &hit) in s.hits.iter().enumerate() {
-            let e = s.active[k] as usize;
-            let est = &mut s.estimates[e];
-            let ray = s.rays[k];
-            let (position, normal, albedo, finish) = match scene.seen(&ray, hit) {
+        s.next_paths.clear();
+        for ((ray, &hit), &path) in s.rays.iter().zip(&s.hits).zip(&s.paths) {
+            let e = path.estimate as usize;
+            let (position, normal, albedo, finish) = match scene.seen(ray, hit) {
                 Seen::Nothing => continue,
                 Seen::Light(le) => {
-                    est.radiance += est.throughput * le;
-                    est.visible += 1.0;
+                    s.radiance[e] += path.throughput * le;
+                    s.visible[e] += 1.0;
                     continue;
                 }
                 Seen::Surface { position, normal, albedo, emission, finish } => {
-                    est.radiance += est.throughput * emission;
+                    s.radiance[e] += path.throughput * emission;
                     (position, normal, albedo, finish)
                 }
             };
             let dir = match finish {
                 Finish::Diffuse => {
-                    est.surface = Some((position, normal, est.throughput * albedo));
+                    let albedo = path.throughput * albedo;
+                    s.ends.push(End { estimate: e as u32, position, normal, albedo, time: ray.time });
                     continue;
                 }
                 _ if bounces == MAX_BOUNCES => continue,
                 Finish::Mirror => ray.dir.reflect(normal),
                 Finish::Glossy { exponent } => {
-                    let u = est.gloss.take().unwrap_or_else(|| {
-                        let rng = est.later.get_or_insert_with(|| keys.gloss.derive(px.index).derive(e as u64).rng());
+                    let u = s.gloss_u[e].take().unwrap_or_else(|| {
+                        let rng = s.later[e].get_or_insert_with(|| keys.gloss.derive(px.index).derive(e as u64).rng());
                         [uniform(rng), uniform(rng)]
                     });
                     let d = phong_lobe(ray.dir.reflect(normal).normalize(), exponent, u);
@@ -563,27 +585,30 @@ fn follow(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
                     d
                 }
             };
-            est.throughput *= albedo;
-            s.next.push(Ray { origin: Scene::offset(position, normal), dir, time: est.time });
-            s.next_active.push(e as u32);
+            s.next.push(Ray { origin: Scene::offset(position, normal), dir, time: ray.time });
+            s.next_paths.push(Path { estimate: e as u32, throughput: path.throughput * albedo });
         }
         std::mem::swap(&mut s.rays, &mut s.next);
-        std::mem::swap(&mut s.active, &mut s.next_active);
+        std::mem::swap(&mut s.paths, &mut s.next_paths);
     }
     traced
 }
 
-/// The shadow rays of every estimate that ended on a diffuse surface, grouped by estimate
-/// and light.
-fn light_samples(setup: &Setup, px: Pixel, s: &mut Scratch) {
+/// The shadow rays of light `l` from every end, in `s.rays`, with each end's sums.
+fn light_samples(setup: &Setup, px: Pixel, s: &mut Scratch, l: usize) {
     let Setup { options: o, lights, keys, .. } = *setup;
+    let p = &lights[l];
     s.rays.clear();
-    s.groups.clear();
+    s.sums.clear();
     s.samples.clear();
-    for (e, est) in s.estimates.iter().enumerate() {
-        let Some((x, n, _)) = est.surface else { continue };
-        let origin = Scene::offset(x, n);
-        for (l, p) in lights.iter().enumerate() {
+    for end in &s.ends {
+        let (e, x, n) = (end.estimate as usize, end.position, end.normal);
+        let unoccluded = match o.mode {
+            Mode::Visibility => unoccluded(p, x, n),
+            Mode::Direct => 1.0,
+        };
+        let mut sums = Sums { unoccluded, accepted: 0, weight: 0.0, first: s.rays.len() as u32, count: 0 };
+        if unoccluded > 0.0 {
             let (points, range) = match o.pattern {
                 Pattern::PerEstimate => {
                     let (dims, key) = (p.light.dims(), keys.light.derive(px.index).derive(l as u64));
@@ -600,74 +625,49 @@ fn light_samples(setup: &Setup, px: Pixel, s: &mut Scratch) {
                     (&s.shared_points[l], b..b + o.n)
                 }
             };
-            let unoccluded = match o.mode {
-                Mode::Visibility => unoccluded(p, x, n),
-                Mode::Direct => 1.0,
-            };
-            if unoccluded <= 0.0 {
-                continue;
-            }
-            let mut group =
-                Group { estimate: e, light: l, unoccluded, accepted: 0, weight: 0.0, first: s.rays.len(), count: 0 };
+            let origin = Scene::offset(x, n);
             for i in range {
                 let Some(y) = points.get(i) else { continue };
-                group.accepted += 1;
-                group.weight += y.weight;
+                sums.accepted += 1;
+                sums.weight += y.weight;
                 let g = if o.mode == Mode::Direct { geometry(p.normal, x, n, y.position) } else { 1.0 };
                 if g <= 0.0 {
                     continue;
                 }
-                s.rays.push(Scene::shadow_ray(origin, y.position, est.time));
+                s.rays.push(Scene::shadow_ray(origin, y.position, end.time));
                 s.samples.push((y.weight, g));
-                group.count += 1;
+                sums.count += 1;
             }
-            s.groups.push(group);
         }
+        s.sums.push(sums);
     }
 }
 
-/// Each estimate's light sums, in the order of the lights, once the shadow rays are traced;
-/// returns the pixel's summed radiance and visible fraction.
-fn gather(setup: &Setup, s: &mut Scratch) -> (DVec3, f64) {
+/// Each end's sums of light `l` once its shadow rays are traced, added to its estimate.
+fn gather(setup: &Setup, s: &mut Scratch, l: usize) {
     let Setup { options: o, lights, .. } = *setup;
-    s.vis_sums.clear();
-    s.vis_sums.resize(o.spp, 0.0);
-    for g in &s.groups {
-        if g.accepted == 0 {
+    let p = &lights[l];
+    for (end, sums) in s.ends.iter().zip(&s.sums) {
+        if sums.accepted == 0 {
             continue;
         }
         let (mut shade, mut seen) = (0.0, 0.0);
-        for r in g.first..g.first + g.count {
-            if !s.blocked[r] {
-                let (weight, geometry) = s.samples[r];
+        let rays = sums.first as usize..(sums.first + sums.count) as usize;
+        for (&blocked, &(weight, geometry)) in s.blocked[rays.clone()].iter().zip(&s.samples[rays]) {
+            if !blocked {
                 shade += weight * geometry;
                 seen += weight;
             }
         }
-        let p = &lights[g.light];
-        let fraction = seen / g.weight;
-        s.vis_sums[g.estimate] += fraction;
+        let e = end.estimate as usize;
+        let fraction = seen / sums.weight;
+        s.vis_sums[e] += fraction;
         let integral = match o.mode {
-            Mode::Visibility => g.unoccluded * fraction,
-            Mode::Direct => shade / g.accepted as f64,
+            Mode::Visibility => sums.unoccluded * fraction,
+            Mode::Direct => shade / sums.accepted as f64,
         };
-        let est = &mut s.estimates[g.estimate];
-        let (_, _, albedo) = est.surface.expect("groups come from surfaces");
-        est.radiance += albedo / PI * p.light.radiance * p.area * integral;
+        s.radiance[e] += end.albedo / PI * p.light.radiance * p.area * integral;
     }
-    let mut radiance = DVec3::ZERO;
-    let mut visible = 0.0;
-    for (est, vis_sum) in s.estimates.iter().zip(&s.vis_sums) {
-        radiance += est.radiance;
-        // a scene without lights is all "visible" (nothing to shadow)
-        visible += est.visible
-            + match est.surface {
-                None => 0.0,
-                Some(_) if lights.is_empty() => 1.0,
-                Some(_) => vis_sum / lights.len() as f64,
-            };
-    }
-    (radiance, visible)
 }
 
 /// A direction about the unit `axis` from the normalized Phong lobe (n + 1) / (2 pi)
