@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use crate::geometry::{Aabb, Shape};
+use crate::geometry::{Aabb, Normal, Shape};
 use crate::packet::Packet;
 
 /// A shape and the index of its material.
@@ -30,6 +30,8 @@ struct Node {
 pub struct Bvh {
     nodes: Vec<Node>,
     objects: Vec<Object>,
+    /// Each object's normal, prepared.
+    normals: Vec<Normal>,
 }
 
 const BINS: usize = 16;
@@ -55,13 +57,21 @@ impl Bvh {
         let mut order: Vec<u32> = (0..objects.len() as u32).collect();
         let mut build = Build { bounds, centres, nodes: Vec::with_capacity(2 * objects.len() / LEAF_SIZE + 1) };
         build.split(&mut order, 0);
-        let objects = order.iter().map(|&i| objects[i as usize]).collect();
-        Bvh { nodes: build.nodes, objects }
+        let objects: Vec<Object> = order.iter().map(|&i| objects[i as usize]).collect();
+        let normals = objects.iter().map(|o| Normal::of(&o.shape)).collect();
+        Bvh { nodes: build.nodes, objects, normals }
     }
 
     /// The objects, in traversal order.
     pub fn objects(&self) -> &[Object] {
         &self.objects
+    }
+
+    /// The unit geometric normal of object `i` (in traversal order) at its surface point
+    /// `p` at shutter `time`, not flipped toward any ray.
+    #[inline]
+    pub fn normal(&self, i: usize, p: DVec3, time: f64) -> DVec3 {
+        self.normals[i].at(p, time)
     }
 
     /// The box around everything.

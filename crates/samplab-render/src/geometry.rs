@@ -148,15 +148,41 @@ impl Shape {
             Shape::Triangle { p, e1, e2 } => edge_hit(p, e1, e2, false, o, d, t_min, t_max),
         }
     }
+}
 
-    /// The unit geometric normal at the surface point `p` at shutter `time` (not flipped
-    /// toward any ray): computed once for the closest hit, not for every candidate.
-    pub fn normal(&self, p: DVec3, time: f64) -> DVec3 {
-        match *self {
-            Shape::Sphere { centre, radius, velocity } => (p - (centre + time * velocity)) / radius,
-            Shape::Parallelogram { u: e1, v: e2, .. } | Shape::Triangle { e1, e2, .. } => e1.cross(e2).normalize(),
-            Shape::Disk { normal, .. } => normal,
+/// A shape's unit geometric normal (not flipped toward any ray), prepared once so that a
+/// hit costs no branch on the shape's kind: a sphere's points away from its centre at the
+/// hit's time, a flat shape's is stored.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Normal {
+    centre: DVec3,
+    velocity: DVec3,
+    radius: f64,
+    flat: DVec3,
+    sphere: bool,
+}
+
+impl Normal {
+    /// The normal of `shape`.
+    pub(crate) fn of(shape: &Shape) -> Normal {
+        let flat =
+            |n: DVec3| Normal { centre: DVec3::ZERO, velocity: DVec3::ZERO, radius: 1.0, flat: n, sphere: false };
+        match *shape {
+            Shape::Sphere { centre, radius, velocity } => {
+                Normal { centre, velocity, radius, flat: DVec3::ZERO, sphere: true }
+            }
+            Shape::Parallelogram { u: e1, v: e2, .. } | Shape::Triangle { e1, e2, .. } => {
+                flat(e1.cross(e2).normalize())
+            }
+            Shape::Disk { normal, .. } => flat(normal),
         }
+    }
+
+    /// The normal at the surface point `p` at shutter `time`.
+    #[inline]
+    pub(crate) fn at(&self, p: DVec3, time: f64) -> DVec3 {
+        let radial = (p - (self.centre + time * self.velocity)) / self.radius;
+        if self.sphere { radial } else { self.flat }
     }
 }
 

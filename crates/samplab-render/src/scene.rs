@@ -176,12 +176,13 @@ impl Scene {
     }
 
     /// What `ray` sees at its nearest hit ([`Scene::trace`]).
+    #[inline]
     pub fn seen(&self, ray: &Ray, hit: Hit) -> Seen {
         let Hit { t, what: hit } = hit;
         let objects = self.bvh.objects();
         let position = ray.at(t);
         let (normal, material) = match hit as usize {
-            i if i < objects.len() => (objects[i].shape.normal(position, ray.time), objects[i].material),
+            i if i < objects.len() => (self.bvh.normal(i, position, ray.time), objects[i].material),
             i if i < objects.len() + self.planes.len() => {
                 let (plane, material) = self.planes[i - objects.len()];
                 (plane.normal, material)
