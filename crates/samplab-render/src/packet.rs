@@ -24,8 +24,11 @@ pub(crate) fn packets(rays: &[Ray], mut f: impl FnMut(usize, &Packet)) {
     wide(
         #[inline(always)]
         || {
+            // one packet refilled: lanes past a short chunk's length are never read
+            let mut p = Packet::new(&[]);
             for (k, chunk) in rays.chunks(WIDTH).enumerate() {
-                f(k * WIDTH, &Packet::new(chunk));
+                p.load(chunk);
+                f(k * WIDTH, &p);
             }
         },
     );
@@ -45,23 +48,25 @@ impl Packet {
     /// The packet of `rays` (at most [`WIDTH`]).
     #[inline(always)]
     pub(crate) fn new(rays: &[Ray]) -> Packet {
+        let mut p =
+            Packet { len: 0, o: [[0.0; WIDTH]; 3], d: [[0.0; WIDTH]; 3], inv: [[0.0; WIDTH]; 3], time: [0.0; WIDTH] };
+        p.load(rays);
+        p
+    }
+
+    /// Make this the packet of `rays` (at most [`WIDTH`]).
+    #[inline(always)]
+    pub(crate) fn load(&mut self, rays: &[Ray]) {
         let rays = &rays[..rays.len().min(WIDTH)];
-        let mut p = Packet {
-            len: rays.len(),
-            o: [[0.0; WIDTH]; 3],
-            d: [[0.0; WIDTH]; 3],
-            inv: [[0.0; WIDTH]; 3],
-            time: [0.0; WIDTH],
-        };
+        self.len = rays.len();
         for (i, r) in rays.iter().enumerate() {
             for k in 0..3 {
-                p.o[k][i] = r.origin[k];
-                p.d[k][i] = r.dir[k];
-                p.inv[k][i] = 1.0 / r.dir[k];
+                self.o[k][i] = r.origin[k];
+                self.d[k][i] = r.dir[k];
+                self.inv[k][i] = 1.0 / r.dir[k];
             }
-            p.time[i] = r.time;
+            self.time[i] = r.time;
         }
-        p
     }
 
     /// The number of rays.
