@@ -69,7 +69,7 @@ impl Bvh {
 
     /// The unit geometric normal of object `i` (in traversal order) at its surface point
     /// `p` at shutter `time`, not flipped toward any ray.
-    #[inline]
+    #[inline(always)]
     pub fn normal(&self, i: usize, p: DVec3, time: f64) -> DVec3 {
         self.normals[i].at(p, time)
     }
@@ -264,7 +264,8 @@ mod tests {
                 let runs = on_each_instruction_set(
                     #[inline(always)]
                     || {
-                        let p = Packet::new(&rays);
+                        let mut p = Packet::default();
+                        p.load(&rays);
                         let (mut t, mut hit) = ([0.0; WIDTH], [u32::MAX; WIDTH]);
                         t[..size].copy_from_slice(&t_max);
                         bvh.trace::<false>(&p, 0.0, &mut t, &mut hit);

@@ -60,7 +60,7 @@ impl Camera {
 impl Frame {
     /// The ray through film point (x, y) (both in [0, 1), y down), from lens sample `lens`
     /// (unit square, mapped to the lens disk concentrically) at shutter time `time`.
-    #[inline]
+    #[inline(always)]
     pub fn ray(&self, x: f64, y: f64, lens: [f64; 2], time: f64) -> Ray {
         let dir = self.forward + (2.0 * x - 1.0) * self.half_w * self.right + (1.0 - 2.0 * y) * self.half_h * self.up;
         if self.aperture <= 0.0 {

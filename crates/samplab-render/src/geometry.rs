@@ -179,7 +179,7 @@ impl Normal {
     }
 
     /// The normal at the surface point `p` at shutter `time`.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn at(&self, p: DVec3, time: f64) -> DVec3 {
         let radial = (p - (self.centre + time * self.velocity)) / self.radius;
         if self.sphere { radial } else { self.flat }

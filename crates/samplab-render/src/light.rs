@@ -272,7 +272,7 @@ impl LightPoints {
     }
 
     /// Point `i`, None where the map rejected it.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn get(&self, i: usize) -> Option<LightPoint> {
         self.kept[i].then_some(self.points[i])
     }

@@ -25,7 +25,7 @@ pub(crate) fn packets(rays: &[Ray], mut f: impl FnMut(usize, &Packet)) {
         #[inline(always)]
         || {
             // one packet refilled: lanes past a short chunk's length are never read
-            let mut p = Packet::new(&[]);
+            let mut p = Packet::default();
             for (k, chunk) in rays.chunks(WIDTH).enumerate() {
                 p.load(chunk);
                 f(k * WIDTH, &p);
@@ -35,7 +35,7 @@ pub(crate) fn packets(rays: &[Ray], mut f: impl FnMut(usize, &Packet)) {
 }
 
 /// Up to [`WIDTH`] rays in structure-of-arrays form, with their inverse directions for the
-/// box tests.
+/// box tests: lanes are [`Packet::set`], then the packet is [`Packet::seal`]ed.
 pub(crate) struct Packet {
     len: usize,
     o: [[f64; WIDTH]; 3],
@@ -44,29 +44,52 @@ pub(crate) struct Packet {
     time: [f64; WIDTH],
 }
 
-impl Packet {
-    /// The packet of `rays` (at most [`WIDTH`]).
+impl Default for Packet {
+    /// A packet of no rays.
     #[inline(always)]
-    pub(crate) fn new(rays: &[Ray]) -> Packet {
-        let mut p =
-            Packet { len: 0, o: [[0.0; WIDTH]; 3], d: [[0.0; WIDTH]; 3], inv: [[0.0; WIDTH]; 3], time: [0.0; WIDTH] };
-        p.load(rays);
-        p
+    fn default() -> Packet {
+        Packet { len: 0, o: [[0.0; WIDTH]; 3], d: [[0.0; WIDTH]; 3], inv: [[0.0; WIDTH]; 3], time: [0.0; WIDTH] }
+    }
+}
+
+impl Packet {
+    /// Put `ray` in lane `i` (below [`WIDTH`]).
+    #[inline(always)]
+    pub(crate) fn set(&mut self, i: usize, ray: &Ray) {
+        for k in 0..3 {
+            self.o[k][i] = ray.origin[k];
+            self.d[k][i] = ray.dir[k];
+        }
+        self.time[i] = ray.time;
+    }
+
+    /// Make the packet lanes `0..len` (each [`Packet::set`] since the last seal) and compute
+    /// their inverse directions.
+    #[inline(always)]
+    pub(crate) fn seal(&mut self, len: usize) {
+        self.len = len.min(WIDTH);
+        // whole rows, so that the divisions run in vector lanes
+        for (inv, d) in self.inv.iter_mut().zip(&self.d) {
+            for (a, b) in inv.iter_mut().zip(d) {
+                *a = 1.0 / b;
+            }
+        }
     }
 
     /// Make this the packet of `rays` (at most [`WIDTH`]).
     #[inline(always)]
     pub(crate) fn load(&mut self, rays: &[Ray]) {
         let rays = &rays[..rays.len().min(WIDTH)];
-        self.len = rays.len();
-        for (i, r) in rays.iter().enumerate() {
-            for k in 0..3 {
-                self.o[k][i] = r.origin[k];
-                self.d[k][i] = r.dir[k];
-                self.inv[k][i] = 1.0 / r.dir[k];
-            }
-            self.time[i] = r.time;
+        for (i, ray) in rays.iter().enumerate() {
+            self.set(i, ray);
         }
+        self.seal(rays.len());
+    }
+
+    /// Ray `i`.
+    #[inline(always)]
+    pub(crate) fn ray(&self, i: usize) -> Ray {
+        Ray { origin: self.origin(i), dir: self.dir(i), time: self.time[i] }
     }
 
     /// The number of rays.

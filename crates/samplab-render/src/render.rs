@@ -30,6 +30,7 @@ use crate::error::{Error, Result};
 use crate::geometry::Ray;
 use crate::image::Image;
 use crate::light::{DiskMap, Light, LightPoint, LightPoints, geometry};
+use crate::packet::{Packet, WIDTH};
 use crate::scene::{Finish, Hit, Scene, Seen};
 use samplab::simd::wide;
 
@@ -213,22 +214,18 @@ struct Scratch {
     /// glossy bounce takes it, and independent samples for later glossy bounces.
     gloss_u: Vec<Option<[f64; 2]>>,
     later: Vec<Option<Rng>>,
-    /// The rays of the current wave and their paths, and the next wave's; then the shadow
-    /// rays of one light.
+    /// A packet of camera rays.
+    camera: Packet,
+    /// The reflected rays of the current wave and their paths, and the next wave's.
     rays: Vec<Ray>,
     paths: Vec<Path>,
     next: Vec<Ray>,
     next_paths: Vec<Path>,
     hits: Vec<Hit>,
-    /// Where paths ended on a diffuse surface.
-    ends: Vec<End>,
-    /// Per end: the current light's sample sums.
-    sums: Vec<Sums>,
-    /// Per shadow ray: the light point's falloff weight and geometric factor.
-    samples: Vec<(f64, f64)>,
-    blocked: Vec<bool>,
-    /// Per estimate: the sum of the lights' visible fractions.
-    vis_sums: Vec<f64>,
+    /// Paths ended on a diffuse surface, waiting for their light samples.
+    ends: Ends,
+    /// Shadow rays waiting to be traced.
+    shadows: Shadows,
 }
 
 /// A pixel's pattern of `spp` blocks and the random order they are dealt to its estimates
@@ -301,7 +298,10 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
             let mut rays = (0u64, 0u64);
             for col in 0..w {
                 let pixel = Pixel { index: (row * w + col) as u64, col, row };
-                let (radiance, visible, r) = render_pixel(&setup, pixel, scratch);
+                let (radiance, visible, r) = wide(
+                    #[inline(always)]
+                    || render_pixel(&setup, pixel, scratch),
+                );
                 rgb_row[3 * col..3 * col + 3].copy_from_slice(&radiance.as_vec3().to_array());
                 vis_row[col] = visible as f32;
                 rays.0 += r.0;
@@ -410,7 +410,7 @@ struct Path {
 
 /// Where an estimate's path ended on a diffuse surface: position, normal facing the path,
 /// throughput x albedo, shutter time.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Default)]
 struct End {
     estimate: u32,
     position: DVec3,
@@ -419,49 +419,111 @@ struct End {
     time: f64,
 }
 
-/// One end's samples of one light.
-#[derive(Clone, Copy)]
+/// Up to [`WIDTH`] ends, lit together when full: fixed lanes, so that adding one is a store,
+/// and one packet of shadow rays serves several ends.
+#[derive(Default)]
+struct Ends {
+    len: usize,
+    lanes: [End; WIDTH],
+}
+
+/// Up to [`WIDTH`] shadow rays waiting to be traced as one packet, each with the end it
+/// belongs to (a lane of [`Ends`]), its light point's falloff weight and geometric factor.
+#[derive(Default)]
+struct Shadows {
+    packet: Packet,
+    len: usize,
+    end: [u32; WIDTH],
+    weight: [f64; WIDTH],
+    geometry: [f64; WIDTH],
+}
+
+/// One light's sums over the samples of each lane of [`Ends`].
 struct Sums {
     /// Unoccluded shading (visibility mode; 1 in direct mode).
-    unoccluded: f64,
+    unoccluded: [f64; WIDTH],
     /// Samples the disk map kept, and their summed falloff weight.
-    accepted: u32,
-    weight: f64,
-    /// Its shadow rays: `first..first + count` of the light's.
-    first: u32,
-    count: u32,
+    accepted: [u32; WIDTH],
+    weight: [f64; WIDTH],
+    /// Over the unblocked samples: weight x geometric factor, and weight.
+    shade: [f64; WIDTH],
+    seen: [f64; WIDTH],
+}
+
+impl Shadows {
+    /// Queue the shadow ray of end `end`.
+    #[inline(always)]
+    fn push(&mut self, ray: &Ray, end: usize, weight: f64, geometry: f64) {
+        let i = self.len;
+        self.packet.set(i, ray);
+        self.end[i] = end as u32;
+        self.weight[i] = weight;
+        self.geometry[i] = geometry;
+        self.len = i + 1;
+    }
+
+    /// Trace the queued rays and add each unblocked one to its end's sums, in the order
+    /// queued. Returns the rays traced.
+    #[inline(always)]
+    fn trace(&mut self, scene: &Scene, sums: &mut Sums) -> u64 {
+        let n = self.len;
+        self.packet.seal(n);
+        let blocked = scene.occluded(&self.packet);
+        for (i, _) in blocked[..n].iter().enumerate().filter(|(_, b)| !**b) {
+            let k = self.end[i] as usize;
+            sums.shade[k] += self.weight[i] * self.geometry[i];
+            sums.seen[k] += self.weight[i];
+        }
+        self.len = 0;
+        n as u64
+    }
 }
 
 /// A pixel's radiance, its visible fraction and the (camera, shadow) rays it traced: its
-/// camera rays traced as packets, then the reflected rays of the mirror and glossy hits wave
-/// by wave, then each light's shadow rays as packets.
+/// camera rays traced as packets of [`WIDTH`] estimates, then the reflected rays of the
+/// mirror and glossy hits wave by wave; the diffuse ends are lit [`WIDTH`] at a time, each
+/// light's shadow rays traced as packets. Compiled wide ([`wide`]).
+#[inline(always)]
 fn render_pixel(setup: &Setup, px: Pixel, s: &mut Scratch) -> (DVec3, f64, (u64, u64)) {
+    let Setup { scene, options: o, .. } = *setup;
     deal(setup, px, s);
-    camera_rays(setup, px, s);
-    let camera = follow(setup, px, s);
-    s.vis_sums.clear();
-    s.vis_sums.resize(setup.options.spp, 0.0);
-    let mut shadow = 0;
-    for l in 0..setup.lights.len() {
-        light_samples(setup, px, s, l);
-        setup.scene.occluded(&s.rays, &mut s.blocked);
-        shadow += s.rays.len() as u64;
-        gather(setup, s, l);
+    start(setup, s);
+    let (mut camera, mut shadow) = (0, 0);
+    for first in (0..o.spp).step_by(WIDTH) {
+        let m = WIDTH.min(o.spp - first);
+        camera_packet(setup, px, s, first, m);
+        let hits = scene.trace_packet(&s.camera);
+        for (i, &hit) in hits[..m].iter().enumerate() {
+            let (ray, path) = (s.camera.ray(i), Path { estimate: (first + i) as u32, throughput: DVec3::ONE });
+            shadow += visit(setup, px, s, &ray, hit, path, 0);
+        }
     }
-    // a scene without lights is all "visible" (nothing to shadow)
-    let lights = setup.lights.len();
-    for end in &s.ends {
-        let e = end.estimate as usize;
-        s.visible[e] += if lights == 0 { 1.0 } else { s.vis_sums[e] / lights as f64 };
+    camera += o.spp as u64;
+    for bounces in 1..=MAX_BOUNCES {
+        std::mem::swap(&mut s.rays, &mut s.next);
+        std::mem::swap(&mut s.paths, &mut s.next_paths);
+        s.next.clear();
+        s.next_paths.clear();
+        if s.rays.is_empty() {
+            break;
+        }
+        camera += s.rays.len() as u64;
+        scene.trace(&s.rays, &mut s.hits);
+        for k in 0..s.rays.len() {
+            let (ray, hit, path) = (s.rays[k], s.hits[k], s.paths[k]);
+            shadow += visit(setup, px, s, &ray, hit, path, bounces);
+        }
     }
+    shadow += light_ends(setup, px, s);
     let radiance = s.radiance.iter().fold(DVec3::ZERO, |a, &r| a + r);
     let visible = s.visible.iter().fold(0.0, |a, &v| a + v);
-    let inv = 1.0 / setup.options.spp as f64;
+    let inv = 1.0 / o.spp as f64;
     (radiance * inv, visible * inv, (camera, shadow))
 }
 
 /// Draw the pixel's patterns: pixel area, lens, time, gloss, and the per-pixel light
 /// patterns with their points on the lights.
+#[inline(always)]
 fn deal(setup: &Setup, px: Pixel, s: &mut Scratch) {
     let Setup { scene, options: o, lights, keys, moving, glossy, .. } = *setup;
     let spp = o.spp;
@@ -490,25 +552,39 @@ fn deal(setup: &Setup, px: Pixel, s: &mut Scratch) {
         }
         s.shared_points.resize_with(lights.len(), Default::default);
         for ((p, dealt), points) in lights.iter().zip(&s.shared).zip(&mut s.shared_points) {
-            wide(
-                #[inline(always)]
-                || points.fill(&p.light, &dealt.points),
-            );
+            points.fill(&p.light, &dealt.points);
         }
     }
 }
 
-/// The camera ray of each estimate, and its path.
-fn camera_rays(setup: &Setup, px: Pixel, s: &mut Scratch) {
-    let Setup { scene, options: o, frame, moving, glossy, .. } = *setup;
-    let lens = scene.camera.aperture > 0.0;
+/// Clear the per-estimate state for a new pixel.
+#[inline(always)]
+fn start(setup: &Setup, s: &mut Scratch) {
+    let spp = setup.options.spp;
     s.radiance.clear();
-    s.radiance.resize(o.spp, DVec3::ZERO);
+    s.radiance.resize(spp, DVec3::ZERO);
     s.visible.clear();
-    s.visible.resize(o.spp, 0.0);
-    s.rays.clear();
-    s.paths.clear();
-    for e in 0..o.spp {
+    s.visible.resize(spp, 0.0);
+    s.next.clear();
+    s.next_paths.clear();
+    if setup.glossy {
+        s.gloss_u.clear();
+        s.gloss_u.extend((0..spp).map(|e| {
+            let u = s.gloss.block(e, 2);
+            Some([u[0], u[1]])
+        }));
+        s.later.clear();
+        s.later.resize(spp, None);
+    }
+}
+
+/// The camera rays of estimates `first..first + m` in `s.camera`.
+#[inline(always)]
+fn camera_packet(setup: &Setup, px: Pixel, s: &mut Scratch, first: usize, m: usize) {
+    let Setup { scene, options: o, frame, moving, .. } = *setup;
+    let lens = scene.camera.aperture > 0.0;
+    for i in 0..m {
+        let e = first + i;
         let (dx, dy) = if o.footprint == Footprint::Area { (s.pixel[2 * e], s.pixel[2 * e + 1]) } else { (0.5, 0.5) };
         let lens_uv = if lens {
             let u = s.lens.block(e, 2);
@@ -517,107 +593,94 @@ fn camera_rays(setup: &Setup, px: Pixel, s: &mut Scratch) {
             [0.5, 0.5]
         };
         let time = if moving { s.time.block(e, 1)[0] } else { 0.0 };
-        s.rays.push(frame.ray(
-            (px.col as f64 + dx) / o.width as f64,
-            (px.row as f64 + dy) / o.height as f64,
-            lens_uv,
-            time,
-        ));
-        s.paths.push(Path { estimate: e as u32, throughput: DVec3::ONE });
+        let x = (px.col as f64 + dx) / o.width as f64;
+        let y = (px.row as f64 + dy) / o.height as f64;
+        s.camera.set(i, &frame.ray(x, y, lens_uv, time));
     }
-    if glossy {
-        s.gloss_u.clear();
-        s.gloss_u.extend((0..o.spp).map(|e| {
-            let u = s.gloss.block(e, 2);
-            Some([u[0], u[1]])
-        }));
-        s.later.clear();
-        s.later.resize(o.spp, None);
-    }
+    s.camera.seal(m);
 }
 
-/// Trace the camera rays, then follow mirror and glossy reflections to the first diffuse
-/// surface wave by wave, with the strategy's gloss sample at the first glossy bounce and
-/// independent ones after. Returns the rays traced.
-fn follow(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
+/// Follow `path`'s `ray` to its `hit`: a light or a surface's emission adds to its estimate;
+/// a diffuse surface ends the path (lighting the ends when [`WIDTH`] are waiting); a
+/// mirror or glossy one reflects it into the next wave, with the strategy's gloss sample at
+/// the first glossy bounce and independent ones after. Returns the shadow rays traced.
+#[inline(always)]
+fn visit(setup: &Setup, px: Pixel, s: &mut Scratch, ray: &Ray, hit: Hit, path: Path, bounces: usize) -> u64 {
     let Setup { scene, keys, .. } = *setup;
-    let mut traced = 0;
-    s.ends.clear();
-    for bounces in 0..=MAX_BOUNCES {
-        if s.rays.is_empty() {
-            break;
+    let e = path.estimate as usize;
+    let (position, normal, albedo, finish) = match scene.seen(ray, hit) {
+        Seen::Nothing => return 0,
+        Seen::Light(le) => {
+            s.radiance[e] += path.throughput * le;
+            s.visible[e] += 1.0;
+            return 0;
         }
-        traced += s.rays.len() as u64;
-        scene.trace(&s.rays, &mut s.hits);
-        s.next.clear();
-        s.next_paths.clear();
-        for ((ray, &hit), &path) in s.rays.iter().zip(&s.hits).zip(&s.paths) {
-            let e = path.estimate as usize;
-            let (position, normal, albedo, finish) = match scene.seen(ray, hit) {
-                Seen::Nothing => continue,
-                Seen::Light(le) => {
-                    s.radiance[e] += path.throughput * le;
-                    s.visible[e] += 1.0;
-                    continue;
-                }
-                Seen::Surface { position, normal, albedo, emission, finish } => {
-                    s.radiance[e] += path.throughput * emission;
-                    (position, normal, albedo, finish)
-                }
-            };
-            let dir = match finish {
-                Finish::Diffuse => {
-                    let albedo = path.throughput * albedo;
-                    s.ends.push(End { estimate: e as u32, position, normal, albedo, time: ray.time });
-                    continue;
-                }
-                _ if bounces == MAX_BOUNCES => continue,
-                Finish::Mirror => ray.dir.reflect(normal),
-                Finish::Glossy { exponent } => {
-                    let u = s.gloss_u[e].take().unwrap_or_else(|| {
-                        let rng = s.later[e].get_or_insert_with(|| keys.gloss.derive(px.index).derive(e as u64).rng());
-                        [uniform(rng), uniform(rng)]
-                    });
-                    let d = phong_lobe(ray.dir.reflect(normal).normalize(), exponent, u);
-                    if d.dot(normal) <= 0.0 {
-                        continue;
-                    }
-                    d
-                }
-            };
-            s.next.push(Ray { origin: Scene::offset(position, normal), dir, time: ray.time });
-            s.next_paths.push(Path { estimate: e as u32, throughput: path.throughput * albedo });
+        Seen::Surface { position, normal, albedo, emission, finish } => {
+            s.radiance[e] += path.throughput * emission;
+            (position, normal, albedo, finish)
         }
-        std::mem::swap(&mut s.rays, &mut s.next);
-        std::mem::swap(&mut s.paths, &mut s.next_paths);
-    }
-    traced
+    };
+    let dir = match finish {
+        Finish::Diffuse => {
+            let albedo = path.throughput * albedo;
+            let k = s.ends.len;
+            s.ends.lanes[k] = End { estimate: path.estimate, position, normal, albedo, time: ray.time };
+            s.ends.len = k + 1;
+            return if k + 1 == WIDTH { light_ends(setup, px, s) } else { 0 };
+        }
+        _ if bounces == MAX_BOUNCES => return 0,
+        Finish::Mirror => ray.dir.reflect(normal),
+        Finish::Glossy { exponent } => {
+            let u = s.gloss_u[e].take().unwrap_or_else(|| {
+                let rng = s.later[e].get_or_insert_with(|| keys.gloss.derive(px.index).derive(e as u64).rng());
+                [uniform(rng), uniform(rng)]
+            });
+            let d = phong_lobe(ray.dir.reflect(normal).normalize(), exponent, u);
+            if d.dot(normal) <= 0.0 {
+                return 0;
+            }
+            d
+        }
+    };
+    s.next.push(Ray { origin: Scene::offset(position, normal), dir, time: ray.time });
+    s.next_paths.push(Path { estimate: path.estimate, throughput: path.throughput * albedo });
+    0
 }
 
-/// The shadow rays of light `l` from every end, in `s.rays`, with each end's sums.
-fn light_samples(setup: &Setup, px: Pixel, s: &mut Scratch, l: usize) {
-    let Setup { options: o, lights, keys, .. } = *setup;
-    let p = &lights[l];
-    s.rays.clear();
-    s.sums.clear();
-    s.samples.clear();
-    for end in &s.ends {
-        let (e, x, n) = (end.estimate as usize, end.position, end.normal);
-        let unoccluded = match o.mode {
-            Mode::Visibility => unoccluded(p, x, n),
-            Mode::Direct => 1.0,
+/// Light the waiting ends: for each light in turn, each end's light samples, their shadow
+/// rays traced by packets, and the end's share added to its estimate; then each estimate's
+/// visible fraction. Returns the shadow rays traced.
+#[inline(always)]
+fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
+    let Setup { scene, options: o, lights, keys, .. } = *setup;
+    let ends = &s.ends.lanes[..s.ends.len];
+    let shadows = &mut s.shadows;
+    let mut traced = 0;
+    let mut visible = [0.0; WIDTH];
+    for (l, p) in lights.iter().enumerate() {
+        let mut sums = Sums {
+            unoccluded: [0.0; WIDTH],
+            accepted: [0; WIDTH],
+            weight: [0.0; WIDTH],
+            shade: [0.0; WIDTH],
+            seen: [0.0; WIDTH],
         };
-        let mut sums = Sums { unoccluded, accepted: 0, weight: 0.0, first: s.rays.len() as u32, count: 0 };
-        if unoccluded > 0.0 {
+        for (k, end) in ends.iter().enumerate() {
+            let (e, x, n) = (end.estimate as usize, end.position, end.normal);
+            let unoccluded = match o.mode {
+                Mode::Visibility => unoccluded(p, x, n),
+                Mode::Direct => 1.0,
+            };
+            sums.unoccluded[k] = unoccluded;
+            if unoccluded <= 0.0 {
+                continue;
+            }
             let (points, range) = match o.pattern {
                 Pattern::PerEstimate => {
                     let (dims, key) = (p.light.dims(), keys.light.derive(px.index).derive(l as u64));
                     s.light.resize(o.n * dims, 0.0);
                     o.light.fill(o.n, dims, key.derive(e as u64), &mut s.light).expect("counts checked");
-                    wide(
-                        #[inline(always)]
-                        || s.light_points.fill(&p.light, &s.light),
-                    );
+                    s.light_points.fill(&p.light, &s.light);
                     (&s.light_points, 0..o.n)
                 }
                 Pattern::PerPixel => {
@@ -628,46 +691,40 @@ fn light_samples(setup: &Setup, px: Pixel, s: &mut Scratch, l: usize) {
             let origin = Scene::offset(x, n);
             for i in range {
                 let Some(y) = points.get(i) else { continue };
-                sums.accepted += 1;
-                sums.weight += y.weight;
+                sums.accepted[k] += 1;
+                sums.weight[k] += y.weight;
                 let g = if o.mode == Mode::Direct { geometry(p.normal, x, n, y.position) } else { 1.0 };
                 if g <= 0.0 {
                     continue;
                 }
-                s.rays.push(Scene::shadow_ray(origin, y.position, end.time));
-                s.samples.push((y.weight, g));
-                sums.count += 1;
+                shadows.push(&Scene::shadow_ray(origin, y.position, end.time), k, y.weight, g);
+                if shadows.len == WIDTH {
+                    traced += shadows.trace(scene, &mut sums);
+                }
             }
         }
-        s.sums.push(sums);
+        traced += shadows.trace(scene, &mut sums);
+        for (k, end) in ends.iter().enumerate() {
+            if sums.accepted[k] == 0 {
+                continue;
+            }
+            let e = end.estimate as usize;
+            let fraction = sums.seen[k] / sums.weight[k];
+            visible[k] += fraction;
+            let integral = match o.mode {
+                Mode::Visibility => sums.unoccluded[k] * fraction,
+                Mode::Direct => sums.shade[k] / sums.accepted[k] as f64,
+            };
+            s.radiance[e] += end.albedo / PI * p.light.radiance * p.area * integral;
+        }
     }
-}
-
-/// Each end's sums of light `l` once its shadow rays are traced, added to its estimate.
-fn gather(setup: &Setup, s: &mut Scratch, l: usize) {
-    let Setup { options: o, lights, .. } = *setup;
-    let p = &lights[l];
-    for (end, sums) in s.ends.iter().zip(&s.sums) {
-        if sums.accepted == 0 {
-            continue;
-        }
-        let (mut shade, mut seen) = (0.0, 0.0);
-        let rays = sums.first as usize..(sums.first + sums.count) as usize;
-        for (&blocked, &(weight, geometry)) in s.blocked[rays.clone()].iter().zip(&s.samples[rays]) {
-            if !blocked {
-                shade += weight * geometry;
-                seen += weight;
-            }
-        }
+    // a scene without lights is all "visible" (nothing to shadow)
+    for (k, end) in ends.iter().enumerate() {
         let e = end.estimate as usize;
-        let fraction = seen / sums.weight;
-        s.vis_sums[e] += fraction;
-        let integral = match o.mode {
-            Mode::Visibility => sums.unoccluded * fraction,
-            Mode::Direct => shade / sums.accepted as f64,
-        };
-        s.radiance[e] += end.albedo / PI * p.light.radiance * p.area * integral;
+        s.visible[e] += if lights.is_empty() { 1.0 } else { visible[k] / lights.len() as f64 };
     }
+    s.ends.len = 0;
+    traced
 }
 
 /// A direction about the unit `axis` from the normalized Phong lobe (n + 1) / (2 pi)

@@ -6,7 +6,7 @@ use crate::bvh::Bvh;
 use crate::camera::Camera;
 use crate::geometry::{Plane, Ray};
 use crate::light::Light;
-use crate::packet::{WIDTH, packets};
+use crate::packet::{Packet, WIDTH, packets};
 
 /// A surface colour that may vary with position.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -29,7 +29,7 @@ pub enum Texture {
 
 impl Texture {
     /// The colour at `p`.
-    #[inline]
+    #[inline(always)]
     pub fn at(&self, p: DVec3) -> DVec3 {
         match *self {
             Texture::Constant(c) => c,
@@ -148,35 +148,43 @@ impl Scene {
         self.bvh.objects().len()
     }
 
-    /// Each ray's nearest hit, in `hits` (resized to fit): the BVH, the planes and the
-    /// lights traced by packets; [`Scene::seen`] tells what was hit.
+    /// Each ray's nearest hit, in `hits` (resized to fit), traced by packets
+    /// ([`Scene::trace_packet`]); [`Scene::seen`] tells what was hit.
     pub fn trace(&self, rays: &[Ray], hits: &mut Vec<Hit>) {
         hits.resize(rays.len(), Hit { t: f64::INFINITY, what: u32::MAX });
-        let planes_from = self.bvh.objects().len();
-        let lights_from = (planes_from + self.planes.len()) as u32;
         packets(
             rays,
             #[inline(always)]
             |start, p| {
-                let (mut t, mut hit) = ([f64::INFINITY; WIDTH], [u32::MAX; WIDTH]);
-                self.bvh.trace::<false>(p, 0.0, &mut t, &mut hit);
-                for (k, (plane, _)) in self.planes.iter().enumerate() {
-                    let index = (planes_from + k) as u32;
-                    p.each::<false>(index, &mut t, &mut hit, |o, d, _, t_max| plane.hit(o, d, 0.0, t_max));
-                }
-                for (k, light) in self.lights.iter().enumerate() {
-                    let index = lights_from + k as u32;
-                    p.each::<false>(index, &mut t, &mut hit, |o, d, _, t_max| light.hit(o, d, t_max));
-                }
+                let lanes = self.trace_packet(p);
                 for (i, h) in hits[start..start + p.len()].iter_mut().enumerate() {
-                    *h = Hit { t: t[i], what: hit[i] };
+                    *h = lanes[i];
                 }
             },
         );
     }
 
+    /// The nearest hit of each ray of a packet: the BVH, the planes, then the lights (to be
+    /// compiled wide, [`samplab::simd::wide`]).
+    #[inline(always)]
+    pub(crate) fn trace_packet(&self, p: &Packet) -> [Hit; WIDTH] {
+        let planes_from = self.bvh.objects().len();
+        let lights_from = (planes_from + self.planes.len()) as u32;
+        let (mut t, mut hit) = ([f64::INFINITY; WIDTH], [u32::MAX; WIDTH]);
+        self.bvh.trace::<false>(p, 0.0, &mut t, &mut hit);
+        for (k, (plane, _)) in self.planes.iter().enumerate() {
+            let index = (planes_from + k) as u32;
+            p.each::<false>(index, &mut t, &mut hit, |o, d, _, t_max| plane.hit(o, d, 0.0, t_max));
+        }
+        for (k, light) in self.lights.iter().enumerate() {
+            let index = lights_from + k as u32;
+            p.each::<false>(index, &mut t, &mut hit, |o, d, _, t_max| light.hit(o, d, t_max));
+        }
+        std::array::from_fn(|i| Hit { t: t[i], what: hit[i] })
+    }
+
     /// What `ray` sees at its nearest hit ([`Scene::trace`]).
-    #[inline]
+    #[inline(always)]
     pub fn seen(&self, ray: &Ray, hit: Hit) -> Seen {
         let Hit { t, what: hit } = hit;
         let objects = self.bvh.objects();
@@ -209,33 +217,27 @@ impl Scene {
     }
 
     /// The origin of a ray leaving surface point `x` on the side of `n`, off the surface.
-    #[inline]
+    #[inline(always)]
     pub fn offset(x: DVec3, n: DVec3) -> DVec3 {
         x + n * (RAY_EPSILON * (1.0 + x.abs().max_element()) * 100.0)
     }
 
     /// The shadow ray to light point `y` from `origin`, a surface point moved off the
     /// surface by [`Scene::offset`] (once for all its light samples): it reaches `y` at t = 1.
-    #[inline]
+    #[inline(always)]
     pub fn shadow_ray(origin: DVec3, y: DVec3, time: f64) -> Ray {
         Ray { origin, dir: y - origin, time }
     }
 
-    /// Whether each shadow ray ([`Scene::shadow_ray`]) is blocked before its light point,
-    /// in `blocked` (cleared first).
-    pub fn occluded(&self, rays: &[Ray], blocked: &mut Vec<bool>) {
-        blocked.clear();
-        packets(
-            rays,
-            #[inline(always)]
-            |_, p| {
-                let (mut t, mut hit) = ([1.0 - RAY_EPSILON; WIDTH], [0; WIDTH]);
-                for (plane, _) in &self.planes {
-                    p.each::<true>(0, &mut t, &mut hit, |o, d, _, t_max| plane.hit(o, d, RAY_EPSILON, t_max));
-                }
-                self.bvh.trace::<true>(p, RAY_EPSILON, &mut t, &mut hit);
-                blocked.extend(t[..p.len()].iter().map(|&x| x == f64::NEG_INFINITY));
-            },
-        );
+    /// Whether each shadow ray ([`Scene::shadow_ray`]) of a packet is blocked before its
+    /// light point (to be compiled wide, [`samplab::simd::wide`]).
+    #[inline(always)]
+    pub(crate) fn occluded(&self, p: &Packet) -> [bool; WIDTH] {
+        let (mut t, mut hit) = ([1.0 - RAY_EPSILON; WIDTH], [0; WIDTH]);
+        for (plane, _) in &self.planes {
+            p.each::<true>(0, &mut t, &mut hit, |o, d, _, t_max| plane.hit(o, d, RAY_EPSILON, t_max));
+        }
+        self.bvh.trace::<true>(p, RAY_EPSILON, &mut t, &mut hit);
+        t.map(|x| x == f64::NEG_INFINITY)
     }
 }
