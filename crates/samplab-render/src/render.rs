@@ -408,37 +408,49 @@ struct Path {
     throughput: DVec3,
 }
 
-/// Where an estimate's path ended on a diffuse surface: position, normal facing the path,
-/// throughput x albedo, shutter time.
-#[derive(Clone, Copy, Default)]
-struct End {
-    estimate: u32,
-    position: DVec3,
-    normal: DVec3,
-    albedo: DVec3,
-    time: f64,
-}
-
-/// Up to [`WIDTH`] ends, lit together when full: fixed lanes, so that adding one is a store,
-/// and one packet of shadow rays serves several ends.
+/// Up to [`WIDTH`] paths ended on a diffuse surface, lit together when full: per lane, the
+/// estimate, position, normal facing the path, throughput x albedo and shutter time, in
+/// structure-of-arrays form so that their lighting runs in vector lanes.
 #[derive(Default)]
 struct Ends {
     len: usize,
-    lanes: [End; WIDTH],
+    estimate: [u32; WIDTH],
+    position: Lanes3,
+    normal: Lanes3,
+    albedo: Lanes3,
+    time: [f64; WIDTH],
 }
 
-/// Up to [`WIDTH`] shadow rays waiting to be traced as one packet, each with the end it
-/// belongs to (a lane of [`Ends`]), its light point's falloff weight and geometric factor.
+/// Three coordinates in lanes.
+type Lanes3 = [[f64; WIDTH]; 3];
+
+/// Vector `k` of `lanes`.
+#[inline(always)]
+fn lane(lanes: &Lanes3, k: usize) -> DVec3 {
+    DVec3::new(lanes[0][k], lanes[1][k], lanes[2][k])
+}
+
+/// Put `v` in lane `k`.
+#[inline(always)]
+fn set_lane(lanes: &mut Lanes3, k: usize, v: DVec3) {
+    for (c, x) in lanes.iter_mut().zip(v.to_array()) {
+        c[k] = x;
+    }
+}
+
+/// Up to [`WIDTH`] light samples waiting for their shadow rays, traced as one packet: per
+/// lane, the end it belongs to (a lane of [`Ends`]), the light point and its falloff weight.
 #[derive(Default)]
 struct Shadows {
-    packet: Packet,
     len: usize,
     end: [u32; WIDTH],
+    point: Lanes3,
     weight: [f64; WIDTH],
-    geometry: [f64; WIDTH],
+    packet: Packet,
 }
 
 /// One light's sums over the samples of each lane of [`Ends`].
+#[derive(Default)]
 struct Sums {
     /// Unoccluded shading (visibility mode; 1 in direct mode).
     unoccluded: [f64; WIDTH],
@@ -450,32 +462,52 @@ struct Sums {
     seen: [f64; WIDTH],
 }
 
+/// What a light's samples need of it and of the ends they light.
+struct Lighting<'a> {
+    scene: &'a Scene,
+    ends: &'a Ends,
+    /// Each end's shadow-ray origin, moved off its surface.
+    origin: &'a Lanes3,
+    /// The light's normal (None: a segment); whether the geometric factor weighs samples.
+    normal: Option<DVec3>,
+    direct: bool,
+}
+
 impl Shadows {
-    /// Queue the shadow ray of end `end`.
+    /// Queue light point `y` of weight `weight` for end `end`.
     #[inline(always)]
-    fn push(&mut self, ray: &Ray, end: usize, weight: f64, geometry: f64) {
+    fn push(&mut self, end: usize, y: DVec3, weight: f64) {
         let i = self.len;
-        self.packet.set(i, ray);
         self.end[i] = end as u32;
+        set_lane(&mut self.point, i, y);
         self.weight[i] = weight;
-        self.geometry[i] = geometry;
         self.len = i + 1;
     }
 
-    /// Trace the queued rays and add each unblocked one to its end's sums, in the order
-    /// queued. Returns the rays traced.
+    /// Trace the queued samples' shadow rays and add each unblocked one to its end's sums,
+    /// in the order queued: the rays and geometric factors made in vector lanes, a sample
+    /// whose factor is not positive left out (a dead lane). Returns the rays traced.
     #[inline(always)]
-    fn trace(&mut self, scene: &Scene, sums: &mut Sums) -> u64 {
+    fn trace(&mut self, at: &Lighting, sums: &mut Sums) -> u64 {
         let n = self.len;
+        let (mut factor, mut live) = ([0.0; WIDTH], [false; WIDTH]);
+        for j in 0..n {
+            let k = self.end[j] as usize;
+            let (x, y) = (lane(&at.ends.position, k), lane(&self.point, j));
+            let g = if at.direct { geometry(at.normal, x, lane(&at.ends.normal, k), y) } else { 1.0 };
+            factor[j] = g;
+            live[j] = g > 0.0;
+            self.packet.set(j, &Scene::shadow_ray(lane(at.origin, k), y, at.ends.time[k]));
+        }
         self.packet.seal(n);
-        let blocked = scene.occluded(&self.packet);
-        for (i, _) in blocked[..n].iter().enumerate().filter(|(_, b)| !**b) {
-            let k = self.end[i] as usize;
-            sums.shade[k] += self.weight[i] * self.geometry[i];
-            sums.seen[k] += self.weight[i];
+        let blocked = at.scene.occluded(&self.packet, &live);
+        for (j, _) in blocked[..n].iter().enumerate().filter(|(_, b)| !**b) {
+            let k = self.end[j] as usize;
+            sums.shade[k] += self.weight[j] * factor[j];
+            sums.seen[k] += self.weight[j];
         }
         self.len = 0;
-        n as u64
+        live[..n].iter().filter(|&&l| l).count() as u64
     }
 }
 
@@ -578,24 +610,36 @@ fn start(setup: &Setup, s: &mut Scratch) {
     }
 }
 
-/// The camera rays of estimates `first..first + m` in `s.camera`.
+/// The camera rays of estimates `first..first + m` in `s.camera`: the samples gathered into
+/// lanes first, so that the rays are made in vector lanes.
 #[inline(always)]
 fn camera_packet(setup: &Setup, px: Pixel, s: &mut Scratch, first: usize, m: usize) {
     let Setup { scene, options: o, frame, moving, .. } = *setup;
-    let lens = scene.camera.aperture > 0.0;
-    for i in 0..m {
-        let e = first + i;
-        let (dx, dy) = if o.footprint == Footprint::Area { (s.pixel[2 * e], s.pixel[2 * e + 1]) } else { (0.5, 0.5) };
-        let lens_uv = if lens {
+    let mut film = [[0.5; WIDTH]; 2];
+    if o.footprint == Footprint::Area {
+        for (i, u) in s.pixel[2 * first..2 * (first + m)].chunks_exact(2).enumerate() {
+            film[0][i] = u[0];
+            film[1][i] = u[1];
+        }
+    }
+    let mut lens = [[0.5; WIDTH]; 2];
+    if scene.camera.aperture > 0.0 {
+        for (i, e) in (first..first + m).enumerate() {
             let u = s.lens.block(e, 2);
-            [u[0], u[1]]
-        } else {
-            [0.5, 0.5]
-        };
-        let time = if moving { s.time.block(e, 1)[0] } else { 0.0 };
-        let x = (px.col as f64 + dx) / o.width as f64;
-        let y = (px.row as f64 + dy) / o.height as f64;
-        s.camera.set(i, &frame.ray(x, y, lens_uv, time));
+            lens[0][i] = u[0];
+            lens[1][i] = u[1];
+        }
+    }
+    let mut time = [0.0; WIDTH];
+    if moving {
+        for (i, e) in (first..first + m).enumerate() {
+            time[i] = s.time.block(e, 1)[0];
+        }
+    }
+    let (col, row, w, h) = (px.col as f64, px.row as f64, o.width as f64, o.height as f64);
+    for i in 0..m {
+        let (x, y) = ((col + film[0][i]) / w, (row + film[1][i]) / h);
+        s.camera.set(i, &frame.ray(x, y, [lens[0][i], lens[1][i]], time[i]));
     }
     s.camera.seal(m);
 }
@@ -623,9 +667,14 @@ fn visit(setup: &Setup, px: Pixel, s: &mut Scratch, ray: &Ray, hit: Hit, path: P
     let dir = match finish {
         Finish::Diffuse => {
             let albedo = path.throughput * albedo;
-            let k = s.ends.len;
-            s.ends.lanes[k] = End { estimate: path.estimate, position, normal, albedo, time: ray.time };
-            s.ends.len = k + 1;
+            let ends = &mut s.ends;
+            let k = ends.len;
+            ends.estimate[k] = path.estimate;
+            set_lane(&mut ends.position, k, position);
+            set_lane(&mut ends.normal, k, normal);
+            set_lane(&mut ends.albedo, k, albedo);
+            ends.time[k] = ray.time;
+            ends.len = k + 1;
             return if k + 1 == WIDTH { light_ends(setup, px, s) } else { 0 };
         }
         _ if bounces == MAX_BOUNCES => return 0,
@@ -649,24 +698,23 @@ fn visit(setup: &Setup, px: Pixel, s: &mut Scratch, ray: &Ray, hit: Hit, path: P
 
 /// Light the waiting ends: for each light in turn, each end's light samples, their shadow
 /// rays traced by packets, and the end's share added to its estimate; then each estimate's
-/// visible fraction. Returns the shadow rays traced.
+/// visible fraction. The per-end arithmetic runs in vector lanes. Returns the shadow rays
+/// traced.
 #[inline(always)]
 fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
     let Setup { scene, options: o, lights, keys, .. } = *setup;
-    let ends = &s.ends.lanes[..s.ends.len];
-    let shadows = &mut s.shadows;
+    let (ends, m) = (&s.ends, s.ends.len);
+    let mut origin = Lanes3::default();
+    for k in 0..m {
+        set_lane(&mut origin, k, Scene::offset(lane(&ends.position, k), lane(&ends.normal, k)));
+    }
     let mut traced = 0;
     let mut visible = [0.0; WIDTH];
     for (l, p) in lights.iter().enumerate() {
-        let mut sums = Sums {
-            unoccluded: [0.0; WIDTH],
-            accepted: [0; WIDTH],
-            weight: [0.0; WIDTH],
-            shade: [0.0; WIDTH],
-            seen: [0.0; WIDTH],
-        };
-        for (k, end) in ends.iter().enumerate() {
-            let (e, x, n) = (end.estimate as usize, end.position, end.normal);
+        let at = Lighting { scene, ends, origin: &origin, normal: p.normal, direct: o.mode == Mode::Direct };
+        let mut sums = Sums::default();
+        for k in 0..m {
+            let (e, x, n) = (ends.estimate[k] as usize, lane(&ends.position, k), lane(&ends.normal, k));
             let unoccluded = match o.mode {
                 Mode::Visibility => unoccluded(p, x, n),
                 Mode::Direct => 1.0,
@@ -688,40 +736,37 @@ fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
                     (&s.shared_points[l], b..b + o.n)
                 }
             };
-            let origin = Scene::offset(x, n);
             for i in range {
                 let Some(y) = points.get(i) else { continue };
                 sums.accepted[k] += 1;
                 sums.weight[k] += y.weight;
-                let g = if o.mode == Mode::Direct { geometry(p.normal, x, n, y.position) } else { 1.0 };
-                if g <= 0.0 {
-                    continue;
-                }
-                shadows.push(&Scene::shadow_ray(origin, y.position, end.time), k, y.weight, g);
-                if shadows.len == WIDTH {
-                    traced += shadows.trace(scene, &mut sums);
+                s.shadows.push(k, y.position, y.weight);
+                if s.shadows.len == WIDTH {
+                    traced += s.shadows.trace(&at, &mut sums);
                 }
             }
         }
-        traced += shadows.trace(scene, &mut sums);
-        for (k, end) in ends.iter().enumerate() {
-            if sums.accepted[k] == 0 {
-                continue;
-            }
-            let e = end.estimate as usize;
+        traced += s.shadows.trace(&at, &mut sums);
+        let mut share = Lanes3::default();
+        for (k, v) in visible[..m].iter_mut().enumerate() {
             let fraction = sums.seen[k] / sums.weight[k];
-            visible[k] += fraction;
+            *v += if sums.accepted[k] > 0 { fraction } else { 0.0 };
             let integral = match o.mode {
                 Mode::Visibility => sums.unoccluded[k] * fraction,
                 Mode::Direct => sums.shade[k] / sums.accepted[k] as f64,
             };
-            s.radiance[e] += end.albedo / PI * p.light.radiance * p.area * integral;
+            set_lane(&mut share, k, lane(&ends.albedo, k) / PI * p.light.radiance * p.area * integral);
+        }
+        for k in (0..m).filter(|&k| sums.accepted[k] > 0) {
+            s.radiance[ends.estimate[k] as usize] += lane(&share, k);
         }
     }
     // a scene without lights is all "visible" (nothing to shadow)
-    for (k, end) in ends.iter().enumerate() {
-        let e = end.estimate as usize;
-        s.visible[e] += if lights.is_empty() { 1.0 } else { visible[k] / lights.len() as f64 };
+    for v in &mut visible[..m] {
+        *v = if lights.is_empty() { 1.0 } else { *v / lights.len() as f64 };
+    }
+    for (&e, &v) in ends.estimate[..m].iter().zip(&visible) {
+        s.visible[e as usize] += v;
     }
     s.ends.len = 0;
     traced

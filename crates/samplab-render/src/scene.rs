@@ -230,10 +230,12 @@ impl Scene {
     }
 
     /// Whether each shadow ray ([`Scene::shadow_ray`]) of a packet is blocked before its
-    /// light point (to be compiled wide, [`samplab::simd::wide`]).
+    /// light point; a lane not `live` is not traced and reads blocked (to be compiled wide,
+    /// [`samplab::simd::wide`]).
     #[inline(always)]
-    pub(crate) fn occluded(&self, p: &Packet) -> [bool; WIDTH] {
-        let (mut t, mut hit) = ([1.0 - RAY_EPSILON; WIDTH], [0; WIDTH]);
+    pub(crate) fn occluded(&self, p: &Packet, live: &[bool; WIDTH]) -> [bool; WIDTH] {
+        let mut t = live.map(|l| if l { 1.0 - RAY_EPSILON } else { f64::NEG_INFINITY });
+        let mut hit = [0; WIDTH];
         for (plane, _) in &self.planes {
             p.each::<true>(0, &mut t, &mut hit, |o, d, _, t_max| plane.hit(o, d, RAY_EPSILON, t_max));
         }
