@@ -490,6 +490,9 @@ impl Shadows {
     #[inline(always)]
     fn trace(&mut self, at: &Lighting, sums: &mut Sums) -> u64 {
         let n = self.len;
+        if n == 0 {
+            return 0;
+        }
         let (mut factor, mut live) = ([0.0; WIDTH], [false; WIDTH]);
         for j in 0..n {
             let k = self.end[j] as usize;

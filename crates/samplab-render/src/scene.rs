@@ -33,14 +33,21 @@ impl Texture {
     pub fn at(&self, p: DVec3) -> DVec3 {
         match *self {
             Texture::Constant(c) => c,
-            Texture::Checker { even, odd, size, angle } => {
-                let (s, c) = angle.to_radians().sin_cos();
-                let (x, z) = (c * p.x - s * p.z, s * p.x + c * p.z);
-                let parity = ((x / size).floor() + (z / size).floor()).rem_euclid(2.0);
-                if parity < 0.5 { even } else { odd }
-            }
+            Texture::Checker { even, odd, size, angle } => checker(even, odd, size, angle, p),
         }
     }
+}
+
+/// A checkerboard's colour at `p` ([`Texture::Checker`]): out of line, so that its sine and
+/// cosine calls do not make the constant case (every hit of most scenes) save registers
+/// around them.
+#[cold]
+#[inline(never)]
+fn checker(even: DVec3, odd: DVec3, size: f64, angle: f64, p: DVec3) -> DVec3 {
+    let (s, c) = angle.to_radians().sin_cos();
+    let (x, z) = (c * p.x - s * p.z, s * p.x + c * p.z);
+    let parity = ((x / size).floor() + (z / size).floor()).rem_euclid(2.0);
+    if parity < 0.5 { even } else { odd }
 }
 
 /// How a surface reflects.
