@@ -484,6 +484,27 @@ impl Shadows {
         self.len = i + 1;
     }
 
+    /// Lanes `0..n` of the packet: the shadow ray of each queued sample, whose end is
+    /// `end(j)`, with its geometric factor and whether it is positive.
+    #[inline(always)]
+    fn rays(
+        &mut self,
+        at: &Lighting,
+        n: usize,
+        end: impl Fn(usize) -> usize,
+        factor: &mut [f64; WIDTH],
+        live: &mut [bool; WIDTH],
+    ) {
+        for j in 0..n {
+            let k = end(j);
+            let (x, y) = (lane(&at.ends.position, k), lane(&self.point, j));
+            let g = if at.direct { geometry(at.normal, x, lane(&at.ends.normal, k), y) } else { 1.0 };
+            factor[j] = g;
+            live[j] = g > 0.0;
+            self.packet.set(j, &Scene::shadow_ray(lane(at.origin, k), y, at.ends.time[k]));
+        }
+    }
+
     /// Trace the queued samples' shadow rays and add each unblocked one to its end's sums,
     /// in the order queued: the rays and geometric factors made in vector lanes, a sample
     /// whose factor is not positive left out (a dead lane). Returns the rays traced.
@@ -494,13 +515,13 @@ impl Shadows {
             return 0;
         }
         let (mut factor, mut live) = ([0.0; WIDTH], [false; WIDTH]);
-        for j in 0..n {
-            let k = self.end[j] as usize;
-            let (x, y) = (lane(&at.ends.position, k), lane(&self.point, j));
-            let g = if at.direct { geometry(at.normal, x, lane(&at.ends.normal, k), y) } else { 1.0 };
-            factor[j] = g;
-            live[j] = g > 0.0;
-            self.packet.set(j, &Scene::shadow_ray(lane(at.origin, k), y, at.ends.time[k]));
+        let end = self.end;
+        // one sample per end (the usual case) puts end j in lane j: no gathers, and the loop
+        // vectorizes
+        if end[..n].iter().enumerate().all(|(j, &k)| k as usize == j) {
+            self.rays(at, n, |j| j, &mut factor, &mut live);
+        } else {
+            self.rays(at, n, |j| end[j] as usize, &mut factor, &mut live);
         }
         self.packet.seal(n);
         let blocked = at.scene.occluded(&self.packet, &live);
