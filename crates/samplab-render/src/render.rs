@@ -439,13 +439,15 @@ fn set_lane(lanes: &mut Lanes3, k: usize, v: DVec3) {
 }
 
 /// Up to [`WIDTH`] light samples waiting for their shadow rays, traced as one packet: per
-/// lane, the end it belongs to (a lane of [`Ends`]), the light point and its falloff weight.
+/// lane, the end it belongs to (a lane of [`Ends`]), the light point, its falloff weight and
+/// whether it is kept (a lane not kept is dead: no ray).
 #[derive(Default)]
 struct Shadows {
     len: usize,
     end: [u32; WIDTH],
     point: Lanes3,
     weight: [f64; WIDTH],
+    kept: [bool; WIDTH],
     packet: Packet,
 }
 
@@ -478,14 +480,22 @@ impl Shadows {
     #[inline(always)]
     fn push(&mut self, end: usize, y: DVec3, weight: f64) {
         let i = self.len;
-        self.end[i] = end as u32;
-        set_lane(&mut self.point, i, y);
-        self.weight[i] = weight;
+        self.set(i, end, y, weight, true);
         self.len = i + 1;
     }
 
+    /// Lane `i`: light point `y` of weight `weight` for end `end`, kept or not.
+    #[inline(always)]
+    fn set(&mut self, i: usize, end: usize, y: DVec3, weight: f64, kept: bool) {
+        self.end[i] = end as u32;
+        set_lane(&mut self.point, i, y);
+        self.weight[i] = weight;
+        self.kept[i] = kept;
+    }
+
     /// Lanes `0..n` of the packet: the shadow ray of each queued sample, whose end is
-    /// `end(j)`, with its geometric factor and whether it is positive.
+    /// `end(j)`, with its geometric factor and whether the sample is kept with a positive
+    /// factor.
     #[inline(always)]
     fn rays(
         &mut self,
@@ -500,7 +510,7 @@ impl Shadows {
             let (x, y) = (lane(&at.ends.position, k), lane(&self.point, j));
             let g = if at.direct { geometry(at.normal, x, lane(&at.ends.normal, k), y) } else { 1.0 };
             factor[j] = g;
-            live[j] = g > 0.0;
+            live[j] = self.kept[j] && g > 0.0;
             self.packet.set(j, &Scene::shadow_ray(lane(at.origin, k), y, at.ends.time[k]));
         }
     }
@@ -738,35 +748,51 @@ fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
         let at = Lighting { scene, ends, origin: &origin, normal: p.normal, direct: o.mode == Mode::Direct };
         let mut sums = Sums::default();
         for k in 0..m {
-            let (e, x, n) = (ends.estimate[k] as usize, lane(&ends.position, k), lane(&ends.normal, k));
-            let unoccluded = match o.mode {
-                Mode::Visibility => unoccluded(p, x, n),
+            sums.unoccluded[k] = match o.mode {
+                Mode::Visibility => unoccluded(p, lane(&ends.position, k), lane(&ends.normal, k)),
                 Mode::Direct => 1.0,
             };
-            sums.unoccluded[k] = unoccluded;
-            if unoccluded <= 0.0 {
-                continue;
+        }
+        if o.pattern == Pattern::PerPixel && o.n == 1 {
+            // one sample per end (Cook's pairing of a pixel's samples): end k's in lane k, a
+            // rejected or unlit one a dead lane
+            let (dealt, points) = (&s.shared[l], &s.shared_points[l]);
+            for k in 0..m {
+                let y = points.get(dealt.start(ends.estimate[k] as usize, 1));
+                let kept = sums.unoccluded[k] > 0.0 && y.is_some();
+                let y = y.unwrap_or(LightPoint { position: DVec3::ZERO, weight: 0.0 });
+                sums.accepted[k] = u32::from(kept);
+                sums.weight[k] = if kept { y.weight } else { 0.0 };
+                s.shadows.set(k, k, y.position, y.weight, kept);
             }
-            let (points, range) = match o.pattern {
-                Pattern::PerEstimate => {
-                    let (dims, key) = (p.light.dims(), keys.light.derive(px.index).derive(l as u64));
-                    s.light.resize(o.n * dims, 0.0);
-                    o.light.fill(o.n, dims, key.derive(e as u64), &mut s.light).expect("counts checked");
-                    s.light_points.fill(&p.light, &s.light);
-                    (&s.light_points, 0..o.n)
+            s.shadows.len = m;
+        } else {
+            for k in 0..m {
+                let e = ends.estimate[k] as usize;
+                if sums.unoccluded[k] <= 0.0 {
+                    continue;
                 }
-                Pattern::PerPixel => {
-                    let b = s.shared[l].start(e, o.n);
-                    (&s.shared_points[l], b..b + o.n)
-                }
-            };
-            for i in range {
-                let Some(y) = points.get(i) else { continue };
-                sums.accepted[k] += 1;
-                sums.weight[k] += y.weight;
-                s.shadows.push(k, y.position, y.weight);
-                if s.shadows.len == WIDTH {
-                    traced += s.shadows.trace(&at, &mut sums);
+                let (points, range) = match o.pattern {
+                    Pattern::PerEstimate => {
+                        let (dims, key) = (p.light.dims(), keys.light.derive(px.index).derive(l as u64));
+                        s.light.resize(o.n * dims, 0.0);
+                        o.light.fill(o.n, dims, key.derive(e as u64), &mut s.light).expect("counts checked");
+                        s.light_points.fill(&p.light, &s.light);
+                        (&s.light_points, 0..o.n)
+                    }
+                    Pattern::PerPixel => {
+                        let b = s.shared[l].start(e, o.n);
+                        (&s.shared_points[l], b..b + o.n)
+                    }
+                };
+                for i in range {
+                    let Some(y) = points.get(i) else { continue };
+                    sums.accepted[k] += 1;
+                    sums.weight[k] += y.weight;
+                    s.shadows.push(k, y.position, y.weight);
+                    if s.shadows.len == WIDTH {
+                        traced += s.shadows.trace(&at, &mut sums);
+                    }
                 }
             }
         }
