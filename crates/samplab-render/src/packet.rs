@@ -13,9 +13,11 @@ use samplab::simd::wide;
 
 use crate::geometry::{Aabb, Ray, Shape, disk_hit, edge_hit, sphere_hit};
 
-/// Most rays in one packet: on sphere-box.xml at 64 estimates per pixel, 32 traced 10% faster
-/// than 64 (fewer idle lanes where a pixel's rays part) and 8% faster than 16.
-pub(crate) const WIDTH: usize = 32;
+/// Most rays in one packet, and the lanes of the renderer's camera, end and shadow stages:
+/// on sphere-box.xml at 64 estimates per pixel, 64 rendered 4% faster than 32 (one camera
+/// packet per pixel, half the shadow packets) and 16 was 11% slower than 32; a
+/// 1-million-triangle mesh at 16 estimates per pixel takes the same time at 32 and 64.
+pub(crate) const WIDTH: usize = 64;
 
 /// `f(start, packet)` for the packets of `rays[start..start + WIDTH]` in turn, compiled wide
 /// ([`wide`]; `f` must be `#[inline(always)]`).

@@ -411,7 +411,6 @@ struct Path {
 /// Up to [`WIDTH`] paths ended on a diffuse surface, lit together when full: per lane, the
 /// estimate, position, normal facing the path, throughput x albedo and shutter time, in
 /// structure-of-arrays form so that their lighting runs in vector lanes.
-#[derive(Default)]
 struct Ends {
     len: usize,
     estimate: [u32; WIDTH],
@@ -423,6 +422,34 @@ struct Ends {
 
 /// Three coordinates in lanes.
 type Lanes3 = [[f64; WIDTH]; 3];
+
+/// Lanes of zeros (arrays as wide as [`WIDTH`] have no `Default`).
+const ZEROS: [f64; WIDTH] = [0.0; WIDTH];
+
+impl Default for Ends {
+    fn default() -> Ends {
+        Ends { len: 0, estimate: [0; WIDTH], position: [ZEROS; 3], normal: [ZEROS; 3], albedo: [ZEROS; 3], time: ZEROS }
+    }
+}
+
+impl Default for Shadows {
+    fn default() -> Shadows {
+        Shadows {
+            len: 0,
+            end: [0; WIDTH],
+            point: [ZEROS; 3],
+            weight: ZEROS,
+            kept: [false; WIDTH],
+            packet: Packet::default(),
+        }
+    }
+}
+
+impl Default for Sums {
+    fn default() -> Sums {
+        Sums { unoccluded: ZEROS, accepted: [0; WIDTH], weight: ZEROS, shade: ZEROS, seen: ZEROS }
+    }
+}
 
 /// Vector `k` of `lanes`.
 #[inline(always)]
@@ -441,7 +468,6 @@ fn set_lane(lanes: &mut Lanes3, k: usize, v: DVec3) {
 /// Up to [`WIDTH`] light samples waiting for their shadow rays, traced as one packet: per
 /// lane, the end it belongs to (a lane of [`Ends`]), the light point, its falloff weight and
 /// whether it is kept (a lane not kept is dead: no ray).
-#[derive(Default)]
 struct Shadows {
     len: usize,
     end: [u32; WIDTH],
@@ -452,7 +478,6 @@ struct Shadows {
 }
 
 /// One light's sums over the samples of each lane of [`Ends`].
-#[derive(Default)]
 struct Sums {
     /// Unoccluded shading (visibility mode; 1 in direct mode).
     unoccluded: [f64; WIDTH],
@@ -738,7 +763,7 @@ fn visit(setup: &Setup, px: Pixel, s: &mut Scratch, ray: &Ray, hit: Hit, path: P
 fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
     let Setup { scene, options: o, lights, keys, .. } = *setup;
     let (ends, m) = (&s.ends, s.ends.len);
-    let mut origin = Lanes3::default();
+    let mut origin = [ZEROS; 3];
     for k in 0..m {
         set_lane(&mut origin, k, Scene::offset(lane(&ends.position, k), lane(&ends.normal, k)));
     }
@@ -797,7 +822,7 @@ fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
             }
         }
         traced += s.shadows.trace(&at, &mut sums);
-        let mut share = Lanes3::default();
+        let mut share = [ZEROS; 3];
         for (k, v) in visible[..m].iter_mut().enumerate() {
             let fraction = sums.seen[k] / sums.weight[k];
             *v += if sums.accepted[k] > 0 { fraction } else { 0.0 };
