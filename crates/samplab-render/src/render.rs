@@ -763,6 +763,9 @@ fn visit(setup: &Setup, px: Pixel, s: &mut Scratch, ray: &Ray, hit: Hit, path: P
 fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
     let Setup { scene, options: o, lights, keys, .. } = *setup;
     let (ends, m) = (&s.ends, s.ends.len);
+    if m == 0 {
+        return 0;
+    }
     let mut origin = [ZEROS; 3];
     for k in 0..m {
         set_lane(&mut origin, k, Scene::offset(lane(&ends.position, k), lane(&ends.normal, k)));
