@@ -72,7 +72,7 @@ impl Packet {
         self.len = len.min(WIDTH);
         // whole rows, so that the divisions run in vector lanes
         for (inv, d) in self.inv.iter_mut().zip(&self.d) {
-            for (a, b) in inv.iter_mut().zip(d) {
+            for (a, b) in inv[..self.len].iter_mut().zip(d) {
                 *a = 1.0 / b;
             }
         }
