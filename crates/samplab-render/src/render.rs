@@ -286,6 +286,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
         keys: &keys,
         moving: scene.moving(),
         glossy: scene.glossy(),
+        plain: scene.plain_albedos(),
     };
     let done = AtomicUsize::new(0);
     let mut rgb = vec![0f32; 3 * w * h];
@@ -391,6 +392,8 @@ struct Setup<'a> {
     keys: &'a Keys,
     moving: bool,
     glossy: bool,
+    /// [`Scene::plain_albedos`].
+    plain: Vec<Option<DVec3>>,
 }
 
 #[derive(Clone, Copy)]
@@ -585,8 +588,15 @@ fn render_pixel(setup: &Setup, px: Pixel, s: &mut Scratch) -> (DVec3, f64, (u64,
         camera_packet(setup, px, s, first, m);
         let hits = scene.trace_packet(&s.camera);
         for (i, &hit) in hits[..m].iter().enumerate() {
-            let (ray, path) = (s.camera.ray(i), Path { estimate: (first + i) as u32, throughput: DVec3::ONE });
-            shadow += visit(setup, px, s, &ray, hit, path, 0);
+            let (ray, estimate) = (s.camera.ray(i), (first + i) as u32);
+            // a plain surface (most hits) ends the path without the general lookup
+            if let Some(&Some(albedo)) = setup.plain.get(hit.what as usize) {
+                let position = ray.at(hit.t);
+                let normal = scene.facing_normal(hit.what, position, &ray);
+                shadow += end_path(setup, px, s, estimate, position, normal, albedo, ray.time);
+                continue;
+            }
+            shadow += visit(setup, px, s, &ray, hit, Path { estimate, throughput: DVec3::ONE }, 0);
         }
     }
     camera += o.spp as u64;
@@ -725,16 +735,7 @@ fn visit(setup: &Setup, px: Pixel, s: &mut Scratch, ray: &Ray, hit: Hit, path: P
     };
     let dir = match finish {
         Finish::Diffuse => {
-            let albedo = path.throughput * albedo;
-            let ends = &mut s.ends;
-            let k = ends.len;
-            ends.estimate[k] = path.estimate;
-            set_lane(&mut ends.position, k, position);
-            set_lane(&mut ends.normal, k, normal);
-            set_lane(&mut ends.albedo, k, albedo);
-            ends.time[k] = ray.time;
-            ends.len = k + 1;
-            return if k + 1 == WIDTH { light_ends(setup, px, s) } else { 0 };
+            return end_path(setup, px, s, path.estimate, position, normal, path.throughput * albedo, ray.time);
         }
         _ if bounces == MAX_BOUNCES => return 0,
         Finish::Mirror => ray.dir.reflect(normal),
@@ -753,6 +754,32 @@ fn visit(setup: &Setup, px: Pixel, s: &mut Scratch, ray: &Ray, hit: Hit, path: P
     s.next.push(Ray { origin: Scene::offset(position, normal), dir, time: ray.time });
     s.next_paths.push(Path { estimate: path.estimate, throughput: path.throughput * albedo });
     0
+}
+
+/// End estimate `estimate`'s path at a diffuse surface point (position, normal facing the
+/// path, throughput x albedo, time), lighting the waiting ends when [`WIDTH`] are waiting.
+/// Returns the shadow rays traced.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn end_path(
+    setup: &Setup,
+    px: Pixel,
+    s: &mut Scratch,
+    estimate: u32,
+    position: DVec3,
+    normal: DVec3,
+    albedo: DVec3,
+    time: f64,
+) -> u64 {
+    let ends = &mut s.ends;
+    let k = ends.len;
+    ends.estimate[k] = estimate;
+    set_lane(&mut ends.position, k, position);
+    set_lane(&mut ends.normal, k, normal);
+    set_lane(&mut ends.albedo, k, albedo);
+    ends.time[k] = time;
+    ends.len = k + 1;
+    if k + 1 == WIDTH { light_ends(setup, px, s) } else { 0 }
 }
 
 /// Light the waiting ends: for each light in turn, each end's light samples, their shadow

@@ -193,21 +193,15 @@ impl Scene {
     /// What `ray` sees at its nearest hit ([`Scene::trace`]).
     #[inline(always)]
     pub fn seen(&self, ray: &Ray, hit: Hit) -> Seen {
-        let Hit { t, what: hit } = hit;
-        let objects = self.bvh.objects();
-        let position = ray.at(t);
-        let (normal, material) = match hit as usize {
-            i if i < objects.len() => (self.bvh.normal(i, position, ray.time), objects[i].material),
-            i if i < objects.len() + self.planes.len() => {
-                let (plane, material) = self.planes[i - objects.len()];
-                (plane.normal, material)
-            }
-            i => match self.lights.get(i - objects.len() - self.planes.len()) {
-                Some(light) => return Seen::Light(light.radiance_at(position)),
-                None => return Seen::Nothing,
-            },
+        let position = ray.at(hit.t);
+        let Some(material) = self.material_of(hit.what) else {
+            let shapes = self.bvh.objects().len() + self.planes.len();
+            return match (hit.what as usize).checked_sub(shapes).and_then(|i| self.lights.get(i)) {
+                Some(light) => Seen::Light(light.radiance_at(position)),
+                None => Seen::Nothing,
+            };
         };
-        let normal = if normal.dot(ray.dir) > 0.0 { -normal } else { normal };
+        let normal = self.facing_normal(hit.what, position, ray);
         let m = &self.materials[material as usize];
         Seen::Surface {
             position,
@@ -216,6 +210,41 @@ impl Scene {
             emission: m.emission.at(position),
             finish: m.finish,
         }
+    }
+
+    /// The material of hit index `what` ([`Hit::what`]) when it names a BVH object or a
+    /// plane; None for a light or nothing.
+    #[inline(always)]
+    pub(crate) fn material_of(&self, what: u32) -> Option<u32> {
+        let (objects, i) = (self.bvh.objects(), what as usize);
+        if i < objects.len() { Some(objects[i].material) } else { self.planes.get(i - objects.len()).map(|p| p.1) }
+    }
+
+    /// The unit normal at `position` of the BVH object or plane `what` ([`Hit::what`]),
+    /// facing `ray`'s origin.
+    #[inline(always)]
+    pub(crate) fn facing_normal(&self, what: u32, position: DVec3, ray: &Ray) -> DVec3 {
+        let (objects, i) = (self.bvh.objects().len(), what as usize);
+        let normal =
+            if i < objects { self.bvh.normal(i, position, ray.time) } else { self.planes[i - objects].0.normal };
+        if normal.dot(ray.dir) > 0.0 { -normal } else { normal }
+    }
+
+    /// Per hit index of a BVH object or plane: the albedo of a plain surface (diffuse, one
+    /// colour, emitting nothing), whose hits need no texture or emission lookup; None for
+    /// any other.
+    pub(crate) fn plain_albedos(&self) -> Vec<Option<DVec3>> {
+        let materials = self.bvh.objects().iter().map(|o| o.material).chain(self.planes.iter().map(|p| p.1));
+        materials
+            .map(|m| match self.materials[m as usize] {
+                Material {
+                    albedo: Texture::Constant(albedo),
+                    emission: Texture::Constant(DVec3::ZERO),
+                    finish: Finish::Diffuse,
+                } => Some(albedo),
+                _ => None,
+            })
+            .collect()
     }
 
     /// Whether any material is glossy (and so needs a gloss sample per estimate).
