@@ -39,13 +39,15 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         Options { scale: if a.full { Scale::Full } else { Scale::Fast }, seed: Seed(a.seed), out: a.out.clone() };
     let start = Instant::now();
     let claims = samplab_report::reproduce(&chosen, &options)?;
-    let count = |f: fn(&Verdict) -> bool| claims.iter().filter(|(_, c)| f(&c.verdict)).count();
+    let count = |v: Verdict| claims.iter().filter(|(_, c)| c.verdict() == v).count();
+    let explained =
+        claims.iter().filter(|(_, c)| c.verdict() == Verdict::NotReproduced && c.explanation.is_some()).count();
     eprintln!(
-        "{} claims: {} reproduced, {} not reproduced, {} differ with a stated reason; {:.1} s. Report: {}",
+        "{} claims: {} reproduced, {} not reproduced ({explained} of them explained), {} undecided; {:.1} s. Report: {}",
         claims.len(),
-        count(|v| *v == Verdict::Reproduced),
-        count(|v| *v == Verdict::NotReproduced),
-        count(|v| matches!(v, Verdict::DiffersBecause(_))),
+        count(Verdict::Reproduced),
+        count(Verdict::NotReproduced),
+        count(Verdict::Undecided),
         start.elapsed().as_secs_f64(),
         a.out.join("index.html").display()
     );

@@ -64,6 +64,13 @@ impl Image {
         self.rgb.chunks_exact(3).map(luminance).collect()
     }
 
+    /// The image as a display shows it: every channel clamped to [0, 1] (Shirley 1991's
+    /// luminance errors are of displayed images, so one bright highlight cannot dominate
+    /// max |E|).
+    pub fn clamped(&self) -> Image {
+        Image { rgb: self.rgb.iter().map(|v| v.clamp(0.0, 1.0)).collect(), ..self.clone() }
+    }
+
     /// Errors of `self` against `reference`, over all pixels or only the reference's
     /// penumbra.
     ///
@@ -246,6 +253,10 @@ mod tests {
         assert_eq!(p.pixels, 2);
         assert!((p.mse - 1.25 / 2.0).abs() < 1e-6);
         assert!(reference.errors(&img, true).is_err(), "no V channel");
+        // displayed: 2.5 and 2.0 clamp to 1, as the reference's 2, 3 and 4 do
+        let c = img.clamped().errors(&reference.clamped(), false).unwrap();
+        assert_eq!((c.mse, c.max_abs), (0.0, 0.0));
+        assert_eq!(image(&[-0.5, 0.25, 3.0, 1.0], None).clamped().rgb[..3], [0.0, 0.25, 1.0]);
     }
 
     #[test]

@@ -4,6 +4,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use crate::coverage::{self, Status};
 use crate::{Claim, Done, Error, Options, Paper, Scale, Table, Verdict};
 
 /// Escape text for HTML.
@@ -22,16 +23,23 @@ th,td{border:1px solid #ccc;padding:.3em .6em;text-align:right}th{background:#f3
 td:first-child,th:first-child,table.claims td,table.claims th{text-align:left}figure{margin:1.2em 0}figure img{max-width:100%;border:1px solid #ddd}
 figcaption,.caption{color:#555;font-size:.9em}.reproduced{color:#17692b;font-weight:600}
 .not-reproduced{color:#b3261e;font-weight:600}.differs{color:#8a5a00;font-weight:600}
+.undecided{color:#5a4b8a;font-weight:600}.shown{color:#555;font-weight:600}.not-attempted{color:#888;font-weight:600}
+.criterion{color:#666;font-size:.85em}.addition{color:#0b5f86;font-weight:600}
 .note{background:#f8f8f2;border-left:3px solid #bbb;padding:.4em .8em;margin:.5em 0}
 .pending{color:#666}code{background:#f3f3f3;padding:0 .2em}nav a{margin-right:1em}
 ";
 
-fn verdict_html(v: &Verdict) -> String {
-    match v {
-        Verdict::Reproduced => "<span class=\"reproduced\">reproduced</span>".into(),
-        Verdict::NotReproduced => "<span class=\"not-reproduced\">not reproduced</span>".into(),
-        Verdict::DiffersBecause(why) => format!("<span class=\"differs\">differs because</span> {}", escape(why)),
+fn verdict_html(c: &Claim) -> String {
+    let (class, name) = match c.verdict() {
+        Verdict::Reproduced => ("reproduced", "reproduced"),
+        Verdict::NotReproduced => ("not-reproduced", "not reproduced"),
+        Verdict::Undecided => ("undecided", "undecided"),
+    };
+    let mut h = format!("<span class=\"{class}\">{name}</span><br><span class=\"criterion\">criterion: {}</span>", escape(&c.decision.criterion));
+    if let (Some(why), false) = (&c.explanation, c.verdict() == Verdict::Reproduced) {
+        let _ = write!(h, "<br><span class=\"differs\">differs because</span> {}", escape(why));
     }
+    h
 }
 
 fn claims_table(claims: &[&Claim]) -> String {
@@ -39,17 +47,51 @@ fn claims_table(claims: &[&Claim]) -> String {
         "<table class=\"claims\"><tr><th>claim</th><th>published</th><th>ours</th><th>theory</th><th>verdict</th></tr>\n",
     );
     for c in claims {
+        let statement = match &c.addition {
+            Some(source) => format!("<span class=\"addition\">samplab's addition</span> ({}): {}", escape(source), escape(&c.statement)),
+            None => escape(&c.statement),
+        };
         let _ = writeln!(
             h,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            escape(&c.statement),
+            "<tr id=\"claim-{}\"><td>{statement}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            escape(&c.id),
             escape(&c.published),
             escape(&c.ours),
             escape(&c.theory),
-            verdict_html(&c.verdict)
+            verdict_html(c)
         );
     }
     h + "</table>\n"
+}
+
+/// The coverage table of one paper, and its count per status.
+fn coverage_table(items: &[coverage::Item], claims: &[&Claim]) -> (String, [usize; 6]) {
+    let mut counts = [0; 6];
+    let mut h = String::from("<table class=\"claims\"><tr><th>item</th><th>what</th><th>status</th><th>where</th></tr>\n");
+    for it in items {
+        let status = coverage::status(it, claims);
+        counts[Status::ALL.iter().position(|s| *s == status).expect("listed")] += 1;
+        let place = match (&it.experiment, &it.not_attempted) {
+            (Some(e), _) => {
+                let mut p = format!("<a href=\"#{e}\">experiment {e}</a>");
+                for c in &it.claims {
+                    let _ = write!(p, ", <a href=\"#claim-{c}\">{c}</a>");
+                }
+                p
+            }
+            (None, Some(why)) => escape(why),
+            (None, None) => String::new(),
+        };
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td><span class=\"{}\">{}</span></td><td>{place}</td></tr>",
+            escape(&it.item),
+            escape(&it.what),
+            status.name().replace(' ', "-"),
+            status.name()
+        );
+    }
+    (h + "</table>\n", counts)
 }
 
 fn table_html(t: &Table) -> String {
@@ -103,10 +145,9 @@ fn page(title: &str, nav: &str, body: &str) -> String {
     )
 }
 
-fn counts(claims: &[&Claim]) -> (usize, usize, usize) {
-    let r = claims.iter().filter(|c| c.verdict == Verdict::Reproduced).count();
-    let n = claims.iter().filter(|c| c.verdict == Verdict::NotReproduced).count();
-    (r, n, claims.len() - r - n)
+fn counts(claims: &[&Claim]) -> [usize; 3] {
+    let of = |v: Verdict| claims.iter().filter(|c| c.verdict() == v).count();
+    [of(Verdict::Reproduced), of(Verdict::NotReproduced), of(Verdict::Undecided)]
 }
 
 /// Write every file of the report into `dir`; returns the claims with their paper keys.
@@ -126,7 +167,14 @@ pub(crate) fn write_report(
     for (paper, done) in results {
         let cite = samplab::bibliography::lookup(paper.key).map_or(String::new(), |r| r.citation.to_string());
         let claims: Vec<&Claim> = done.iter().flat_map(|d| &d.output.claims).collect();
-        let mut body = format!("<p>{}</p>\n<h2>Claims</h2>\n{}", escape(&cite), claims_table(&claims));
+        let items = coverage::items(paper.key);
+        coverage::check(paper.key, &items, &paper.experiments.iter().map(|e| e.id).collect::<Vec<_>>(), &claims)?;
+        let (cov, status_counts) = coverage_table(&items, &claims);
+        let mut body = format!(
+            "<p>{}</p>\n<h2>Coverage</h2>\n<p>Every numbered table and figure of the paper (and the equations it states as results), with the status its claims' verdicts give: reproduced (every claim), differs (a claim not reproduced, with a written explanation), not reproduced, undecided (an interval that cannot decide), shown (drawn or computed, with no statement of the paper to test), or not attempted (and why).</p>\n{cov}<h2>Claims</h2>\n{}",
+            escape(&cite),
+            claims_table(&claims)
+        );
         for d in done {
             total_seconds += d.seconds;
             let _ = write!(
@@ -161,30 +209,27 @@ pub(crate) fn write_report(
                 );
             }
         }
-        if !paper.pending.is_empty() {
-            body.push_str("<h2>Not reproduced yet</h2>\n<ul class=\"pending\">\n");
-            for (what, why) in &paper.pending {
-                let _ = writeln!(body, "<li>{}: {}</li>", escape(what), escape(why));
-            }
-            body.push_str("</ul>\n");
-        }
         write(&dir.join(format!("{}.html", paper.key)), page(paper.title, &nav, &body).as_bytes())?;
-        let (r, n, d) = counts(&claims);
-        let _ = writeln!(
+        let [r, n, u] = counts(&claims);
+        let _ = write!(
             index_rows,
-            "<tr><td><a href=\"{key}.html\">{title}</a></td><td>{}</td><td>{r}</td><td>{n}</td><td>{d}</td><td>{}</td></tr>",
+            "<tr><td><a href=\"{key}.html\">{title}</a></td><td>{}</td><td>{r}</td><td>{n}</td><td>{u}</td>",
             done.len(),
-            paper.pending.len(),
             key = paper.key,
             title = escape(paper.title)
         );
+        for c in status_counts {
+            let _ = write!(index_rows, "<td>{c}</td>");
+        }
+        index_rows.push_str("</tr>\n");
         all_claims.extend(claims.into_iter().map(|c| (paper.key.to_string(), c.clone())));
     }
     let refs: Vec<&Claim> = all_claims.iter().map(|(_, c)| c).collect();
     let scale = if options.scale == Scale::Fast { "fast (default)" } else { "full (the papers' own scales)" };
     let body = format!(
         "<p>samplab {} reproduction, scale {scale}, seed {}; experiments took {:.1} s in all. Every number in a table comes from this run, except the published values, which are read from one data file with their sources.</p>\n\
-         <table><tr><th>paper</th><th>experiments</th><th>reproduced</th><th>not reproduced</th><th>differs</th><th>parts pending</th></tr>\n{index_rows}</table>\n\
+         <table><tr><th rowspan=\"2\">paper</th><th rowspan=\"2\">experiments</th><th colspan=\"3\">claims</th><th colspan=\"6\">numbered tables, figures and result equations</th></tr>\n\
+         <tr><th>reproduced</th><th>not reproduced</th><th>undecided</th><th>reproduced</th><th>differs</th><th>not reproduced</th><th>undecided</th><th>shown</th><th>pending (not attempted)</th></tr>\n{index_rows}</table>\n\
          <h2>All claims</h2>\n{}<p><a href=\"claims.json\">claims.json</a></p>\n",
         env!("CARGO_PKG_VERSION"),
         options.seed.0,

@@ -17,6 +17,8 @@ use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use samplab::Seed;
 use serde::Serialize;
 
+pub mod coverage;
+pub mod criteria;
 pub mod html;
 pub mod paper;
 pub mod plot;
@@ -160,22 +162,12 @@ impl Figure {
     }
 }
 
-/// The verdict on a claim.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(tag = "verdict", content = "reason", rename_all = "kebab-case")]
-pub enum Verdict {
-    /// Our measurement supports the claim.
-    Reproduced,
-    /// Our measurement contradicts the claim.
-    NotReproduced,
-    /// Ours differs from the published number for a stated reason.
-    DiffersBecause(String),
-}
+pub use criteria::{Decision, Verdict};
 
-/// One of a paper's key claims, checked.
-#[derive(Debug, Clone, Serialize)]
+/// One of a paper's claims (or one of samplab's own additions), checked.
+#[derive(Debug, Clone, Serialize, Default)]
 pub struct Claim {
-    /// Stable id.
+    /// Stable id, unique in its paper, listed by the coverage table of `data/published.json`.
     pub id: String,
     /// The claim in words.
     pub statement: String,
@@ -185,9 +177,23 @@ pub struct Claim {
     pub ours: String,
     /// The closed-form prediction, where there is one.
     pub theory: String,
-    /// The verdict.
+    /// The verdict and the criterion that gave it.
     #[serde(flatten)]
-    pub verdict: Verdict,
+    pub decision: Decision,
+    /// Beside a verdict other than reproduced: a human-written explanation of why ours
+    /// differs, naming the experiment in the report that backs it (not shown otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub explanation: Option<String>,
+    /// For samplab's own additions (not statements of the paper): their source.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub addition: Option<String>,
+}
+
+impl Claim {
+    /// The verdict.
+    pub fn verdict(&self) -> Verdict {
+        self.decision.verdict
+    }
 }
 
 /// What an experiment produces.
@@ -217,7 +223,8 @@ pub struct Experiment {
     pub run: fn(&Ctx) -> Result<Output, Error>,
 }
 
-/// One paper: its experiments and what is not reproduced yet.
+/// One paper: its experiments. What each numbered table and figure of the paper maps to
+/// (or why it is not attempted) is in the coverage list of `data/published.json`.
 pub struct Paper {
     /// Bibliography key (also the page's file name).
     pub key: &'static str,
@@ -225,8 +232,6 @@ pub struct Paper {
     pub title: &'static str,
     /// Its experiments.
     pub experiments: Vec<Experiment>,
-    /// Parts of the paper not reproduced yet, and why.
-    pub pending: Vec<(&'static str, &'static str)>,
 }
 
 /// Options of a reproduction run.

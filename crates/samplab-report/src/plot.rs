@@ -234,6 +234,61 @@ impl Drawable for Scatter<'_> {
     }
 }
 
+/// A 2D set drawn through a warp with the k x k strata of the square it came from, their
+/// boundaries warped too (Shirley 1991, Figures 7 and 8).
+pub struct Strata<'a> {
+    /// The points in the unit square.
+    pub set: &'a PointSet,
+    /// The warp (2D to 2D).
+    pub warp: &'a dyn samplab::warp::Warp,
+    /// Strata per axis.
+    pub cells: usize,
+    /// The title.
+    pub title: String,
+}
+
+impl Drawable for Strata<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
+        root.fill(&WHITE).map_err(err)?;
+        let map = |u: f64, v: f64| {
+            let mut o = [0.0; 2];
+            // a boundary at exactly 1 lies outside [0,1): pull it in by an ulp-sized step
+            let w = self.warp.forward(&[u.min(1.0 - 1e-12), v.min(1.0 - 1e-12)], &mut o);
+            w.then_some((o[0], o[1]))
+        };
+        // boundaries: lines u = i/k and v = i/k, each through 200 points
+        let steps = 200;
+        let mut lines: Vec<Vec<(f64, f64)>> = Vec::new();
+        for i in 0..=self.cells {
+            let c = i as f64 / self.cells as f64;
+            let t = |j: usize| j as f64 / steps as f64;
+            lines.push((0..=steps).filter_map(|j| map(c, t(j))).collect());
+            lines.push((0..=steps).filter_map(|j| map(t(j), c)).collect());
+        }
+        let points: Vec<(f64, f64)> = self.set.iter().filter_map(|p| map(p[0], p[1])).collect();
+        let (lo, hi) = lines.iter().flatten().chain(&points).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
+            (l.min(p.0).min(p.1), h.max(p.0).max(p.1))
+        });
+        let pad = 0.03 * (hi - lo);
+        let mut chart = ChartBuilder::on(&root)
+            .caption(&self.title, ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(36)
+            .y_label_area_size(44)
+            .build_cartesian_2d(lo - pad..hi + pad, lo - pad..hi + pad)
+            .map_err(err)?;
+        chart.configure_mesh().disable_mesh().label_style(("sans-serif", 13)).draw().map_err(err)?;
+        let grey = RGBColor(150, 150, 150);
+        for l in lines {
+            chart.draw_series(LineSeries::new(l, grey)).map_err(err)?;
+        }
+        chart
+            .draw_series(points.iter().map(|&p| Circle::new(p, 4, RGBColor(31, 119, 180).filled())))
+            .map_err(err)?;
+        root.present().map_err(err)
+    }
+}
+
 /// A tick label: scientific notation on log axes, at most six significant digits
 /// otherwise (no floating-point noise such as 0.30000000000000004).
 fn tick(v: f64, log: bool) -> String {

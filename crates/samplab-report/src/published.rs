@@ -7,6 +7,11 @@ static PUBLISHED: LazyLock<serde_json::Value> = LazyLock::new(|| {
     serde_json::from_str(include_str!("../data/published.json")).expect("data/published.json is valid JSON")
 });
 
+/// The whole data file (published numbers and the coverage lists).
+pub fn data() -> &'static serde_json::Value {
+    &PUBLISHED
+}
+
 /// A published table: its source line and rows of numbers by row name.
 #[derive(Debug, Clone)]
 pub struct PublishedTable {

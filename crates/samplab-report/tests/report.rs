@@ -98,7 +98,6 @@ fn a_failed_run_leaves_the_old_report_alone() {
         key: "shirley1991",
         title: "failing",
         experiments: vec![Experiment { id: "fails", title: "fails", source: "none", parameters: "none", run: failing }],
-        pending: vec![],
     };
     let err = reproduce(&[&bad], &Options { scale: Scale::Fast, seed: Seed(1), out: out.clone() }).unwrap_err();
     assert!(err.to_string().contains("on purpose"));

@@ -24,6 +24,8 @@ pub(crate) struct Setup<'a> {
     pub time: &'a str,
     /// Strategy over the glossy lobe (scenes with an imperfect mirror only).
     pub gloss: &'a str,
+    /// Compare images as displayed (channels clamped to [0, 1]), as Shirley 1991 does.
+    pub displayed: bool,
 }
 
 impl<'a> Setup<'a> {
@@ -40,6 +42,7 @@ impl<'a> Setup<'a> {
             lens: "sobol.owen",
             time: "sobol.owen",
             gloss: "sobol.owen",
+            displayed: false,
         }
     }
 
@@ -89,12 +92,30 @@ impl<'a> Setup<'a> {
         seeds: u64,
         seed: Seed,
     ) -> Result<Errors, Error> {
-        let mut all = Vec::new();
-        for s in 0..seeds {
-            let img = self.render(light, n, spp, seed.derive(s))?;
-            all.push(img.errors(reference, false).map_err(render_error)?);
-        }
-        Ok(mean(&all))
+        Ok(mean(&self.errors_each(reference, light, n, spp, seeds, seed)?))
+    }
+
+    /// Errors against `reference` of each of `seeds` renders (seed k derived from `seed`).
+    pub fn errors_each(
+        &self,
+        reference: &Image,
+        light: &str,
+        n: usize,
+        spp: usize,
+        seeds: u64,
+        seed: Seed,
+    ) -> Result<Vec<Errors>, Error> {
+        (0..seeds)
+            .map(|s| {
+                let img = self.render(light, n, spp, seed.derive(s))?;
+                let e = if self.displayed {
+                    img.clamped().errors(&reference.clamped(), false)
+                } else {
+                    img.errors(reference, false)
+                };
+                e.map_err(render_error)
+            })
+            .collect()
     }
 }
 
@@ -107,8 +128,13 @@ fn render_error(e: samplab_render::Error) -> Error {
     Error::Invalid(e.to_string())
 }
 
+/// The mean MSE of several renders and its standard error.
+pub(crate) fn mse_estimate(all: &[Errors]) -> crate::criteria::Estimate {
+    crate::criteria::Estimate::mean_of(&samplab::stats::Summary::of(&all.iter().map(|e| e.mse).collect::<Vec<_>>()))
+}
+
 /// Field-wise mean of several error summaries.
-fn mean(all: &[Errors]) -> Errors {
+pub(crate) fn mean(all: &[Errors]) -> Errors {
     let m = |f: fn(&Errors) -> f64| all.iter().map(f).sum::<f64>() / all.len() as f64;
     Errors {
         pixels: all[0].pixels,

@@ -1,0 +1,189 @@
+//! The coverage table: every numbered table and figure of a paper (and each numbered
+//! equation or closed form it states as a result), in the paper's own numbering, with what
+//! samplab does with it. The list lives in `data/published.json` beside the published
+//! numbers; the status of each item is computed from the verdicts of the claims it lists,
+//! never written by hand, so the table cannot say more than the run shows.
+
+use serde::Deserialize;
+
+use crate::{Claim, Error, Verdict};
+
+/// One numbered item of a paper.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Item {
+    /// The paper's numbering ("Table 5", "Figure 3", "Eq. 10").
+    pub item: String,
+    /// What it is, in a few words.
+    pub what: String,
+    /// The experiment of the report that reproduces it.
+    #[serde(default)]
+    pub experiment: Option<String>,
+    /// The claims (ids) that test it.
+    #[serde(default)]
+    pub claims: Vec<String>,
+    /// Why it is not attempted (then there is no experiment).
+    #[serde(default)]
+    pub not_attempted: Option<String>,
+}
+
+/// The status of an item, from its claims' verdicts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Status {
+    /// Every claim reproduced.
+    Reproduced,
+    /// Some claim not reproduced, each such claim with a written explanation.
+    Differs,
+    /// Some claim not reproduced without an explanation.
+    NotReproduced,
+    /// No claim contradicted, some undecided.
+    Undecided,
+    /// Drawn or computed in the report; the paper states nothing about it to test.
+    Shown,
+    /// Not in the report; the item says why.
+    NotAttempted,
+}
+
+impl Status {
+    /// Every status, in the order the tables list them.
+    pub const ALL: [Status; 6] = [
+        Status::Reproduced,
+        Status::Differs,
+        Status::NotReproduced,
+        Status::Undecided,
+        Status::Shown,
+        Status::NotAttempted,
+    ];
+
+    /// Its name in the report (also the CSS class).
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Reproduced => "reproduced",
+            Status::Differs => "differs",
+            Status::NotReproduced => "not reproduced",
+            Status::Undecided => "undecided",
+            Status::Shown => "shown",
+            Status::NotAttempted => "not attempted",
+        }
+    }
+}
+
+/// The coverage list of paper `key`.
+///
+/// # Panics
+/// The data file's entry is missing or malformed: a programming error, caught by the
+/// report tests.
+pub fn items(key: &str) -> Vec<Item> {
+    let v = &crate::published::data()[key]["coverage"];
+    serde_json::from_value(v.clone()).unwrap_or_else(|e| panic!("published.json {key}.coverage: {e}"))
+}
+
+/// The status of `item` given the run's claims of its paper.
+pub fn status(item: &Item, claims: &[&Claim]) -> Status {
+    if item.not_attempted.is_some() {
+        return Status::NotAttempted;
+    }
+    let mine: Vec<&&Claim> = claims.iter().filter(|c| item.claims.contains(&c.id)).collect();
+    if mine.is_empty() {
+        return Status::Shown;
+    }
+    let failed: Vec<&&&Claim> = mine.iter().filter(|c| c.verdict() == Verdict::NotReproduced).collect();
+    if !failed.is_empty() {
+        return if failed.iter().all(|c| c.explanation.is_some()) { Status::Differs } else { Status::NotReproduced };
+    }
+    if mine.iter().any(|c| c.verdict() == Verdict::Undecided) { Status::Undecided } else { Status::Reproduced }
+}
+
+/// Check that the coverage list of a paper and its claims fit: each item either names an
+/// experiment of the paper or says why it is not attempted; each claim is listed by an
+/// item; each listed claim exists; claim ids are unique.
+///
+/// # Errors
+/// The first mismatch, naming it.
+pub fn check(key: &str, items: &[Item], experiments: &[&str], claims: &[&Claim]) -> Result<(), Error> {
+    let bad = |m: String| Err(Error::Invalid(format!("published.json {key}.coverage: {m}")));
+    for it in items {
+        match (&it.experiment, &it.not_attempted) {
+            (Some(e), None) if experiments.contains(&e.as_str()) => {}
+            (Some(e), None) => return bad(format!("{}: no experiment {e}", it.item)),
+            (None, Some(_)) if it.claims.is_empty() => {}
+            _ => return bad(format!("{}: needs an experiment or a reason it is not attempted", it.item)),
+        }
+        for c in &it.claims {
+            if !claims.iter().any(|x| &x.id == c) {
+                return bad(format!("{}: no claim {c} in the run", it.item));
+            }
+        }
+    }
+    for (i, c) in claims.iter().enumerate() {
+        if claims[..i].iter().any(|x| x.id == c.id) {
+            return bad(format!("claim {} appears twice", c.id));
+        }
+        if !items.iter().any(|it| it.claims.contains(&c.id)) {
+            return bad(format!("claim {} is listed by no item", c.id));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::criteria::{Decision, exactly};
+
+    fn claim(id: &str, d: Decision, explained: bool) -> Claim {
+        Claim { id: id.into(), decision: d, explanation: explained.then(|| "why".into()), ..Claim::default() }
+    }
+
+    fn item(claims: &[&str]) -> Item {
+        Item {
+            item: "Table 1".into(),
+            what: "x".into(),
+            experiment: Some("e".into()),
+            claims: claims.iter().map(|s| s.to_string()).collect(),
+            not_attempted: None,
+        }
+    }
+
+    #[test]
+    fn the_status_is_the_worst_claim() {
+        let ok = claim("a", exactly(true, ""), false);
+        let bad = claim("b", exactly(false, ""), false);
+        let explained = claim("c", exactly(false, ""), true);
+        let open = claim("d", Decision::default(), false);
+        let all = [&ok, &bad, &explained, &open];
+        assert_eq!(status(&item(&["a"]), &all), Status::Reproduced);
+        assert_eq!(status(&item(&["a", "b"]), &all), Status::NotReproduced);
+        assert_eq!(status(&item(&["a", "c"]), &all), Status::Differs);
+        assert_eq!(status(&item(&["b", "c"]), &all), Status::NotReproduced);
+        assert_eq!(status(&item(&["a", "d"]), &all), Status::Undecided);
+        assert_eq!(status(&item(&["c", "d"]), &all), Status::Differs);
+        assert_eq!(status(&item(&[]), &all), Status::Shown);
+    }
+
+    #[test]
+    fn check_finds_unlisted_and_missing_claims() {
+        let a = claim("a", exactly(true, ""), false);
+        assert!(check("p", &[item(&["a"])], &["e"], &[&a]).is_ok());
+        assert!(check("p", &[item(&[])], &["e"], &[&a]).unwrap_err().to_string().contains("listed by no item"));
+        assert!(check("p", &[item(&["a", "z"])], &["e"], &[&a]).unwrap_err().to_string().contains("no claim z"));
+        assert!(check("p", &[item(&["a"])], &["f"], &[&a]).unwrap_err().to_string().contains("no experiment e"));
+        assert!(check("p", &[item(&["a"])], &["e"], &[&a, &a]).unwrap_err().to_string().contains("twice"));
+    }
+
+    #[test]
+    fn every_paper_has_a_well_formed_list() {
+        for p in crate::paper::all() {
+            let items = items(p.key);
+            assert!(!items.is_empty(), "{}: no coverage", p.key);
+            let ids: Vec<&str> = p.experiments.iter().map(|e| e.id).collect();
+            for it in &items {
+                match (&it.experiment, &it.not_attempted) {
+                    (Some(e), None) => assert!(ids.contains(&e.as_str()), "{}: {}: no experiment {e}", p.key, it.item),
+                    (None, Some(why)) => assert!(why.len() > 20 && it.claims.is_empty(), "{}: {}", p.key, it.item),
+                    _ => panic!("{}: {}: an experiment or a reason", p.key, it.item),
+                }
+            }
+        }
+    }
+}
