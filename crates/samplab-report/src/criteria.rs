@@ -208,7 +208,11 @@ fn kendall_p(n: usize, tau: f64) -> f64 {
     let mut i = 0;
     while i < n {
         if c[i] < i {
-            if i % 2 == 0 { perm.swap(0, i) } else { perm.swap(c[i], i) }
+            if i % 2 == 0 {
+                perm.swap(0, i)
+            } else {
+                perm.swap(c[i], i)
+            }
             visit(&perm);
             c[i] += 1;
             i = 0;

@@ -35,7 +35,10 @@ fn verdict_html(c: &Claim) -> String {
         Verdict::NotReproduced => ("not-reproduced", "not reproduced"),
         Verdict::Undecided => ("undecided", "undecided"),
     };
-    let mut h = format!("<span class=\"{class}\">{name}</span><br><span class=\"criterion\">criterion: {}</span>", escape(&c.decision.criterion));
+    let mut h = format!(
+        "<span class=\"{class}\">{name}</span><br><span class=\"criterion\">criterion: {}</span>",
+        escape(&c.decision.criterion)
+    );
     if let (Some(why), false) = (&c.explanation, c.verdict() == Verdict::Reproduced) {
         let _ = write!(h, "<br><span class=\"differs\">differs because</span> {}", escape(why));
     }
@@ -48,7 +51,11 @@ fn claims_table(claims: &[&Claim]) -> String {
     );
     for c in claims {
         let statement = match &c.addition {
-            Some(source) => format!("<span class=\"addition\">samplab's addition</span> ({}): {}", escape(source), escape(&c.statement)),
+            Some(source) => format!(
+                "<span class=\"addition\">samplab's addition</span> ({}): {}",
+                escape(source),
+                escape(&c.statement)
+            ),
             None => escape(&c.statement),
         };
         let _ = writeln!(
@@ -67,7 +74,8 @@ fn claims_table(claims: &[&Claim]) -> String {
 /// The coverage table of one paper, and its count per status.
 fn coverage_table(items: &[coverage::Item], claims: &[&Claim]) -> (String, [usize; 6]) {
     let mut counts = [0; 6];
-    let mut h = String::from("<table class=\"claims\"><tr><th>item</th><th>what</th><th>status</th><th>where</th></tr>\n");
+    let mut h =
+        String::from("<table class=\"claims\"><tr><th>item</th><th>what</th><th>status</th><th>where</th></tr>\n");
     for it in items {
         let status = coverage::status(it, claims);
         counts[Status::ALL.iter().position(|s| *s == status).expect("listed")] += 1;

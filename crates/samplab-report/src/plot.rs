@@ -75,7 +75,7 @@ pub fn colour(strategy: &str) -> RGBColor {
         ("regular.rotated", RGBColor(255, 187, 120)),
     ];
     let spec = strategy.split(':').next().unwrap_or(strategy);
-    // Gaussian jitter: browns, darker for smaller sigma (the paper's colour for it)
+    // Gaussian jitter: the paper's browns, one clearly distinct shade per sigma it uses
     if spec == "jitter.gaussian" {
         let sigma = strategy
             .split("sigma=")
@@ -83,8 +83,13 @@ pub fn colour(strategy: &str) -> RGBColor {
             .and_then(|v| v.split(',').next())
             .and_then(|v| v.parse::<f64>().ok())
             .unwrap_or(0.25);
-        let t = (sigma.clamp(0.05, 1.0).ln() - 0.05f64.ln()) / (1.0f64.ln() - 0.05f64.ln());
-        return RGBColor((110.0 + 120.0 * t) as u8, (60.0 + 110.0 * t) as u8, (20.0 + 90.0 * t) as u8);
+        const SHADES: [(f64, RGBColor); 4] = [
+            (0.1, RGBColor(84, 39, 4)),
+            (0.25, RGBColor(166, 86, 40)),
+            (0.5, RGBColor(221, 150, 60)),
+            (1.0, RGBColor(240, 200, 120)),
+        ];
+        return SHADES.iter().min_by(|a, b| (a.0 - sigma).abs().total_cmp(&(b.0 - sigma).abs())).expect("shades").1;
     }
     let family = ["halton", "sobol", "hammersley", "poisson"].into_iter().find(|f| spec.starts_with(f)).unwrap_or(spec);
     TABLE.iter().find(|(k, _)| *k == family).map(|(_, c)| *c).unwrap_or_else(|| {
@@ -266,9 +271,11 @@ impl Drawable for Strata<'_> {
             lines.push((0..=steps).filter_map(|j| map(t(j), c)).collect());
         }
         let points: Vec<(f64, f64)> = self.set.iter().filter_map(|p| map(p[0], p[1])).collect();
-        let (lo, hi) = lines.iter().flatten().chain(&points).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
-            (l.min(p.0).min(p.1), h.max(p.0).max(p.1))
-        });
+        let (lo, hi) = lines
+            .iter()
+            .flatten()
+            .chain(&points)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.0).min(p.1), h.max(p.0).max(p.1)));
         let pad = 0.03 * (hi - lo);
         let mut chart = ChartBuilder::on(&root)
             .caption(&self.title, ("sans-serif", 20))
@@ -282,17 +289,16 @@ impl Drawable for Strata<'_> {
         for l in lines {
             chart.draw_series(LineSeries::new(l, grey)).map_err(err)?;
         }
-        chart
-            .draw_series(points.iter().map(|&p| Circle::new(p, 4, RGBColor(31, 119, 180).filled())))
-            .map_err(err)?;
+        chart.draw_series(points.iter().map(|&p| Circle::new(p, 4, RGBColor(31, 119, 180).filled()))).map_err(err)?;
         root.present().map_err(err)
     }
 }
 
-/// A tick label: scientific notation on log axes, at most six significant digits
-/// otherwise (no floating-point noise such as 0.30000000000000004).
+/// A tick label as a paper prints it: 10, 20, 50 or 0.01 (scientific notation only for
+/// log-axis values below 1e-4 or from 1e5 up), at most six significant digits (no
+/// floating-point noise such as 0.30000000000000004).
 fn tick(v: f64, log: bool) -> String {
-    if log {
+    if log && !(1e-4..1e5).contains(&v.abs()) {
         format!("{v:.0e}")
     } else if v == 0.0 {
         "0".into()
@@ -703,5 +709,26 @@ impl Drawable for HeatMap {
             }))
             .map_err(err)?;
         root.present().map_err(err)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_read_like_a_paper() {
+        assert_eq!(tick(10.0, true), "10");
+        assert_eq!(tick(20.000000000000004, true), "20");
+        assert_eq!(tick(0.01, true), "0.01");
+        assert_eq!(tick(1e-7, true), "1e-7");
+        assert_eq!(tick(0.30000000000000004, false), "0.3");
+    }
+
+    #[test]
+    fn gaussian_jitter_sigmas_have_distinct_colours() {
+        let (a, b) = (colour("jitter.gaussian:sigma=0.1"), colour("jitter.gaussian:sigma=0.25"));
+        let distance = (i32::from(a.0) - i32::from(b.0)).abs() + (i32::from(a.1) - i32::from(b.1)).abs();
+        assert!(distance > 80, "{a:?} and {b:?} are too close");
     }
 }

@@ -13,9 +13,9 @@ use samplab_render::scenes::LightKind;
 
 use super::shadows::{self, Setup, scene};
 use super::study;
+use crate::criteria::{self, Estimate};
 use crate::plot::{HeatMap, LineChart, Series};
 use crate::published;
-use crate::criteria::{self, Estimate};
 use crate::{Cell, Claim, Ctx, Error, Experiment, Figure, Output, Paper, Table};
 
 /// The paper's experiments.
@@ -177,10 +177,14 @@ fn error_vs_position(ctx: &Ctx) -> Result<Output, Error> {
         claims: vec![
             Claim {
                 id: "uniform-worst-case".into(),
-                statement: "Uniform (centred) sampling has worst-case error 1/(2N) for one discontinuity, the lower bound"
-                    .into(),
+                statement:
+                    "Uniform (centred) sampling has worst-case error 1/(2N) for one discontinuity, the lower bound"
+                        .into(),
                 published: "1/(2N) (eq. 8, Figs. 3 and 4)".into(),
-                ours: format!("N x worst error = {uniform_worst:.9} over 400 positions and the {} positions just past a sample", 2 * n),
+                ours: format!(
+                    "N x worst error = {uniform_worst:.9} over 400 positions and the {} positions just past a sample",
+                    2 * n
+                ),
                 theory: "0.5".into(),
                 decision: criteria::within(uniform_worst, 0.5, 1e-6),
                 ..Claim::default()

@@ -13,9 +13,9 @@ use samplab_render::{Mode, Pattern};
 
 use super::shadows::{Setup, scene};
 use super::study;
+use crate::criteria::{self, Estimate};
 use crate::plot::{LineChart, Series};
 use crate::published;
-use crate::criteria::{self, Estimate};
 use crate::{Cell, Claim, Ctx, Error, Experiment, Figure, Output, Paper, Table};
 use samplab::stats::Summary;
 
@@ -183,7 +183,8 @@ fn law(ctx: &Ctx) -> Result<Output, Error> {
     const BATCHES: usize = 8;
     let mut per_n = vec![Vec::new(); ns.len()];
     for b in 0..BATCHES {
-        let rows = study(ctx, &["jitter.uniform"], "disk", &ns, 16, instances / BATCHES, ctx.seed.derive(1).derive(b as u64))?;
+        let rows =
+            study(ctx, &["jitter.uniform"], "disk", &ns, 16, instances / BATCHES, ctx.seed.derive(1).derive(b as u64))?;
         for (k, r) in per_n.iter_mut().zip(&rows) {
             k.push(k_of(r));
         }
@@ -193,7 +194,12 @@ fn law(ctx: &Ctx) -> Result<Output, Error> {
         .iter()
         .zip(&ks)
         .map(|(n, k)| {
-            vec![Cell::num(*n as f64, 0), Cell::num(k.mean, 4), Cell::num(k.standard_error(), 4), Cell::num(theory::K_SYSTEMATIC, 4)]
+            vec![
+                Cell::num(*n as f64, 0),
+                Cell::num(k.mean, 4),
+                Cell::num(k.standard_error(), 4),
+                Cell::num(theory::K_SYSTEMATIC, 4),
+            ]
         })
         .collect();
     let k_checks: Vec<_> = ks

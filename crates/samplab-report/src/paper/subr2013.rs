@@ -14,9 +14,9 @@ use samplab_render::{Footprint, Image, Mode};
 
 use super::shadows::{Setup, picture, scene};
 use super::study;
+use crate::criteria::{self, Decision, Estimate};
 use crate::plot::{HeatMap, LineChart, Series};
 use crate::published;
-use crate::criteria::{self, Decision, Estimate};
 use crate::{Cell, Claim, Ctx, Error, Experiment, Figure, Output, Paper, Table};
 
 /// The paper's experiments.
@@ -340,14 +340,12 @@ fn zoneplate(ctx: &Ctx) -> Result<Output, Error> {
     for j in 0..sigmas.len() {
         for i in 0..alphas.len() {
             if (i, j) != (0, 0) {
-                above.push(criteria::less(
-                    Estimate { value: bias[j][i], se: se(j, i) },
-                    Estimate::exact(bias[0][0]),
-                ));
+                above.push(criteria::less(Estimate { value: bias[j][i], se: se(j, i) }, Estimate::exact(bias[0][0])));
             }
         }
     }
-    let largest_se = (1..alphas.len() * sigmas.len()).map(|k| se(k / alphas.len(), k % alphas.len())).fold(0.0f64, f64::max);
+    let largest_se =
+        (1..alphas.len() * sigmas.len()).map(|k| se(k / alphas.len(), k % alphas.len())).fold(0.0f64, f64::max);
     let claims = vec![
         Claim {
             id: "regular-grid-biased".into(),
@@ -450,6 +448,14 @@ fn spectra(ctx: &Ctx) -> Result<Output, Error> {
         stats.push(st);
         ctx.progress.inc(1);
     }
+    // |<S>| of 20 realizations cannot fall below the mean of 20 independent spectra of
+    // unit-variance noise: sqrt(1 / (20 N)), where E|S|^2 = 1/N off DC
+    let floor = (1.0 / (20.0 * 256.0f64)).sqrt();
+    curves[1].push(Series {
+        dashed: true,
+        colour_key: Some("noise-floor".into()),
+        ..Series::line("noise floor of 20 realizations, 1/sqrt(20 N)", vec![(1.0, floor), ((res / 2) as f64, floor)])
+    });
     let titles = [
         "(a) radially averaged periodogram <|S|^2>",
         "(b) amplitude of the expected spectrum |<S>|",
