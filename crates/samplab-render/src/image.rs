@@ -256,7 +256,8 @@ mod tests {
         // displayed: 2.5 and 2.0 clamp to 1, as the reference's 2, 3 and 4 do
         let c = img.clamped().errors(&reference.clamped(), false).unwrap();
         assert_eq!((c.mse, c.max_abs), (0.0, 0.0));
-        assert_eq!(image(&[-0.5, 0.25, 3.0, 1.0], None).clamped().rgb[..3], [0.0, 0.25, 1.0]);
+        let c = image(&[-0.5, 0.25, 3.0, 1.0], None).clamped();
+        assert_eq!([c.rgb[0], c.rgb[3], c.rgb[6], c.rgb[9]], [0.0, 0.25, 1.0, 1.0]);
     }
 
     #[test]

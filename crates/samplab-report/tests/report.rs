@@ -46,6 +46,11 @@ fn every_link_and_image_resolves() {
         let html = std::fs::read_to_string(page).unwrap();
         for target in attributes(&html, "href").into_iter().chain(attributes(&html, "src")) {
             assert!(!target.starts_with("http"), "{}: external link {target}", page.display());
+            if let Some(anchor) = target.strip_prefix('#') {
+                assert!(html.contains(&format!("id=\"{anchor}\"")), "{}: no anchor {target}", page.display());
+                checked += 1;
+                continue;
+            }
             let file = out.join(target.split('#').next().unwrap());
             assert!(file.is_file(), "{}: {target} does not exist", page.display());
             if target.ends_with(".png") {
