@@ -100,7 +100,13 @@ pub static BUILTINS: &[Builtin] = &[
         name: "grids",
         summary: "three grids of bars above a plane (Ramamoorthi et al. 2012, Figs. 8, 17, 19, 20)",
         default_light: Some(LightKind::Linear),
-        build: grids,
+        build: |kind| grids(kind, [20.0, 80.0, 140.0]),
+    },
+    Builtin {
+        name: "grids-aligned",
+        summary: "the three grids with bars at 0, 90 and 45 degrees to the light's edges",
+        default_light: Some(LightKind::Linear),
+        build: |kind| grids(kind, [0.0, 90.0, 45.0]),
     },
     Builtin {
         name: "occluder",
@@ -266,12 +272,14 @@ fn sphere_box_mesh(kind: LightKind) -> Scene {
     sphere_box_lit(kind, shapes)
 }
 
-fn grids(kind: LightKind) -> Scene {
-    // three grids of thin bars at three heights, in three orientations, none parallel to
-    // the light's edges (Ramamoorthi et al. 2012 show three grids casting overlapping soft
-    // shadows; bars parallel to a square light's sample rows favour stratified sampling)
+/// Three grids of thin bars at three heights, the bars of each at its angle (degrees) to the
+/// light's edges. Ramamoorthi et al. 2012 show three grids casting overlapping soft shadows
+/// without publishing the geometry; bars parallel to a square light's sample rows favour
+/// stratified sampling (their section 6), so `grids` turns every grid off the light's axes
+/// and `grids-aligned` keeps two on them.
+fn grids(kind: LightKind, angles: [f64; 3]) -> Scene {
     let mut shapes = Vec::new();
-    for (k, (height, angle)) in [(0.45, 20.0f64), (0.8, 80.0), (1.15, 140.0)].into_iter().enumerate() {
+    for (k, (height, angle)) in [0.45, 0.8, 1.15].into_iter().zip(angles).enumerate() {
         let (s, c) = angle.to_radians().sin_cos();
         let (along, across) = (DVec3::new(c, 0.0, s), DVec3::new(-s, 0.0, c));
         for bar in 0..9 {

@@ -318,16 +318,19 @@ pub struct Series {
     pub colour_key: Option<String>,
     /// (x, y) points.
     pub points: Vec<(f64, f64)>,
-    /// Draw markers instead of a line.
+    /// Mark each point (on a thin joining line).
     pub markers: bool,
     /// Dashed (for theory or published curves).
     pub dashed: bool,
+    /// Per point, the (low, high) ends of its interval, drawn as a vertical bar; empty for
+    /// none.
+    pub intervals: Vec<(f64, f64)>,
 }
 
 impl Series {
     /// A solid line.
     pub fn line(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Series { name: name.into(), colour_key: None, points, markers: false, dashed: false }
+        Series { name: name.into(), colour_key: None, points, markers: false, dashed: false, intervals: Vec::new() }
     }
 }
 
@@ -352,7 +355,12 @@ pub struct LineChart {
 impl Drawable for LineChart {
     fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
         root.fill(&WHITE).map_err(err)?;
-        let all = self.series.iter().flat_map(|s| s.points.iter().copied());
+        let ends = self
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().zip(&s.intervals).flat_map(|(p, i)| [(p.0, i.0), (p.0, i.1)]));
+        let all =
+            self.series.iter().flat_map(|s| s.points.iter().copied()).chain(ends.filter(|p| !self.log_y || p.1 > 0.0));
         let (mut x0, mut x1, mut y0, mut y1) = all
             .fold((f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY), |(a, b, c, d), (x, y)| {
                 (a.min(x), b.max(x), c.min(y), d.max(y))
@@ -438,7 +446,12 @@ impl Drawable for LineChart {
                 for s in &self.series {
                     let c = colour(s.colour_key.as_deref().unwrap_or(&s.name));
                     let style = c.stroke_width(2);
+                    for (&(x, _), &(lo, hi)) in s.points.iter().zip(&s.intervals) {
+                        let lo = if self.log_y && lo <= 0.0 { y0 } else { lo };
+                        chart.draw_series(LineSeries::new([(x, lo), (x, hi)], c.stroke_width(1))).map_err(err)?;
+                    }
                     if s.markers {
+                        chart.draw_series(LineSeries::new(s.points.iter().copied(), c.stroke_width(1))).map_err(err)?;
                         chart
                             .draw_series(s.points.iter().map(|&p| Circle::new(p, 4, c.filled())))
                             .map_err(err)?
@@ -730,5 +743,27 @@ mod tests {
         let (a, b) = (colour("jitter.gaussian:sigma=0.1"), colour("jitter.gaussian:sigma=0.25"));
         let distance = (i32::from(a.0) - i32::from(b.0)).abs() + (i32::from(a.1) - i32::from(b.1)).abs();
         assert!(distance > 80, "{a:?} and {b:?} are too close");
+    }
+
+    #[test]
+    fn intervals_are_drawn_and_widen_the_axis() {
+        let chart = |intervals: Vec<(f64, f64)>| LineChart {
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            series: vec![Series { intervals, ..Series::line("a", vec![(1.0, 1.0), (2.0, 2.0)]) }],
+            log_y: false,
+            log_x: false,
+            polar: false,
+        };
+        let bare = svg(&chart(Vec::new()), (400, 300)).expect("svg");
+        let barred = svg(&chart(vec![(0.5, 1.5), (1.0, 7.0)]), (400, 300)).expect("svg");
+        let c = colour("a");
+        let stroke = format!("stroke=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
+        let count = |s: &str| s.lines().filter(|l| l.contains("<polyline") && l.contains(&stroke)).count();
+        assert_eq!(count(&barred), count(&bare) + 2, "one bar per point");
+        // the upper end 7 is inside the axis: the largest tick label grows from about 2 to 6 or 7
+        let top = |s: &str| s.lines().filter_map(|l| l.trim().parse::<f64>().ok()).fold(f64::NEG_INFINITY, f64::max);
+        assert!(top(&bare) < 3.0 && top(&barred) >= 6.0, "{} {}", top(&bare), top(&barred));
     }
 }

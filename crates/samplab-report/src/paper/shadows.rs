@@ -82,19 +82,6 @@ impl<'a> Setup<'a> {
         Setup { pixel: sobol, lens: sobol, time: sobol, gloss: sobol, pattern: Pattern::PerEstimate, ..*self }
     }
 
-    /// Errors against `reference`, averaged over `seeds` renders (each field the mean).
-    pub fn errors(
-        &self,
-        reference: &Image,
-        light: &str,
-        n: usize,
-        spp: usize,
-        seeds: u64,
-        seed: Seed,
-    ) -> Result<Errors, Error> {
-        Ok(mean(&self.errors_each(reference, light, n, spp, seeds, seed)?))
-    }
-
     /// Errors against `reference` of each of `seeds` renders (seed k derived from `seed`).
     pub fn errors_each(
         &self,
