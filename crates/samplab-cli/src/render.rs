@@ -15,7 +15,9 @@ fn after_help() -> String {
     format!(
         "Examples:\n  samplab render spheres --light disk --sampler jitter.uniform -n 25 --disk-map reject -o uj.exr \
          --reference ref.exr --error-image err.png\n  samplab render grids --light linear --sampler jitter -n 16 -o strat.png\n  \
-         samplab render scene.xml --sampler sobol.owen -n 4 --spp 16 --pixel area --mode direct -o out.exr\n\n\
+         samplab render scene.xml --sampler sobol.owen -n 4 --spp 16 --pixel area --mode direct -o out.exr\n  \
+         samplab render sphere-box --mode obscurance --range 0.5 --sampler systematic -n 16 -o ao.png\n  \
+         samplab render checker-45 --pixel area --spp 16 --pixel-sampler halton.shift --interleave 4x1 -o il.png\n\n\
          SCENE is a built-in scene or a Mitsuba 3 XML file. Built-in scenes:\n{scenes}\n\
          A missing --reference file is rendered (sobol.owen, --reference-samples light samples, 64 pixel \
          samples in area mode) and kept for the next run."
@@ -40,15 +42,23 @@ pub struct Args {
     /// Secondary estimates per pixel (each one camera ray and n shadow rays per light)
     #[arg(long, default_value_t = 1)]
     spp: usize,
-    /// visibility (Monte Carlo for visibility only) or direct (full light sampling)
+    /// visibility (Monte Carlo for visibility only), direct (full light sampling) or
+    /// obscurance (no lights: the sampler's n points are cosine-weighted directions)
     #[arg(long, default_value = "visibility")]
     mode: String,
+    /// Obscurance mode: the distance beyond which a surface no longer obscures
+    #[arg(long, default_value_t = 1.0)]
+    range: f64,
     /// Camera rays through the pixel centre or over its area
     #[arg(long, default_value = "center")]
     pixel: String,
     /// Strategy over the pixel area (spp points)
     #[arg(long, default_value = "sobol.owen")]
     pixel_sampler: String,
+    /// Interleaved sampling: one pixel-sampler pattern of spp x W x H points over a tile of
+    /// WxH pixels, repeated over the image (needs --pixel area)
+    #[arg(long, value_name = "WxH")]
+    interleave: Option<String>,
     /// Strategy over the lens (spp points), for scenes with an aperture
     #[arg(long, default_value = "sobol.owen")]
     lens_sampler: String,
@@ -114,12 +124,13 @@ fn load_scene(name: &str, light: Option<&str>) -> anyhow::Result<Scene> {
     Ok(scenes::builtin(name, kind)?)
 }
 
-fn resolution(text: &str) -> anyhow::Result<(usize, usize)> {
+/// A size WIDTHxHEIGHT given to `flag`.
+fn size(flag: &str, text: &str) -> anyhow::Result<(usize, usize)> {
     let parse = || {
         let (w, h) = text.split_once(['x', 'X'])?;
         Some((w.trim().parse().ok()?, h.trim().parse().ok()?))
     };
-    parse().with_context(|| format!("--res: '{text}' is not WIDTHxHEIGHT (e.g. 256x192)"))
+    parse().with_context(|| format!("{flag}: '{text}' is not WIDTHxHEIGHT (e.g. 256x192)"))
 }
 
 fn check_extension(flag: &str, path: &Path, allowed: &[&str]) -> anyhow::Result<()> {
@@ -148,13 +159,17 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         bail!("--error-scale: {} must be a positive number", a.error_scale);
     }
     let scene = load_scene(&a.scene, a.light.as_deref())?;
-    let (width, height) = a.res.as_deref().map(resolution).transpose()?.unwrap_or(scene.resolution);
+    let (width, height) = a.res.as_deref().map(|r| size("--res", r)).transpose()?.unwrap_or(scene.resolution);
     let sampler = |flag: &str, spec: &str| samplab::sampler::build(spec).with_context(|| flag.to_string());
     let options = Options {
         light: sampler("--sampler", &a.sampler)?,
         n: a.n,
         spp: a.spp,
-        mode: choose("--mode", &a.mode, &[("visibility", Mode::Visibility), ("direct", Mode::Direct)])?,
+        mode: choose(
+            "--mode",
+            &a.mode,
+            &[("visibility", Mode::Visibility), ("direct", Mode::Direct), ("obscurance", Mode::Obscurance)],
+        )?,
         footprint: choose(
             "--pixel",
             &a.pixel,
@@ -166,6 +181,8 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         gloss: sampler("--gloss-sampler", &a.gloss_sampler)?,
         pattern: choose("--pattern", &a.pattern, &[("estimate", Pattern::PerEstimate), ("pixel", Pattern::PerPixel)])?,
         disk_map: a.disk_map.as_deref().map(|m| choose("--disk-map", m, &DiskMap::ALL)).transpose()?,
+        range: a.range,
+        interleave: a.interleave.as_deref().map(|t| size("--interleave", t)).transpose()?,
         width,
         height,
         seed: Seed(a.seed),
@@ -242,6 +259,7 @@ fn render_reference(scene: &Scene, options: &Options, samples: usize) -> anyhow:
     reference.mode = options.mode;
     reference.footprint = options.footprint;
     reference.disk_map = options.disk_map;
+    reference.range = options.range;
     reference.seed = options.seed.derive_str("reference");
     let bar = crate::generate::progress(options.height as u64, "reference rows");
     let r = render(scene, &reference, &|_| bar.inc(1))?;

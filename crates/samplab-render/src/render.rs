@@ -17,6 +17,18 @@
 //!
 //! With a rejection disk map, the sums run over the accepted samples and divide by their
 //! number (Ramamoorthi et al. 2012, section 7, footnote 8).
+//!
+//! A third estimator ignores the lights: **obscurance** (Zhukov et al. 1998; Iones et al.
+//! 2003; sampled systematically by Sbert et al. 2006, Fig. 7), ambient light of unit
+//! radiance reaching x unless an occluder is near: W(x) = (1/pi) int rho(d(x, w)) cos dw,
+//! with d the distance to the first surface along w and rho(d) = sqrt(d / range) below the
+//! range, 1 beyond it (and for no surface). Each estimate takes the light strategy's n-point
+//! pattern in the unit square as n cosine-weighted directions (cos = sqrt(u0), azimuth
+//! 2 pi u1) and is albedo x the mean of rho.
+//!
+//! Pixel samples come from a pattern per pixel, or, interleaved (Keller & Heidrich 2001;
+//! Sbert et al. 2006 Fig. 4), from one pattern of spp x w x h points over a tile of w x h
+//! pixels repeated over the image: each pixel takes the spp points in its cell of the tile.
 
 use std::f64::consts::PI;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -41,6 +53,8 @@ pub enum Mode {
     Visibility,
     /// Full direct lighting by light sampling.
     Direct,
+    /// Obscurance: no lights; the strategy's pattern gives cosine-weighted directions.
+    Obscurance,
 }
 
 /// Where in the pixel the camera rays go.
@@ -92,6 +106,11 @@ pub struct Options {
     pub pattern: Pattern,
     /// Disk map override for every disk light (None: each light's own).
     pub disk_map: Option<DiskMap>,
+    /// Obscurance mode: the distance beyond which a surface no longer obscures.
+    pub range: f64,
+    /// Interleaved pixel sampling over tiles of (w, h) pixels (area footprint); None: a
+    /// pattern per pixel.
+    pub interleave: Option<(usize, usize)>,
     /// Image width.
     pub width: usize,
     /// Image height.
@@ -139,6 +158,8 @@ impl Options {
             gloss: sobol()?,
             pattern: Pattern::PerEstimate,
             disk_map: None,
+            range: 1.0,
+            interleave: None,
             width,
             height,
             seed: Seed::DEFAULT,
@@ -164,11 +185,27 @@ impl Options {
                 self.n.checked_mul(self.spp).ok_or_else(|| Error::Invalid("n x spp overflows".into()))?
             }
         };
-        for light in &scene.lights {
-            self.light.check(per_pattern, light.dims())?;
+        if self.mode == Mode::Obscurance {
+            if !(self.range.is_finite() && self.range > 0.0) {
+                return Err(Error::Invalid(format!("obscurance range {} must be a positive number", self.range)));
+            }
+            if self.pattern == Pattern::PerPixel {
+                return Err(Error::Invalid("obscurance takes a pattern per estimate, not per pixel".into()));
+            }
+            self.light.check(self.n, 2)?;
+        } else {
+            for light in &scene.lights {
+                self.light.check(per_pattern, light.dims())?;
+            }
         }
         if self.footprint == Footprint::Area {
-            self.pixel.check(self.spp, 2)?;
+            if self.tile()?.is_none() {
+                self.pixel.check(self.spp, 2)?;
+            }
+        } else if self.interleave.is_some() {
+            return Err(Error::Invalid(
+                "interleaved sampling spreads samples over pixel areas: it needs the area footprint".into(),
+            ));
         }
         if scene.camera.aperture > 0.0 {
             self.lens.check(self.spp, 2)?;
@@ -180,6 +217,64 @@ impl Options {
             self.gloss.check(self.spp, 2)?;
         }
         Ok(())
+    }
+}
+
+/// The largest interleaving tile side, in pixels.
+pub const MAX_TILE: usize = 64;
+
+/// An interleaving tile: per pixel cell (row-major), its spp points in pixel coordinates.
+struct Tile {
+    width: usize,
+    height: usize,
+    spp: usize,
+    points: Vec<f64>,
+}
+
+impl Tile {
+    /// The points of pixel (col, row).
+    fn cell(&self, col: usize, row: usize) -> &[f64] {
+        let c = (row % self.height) * self.width + col % self.width;
+        &self.points[2 * self.spp * c..2 * self.spp * (c + 1)]
+    }
+}
+
+impl Options {
+    /// The interleaving tile, its pattern drawn once from the pixel strategy (None without
+    /// interleaving).
+    ///
+    /// # Errors
+    /// A tile side out of 1..=[`MAX_TILE`], or a pattern that does not put exactly `spp`
+    /// points in every pixel of the tile.
+    fn tile(&self) -> Result<Option<Tile>> {
+        let Some((width, height)) = self.interleave else { return Ok(None) };
+        if !(1..=MAX_TILE).contains(&width) || !(1..=MAX_TILE).contains(&height) {
+            return Err(Error::Invalid(format!(
+                "interleaving tile {width}x{height} is out of range 1..={MAX_TILE} per side"
+            )));
+        }
+        let cells = width * height;
+        let total = self.spp * cells;
+        self.pixel.check(total, 2)?;
+        let mut pattern = vec![0.0; 2 * total];
+        self.pixel.fill(total, 2, self.seed.derive_str("pixel"), &mut pattern)?;
+        let mut by_cell: Vec<Vec<f64>> = vec![Vec::with_capacity(2 * self.spp); cells];
+        for p in pattern.chunks_exact(2) {
+            let (x, y) = (p[0] * width as f64, p[1] * height as f64);
+            let (c, r) = ((x as usize).min(width - 1), (y as usize).min(height - 1));
+            by_cell[r * width + c].extend([x - c as f64, y - r as f64]);
+        }
+        if let Some((i, cell)) = by_cell.iter().enumerate().find(|(_, c)| c.len() != 2 * self.spp) {
+            return Err(Error::Invalid(format!(
+                "interleaved sampling: '{}' puts {} of its {total} points in pixel ({}, {}) of the {width}x{height} tile, not spp = {}",
+                self.pixel.spec(),
+                cell.len() / 2,
+                i % width,
+                i / width,
+                self.spp
+            )));
+        }
+        Ok(Some(Tile { width, height, spp: self.spp, points: by_cell.concat() }))
     }
 }
 
@@ -226,6 +321,9 @@ struct Scratch {
     ends: Ends,
     /// Shadow rays waiting to be traced.
     shadows: Shadows,
+    /// Obscurance rays of one end and their hits.
+    probes: Vec<Ray>,
+    probe_hits: Vec<Hit>,
 }
 
 /// A pixel's pattern of `spp` blocks and the random order they are dealt to its estimates
@@ -278,6 +376,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
         .collect();
     let frame = scene.camera.frame(w, h);
     let keys = Keys::new(options.seed);
+    let tile = options.tile()?;
     let setup = Setup {
         scene,
         options,
@@ -287,6 +386,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
         moving: scene.moving(),
         glossy: scene.glossy(),
         plain: scene.plain_albedos(),
+        tile: tile.as_ref(),
     };
     let done = AtomicUsize::new(0);
     let mut rgb = vec![0f32; 3 * w * h];
@@ -394,6 +494,8 @@ struct Setup<'a> {
     glossy: bool,
     /// [`Scene::plain_albedos`].
     plain: Vec<Option<DVec3>>,
+    /// The interleaving tile, if any.
+    tile: Option<&'a Tile>,
 }
 
 #[derive(Clone, Copy)]
@@ -627,12 +729,15 @@ fn render_pixel(setup: &Setup, px: Pixel, s: &mut Scratch) -> (DVec3, f64, (u64,
 /// patterns with their points on the lights.
 #[inline(always)]
 fn deal(setup: &Setup, px: Pixel, s: &mut Scratch) {
-    let Setup { scene, options: o, lights, keys, moving, glossy, .. } = *setup;
+    let Setup { scene, options: o, lights, keys, moving, glossy, tile, .. } = *setup;
     let spp = o.spp;
     if o.footprint == Footprint::Area {
         s.pixel.resize(spp * 2, 0.0);
-        // cannot fail: Options::check accepted these counts
-        o.pixel.fill(spp, 2, keys.pixel.derive(px.index), &mut s.pixel).expect("counts checked");
+        match tile {
+            Some(t) => s.pixel.copy_from_slice(t.cell(px.col, px.row)),
+            // cannot fail: Options::check accepted these counts
+            None => o.pixel.fill(spp, 2, keys.pixel.derive(px.index), &mut s.pixel).expect("counts checked"),
+        }
     }
     let deal_key = |what: &str| keys.deal.derive(px.index).derive_str(what);
     let lens = scene.camera.aperture > 0.0;
@@ -794,6 +899,9 @@ fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
     if m == 0 {
         return 0;
     }
+    if o.mode == Mode::Obscurance {
+        return obscure_ends(setup, px, s);
+    }
     let mut origin = [ZEROS; 3];
     for k in 0..m {
         set_lane(&mut origin, k, Scene::offset(lane(&ends.position, k), lane(&ends.normal, k)));
@@ -806,7 +914,7 @@ fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
         for k in 0..m {
             sums.unoccluded[k] = match o.mode {
                 Mode::Visibility => unoccluded(p, lane(&ends.position, k), lane(&ends.normal, k)),
-                Mode::Direct => 1.0,
+                Mode::Direct | Mode::Obscurance => 1.0,
             };
         }
         if o.pattern == Pattern::PerPixel && o.n == 1 {
@@ -859,7 +967,7 @@ fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
             *v += if sums.accepted[k] > 0 { fraction } else { 0.0 };
             let integral = match o.mode {
                 Mode::Visibility => sums.unoccluded[k] * fraction,
-                Mode::Direct => sums.shade[k] / sums.accepted[k] as f64,
+                Mode::Direct | Mode::Obscurance => sums.shade[k] / sums.accepted[k] as f64,
             };
             set_lane(&mut share, k, lane(&ends.albedo, k) / PI * p.light.radiance * p.area * integral);
         }
@@ -876,6 +984,38 @@ fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
     }
     s.ends.len = 0;
     traced
+}
+
+/// The obscurance of the waiting ends (see the module's documentation): per end, its
+/// estimate's n directions traced together; the end's estimate gains albedo x W and its
+/// visible channel W. Returns the rays traced.
+fn obscure_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
+    let Setup { scene, options: o, keys, .. } = *setup;
+    let m = s.ends.len;
+    for k in 0..m {
+        let e = s.ends.estimate[k] as usize;
+        let (x, normal) = (lane(&s.ends.position, k), lane(&s.ends.normal, k));
+        s.light.resize(o.n * 2, 0.0);
+        // cannot fail: Options::check accepted these counts
+        o.light.fill(o.n, 2, keys.light.derive(px.index).derive(e as u64), &mut s.light).expect("counts checked");
+        let origin = Scene::offset(x, normal);
+        s.probes.clear();
+        s.probes.extend(s.light.chunks_exact(2).map(|u| Ray {
+            origin,
+            dir: phong_lobe(normal, 1.0, [u[0], u[1]]),
+            time: s.ends.time[k],
+        }));
+        scene.trace(&s.probes, &mut s.probe_hits);
+        let rho = |(ray, &hit): (&Ray, &Hit)| match scene.seen(ray, hit) {
+            Seen::Surface { .. } if hit.t < o.range => (hit.t / o.range).sqrt(),
+            _ => 1.0,
+        };
+        let w = s.probes.iter().zip(&s.probe_hits).map(rho).sum::<f64>() / o.n as f64;
+        s.radiance[e] += lane(&s.ends.albedo, k) * w;
+        s.visible[e] += w;
+    }
+    s.ends.len = 0;
+    (m * o.n) as u64
 }
 
 /// A direction about the unit `axis` from the normalized Phong lobe (n + 1) / (2 pi)

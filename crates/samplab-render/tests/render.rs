@@ -193,3 +193,58 @@ fn counts_a_strategy_cannot_make_are_refused_before_any_work() {
     o.pixel = samplab::sampler::build("jitter").unwrap();
     assert!(render(&scene, &o, &|_| {}).is_err());
 }
+
+#[test]
+fn obscurance_under_a_parallel_plane_has_its_closed_form() {
+    // a white ground, and (optionally) a plane at height h: along a direction at cos = mu the
+    // ceiling is h / mu away, so W = int_0^1 2 mu rho(h / mu) dmu with rho(d) = sqrt(d / R)
+    // below R: mu0^2 + (4/3) sqrt(mu0) (1 - mu0^(3/2)), mu0 = h / R
+    let unused = Light {
+        shape: LightShape::Disk { centre: DVec3::new(0.0, 9.0, 0.0), u: DVec3::X, v: DVec3::Z },
+        radiance: DVec3::ONE,
+        falloff: None,
+        disk_map: DiskMap::Concentric,
+    };
+    let mut scene = ground_point(unused);
+    scene.lights.clear();
+    let obscurance = |scene: &Scene, range: f64| {
+        let mut o = Options::new("sobol.owen", 4096, 1, 1).unwrap();
+        o.mode = Mode::Obscurance;
+        o.range = range;
+        f64::from(render(scene, &o, &|_| {}).unwrap().image.rgb[0])
+    };
+    assert_eq!(obscurance(&scene, 1.0), 1.0, "nothing above: every direction is open");
+    let h = 0.25;
+    scene.planes.push((Plane { point: DVec3::new(0.0, h, 0.0), normal: DVec3::NEG_Y }, 0));
+    for range in [0.5, 1.0, 4.0] {
+        let mu0: f64 = h / range;
+        let exact = mu0 * mu0 + 4.0 / 3.0 * mu0.sqrt() * (1.0 - mu0.powf(1.5));
+        let w = obscurance(&scene, range);
+        assert!((w - exact).abs() < 2e-3, "range {range}: {w} against {exact}");
+    }
+}
+
+#[test]
+fn an_interleaving_tile_of_regular_points_is_the_regular_pattern_per_pixel() {
+    // 64 cell centres over a 2 x 2 tile put each pixel's 16 on its own 4 x 4 centres
+    let scene = builtin("checker-45", None).unwrap();
+    let area = |interleave: Option<(usize, usize)>| {
+        let mut o = Options::new("jitter", 1, 24, 16).unwrap();
+        o.footprint = samplab_render::Footprint::Area;
+        o.spp = 16;
+        o.pixel = samplab::sampler::build("regular").unwrap();
+        o.interleave = interleave;
+        render(&scene, &o, &|_| {}).unwrap().image
+    };
+    assert_eq!(area(Some((2, 2))), area(None));
+    // a pattern that does not split evenly is refused, naming the pixel and the count
+    let mut o = Options::new("jitter", 1, 8, 8).unwrap();
+    o.footprint = samplab_render::Footprint::Area;
+    o.spp = 16;
+    o.pixel = samplab::sampler::build("halton").unwrap();
+    o.interleave = Some((2, 2));
+    let e = render(&scene, &o, &|_| panic!("no row may start")).unwrap_err().to_string();
+    assert!(e.contains("17 of its 64 points") && e.contains("2x2"), "{e}");
+    o.interleave = Some((4, 1));
+    assert!(render(&scene, &o, &|_| {}).is_ok(), "Halton's base-2 axis splits 64 points 16 per pixel");
+}

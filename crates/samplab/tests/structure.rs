@@ -67,6 +67,32 @@ fn half_and_box_jitter_stay_in_their_boxes() {
 }
 
 #[test]
+fn systematic_offsets_are_whole_grids_with_their_own_offsets() {
+    // 4 offsets x 9 points in 2D: four 3 x 3 grids, one after the other, each a rigid
+    // translate of the cell centres (one offset within the cell for all its points)
+    let p = make("jitter.uniform:offsets=4", 36, 2, 5);
+    let offset = |x: &[f64]| [(x[0] * 3.0).fract(), (x[1] * 3.0).fract()];
+    let mut firsts = Vec::new();
+    for block in p.as_slice().chunks_exact(18) {
+        let o = offset(&block[..2]);
+        let mut cells: Vec<usize> =
+            block.chunks_exact(2).map(|x| (x[0] * 3.0) as usize * 3 + (x[1] * 3.0) as usize).collect();
+        for x in block.chunks_exact(2) {
+            let q = offset(x);
+            assert!((q[0] - o[0]).abs() < 1e-12 && (q[1] - o[1]).abs() < 1e-12, "{q:?} vs {o:?}");
+        }
+        cells.sort_unstable();
+        assert_eq!(cells, (0..9).collect::<Vec<_>>(), "one point per cell");
+        firsts.push(o);
+    }
+    assert!(firsts.windows(2).all(|w| w[0] != w[1]), "each grid has its own offset");
+    for bad in [35, 32] {
+        let e = sampler::build("jitter.uniform:offsets=4").unwrap().generate(bad, 2, Seed(1)).unwrap_err();
+        assert!(e.to_string().contains("jitter.uniform:offsets=4"), "{e}");
+    }
+}
+
+#[test]
 fn nrooks_one_per_row_and_column_in_every_pair_of_dimensions() {
     for (n, d) in [(50usize, 3usize), (7, 5), (1000, 2)] {
         let p = make("nrooks", n, d, 5);

@@ -43,8 +43,13 @@ pub enum Displacement {
         resample: bool,
     },
     /// One uniform offset shared by every point (systematic sampling, Sbert et al. 2006;
-    /// "uniform jitter", Ramamoorthi et al. 2012).
-    Uniform,
+    /// "uniform jitter", Ramamoorthi et al. 2012); with `offsets` > 1, that many grids of
+    /// n / offsets points, each with its own offset (their secondary estimator, section 3.3
+    /// and Table 1), one after the other.
+    Uniform {
+        /// Independent grids, at least 1.
+        offsets: usize,
+    },
     /// Shared offset alpha*(u - 1/2) plus per-point normal offsets of deviation sigma,
     /// wrapped toroidally (Subr & Kautz 2013 Fig. 10).
     UniformGaussian {
@@ -88,6 +93,7 @@ impl Sampler for Grid {
             Displacement::UniformGaussian { alpha, sigma } => {
                 format!("{}:alpha={alpha},sigma={sigma}", self.name)
             }
+            Displacement::Uniform { offsets } if offsets > 1 => format!("{}:offsets={offsets}", self.name),
             _ => self.name.into(),
         }
     }
@@ -95,14 +101,27 @@ impl Sampler for Grid {
         1..=64
     }
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        check_grid_count(self.spec(), n, dims).map(|_| ())
+        match self.displacement {
+            Displacement::Uniform { offsets } if offsets > 1 => self.per_offset(n, offsets, dims).map(|_| ()),
+            _ => check_grid_count(self.spec(), n, dims).map(|_| ()),
+        }
     }
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        if let Displacement::Uniform { offsets } = self.displacement {
+            if offsets > 1 {
+                let each = self.per_offset(n, offsets, dims)?;
+                let one = Grid::new(self.name, Displacement::Uniform { offsets: 1 });
+                for (j, block) in out.chunks_exact_mut(each * dims).enumerate() {
+                    one.fill(each, dims, seed.derive(j as u64), block)?;
+                }
+                return Ok(());
+            }
+        }
         let k = check_grid_count(self.spec(), n, dims)?;
         let mut rng = seed.rng();
         let inv = 1.0 / k as f64;
         let shared: Vec<f64> = match self.displacement {
-            Displacement::Uniform => (0..dims).map(|_| uniform(&mut rng)).collect(),
+            Displacement::Uniform { .. } => (0..dims).map(|_| uniform(&mut rng)).collect(),
             Displacement::UniformGaussian { alpha, .. } => {
                 (0..dims).map(|_| 0.5 + alpha * (uniform(&mut rng) - 0.5)).collect()
             }
@@ -121,6 +140,20 @@ impl Sampler for Grid {
 }
 
 impl Grid {
+    /// The points of each of `offsets` systematic grids making n: n / offsets = k^d.
+    fn per_offset(&self, n: usize, offsets: usize, dims: usize) -> Result<usize> {
+        if n % offsets != 0 {
+            return Err(Error::InvalidCount {
+                sampler: self.spec(),
+                n,
+                dims,
+                reason: format!("n must be a multiple of offsets = {offsets}"),
+            });
+        }
+        check_grid_count(self.spec(), n / offsets, dims)?;
+        Ok(n / offsets)
+    }
+
     /// The coordinate of a point in cell `cell` (of width `inv`), drawing from `rng`.
     fn place(&self, cell: f64, shared: f64, inv: f64, rng: &mut Rng) -> f64 {
         let within = |t: f64| ((cell + t) * inv).min(BELOW_ONE);
@@ -129,7 +162,7 @@ impl Grid {
             Displacement::Jitter => within(uniform(rng)),
             Displacement::Half => within(0.25 + 0.5 * uniform(rng)),
             Displacement::Box { delta } => within(0.5 + delta * (2.0 * uniform(rng) - 1.0)),
-            Displacement::Uniform => within(shared),
+            Displacement::Uniform { .. } => within(shared),
             Displacement::Gaussian { sigma, resample: false } => wrap01((cell + 0.5 + sigma * normal(rng)) * inv),
             Displacement::Gaussian { sigma, resample: true } => loop {
                 let x = (cell + 0.5 + sigma * normal(rng)) * inv;

@@ -174,12 +174,17 @@ static REGISTRY: LazyLock<Vec<SamplerEntry>> = LazyLock::new(|| {
         entry!(
             "jitter.uniform",
             ["systematic", "uniform-jitter"],
-            "the regular grid moved by one shared uniform offset",
-            GRID,
+            "the regular grid moved by one shared uniform offset (or several grids, one offset each)",
+            "n = offsets x k^d",
             "1..=64",
-            &[],
+            &[ParamSpec {
+                name: "offsets",
+                kind: Kind::Int { min: 1, max: 1 << 20 },
+                default: Default::Number(1.0),
+                doc: "independent systematic grids of n / offsets points each (Sbert et al. 2006's secondary estimator, Table 1)"
+            }],
             ["sbert2006", "ramamoorthi2012"],
-            |_| grid("jitter.uniform", Displacement::Uniform)
+            |p| grid("jitter.uniform", Displacement::Uniform { offsets: number(p, "offsets") as usize })
         ),
         entry!(
             "jitter.uniform-gaussian",
