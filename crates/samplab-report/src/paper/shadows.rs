@@ -18,12 +18,16 @@ pub(crate) struct Setup<'a> {
     pub disk_map: DiskMap,
     /// Strategy over the pixel area (area footprint only).
     pub pixel: &'a str,
+    /// Interleave the pixel strategy over tiles of (w, h) pixels (area footprint only).
+    pub interleave: Option<(usize, usize)>,
     /// Strategy over the lens (scenes with an aperture only).
     pub lens: &'a str,
     /// Strategy over the shutter interval (scenes that move only).
     pub time: &'a str,
     /// Strategy over the glossy lobe (scenes with an imperfect mirror only).
     pub gloss: &'a str,
+    /// Obscurance mode: the distance beyond which a surface no longer obscures.
+    pub range: f64,
     /// Compare images as displayed (channels clamped to [0, 1]), as Shirley 1991 does.
     pub displayed: bool,
 }
@@ -39,9 +43,11 @@ impl<'a> Setup<'a> {
             pattern: Pattern::PerEstimate,
             disk_map,
             pixel: "sobol.owen",
+            interleave: None,
             lens: "sobol.owen",
             time: "sobol.owen",
             gloss: "sobol.owen",
+            range: 1.0,
             displayed: false,
         }
     }
@@ -58,6 +64,8 @@ impl<'a> Setup<'a> {
         o.mode = self.mode;
         o.footprint = self.footprint;
         o.pattern = self.pattern;
+        o.interleave = self.interleave;
+        o.range = self.range;
         o.disk_map = Some(self.disk_map);
         o.seed = seed;
         Ok(o)
@@ -79,7 +87,15 @@ impl<'a> Setup<'a> {
     /// pattern per estimate: what a reference is rendered with.
     pub fn converged(&self) -> Setup<'a> {
         let sobol = "sobol.owen";
-        Setup { pixel: sobol, lens: sobol, time: sobol, gloss: sobol, pattern: Pattern::PerEstimate, ..*self }
+        Setup {
+            pixel: sobol,
+            interleave: None,
+            lens: sobol,
+            time: sobol,
+            gloss: sobol,
+            pattern: Pattern::PerEstimate,
+            ..*self
+        }
     }
 
     /// Errors against `reference` of each of `seeds` renders (seed k derived from `seed`).

@@ -1,9 +1,18 @@
 //! Sbert, Rigau, Feixas & Neumann 2006, "Systematic sampling in image synthesis":
 //! Figure 3 (efficiency of systematic and stratified against independent sampling of a
-//! circle's area), the variance law k B u^3 (section 3.1), and Table 1 (offsets x points per
-//! pixel) rendered with samplab-render.
+//! circle's area), the variance law k B u^3 (section 3.1), Table 1 (offsets x points, over
+//! the light and over the pixel), the force matrix (Fig. 2), pixel sampling schemes (Figs. 4
+//! and 5) and obscurances (Fig. 7), rendered with samplab-render.
 
 use std::f64::consts::PI;
+
+mod force_matrix;
+mod obscurance;
+mod pixel_area;
+
+use force_matrix::force_matrix;
+use obscurance::obscurance;
+use pixel_area::pixel_area;
 
 use samplab::theory;
 
@@ -38,6 +47,27 @@ pub fn paper() -> Paper {
                 source: "Section 3.1, eq. 10",
                 parameters: "random disks (centre and radius uniform): 400 (fast) or 2000 (full) instances x 16 offsets, N = 256, 1024, 4096; and one centred circle of growing radius at N = 1024",
                 run: law,
+            },
+            Experiment {
+                id: "force-matrix",
+                title: "The force matrix",
+                source: "Figure 2, section 3.3",
+                parameters: "a 32 x 32 fine grid; 256 and 64 cells chosen, and all 1024",
+                run: force_matrix,
+            },
+            Experiment {
+                id: "pixel-area",
+                title: "Sampling the pixel: interleaved, stratified, systematic and force matrix",
+                source: "Figures 4 and 5, Table 1",
+                parameters: "checker-45, 16 and 256 samples per pixel, displayed values; 96 x 72 (fast) or 256 x 192 (full); 4 or 8 seeds; reference 1024 (fast) or 4096 (full) samples per pixel",
+                run: pixel_area,
+            },
+            Experiment {
+                id: "obscurance",
+                title: "Obscurances: random and systematic hemisphere sampling",
+                source: "Figure 7, section 5",
+                parameters: "grids and sphere-box scenes, range 1, 16 directions per pixel centre; 96 x 72 (fast) or 256 x 192 (full); 4 or 8 seeds; reference 1024 (fast) or 4096 (full) directions",
+                run: obscurance,
             },
             Experiment {
                 id: "offsets",
