@@ -366,11 +366,15 @@ fn defocus(kind: LightKind) -> Scene {
     for k in 0..5 {
         let z = 1.0 - 1.0 * k as f64;
         shapes.push((sphere(DVec3::new(-1.0 + 0.5 * k as f64, 0.3, z), 0.3), 1));
-        shapes.push((sphere(DVec3::new(1.2 - 0.3 * k as f64, 0.9, z - 0.5), 0.04), 2));
+        // beads well in front of the focus plane (1 to 2.6 from the eye, focus about 4):
+        // bokeh discs tens of pixels wide
+        shapes.push((sphere(DVec3::new(-0.45 + 0.225 * k as f64, 0.95, 2.0 - 0.4 * k as f64), 0.04), 2));
     }
-    let bead = Material { emission: Texture::Constant(DVec3::splat(20.0)), ..Material::diffuse(DVec3::ZERO) };
+    // beads dim enough that their bokeh is not clipped white, and a wide aperture, so that
+    // the lens strategy's structure shows inside each disc
+    let bead = Material { emission: Texture::Constant(DVec3::splat(12.0)), ..Material::diffuse(DVec3::ZERO) };
     let mut camera = look([0.0, 0.9, 3.0], [0.0, 0.3, -1.0], 45.0);
-    camera.aperture = 0.12;
+    camera.aperture = 0.3;
     camera.focus = (camera.target - camera.eye).length();
     let light = overhead_light(kind, DVec3::new(0.0, 2.5, 0.0), 1.0);
     scene(
