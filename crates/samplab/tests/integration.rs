@@ -35,6 +35,8 @@ fn exact_integrals_equal_brute_force_quadrature() {
     // fixed parameters too
     for spec in [
         "zoneplate:a=1000",
+        "cosine:u=16,v=0,phase=0",
+        "cosine:u=0,v=0,phase=1",
         "disk:r=0.45,cx=0.5,cy=0.5",
         "gaussian:sigma=0.05",
         "steps:k=20",

@@ -223,6 +223,28 @@ impl Integrand for ZonePlate {
     }
 }
 
+/// A plane wave (1 + cos(2 pi (u x + v y) + phase)) / 2 of integer frequency (u, v): all
+/// its energy at one frequency, where a sampler's expected spectrum says whether it aliases
+/// (Subr & Kautz 2013 eq. 4: a grid of k x k points at (u, v) = (k, 0) sees a constant).
+pub struct Cosine {
+    u: f64,
+    v: f64,
+    phase: f64,
+}
+
+impl Integrand for Cosine {
+    fn dims(&self) -> usize {
+        2
+    }
+    fn eval(&self, x: &[f64]) -> f64 {
+        0.5 * (1.0 + (std::f64::consts::TAU * (self.u * x[0] + self.v * x[1]) + self.phase).cos())
+    }
+    fn exact(&self) -> f64 {
+        // a whole number of periods along a nonzero frequency integrates to 0
+        if self.u == 0.0 && self.v == 0.0 { 0.5 * (1.0 + self.phase.cos()) } else { 0.5 }
+    }
+}
+
 /// 1D visibility over a linear light (Ramamoorthi et al. 2012 section 4): 1 where the
 /// light is visible. Visibility starts at 1 (for `Step`, H(y - y0): 0 below y0) and
 /// flips at each discontinuity.
@@ -342,6 +364,32 @@ pub static INTEGRANDS: &[IntegrandEntry] = &[
         dims: 2,
         references: &["subr2013"],
         build: |p, _| Ok(Box::new(ZonePlate { a: p.number("a").unwrap_or(200.0) })),
+    },
+    IntegrandEntry {
+        name: "cosine",
+        aliases: &["plane-wave"],
+        summary: "plane wave (1 + cos(2 pi (u x + v y) + phase)) / 2 of integer frequency (u, v)",
+        params: &[
+            ParamSpec {
+                name: "u",
+                kind: Kind::Int { min: 0, max: 100_000 },
+                default: Default::Number(16.0),
+                doc: "cycles across x",
+            },
+            ParamSpec {
+                name: "v",
+                kind: Kind::Int { min: 0, max: 100_000 },
+                default: Default::Number(0.0),
+                doc: "cycles across y",
+            },
+            auto("phase", 0.0, std::f64::consts::TAU, "uniform", "phase, radians"),
+        ],
+        dims: 2,
+        references: &["subr2013"],
+        build: |p, rng| {
+            let phase = or_random(p, "phase", rng, 0.0, std::f64::consts::TAU);
+            Ok(Box::new(Cosine { u: p.number("u").unwrap_or(16.0), v: p.number("v").unwrap_or(0.0), phase }))
+        },
     },
     IntegrandEntry {
         name: "disk",
