@@ -1,0 +1,190 @@
+//! Tables 1-4 (image errors of the test scenes), Figures 1-6, and the thesis that
+//! discrepancy predicts image error.
+
+use samplab::discrepancy::Metric;
+use samplab::stats::Summary;
+use samplab_render::light::DiskMap;
+use samplab_render::{Footprint, Mode, Pattern};
+
+use super::super::shadows::{self, Setup};
+use super::{N, STRATEGIES, metric_values, sets_of};
+use crate::criteria::{self, Decision, Estimate, Verdict};
+use crate::published;
+use crate::{Cell, Claim, Ctx, Error, Output, Table};
+
+/// Tables 1-4: mean, SD and max of the absolute luminance error per pixel, each over
+/// several seeds; Figures 1-6; and the thesis that discrepancy predicts the error.
+pub(super) fn pixel_errors(ctx: &Ctx) -> Result<Output, Error> {
+    let scenes = [("checker", "table1", 1), ("checker-45", "table2", 2), ("ball", "table3", 3), ("all", "table4", 4)];
+    let seeds = ctx.pick(4, 8);
+    ctx.progress.set_length((scenes.len() * (1 + STRATEGIES.len()) + 1) as u64);
+    let mut out = Output::default();
+    // per scene, per strategy: ave|E| over the seeds
+    let mut errors: Vec<Vec<Summary>> = Vec::new();
+    for (scene_name, table_id, figure) in scenes {
+        let scene = shadows::scene(scene_name, None)?;
+        let setup = Setup {
+            mode: Mode::Direct,
+            footprint: Footprint::Area,
+            pattern: Pattern::PerPixel,
+            displayed: true,
+            ..Setup::visibility(&scene, (128, 96), DiskMap::Concentric)
+        };
+        let reference = setup.reference(4, ctx.pick(256, 1024), ctx.seed.derive_str("reference"))?;
+        out.figures.push(shadows::picture(
+            &format!("shirley1991-fig{figure}"),
+            &format!("Figure {figure}: test scene {scene_name} (our re-creation; reference render)"),
+            &reference,
+        )?);
+        ctx.progress.inc(1);
+        let published = published::table("shirley1991", table_id);
+        let mut rows = Vec::new();
+        let mut per = Vec::new();
+        for (name, spec) in STRATEGIES {
+            // one strategy for every dimension the scene has: pixel, light, lens and gloss
+            let with = Setup { pixel: spec, lens: spec, gloss: spec, ..setup };
+            let e = with.errors_each(&reference, spec, 1, N, seeds, ctx.seed)?;
+            let field = |f: fn(&samplab_render::Errors) -> f64| Summary::of(&e.iter().map(f).collect::<Vec<_>>());
+            let ave = field(|e| e.mean_abs);
+            let mut row = vec![
+                Cell::from(name),
+                Cell::num(ave.mean, 5),
+                Cell::num(ave.standard_error(), 5),
+                Cell::num(field(|e| e.sd_abs).mean, 4),
+                Cell::num(field(|e| e.max_abs).mean, 3),
+            ];
+            row.extend(published.row(name).expect("every strategy is in the table").iter().map(|&v| Cell::num(v, 4)));
+            rows.push(row);
+            per.push(ave);
+            if scene_name == "checker-45" && (name == "regular" || name == "separate") {
+                let (fig, which) = if name == "regular" { (5, "regular") } else { (6, "separate") };
+                out.figures.push(shadows::picture(
+                    &format!("shirley1991-fig{fig}"),
+                    &format!("Figure {fig}: checker-45 with 16 {which} samples per pixel (seed 0 of the table)"),
+                    &with.render(spec, 1, N, ctx.seed.derive(0))?,
+                )?);
+            }
+            ctx.progress.inc(1);
+        }
+        let mean_of = |name: &str| published.row(name).expect("every strategy is in the table")[0];
+        let index = |name: &str| STRATEGIES.iter().position(|s| s.0 == name).expect("listed");
+        let sep = Estimate::mean_of(&per[index("separate")]);
+        // the paper: separate best on three images, and on "all" behind regular and
+        // half-jittered only; read from the published table
+        let ahead: Vec<&str> = STRATEGIES.iter().map(|s| s.0).filter(|&n| mean_of(n) < mean_of("separate")).collect();
+        let behind: Vec<Decision> = STRATEGIES
+            .iter()
+            .filter(|s| s.0 != "separate" && !ahead.contains(&s.0))
+            .map(|s| criteria::less(sep, Estimate::mean_of(&per[index(s.0)])))
+            .collect();
+        let mut order: Vec<(&str, f64)> = STRATEGIES.iter().map(|s| s.0).zip(per.iter().map(|p| p.mean)).collect();
+        order.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let mut published_order: Vec<&str> = STRATEGIES.iter().map(|s| s.0).collect();
+        published_order.sort_by(|a, b| mean_of(a).total_cmp(&mean_of(b)));
+        let ours_order = order.iter().map(|o| o.0).collect::<Vec<_>>().join(" < ");
+        out.claims.push(Claim {
+            id: format!("{scene_name}-separate-rank"),
+            statement: if ahead.is_empty() {
+                format!("{scene_name}: separate (N-rooks) sampling has the lowest average absolute error")
+            } else {
+                format!("{scene_name}: separate (N-rooks) sampling is outperformed only by {}", ahead.join(" and "))
+            },
+            published: format!("{}: ranking by ave|E| {}", published.source, published_order.join(" < ")),
+            ours: format!("ranking by mean ave|E| over {seeds} seeds: {ours_order}"),
+            decision: criteria::all(&behind),
+            ..Claim::default()
+        });
+        let ours_means: Vec<f64> = per.iter().map(|p| p.mean).collect();
+        let theirs: Vec<f64> = STRATEGIES.iter().map(|s| mean_of(s.0)).collect();
+        out.claims.push(Claim {
+            id: format!("{scene_name}-order"),
+            statement: format!(
+                "{scene_name}: our ranking of the seven strategies by ave|E| agrees with the published one"
+            ),
+            published: published_order.join(" < "),
+            ours: ours_order,
+            decision: criteria::rank_agreement(&ours_means, &theirs, 0.05),
+            ..Claim::default()
+        });
+        out.tables.push(Table {
+            id: format!("shirley1991-{table_id}"),
+            caption: format!("{scene_name}: absolute luminance error per pixel of the displayed image (mean over {seeds} seeds, and the standard error of ave|E|), ours beside {}", published.source),
+            columns: [
+                "strategy",
+                "ave|E|",
+                "SE of ave|E|",
+                "SD|E|",
+                "max|E|",
+                "published ave|E|",
+                "published SD|E|",
+                "published max|E|",
+            ]
+            .map(String::from)
+            .to_vec(),
+            rows,
+        });
+        errors.push(per);
+    }
+    out.claims.push(thesis(ctx, &errors)?);
+    ctx.progress.inc(1);
+    out.notes.push("The checkerboards are self-luminous (black 0, white 1) so the error is the antialiasing error alone; the ball is lit by two square lights (direct lighting); \"all\" adds a perfect mirror, a glossy mirror (Phong exponent 60) and a thin lens focused on the ball, every dimension sampled by the strategy (the lens and gloss samples dealt to the pixel samples in random orders). Errors are of the displayed images (every channel clamped to [0, 1]), as the paper's luminance errors of 8-bit images are, so that max|E| is comparable.".into());
+    Ok(out)
+}
+
+/// Each strategy's error relative to the scene's mean error, averaged over the scenes.
+fn error_score(per_scene: &[Vec<f64>]) -> Vec<f64> {
+    let k = per_scene[0].len();
+    let mut score = vec![0.0; k];
+    for scene in per_scene {
+        let mean = scene.iter().sum::<f64>() / k as f64;
+        score.iter_mut().zip(scene).for_each(|(s, e)| *s += e / mean / per_scene.len() as f64);
+    }
+    score
+}
+
+/// The paper's thesis (sections 3.1 and 5): across the strategies, the discrepancies D, S
+/// and T rank the strategies as their image errors do. Kendall's tau of each discrepancy's
+/// mean against the error score (ave|E| over the scene's mean, averaged over Tables 1-4).
+fn thesis(ctx: &Ctx, errors: &[Vec<Summary>]) -> Result<Claim, Error> {
+    let metrics = [("D", Metric::Star, "table5"), ("S", Metric::L2Star, "table6"), ("T", Metric::Extreme, "table7")];
+    let ours_score = error_score(&errors.iter().map(|s| s.iter().map(|x| x.mean).collect()).collect::<Vec<_>>());
+    let tables = ["table1", "table2", "table3", "table4"];
+    let published_score = error_score(
+        &tables
+            .iter()
+            .map(|t| {
+                let p = published::table("shirley1991", t);
+                STRATEGIES.iter().map(|s| p.row(s.0).expect("published")[0]).collect()
+            })
+            .collect::<Vec<_>>(),
+    );
+    let mut decisions = Vec::new();
+    let (mut ours, mut theirs) = (Vec::new(), Vec::new());
+    for (label, metric, table) in metrics {
+        let mut means = Vec::new();
+        for (i, (_, spec)) in STRATEGIES.iter().enumerate() {
+            let sets = sets_of(spec, ctx.seed.derive_str("thesis").derive(i as u64))?;
+            means.push(Summary::of(&metric_values(&sets, &metric)?).mean);
+        }
+        let d = criteria::rank_agreement(&means, &ours_score, 0.05);
+        ours.push(format!("{label}: tau {:.2}", criteria::kendall_tau(&means, &ours_score)));
+        let p = published::table("shirley1991", table);
+        let published_means: Vec<f64> = STRATEGIES.iter().map(|s| p.row(s.0).expect("published")[0]).collect();
+        let pd = criteria::rank_agreement(&published_means, &published_score, 0.05);
+        theirs.push(format!(
+            "{label}: tau {:.2} ({})",
+            criteria::kendall_tau(&published_means, &published_score),
+            if pd.verdict == Verdict::Reproduced { "significant" } else { "not significant" }
+        ));
+        decisions.push(d);
+    }
+    Ok(Claim {
+        id: "discrepancy-predicts-error".into(),
+        statement: "Across the seven strategies, lower discrepancy (each of D, S and T) goes with lower image error (the ordering is 'reasonably consistent with empirical behavior')".into(),
+        published: format!("sections 3.1 and 5 (no statistic); the published Tables 1-7 themselves give {}", theirs.join(", ")),
+        ours: format!("{} (error score: ave|E| over the scene's mean, averaged over Tables 1-4)", ours.join(", ")),
+        decision: criteria::all(&decisions),
+        explanation: Some("our exact T orders the seven strategies exactly as the published T does (Table 7), so the difference is in the errors: on our re-created ball and all scenes the regular grid has the lowest error (Tables 3 and 4), while T ranks it last; D and S, which rank regular fifth of seven, keep their agreement".into()),
+        ..Claim::default()
+    })
+}
