@@ -1,0 +1,183 @@
+//! Figures 5 and 6: bias, variance and convergence exponents of the paper's strategies on
+//! test cases I-III.
+
+use samplab::experiment::{self, Row};
+
+use super::super::study;
+use super::{CASES, STRATEGIES, sampler_spec_matches};
+use crate::criteria::{self, Decision};
+use crate::plot::{LineChart, Series};
+use crate::published;
+use crate::{Cell, Claim, Ctx, Error, Figure, Output, Table};
+
+pub(super) fn convergence(ctx: &Ctx) -> Result<Output, Error> {
+    let ns: Vec<usize> = ctx.pick(vec![16, 64, 256, 1024], vec![16, 36, 64, 144, 256, 576, 1024]);
+    let specs: Vec<&str> = STRATEGIES.iter().map(|s| s.1).collect();
+    ctx.progress.set_length((CASES.len() * STRATEGIES.len() * ns.len() * 10) as u64);
+    let published = published::table("subr2013", "fig6");
+    let mut exponents = vec![[f64::NAN; 3]; STRATEGIES.len()];
+    let mut intervals = vec![[(f64::NAN, f64::NAN); 3]; STRATEGIES.len()];
+    let mut figures = Vec::new();
+    let mut all_rows: Vec<Vec<Row>> = Vec::new();
+    for (c, (case, integrand)) in CASES.iter().enumerate() {
+        let rows = study(ctx, &specs, integrand, &ns, 50, 10, ctx.seed.derive(c as u64))?;
+        for fit in experiment::fits(&rows) {
+            let i = specs
+                .iter()
+                .position(|s| *s == fit.sampler || sampler_spec_matches(s, &fit.sampler))
+                .expect("a listed sampler");
+            exponents[i][c] = fit.exponent;
+            intervals[i][c] = fit.ci;
+        }
+        let series: Vec<Series> = STRATEGIES
+            .iter()
+            .map(|(name, spec)| {
+                let pts = rows
+                    .iter()
+                    .filter(|r| sampler_spec_matches(spec, &r.sampler))
+                    .map(|r| (r.n as f64, r.relative_variance))
+                    .collect();
+                Series {
+                    colour_key: Some(spec.to_string()),
+                    dashed: spec.starts_with("jitter.gaussian"),
+                    ..Series::line(*name, pts)
+                }
+            })
+            .collect();
+        let chart = LineChart {
+            title: format!("Relative variance against N, test case {case}"),
+            x_label: "N (samples per estimate)".into(),
+            y_label: "variance / mean^2".into(),
+            series,
+            log_y: true,
+            log_x: true,
+            polar: false,
+        };
+        figures.push(Figure::render(
+            &format!("subr2013-fig5-variance-{}", c + 1),
+            &format!(
+                "Fig. 5 (bottom row), test case {case}: relative variance against N, 10 instances x 50 realizations"
+            ),
+            &chart,
+            (900, 600),
+        )?);
+        // top row: variance against accuracy at the largest N
+        let n_max = *ns.last().expect("counts");
+        let scatter: Vec<Series> = STRATEGIES
+            .iter()
+            .map(|(name, spec)| {
+                let r = rows.iter().find(|r| r.n == n_max && sampler_spec_matches(spec, &r.sampler)).expect("row");
+                Series {
+                    markers: true,
+                    colour_key: Some(spec.to_string()),
+                    ..Series::line(*name, vec![((r.relative_mean - 1.0).abs().max(1e-7), r.relative_variance)])
+                }
+            })
+            .collect();
+        let chart = LineChart {
+            title: format!("Variance against accuracy, test case {case}, N = {n_max}"),
+            x_label: "|mean / exact - 1|".into(),
+            y_label: "variance / mean^2".into(),
+            series: scatter,
+            log_y: true,
+            log_x: true,
+            polar: false,
+        };
+        figures.push(Figure::render(
+            &format!("subr2013-fig5-accuracy-{}", c + 1),
+            &format!("Fig. 5 (top row), test case {case}: relative variance against relative bias at N = {n_max}"),
+            &chart,
+            (900, 600),
+        )?);
+        all_rows.push(rows);
+    }
+    let mut table_rows = Vec::new();
+    let mut close = 0;
+    let mut cells = Vec::new();
+    for (i, (name, _)) in STRATEGIES.iter().enumerate() {
+        let p = published.row(name).expect("published exponents");
+        let mut row = vec![Cell::from(*name)];
+        for c in 0..3 {
+            row.push(Cell::Text(format!(
+                "{:.3} [{:.2}, {:.2}]",
+                exponents[i][c], intervals[i][c].0, intervals[i][c].1
+            )));
+            row.push(Cell::num(p[c], 4));
+            let d = criteria::covers(intervals[i][c], p[c]);
+            close += usize::from(d.verdict == criteria::Verdict::Reproduced);
+            cells.push(d);
+        }
+        table_rows.push(row);
+    }
+    let mut columns = vec!["strategy".to_string()];
+    for (case, _) in CASES {
+        columns.push(format!("{case}: ours [95% CI]"));
+        columns.push(format!("{case}: published"));
+    }
+    let index = |name: &str| STRATEGIES.iter().position(|s| s.0 == name).expect("listed");
+    let get = |name: &str| exponents[index(name)];
+    let jitter = get("Jittered");
+    let faster: Vec<Decision> = ["GJittered:0.1", "GJittered:0.25"]
+        .iter()
+        .flat_map(|g| (0..3).map(|c| criteria::interval_below(intervals[index(g)][c], intervals[index("Jittered")][c])))
+        .collect();
+    let random = get("Random");
+    let random_ci = intervals[index("Random")];
+    let claims = vec![
+        Claim {
+            id: "gaussian-jitter-faster".into(),
+            statement: "Gaussian jitter (sigma 0.1, 0.25) converges faster than jitter on test cases I-III".into(),
+            published: {
+                let (j, g) =
+                    (published.row("Jittered").expect("published"), published.row("GJittered:0.1").expect("published"));
+                format!(
+                    "jitter {:.2}/{:.2}/{:.2}; GJittered:0.1 {:.2}/{:.2}/{:.2} (Fig. 6)",
+                    j[0], j[1], j[2], g[0], g[1], g[2]
+                )
+            },
+            ours: format!(
+                "jitter {:.2}/{:.2}/{:.2}; GJittered:0.1 {:.2}/{:.2}/{:.2}; GJittered:0.25 {:.2}/{:.2}/{:.2}",
+                jitter[0],
+                jitter[1],
+                jitter[2],
+                get("GJittered:0.1")[0],
+                get("GJittered:0.1")[1],
+                get("GJittered:0.1")[2],
+                get("GJittered:0.25")[0],
+                get("GJittered:0.25")[1],
+                get("GJittered:0.25")[2]
+            ),
+            theory: "eq. 9: the variance of the spectrum of Gaussian jitter is small at low frequencies".into(),
+            decision: criteria::all(&faster),
+            explanation: Some("on integrands with edges, any jitter whose width is a fixed fraction of the spacing h leaves about B sigma / h points within sigma h of an edge, each with O(1) variance, so the variance falls as N^-1.5 like jitter's: the asymptotics experiment measures this at N up to 9216 (36864 at full scale), with -1.5 and -2 drawn; the paper's steeper slopes may come from its fitting range or pre-asymptotic counts".into()),
+            ..Claim::default()
+        },
+        Claim {
+            id: "random-n-minus-one".into(),
+            statement: "Random sampling converges as N^-1 on all three test cases".into(),
+            published: {
+                let r = published.row("Random").expect("published");
+                format!("{:.4} / {:.4} / {:.4} (Fig. 6)", r[0], r[1], r[2])
+            },
+            ours: format!("{:.3} / {:.3} / {:.3}", random[0], random[1], random[2]),
+            theory: "-1".into(),
+            decision: criteria::all(&random_ci.iter().map(|ci| criteria::covers(*ci, -1.0)).collect::<Vec<_>>()),
+            ..Claim::default()
+        },
+        Claim {
+            id: "exponents-table".into(),
+            statement: "Our convergence exponents agree with Figure 6's (each published exponent inside our 95% interval)".into(),
+            published: "Figure 6 (36 exponents)".into(),
+            ours: format!("{close} of 36 inside our intervals"),
+            decision: criteria::all(&cells),
+            explanation: Some("see the table: the paper's Poisson disk (Gamito & Maddock) and Matlab scrambles differ from ours, and its Gaussian jitter exponents are steeper than the N^-1.5 that edges allow (the gaussian-jitter-faster claim)".into()),
+            ..Claim::default()
+        },
+    ];
+    Ok(Output {
+        tables: vec![Table { id: "subr2013-fig6".into(), caption: format!("Convergence exponents of the relative variance, least squares over N = {ns:?}; published: {}", published.source), columns, rows: table_rows }],
+        figures,
+        claims,
+        notes: vec!["Gaussian jitter wraps points that leave the square toroidally; its estimator is biased (a perturbed regular grid), so its fast variance decay comes with a bias that Fig. 5's top row shows.".into()],
+    })
+}
