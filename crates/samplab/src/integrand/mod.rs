@@ -14,7 +14,7 @@ use crate::seed::{Rng, Seed, uniform};
 use crate::spec::{Default, Kind, ParamSpec, Params, Spec};
 
 mod delaunay;
-pub(crate) mod quadrature;
+pub mod quadrature;
 
 pub use delaunay::Delaunay;
 

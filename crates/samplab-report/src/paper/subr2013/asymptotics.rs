@@ -6,9 +6,9 @@
 use samplab::experiment;
 
 use super::super::study;
-use super::sampler_spec_matches;
+use super::{sampler_spec_matches, variance_chart};
 use crate::criteria;
-use crate::plot::{LineChart, Series};
+use crate::plot::Series;
 use crate::{Cell, Claim, Ctx, Error, Figure, Output, Table};
 
 /// Jitter and Gaussian jitter on test case I at large N.
@@ -61,15 +61,7 @@ pub(super) fn asymptotics(ctx: &Ctx) -> Result<Output, Error> {
         .map(|(name, spec)| format!("{name} {:.3}", fit_of(spec).exponent))
         .collect::<Vec<_>>()
         .join(", ");
-    let chart = LineChart {
-        title: "Test case I at large N: relative variance against N".into(),
-        x_label: "N (samples per estimate)".into(),
-        y_label: "variance / mean^2".into(),
-        series,
-        log_y: true,
-        log_x: true,
-        polar: false,
-    };
+    let chart = variance_chart("Test case I at large N: relative variance against N".into(), series);
     Ok(Output {
         tables: vec![Table {
             id: "subr2013-asymptotics".into(),

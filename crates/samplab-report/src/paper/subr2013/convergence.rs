@@ -4,7 +4,7 @@
 use samplab::experiment::{self, Row};
 
 use super::super::study;
-use super::{CASES, STRATEGIES, sampler_spec_matches};
+use super::{CASES, STRATEGIES, sampler_spec_matches, variance_chart};
 use crate::criteria::{self, Decision};
 use crate::plot::{LineChart, Series};
 use crate::published;
@@ -44,15 +44,7 @@ pub(super) fn convergence(ctx: &Ctx) -> Result<Output, Error> {
                 }
             })
             .collect();
-        let chart = LineChart {
-            title: format!("Relative variance against N, test case {case}"),
-            x_label: "N (samples per estimate)".into(),
-            y_label: "variance / mean^2".into(),
-            series,
-            log_y: true,
-            log_x: true,
-            polar: false,
-        };
+        let chart = variance_chart(format!("Relative variance against N, test case {case}"), series);
         figures.push(Figure::render(
             &format!("subr2013-fig5-variance-{}", c + 1),
             &format!(

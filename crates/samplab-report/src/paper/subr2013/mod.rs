@@ -11,6 +11,7 @@ mod rendered;
 mod spectra;
 mod zoneplate;
 
+use crate::plot::{LineChart, Series};
 use crate::{Experiment, Paper};
 use asymptotics::asymptotics;
 use convergence::convergence;
@@ -112,4 +113,17 @@ pub(super) const CASES: [(&str, &str); 3] = [
 /// Whether a row's canonical sampler spec comes from the listed `spec`.
 pub(super) fn sampler_spec_matches(spec: &str, canonical: &str) -> bool {
     samplab::sampler::build(spec).map(|s| s.spec() == canonical).unwrap_or(false)
+}
+
+/// Relative variance against N on log-log axes (Fig. 5's bottom row and the large-N check).
+pub(super) fn variance_chart(title: String, series: Vec<Series>) -> LineChart {
+    LineChart {
+        title,
+        x_label: "N (samples per estimate)".into(),
+        y_label: "variance / mean^2".into(),
+        series,
+        log_y: true,
+        log_x: true,
+        polar: false,
+    }
 }
