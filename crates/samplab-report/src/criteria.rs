@@ -83,7 +83,7 @@ impl Estimate {
 pub fn within(ours: f64, target: f64, tolerance: f64) -> Decision {
     Decision::new(
         holds((ours - target).abs() <= tolerance),
-        format!("|ours - {target:.6}| <= {tolerance:e} (ours {ours:.6})"),
+        format!("|ours - {target:.6}| <= {tolerance:.3e} (ours {ours:.6})"),
     )
 }
 
