@@ -2,19 +2,28 @@
 
 use std::path::PathBuf;
 
-use anyhow::bail;
+use anyhow::{Context, bail};
 use rayon::prelude::*;
 use samplab::PointSet;
-use samplab::discrepancy::{self, Limits, Metric, MetricEntry};
+use samplab::discrepancy::{self, Limits, Metric};
+
+/// The examples and the metrics (from the metric registry).
+fn after_help() -> String {
+    format!(
+        "Examples:\n  samplab discrepancy star l2-star extreme --sampler nrooks -n 16 --sets 100\n  \
+         samplab discrepancy star centered points.txt --json\n  \
+         samplab discrepancy projected:angle=30,kind=extreme --sampler jitter -n 64\n\n\
+         Metrics: {}.\nValues are never squared (scipy returns CD, WD and MD squared). \
+         `samplab list metrics` lists every metric with its parameters.",
+        discrepancy::METRICS.names()
+    )
+}
 
 /// Compute discrepancies.
 #[derive(clap::Args)]
-#[command(
-    after_help = "Examples:\n  samplab discrepancy star l2-star extreme --sampler nrooks -n 16 --sets 100\n  samplab discrepancy star centered points.txt --json\n  samplab discrepancy projected:angle=30,kind=extreme --sampler jitter -n 64\n\nValues are never squared (scipy returns CD, WD and MD squared). `samplab list metrics` lists every metric."
-)]
+#[command(after_help = after_help())]
 pub struct Args {
-    /// Metrics, then optionally a point-set file: star, extreme, l2-star, l2-extreme,
-    /// centered, wraparound, mixture, projected:angle=A,kind=star|extreme
+    /// Metrics (see below), then optionally a point-set file
     #[arg(required = true, num_args = 1..)]
     items: Vec<String>,
     #[command(flatten)]
@@ -38,8 +47,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     if metric_items.is_empty() {
         bail!("name at least one metric before the file (e.g. star)");
     }
-    let metrics: Vec<(Metric, &MetricEntry)> =
-        metric_items.iter().map(|m| Metric::parse(m)).collect::<Result<_, _>>()?;
+    let metrics: Vec<Metric> = metric_items.iter().map(|m| Metric::parse(m)).collect::<Result<_, _>>()?;
     let limits = Limits { max_work: a.max_work.unwrap_or(Limits::default().max_work) };
     if a.max_work.is_some_and(|w| w.is_nan() || w <= 0.0) {
         bail!("--max-work must be a positive number");
@@ -49,11 +57,11 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     // values[m][k]: metric m on set k, computed in parallel, deterministic
     let values: Vec<Vec<f64>> = metrics
         .iter()
-        .map(|(m, _)| {
+        .map(|m| {
             sets.par_iter()
                 .enumerate()
                 .map(|(k, s)| {
-                    let v = discrepancy::compute(m, s, limits).map_err(|e| anyhow::anyhow!("set {k}: {e}"));
+                    let v = discrepancy::compute(m, s, limits).with_context(|| format!("set {k}"));
                     bar.inc(1);
                     v
                 })
@@ -71,11 +79,11 @@ fn summary(v: &[f64]) -> (f64, f64, f64) {
     (s.mean, s.sd, s.max)
 }
 
-fn table(metrics: &[(Metric, &MetricEntry)], values: &[Vec<f64>], source: &str) -> String {
+fn table(metrics: &[Metric], values: &[Vec<f64>], source: &str) -> String {
     let mut out = format!("# {source}\n");
     let names: Vec<String> = metrics
         .iter()
-        .map(|(m, e)| if e.lower_bound { format!("{} (lower bound)", m.spec()) } else { m.spec() })
+        .map(|m| if m.entry().lower_bound { format!("{} (lower bound)", m.spec()) } else { m.spec() })
         .collect();
     if values[0].len() == 1 {
         for (name, v) in names.iter().zip(values) {
@@ -91,11 +99,12 @@ fn table(metrics: &[(Metric, &MetricEntry)], values: &[Vec<f64>], source: &str) 
     out
 }
 
-fn json(metrics: &[(Metric, &MetricEntry)], values: &[Vec<f64>], sets: &[PointSet], source: &str) -> String {
+fn json(metrics: &[Metric], values: &[Vec<f64>], sets: &[PointSet], source: &str) -> String {
     let rows: Vec<serde_json::Value> = metrics
         .iter()
         .zip(values)
-        .map(|((m, e), v)| {
+        .map(|(m, v)| {
+            let e = m.entry();
             let (mean, sd, max) = summary(v);
             serde_json::json!({
                 "metric": m.spec(),

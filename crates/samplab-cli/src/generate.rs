@@ -8,11 +8,21 @@ use rayon::prelude::*;
 use samplab::io::{self, Format};
 use samplab::{PointSet, Seed, sampler, warp};
 
+/// The examples, the samplers and the warps (from their registries).
+fn after_help() -> String {
+    format!(
+        "Examples:\n  samplab generate jitter.gaussian:sigma=0.25 -n 256 -d 2 --seed 7\n  \
+         samplab generate sobol.owen -n 1024 --sets 100 -o sobol.npy\n  \
+         samplab generate jitter -n 64 --warp disk.concentric\n\nSamplers: {}.\nWarps: {}.\n\
+         `samplab list samplers` lists every sampler with its parameters and references.",
+        samplab::sampler::SAMPLERS.names(),
+        samplab::warp::WARPS.names()
+    )
+}
+
 /// Generate point sets.
 #[derive(clap::Args)]
-#[command(
-    after_help = "Examples:\n  samplab generate jitter.gaussian:sigma=0.25 -n 256 -d 2 --seed 7\n  samplab generate sobol.owen -n 1024 --sets 100 -o sobol.npy\n  samplab generate jitter -n 64 --warp disk.concentric\n\nRun `samplab list samplers` for every sampler, its parameters and references."
-)]
+#[command(after_help = after_help())]
 pub struct Args {
     /// Sampler spec, e.g. jitter, sobol.owen, poisson:radius=0.05, GJittered:0.25
     spec: String,
@@ -52,13 +62,13 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     if format == Format::Npy && a.output.is_none() {
         anyhow::bail!("--format npy is binary: give an output file with -o");
     }
-    s.check(a.n, a.dims)?;
+    let plan = s.plan(a.n, a.dims)?;
     let seed = Seed(a.seed);
     let bar = progress(a.sets as u64, "sets");
     let sets: Vec<PointSet> = (0..a.sets as u64)
         .into_par_iter()
         .map(|k| {
-            let p = s.generate(a.n, a.dims, seed.derive(k));
+            let p = plan.generate(seed.derive(k));
             bar.inc(1);
             p
         })

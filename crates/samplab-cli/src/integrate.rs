@@ -8,11 +8,20 @@ use samplab::integrand::Family;
 use samplab::{Seed, sampler};
 use samplab_report::plot::{self as draw, LineChart, Series};
 
+/// The examples and the integrands (from the integrand registry).
+fn after_help() -> String {
+    format!(
+        "Examples:\n  samplab integrate --sampler random --sampler jitter --integrand quad -n 16,64,256,1024 --sets 50 \
+         --instances 10\n  samplab integrate --sampler regular --sampler jitter --sampler jitter.uniform --integrand box \
+         -n 256 --sets 2 --instances 1000 --json\n\nIntegrands: {} (1D ones take 1D samplers). \
+         `samplab list integrands` lists them with their parameters.",
+        samplab::integrand::INTEGRANDS.names()
+    )
+}
+
 /// Run an integration experiment.
 #[derive(clap::Args)]
-#[command(
-    after_help = "Examples:\n  samplab integrate --sampler random --sampler jitter --integrand quad -n 16,64,256,1024 --sets 50 --instances 10\n  samplab integrate --sampler regular --sampler jitter --sampler jitter.uniform --integrand box -n 256 --sets 2 --instances 1000 --json\n\nIntegrands: quad, delaunay-constant, delaunay-linear, zoneplate:a=, disk:r=, halfplane, gaussian:sigma=, smooth,\nstep, box, steps:k= (1D ones take 1D samplers). `samplab list integrands` lists them with parameters."
-)]
+#[command(after_help = after_help())]
 pub struct Args {
     /// Sampler specs (repeat the flag for several)
     #[arg(long = "sampler", required = true)]

@@ -60,11 +60,29 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            // one line: the chain of causes joined
-            let msg = format!("{e:#}").replace('\n', " ");
+            // one line: the chain of causes joined, the library's settings named by their flags
+            let msg = e.chain().map(in_flags).collect::<Vec<_>>().join(": ").replace('\n', " ");
             eprintln!("samplab: error: {msg}");
             ExitCode::from(2)
         }
+    }
+}
+
+/// One cause of an error, with the library's names for settings replaced by the flags that
+/// set them (`sets` is `--sets`, a work limit is raised by `--max-work`).
+fn in_flags(cause: &(dyn std::error::Error + 'static)) -> String {
+    let library =
+        cause.downcast_ref::<samplab::Error>().or_else(|| match cause.downcast_ref::<samplab_render::Error>() {
+            Some(samplab_render::Error::Samplab(e)) => Some(e),
+            _ => None,
+        });
+    match library {
+        Some(samplab::Error::Setting { name, value, reason }) => {
+            let flag = if name.len() == 1 { format!("-{name}") } else { format!("--{name}") };
+            format!("{flag} {value}: {reason}")
+        }
+        Some(e @ samplab::Error::WorkLimit { .. }) => format!("{e}; raise it with --max-work"),
+        _ => cause.to_string(),
     }
 }
 

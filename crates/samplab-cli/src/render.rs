@@ -11,7 +11,8 @@ use samplab_render::{Footprint, Image, Mode, Options, Pattern, Scene, render};
 
 /// The examples, and the built-in scenes with what each shows (from the scene registry).
 fn after_help() -> String {
-    let scenes: String = scenes::BUILTINS.iter().map(|b| format!("  {:<16}{}\n", b.name, b.summary)).collect();
+    let scenes: String =
+        scenes::SCENES.iter().map(|b| format!("  {:<16}{}\n", b.about.name, b.about.summary)).collect();
     format!(
         "Examples:\n  samplab render spheres --light disk --sampler jitter.uniform -n 25 --disk-map reject -o uj.exr \
          --reference ref.exr --error-image err.png\n  samplab render grids --light linear --sampler jitter -n 16 -o strat.png\n  \
@@ -249,18 +250,9 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// A converged reference for `options`: Owen-scrambled Sobol' light samples, and 64 pixel
-/// samples when the footprint is the pixel area (or the lens or shutter are sampled).
+/// The converged reference for `options` ([`Options::reference`]), with a progress bar.
 fn render_reference(scene: &Scene, options: &Options, samples: usize) -> anyhow::Result<Image> {
-    let needs_estimates = options.footprint == Footprint::Area || scene.camera.aperture > 0.0 || scene.moving();
-    let spp = if needs_estimates { options.spp.max(64) } else { 1 };
-    let mut reference = Options::new("sobol.owen", samples, options.width, options.height)?;
-    reference.spp = spp;
-    reference.mode = options.mode;
-    reference.footprint = options.footprint;
-    reference.disk_map = options.disk_map;
-    reference.range = options.range;
-    reference.seed = options.seed.derive_str("reference");
+    let reference = options.reference(scene, samples)?;
     let bar = crate::generate::progress(options.height as u64, "reference rows");
     let r = render(scene, &reference, &|_| bar.inc(1))?;
     bar.finish_and_clear();

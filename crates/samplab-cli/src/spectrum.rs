@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::bail;
 use samplab::PointSet;
-use samplab::spectrum::{self, Statistics, theory};
+use samplab::spectrum::{self, Statistics};
 use samplab_report::plot::{self as draw, HeatMap, LineChart, Series};
 
 /// Compute spectral statistics.
@@ -59,26 +59,11 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// (label, per radial bin: predicted variance) for Gaussian or box jitter on a grid.
+/// (label, per radial bin: predicted variance) where the sampler has a closed form.
 fn theory_for(spec: &str, set: &PointSet) -> Option<(String, Vec<f64>)> {
-    let k = (set.len() as f64).powf(1.0 / set.dims() as f64);
-    let param = |name: &str| spec.split(&format!("{name}=")).nth(1)?.split(',').next()?.parse::<f64>().ok();
-    let n = set.len();
-    if spec.starts_with("jitter.gaussian") {
-        let s = param("sigma")? / k;
-        Some((
-            format!("exact theory (1 - phi^2)/N, Gaussian sigma = {s:.4}"),
-            (1..).map(move |w| theory::gaussian_variance(w as f64, s, n)).take(4096).collect(),
-        ))
-    } else if spec.starts_with("jitter.box") {
-        let d = param("delta")? / k;
-        Some((
-            format!("exact theory (1 - phi^2)/N, box half-width {d:.4}"),
-            (1..).map(move |w| theory::box_variance(w as f64, d, n)).take(4096).collect(),
-        ))
-    } else {
-        None
-    }
+    let theory = samplab::sampler::build(spec).ok()?.spectrum_theory(set.len(), set.dims())?;
+    let curve = (1..=4096).map(|w| theory.at(w as f64)).collect();
+    Some((theory.label, curve))
 }
 
 fn values<'a>(st: &'a Statistics, name: &str) -> &'a [f64] {

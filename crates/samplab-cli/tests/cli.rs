@@ -137,12 +137,16 @@ fn plot_rejects_bad_files_with_file_and_line() {
 #[test]
 fn list_is_generated_from_the_registries() {
     let out = String::from_utf8(samplab(&["list"]).stdout).unwrap();
-    for e in sampler::registry::entries() {
-        assert!(out.contains(&format!("{}  —", e.name)), "{} missing", e.name);
+    for e in sampler::SAMPLERS.iter() {
+        assert!(out.contains(&format!("{}  —", e.about.name)), "{} missing", e.about.name);
     }
-    for w in samplab::warp::WARPS {
-        assert!(out.contains(w.name));
+    for w in samplab::warp::WARPS.iter() {
+        assert!(out.contains(&format!("{}  —", w.about.name)), "{} missing", w.about.name);
     }
+    for s in samplab_render::scenes::SCENES.iter() {
+        assert!(out.contains(&format!("{}  —", s.about.name)), "{} missing", s.about.name);
+    }
+    assert!(samplab_render::scenes::SCENES.problems().is_empty());
     assert!(out.contains("sigma = 0.25  (a number in [0, 8])"));
 }
 

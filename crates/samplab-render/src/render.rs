@@ -35,7 +35,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use glam::DVec3;
 use rayon::prelude::*;
-use samplab::sampler::Sampler;
+use samplab::sampler::{Plan, Sampler};
 use samplab::seed::{Rng, Seed, shuffle, uniform};
 
 use crate::error::{Error, Result};
@@ -166,18 +166,60 @@ impl Options {
         })
     }
 
+    /// This render made converged, for a reference: `light` (a sampler spec) with
+    /// `light_samples` per estimate, Owen-scrambled Sobol' over the pixel, lens, shutter and
+    /// gloss, one pattern per estimate, no interleaving, and `spp` estimates per pixel; the
+    /// same image, mode, footprint, disk map, range and seed.
+    ///
+    /// # Errors
+    /// A light spec that does not parse.
+    pub fn converged(&self, light: &str, light_samples: usize, spp: usize) -> Result<Options> {
+        let mut o = Options::new(light, light_samples, self.width, self.height)?;
+        o.spp = spp;
+        o.mode = self.mode;
+        o.footprint = self.footprint;
+        o.disk_map = self.disk_map;
+        o.range = self.range;
+        o.seed = self.seed;
+        Ok(o)
+    }
+
+    /// The reference `samplab render` measures against when none is given: converged with
+    /// Owen-scrambled Sobol' light samples (`light_samples` per estimate), 64 estimates per
+    /// pixel (or this render's spp if more) when the estimates sample something (pixel area,
+    /// lens or shutter) and 1 otherwise, seeded from this render's seed.
+    ///
+    /// # Errors
+    /// As [`Options::converged`].
+    pub fn reference(&self, scene: &Scene, light_samples: usize) -> Result<Options> {
+        let needs_estimates = self.footprint == Footprint::Area || scene.camera.aperture > 0.0 || scene.moving();
+        let spp = if needs_estimates { self.spp.max(64) } else { 1 };
+        let mut o = self.converged("sobol.owen", light_samples, spp)?;
+        o.seed = self.seed.derive_str("reference");
+        Ok(o)
+    }
+
     /// Check every count and size against the scene before any work.
     ///
     /// # Errors
     /// A zero or oversized image, zero samples, or a sampler that cannot make the counts.
     pub fn check(&self, scene: &Scene) -> Result<()> {
+        self.plans(scene).map(|_| ())
+    }
+
+    /// Every sampler of the render planned for its counts: the checks of
+    /// [`Options::check`], done once.
+    fn plans(&self, scene: &Scene) -> Result<Plans<'_>> {
         for (what, v) in [("width", self.width), ("height", self.height)] {
             if v == 0 || v > MAX_SIDE {
                 return Err(Error::Invalid(format!("image {what} {v} is out of range 1..={MAX_SIDE}")));
             }
         }
-        if self.n == 0 || self.spp == 0 {
-            return Err(Error::Invalid("light samples (-n) and estimates per pixel (--spp) must be at least 1".into()));
+        for (name, v, what) in [("n", self.n, "light samples per estimate"), ("spp", self.spp, "estimates per pixel")] {
+            if v == 0 {
+                let reason = format!("{what} must be at least 1");
+                return Err(samplab::Error::Setting { name, value: v.to_string(), reason }.into());
+            }
         }
         let per_pattern = match self.pattern {
             Pattern::PerEstimate => self.n,
@@ -192,32 +234,49 @@ impl Options {
             if self.pattern == Pattern::PerPixel {
                 return Err(Error::Invalid("obscurance takes a pattern per estimate, not per pixel".into()));
             }
-            self.light.check(self.n, 2)?;
-        } else {
-            for light in &scene.lights {
-                self.light.check(per_pattern, light.dims())?;
-            }
         }
+        let light = if self.mode == Mode::Obscurance {
+            vec![self.light.plan(self.n, 2)?]
+        } else {
+            scene.lights.iter().map(|l| self.light.plan(per_pattern, l.dims())).collect::<samplab::Result<_>>()?
+        };
+        let mut pixel = None;
         if self.footprint == Footprint::Area {
-            if self.tile()?.is_none() {
-                self.pixel.check(self.spp, 2)?;
+            if self.interleave.is_none() {
+                pixel = Some(self.pixel.plan(self.spp, 2)?);
             }
         } else if self.interleave.is_some() {
             return Err(Error::Invalid(
                 "interleaved sampling spreads samples over pixel areas: it needs the area footprint".into(),
             ));
         }
-        if scene.camera.aperture > 0.0 {
-            self.lens.check(self.spp, 2)?;
-        }
-        if scene.moving() {
-            self.time.check(self.spp, 1)?;
-        }
-        if scene.glossy() {
-            self.gloss.check(self.spp, 2)?;
-        }
-        Ok(())
+        Ok(Plans {
+            light,
+            pixel,
+            tile: self.tile()?,
+            lens: plan_if(scene.camera.aperture > 0.0, self.lens.as_ref(), self.spp, 2)?,
+            time: plan_if(scene.moving(), self.time.as_ref(), self.spp, 1)?,
+            gloss: plan_if(scene.glossy(), self.gloss.as_ref(), self.spp, 2)?,
+        })
     }
+}
+
+/// `sampler` planned for `n` points in `dims` dimensions where `on`, else None.
+fn plan_if(on: bool, sampler: &dyn Sampler, n: usize, dims: usize) -> samplab::Result<Option<Plan<'_>>> {
+    on.then(|| sampler.plan(n, dims)).transpose()
+}
+
+/// The render's samplers planned for their counts (None where the scene needs none).
+struct Plans<'s> {
+    /// Per light (one for obscurance directions): n points, or n x spp for patterns per pixel.
+    light: Vec<Plan<'s>>,
+    /// Over the pixel area, without interleaving.
+    pixel: Option<Plan<'s>>,
+    /// The interleaving tile, drawn once.
+    tile: Option<Tile>,
+    lens: Option<Plan<'s>>,
+    time: Option<Plan<'s>>,
+    gloss: Option<Plan<'s>>,
 }
 
 /// The largest interleaving tile side, in pixels.
@@ -255,9 +314,7 @@ impl Options {
         }
         let cells = width * height;
         let total = self.spp * cells;
-        self.pixel.check(total, 2)?;
-        let mut pattern = vec![0.0; 2 * total];
-        self.pixel.fill(total, 2, self.seed.derive_str("pixel"), &mut pattern)?;
+        let pattern = self.pixel.plan(total, 2)?.generate(self.seed.derive_str("pixel"))?.into_vec();
         let mut by_cell: Vec<Vec<f64>> = vec![Vec::with_capacity(2 * self.spp); cells];
         for p in pattern.chunks_exact(2) {
             let (x, y) = (p[0] * width as f64, p[1] * height as f64);
@@ -291,6 +348,9 @@ struct Prepared {
 /// Per-thread scratch buffers.
 #[derive(Default)]
 struct Scratch {
+    /// The first fill of this pixel that failed (a Poisson-disk sampler that could not place
+    /// its points for a seed): the render stops with it after the pixel.
+    failed: Option<samplab::Error>,
     pixel: Vec<f64>,
     lens: Dealt,
     time: Dealt,
@@ -336,15 +396,15 @@ struct Dealt {
 }
 
 impl Dealt {
-    /// Fill with `spp` blocks of `per_block` points of `dims` coordinates from `sampler`
-    /// (one pattern, seeded by `key`), and draw the order from `order_key`.
-    fn deal(&mut self, sampler: &dyn Sampler, spp: usize, per_block: usize, dims: usize, key: Seed, order_key: Seed) {
-        self.points.resize(spp * per_block * dims, 0.0);
-        // cannot fail: Options::check accepted these counts
-        sampler.fill(spp * per_block, dims, key, &mut self.points).expect("counts checked");
+    /// Fill with the `spp` blocks of `plan` (one pattern, seeded by `key`), and draw the
+    /// order from `order_key`.
+    fn deal(&mut self, plan: &Plan, spp: usize, key: Seed, order_key: Seed) -> samplab::Result<()> {
+        self.points.resize(plan.n() * plan.dims(), 0.0);
+        plan.fill(key, &mut self.points)?;
         self.order.clear();
         self.order.extend(0..spp as u32);
         shuffle(&mut order_key.rng(), &mut self.order);
+        Ok(())
     }
 
     /// Where estimate e's block starts, in blocks of `len`.
@@ -364,7 +424,7 @@ impl Dealt {
 /// # Errors
 /// Options that do not fit the scene ([`Options::check`]).
 pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync)) -> Result<Rendered> {
-    options.check(scene)?;
+    let plans = options.plans(scene)?;
     let (w, h) = (options.width, options.height);
     let lights: Vec<Prepared> = scene
         .lights
@@ -376,7 +436,6 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
         .collect();
     let frame = scene.camera.frame(w, h);
     let keys = Keys::new(options.seed);
-    let tile = options.tile()?;
     let setup = Setup {
         scene,
         options,
@@ -386,7 +445,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
         moving: scene.moving(),
         glossy: scene.glossy(),
         plain: scene.plain_albedos(),
-        tile: tile.as_ref(),
+        plans: &plans,
     };
     let done = AtomicUsize::new(0);
     let mut rgb = vec![0f32; 3 * w * h];
@@ -395,7 +454,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
         .par_chunks_mut(3 * w)
         .zip(vis.par_chunks_mut(w))
         .enumerate()
-        .map_init(Scratch::default, |scratch, (row, (rgb_row, vis_row))| {
+        .map_init(Scratch::default, |scratch, (row, (rgb_row, vis_row))| -> Result<(u64, u64)> {
             let mut rays = (0u64, 0u64);
             for col in 0..w {
                 let pixel = Pixel { index: (row * w + col) as u64, col, row };
@@ -403,15 +462,18 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
                     #[inline(always)]
                     || render_pixel(&setup, pixel, scratch),
                 );
+                if let Some(e) = scratch.failed.take() {
+                    return Err(e.into());
+                }
                 rgb_row[3 * col..3 * col + 3].copy_from_slice(&radiance.as_vec3().to_array());
                 vis_row[col] = visible as f32;
                 rays.0 += r.0;
                 rays.1 += r.1;
             }
             progress(done.fetch_add(1, Ordering::Relaxed) + 1);
-            rays
+            Ok(rays)
         })
-        .reduce(|| (0, 0), |a, b| (a.0 + b.0, a.1 + b.1));
+        .try_reduce(|| (0, 0), |a, b| Ok((a.0 + b.0, a.1 + b.1)))?;
     Ok(Rendered { image: Image { width: w, height: h, rgb, visibility: Some(vis) }, camera_rays, shadow_rays })
 }
 
@@ -494,8 +556,8 @@ struct Setup<'a> {
     glossy: bool,
     /// [`Scene::plain_albedos`].
     plain: Vec<Option<DVec3>>,
-    /// The interleaving tile, if any.
-    tile: Option<&'a Tile>,
+    /// The samplers planned for their counts, and the interleaving tile.
+    plans: &'a Plans<'a>,
 }
 
 #[derive(Clone, Copy)]
@@ -729,39 +791,45 @@ fn render_pixel(setup: &Setup, px: Pixel, s: &mut Scratch) -> (DVec3, f64, (u64,
 /// patterns with their points on the lights.
 #[inline(always)]
 fn deal(setup: &Setup, px: Pixel, s: &mut Scratch) {
-    let Setup { scene, options: o, lights, keys, moving, glossy, tile, .. } = *setup;
+    if let Err(e) = try_deal(setup, px, s) {
+        s.failed.get_or_insert(e);
+    }
+}
+
+fn try_deal(setup: &Setup, px: Pixel, s: &mut Scratch) -> samplab::Result<()> {
+    let Setup { options: o, lights, keys, plans, .. } = *setup;
     let spp = o.spp;
     if o.footprint == Footprint::Area {
         s.pixel.resize(spp * 2, 0.0);
-        match tile {
-            Some(t) => s.pixel.copy_from_slice(t.cell(px.col, px.row)),
-            // cannot fail: Options::check accepted these counts
-            None => o.pixel.fill(spp, 2, keys.pixel.derive(px.index), &mut s.pixel).expect("counts checked"),
+        match (&plans.tile, &plans.pixel) {
+            (Some(t), _) => s.pixel.copy_from_slice(t.cell(px.col, px.row)),
+            (None, Some(plan)) => plan.fill(keys.pixel.derive(px.index), &mut s.pixel)?,
+            (None, None) => unreachable!("the area footprint has a pixel plan or a tile"),
         }
     }
     let deal_key = |what: &str| keys.deal.derive(px.index).derive_str(what);
-    let lens = scene.camera.aperture > 0.0;
-    if lens {
-        s.lens.deal(o.lens.as_ref(), spp, 1, 2, keys.lens.derive(px.index), deal_key("lens"));
+    if let Some(plan) = &plans.lens {
+        s.lens.deal(plan, spp, keys.lens.derive(px.index), deal_key("lens"))?;
     }
-    if moving {
-        s.time.deal(o.time.as_ref(), spp, 1, 1, keys.time.derive(px.index), deal_key("time"));
+    if let Some(plan) = &plans.time {
+        s.time.deal(plan, spp, keys.time.derive(px.index), deal_key("time"))?;
     }
-    if glossy {
-        s.gloss.deal(o.gloss.as_ref(), spp, 1, 2, keys.gloss.derive(px.index), deal_key("gloss"));
+    if let Some(plan) = &plans.gloss {
+        s.gloss.deal(plan, spp, keys.gloss.derive(px.index), deal_key("gloss"))?;
     }
     if o.pattern == Pattern::PerPixel {
         s.shared.resize_with(lights.len(), Default::default);
-        for (l, p) in lights.iter().enumerate() {
+        for (l, plan) in plans.light.iter().enumerate() {
             let key = keys.light.derive(px.index).derive(l as u64);
             let order_key = keys.deal.derive(px.index).derive(l as u64);
-            s.shared[l].deal(o.light.as_ref(), spp, o.n, p.light.dims(), key, order_key);
+            s.shared[l].deal(plan, spp, key, order_key)?;
         }
         s.shared_points.resize_with(lights.len(), Default::default);
         for ((p, dealt), points) in lights.iter().zip(&s.shared).zip(&mut s.shared_points) {
             points.fill(&p.light, &dealt.points);
         }
     }
+    Ok(())
 }
 
 /// Clear the per-estimate state for a new pixel.
@@ -894,7 +962,7 @@ fn end_path(
 /// traced.
 #[inline(always)]
 fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
-    let Setup { scene, options: o, lights, keys, .. } = *setup;
+    let Setup { scene, options: o, lights, keys, plans, .. } = *setup;
     let (ends, m) = (&s.ends, s.ends.len);
     if m == 0 {
         return 0;
@@ -940,7 +1008,9 @@ fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
                     Pattern::PerEstimate => {
                         let (dims, key) = (p.light.dims(), keys.light.derive(px.index).derive(l as u64));
                         s.light.resize(o.n * dims, 0.0);
-                        o.light.fill(o.n, dims, key.derive(e as u64), &mut s.light).expect("counts checked");
+                        if let Err(e) = plans.light[l].fill(key.derive(e as u64), &mut s.light) {
+                            s.failed.get_or_insert(e);
+                        }
                         s.light_points.fill(&p.light, &s.light);
                         (&s.light_points, 0..o.n)
                     }
@@ -990,14 +1060,15 @@ fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
 /// estimate's n directions traced together; the end's estimate gains albedo x W and its
 /// visible channel W. Returns the rays traced.
 fn obscure_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
-    let Setup { scene, options: o, keys, .. } = *setup;
+    let Setup { scene, options: o, keys, plans, .. } = *setup;
     let m = s.ends.len;
     for k in 0..m {
         let e = s.ends.estimate[k] as usize;
         let (x, normal) = (lane(&s.ends.position, k), lane(&s.ends.normal, k));
         s.light.resize(o.n * 2, 0.0);
-        // cannot fail: Options::check accepted these counts
-        o.light.fill(o.n, 2, keys.light.derive(px.index).derive(e as u64), &mut s.light).expect("counts checked");
+        if let Err(e) = plans.light[0].fill(keys.light.derive(px.index).derive(e as u64), &mut s.light) {
+            s.failed.get_or_insert(e);
+        }
         let origin = Scene::offset(x, normal);
         s.probes.clear();
         s.probes.extend(s.light.chunks_exact(2).map(|u| Ray {

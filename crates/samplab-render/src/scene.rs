@@ -156,7 +156,7 @@ impl Scene {
     }
 
     /// Each ray's nearest hit, in `hits` (resized to fit), traced by packets
-    /// ([`Scene::trace_packet`]); [`Scene::seen`] tells what was hit.
+    /// (four rays at a time); [`Scene::seen`] tells what was hit.
     pub fn trace(&self, rays: &[Ray], hits: &mut Vec<Hit>) {
         hits.resize(rays.len(), Hit { t: f64::INFINITY, what: u32::MAX });
         packets(

@@ -9,6 +9,8 @@ use glam::DVec3;
 
 use crate::bvh::{Bvh, Object};
 use crate::camera::Camera;
+use samplab::registry::{About, Entry, Registry};
+
 use crate::error::{Error, Result};
 use crate::geometry::{Plane, Shape};
 use crate::light::{DiskMap, Light, LightShape};
@@ -72,87 +74,95 @@ pub fn overhead_light(kind: LightKind, centre: DVec3, size: f64) -> Light {
 }
 
 /// A built-in scene: its name, what it is for, and its default light.
+#[derive(Debug)]
 pub struct Builtin {
-    /// Name on the command line.
-    pub name: &'static str,
-    /// One line: what it shows and which paper uses it.
-    pub summary: &'static str,
+    /// Name on the command line and what it shows (which paper uses it).
+    pub about: About,
     /// The light it has unless `--light` says otherwise (None: its lights are fixed).
     pub default_light: Option<LightKind>,
     build: fn(LightKind) -> Scene,
 }
 
-/// Every built-in scene.
-pub static BUILTINS: &[Builtin] = &[
+impl Entry for Builtin {
+    fn about(&self) -> &About {
+        &self.about
+    }
+    fn details(&self) -> Vec<String> {
+        vec![match self.default_light {
+            Some(kind) => format!("light: {kind:?} (replaceable)").to_lowercase(),
+            None => "lights: fixed".into(),
+        }]
+    }
+}
+
+/// Every built-in scene (a Mitsuba 3 XML file is the other kind of scene).
+pub static SCENES: Registry<Builtin> =
+    Registry::new("scene", "SCENES  (built in; or a Mitsuba 3 .xml file)", &[BUILTINS]);
+
+static BUILTINS: &[Builtin] = &[
     Builtin {
-        name: "spheres",
-        summary: "two spheres above a ground plane (Ramamoorthi et al. 2012, Fig. 13)",
+        about: About::new("spheres", "two spheres above a ground plane (Ramamoorthi et al. 2012, Fig. 13)"),
         default_light: Some(LightKind::Square),
         build: spheres,
     },
     Builtin {
-        name: "sphere-box",
-        summary: "a sphere and a box on a plane (Ramamoorthi et al. 2012, Figs. 16 and 18)",
+        about: About::new("sphere-box", "a sphere and a box on a plane (Ramamoorthi et al. 2012, Figs. 16 and 18)"),
         default_light: Some(LightKind::Disk),
         build: sphere_box,
     },
     Builtin {
-        name: "grids",
-        summary: "three grids of bars above a plane (Ramamoorthi et al. 2012, Figs. 8, 17, 19, 20)",
+        about: About::new("grids", "three grids of bars above a plane (Ramamoorthi et al. 2012, Figs. 8, 17, 19, 20)"),
         default_light: Some(LightKind::Linear),
         build: |kind| grids(kind, [20.0, 80.0, 140.0]),
     },
     Builtin {
-        name: "grids-aligned",
-        summary: "the three grids with bars at 0, 90 and 45 degrees to the light's edges",
+        about: About::new("grids-aligned", "the three grids with bars at 0, 90 and 45 degrees to the light's edges"),
         default_light: Some(LightKind::Linear),
         build: |kind| grids(kind, [0.0, 90.0, 45.0]),
     },
     Builtin {
-        name: "occluder",
-        summary: "a disc light above a square occluder (Subr & Kautz 2013, Fig. 8)",
+        about: About::new("occluder", "a disc light above a square occluder (Subr & Kautz 2013, Fig. 8)"),
         default_light: Some(LightKind::Disk),
         build: occluder,
     },
     Builtin {
-        name: "checker",
-        summary: "an infinite black-and-white checkerboard to the horizon (Shirley 1991, Table 1)",
+        about: About::new("checker", "an infinite black-and-white checkerboard to the horizon (Shirley 1991, Table 1)"),
         default_light: None,
         build: |_| checker(0.0),
     },
     Builtin {
-        name: "checker-45",
-        summary: "the checkerboard rotated 45 degrees (Shirley 1991, Table 2)",
+        about: About::new("checker-45", "the checkerboard rotated 45 degrees (Shirley 1991, Table 2)"),
         default_light: None,
         build: |_| checker(45.0),
     },
     Builtin {
-        name: "ball",
-        summary: "a ball lit by two square lights (Shirley 1991, Table 3)",
+        about: About::new("ball", "a ball lit by two square lights (Shirley 1991, Table 3)"),
         default_light: Some(LightKind::Square),
         build: ball,
     },
     Builtin {
-        name: "all",
-        summary: "a ball, a mirror and a glossy mirror, thin lens, two lights (Shirley 1991, Table 4)",
+        about: About::new("all", "a ball, a mirror and a glossy mirror, thin lens, two lights (Shirley 1991, Table 4)"),
         default_light: None,
         build: |_| all(),
     },
     Builtin {
-        name: "defocus",
-        summary: "spheres at five depths and small bright beads, thin lens (Subr & Kautz 2013, Fig. 7)",
+        about: About::new(
+            "defocus",
+            "spheres at five depths and small bright beads, thin lens (Subr & Kautz 2013, Fig. 7)",
+        ),
         default_light: Some(LightKind::Disk),
         build: defocus,
     },
     Builtin {
-        name: "motion",
-        summary: "a sphere moving across the frame during the shutter (Subr & Kautz 2013, Fig. 9)",
+        about: About::new("motion", "a sphere moving across the frame during the shutter (Subr & Kautz 2013, Fig. 9)"),
         default_light: Some(LightKind::Disk),
         build: motion,
     },
     Builtin {
-        name: "sphere-box-mesh",
-        summary: "the sphere-and-box scene with the sphere as a 1-million-triangle mesh (BVH benchmark)",
+        about: About::new(
+            "sphere-box-mesh",
+            "the sphere-and-box scene with the sphere as a 1-million-triangle mesh (BVH benchmark)",
+        ),
         default_light: Some(LightKind::Disk),
         build: sphere_box_mesh,
     },
@@ -163,16 +173,13 @@ pub static BUILTINS: &[Builtin] = &[
 /// # Errors
 /// An unknown name (with the known ones), or a light asked of a scene whose lights are fixed.
 pub fn builtin(name: &str, light: Option<LightKind>) -> Result<Scene> {
-    let entry = BUILTINS.iter().find(|b| b.name.eq_ignore_ascii_case(name)).ok_or_else(|| {
-        Error::Invalid(format!(
-            "unknown scene '{name}' (built-in: {}; or a Mitsuba .xml file)",
-            BUILTINS.iter().map(|b| b.name).collect::<Vec<_>>().join(", ")
-        ))
-    })?;
+    let entry = SCENES.lookup(name)?;
     let kind = match (entry.default_light, light) {
         (Some(default), chosen) => chosen.unwrap_or(default),
         (None, None) => LightKind::Square,
-        (None, Some(_)) => return Err(Error::Invalid(format!("scene '{}' has no area light to replace", entry.name))),
+        (None, Some(_)) => {
+            return Err(Error::Invalid(format!("scene '{}' has no area light to replace", entry.about.name)));
+        }
     };
     Ok((entry.build)(kind))
 }
@@ -404,14 +411,14 @@ mod tests {
 
     #[test]
     fn every_builtin_builds_with_every_light_it_accepts() {
-        for b in BUILTINS.iter().filter(|b| b.name != "sphere-box-mesh") {
+        for b in BUILTINS.iter().filter(|b| b.about.name != "sphere-box-mesh") {
             let kinds: Vec<Option<LightKind>> = if b.default_light.is_some() {
                 LightKind::ALL.iter().map(|(_, k)| Some(*k)).collect()
             } else {
                 vec![None]
             };
             for k in kinds {
-                let s = builtin(b.name, k).unwrap();
+                let s = builtin(b.about.name, k).unwrap();
                 assert!(s.camera.fov > 0.0);
             }
         }

@@ -13,7 +13,7 @@ fn set(spec: &str, n: usize, d: usize) -> PointSet {
 }
 
 fn bench(c: &mut Criterion, group: &str, metric: &str, cases: &[(&str, usize, usize)]) {
-    let (metric, _) = Metric::parse(metric).unwrap();
+    let metric = Metric::parse(metric).unwrap();
     let limits = Limits { max_work: f64::INFINITY };
     let mut g = c.benchmark_group(group);
     g.sample_size(10);

@@ -24,5 +24,32 @@ fn samplers(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, samplers);
+/// Random access against the batch, per coordinate, at dimension 1000: one access prepared
+/// (tables built once), then single coordinates of scattered points.
+fn random_access(c: &mut Criterion) {
+    const DIMS: usize = 1000;
+    const POINTS: usize = 64;
+    for spec in ["halton", "halton.xor", "halton.owen", "sobol.owen"] {
+        let s = sampler::build(spec).unwrap();
+        let mut group = c.benchmark_group(format!("{spec} d={DIMS} per coordinate"));
+        group.sample_size(10);
+        group.throughput(Throughput::Elements((POINTS * DIMS) as u64));
+        group.bench_function("batch", |b| b.iter(|| s.generate(POINTS, DIMS, Seed(1)).unwrap()));
+        let access = s.as_sequence().unwrap().access(DIMS, Seed(1)).unwrap();
+        group.bench_function("random access", |b| {
+            b.iter(|| {
+                let mut sum = 0.0;
+                for i in 0..POINTS as u64 {
+                    for d in 0..DIMS {
+                        sum += access.sample(i * 7919, d).unwrap();
+                    }
+                }
+                sum
+            })
+        });
+        group.finish();
+    }
+}
+
+criterion_group!(benches, samplers, random_access);
 criterion_main!(benches);

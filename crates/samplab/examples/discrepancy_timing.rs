@@ -15,7 +15,7 @@ fn main() {
         let (name, n, d) = (parts.next().unwrap(), parts.next().unwrap(), parts.next().unwrap_or("2"));
         let spec = parts.next().unwrap_or("random");
         let (n, d): (usize, usize) = (n.parse().unwrap(), d.parse().unwrap());
-        let (metric, _) = Metric::parse(name).unwrap_or_else(|e| panic!("{e}"));
+        let metric = Metric::parse(name).unwrap_or_else(|e| panic!("{e}"));
         let set = sampler::build(spec).unwrap().generate(n, d, Seed(1)).unwrap();
         let limits = Limits { max_work: f64::INFINITY };
         let mut times = Vec::new();

@@ -71,6 +71,28 @@ pub enum Error {
         /// The OS error, as text.
         reason: String,
     },
+    /// A setting of a computation (a study's realizations, a render's sample counts) out of
+    /// its range; `name` is the library's name for it (a front end maps it to its flag).
+    #[error("{name} = {value}: {reason}")]
+    Setting {
+        /// The setting's name, e.g. `sets`, `instances`, `spp`.
+        name: &'static str,
+        /// The value given.
+        value: String,
+        /// What it must be.
+        reason: String,
+    },
+    /// An exact algorithm refused before any work: its estimated cost is over the limit
+    /// the caller set (`discrepancy::Limits::max_work`).
+    #[error("{what} takes about {work:.1e} steps, over the work limit {limit:.1e}")]
+    WorkLimit {
+        /// What would have been computed, with its size.
+        what: String,
+        /// The estimated number of steps.
+        work: f64,
+        /// The limit.
+        limit: f64,
+    },
     /// Arguments that do not fit together (e.g. mismatched dimensions).
     #[error("{0}")]
     Invalid(String),

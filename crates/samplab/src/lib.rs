@@ -14,7 +14,7 @@
 //! - Counts are never rounded: a sampler that cannot make exactly `n` points returns an
 //!   error naming the nearest counts it can make.
 //! - Samplers are named by specs `family[.variant][:key=value,...]`; see
-//!   [`sampler::registry`] and `samplab list samplers`.
+//!   [`sampler::SAMPLERS`] and `samplab list samplers`.
 //! - Every method's documentation names its paper (keys in [`bibliography`]).
 //!
 //! ```
@@ -34,6 +34,7 @@ pub mod experiment;
 pub mod integrand;
 pub mod io;
 pub mod points;
+pub mod registry;
 pub mod sampler;
 pub mod seed;
 pub mod simd;

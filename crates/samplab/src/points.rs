@@ -22,7 +22,7 @@ impl PointSet {
         if dims == 0 {
             return Err(Error::Invalid("a point set needs at least one dimension".into()));
         }
-        if data.len() % dims != 0 {
+        if !data.len().is_multiple_of(dims) {
             return Err(Error::Invalid(format!("{} coordinates do not make whole {dims}D points", data.len())));
         }
         if let Some(i) = data.iter().position(|x| !x.is_finite()) {
@@ -38,7 +38,7 @@ impl PointSet {
 
     /// Internal constructor for data already known to be valid.
     pub(crate) fn from_raw(dims: usize, data: Vec<f64>) -> Self {
-        debug_assert!(dims > 0 && data.len() % dims == 0);
+        debug_assert!(dims > 0 && data.len().is_multiple_of(dims));
         PointSet { dims, data }
     }
 

@@ -66,8 +66,10 @@ pub enum Kind {
 /// The default of a parameter.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Default {
-    /// A number.
+    /// A real number (for [`Kind::Real`]).
     Number(f64),
+    /// A whole number (for [`Kind::Int`]).
+    Int(u64),
     /// A word (for [`Kind::Choice`]).
     Word(&'static str),
     /// Chosen by the method from n and d; the text says how.
@@ -97,10 +99,26 @@ impl ParamSpec {
         }
     }
 
+    /// Whether the declaration is consistent: the default has the parameter's kind and
+    /// lies in its range (or is `Auto`), and a range is not empty.
+    ///
+    /// # Errors
+    /// What is inconsistent, in words.
+    pub fn check(&self) -> std::result::Result<(), String> {
+        match (self.kind, self.default) {
+            (_, Default::Auto(_)) => Ok(()),
+            (Kind::Real { min, max }, Default::Number(x)) if min <= x && x <= max => Ok(()),
+            (Kind::Int { min, max }, Default::Int(x)) if min <= x && x <= max => Ok(()),
+            (Kind::Choice(c), Default::Word(w)) if c.contains(&w) => Ok(()),
+            _ => Err(format!("default {} is not {}", self.default_text(), self.range_text())),
+        }
+    }
+
     /// The default, in words.
     pub fn default_text(&self) -> String {
         match self.default {
             Default::Number(x) => format!("{x}"),
+            Default::Int(x) => format!("{x}"),
             Default::Word(w) => w.to_string(),
             Default::Auto(how) => format!("auto ({how})"),
         }
@@ -110,8 +128,10 @@ impl ParamSpec {
 /// A resolved parameter value.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Value {
-    /// A number (Real or Int kinds).
+    /// A real number ([`Kind::Real`]).
     Number(f64),
+    /// A whole number ([`Kind::Int`]), exact over the whole u64 range.
+    Int(u64),
     /// A word (Choice kind).
     Word(String),
     /// Left to the method.
@@ -175,16 +195,51 @@ impl Params {
         &self.values.iter().find(|(n, _)| *n == name).unwrap_or_else(|| panic!("parameter '{name}' is not declared")).1
     }
 
-    /// The number `name` holds, or None when it is `Auto`. Panics on an undeclared name
-    /// (a programming error caught by the registry conformance test).
-    pub fn number(&self, name: &str) -> Option<f64> {
+    /// The real number `name` holds, or None when it is left to the method (`auto`).
+    ///
+    /// # Panics
+    /// When `name` is not a declared real parameter (a programming error that the
+    /// registries' conformance tests catch).
+    pub fn real_or_auto(&self, name: &str) -> Option<f64> {
         match self.get(name) {
             Value::Number(x) => Some(*x),
-            _ => None,
+            Value::Auto => None,
+            v => panic!("parameter '{name}' is not a real number: {v:?}"),
         }
     }
 
-    /// The word `name` holds. Panics on an undeclared or non-word parameter.
+    /// The real number `name` holds.
+    ///
+    /// # Panics
+    /// As [`Params::real_or_auto`], and when the parameter is `auto`.
+    pub fn real(&self, name: &str) -> f64 {
+        self.real_or_auto(name).unwrap_or_else(|| panic!("parameter '{name}' has no value"))
+    }
+
+    /// The whole number `name` holds, or None when it is left to the method (`auto`).
+    ///
+    /// # Panics
+    /// When `name` is not a declared whole-number parameter.
+    pub fn int_or_auto(&self, name: &str) -> Option<u64> {
+        match self.get(name) {
+            Value::Int(x) => Some(*x),
+            Value::Auto => None,
+            v => panic!("parameter '{name}' is not a whole number: {v:?}"),
+        }
+    }
+
+    /// The whole number `name` holds.
+    ///
+    /// # Panics
+    /// As [`Params::int_or_auto`], and when the parameter is `auto`.
+    pub fn int(&self, name: &str) -> u64 {
+        self.int_or_auto(name).unwrap_or_else(|| panic!("parameter '{name}' has no value"))
+    }
+
+    /// The word `name` holds.
+    ///
+    /// # Panics
+    /// When `name` is not a declared word parameter.
     pub fn word(&self, name: &str) -> &str {
         match self.get(name) {
             Value::Word(w) => w,
@@ -198,6 +253,7 @@ impl Params {
             .iter()
             .map(|(n, v)| match v {
                 Value::Number(x) => format!("{n}={x}"),
+                Value::Int(x) => format!("{n}={x}"),
                 Value::Word(w) => format!("{n}={w}"),
                 Value::Auto => format!("{n}=auto"),
             })
@@ -211,6 +267,7 @@ fn parse_value(owner: &str, spec: &ParamSpec, raw: Option<&str>) -> Result<Value
     let Some(raw) = raw else {
         return Ok(match spec.default {
             Default::Number(x) => Value::Number(x),
+            Default::Int(x) => Value::Int(x),
             Default::Word(w) => Value::Word(w.into()),
             Default::Auto(_) => Value::Auto,
         });
@@ -239,7 +296,7 @@ fn parse_value(owner: &str, spec: &ParamSpec, raw: Option<&str>) -> Result<Value
             if x < min || x > max {
                 return Err(bad(format!("{raw} is out of range; expected {}", spec.range_text())));
             }
-            Ok(Value::Number(x as f64))
+            Ok(Value::Int(x))
         }
     }
 }
@@ -258,12 +315,27 @@ mod tests {
         let s = Spec::parse("jitter.gaussian:sigma=0.5").unwrap();
         assert_eq!(s.name, "jitter.gaussian");
         let p = Params::resolve("g", SPECS, &s.args).unwrap();
-        assert_eq!(p.number("sigma"), Some(0.5));
+        assert_eq!(p.real("sigma"), 0.5);
         assert_eq!(p.word("edge"), "wrap");
         let s = Spec::parse("g:0.1,resample").unwrap();
         let p = Params::resolve("g", SPECS, &s.args).unwrap();
-        assert_eq!(p.number("sigma"), Some(0.1));
+        assert_eq!(p.real("sigma"), 0.1);
         assert_eq!(p.word("edge"), "resample");
+    }
+
+    #[test]
+    fn whole_numbers_stay_exact_over_u64() {
+        // 2^53 + 1 is the first integer an f64 cannot hold: a parameter stored as f64 would
+        // silently become 2^53
+        const SEED: &[ParamSpec] =
+            &[ParamSpec { name: "seed", kind: Kind::Int { min: 0, max: u64::MAX }, default: Default::Int(0), doc: "" }];
+        for raw in ["9007199254740993", "18446744073709551615"] {
+            let p = Params::resolve("g", SEED, &Spec::parse(&format!("g:seed={raw}")).unwrap().args).unwrap();
+            assert_eq!(p.int("seed").to_string(), raw);
+            assert_eq!(p.describe(), format!("seed={raw}"));
+        }
+        let e = Params::resolve("g", SEED, &Spec::parse("g:seed=18446744073709551616").unwrap().args).unwrap_err();
+        assert!(e.to_string().contains("'seed'"), "{e}");
     }
 
     #[test]

@@ -41,7 +41,7 @@ pub fn visibility_normalized_mse(sampler: &str, discontinuities: usize) -> Optio
         "regular" => Some(k / 12.0),
         "jitter" => Some(k / 6.0),
         // pairs of discontinuities behave as for uniform sampling; an odd one costs 1/12 more
-        "jitter.uniform" => Some(if discontinuities % 2 == 0 { k / 12.0 } else { (k + 1.0) / 12.0 }),
+        "jitter.uniform" => Some(if discontinuities.is_multiple_of(2) { k / 12.0 } else { (k + 1.0) / 12.0 }),
         _ => None,
     }
 }

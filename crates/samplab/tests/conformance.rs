@@ -1,7 +1,7 @@
 //! Conformance over every registry entry: count, shape, range, determinism, seed
 //! sensitivity; names unique; the papers' aliases resolve; bad specs fail cleanly.
 
-use samplab::sampler::{self, registry};
+use samplab::sampler::{self, SAMPLERS, SamplerEntry};
 use samplab::{Error, Seed};
 
 /// Constructions with no randomness: the seed must not matter.
@@ -16,59 +16,51 @@ fn count_for(name: &str, d: usize) -> usize {
     }
 }
 
-fn dims_for(e: &registry::SamplerEntry) -> Vec<usize> {
-    let b = e.build(&[]).unwrap();
+fn dims_for(e: &SamplerEntry) -> Vec<usize> {
+    let b = sampler::build(e.about.name).unwrap();
     [1usize, 2, 3, 5].into_iter().filter(|d| b.dims().contains(d)).collect()
 }
 
 #[test]
 fn every_entry_makes_valid_deterministic_sets() {
-    for e in registry::entries() {
-        let s = e.build(&[]).unwrap_or_else(|err| panic!("{}: default build fails: {err}", e.name));
+    for e in SAMPLERS.iter() {
+        let s =
+            sampler::build(e.about.name).unwrap_or_else(|err| panic!("{}: default build fails: {err}", e.about.name));
         let ds = dims_for(e);
-        assert!(!ds.is_empty(), "{}: no testable dimension", e.name);
+        assert!(!ds.is_empty(), "{}: no testable dimension", e.about.name);
         for d in ds {
-            let n = count_for(&e.name, d);
-            let a = s.generate(n, d, Seed(1)).unwrap_or_else(|err| panic!("{} {d}D: {err}", e.name));
-            assert_eq!((a.len(), a.dims()), (n, d), "{}", e.name);
-            assert!(a.in_unit_cube(), "{} {d}D: a point outside [0,1)^d", e.name);
+            let n = count_for(e.about.name, d);
+            let a = s.generate(n, d, Seed(1)).unwrap_or_else(|err| panic!("{} {d}D: {err}", e.about.name));
+            assert_eq!((a.len(), a.dims()), (n, d), "{}", e.about.name);
+            assert!(a.in_unit_cube(), "{} {d}D: a point outside [0,1)^d", e.about.name);
             let again = s.generate(n, d, Seed(1)).unwrap();
             assert!(
                 a.as_slice().iter().zip(again.as_slice()).all(|(x, y)| x.to_bits() == y.to_bits()),
                 "{}: same seed, different bits",
-                e.name
+                e.about.name
             );
             let other = s.generate(n, d, Seed(2)).unwrap();
             let same = a == other;
-            assert_eq!(same, DETERMINISTIC.contains(&e.name.as_str()), "{} {d}D: seed sensitivity wrong", e.name);
+            assert_eq!(same, DETERMINISTIC.contains(&e.about.name), "{} {d}D: seed sensitivity wrong", e.about.name);
         }
     }
 }
 
 #[test]
-fn names_and_aliases_are_unique() {
-    let mut names: Vec<String> = registry::entries()
-        .iter()
-        .flat_map(|e| std::iter::once(e.name.clone()).chain(e.aliases.iter().map(|a| a.to_string())))
-        .collect();
-    let total = names.len();
-    names.sort();
-    names.dedup();
-    assert_eq!(names.len(), total, "a name or alias is registered twice");
-}
-
-#[test]
-fn every_entry_cites_known_references() {
-    for e in registry::entries() {
-        assert!(!e.references.is_empty(), "{} cites nothing", e.name);
-        for r in &e.references {
-            assert!(samplab::bibliography::lookup(r).is_some(), "{}: unknown reference {r}", e.name);
-        }
-    }
-    for w in samplab::warp::WARPS {
-        for r in w.references {
-            assert!(samplab::bibliography::lookup(r).is_some(), "{}: unknown reference {r}", w.name);
-        }
+fn every_registry_is_consistent() {
+    // names and aliases unique and lower case, references known, parameter defaults of the
+    // right kind and inside their ranges
+    let problems: Vec<String> = [
+        SAMPLERS.problems(),
+        samplab::discrepancy::METRICS.problems(),
+        samplab::warp::WARPS.problems(),
+        samplab::integrand::INTEGRANDS.problems(),
+        samplab::io::FORMATS.problems(),
+    ]
+    .concat();
+    assert!(problems.is_empty(), "{problems:#?}");
+    for e in SAMPLERS.iter() {
+        assert!(!e.about.references.is_empty(), "{} cites nothing", e.about.name);
     }
 }
 

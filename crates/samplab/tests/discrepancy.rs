@@ -121,7 +121,7 @@ fn centred_grids_have_the_closed_form_star_discrepancy() {
     for (k, d) in [(5usize, 1usize), (4, 2), (7, 2), (2, 3), (3, 3), (4, 3), (2, 4)] {
         let g = sampler::build("regular").unwrap().generate(k.pow(d as u32), d, Seed(0)).unwrap();
         let want = 1.0 - (1.0 - 0.5 / k as f64).powi(d as i32);
-        let got = discrepancy::compute(&Metric::Star, &g, Limits::default()).unwrap();
+        let got = discrepancy::compute(&Metric::parse("star").unwrap(), &g, Limits::default()).unwrap();
         assert!((got - want).abs() < 1e-12, "k={k} d={d}: {got} vs {want}");
     }
 }
@@ -215,7 +215,7 @@ fn equal_scipy_on_stored_fixtures() {
         rel(l2::mixture_sq(&pts, d), s["MD"].as_f64().unwrap(), "MD");
         let set = PointSet::new(d, pts.clone()).unwrap();
         rel(
-            discrepancy::compute(&Metric::L2Star, &set, Limits::default()).unwrap(),
+            discrepancy::compute(&Metric::parse("l2-star").unwrap(), &set, Limits::default()).unwrap(),
             s["L2-star"].as_f64().unwrap(),
             "L2-star",
         );
@@ -225,7 +225,7 @@ fn equal_scipy_on_stored_fixtures() {
 #[test]
 fn regular_grid_known_values() {
     let grid = sampler::build("regular").unwrap().generate(16, 2, Seed(0)).unwrap();
-    let m = |name: &str| discrepancy::compute(&Metric::parse(name).unwrap().0, &grid, Limits::default()).unwrap();
+    let m = |name: &str| discrepancy::compute(&Metric::parse(name).unwrap(), &grid, Limits::default()).unwrap();
     assert_close(m("star"), 0.234375, "D*");
     assert_close(m("extreme"), 0.4375, "extreme");
     // L2-star of the 4x4 grid by hand: 0.0597... (Shirley's S = 0.0600 rounded)
@@ -238,16 +238,20 @@ fn regular_grid_known_values() {
 fn wraparound_is_shift_invariant_and_star_is_not() {
     let p = sampler::build("jitter").unwrap().generate(64, 2, Seed(1)).unwrap();
     let shifted = PointSet::new(2, p.iter().flat_map(|q| [(q[0] + 0.3) % 1.0, (q[1] + 0.71) % 1.0]).collect()).unwrap();
-    let m = |metric: Metric, s: &PointSet| discrepancy::compute(&metric, s, Limits::default()).unwrap();
-    assert!((m(Metric::WrapAround, &p) - m(Metric::WrapAround, &shifted)).abs() < 1e-13);
-    assert!((m(Metric::Star, &p) - m(Metric::Star, &shifted)).abs() > 1e-6);
+    let m = |metric: &str, s: &PointSet| {
+        discrepancy::compute(&Metric::parse(metric).unwrap(), s, Limits::default()).unwrap()
+    };
+    assert!((m("wraparound", &p) - m("wraparound", &shifted)).abs() < 1e-13);
+    assert!((m("star", &p) - m("star", &shifted)).abs() > 1e-6);
 }
 
 #[test]
 fn projected_discrepancy() {
     let p = sampler::build("random").unwrap().generate(20_000, 2, Seed(2)).unwrap();
     let m = |angle: f64, extreme: bool, s: &PointSet| {
-        discrepancy::compute(&Metric::Projected { angle, extreme }, s, Limits::default()).unwrap()
+        let kind = if extreme { "extreme" } else { "star" };
+        let metric = Metric::parse(&format!("projected:angle={angle},kind={kind}")).unwrap();
+        discrepancy::compute(&metric, s, Limits::default()).unwrap()
     };
     // angle 0 and 90: the 1D discrepancies of x and y
     assert_close(m(0.0, false, &p), star::star_1d(&p.column(0)), "x");
@@ -303,8 +307,8 @@ fn generalized_discrepancy_of_warped_set_equals_original() {
             }
         }
         let limits = Limits::default();
-        let ext = discrepancy::compute(&Metric::Extreme, &u, limits).unwrap();
-        let st = discrepancy::compute(&Metric::Star, &u, limits).unwrap();
+        let ext = discrepancy::compute(&Metric::parse("extreme").unwrap(), &u, limits).unwrap();
+        let st = discrepancy::compute(&Metric::parse("star").unwrap(), &u, limits).unwrap();
         assert!((worst - ext).abs() < 1e-12, "extreme: {worst} vs {ext}");
         assert!((anchored - st).abs() < 1e-12, "star: {anchored} vs {st}");
         let g = discrepancy::generalized(&w, &[&cdf, &cdf], false, limits).unwrap();
@@ -315,15 +319,15 @@ fn generalized_discrepancy_of_warped_set_equals_original() {
 #[test]
 fn bad_input_errors() {
     let outside = PointSet::new(2, vec![0.5, 1.5]).unwrap();
-    let e = discrepancy::compute(&Metric::Star, &outside, Limits::default()).unwrap_err().to_string();
+    let e = discrepancy::compute(&Metric::parse("star").unwrap(), &outside, Limits::default()).unwrap_err().to_string();
     assert!(e.contains("point 0 coordinate 1 is 1.5"), "{e}");
-    // refused before any work, naming the override
+    // refused before any work, as a work-limit error (the CLI names its flag)
     let big = sampler::build("random").unwrap().generate(200_000, 3, Seed(0)).unwrap();
-    let e = discrepancy::compute(&Metric::Star, &big, Limits::default()).unwrap_err().to_string();
-    assert!(e.contains("--max-work"), "{e}");
+    let e = discrepancy::compute(&Metric::parse("star").unwrap(), &big, Limits::default()).unwrap_err();
+    assert!(matches!(e, samplab::Error::WorkLimit { limit: 2e10, .. }), "{e}");
     let five = sampler::build("random").unwrap().generate(400, 5, Seed(0)).unwrap();
-    let e = discrepancy::compute(&Metric::Star, &five, Limits { max_work: 1e5 }).unwrap_err().to_string();
-    assert!(e.contains("--max-work") && e.contains("5D"), "{e}");
+    let e = discrepancy::compute(&Metric::parse("star").unwrap(), &five, Limits { max_work: 1e5 }).unwrap_err();
+    assert!(e.to_string().contains("over the work limit 1.0e5") && e.to_string().contains("5D"), "{e}");
     let e = Metric::parse("stra").unwrap_err().to_string();
     assert!(e.contains("star"), "{e}");
     let e = Metric::parse("projected:angle=400").unwrap_err().to_string();
@@ -352,7 +356,8 @@ fn threshold_accepting_is_a_lower_bound_and_usually_finds_the_maximum() {
     // trivial bound max_i (1 - prod x_i ...) given by any single critical box
     let set = sampler::build("sobol.owen").unwrap().generate(256, 10, Seed(1)).unwrap();
     let m = |s: u64| {
-        discrepancy::compute(&Metric::StarBound { iterations: 3000, seed: s }, &set, Limits::default()).unwrap()
+        let metric = Metric::parse(&format!("star-bound:iterations=3000,seed={s}")).unwrap();
+        discrepancy::compute(&metric, &set, Limits::default()).unwrap()
     };
     assert_eq!(m(1).to_bits(), m(1).to_bits());
     assert!(m(1) > 0.0 && m(1) < 1.0);

@@ -2,7 +2,7 @@
 //! net properties, reference values from independent implementations, minimum distances,
 //! and batch == random access.
 
-use samplab::sampler::{self, Randomization, Sequence, radical, sobol::Sobol};
+use samplab::sampler::{self, radical};
 use samplab::{PointSet, Seed};
 
 fn make(spec: &str, n: usize, d: usize, seed: u64) -> PointSet {
@@ -185,22 +185,48 @@ fn halton_first_points_by_hand() {
 
 #[test]
 fn batch_equals_random_access() {
-    for r in [Randomization::None, Randomization::Xor, Randomization::Owen, Randomization::Shift] {
-        let seqs: [Box<dyn Sequence>; 2] = [Box::new(Sobol::new(r)), Box::new(radical::Halton::new(r))];
-        // each walk the fill has (one to three dimensions, more), whole blocks and a tail
-        for (s, (n, dims)) in seqs.iter().flat_map(|s| [(300, 5), (64, 1), (64, 2), (77, 2), (301, 3)].map(|c| (s, c)))
-        {
-            let p = s.generate(n, dims, Seed(42)).unwrap();
-            for i in 0..n {
-                for d in 0..dims {
-                    assert_eq!(
-                        p.point(i)[d].to_bits(),
-                        s.sample(i as u64, d, Seed(42)).to_bits(),
-                        "{} point {i} dim {d}",
-                        s.spec()
-                    );
+    for family in ["sobol", "halton"] {
+        for suffix in ["", ".xor", ".owen", ".shift"] {
+            // random access reached from the registry
+            let s = sampler::build(&format!("{family}{suffix}")).unwrap();
+            let seq = s.as_sequence().unwrap_or_else(|| panic!("{family}{suffix} has no random access"));
+            // each walk the fill has (one to three dimensions, more), whole blocks and a tail
+            for (n, dims) in [(300, 5), (64, 1), (64, 2), (77, 2), (301, 3)] {
+                let p = s.generate(n, dims, Seed(42)).unwrap();
+                let access = seq.access(dims, Seed(42)).unwrap();
+                for i in 0..n {
+                    for d in 0..dims {
+                        assert_eq!(
+                            p.point(i)[d].to_bits(),
+                            access.sample(i as u64, d).unwrap().to_bits(),
+                            "{} point {i} dim {d}",
+                            s.spec()
+                        );
+                    }
                 }
             }
+        }
+    }
+    assert!(sampler::build("jitter").unwrap().as_sequence().is_none());
+}
+
+#[test]
+fn random_access_refuses_indices_beyond_the_tables() {
+    // the old random access cast the index to u32: point 2^32 + 5 came back as point 5
+    let s = sampler::build("sobol.owen").unwrap();
+    let access = s.as_sequence().unwrap().access(2, Seed(1)).unwrap();
+    let last = access.sample((1 << 32) - 1, 1).unwrap();
+    assert!((0.0..1.0).contains(&last));
+    let e = access.sample((1 << 32) + 5, 1).unwrap_err().to_string();
+    assert!(e.contains("index = 4294967301") && e.contains("2^32 - 1"), "{e}");
+    // Halton's digit tables hold 53 bits: beyond, an error (it used to index past them)
+    for spec in ["halton", "halton.xor", "halton.owen", "halton.shift"] {
+        let h = sampler::build(spec).unwrap();
+        let access = h.as_sequence().unwrap().access(2, Seed(1)).unwrap();
+        for dim in 0..2 {
+            assert!((0.0..1.0).contains(&access.sample((1 << 53) - 1, dim).unwrap()), "{spec}");
+            let e = access.sample(u64::MAX, dim).unwrap_err().to_string();
+            assert!(e.contains("2^53 - 1"), "{spec}: {e}");
         }
     }
 }

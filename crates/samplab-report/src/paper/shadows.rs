@@ -78,24 +78,16 @@ impl<'a> Setup<'a> {
     }
 
     /// A converged reference: Owen-scrambled Sobol' with `n` light samples and `spp`
-    /// estimates, pixel, lens, time and gloss samples Sobol' too.
+    /// estimates ([`Options::converged`]).
     pub fn reference(&self, n: usize, spp: usize, seed: Seed) -> Result<Image, Error> {
-        self.converged().render("sobol.owen", n, spp, seed)
+        self.converged("sobol.owen", n, spp, seed)
     }
 
-    /// This set-up with Owen-scrambled Sobol' over the pixel, lens, time and gloss, one
-    /// pattern per estimate: what a reference is rendered with.
-    pub fn converged(&self) -> Setup<'a> {
-        let sobol = "sobol.owen";
-        Setup {
-            pixel: sobol,
-            interleave: None,
-            lens: sobol,
-            time: sobol,
-            gloss: sobol,
-            pattern: Pattern::PerEstimate,
-            ..*self
-        }
+    /// This set-up rendered converged ([`Options::converged`]): `light` x `n` light samples,
+    /// Owen-scrambled Sobol' over the pixel, lens, time and gloss, one pattern per estimate.
+    pub fn converged(&self, light: &str, n: usize, spp: usize, seed: Seed) -> Result<Image, Error> {
+        let o = self.options(light, n, spp, seed)?.converged(light, n, spp).map_err(render_error)?;
+        Ok(render(self.scene, &o, &|_| {}).map_err(render_error)?.image)
     }
 
     /// Errors against `reference` of each of `seeds` renders (seed k derived from `seed`).

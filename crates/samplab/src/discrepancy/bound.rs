@@ -7,7 +7,12 @@
 //! box. Deterministic for a seed.
 
 use super::star::critical;
+use super::{Limits, MetricEntry};
+use crate::error::Result;
+use crate::points::PointSet;
+use crate::registry::About;
 use crate::seed::{Seed, below, uniform};
+use crate::spec::{Default, Kind, ParamSpec, Params};
 
 /// The local discrepancy of the critical box with corner indices `idx` (open and closed).
 fn local(points: &[f64], dims: usize, axes: &[Vec<f64>], idx: &[usize]) -> f64 {
@@ -73,4 +78,33 @@ fn search(points: &[f64], dims: usize, axes: &[Vec<f64>], iterations: usize, see
         }
     }
     best
+}
+
+/// The metric this file registers.
+pub(crate) static ENTRIES: &[MetricEntry] = &[MetricEntry {
+    lower_bound: true,
+    ..MetricEntry::new(
+        About::new("star-bound", "LOWER BOUND on the star discrepancy by threshold accepting (high d and n)")
+            .aliases(&["star-ta", "threshold-accepting"])
+            .params(&[
+                ParamSpec {
+                    name: "iterations",
+                    kind: Kind::Int { min: 1, max: 1_000_000_000 },
+                    default: Default::Int(20000),
+                    doc: "search steps (cost: iterations x n x d)",
+                },
+                ParamSpec {
+                    name: "seed",
+                    kind: Kind::Int { min: 0, max: u64::MAX },
+                    default: Default::Int(0),
+                    doc: "seed of the search",
+                },
+            ]),
+        bound,
+    )
+}];
+
+fn bound(params: &Params, points: &PointSet, _: Limits) -> Result<f64> {
+    let iterations = params.int("iterations") as usize;
+    Ok(star_lower_bound(points.as_slice(), points.dims(), iterations, Seed(params.int("seed"))))
 }

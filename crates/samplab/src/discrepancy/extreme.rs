@@ -7,6 +7,11 @@
 use rayon::prelude::*;
 
 use super::star::critical;
+use super::{Limits, MetricEntry};
+use crate::error::{Error, Result};
+use crate::points::PointSet;
+use crate::registry::About;
+use crate::spec::Params;
 
 /// 1D closed form: max_i (i/N - x_(i)) + max_i (x_(i) - (i-1)/N) over sorted x
 /// (Niederreiter 1992, Theorem 2.9), ties and the end points included.
@@ -173,4 +178,26 @@ fn closed_slab(ys: &[f64], w: f64, inv: f64) -> f64 {
         i = j;
     }
     best
+}
+
+/// The metric this file registers.
+pub(crate) static ENTRIES: &[MetricEntry] = &[MetricEntry::new(
+    About::new("extreme", "sup over all axis-parallel boxes (Stroud's T)")
+        .aliases(&["stroud", "unanchored", "t"])
+        .cite(&["shirley1991"]),
+    extreme,
+)];
+
+/// The exact extreme discrepancy in 1D and 2D (the 2D slab sweep refused over the work
+/// limit).
+fn extreme(_: &Params, points: &PointSet, limits: Limits) -> Result<f64> {
+    let x = points.as_slice();
+    match points.dims() {
+        1 => Ok(extreme_1d(x)),
+        2 => {
+            limits.allow("the exact extreme discrepancy", points, (points.len() as f64).powi(3))?;
+            Ok(extreme_2d(x))
+        }
+        d => Err(Error::Invalid(format!("the exact extreme discrepancy is implemented in 1D and 2D, not {d}D"))),
+    }
 }

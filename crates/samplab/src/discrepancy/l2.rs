@@ -5,6 +5,11 @@
 //! Every function here returns the **squared** discrepancy; callers take the square root
 //! where the convention is the root (see [`super::Metric`]).
 
+use super::{Limits, MetricEntry};
+use crate::error::Result;
+use crate::points::PointSet;
+use crate::registry::About;
+use crate::spec::Params;
 use rayon::prelude::*;
 
 /// Neumaier's compensated sum.
@@ -257,6 +262,44 @@ impl Fenwick {
         s
     }
 }
+
+/// An L2 metric: the root of its squared closed form (clamped at zero: the closed forms
+/// cancel heavily).
+const fn l2_entry(about: About, compute: fn(&Params, &PointSet, Limits) -> Result<f64>) -> MetricEntry {
+    MetricEntry { l2: true, ..MetricEntry::new(about, compute) }
+}
+
+fn root(sq: f64) -> Result<f64> {
+    Ok(sq.max(0.0).sqrt())
+}
+
+/// The metrics this file registers.
+pub(crate) static ENTRIES: &[MetricEntry] = &[
+    l2_entry(
+        About::new("l2-star", "root mean square over anchored boxes (Shirley's S), Warnock's formula")
+            .aliases(&["rms", "s", "warnock"])
+            .cite(&["shirley1991"]),
+        |_, p, _| root(if p.dims() == 2 { l2_star_sq_2d(p.as_slice()) } else { l2_star_sq(p.as_slice(), p.dims()) }),
+    ),
+    l2_entry(
+        About::new("l2-extreme", "root mean square over all boxes").aliases(&["l2-unanchored"]).cite(&["shirley1991"]),
+        |_, p, _| root(l2_extreme_sq(p.as_slice(), p.dims())),
+    ),
+    l2_entry(About::new("centered", "centered L2 discrepancy (Hickernell)").aliases(&["cd"]), |_, p, _| {
+        root(centered_sq(p.as_slice(), p.dims()))
+    }),
+    MetricEntry {
+        shift_invariant: true,
+        ..l2_entry(
+            About::new("wraparound", "wrap-around L2 discrepancy (Hickernell); toroidal-shift invariant")
+                .aliases(&["wd", "wrap-around"]),
+            |_, p, _| root(wraparound_sq(p.as_slice(), p.dims())),
+        )
+    },
+    l2_entry(About::new("mixture", "mixture L2 discrepancy").aliases(&["md"]), |_, p, _| {
+        root(mixture_sq(p.as_slice(), p.dims()))
+    }),
+];
 
 #[cfg(test)]
 mod tests {

@@ -21,254 +21,99 @@
 //! | `projected` | 1D star/extreme of the projections against their exact CDF | n log n |
 //! | `star-bound` | threshold accepting: a LOWER BOUND on the star discrepancy | iterations x n d |
 
-use crate::error::{Error, Result, closest_names};
+use crate::error::{Error, Result};
 use crate::points::PointSet;
-use crate::spec::{Default, Kind, ParamSpec, Params, Spec};
+use crate::registry::{About, Entry, canonical};
+use crate::spec::Params;
 
-pub mod bound;
-pub mod extreme;
 mod kinetic;
-pub mod l2;
-pub mod star;
 
-/// A discrepancy to compute.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Metric {
-    /// Star discrepancy D* (anchored boxes, sup norm).
-    Star,
-    /// Extreme (unanchored, Stroud's) discrepancy (all boxes, sup norm).
-    Extreme,
-    /// L2-star discrepancy (Shirley's root-mean-square S).
-    L2Star,
-    /// L2 discrepancy over all boxes.
-    L2Extreme,
-    /// Centered L2 discrepancy (Hickernell 1998).
-    Centered,
-    /// Wrap-around L2 discrepancy (Hickernell 1998).
-    WrapAround,
-    /// Mixture L2 discrepancy (Zhou, Fang & Ning 2013).
-    Mixture,
-    /// A lower bound on the star discrepancy by threshold accepting (any dimension; for
-    /// high d and n where the exact algorithms are out of reach).
-    StarBound {
-        /// Search steps.
-        iterations: usize,
-        /// Seed of the search.
-        seed: u64,
-    },
-    /// The 1D discrepancy of the projections onto the direction at `angle` degrees from
-    /// the x axis, against the exact distribution of projected uniform points (2D).
-    Projected {
-        /// Direction, degrees.
-        angle: f64,
-        /// Half-lines (star) or intervals (extreme).
-        extreme: bool,
-    },
-}
+pub use projected::projected_uniform;
 
-/// One registered metric.
+/// One registered metric: what it is, its flags, and how to compute it.
 #[derive(Debug)]
 pub struct MetricEntry {
-    /// Canonical name.
-    pub name: &'static str,
-    /// Other accepted names.
-    pub aliases: &'static [&'static str],
-    /// One line: what it measures.
-    pub summary: &'static str,
-    /// Parameters in positional order.
-    pub params: &'static [ParamSpec],
+    /// Name, aliases, summary, parameters, references.
+    pub about: About,
     /// Whether the value is the root of a squared closed form (an L2 metric).
     pub l2: bool,
     /// Whether the value is invariant under toroidal shifts of the set.
     pub shift_invariant: bool,
     /// Whether the value is only a lower bound on the metric.
     pub lower_bound: bool,
-    /// Bibliography keys.
-    pub references: &'static [&'static str],
+    /// The value (unsquared) for resolved parameters, on a non-empty set inside [0,1]^d.
+    pub(crate) compute: fn(&Params, &PointSet, Limits) -> Result<f64>,
 }
 
-const PROJECTED_PARAMS: &[ParamSpec] = &[
-    ParamSpec {
-        name: "angle",
-        kind: Kind::Real { min: -360.0, max: 360.0 },
-        default: Default::Number(0.0),
-        doc: "direction, degrees from the x axis",
-    },
-    ParamSpec {
-        name: "kind",
-        kind: Kind::Choice(&["star", "extreme"]),
-        default: Default::Word("star"),
-        doc: "half-lines or intervals",
-    },
-];
+impl MetricEntry {
+    /// A metric with no flags set.
+    pub(crate) const fn new(about: About, compute: fn(&Params, &PointSet, Limits) -> Result<f64>) -> MetricEntry {
+        MetricEntry { about, l2: false, shift_invariant: false, lower_bound: false, compute }
+    }
+}
 
-const STAR_BOUND_PARAMS: &[ParamSpec] = &[
-    ParamSpec {
-        name: "iterations",
-        kind: Kind::Int { min: 1, max: 1_000_000_000 },
-        default: Default::Number(20000.0),
-        doc: "search steps (cost: iterations x n x d)",
-    },
-    ParamSpec {
-        name: "seed",
-        kind: Kind::Int { min: 0, max: u64::MAX },
-        default: Default::Number(0.0),
-        doc: "seed of the search",
-    },
-];
+impl Entry for MetricEntry {
+    fn about(&self) -> &About {
+        &self.about
+    }
+    fn details(&self) -> Vec<String> {
+        [
+            (self.l2, "L2: the root of a closed form"),
+            (self.shift_invariant, "invariant under toroidal shifts of the set"),
+            (self.lower_bound, "a LOWER BOUND, not the exact value"),
+        ]
+        .iter()
+        .filter(|(on, _)| *on)
+        .map(|(_, text)| (*text).to_string())
+        .collect()
+    }
+}
 
-/// Every metric, in listing order.
-pub static METRICS: &[MetricEntry] = &[
-    MetricEntry {
-        name: "star",
-        aliases: &["d", "star-discrepancy"],
-        summary: "sup over boxes anchored at the origin (Shirley's D)",
-        params: &[],
-        l2: false,
-        shift_invariant: false,
-        lower_bound: false,
-        references: &["shirley1991"],
-    },
-    MetricEntry {
-        name: "extreme",
-        aliases: &["stroud", "unanchored", "t"],
-        summary: "sup over all axis-parallel boxes (Stroud's T)",
-        params: &[],
-        l2: false,
-        shift_invariant: false,
-        lower_bound: false,
-        references: &["shirley1991"],
-    },
-    MetricEntry {
-        name: "l2-star",
-        aliases: &["rms", "s", "warnock"],
-        summary: "root mean square over anchored boxes (Shirley's S), Warnock's formula",
-        params: &[],
-        l2: true,
-        shift_invariant: false,
-        lower_bound: false,
-        references: &["shirley1991"],
-    },
-    MetricEntry {
-        name: "l2-extreme",
-        aliases: &["l2-unanchored"],
-        summary: "root mean square over all boxes",
-        params: &[],
-        l2: true,
-        shift_invariant: false,
-        lower_bound: false,
-        references: &["shirley1991"],
-    },
-    MetricEntry {
-        name: "centered",
-        aliases: &["cd"],
-        summary: "centered L2 discrepancy (Hickernell)",
-        params: &[],
-        l2: true,
-        shift_invariant: false,
-        lower_bound: false,
-        references: &[],
-    },
-    MetricEntry {
-        name: "wraparound",
-        aliases: &["wd", "wrap-around"],
-        summary: "wrap-around L2 discrepancy (Hickernell); toroidal-shift invariant",
-        params: &[],
-        l2: true,
-        shift_invariant: true,
-        lower_bound: false,
-        references: &[],
-    },
-    MetricEntry {
-        name: "mixture",
-        aliases: &["md"],
-        summary: "mixture L2 discrepancy",
-        params: &[],
-        l2: true,
-        shift_invariant: false,
-        lower_bound: false,
-        references: &[],
-    },
-    MetricEntry {
-        name: "star-bound",
-        aliases: &["star-ta", "threshold-accepting"],
-        summary: "LOWER BOUND on the star discrepancy by threshold accepting (high d and n)",
-        params: STAR_BOUND_PARAMS,
-        l2: false,
-        shift_invariant: false,
-        lower_bound: true,
-        references: &[],
-    },
-    MetricEntry {
-        name: "projected",
-        aliases: &[],
-        summary: "1D discrepancy of the projections onto a direction (2D)",
-        params: PROJECTED_PARAMS,
-        l2: false,
-        shift_invariant: false,
-        lower_bound: false,
-        references: &["shirley1991"],
-    },
-];
+crate::registry::registry_files! {
+    /// Every metric, in listing order, gathered from the files that declare them.
+    pub static METRICS: Registry<MetricEntry> =
+        ("metric", "METRICS  (values are never squared)") from [star, extreme, l2, bound, projected];
+}
+
+/// A discrepancy to compute: a registered metric with its parameters.
+///
+/// ```
+/// use samplab::discrepancy::{Limits, Metric, compute};
+/// use samplab::PointSet;
+/// let metric = Metric::parse("projected:angle=30,kind=extreme").unwrap();
+/// assert_eq!(metric.spec(), "projected:angle=30,kind=extreme");
+/// let points = PointSet::new(2, vec![0.25, 0.25, 0.75, 0.75]).unwrap();
+/// let d = compute(&Metric::parse("star").unwrap(), &points, Limits::default()).unwrap();
+/// assert!((d - 0.4375).abs() < 1e-15);
+/// ```
+#[derive(Debug, Clone)]
+pub struct Metric {
+    entry: &'static MetricEntry,
+    params: Params,
+}
 
 impl Metric {
     /// Parse `star`, `l2-star`, `projected:angle=30,kind=extreme`, ...
     ///
     /// # Errors
     /// An unknown name (with suggestions) or bad parameters.
-    pub fn parse(text: &str) -> Result<(Metric, &'static MetricEntry)> {
-        let spec = Spec::parse(text)?;
-        let want = spec.name.to_ascii_lowercase();
-        let entry = METRICS.iter().find(|e| e.name == want || e.aliases.contains(&want.as_str())).ok_or_else(|| {
-            Error::UnknownName {
-                kind: "metric",
-                name: spec.name.clone(),
-                suggestions: closest_names(
-                    &spec.name,
-                    METRICS.iter().flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied())),
-                ),
-            }
-        })?;
-        let params = Params::resolve(entry.name, entry.params, &spec.args)?;
-        let metric = match entry.name {
-            "star" => Metric::Star,
-            "extreme" => Metric::Extreme,
-            "l2-star" => Metric::L2Star,
-            "l2-extreme" => Metric::L2Extreme,
-            "centered" => Metric::Centered,
-            "wraparound" => Metric::WrapAround,
-            "mixture" => Metric::Mixture,
-            "star-bound" => Metric::StarBound {
-                iterations: params.number("iterations").unwrap_or(20000.0) as usize,
-                seed: params.number("seed").unwrap_or(0.0) as u64,
-            },
-            _ => Metric::Projected {
-                angle: params.number("angle").unwrap_or(0.0),
-                extreme: params.word("kind") == "extreme",
-            },
-        };
-        Ok((metric, entry))
+    pub fn parse(text: &str) -> Result<Metric> {
+        let (entry, params) = METRICS.resolve(text)?;
+        Ok(Metric { entry, params })
     }
 
-    /// The canonical spec of this metric.
+    /// The registry entry (name, flags, references).
+    pub fn entry(&self) -> &'static MetricEntry {
+        self.entry
+    }
+
+    /// The canonical spec of this metric, every parameter spelled out.
     pub fn spec(&self) -> String {
-        match self {
-            Metric::Star => "star".into(),
-            Metric::Extreme => "extreme".into(),
-            Metric::L2Star => "l2-star".into(),
-            Metric::L2Extreme => "l2-extreme".into(),
-            Metric::Centered => "centered".into(),
-            Metric::WrapAround => "wraparound".into(),
-            Metric::Mixture => "mixture".into(),
-            Metric::StarBound { iterations, seed } => format!("star-bound:iterations={iterations},seed={seed}"),
-            Metric::Projected { angle, extreme } => {
-                format!("projected:angle={angle},kind={}", if *extreme { "extreme" } else { "star" })
-            }
-        }
+        canonical(&self.entry.about, &self.params)
     }
 }
 
-/// Limits on the exact algorithms whose cost grows fastest; `--max-work` raises them.
+/// Limits on the exact algorithms whose cost grows fastest.
 #[derive(Debug, Clone, Copy)]
 pub struct Limits {
     /// The largest number of elementary steps an exact algorithm may take, estimated before
@@ -279,6 +124,23 @@ pub struct Limits {
 impl std::default::Default for Limits {
     fn default() -> Self {
         Limits { max_work: 2e10 }
+    }
+}
+
+impl Limits {
+    /// Refuse `work` steps of `what` over the limit, before doing any of it.
+    ///
+    /// # Errors
+    /// [`Error::WorkLimit`] when `work` exceeds [`Limits::max_work`].
+    pub(crate) fn allow(&self, what: &str, points: &PointSet, work: f64) -> Result<()> {
+        if work > self.max_work {
+            return Err(Error::WorkLimit {
+                what: format!("{what} of {} points in {}D", points.len(), points.dims()),
+                work,
+                limit: self.max_work,
+            });
+        }
+        Ok(())
     }
 }
 
@@ -299,91 +161,13 @@ pub fn check_unit_cube(points: &PointSet) -> Result<()> {
 ///
 /// # Errors
 /// Points outside \[0,1\]^d, an empty set, a metric that needs another dimension, or an
-/// exact algorithm whose cost would exceed `limits` (the message names `--max-work`).
+/// exact algorithm whose cost would exceed `limits` ([`Error::WorkLimit`]).
 pub fn compute(metric: &Metric, points: &PointSet, limits: Limits) -> Result<f64> {
     check_unit_cube(points)?;
     if points.is_empty() {
         return Err(Error::Invalid("the set is empty".into()));
     }
-    let (n, d) = (points.len() as f64, points.dims());
-    let x = points.as_slice();
-    let too_big = |what: &str, work: f64| {
-        Err(Error::Invalid(format!(
-            "{what} of {} points in {d}D takes about {work:.1e} steps, over the limit {:.1e}; raise it with --max-work (or max_work in Limits)",
-            points.len(),
-            limits.max_work
-        )))
-    };
-    let root = |sq: f64| sq.max(0.0).sqrt();
-    Ok(match metric {
-        Metric::Star => match d {
-            1 => star::star_1d(x),
-            2 => star::star_2d(x),
-            _ => {
-                let work = star::star_dem_work(points.len(), d);
-                if work > limits.max_work {
-                    return too_big("the exact star discrepancy", work);
-                }
-                star::star_dem(x, d)
-            }
-        },
-        Metric::Extreme => match d {
-            1 => extreme::extreme_1d(x),
-            2 => {
-                let work = n.powi(3);
-                if work > limits.max_work {
-                    return too_big("the exact extreme discrepancy", work);
-                }
-                extreme::extreme_2d(x)
-            }
-            _ => {
-                return Err(Error::Invalid(format!(
-                    "the exact extreme discrepancy is implemented in 1D and 2D, not {d}D"
-                )));
-            }
-        },
-        Metric::L2Star if d == 2 => root(l2::l2_star_sq_2d(x)),
-        Metric::L2Star => root(l2::l2_star_sq(x, d)),
-        Metric::L2Extreme => root(l2::l2_extreme_sq(x, d)),
-        Metric::Centered => root(l2::centered_sq(x, d)),
-        Metric::WrapAround => root(l2::wraparound_sq(x, d)),
-        Metric::Mixture => root(l2::mixture_sq(x, d)),
-        Metric::StarBound { iterations, seed } => bound::star_lower_bound(x, d, *iterations, crate::Seed(*seed)),
-        Metric::Projected { angle, extreme } => {
-            if d != 2 {
-                return Err(Error::Invalid(format!("projected discrepancy needs 2D points, got {d}D")));
-            }
-            let u = projected_uniform(points, *angle);
-            if *extreme { extreme::extreme_1d(&u) } else { star::star_1d(&u) }
-        }
-    })
-}
-
-/// The projections t = x cos(angle) + y sin(angle), mapped through the exact CDF of the
-/// projection of a uniform point of the square (a trapezoid), so that the generalized 1D
-/// discrepancy of t equals the ordinary 1D discrepancy of the mapped values.
-pub fn projected_uniform(points: &PointSet, angle_degrees: f64) -> Vec<f64> {
-    let (s, c) = angle_degrees.to_radians().sin_cos();
-    let (a, b) = (c.abs().max(s.abs()), c.abs().min(s.abs()));
-    let offset = c.min(0.0) + s.min(0.0);
-    let cdf = |z: f64| -> f64 {
-        let z = z - offset;
-        if b < 1e-15 {
-            return (z / a).clamp(0.0, 1.0);
-        }
-        if z <= 0.0 {
-            0.0
-        } else if z <= b {
-            z * z / (2.0 * a * b)
-        } else if z <= a {
-            (2.0 * z - b) / (2.0 * a)
-        } else if z < a + b {
-            1.0 - (a + b - z).powi(2) / (2.0 * a * b)
-        } else {
-            1.0
-        }
-    };
-    points.iter().map(|p| cdf(p[0] * c + p[1] * s)).collect()
+    (metric.entry.compute)(&metric.params, points, limits)
 }
 
 /// Generalized discrepancy for a separable density with per-axis CDFs (Shirley 1991
@@ -402,5 +186,5 @@ pub fn generalized(points: &PointSet, cdfs: &[&dyn Fn(f64) -> f64], anchored: bo
         .flat_map(|p| p.iter().zip(cdfs).map(|(x, f)| f(*x).clamp(0.0, 1.0)).collect::<Vec<_>>())
         .collect();
     let mapped = PointSet::new(points.dims(), mapped)?;
-    compute(if anchored { &Metric::Star } else { &Metric::Extreme }, &mapped, limits)
+    compute(&Metric::parse(if anchored { "star" } else { "extreme" })?, &mapped, limits)
 }

@@ -11,6 +11,11 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use rayon::prelude::*;
 
 use super::kinetic::KineticTree;
+use super::{Limits, MetricEntry};
+use crate::error::Result;
+use crate::points::PointSet;
+use crate::registry::About;
+use crate::spec::Params;
 
 /// 1D closed form: with x sorted, max_i max(i/N - x_(i), x_(i) - (i-1)/N). O(n log n).
 pub fn star_1d(x: &[f64]) -> f64 {
@@ -504,4 +509,26 @@ pub fn star_dem(points: &[f64], dims: usize) -> f64 {
         });
     }
     f64::from_bits(best.into_inner())
+}
+
+/// The metric this file registers.
+pub(crate) static ENTRIES: &[MetricEntry] = &[MetricEntry::new(
+    About::new("star", "sup over boxes anchored at the origin (Shirley's D)")
+        .aliases(&["d", "star-discrepancy"])
+        .cite(&["shirley1991"]),
+    star,
+)];
+
+/// The exact star discrepancy: closed form in 1D, the sweep in 2D, Dobkin-Eppstein-Mitchell
+/// beyond (refused over the work limit).
+fn star(_: &Params, points: &PointSet, limits: Limits) -> Result<f64> {
+    let (x, d) = (points.as_slice(), points.dims());
+    Ok(match d {
+        1 => star_1d(x),
+        2 => star_2d(x),
+        _ => {
+            limits.allow("the exact star discrepancy", points, star_dem_work(points.len(), d))?;
+            star_dem(x, d)
+        }
+    })
 }

@@ -120,15 +120,23 @@ struct InstanceStats {
 /// M < 2, K < 1, a sampler that cannot make a count or dimension, an impossible instance.
 pub fn run(study: &Study, progress: &(dyn Fn() + Sync)) -> Result<Vec<Row>> {
     if study.sets < 2 {
-        return Err(Error::Invalid(format!("--sets {}: the variance needs at least 2 realizations", study.sets)));
+        return Err(Error::Setting {
+            name: "sets",
+            value: study.sets.to_string(),
+            reason: "the variance needs at least 2 realizations".into(),
+        });
     }
     if study.instances < 1 {
-        return Err(Error::Invalid("--instances must be at least 1".into()));
+        return Err(Error::Setting {
+            name: "instances",
+            value: study.instances.to_string(),
+            reason: "at least 1 instance is needed".into(),
+        });
     }
     let dims = study.family.entry.dims;
     for s in study.samplers {
         for &n in study.ns {
-            s.check(n, dims)?;
+            s.plan(n, dims)?;
         }
     }
     let instances: Vec<Box<dyn Integrand>> = (0..study.instances as u64)
@@ -139,6 +147,7 @@ pub fn run(study: &Study, progress: &(dyn Fn() + Sync)) -> Result<Vec<Row>> {
         let spec = s.spec();
         for &n in study.ns {
             let base = study.seed.derive_str(&spec).derive(n as u64);
+            let plan = s.plan(n, dims)?;
             let per: Vec<InstanceStats> = instances
                 .par_iter()
                 .enumerate()
@@ -147,7 +156,7 @@ pub fn run(study: &Study, progress: &(dyn Fn() + Sync)) -> Result<Vec<Row>> {
                     let estimates: Vec<f64> = (0..study.sets as u64)
                         .into_par_iter()
                         .map(|m| {
-                            let pts = s.generate(n, dims, base.derive(k as u64).derive(m))?;
+                            let pts = plan.generate(base.derive(k as u64).derive(m))?;
                             Ok(pts.iter().map(|x| f.eval(x)).sum::<f64>() / n as f64)
                         })
                         .collect::<Result<_>>()?;

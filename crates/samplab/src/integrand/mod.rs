@@ -9,9 +9,10 @@
 
 use std::f64::consts::{PI, TAU};
 
-use crate::error::{Error, Result, closest_names};
+use crate::error::{Error, Result};
+use crate::registry::{About, Entry, Registry, canonical};
 use crate::seed::{Rng, Seed, uniform};
-use crate::spec::{Default, Kind, ParamSpec, Params, Spec};
+use crate::spec::{Default, Kind, ParamSpec, Params};
 
 mod delaunay;
 pub mod quadrature;
@@ -281,26 +282,34 @@ impl Integrand for Visibility {
 
 /// One registered integrand family.
 pub struct IntegrandEntry {
-    /// Canonical name.
-    pub name: &'static str,
-    /// Other accepted names.
-    pub aliases: &'static [&'static str],
-    /// One line: what it is.
-    pub summary: &'static str,
-    /// Parameters in positional order.
-    pub params: &'static [ParamSpec],
+    /// Name, aliases, summary, parameters, references.
+    pub about: About,
     /// Dimensions.
     pub dims: usize,
-    /// Bibliography keys.
-    pub references: &'static [&'static str],
     build: fn(&Params, &mut Rng) -> Result<Box<dyn Integrand>>,
 }
 
 impl std::fmt::Debug for IntegrandEntry {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("IntegrandEntry").field("name", &self.name).finish_non_exhaustive()
+        f.debug_struct("IntegrandEntry").field("name", &self.about.name).finish_non_exhaustive()
     }
 }
+
+impl Entry for IntegrandEntry {
+    fn about(&self) -> &About {
+        &self.about
+    }
+    fn details(&self) -> Vec<String> {
+        vec![format!("dimensions: {}", self.dims)]
+    }
+}
+
+/// Every integrand family.
+pub static INTEGRANDS: Registry<IntegrandEntry> = Registry::new(
+    "integrand",
+    "INTEGRANDS  (exact integrals; random families draw instance k from a hashed seed)",
+    &[FAMILIES],
+);
 
 const fn auto(name: &'static str, min: f64, max: f64, how: &'static str, doc: &'static str) -> ParamSpec {
     ParamSpec { name, kind: Kind::Real { min, max }, default: Default::Auto(how), doc }
@@ -309,105 +318,115 @@ const fn auto(name: &'static str, min: f64, max: f64, how: &'static str, doc: &'
 fn or_random(p: &Params, name: &str, rng: &mut Rng, lo: f64, hi: f64) -> f64 {
     // always draw, so that fixing one parameter leaves the others' streams unchanged
     let r = lo + (hi - lo) * uniform(rng);
-    p.number(name).unwrap_or(r)
+    p.real_or_auto(name).unwrap_or(r)
 }
 
-/// Every integrand family.
-pub static INTEGRANDS: &[IntegrandEntry] = &[
+/// The Delaunay test cases' one parameter.
+const DELAUNAY_POINTS: ParamSpec = ParamSpec {
+    name: "points",
+    kind: Kind::Int { min: 0, max: 10_000 },
+    default: Default::Int(8),
+    doc: "random points besides the four corners",
+};
+
+/// The families this file declares.
+static FAMILIES: &[IntegrandEntry] = &[
     IntegrandEntry {
-        name: "quad",
-        aliases: &["test-i", "occlusion"],
-        summary: "Subr & Kautz test case I: 0 inside a random quad with one vertex on each side, 1 outside",
-        params: &[],
+        about: About {
+            name: "quad",
+            aliases: &["test-i", "occlusion"],
+            summary: "Subr & Kautz test case I: 0 inside a random quad with one vertex on each side, 1 outside",
+            params: &[],
+            references: &["subr2013"],
+        },
         dims: 2,
-        references: &["subr2013"],
         build: |_, rng| Ok(Box::new(Quad::random(rng))),
     },
     IntegrandEntry {
-        name: "delaunay-constant",
-        aliases: &["test-ii"],
-        summary: "Subr & Kautz test case II: piecewise constant over a Delaunay triangulation of sparse random points and the corners",
-        params: &[ParamSpec {
-            name: "points",
-            kind: Kind::Int { min: 0, max: 10_000 },
-            default: Default::Number(8.0),
-            doc: "random points besides the four corners",
-        }],
+        about: About {
+            name: "delaunay-constant",
+            aliases: &["test-ii"],
+            summary: "Subr & Kautz test case II: piecewise constant over a Delaunay triangulation of sparse random points and the corners",
+            params: &[DELAUNAY_POINTS],
+            references: &["subr2013"],
+        },
         dims: 2,
-        references: &["subr2013"],
-        build: |p, rng| Ok(Box::new(Delaunay::random(p.number("points").unwrap_or(8.0) as usize, false, rng)?)),
+        build: |p, rng| Ok(Box::new(Delaunay::random(p.int("points") as usize, false, rng)?)),
     },
     IntegrandEntry {
-        name: "delaunay-linear",
-        aliases: &["test-iii"],
-        summary: "Subr & Kautz test case III: piecewise linear over a Delaunay triangulation, random weights per vertex",
-        params: &[ParamSpec {
-            name: "points",
-            kind: Kind::Int { min: 0, max: 10_000 },
-            default: Default::Number(8.0),
-            doc: "random points besides the four corners",
-        }],
+        about: About {
+            name: "delaunay-linear",
+            aliases: &["test-iii"],
+            summary: "Subr & Kautz test case III: piecewise linear over a Delaunay triangulation, random weights per vertex",
+            params: &[DELAUNAY_POINTS],
+            references: &["subr2013"],
+        },
         dims: 2,
-        references: &["subr2013"],
-        build: |p, rng| Ok(Box::new(Delaunay::random(p.number("points").unwrap_or(8.0) as usize, true, rng)?)),
+        build: |p, rng| Ok(Box::new(Delaunay::random(p.int("points") as usize, true, rng)?)),
     },
     IntegrandEntry {
-        name: "zoneplate",
-        aliases: &["zone-plate"],
-        summary: "zone plate (1 + cos(a r^2)) / 2 about the square's centre",
-        params: &[ParamSpec {
-            name: "a",
-            kind: Kind::Real { min: 0.0, max: 1e5 },
-            default: Default::Number(200.0),
-            doc: "chirp rate, radians per unit r^2",
-        }],
+        about: About {
+            name: "zoneplate",
+            aliases: &["zone-plate"],
+            summary: "zone plate (1 + cos(a r^2)) / 2 about the square's centre",
+            params: &[ParamSpec {
+                name: "a",
+                kind: Kind::Real { min: 0.0, max: 1e5 },
+                default: Default::Number(200.0),
+                doc: "chirp rate, radians per unit r^2",
+            }],
+            references: &["subr2013"],
+        },
         dims: 2,
-        references: &["subr2013"],
-        build: |p, _| Ok(Box::new(ZonePlate { a: p.number("a").unwrap_or(200.0) })),
+        build: |p, _| Ok(Box::new(ZonePlate { a: p.real("a") })),
     },
     IntegrandEntry {
-        name: "cosine",
-        aliases: &["plane-wave"],
-        summary: "plane wave (1 + cos(2 pi (u x + v y) + phase)) / 2 of integer frequency (u, v)",
-        params: &[
-            ParamSpec {
-                name: "u",
-                kind: Kind::Int { min: 0, max: 100_000 },
-                default: Default::Number(16.0),
-                doc: "cycles across x",
-            },
-            ParamSpec {
-                name: "v",
-                kind: Kind::Int { min: 0, max: 100_000 },
-                default: Default::Number(0.0),
-                doc: "cycles across y",
-            },
-            auto("phase", 0.0, std::f64::consts::TAU, "uniform", "phase, radians"),
-        ],
+        about: About {
+            name: "cosine",
+            aliases: &["plane-wave"],
+            summary: "plane wave (1 + cos(2 pi (u x + v y) + phase)) / 2 of integer frequency (u, v)",
+            params: &[
+                ParamSpec {
+                    name: "u",
+                    kind: Kind::Int { min: 0, max: 100_000 },
+                    default: Default::Int(16),
+                    doc: "cycles across x",
+                },
+                ParamSpec {
+                    name: "v",
+                    kind: Kind::Int { min: 0, max: 100_000 },
+                    default: Default::Int(0),
+                    doc: "cycles across y",
+                },
+                auto("phase", 0.0, std::f64::consts::TAU, "uniform", "phase, radians"),
+            ],
+            references: &["subr2013"],
+        },
         dims: 2,
-        references: &["subr2013"],
         build: |p, rng| {
             let phase = or_random(p, "phase", rng, 0.0, std::f64::consts::TAU);
-            Ok(Box::new(Cosine { u: p.number("u").unwrap_or(16.0), v: p.number("v").unwrap_or(0.0), phase }))
+            Ok(Box::new(Cosine { u: p.int("u") as f64, v: p.int("v") as f64, phase }))
         },
     },
     IntegrandEntry {
-        name: "disk",
-        aliases: &["circle"],
-        summary: "indicator of a disk inside the square (Sbert et al.'s circle)",
-        params: &[
-            auto(
-                "r",
-                0.0,
-                0.5,
-                "uniform in [0.1, 0.4], so that averages cover the radius (Sbert et al.'s Zitterbewegung)",
-                "radius",
-            ),
-            auto("cx", 0.0, 1.0, "random, keeping the disk inside the square", "centre x"),
-            auto("cy", 0.0, 1.0, "random, keeping the disk inside the square", "centre y"),
-        ],
+        about: About {
+            name: "disk",
+            aliases: &["circle"],
+            summary: "indicator of a disk inside the square (Sbert et al.'s circle)",
+            params: &[
+                auto(
+                    "r",
+                    0.0,
+                    0.5,
+                    "uniform in [0.1, 0.4], so that averages cover the radius (Sbert et al.'s Zitterbewegung)",
+                    "radius",
+                ),
+                auto("cx", 0.0, 1.0, "random, keeping the disk inside the square", "centre x"),
+                auto("cy", 0.0, 1.0, "random, keeping the disk inside the square", "centre y"),
+            ],
+            references: &["sbert2006"],
+        },
         dims: 2,
-        references: &["sbert2006"],
         build: |p, rng| {
             let r = or_random(p, "r", rng, 0.1, 0.4);
             let (cx, cy) = (or_random(p, "cx", rng, r, 1.0 - r), or_random(p, "cy", rng, r, 1.0 - r));
@@ -422,16 +441,18 @@ pub static INTEGRANDS: &[IntegrandEntry] = &[
         },
     },
     IntegrandEntry {
-        name: "halfplane",
-        aliases: &["edge"],
-        summary: "indicator of a half-plane at a random angle through a random point",
-        params: &[
-            auto("angle", -360.0, 360.0, "uniform", "direction of the normal, degrees"),
-            auto("x", 0.0, 1.0, "uniform", "a point on the line, x"),
-            auto("y", 0.0, 1.0, "uniform", "a point on the line, y"),
-        ],
+        about: About {
+            name: "halfplane",
+            aliases: &["edge"],
+            summary: "indicator of a half-plane at a random angle through a random point",
+            params: &[
+                auto("angle", -360.0, 360.0, "uniform", "direction of the normal, degrees"),
+                auto("x", 0.0, 1.0, "uniform", "a point on the line, x"),
+                auto("y", 0.0, 1.0, "uniform", "a point on the line, y"),
+            ],
+            references: &["sbert2006"],
+        },
         dims: 2,
-        references: &["sbert2006"],
         build: |p, rng| {
             let angle = or_random(p, "angle", rng, 0.0, 360.0).to_radians();
             let point = [or_random(p, "x", rng, 0.0, 1.0), or_random(p, "y", rng, 0.0, 1.0)];
@@ -439,60 +460,71 @@ pub static INTEGRANDS: &[IntegrandEntry] = &[
         },
     },
     IntegrandEntry {
-        name: "gaussian",
-        aliases: &[],
-        summary: "isotropic Gaussian bump at a random centre",
-        params: &[
-            ParamSpec {
-                name: "sigma",
-                kind: Kind::Real { min: 1e-3, max: 10.0 },
-                default: Default::Number(0.15),
-                doc: "standard deviation",
-            },
-            auto("cx", 0.0, 1.0, "uniform", "centre x"),
-            auto("cy", 0.0, 1.0, "uniform", "centre y"),
-        ],
+        about: About {
+            name: "gaussian",
+            aliases: &[],
+            summary: "isotropic Gaussian bump at a random centre",
+            params: &[
+                ParamSpec {
+                    name: "sigma",
+                    kind: Kind::Real { min: 1e-3, max: 10.0 },
+                    default: Default::Number(0.15),
+                    doc: "standard deviation",
+                },
+                auto("cx", 0.0, 1.0, "uniform", "centre x"),
+                auto("cy", 0.0, 1.0, "uniform", "centre y"),
+            ],
+            references: &[],
+        },
         dims: 2,
-        references: &[],
         build: |p, rng| {
             Ok(Box::new(Gaussian {
-                sigma: p.number("sigma").unwrap_or(0.15),
+                sigma: p.real("sigma"),
                 centre: [or_random(p, "cx", rng, 0.0, 1.0), or_random(p, "cy", rng, 0.0, 1.0)],
             }))
         },
     },
     IntegrandEntry {
-        name: "smooth",
-        aliases: &["exp"],
-        summary: "smooth non-periodic exp(a x + b y), a and b uniform in [0.5, 2]",
-        params: &[],
+        about: About {
+            name: "smooth",
+            aliases: &["exp"],
+            summary: "smooth non-periodic exp(a x + b y), a and b uniform in [0.5, 2]",
+            params: &[],
+            references: &[],
+        },
         dims: 2,
-        references: &[],
         build: |_, rng| Ok(Box::new(Smooth { a: 0.5 + 1.5 * uniform(rng), b: 0.5 + 1.5 * uniform(rng) })),
     },
     IntegrandEntry {
-        name: "step",
-        aliases: &["heaviside"],
-        summary: "1D visibility H(y - y0): one discontinuity (Ramamoorthi et al. eq. 5)",
-        params: &[auto("y0", 0.0, 1.0, "uniform", "discontinuity")],
+        about: About {
+            name: "step",
+            aliases: &["heaviside"],
+            summary: "1D visibility H(y - y0): one discontinuity (Ramamoorthi et al. eq. 5)",
+            params: &[auto("y0", 0.0, 1.0, "uniform", "discontinuity")],
+            references: &["ramamoorthi2012"],
+        },
         dims: 1,
-        references: &["ramamoorthi2012"],
         build: |p, rng| Ok(Box::new(Visibility { edges: vec![or_random(p, "y0", rng, 0.0, 1.0)], start: 0.0 })),
     },
     IntegrandEntry {
-        name: "box",
-        aliases: &["boxcar"],
-        summary: "1D visibility H(y - y0) - H(y - z0): two discontinuities (Ramamoorthi et al. eq. 13)",
-        params: &[
-            auto("y0", 0.0, 1.0, "the smaller of two uniform draws", "first discontinuity"),
-            auto("z0", 0.0, 1.0, "the larger", "second discontinuity"),
-        ],
+        about: About {
+            name: "box",
+            aliases: &["boxcar"],
+            summary: "1D visibility H(y - y0) - H(y - z0): two discontinuities (Ramamoorthi et al. eq. 13)",
+            params: &[
+                auto("y0", 0.0, 1.0, "the smaller of two uniform draws", "first discontinuity"),
+                auto("z0", 0.0, 1.0, "the larger", "second discontinuity"),
+            ],
+            references: &["ramamoorthi2012"],
+        },
         dims: 1,
-        references: &["ramamoorthi2012"],
         build: |p, rng| {
             let (a, b) = (or_random(p, "y0", rng, 0.0, 1.0), or_random(p, "z0", rng, 0.0, 1.0));
-            let (y0, z0) =
-                if p.number("y0").is_some() || p.number("z0").is_some() { (a, b) } else { (a.min(b), a.max(b)) };
+            let (y0, z0) = if p.real_or_auto("y0").is_some() || p.real_or_auto("z0").is_some() {
+                (a, b)
+            } else {
+                (a.min(b), a.max(b))
+            };
             if z0 < y0 {
                 return Err(Error::Param {
                     owner: "box".into(),
@@ -504,19 +536,21 @@ pub static INTEGRANDS: &[IntegrandEntry] = &[
         },
     },
     IntegrandEntry {
-        name: "steps",
-        aliases: &["discontinuities"],
-        summary: "1D visibility with k discontinuities at uniform random positions (Ramamoorthi et al. Fig. 7)",
-        params: &[ParamSpec {
-            name: "k",
-            kind: Kind::Int { min: 0, max: 100_000 },
-            default: Default::Number(3.0),
-            doc: "number of discontinuities",
-        }],
+        about: About {
+            name: "steps",
+            aliases: &["discontinuities"],
+            summary: "1D visibility with k discontinuities at uniform random positions (Ramamoorthi et al. Fig. 7)",
+            params: &[ParamSpec {
+                name: "k",
+                kind: Kind::Int { min: 0, max: 100_000 },
+                default: Default::Int(3),
+                doc: "number of discontinuities",
+            }],
+            references: &["ramamoorthi2012"],
+        },
         dims: 1,
-        references: &["ramamoorthi2012"],
         build: |p, rng| {
-            let k = p.number("k").unwrap_or(3.0) as usize;
+            let k = p.int("k") as usize;
             let mut edges: Vec<f64> = (0..k).map(|_| uniform(rng)).collect();
             edges.sort_by(f64::total_cmp);
             Ok(Box::new(Visibility { edges, start: 0.0 }))
@@ -538,29 +572,13 @@ impl Family {
     /// # Errors
     /// An unknown name (with suggestions) or bad parameters.
     pub fn parse(text: &str) -> Result<Family> {
-        let spec = Spec::parse(text)?;
-        let want = spec.name.to_ascii_lowercase();
-        let entry =
-            INTEGRANDS.iter().find(|e| e.name == want || e.aliases.contains(&want.as_str())).ok_or_else(|| {
-                Error::UnknownName {
-                    kind: "integrand",
-                    name: spec.name.clone(),
-                    suggestions: closest_names(
-                        &spec.name,
-                        INTEGRANDS.iter().flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied())),
-                    ),
-                }
-            })?;
-        Ok(Family { entry, params: Params::resolve(entry.name, entry.params, &spec.args)? })
+        let (entry, params) = INTEGRANDS.resolve(text)?;
+        Ok(Family { entry, params })
     }
 
     /// The canonical spec.
     pub fn spec(&self) -> String {
-        if self.entry.params.is_empty() {
-            self.entry.name.into()
-        } else {
-            format!("{}:{}", self.entry.name, self.params.describe())
-        }
+        canonical(&self.entry.about, &self.params)
     }
 
     /// Instance `k` of the family for `seed`.

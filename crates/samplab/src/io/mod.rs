@@ -18,8 +18,9 @@ use std::io::Write as _;
 use std::ops::RangeInclusive;
 use std::path::Path;
 
-use crate::error::{Error, Result, closest_names};
+use crate::error::{Error, Result};
 use crate::points::PointSet;
+use crate::registry::{About, Entry, Registry};
 
 /// A point-set file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -34,37 +35,51 @@ pub enum Format {
     Json,
 }
 
-/// Format names, for `--format` and `samplab list formats`.
-pub const FORMATS: &[(&str, Format, &str)] = &[
-    ("text", Format::Text, "white-space separated, one point per line, '#' line between sets (.txt, .pts, .dat)"),
-    ("csv", Format::Csv, "comma separated with a header row x0,x1,... (.csv)"),
-    ("npy", Format::Npy, "NumPy f64 array, (n, d) or (m, n, d) (.npy)"),
-    ("json", Format::Json, "{\"sets\": [[[x, y], ...], ...]} with metadata (.json)"),
+/// One registered format: its name, the file extensions that imply it (also accepted as
+/// names), and the format.
+#[derive(Debug)]
+pub struct FormatEntry {
+    /// Name, extensions as aliases, summary.
+    pub about: About,
+    /// The format.
+    pub format: Format,
+}
+
+impl Entry for FormatEntry {
+    fn about(&self) -> &About {
+        &self.about
+    }
+}
+
+/// Every format, for `--format` and `samplab list formats`.
+pub static FORMATS: Registry<FormatEntry> = Registry::new("format", "FORMATS", &[FORMAT_ENTRIES]);
+
+static FORMAT_ENTRIES: &[FormatEntry] = &[
+    FormatEntry {
+        about: About::new("text", "white-space separated, one point per line, '#' line between sets")
+            .aliases(&["txt", "pts", "dat"]),
+        format: Format::Text,
+    },
+    FormatEntry { about: About::new("csv", "comma separated with a header row x0,x1,..."), format: Format::Csv },
+    FormatEntry { about: About::new("npy", "NumPy f64 array, (n, d) or (m, n, d)"), format: Format::Npy },
+    FormatEntry { about: About::new("json", "{\"sets\": [[[x, y], ...], ...]} with metadata"), format: Format::Json },
 ];
 
 impl Format {
-    /// The format called `name`.
+    /// The format called `name` (or named by its file extension, e.g. `txt`).
     ///
     /// # Errors
-    /// An unknown name.
+    /// An unknown name, with suggestions.
     pub fn from_name(name: &str) -> Result<Format> {
-        FORMATS.iter().find(|(n, _, _)| n.eq_ignore_ascii_case(name)).map(|(_, f, _)| *f).ok_or_else(|| {
-            Error::UnknownName {
-                kind: "format",
-                name: name.into(),
-                suggestions: closest_names(name, FORMATS.iter().map(|(n, _, _)| *n)),
-            }
-        })
+        Ok(FORMATS.lookup(name)?.format)
     }
 
     /// The format a file name implies by its extension (text when unknown).
     pub fn from_path(path: &Path) -> Format {
-        match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-            Some("csv") => Format::Csv,
-            Some("npy") => Format::Npy,
-            Some("json") => Format::Json,
-            _ => Format::Text,
-        }
+        path.extension()
+            .and_then(|e| e.to_str())
+            .and_then(|e| FORMATS.lookup(e).ok())
+            .map_or(Format::Text, |entry| entry.format)
     }
 }
 
@@ -381,21 +396,21 @@ fn decode_json(bytes: &[u8], name: &str, domain: &RangeInclusive<f64>) -> Result
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampler::{Sampler, random::Random};
     use crate::seed::Seed;
 
     fn sets() -> Vec<PointSet> {
-        (0..3).map(|k| Random.generate(5, 3, Seed(k)).unwrap()).collect()
+        let random = crate::sampler::build("random").unwrap();
+        (0..3).map(|k| random.generate(5, 3, Seed(k)).unwrap()).collect()
     }
 
     #[test]
     fn every_format_round_trips_bit_for_bit() {
-        for (_, f, _) in FORMATS {
-            let bytes = encode(&sets(), *f, &["made by a test".into()]).unwrap();
-            let back = decode(&bytes, *f, "mem").unwrap();
+        for f in FORMATS.iter().map(|e| e.format) {
+            let bytes = encode(&sets(), f, &["made by a test".into()]).unwrap();
+            let back = decode(&bytes, f, "mem").unwrap();
             assert_eq!(back, sets(), "{f:?}");
-            let one = encode(&sets()[..1], *f, &[]).unwrap();
-            assert_eq!(decode(&one, *f, "mem").unwrap(), sets()[..1].to_vec(), "{f:?} single");
+            let one = encode(&sets()[..1], f, &[]).unwrap();
+            assert_eq!(decode(&one, f, "mem").unwrap(), sets()[..1].to_vec(), "{f:?} single");
         }
     }
 

@@ -5,9 +5,12 @@
 
 use std::ops::RangeInclusive;
 
-use super::Sampler;
+use super::registry::SamplerEntry;
+use super::{Fill, Sampler};
 use crate::error::{Error, Result};
+use crate::registry::About;
 use crate::seed::{Seed, below, uniform};
+use crate::spec::{Default, Kind, ParamSpec};
 
 /// The force-matrix sampler. `s` is in units of the mean spacing n^(-1/d) of the chosen
 /// points; the whole pattern is moved by one uniform offset inside a fine cell
@@ -24,7 +27,7 @@ const MAX_CELLS: usize = 1 << 24;
 
 impl ForceMatrix {
     /// `grid` None means G = ceil(4 n^(1/d)) cells per axis.
-    pub fn new(s: f64, p: f64, grid: Option<usize>) -> Self {
+    pub(crate) fn new(s: f64, p: f64, grid: Option<usize>) -> Self {
         ForceMatrix { s, p, grid }
     }
 
@@ -41,6 +44,9 @@ impl Sampler for ForceMatrix {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=4
     }
+}
+
+impl Fill for ForceMatrix {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         let g = self.grid_size(n, dims);
         let cells = g.checked_pow(dims as u32).unwrap_or(usize::MAX);
@@ -124,3 +130,33 @@ impl Sampler for ForceMatrix {
         Ok(())
     }
 }
+
+/// The sampler this file registers.
+pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
+    about: About::new("force-matrix", "n cells of a fine grid chosen by least repulsion energy exp(-(r/s)^p)")
+        .aliases(&["forcematrix"])
+        .params(&[
+            ParamSpec {
+                name: "s",
+                kind: Kind::Real { min: 1e-3, max: 10.0 },
+                default: Default::Number(0.5),
+                doc: "energy scale, in units of the mean spacing n^(-1/d)",
+            },
+            ParamSpec {
+                name: "p",
+                kind: Kind::Real { min: 0.1, max: 16.0 },
+                default: Default::Number(2.0),
+                doc: "energy exponent",
+            },
+            ParamSpec {
+                name: "grid",
+                kind: Kind::Int { min: 1, max: 1 << 24 },
+                default: Default::Auto("ceil(4 n^(1/d)) cells per axis"),
+                doc: "fine grid cells per axis",
+            },
+        ])
+        .cite(&["sbert2006", "purgathofer1994"]),
+    counts: "n <= G^d",
+    dims: "1..=4",
+    build: |p| Ok(Box::new(ForceMatrix::new(p.real("s"), p.real("p"), p.int_or_auto("grid").map(|g| g as usize)))),
+}];

@@ -9,9 +9,13 @@
 use std::f64::consts::TAU;
 use std::ops::RangeInclusive;
 
-use super::{Sampler, exact_root};
+use super::registry::{GRID, SamplerEntry};
+use super::{Fill, Sampler, exact_root};
 use crate::error::{Error, Result};
+use crate::registry::About;
 use crate::seed::{Rng, Seed, normal, uniform, wrap01};
+use crate::spec::{Default, Kind, ParamSpec};
+use crate::spectrum::theory::{self, VarianceTheory};
 
 /// The largest f64 below one: where a rounding could land a coordinate on 1.0.
 pub(crate) const BELOW_ONE: f64 = 1.0 - f64::EPSILON / 2.0;
@@ -69,7 +73,7 @@ pub struct Grid {
 
 impl Grid {
     /// A grid sampler registered under `name`.
-    pub fn new(name: &'static str, displacement: Displacement) -> Self {
+    pub(crate) fn new(name: &'static str, displacement: Displacement) -> Self {
         Grid { name, displacement }
     }
 }
@@ -100,6 +104,28 @@ impl Sampler for Grid {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=64
     }
+    fn spectrum_theory(&self, n: usize, dims: usize) -> Option<VarianceTheory> {
+        // displacements are fractions of the spacing 1/k
+        let k = (n as f64).powf(1.0 / dims as f64);
+        match self.displacement {
+            Displacement::Gaussian { sigma, .. } => {
+                let s = sigma / k;
+                Some(VarianceTheory::new(format!("exact theory (1 - phi^2)/N, Gaussian sigma = {s:.4}"), move |w| {
+                    theory::gaussian_variance(w, s, n)
+                }))
+            }
+            Displacement::Box { delta } => {
+                let d = delta / k;
+                Some(VarianceTheory::new(format!("exact theory (1 - phi^2)/N, box half-width {d:.4}"), move |w| {
+                    theory::box_variance(w, d, n)
+                }))
+            }
+            _ => None,
+        }
+    }
+}
+
+impl Fill for Grid {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         match self.displacement {
             Displacement::Uniform { offsets } if offsets > 1 => self.per_offset(n, offsets, dims).map(|_| ()),
@@ -107,8 +133,8 @@ impl Sampler for Grid {
         }
     }
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        if let Displacement::Uniform { offsets } = self.displacement {
-            if offsets > 1 {
+        if let Displacement::Uniform { offsets } = self.displacement
+            && offsets > 1 {
                 let each = self.per_offset(n, offsets, dims)?;
                 let one = Grid::new(self.name, Displacement::Uniform { offsets: 1 });
                 for (j, block) in out.chunks_exact_mut(each * dims).enumerate() {
@@ -116,7 +142,6 @@ impl Sampler for Grid {
                 }
                 return Ok(());
             }
-        }
         let k = check_grid_count(self.spec(), n, dims)?;
         let mut rng = seed.rng();
         let inv = 1.0 / k as f64;
@@ -142,7 +167,7 @@ impl Sampler for Grid {
 impl Grid {
     /// The points of each of `offsets` systematic grids making n: n / offsets = k^d.
     fn per_offset(&self, n: usize, offsets: usize, dims: usize) -> Result<usize> {
-        if n % offsets != 0 {
+        if !n.is_multiple_of(offsets) {
             return Err(Error::InvalidCount {
                 sampler: self.spec(),
                 n,
@@ -188,6 +213,9 @@ impl Sampler for RotatedGrid {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
+}
+
+impl Fill for RotatedGrid {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         check_grid_count(self.spec(), n, dims).map(|_| ())
     }
@@ -206,3 +234,113 @@ impl Sampler for RotatedGrid {
         Ok(())
     }
 }
+
+/// A grid entry: counts k^d, dimensions 1..=64.
+const fn grid_entry(about: About, build: fn(&crate::spec::Params) -> Result<Box<dyn Sampler>>) -> SamplerEntry {
+    SamplerEntry { about, counts: GRID, dims: "1..=64", build }
+}
+
+const SIGMA: ParamSpec = ParamSpec {
+    name: "sigma",
+    kind: Kind::Real { min: 0.0, max: 8.0 },
+    default: Default::Number(0.25),
+    doc: "standard deviation, fraction of the grid spacing",
+};
+
+/// The samplers this file registers.
+pub(crate) static ENTRIES: &[SamplerEntry] = &[
+    grid_entry(
+        About::new("regular", "cell centres of a k^d grid").aliases(&["grid", "uniform"]).cite(&["shirley1991"]),
+        |_| Ok(Box::new(Grid::new("regular", Displacement::Regular))),
+    ),
+    SamplerEntry {
+        about: About::new("regular.rotated", "regular grid, random rotation and offset, wrapped on the torus")
+            .aliases(&["rotated-grid"])
+            .cite(&["subr2013"]),
+        counts: GRID,
+        dims: "2",
+        build: |_| Ok(Box::new(RotatedGrid)),
+    },
+    grid_entry(
+        About::new("jitter", "one uniform point per grid cell")
+            .aliases(&["jittered", "stratified"])
+            .cite(&["cook1986", "shirley1991"]),
+        |_| Ok(Box::new(Grid::new("jitter", Displacement::Jitter))),
+    ),
+    grid_entry(
+        About::new("jitter.half", "uniform in the central half of each cell (per axis)")
+            .aliases(&["half-jittered", "halfjittered"])
+            .cite(&["shirley1991"]),
+        |_| Ok(Box::new(Grid::new("jitter.half", Displacement::Half))),
+    ),
+    grid_entry(
+        About::new("jitter.box", "uniform in a centred box of half-width delta (cells)")
+            .aliases(&["bjittered", "box-jitter"])
+            .params(&[ParamSpec {
+                name: "delta",
+                kind: Kind::Real { min: 0.0, max: 0.5 },
+                default: Default::Number(0.1),
+                doc: "half-width of the box, fraction of a cell",
+            }])
+            .cite(&["subr2013"]),
+        |p| Ok(Box::new(Grid::new("jitter.box", Displacement::Box { delta: p.real("delta") }))),
+    ),
+    grid_entry(
+        About::new("jitter.gaussian", "cell centre plus a normal offset of deviation sigma (cells)")
+            .aliases(&["gjittered", "gaussian-jitter"])
+            .params(&[
+                SIGMA,
+                ParamSpec {
+                    name: "edge",
+                    kind: Kind::Choice(&["wrap", "resample"]),
+                    default: Default::Word("wrap"),
+                    doc: "points leaving [0,1)^d wrap toroidally, or their offset is redrawn",
+                },
+            ])
+            .cite(&["subr2013"]),
+        |p| {
+            let displacement = Displacement::Gaussian { sigma: p.real("sigma"), resample: p.word("edge") == "resample" };
+            Ok(Box::new(Grid::new("jitter.gaussian", displacement)))
+        },
+    ),
+    SamplerEntry {
+        about: About::new(
+            "jitter.uniform",
+            "the regular grid moved by one shared uniform offset (or several grids, one offset each)",
+        )
+        .aliases(&["systematic", "uniform-jitter"])
+        .params(&[ParamSpec {
+            name: "offsets",
+            kind: Kind::Int { min: 1, max: 1 << 20 },
+            default: Default::Int(1),
+            doc: "independent systematic grids of n / offsets points each (Sbert et al. 2006's secondary estimator, Table 1)",
+        }])
+        .cite(&["sbert2006", "ramamoorthi2012"]),
+        counts: "n = offsets x k^d",
+        dims: "1..=64",
+        build: |p| {
+            let offsets = p.int("offsets") as usize;
+            Ok(Box::new(Grid::new("jitter.uniform", Displacement::Uniform { offsets })))
+        },
+    },
+    grid_entry(
+        About::new(
+            "jitter.uniform-gaussian",
+            "shared offset alpha*(u-1/2) plus per-point normal offsets sigma (cells), wrapped",
+        )
+        .params(&[
+            ParamSpec {
+                name: "alpha",
+                kind: Kind::Real { min: 0.0, max: 1.0 },
+                default: Default::Number(1.0),
+                doc: "scale of the shared uniform offset, cells",
+            },
+            ParamSpec { doc: "standard deviation of the per-point offsets, cells", ..SIGMA },
+        ])
+        .cite(&["subr2013"]),
+        |p| {
+            let displacement = Displacement::UniformGaussian { alpha: p.real("alpha"), sigma: p.real("sigma") };
+            Ok(Box::new(Grid::new("jitter.uniform-gaussian", displacement)))
+        },
+    ),
+];

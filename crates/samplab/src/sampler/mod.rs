@@ -1,13 +1,26 @@
 //! Samplers: every strategy of the four papers plus the modern low-discrepancy ones.
 //!
-//! Three interfaces, because there are three problems:
-//! - [`Sampler::generate`]: a batch of `n` points in `d` dimensions for a seed;
-//! - [`Sequence::sample`]: random access to coordinate `dim` of point `index` (for the
-//!   progressive sequences: Halton, Sobol); the batch form equals it bit for bit;
-//! - [`generate_sets`]: `m` independent realizations in parallel, realization `k` seeded
-//!   with `seed.derive(k)`, identical whatever the thread count.
+//! Planned, then filled (as RustFFT's planner): `plan` (on `dyn Sampler`) checks a count and a
+//! dimension once and returns a [`Plan`], which fills buffers from seeds:
+//! - [`Plan::fill`] / [`Plan::generate`]: a batch of `n` points in `d` dimensions for a seed;
+//! - [`Plan::generate_sets`]: `m` independent realizations in parallel, realization `k`
+//!   seeded with `seed.derive(k)`, identical whatever the thread count;
+//! - [`Sequence::access`]: random access to coordinate `dim` of point `index` (for the
+//!   progressive sequences: Halton, Sobol'), tables built once; it equals the batch bit for
+//!   bit.
 //!
-//! Build samplers by spec through [`registry::build`]; `samplab list samplers` prints the
+//! ```
+//! use samplab::{Seed, sampler};
+//! let s = sampler::build("sobol.owen")?;
+//! let plan = s.plan(1024, 3)?;
+//! let sets = plan.generate_sets(Seed(7), 4)?;
+//! assert_eq!(sets[1], plan.generate(Seed(7).derive(1))?);
+//! let access = s.as_sequence().expect("Sobol' has random access").access(3, Seed(7))?;
+//! assert_eq!(access.sample(5, 2)?, plan.generate(Seed(7))?.point(5)[2]);
+//! # Ok::<(), samplab::Error>(())
+//! ```
+//!
+//! Build samplers by spec through [`build`]; [`SAMPLERS`] (and `samplab list samplers`) is the
 //! table with every name, alias, parameter and reference.
 
 use std::fmt::Debug;
@@ -19,55 +32,87 @@ use crate::error::{Error, Result};
 use crate::points::PointSet;
 use crate::seed::Seed;
 
-pub mod force_matrix;
-pub mod grid;
-pub mod nrooks;
-pub mod pmj;
-pub mod poisson;
-pub mod radical;
-pub mod random;
 pub mod registry;
 pub mod scramble;
-pub mod sobol;
 
-pub use registry::{SamplerEntry, build, lookup};
+crate::registry::registry_files! {
+    /// Every sampler, in listing order, gathered from the files that declare them.
+    pub static SAMPLERS: Registry<SamplerEntry> =
+        ("sampler", "SAMPLERS  (spec: name[:key=value,...] or name[:value,...] in the order listed)")
+        from [random, grid, nrooks, poisson, pmj, force_matrix, sobol, radical];
+}
+
+pub use registry::{SamplerEntry, build};
 pub use scramble::Randomization;
 
 /// The largest point count samplab will allocate for one set (2^32 points).
 pub const MAX_POINTS: usize = 1 << 32;
 
-/// A sampling strategy: an immutable value; randomness comes from the seed.
-pub trait Sampler: Send + Sync + Debug {
+mod sealed {
+    use crate::error::Result;
+    use crate::seed::Seed;
+
+    /// What every sampler implements inside samplab: its count rule and its filling. Reached
+    /// from outside only through a checked [`super::Plan`] (the trait is not nameable
+    /// outside the crate, so the unchecked entry points are not public).
+    pub trait Fill {
+        /// Whether exactly `n` points can be made in `dims` dimensions (the dimension is
+        /// already checked); a count the method cannot make is an error naming the nearest
+        /// counts that work (never rounded).
+        fn check_count(&self, _n: usize, _dims: usize) -> Result<()> {
+            Ok(())
+        }
+
+        /// Write `n` points of `dims` coordinates into `out` (length `n * dims`), row-major.
+        /// Called only by a [`super::Plan`], after every check passed.
+        fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()>;
+    }
+}
+
+pub(crate) use sealed::Fill;
+
+/// A sampling strategy: an immutable value; randomness comes from the seed. Make points by
+/// planning first (`plan` on `dyn Sampler`: every check, once), then filling from
+/// seeds, as often as needed.
+pub trait Sampler: Fill + Send + Sync + Debug {
     /// The canonical spec (name and parameters), for messages and headers.
     fn spec(&self) -> String;
 
     /// The dimensions this method supports.
     fn dims(&self) -> RangeInclusive<usize>;
 
-    /// Whether exactly `n` points can be made in `dims` dimensions; a count the method
-    /// cannot make is an error naming the nearest counts that work (never rounded).
-    fn check_count(&self, _n: usize, _dims: usize) -> Result<()> {
-        Ok(())
+    /// Random access to the points, for the progressive sequences (Sobol', Halton).
+    fn as_sequence(&self) -> Option<&dyn Sequence> {
+        None
     }
 
-    /// Write `n` points of `dims` coordinates into `out` (length `n * dims`), row-major.
-    /// Called only after the dimension and count checks passed.
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()>;
+    /// The closed form of the variance of the spectrum of `n` points in `dims` dimensions,
+    /// where one is known (Gaussian and box jitter: Subr & Kautz 2013 eqs. 9 and 11 in their
+    /// exact form).
+    fn spectrum_theory(&self, _n: usize, _dims: usize) -> Option<crate::spectrum::theory::VarianceTheory> {
+        None
+    }
+}
 
-    /// `n` points in [0,1)^dims for `seed`.
+impl<'s> dyn Sampler + 's {
+    /// Check that `n` points in `dims` dimensions can be made, and prepare to make them.
     ///
     /// # Errors
-    /// An unsupported dimension, a count the method cannot make, or (for Poisson disks) a
-    /// radius that does not fit `n` points.
-    fn generate(&self, n: usize, dims: usize, seed: Seed) -> Result<PointSet> {
-        self.check(n, dims)?;
-        let mut data = vec![0.0; n * dims];
-        self.fill(n, dims, seed, &mut data)?;
-        Ok(PointSet::from_raw(dims, data))
-    }
-
-    /// Dimension and count checks, as [`Sampler::generate`] runs them.
-    fn check(&self, n: usize, dims: usize) -> Result<()> {
+    /// An unsupported dimension ([`Error::InvalidDims`]), a count the method cannot make
+    /// ([`Error::InvalidCount`], naming the nearest counts that work), or (Poisson disks) a
+    /// radius that cannot fit `n` points ([`Error::Infeasible`]).
+    ///
+    /// ```
+    /// use samplab::{Seed, sampler};
+    /// let jitter = sampler::build("jitter").unwrap();
+    /// assert!(jitter.plan(15, 2).unwrap_err().to_string().contains("9 and 16"));
+    /// let plan = jitter.plan(16, 2).unwrap();
+    /// let mut buffer = vec![0.0; 32];
+    /// for k in 0..3 {
+    ///     plan.fill(Seed(7).derive(k), &mut buffer).unwrap();
+    /// }
+    /// ```
+    pub fn plan(&self, n: usize, dims: usize) -> Result<Plan<'_>> {
         let range = self.dims();
         if !range.contains(&dims) {
             return Err(Error::InvalidDims {
@@ -84,23 +129,107 @@ pub trait Sampler: Send + Sync + Debug {
                 reason: format!("n must be in 1..={MAX_POINTS}"),
             });
         }
-        self.check_count(n, dims)
+        self.check_count(n, dims)?;
+        Ok(Plan { sampler: self, n, dims })
+    }
+
+    /// `n` points in [0,1)^dims for `seed`: `plan`, then [`Plan::generate`].
+    ///
+    /// # Errors
+    /// As `plan` and [`Plan::fill`].
+    pub fn generate(&self, n: usize, dims: usize, seed: Seed) -> Result<PointSet> {
+        self.plan(n, dims)?.generate(seed)
     }
 }
 
-/// Random access to a progressive sequence: coordinate `dim` of point `index`.
+/// A sampler checked for one count and dimension: fill it from as many seeds as needed.
+#[derive(Debug, Clone, Copy)]
+pub struct Plan<'s> {
+    sampler: &'s dyn Sampler,
+    n: usize,
+    dims: usize,
+}
+
+impl Plan<'_> {
+    /// Points per set.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// Dimensions.
+    pub fn dims(&self) -> usize {
+        self.dims
+    }
+
+    /// The sampler's canonical spec.
+    pub fn spec(&self) -> String {
+        self.sampler.spec()
+    }
+
+    /// Write the `n` points for `seed` into `out` (length `n * dims`, row-major), without
+    /// allocating for the grids, the sequences, random, N-rooks and the multi-jittered
+    /// patterns.
+    ///
+    /// # Errors
+    /// Only the stochastic constructions that can fail for a seed: Poisson-disk samplers
+    /// whose dart throwing (or radius search) could not place `n` points
+    /// ([`Error::Infeasible`]). Every other sampler's fill cannot fail once planned.
+    ///
+    /// # Panics
+    /// When `out.len() != n * dims`.
+    pub fn fill(&self, seed: Seed, out: &mut [f64]) -> Result<()> {
+        assert_eq!(out.len(), self.n * self.dims, "the buffer must hold n x dims coordinates");
+        self.sampler.fill(self.n, self.dims, seed, out)
+    }
+
+    /// The `n` points for `seed`.
+    ///
+    /// # Errors
+    /// As [`Plan::fill`].
+    pub fn generate(&self, seed: Seed) -> Result<PointSet> {
+        let mut data = vec![0.0; self.n * self.dims];
+        self.fill(seed, &mut data)?;
+        Ok(PointSet::from_raw(self.dims, data))
+    }
+
+    /// `m` realizations in parallel; realization k uses `seed.derive(k)`, so the sets are
+    /// the same whatever the thread count.
+    ///
+    /// # Errors
+    /// As [`Plan::fill`]; the first failing realization's error is returned.
+    pub fn generate_sets(&self, seed: Seed, m: usize) -> Result<Vec<PointSet>> {
+        (0..m as u64).into_par_iter().map(|k| self.generate(seed.derive(k))).collect()
+    }
+}
+
+/// Random access to a progressive sequence (Sobol', Halton): coordinate `dim` of point
+/// `index`, equal bit for bit to the batch.
 pub trait Sequence: Sampler {
-    /// Coordinate `dim` of point `index`, in [0, 1), a pure function of its arguments.
-    fn sample(&self, index: u64, dim: usize, seed: Seed) -> f64;
+    /// Random access for `dims` dimensions and `seed`, with its tables built once.
+    ///
+    /// # Errors
+    /// An unsupported dimension.
+    fn access(&self, dims: usize, seed: Seed) -> Result<Box<dyn Access + '_>>;
+}
+
+/// A prepared random access to a sequence ([`Sequence::access`]).
+pub trait Access: Send + Sync + Debug {
+    /// Coordinate `dim` of point `index`, in [0, 1).
+    ///
+    /// # Errors
+    /// An index beyond the sequence (32-bit Sobol' points stop at 2^32 - 1).
+    ///
+    /// # Panics
+    /// When `dim` is not below the dimensions the access was prepared for.
+    fn sample(&self, index: u64, dim: usize) -> Result<f64>;
 }
 
 /// `m` realizations of `n` points each, in parallel; realization k uses `seed.derive(k)`.
 ///
 /// # Errors
-/// As [`Sampler::generate`]; the first failing realization's error is returned.
+/// As `plan` (on `dyn Sampler`) and [`Plan::fill`].
 pub fn generate_sets(sampler: &dyn Sampler, n: usize, dims: usize, seed: Seed, m: usize) -> Result<Vec<PointSet>> {
-    sampler.check(n, dims)?;
-    (0..m as u64).into_par_iter().map(|k| sampler.generate(n, dims, seed.derive(k))).collect()
+    sampler.plan(n, dims)?.generate_sets(seed, m)
 }
 
 /// The integer k with k^d == n, if there is one; otherwise the two nearest valid counts.

@@ -3,8 +3,10 @@
 
 use std::ops::RangeInclusive;
 
-use super::Sampler;
+use super::registry::{ANY, SamplerEntry};
+use super::{Fill, Sampler};
 use crate::error::Result;
+use crate::registry::About;
 use crate::seed::{Seed, below, uniform};
 
 /// Coordinate d of point i is (pi_d(i) + u) / n with pi_d a uniformly random permutation
@@ -22,6 +24,9 @@ impl Sampler for NRooks {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=usize::MAX
     }
+}
+
+impl Fill for NRooks {
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         let mut rng = seed.rng();
         let inv = 1.0 / n as f64;
@@ -41,3 +46,13 @@ impl Sampler for NRooks {
         Ok(())
     }
 }
+
+/// The sampler this file registers.
+pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
+    about: About::new("nrooks", "one point in every slab of every axis (Latin hypercube)")
+        .aliases(&["n-rooks", "separate", "lhcube", "latin-hypercube", "lhs"])
+        .cite(&["mckay1979", "shirley1991"]),
+    counts: ANY,
+    dims: "any d",
+    build: |_| Ok(Box::new(NRooks)),
+}];

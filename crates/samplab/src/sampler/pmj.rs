@@ -6,10 +6,12 @@ use std::ops::RangeInclusive;
 
 use rand_core::Rng as _;
 
-use super::Sampler;
+use super::registry::{ANY, SamplerEntry};
 use super::scramble::{hash_unit, permute};
 use super::sobol::SOBOL_DIRECTIONS;
+use super::{Fill, Sampler};
 use crate::error::Result;
+use crate::registry::About;
 use crate::seed::Seed;
 
 /// pmj02: every prefix of 2^m points is a (0,m,2)-net in base 2 (one point in every
@@ -53,6 +55,9 @@ impl Sampler for Pmj02 {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
+}
+
+impl Fill for Pmj02 {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         super::sobol::Sobol::new(super::Randomization::None).check_count(n, dims)
     }
@@ -94,6 +99,9 @@ impl Sampler for Cmj {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
+}
+
+impl Fill for Cmj {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         if n > u32::MAX as usize {
             return Err(crate::error::Error::InvalidCount {
@@ -123,3 +131,23 @@ impl Sampler for Cmj {
         Ok(())
     }
 }
+
+/// The samplers this file registers.
+pub(crate) static ENTRIES: &[SamplerEntry] = &[
+    SamplerEntry {
+        about: About::new("pmj02", "progressive multi-jittered (0,2) sequence, stochastic construction")
+            .aliases(&["pmj"])
+            .cite(&["christensen2018", "helmer2021"]),
+        counts: "any n (nets at powers of two)",
+        dims: "2",
+        build: |_| Ok(Box::new(Pmj02)),
+    },
+    SamplerEntry {
+        about: About::new("cmj", "correlated multi-jittered sampling")
+            .aliases(&["correlated-multi-jittered"])
+            .cite(&["kensler2013"]),
+        counts: ANY,
+        dims: "2",
+        build: |_| Ok(Box::new(Cmj)),
+    },
+];

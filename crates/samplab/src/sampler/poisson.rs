@@ -22,9 +22,12 @@ use std::ops::RangeInclusive;
 
 use rand_core::Rng as _;
 
-use super::Sampler;
+use super::registry::{ANY, EDGE, SamplerEntry};
+use super::{Fill, Sampler};
 use crate::error::{Error, Result};
+use crate::registry::About;
 use crate::seed::{Rng, Seed, below, uniform, wrap01};
+use crate::spec::{Default, Kind, ParamSpec};
 
 /// The hexagonal-packing radius of n points in the unit torus (d = 2), and its analogues
 /// for d = 1, 3, 4 from the densest lattice packings: the largest possible minimum distance.
@@ -405,7 +408,7 @@ pub struct DartThrowing {
 impl DartThrowing {
     /// `radius` None means 0.7 x [`packing_radius`]; `attempts` is the number of
     /// consecutive rejected candidates after which a try is abandoned (16 tries in all).
-    pub fn new(radius: Option<f64>, torus: bool, attempts: u64) -> Self {
+    pub(crate) fn new(radius: Option<f64>, torus: bool, attempts: u64) -> Self {
         DartThrowing { radius, torus, attempts }
     }
 }
@@ -449,6 +452,9 @@ impl Sampler for DartThrowing {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=4
     }
+}
+
+impl Fill for DartThrowing {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         let r = self.radius.unwrap_or(AUTO_RELATIVE * packing_radius(n, dims));
         // with plain edges the disks may poke out of the square by r/2
@@ -565,7 +571,7 @@ pub struct Bridson {
 impl Bridson {
     /// `radius` None means 0.72 x [`packing_radius`], shrunk when a fill falls short of
     /// n; `k` candidates per active point.
-    pub fn new(radius: Option<f64>, torus: bool, k: u32) -> Self {
+    pub(crate) fn new(radius: Option<f64>, torus: bool, k: u32) -> Self {
         Bridson { radius, torus, k }
     }
 }
@@ -578,6 +584,9 @@ impl Sampler for Bridson {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
+}
+
+impl Fill for Bridson {
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         let mut r = self.radius.unwrap_or(0.72 * packing_radius(n, dims));
         let mut rng = seed.rng();
@@ -661,6 +670,9 @@ impl Sampler for Maximal {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
+}
+
+impl Fill for Maximal {
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         let rmax = packing_radius(n, dims);
         for t in 0..8 {
@@ -688,6 +700,74 @@ impl Sampler for Maximal {
         })
     }
 }
+
+/// The samplers this file registers.
+pub(crate) static ENTRIES: &[SamplerEntry] = &[
+    SamplerEntry {
+        about: About::new("poisson", "dart throwing with a minimum distance")
+            .aliases(&["poisson-disk", "dart-throwing"])
+            .params(&[
+                ParamSpec {
+                    name: "radius",
+                    kind: Kind::Real { min: 1e-9, max: 1.0 },
+                    default: Default::Auto("0.7 x the packing radius of n points"),
+                    doc: "minimum distance between points",
+                },
+                EDGE,
+                ParamSpec {
+                    name: "attempts",
+                    kind: Kind::Int { min: 1, max: 1_000_000_000 },
+                    default: Default::Int(100_000),
+                    doc: "consecutive misses before a try is abandoned (16 tries)",
+                },
+            ])
+            .cite(&["cook1986", "shirley1991"]),
+        counts: ANY,
+        dims: "1..=4",
+        build: |p| {
+            let torus = edge_is_torus(p.word("edge"));
+            Ok(Box::new(DartThrowing::new(p.real_or_auto("radius"), torus, p.int("attempts"))))
+        },
+    },
+    SamplerEntry {
+        about: About::new("poisson.fast", "Bridson's O(n) Poisson disk: fill, then keep a random n")
+            .aliases(&["bridson"])
+            .params(&[
+                ParamSpec {
+                    name: "radius",
+                    kind: Kind::Real { min: 1e-6, max: 1.0 },
+                    default: Default::Auto("0.72 x the packing radius of n points"),
+                    doc: "minimum distance between points",
+                },
+                EDGE,
+                ParamSpec {
+                    name: "k",
+                    kind: Kind::Int { min: 1, max: 10_000 },
+                    default: Default::Int(30),
+                    doc: "candidates tried around each active point",
+                },
+            ])
+            .cite(&["bridson2007"]),
+        counts: ANY,
+        dims: "2",
+        build: |p| {
+            let torus = edge_is_torus(p.word("edge"));
+            Ok(Box::new(Bridson::new(p.real_or_auto("radius"), torus, p.int("k") as u32)))
+        },
+    },
+    SamplerEntry {
+        about: About::new(
+            "poisson.maximal",
+            "maximal Poisson disk: no room for another point; radius found for exactly n",
+        )
+        .aliases(&["maximal-poisson"])
+        .params(&[EDGE])
+        .cite(&["ebeida2012", "bridson2007"]),
+        counts: ANY,
+        dims: "2",
+        build: |p| Ok(Box::new(Maximal::new(edge_is_torus(p.word("edge"))))),
+    },
+];
 
 #[cfg(test)]
 mod tests {

@@ -13,9 +13,11 @@ use std::ops::RangeInclusive;
 use std::sync::LazyLock;
 
 use super::grid::BELOW_ONE;
+use super::registry::{ANY, SamplerEntry, randomized_entries};
 use super::scramble::{Randomization, hash_unit, hash2, owen_scramble_u32, permute};
-use super::{Sampler, Sequence};
+use super::{Access, Fill, Sampler, Sequence};
 use crate::error::Result;
+use crate::registry::About;
 use crate::seed::{Seed, below, wrap01};
 
 /// How many dimensions (primes) the Halton sequence supports.
@@ -26,7 +28,7 @@ pub static PRIMES: LazyLock<Vec<u32>> = LazyLock::new(|| {
     let mut primes = Vec::with_capacity(HALTON_MAX_DIMS);
     let mut c = 2u32;
     while primes.len() < HALTON_MAX_DIMS {
-        if primes.iter().take_while(|&&p| p * p <= c).all(|&p| c % p != 0) {
+        if primes.iter().take_while(|&&p| p * p <= c).all(|&p| !c.is_multiple_of(p)) {
             primes.push(c);
         }
         c += 1;
@@ -246,6 +248,12 @@ impl Sampler for Halton {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=HALTON_MAX_DIMS
     }
+    fn as_sequence(&self) -> Option<&dyn Sequence> {
+        Some(self)
+    }
+}
+
+impl Fill for Halton {
     fn fill(&self, _n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         for d in 0..dims {
             Coordinate::new(PRIMES[d], self.randomization, seed, d).fill_strided(0, out, dims, d);
@@ -255,8 +263,33 @@ impl Sampler for Halton {
 }
 
 impl Sequence for Halton {
-    fn sample(&self, index: u64, dim: usize, seed: Seed) -> f64 {
-        Coordinate::new(PRIMES[dim], self.randomization, seed, dim).value(index)
+    fn access(&self, dims: usize, seed: Seed) -> Result<Box<dyn Access + '_>> {
+        (self as &dyn Sampler).plan(1, dims)?;
+        let coordinates = (0..dims).map(|d| Coordinate::new(PRIMES[d], self.randomization, seed, d)).collect();
+        Ok(Box::new(HaltonAccess { coordinates }))
+    }
+}
+
+/// Random access to a randomized Halton sequence: each dimension's digit tables, built once.
+#[derive(Debug)]
+struct HaltonAccess {
+    coordinates: Vec<Coordinate>,
+}
+
+/// The first index past the digit tables: every base's tables hold at least 53 bits of
+/// digits (see [`positions`]), and a double holds no more.
+const HALTON_INDICES: u64 = 1 << 53;
+
+impl Access for HaltonAccess {
+    fn sample(&self, index: u64, dim: usize) -> Result<f64> {
+        if index >= HALTON_INDICES {
+            return Err(crate::error::Error::Setting {
+                name: "index",
+                value: index.to_string(),
+                reason: "Halton points stop at index 2^53 - 1 (further digits exceed double precision)".into(),
+            });
+        }
+        Ok(self.coordinates[dim].value(index))
     }
 }
 
@@ -282,6 +315,9 @@ impl Sampler for Hammersley {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=HALTON_MAX_DIMS + 1
     }
+}
+
+impl Fill for Hammersley {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         if n as u64 > 1 << 32 {
             return Err(crate::error::Error::InvalidCount {
@@ -311,6 +347,12 @@ impl Sampler for Hammersley {
         Ok(())
     }
 }
+
+/// The samplers this file registers: Halton and Hammersley with their randomizations.
+pub(crate) static ENTRIES: &[SamplerEntry] = randomized_entries!(
+    (Halton, "halton", "Halton sequence, prime bases", ANY, "1..=1024", ["halton1960"]),
+    (Hammersley, "hammersley", "Hammersley set: i/n, then Halton", "n <= 2^32", "1..=1025", ["hammersley1964"]),
+);
 
 #[cfg(test)]
 mod tests {

@@ -2,8 +2,10 @@
 
 use std::ops::RangeInclusive;
 
-use super::Sampler;
+use super::registry::{ANY, SamplerEntry};
+use super::{Fill, Sampler};
 use crate::error::Result;
+use crate::registry::About;
 use crate::seed::{Seed, uniform};
 
 /// Every coordinate an independent uniform draw in [0, 1). Any n, any d.
@@ -17,9 +19,22 @@ impl Sampler for Random {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=usize::MAX
     }
+}
+
+impl Fill for Random {
     fn fill(&self, _n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         let mut rng = seed.rng();
         out.iter_mut().for_each(|x| *x = uniform(&mut rng));
         Ok(())
     }
 }
+
+/// The sampler this file registers.
+pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
+    about: About::new("random", "independent uniform points")
+        .aliases(&["uniform-random", "poisson-sampling"])
+        .cite(&["shirley1991"]),
+    counts: ANY,
+    dims: "any d",
+    build: |_| Ok(Box::new(Random)),
+}];

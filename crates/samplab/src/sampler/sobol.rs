@@ -4,9 +4,11 @@
 
 use std::ops::RangeInclusive;
 
+use super::registry::{SamplerEntry, randomized_entries};
 use super::scramble::{Randomization, hash_unit, owen_scramble_reversed};
-use super::{Sampler, Sequence};
+use super::{Access, Fill, Sampler, Sequence};
 use crate::error::{Error, Result};
+use crate::registry::About;
 use crate::seed::{Seed, wrap01};
 use crate::simd::wide;
 
@@ -53,7 +55,7 @@ pub fn sobol_u32(index: u32, dim: usize) -> u32 {
 }
 
 /// Per-dimension randomization state derived from the seed.
-#[derive(Clone, Copy)]
+#[derive(Debug, Clone, Copy)]
 struct DimKey {
     bits: u32,
     shift: f64,
@@ -171,6 +173,12 @@ impl Sampler for Sobol {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=SOBOL_MAX_DIMS
     }
+    fn as_sequence(&self) -> Option<&dyn Sequence> {
+        Some(self)
+    }
+}
+
+impl Fill for Sobol {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         if n as u64 > 1 << 32 {
             return Err(Error::InvalidCount {
@@ -236,8 +244,36 @@ impl Sampler for Sobol {
 }
 
 impl Sequence for Sobol {
-    fn sample(&self, index: u64, dim: usize, seed: Seed) -> f64 {
-        let gray = (index ^ (index >> 1)) as u32;
-        self.finish(sobol_u32(gray, dim), DimKey::new(seed, dim))
+    fn access(&self, dims: usize, seed: Seed) -> Result<Box<dyn Access + '_>> {
+        (self as &dyn Sampler).plan(1, dims)?;
+        Ok(Box::new(SobolAccess { sobol: self, keys: (0..dims).map(|d| DimKey::new(seed, d)).collect() }))
     }
 }
+
+/// Random access to a randomized Sobol' sequence: the per-dimension keys, drawn once.
+#[derive(Debug)]
+struct SobolAccess<'a> {
+    sobol: &'a Sobol,
+    keys: Vec<DimKey>,
+}
+
+impl Access for SobolAccess<'_> {
+    fn sample(&self, index: u64, dim: usize) -> Result<f64> {
+        let index = u32::try_from(index).map_err(|_| Error::Setting {
+            name: "index",
+            value: index.to_string(),
+            reason: "32-bit Sobol' points stop at index 2^32 - 1".into(),
+        })?;
+        Ok(self.sobol.finish(sobol_u32(index ^ (index >> 1), dim), self.keys[dim]))
+    }
+}
+
+/// The samplers this file registers: Sobol' and its three randomizations.
+pub(crate) static ENTRIES: &[SamplerEntry] = randomized_entries!((
+    Sobol,
+    "sobol",
+    "Sobol' sequence, Joe-Kuo directions",
+    "n <= 2^32 (nets at powers of two)",
+    "1..=1024",
+    ["sobol1967", "joe2008"]
+));

@@ -6,6 +6,31 @@
 
 use std::f64::consts::PI;
 
+/// A sampler's closed-form spectrum variance, where one is known ([`crate::Sampler::spectrum_theory`]).
+pub struct VarianceTheory {
+    /// What the curve is, with its parameter in the units of x.
+    pub label: String,
+    variance: Box<dyn Fn(f64) -> f64 + Send + Sync>,
+}
+
+impl std::fmt::Debug for VarianceTheory {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("VarianceTheory").field("label", &self.label).finish_non_exhaustive()
+    }
+}
+
+impl VarianceTheory {
+    /// A curve called `label`.
+    pub fn new(label: String, variance: impl Fn(f64) -> f64 + Send + Sync + 'static) -> Self {
+        VarianceTheory { label, variance: Box::new(variance) }
+    }
+
+    /// The predicted variance of the spectrum at radial frequency `w`.
+    pub fn at(&self, w: f64) -> f64 {
+        (self.variance)(w)
+    }
+}
+
 /// Gaussian jitter of standard deviation `sigma` (in the units of x): phi = exp(-2 pi^2 sigma^2 w^2).
 pub fn gaussian_ratio(w: f64, sigma: f64) -> f64 {
     (-2.0 * PI * PI * sigma * sigma * w * w).exp()

@@ -8,8 +8,9 @@
 use std::f64::consts::{FRAC_PI_4, PI, TAU};
 use std::fmt::Debug;
 
-use crate::error::{Error, Result, closest_names};
+use crate::error::{Error, Result};
 use crate::points::PointSet;
+use crate::registry::{About, Entry, Registry};
 
 /// A map from uniform points to another domain, with its density and inverse.
 pub trait Warp: Send + Sync + Debug {
@@ -342,76 +343,104 @@ impl Warp for CosineHemisphere {
 /// One registered warp.
 #[derive(Debug)]
 pub struct WarpEntry {
-    /// Canonical name.
-    pub name: &'static str,
-    /// Other accepted names.
-    pub aliases: &'static [&'static str],
-    /// One line: what it does.
-    pub summary: &'static str,
+    /// Name, aliases, summary, references (warps take no parameters).
+    pub about: About,
     /// Input and output dimensions, in words.
     pub dims: &'static str,
-    /// Bibliography keys.
-    pub references: &'static [&'static str],
     /// The warp.
     pub warp: &'static dyn Warp,
 }
 
+impl Entry for WarpEntry {
+    fn about(&self) -> &About {
+        &self.about
+    }
+    fn details(&self) -> Vec<String> {
+        vec![format!("dimensions: {}", self.dims)]
+    }
+}
+
 /// Every registered warp.
-pub static WARPS: &[WarpEntry] = &[
+pub static WARPS: Registry<WarpEntry> =
+    Registry::new("warp", "WARPS  (forward map, density and inverse)", &[WARP_ENTRIES]);
+
+/// The warps this file declares.
+static WARP_ENTRIES: &[WarpEntry] = &[
     WarpEntry {
-        name: "disk.polar",
-        aliases: &["polar"],
-        summary: "square to unit disk, r = sqrt(u), phi = 2 pi v",
+        about: About {
+            name: "disk.polar",
+            aliases: &["polar"],
+            summary: "square to unit disk, r = sqrt(u), phi = 2 pi v",
+            params: &[],
+            references: &["shirley1991"],
+        },
         dims: "2 -> 2",
-        references: &["shirley1991"],
         warp: &PolarDisk,
     },
     WarpEntry {
-        name: "disk.concentric",
-        aliases: &["concentric", "shirley-chiu"],
-        summary: "square to unit disk, area-preserving low distortion",
+        about: About {
+            name: "disk.concentric",
+            aliases: &["concentric", "shirley-chiu"],
+            summary: "square to unit disk, area-preserving low distortion",
+            params: &[],
+            references: &["shirley1997"],
+        },
         dims: "2 -> 2",
-        references: &["shirley1997"],
         warp: &ConcentricDisk,
     },
     WarpEntry {
-        name: "disk.reject",
-        aliases: &["reject"],
-        summary: "keep the points of [-1,1)^2 inside the unit disk",
+        about: About {
+            name: "disk.reject",
+            aliases: &["reject"],
+            summary: "keep the points of [-1,1)^2 inside the unit disk",
+            params: &[],
+            references: &["shirley1991"],
+        },
         dims: "2 -> 2",
-        references: &["shirley1991"],
         warp: &RejectDisk,
     },
     WarpEntry {
-        name: "tent",
-        aliases: &["tent-filter"],
-        summary: "tent filter (1-|x|) on [-1,1] per axis, inverse CDF",
+        about: About {
+            name: "tent",
+            aliases: &["tent-filter"],
+            summary: "tent filter (1-|x|) on [-1,1] per axis, inverse CDF",
+            params: &[],
+            references: &["shirley1991"],
+        },
         dims: "d -> d",
-        references: &["shirley1991"],
         warp: &Tent,
     },
     WarpEntry {
-        name: "gaussian",
-        aliases: &["normal", "box-muller"],
-        summary: "standard normal in the plane (Box-Muller)",
+        about: About {
+            name: "gaussian",
+            aliases: &["normal", "box-muller"],
+            summary: "standard normal in the plane (Box-Muller)",
+            params: &[],
+            references: &[],
+        },
         dims: "2 -> 2",
-        references: &[],
         warp: &Gaussian,
     },
     WarpEntry {
-        name: "hemisphere.uniform",
-        aliases: &["hemisphere"],
-        summary: "uniform directions, z >= 0",
+        about: About {
+            name: "hemisphere.uniform",
+            aliases: &["hemisphere"],
+            summary: "uniform directions, z >= 0",
+            params: &[],
+            references: &[],
+        },
         dims: "2 -> 3",
-        references: &[],
         warp: &UniformHemisphere,
     },
     WarpEntry {
-        name: "hemisphere.cosine",
-        aliases: &["cosine"],
-        summary: "cosine-weighted directions (concentric disk lifted)",
+        about: About {
+            name: "hemisphere.cosine",
+            aliases: &["cosine"],
+            summary: "cosine-weighted directions (concentric disk lifted)",
+            params: &[],
+            references: &["shirley1997", "sbert2006"],
+        },
         dims: "2 -> 3",
-        references: &["shirley1997", "sbert2006"],
         warp: &CosineHemisphere,
     },
 ];
@@ -421,17 +450,7 @@ pub static WARPS: &[WarpEntry] = &[
 /// # Errors
 /// An unknown name, with the closest known names.
 pub fn lookup(name: &str) -> Result<&'static dyn Warp> {
-    let want = name.to_ascii_lowercase();
-    WARPS.iter().find(|e| e.name == want || e.aliases.contains(&want.as_str())).map(|e| e.warp).ok_or_else(|| {
-        Error::UnknownName {
-            kind: "warp",
-            name: name.into(),
-            suggestions: closest_names(
-                name,
-                WARPS.iter().flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied())),
-            ),
-        }
-    })
+    Ok(WARPS.lookup(name)?.warp)
 }
 
 #[cfg(test)]
@@ -440,7 +459,7 @@ mod tests {
     use crate::seed::{Seed, uniform};
 
     fn bijective() -> impl Iterator<Item = &'static WarpEntry> {
-        WARPS.iter().filter(|e| e.name != "disk.reject")
+        WARPS.iter().filter(|e| e.about.name != "disk.reject")
     }
 
     #[test]
@@ -455,7 +474,7 @@ mod tests {
     #[test]
     fn forward_then_inverse_round_trips() {
         let mut rng = Seed(1).rng();
-        for e in WARPS {
+        for e in WARPS.iter() {
             for _ in 0..2000 {
                 let u = [uniform(&mut rng), uniform(&mut rng)];
                 let mut x = vec![0.0; e.warp.output_dims(2)];
@@ -463,11 +482,11 @@ mod tests {
                     continue;
                 }
                 let mut back = [0.0; 2];
-                assert!(e.warp.inverse(&x, &mut back), "{}: {x:?} outside", e.name);
+                assert!(e.warp.inverse(&x, &mut back), "{}: {x:?} outside", e.about.name);
                 for d in 0..2 {
                     let diff = (back[d] - u[d]).abs();
                     // angles wrap: 0 and 1 are the same point
-                    assert!(diff.min(1.0 - diff) < 1e-9, "{}: {u:?} -> {x:?} -> {back:?}", e.name);
+                    assert!(diff.min(1.0 - diff) < 1e-9, "{}: {u:?} -> {x:?} -> {back:?}", e.about.name);
                 }
             }
         }
@@ -501,7 +520,7 @@ mod tests {
                     (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
                 };
                 let product = e.warp.density(&x) * jac;
-                assert!((product - 1.0).abs() < 1e-5, "{} at {u:?}: density x jacobian = {product}", e.name);
+                assert!((product - 1.0).abs() < 1e-5, "{} at {u:?}: density x jacobian = {product}", e.about.name);
             }
         }
     }
@@ -547,7 +566,7 @@ mod tests {
     #[test]
     fn names_unique_and_lookup_suggests() {
         let mut names: Vec<&str> =
-            WARPS.iter().flat_map(|e| std::iter::once(e.name).chain(e.aliases.iter().copied())).collect();
+            WARPS.iter().flat_map(|e| std::iter::once(e.about.name).chain(e.about.aliases.iter().copied())).collect();
         let before = names.len();
         names.sort();
         names.dedup();

@@ -146,7 +146,11 @@ fn error_score(per_scene: &[Vec<f64>]) -> Vec<f64> {
 /// and T rank the strategies as their image errors do. Kendall's tau of each discrepancy's
 /// mean against the error score (ave|E| over the scene's mean, averaged over Tables 1-4).
 fn thesis(ctx: &Ctx, errors: &[Vec<Summary>]) -> Result<Claim, Error> {
-    let metrics = [("D", Metric::Star, "table5"), ("S", Metric::L2Star, "table6"), ("T", Metric::Extreme, "table7")];
+    let metrics = [
+        ("D", Metric::parse("star")?, "table5"),
+        ("S", Metric::parse("l2-star")?, "table6"),
+        ("T", Metric::parse("extreme")?, "table7"),
+    ];
     let ours_score = error_score(&errors.iter().map(|s| s.iter().map(|x| x.mean).collect()).collect::<Vec<_>>());
     let tables = ["table1", "table2", "table3", "table4"];
     let published_score = error_score(

@@ -73,7 +73,7 @@ pub(super) fn nonuniform(ctx: &Ctx) -> Result<Output, Error> {
         let mut gap: f64 = 0.0;
         let mut values = Vec::new();
         for s in &sets {
-            let star = discrepancy::compute(&Metric::Star, s, Limits::default())?;
+            let star = discrepancy::compute(&Metric::parse("star")?, s, Limits::default())?;
             let general = tent_star_brute_force(&warp::apply(tent, s)?, &f);
             gap = gap.max((star - general).abs());
             values.push(general);

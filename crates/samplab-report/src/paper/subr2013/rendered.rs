@@ -209,7 +209,7 @@ pub(super) fn defocus(ctx: &Ctx) -> Result<Output, Error> {
         render: &|setup, spec, spp, seed| {
             Setup { pixel: spec, lens: spec, ..*setup }.render(FIXED_LIGHT, 16, spp, seed)
         },
-        reference: &|setup, seed| setup.converged().render(FIXED_LIGHT, 16, reference_spp, seed),
+        reference: &|setup, seed| setup.converged(FIXED_LIGHT, 16, reference_spp, seed),
     };
     let Measured { rows, figures, stats } = bias_variance(ctx, &r, seeds)?;
     let (holds, ours) = continuum(&stats[0]);
@@ -243,7 +243,7 @@ pub(super) fn motion(ctx: &Ctx) -> Result<Output, Error> {
         spps: &spps,
         setup: Setup { mode: Mode::Direct, ..Setup::visibility(&s, size, DiskMap::Concentric) },
         render: &|setup, spec, spp, seed| Setup { time: spec, ..*setup }.render(FIXED_LIGHT, 16, spp, seed),
-        reference: &|setup, seed| setup.converged().render(FIXED_LIGHT, 16, reference_spp, seed),
+        reference: &|setup, seed| setup.converged(FIXED_LIGHT, 16, reference_spp, seed),
     };
     let Measured { rows, figures, stats } = bias_variance(ctx, &r, seeds)?;
     let (holds, ours) = continuum(&stats[0]);

@@ -85,7 +85,7 @@ pub(super) fn spectra(ctx: &Ctx) -> Result<Output, Error> {
     let m = 20.0;
     let harmonics = |st: &spectrum::Statistics| {
         let h: Vec<f64> = (0..res * res)
-            .filter(|&i| i != dc && (i / res + res / 2) % 16 == 0 && (i % res + res / 2) % 16 == 0)
+            .filter(|&i| i != dc && (i / res + res / 2).is_multiple_of(16) && (i % res + res / 2).is_multiple_of(16))
             .map(|i| st.expected[i] * st.expected[i])
             .collect();
         h.iter().sum::<f64>() / h.len() as f64
