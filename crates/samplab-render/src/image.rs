@@ -134,6 +134,10 @@ impl Image {
     }
 
     /// The image as 8-bit sRGB (clamped to [0, 1]).
+    ///
+    /// # Panics
+    /// When the image's buffer does not hold three channels per pixel (an invariant of
+    /// [`Image`]).
     pub fn to_srgb(&self) -> image::RgbImage {
         let bytes = self.rgb.iter().map(|&c| srgb8(f64::from(c))).collect();
         image::RgbImage::from_raw(self.width as u32, self.height as u32, bytes).expect("3 channels per pixel")

@@ -177,6 +177,9 @@ pub fn all(parts: &[Decision]) -> Decision {
 }
 
 /// Kendall's tau between two rankings of the same items (values, lower is better).
+///
+/// # Panics
+/// When the two rankings have different lengths.
 pub fn kendall_tau(a: &[f64], b: &[f64]) -> f64 {
     assert_eq!(a.len(), b.len(), "two rankings of the same items");
     let n = a.len();

@@ -298,6 +298,9 @@ pub fn write_folder(out: &Path, fill: impl FnOnce(&Path) -> Result<(), Error>) -
 ///
 /// # Errors
 /// An experiment or a write fails; the target folder is then left as it was.
+///
+/// # Panics
+/// Never: the progress bars' template is a constant known to parse.
 pub fn reproduce(papers: &[&Paper], options: &Options) -> Result<Vec<(String, Claim)>, Error> {
     let bars = MultiProgress::new();
     let mut results: Vec<(&Paper, Vec<Done>)> = Vec::new();

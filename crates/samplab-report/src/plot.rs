@@ -55,6 +55,9 @@ pub fn png(d: &impl Drawable, (w, h): (u32, u32)) -> Result<Vec<u8>, Error> {
 /// The colour of a strategy, the same in every figure: a fixed table (tab20 colours)
 /// keyed by sampler family (the spec up to ':', variants of the low-discrepancy families
 /// sharing their family's colour), then a stable hash for anything else.
+///
+/// # Panics
+/// Never: the table of shades it picks from is not empty.
 pub fn colour(strategy: &str) -> RGBColor {
     const TABLE: [(&str, RGBColor); 16] = [
         ("random", RGBColor(31, 119, 180)),

@@ -31,6 +31,9 @@ pub fn extreme_1d(x: &[f64]) -> f64 {
 
 /// Brute force over every critical box in 2D (lower and upper faces through points or
 /// the square's sides), with O(1) counts from prefix sums: O(n^4). The reference.
+///
+/// # Panics
+/// When a coordinate is NaN.
 pub fn extreme_2d_naive(points: &[f64]) -> f64 {
     let n = points.len() / 2;
     let mut xs = critical(points.iter().step_by(2).copied());

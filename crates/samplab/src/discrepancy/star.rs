@@ -474,6 +474,10 @@ pub fn star_dem_work(n: usize, dims: usize) -> f64 {
 /// the best box found so far. The slabs of the first axis are solved in parallel; the
 /// result does not depend on their order (every value compared is an exact local
 /// discrepancy, computed the same way wherever it is met).
+///
+/// # Panics
+/// When a coordinate is NaN (every value must rank among the critical values; callers
+/// check the unit cube first, as [`super::compute`] does).
 pub fn star_dem(points: &[f64], dims: usize) -> f64 {
     let n = points.len() / dims;
     let axes: Vec<Vec<f64>> = (0..dims).map(|d| critical(points.iter().skip(d).step_by(dims).copied())).collect();

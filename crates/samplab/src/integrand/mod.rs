@@ -559,6 +559,14 @@ static FAMILIES: &[IntegrandEntry] = &[
 ];
 
 /// A parsed integrand family: its entry and resolved parameters.
+///
+/// ```
+/// use samplab::Seed;
+/// use samplab::integrand::Family;
+/// let disks = Family::parse("disk:r=0.25").unwrap();
+/// let f = disks.instance(Seed(3), 0).unwrap(); // instance 0: a random centre
+/// assert!((f.exact() - std::f64::consts::PI / 16.0).abs() < 1e-15);
+/// ```
 #[derive(Debug, Clone)]
 pub struct Family {
     /// The registry entry.

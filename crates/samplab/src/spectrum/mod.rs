@@ -163,6 +163,16 @@ pub fn periodogram(set: &PointSet, res: usize, method: Method) -> Result<Vec<f64
 ///
 /// # Errors
 /// Fewer than two sets, sets of different sizes or dimensions, a bad resolution or tolerance.
+///
+/// ```
+/// use samplab::spectrum::{Method, statistics};
+/// use samplab::{Seed, sampler};
+/// let jitter = sampler::build("jitter").unwrap();
+/// let sets = sampler::generate_sets(jitter.as_ref(), 64, 2, Seed(1), 8).unwrap();
+/// let st = statistics(&sets, 32, Method::Direct).unwrap();
+/// // S(0) = 1 for every set: the periodogram's DC (index R/2, R/2) is 1
+/// assert!((st.periodogram[16 * 32 + 16] - 1.0).abs() < 1e-12);
+/// ```
 pub fn statistics(sets: &[PointSet], res: usize, method: Method) -> Result<Statistics> {
     statistics_with_progress(sets, res, method, &|| {})
 }

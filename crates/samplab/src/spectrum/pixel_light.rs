@@ -94,6 +94,9 @@ pub fn banding_frequencies(n: usize, beta: f64, max: f64) -> Vec<f64> {
 }
 
 /// The sample positions of `pixels` pixels (at their centres) with `n` light samples each.
+///
+/// # Panics
+/// Never for counts the samplers can make: the positions are finite by construction.
 pub fn pattern_points(pattern: Pattern, pixels: usize, n: usize, seed: Seed) -> PointSet {
     let mut rng = seed.rng();
     let mut data = Vec::with_capacity(2 * pixels * n);

@@ -33,6 +33,13 @@ pub trait Warp: Send + Sync + Debug {
 ///
 /// # Errors
 /// The warp needs a different number of dimensions.
+///
+/// ```
+/// use samplab::{Seed, sampler, warp};
+/// let square = sampler::build("jitter").unwrap().generate(64, 2, Seed(1)).unwrap();
+/// let disk = warp::apply(warp::lookup("disk.concentric").unwrap(), &square).unwrap();
+/// assert!(disk.iter().all(|p| p[0].hypot(p[1]) <= 1.0));
+/// ```
 pub fn apply(warp: &dyn Warp, points: &PointSet) -> Result<PointSet> {
     if let Some(d) = warp.input_dims()
         && d != points.dims()
