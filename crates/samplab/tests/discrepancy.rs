@@ -328,6 +328,12 @@ fn bad_input_errors() {
     let five = sampler::build("random").unwrap().generate(400, 5, Seed(0)).unwrap();
     let e = discrepancy::compute(&Metric::parse("star").unwrap(), &five, Limits { max_work: 1e5 }).unwrap_err();
     assert!(e.to_string().contains("over the work limit 1.0e5") && e.to_string().contains("5D"), "{e}");
+    // a whole-number parameter past 2^53 stays exact (it used to be stored as an f64 and
+    // run as 2^53)
+    assert_eq!(
+        Metric::parse("star-bound:seed=9007199254740993").unwrap().spec(),
+        "star-bound:iterations=20000,seed=9007199254740993"
+    );
     let e = Metric::parse("stra").unwrap_err().to_string();
     assert!(e.contains("star"), "{e}");
     let e = Metric::parse("projected:angle=400").unwrap_err().to_string();
