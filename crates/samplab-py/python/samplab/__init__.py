@@ -1,0 +1,222 @@
+"""samplab for Python: sampling patterns for Monte Carlo integration in rendering.
+
+Generate point sets with every strategy of Shirley 1991, Subr & Kautz 2013, Sbert et al.
+2006 and Ramamoorthi et al. 2012 and the modern low-discrepancy sequences; warp them;
+measure their discrepancies and spectra; run integration studies; reproduce the papers.
+Everything runs in the Rust core (the GIL is released), with the CLI's seeds: the same
+arguments give the same bytes as ``samplab generate`` and friends.
+
+The registries (``samplers()``, ``metrics()``, ``warps()``, ``integrands()``, ``formats()``,
+``scenes()``) list every name, alias, parameter (default, range) and reference.
+``samplab.qmc.Engine`` is a ``scipy.stats.qmc.QMCEngine`` for every sampler.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Dict, List, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _samplab
+from ._samplab import Error
+
+__all__ = [
+    "Error",
+    "DEFAULT_SEED",
+    "samplers",
+    "metrics",
+    "warps",
+    "integrands",
+    "formats",
+    "scenes",
+    "generate",
+    "is_sequence",
+    "sequence_points",
+    "warp",
+    "discrepancy",
+    "discrepancy_flags",
+    "spectrum",
+    "integrate",
+    "integrand",
+    "reproduce",
+]
+
+#: The seed the CLI uses when none is given.
+DEFAULT_SEED: int = _samplab.default_seed()
+
+
+def _seed(seed: Optional[int]) -> int:
+    if seed is None:
+        return DEFAULT_SEED
+    if isinstance(seed, (bool, float)) or not isinstance(seed, (int, np.integer)):
+        raise Error(f"seed must be a whole number in [0, 2^64), got {seed!r}")
+    if not 0 <= int(seed) < 2**64:
+        raise Error(f"seed {seed} is out of range [0, 2^64)")
+    return int(seed)
+
+
+def _count(name: str, value: Any) -> int:
+    if isinstance(value, (bool, float)) or not isinstance(value, (int, np.integer)):
+        raise Error(f"{name} must be a whole number, got {value!r}")
+    if value < 0:
+        raise Error(f"{name} = {value}: must not be negative")
+    return int(value)
+
+
+def _points(points: Any, what: str = "points", *, stack: bool) -> np.ndarray:
+    """A C-contiguous float64 array of shape (n, d), or (sets, n, d) when ``stack``
+    (an (n, d) array is then one set)."""
+    try:
+        a = np.asarray(points)
+    except Exception as e:  # noqa: BLE001 - any conversion failure is bad input
+        raise Error(f"{what}: not an array of numbers ({e})") from None
+    if a.dtype.kind not in "fiu":
+        raise Error(f"{what}: expected numbers, got dtype {a.dtype}")
+    a = np.ascontiguousarray(a, dtype=np.float64)
+    if stack and a.ndim == 2:
+        a = a[np.newaxis]
+    want = 3 if stack else 2
+    if a.ndim != want:
+        shape = "(sets, n, d) or (n, d)" if stack else "(n, d)"
+        raise Error(f"{what}: expected shape {shape}, got {a.shape}")
+    bad = np.flatnonzero(~np.isfinite(a))
+    if bad.size:
+        index = np.unravel_index(bad[0], a.shape)
+        raise Error(f"{what}{list(index)} is {a[index]} (not finite)")
+    return a
+
+
+def _registry(kind: str) -> List[Dict[str, Any]]:
+    return _samplab.registry(kind)
+
+
+def samplers() -> List[Dict[str, Any]]:
+    """Every sampler: name, aliases, summary, params (name, kind, default, range, doc),
+    references, and details (counts it can make, dimensions)."""
+    return _registry("samplers")
+
+
+def metrics() -> List[Dict[str, Any]]:
+    """Every discrepancy metric, with its flags in ``details`` (L2, shift invariance,
+    lower bound)."""
+    return _registry("metrics")
+
+
+def warps() -> List[Dict[str, Any]]:
+    """Every warp (square to disk, tent, Gaussian, hemispheres), with its dimensions."""
+    return _registry("warps")
+
+
+def integrands() -> List[Dict[str, Any]]:
+    """Every integrand family with an exact integral (the papers' test cases)."""
+    return _registry("integrands")
+
+
+def formats() -> List[Dict[str, Any]]:
+    """Every point-file format of the CLI."""
+    return _registry("formats")
+
+
+def scenes() -> List[Dict[str, Any]]:
+    """Every built-in scene of the renderer."""
+    return _registry("scenes")
+
+
+def generate(spec: str, n: int, d: int = 2, seed: Optional[int] = None, sets: Optional[int] = None) -> np.ndarray:
+    """Points of the sampler ``spec`` (e.g. ``"jitter"``, ``"sobol.owen"``,
+    ``"GJittered:0.25"``) in [0, 1)^d, float64.
+
+    Returns an (n, d) array, or (sets, n, d) when ``sets`` is given. Set k is seeded by a
+    hash of ``seed`` and k, as ``samplab generate`` does: the bytes equal the CLI's for the
+    same arguments. A count the sampler cannot make (a grid asked for 15 points) raises
+    ``samplab.Error`` naming the nearest counts that work.
+    """
+    m = 1 if sets is None else _count("sets", sets)
+    out = _samplab.generate(spec, _count("n", n), _count("d", d), _seed(seed), m)
+    return out[0] if sets is None else out
+
+
+def is_sequence(spec: str) -> bool:
+    """Whether ``spec`` is a progressive sequence (Sobol', Halton): extensible, with random
+    access."""
+    return _samplab.is_sequence(spec)
+
+
+def sequence_points(spec: str, start: int, n: int, d: int = 2, seed: Optional[int] = None) -> np.ndarray:
+    """Points ``start .. start + n`` of the sequence ``spec``, randomized as
+    ``generate(spec, ..., seed=seed)``: ``start = 0`` gives the same points."""
+    return _samplab.sequence_points(spec, _count("start", start), _count("n", n), _count("d", d), _seed(seed))
+
+
+def warp(name: str, points: Any) -> np.ndarray:
+    """Warp an (n, d) array of points in [0, 1)^d (``"disk.concentric"``, ``"tent"``,
+    ``"hemisphere.cosine"``, ...); rejection warps drop points."""
+    return _samplab.warp(name, _points(points, stack=False))
+
+
+def discrepancy(metric: str, points: Any, max_work: Optional[float] = None) -> Union[float, np.ndarray]:
+    """The discrepancy ``metric`` (``"star"``, ``"extreme"``, ``"l2-star"``, ``"centered"``,
+    ``"wraparound"``, ``"mixture"``, ``"projected:angle=30"``, ...) of an (n, d) set, or of
+    each set of a (sets, n, d) stack. Values are never squared (scipy squares CD, WD and
+    MD). Points must lie in [0, 1]^d; exact algorithms whose cost would exceed ``max_work``
+    steps are refused before any work.
+    """
+    a = _points(points, stack=True)
+    v = np.asarray(_samplab.discrepancy(metric, a, None if max_work is None else float(max_work)))
+    return float(v[0]) if np.ndim(points) == 2 else v
+
+
+def discrepancy_flags(metric: str) -> Dict[str, Any]:
+    """The canonical spec of ``metric`` and its flags: squared, l2_closed_form,
+    toroidal_shift_invariant, lower_bound (as ``samplab discrepancy --json``)."""
+    return _samplab.metric_flags(metric)
+
+
+def spectrum(points: Any, res: int = 128, direct: bool = False, tolerance: float = 1e-9) -> Dict[str, np.ndarray]:
+    """Periodogram, amplitude of the expected spectrum and variance of the spectrum of a
+    (sets, n, d) stack (at least two sets), each an R^d array with DC at index R/2, and
+    their radial averages (``*_radial``) and anisotropies in dB (``*_anisotropy_db``). The fast path
+    (a non-uniform FFT) holds ``tolerance`` relative to DC; ``direct=True`` is the exact DFT.
+    """
+    return _samplab.spectrum(_points(points, stack=True), _count("res", res), bool(direct), float(tolerance))
+
+
+def integrate(
+    samplers: Union[str, Sequence[str]],
+    integrand: str,
+    n: Union[int, Sequence[int]],
+    sets: int = 50,
+    instances: int = 10,
+    seed: Optional[int] = None,
+) -> Dict[str, List[Dict[str, Any]]]:
+    """Bias, variance and convergence of samplers on an integrand family, as ``samplab
+    integrate --json``: ``{"rows": [...], "fits": [...]}`` (a row per sampler and count:
+    relative mean, relative variance, RMSE, N^2 MSE and the closed form where one applies;
+    a fit per sampler: the convergence exponent and its 95% interval)."""
+    names = [samplers] if isinstance(samplers, str) else list(samplers)
+    counts = [n] if isinstance(n, (int, np.integer)) else list(n)
+    return json.loads(
+        _samplab.integrate(
+            names,
+            integrand,
+            [_count("n", c) for c in counts],
+            _count("sets", sets),
+            _count("instances", instances),
+            _seed(seed),
+        )
+    )
+
+
+def integrand(spec: str, points: Any, instance: int = 0, seed: Optional[int] = None) -> "tuple[np.ndarray, float]":
+    """Instance ``instance`` of the integrand family ``spec`` (as a study with ``seed``
+    draws it): its values at the rows of an (n, d) array, and its exact integral."""
+    values, exact = _samplab.integrand_eval(spec, _count("instance", instance), _seed(seed), _points(points, stack=False))
+    return values, exact
+
+
+def reproduce(out: str = "report", full: bool = False, only: Optional[Sequence[str]] = None, seed: Optional[int] = None) -> List[Dict[str, str]]:
+    """Reproduce the papers into the folder ``out`` (replaced only when the run completes),
+    as ``samplab reproduce``; returns each claim's paper, id and verdict."""
+    keys = None if only is None else [only] if isinstance(only, str) else list(only)
+    return json.loads(_samplab.reproduce(str(out), bool(full), keys, None if seed is None else _seed(seed)))

@@ -1,0 +1,356 @@
+//! `samplab._samplab`: the native half of the Python package, thin over the library (no
+//! second implementation of anything). The pure-Python half (`python/samplab`) adds the
+//! docstrings users read, argument checks that are Python's business (array shapes and
+//! dtypes), and the scipy.stats.qmc engine.
+//!
+//! Every call that does real work releases the GIL; every samplab error becomes a
+//! `samplab.Error` (a `ValueError`) carrying the CLI's one-line message.
+
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyReadonlyArray3, PyUntypedArrayMethods};
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use samplab::discrepancy::{Limits, Metric};
+use samplab::registry::{Entry, Registry};
+use samplab::spec::{Default, Kind};
+use samplab::{PointSet, Seed};
+
+create_exception!(_samplab, Error, PyValueError, "Every samplab error: its message names what is wrong and where.");
+
+/// A library error as `samplab.Error`.
+fn err(e: impl std::fmt::Display) -> PyErr {
+    Error::new_err(e.to_string())
+}
+
+/// The seed the CLI uses when none is given.
+#[pyfunction]
+fn default_seed() -> u64 {
+    Seed::DEFAULT.0
+}
+
+/// One registry's entries as dictionaries: name, aliases, summary, parameters (name, kind,
+/// default, range, doc), references, and the kind-specific details `samplab list` prints.
+fn entries<'py, E: Entry>(py: Python<'py>, registry: &Registry<E>) -> PyResult<Bound<'py, PyList>> {
+    let list = PyList::empty(py);
+    for e in registry.iter() {
+        let a = e.about();
+        let d = PyDict::new(py);
+        d.set_item("name", a.name)?;
+        d.set_item("aliases", a.aliases.to_vec())?;
+        d.set_item("summary", a.summary)?;
+        d.set_item("references", a.references.to_vec())?;
+        d.set_item("details", e.details())?;
+        let params = PyList::empty(py);
+        for p in a.params {
+            let q = PyDict::new(py);
+            q.set_item("name", p.name)?;
+            q.set_item("doc", p.doc)?;
+            q.set_item("range", p.range_text())?;
+            match p.kind {
+                Kind::Real { min, max } => {
+                    q.set_item("kind", "real")?;
+                    q.set_item("min", min)?;
+                    q.set_item("max", max)?;
+                }
+                Kind::Int { min, max } => {
+                    q.set_item("kind", "int")?;
+                    q.set_item("min", min)?;
+                    q.set_item("max", max)?;
+                }
+                Kind::Choice(c) => {
+                    q.set_item("kind", "choice")?;
+                    q.set_item("choices", c.to_vec())?;
+                }
+            }
+            match p.default {
+                Default::Number(x) => q.set_item("default", x)?,
+                Default::Int(x) => q.set_item("default", x)?,
+                Default::Word(w) => q.set_item("default", w)?,
+                Default::Auto(how) => q.set_item("default", format!("auto ({how})"))?,
+            }
+            params.append(q)?;
+        }
+        d.set_item("params", params)?;
+        list.append(d)?;
+    }
+    Ok(list)
+}
+
+/// The entries of one registry: samplers, metrics, warps, integrands, formats or scenes.
+#[pyfunction]
+fn registry<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyList>> {
+    match kind {
+        "samplers" => entries(py, &samplab::sampler::SAMPLERS),
+        "metrics" => entries(py, &samplab::discrepancy::METRICS),
+        "warps" => entries(py, &samplab::warp::WARPS),
+        "integrands" => entries(py, &samplab::integrand::INTEGRANDS),
+        "formats" => entries(py, &samplab::io::FORMATS),
+        "scenes" => entries(py, &samplab_render::scenes::SCENES),
+        _ => Err(err(format!("unknown registry '{kind}' (samplers, metrics, warps, integrands, formats, scenes)"))),
+    }
+}
+
+/// A flat vector as an array of `shape`.
+fn shaped<'py>(py: Python<'py>, data: Vec<f64>, shape: &[usize]) -> PyResult<Bound<'py, PyAny>> {
+    Ok(PyArray1::from_vec(py, data).reshape(shape)?.into_any())
+}
+
+/// `sets` realizations of `n` points in `d` dimensions as a (sets, n, d) array; set k is
+/// seeded `seed.derive(k)`, as `samplab generate` does, so the bytes are the CLI's.
+#[pyfunction]
+fn generate<'py>(
+    py: Python<'py>,
+    spec: &str,
+    n: usize,
+    d: usize,
+    seed: u64,
+    sets: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    if sets == 0 {
+        return Err(err("sets must be at least 1"));
+    }
+    let sampler = samplab::sampler::build(spec).map_err(err)?;
+    let data = py
+        .detach(|| -> samplab::Result<Vec<f64>> {
+            let plan = sampler.plan(n, d)?;
+            let sets = plan.generate_sets(Seed(seed), sets)?;
+            Ok(sets.into_iter().flat_map(PointSet::into_vec).collect())
+        })
+        .map_err(err)?;
+    shaped(py, data, &[sets, n, d])
+}
+
+/// Whether `spec` names a progressive sequence (random access, extensible).
+#[pyfunction]
+fn is_sequence(spec: &str) -> PyResult<bool> {
+    Ok(samplab::sampler::build(spec).map_err(err)?.as_sequence().is_some())
+}
+
+/// Points `start .. start + n` of the sequence `spec` in `d` dimensions, randomized as set 0
+/// of [`generate`] with the same seed (so `start = 0` gives the same points).
+#[pyfunction]
+fn sequence_points<'py>(
+    py: Python<'py>,
+    spec: &str,
+    start: u64,
+    n: usize,
+    d: usize,
+    seed: u64,
+) -> PyResult<Bound<'py, PyAny>> {
+    let sampler = samplab::sampler::build(spec).map_err(err)?;
+    let Some(sequence) = sampler.as_sequence() else {
+        return Err(err(format!("{}: makes whole sets, not a sequence: it cannot be extended", sampler.spec())));
+    };
+    let data = py
+        .detach(|| -> samplab::Result<Vec<f64>> {
+            let access = sequence.access(d, Seed(seed).derive(0))?;
+            let mut data = Vec::with_capacity(n * d);
+            for i in 0..n as u64 {
+                for dim in 0..d {
+                    data.push(access.sample(start + i, dim)?);
+                }
+            }
+            Ok(data)
+        })
+        .map_err(err)?;
+    shaped(py, data, &[n, d])
+}
+
+/// Point sets from a C-contiguous float64 array of shape (sets, n, d), every coordinate
+/// finite (the Python side makes the array contiguous).
+fn point_sets(points: &PyReadonlyArray3<f64>) -> PyResult<Vec<PointSet>> {
+    let shape = points.shape();
+    let (sets, n, d) = (shape[0], shape[1], shape[2]);
+    let data = points.as_slice().map_err(|_| err("points: the array must be C-contiguous"))?;
+    if d == 0 {
+        return Err(err("points: d must be at least 1"));
+    }
+    if let Some(i) = data.iter().position(|x| !x.is_finite()) {
+        return Err(err(format!(
+            "set {} point {} coordinate {} is {} (not finite)",
+            i / (n * d),
+            i / d % n,
+            i % d,
+            data[i]
+        )));
+    }
+    (0..sets).map(|k| PointSet::new(d, data[k * n * d..(k + 1) * n * d].to_vec()).map_err(err)).collect()
+}
+
+/// Warp an (n, d) array of points (rejection warps drop points).
+#[pyfunction]
+fn warp<'py>(py: Python<'py>, name: &str, points: PyReadonlyArray2<f64>) -> PyResult<Bound<'py, PyAny>> {
+    let w = samplab::warp::lookup(name).map_err(err)?;
+    let (n, d) = (points.shape()[0], points.shape()[1]);
+    let data = points.as_slice().map_err(|_| err("points: the array must be C-contiguous"))?.to_vec();
+    let set = PointSet::new(d, data).map_err(err)?;
+    debug_assert_eq!(set.len(), n);
+    let out = py.detach(|| samplab::warp::apply(w, &set)).map_err(err)?;
+    let (m, e) = (out.len(), out.dims());
+    shaped(py, out.into_vec(), &[m, e])
+}
+
+/// The discrepancy `metric` of each set of a (sets, n, d) array.
+#[pyfunction]
+#[pyo3(signature = (metric, points, max_work=None))]
+fn discrepancy(
+    py: Python<'_>,
+    metric: &str,
+    points: PyReadonlyArray3<f64>,
+    max_work: Option<f64>,
+) -> PyResult<Vec<f64>> {
+    let m = Metric::parse(metric).map_err(err)?;
+    let limits = match max_work {
+        Some(w) if w.is_nan() || w <= 0.0 => return Err(err("max_work must be a positive number")),
+        Some(w) => Limits { max_work: w },
+        None => Limits::default(),
+    };
+    let sets = point_sets(&points)?;
+    py.detach(|| {
+        use rayon::prelude::*;
+        sets.par_iter()
+            .enumerate()
+            .map(|(k, s)| {
+                samplab::discrepancy::compute(&m, s, limits).map_err(|e| match e {
+                    samplab::Error::WorkLimit { .. } => format!("set {k}: {e}; raise it with max_work"),
+                    e => format!("set {k}: {e}"),
+                })
+            })
+            .collect::<Result<Vec<f64>, String>>()
+    })
+    .map_err(err)
+}
+
+/// A metric's canonical spec and flags, as `samplab discrepancy --json` prints them.
+#[pyfunction]
+fn metric_flags<'py>(py: Python<'py>, metric: &str) -> PyResult<Bound<'py, PyDict>> {
+    let m = Metric::parse(metric).map_err(err)?;
+    let (e, flags) = (m.entry(), PyDict::new(py));
+    flags.set_item("metric", m.spec())?;
+    flags.set_item("squared", false)?;
+    flags.set_item("l2_closed_form", e.l2)?;
+    flags.set_item("toroidal_shift_invariant", e.shift_invariant)?;
+    flags.set_item("lower_bound", e.lower_bound)?;
+    Ok(flags)
+}
+
+/// Periodogram, amplitude of the expected spectrum and variance of the spectrum of a
+/// (sets, n, d) stack, each an R^d array (index R/2 = DC), with their radial averages and
+/// anisotropies (`samplab spectrum`'s numbers).
+#[pyfunction]
+#[pyo3(signature = (points, res, direct=false, tolerance=1e-9))]
+fn spectrum<'py>(
+    py: Python<'py>,
+    points: PyReadonlyArray3<f64>,
+    res: usize,
+    direct: bool,
+    tolerance: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let sets = point_sets(&points)?;
+    let method =
+        if direct { samplab::spectrum::Method::Direct } else { samplab::spectrum::Method::Fast { tol: tolerance } };
+    let st = py.detach(|| samplab::spectrum::statistics(&sets, res, method)).map_err(err)?;
+    let out = PyDict::new(py);
+    let shape: Vec<usize> = vec![st.res; st.dims];
+    for (name, values) in [("periodogram", &st.periodogram), ("expected", &st.expected), ("variance", &st.variance)] {
+        out.set_item(name, shaped(py, values.clone(), &shape)?)?;
+        let (radial, anisotropy) = samplab::spectrum::radial(values, st.res, st.dims);
+        out.set_item(format!("{name}_radial"), PyArray1::from_vec(py, radial))?;
+        out.set_item(format!("{name}_anisotropy_db"), PyArray1::from_vec(py, anisotropy))?;
+    }
+    Ok(out)
+}
+
+/// An integration study, as `samplab integrate --json` prints it: {"rows": [...], "fits": [...]}.
+#[pyfunction]
+fn integrate(
+    py: Python<'_>,
+    samplers: Vec<String>,
+    integrand: &str,
+    ns: Vec<usize>,
+    sets: usize,
+    instances: usize,
+    seed: u64,
+) -> PyResult<String> {
+    let built =
+        samplers.iter().map(|s| samplab::sampler::build(s)).collect::<samplab::Result<Vec<_>>>().map_err(err)?;
+    let family = samplab::integrand::Family::parse(integrand).map_err(err)?;
+    if ns.contains(&0) {
+        return Err(err("counts must be positive"));
+    }
+    let study =
+        samplab::experiment::Study { samplers: &built, family: &family, ns: &ns, sets, instances, seed: Seed(seed) };
+    let rows = py.detach(|| samplab::experiment::run(&study, &|| {})).map_err(err)?;
+    let fits = samplab::experiment::fits(&rows);
+    serde_json::to_string(&serde_json::json!({ "rows": rows, "fits": fits })).map_err(err)
+}
+
+/// Instance `instance` of the integrand family `spec` for `seed`: its values at the rows of
+/// an (n, d) array, and its exact integral.
+#[pyfunction]
+fn integrand_eval<'py>(
+    py: Python<'py>,
+    spec: &str,
+    instance: u64,
+    seed: u64,
+    points: PyReadonlyArray2<f64>,
+) -> PyResult<(Bound<'py, PyAny>, f64)> {
+    let f = samplab::integrand::Family::parse(spec).and_then(|fam| fam.instance(Seed(seed), instance)).map_err(err)?;
+    let d = points.shape()[1];
+    if d != f.dims() {
+        return Err(err(format!("{spec}: takes {}D points, got {d}D", f.dims())));
+    }
+    let data = points.as_slice().map_err(|_| err("points: the array must be C-contiguous"))?;
+    let values: Vec<f64> = py.detach(|| data.chunks_exact(d).map(|x| f.eval(x)).collect());
+    let n = values.len();
+    Ok((shaped(py, values, &[n])?, f.exact()))
+}
+
+/// Run the reproduction into `out` (replaced when complete); returns the claims as JSON.
+#[pyfunction]
+#[pyo3(signature = (out, full=false, only=None, seed=None))]
+fn reproduce(py: Python<'_>, out: &str, full: bool, only: Option<Vec<String>>, seed: Option<u64>) -> PyResult<String> {
+    let papers = samplab_report::paper::all();
+    let chosen: Vec<&samplab_report::Paper> = match &only {
+        None => papers.iter().collect(),
+        Some(keys) => {
+            for k in keys {
+                if !papers.iter().any(|p| p.key == k) {
+                    return Err(err(format!("unknown paper '{k}' ({})", samplab_report::paper::keys().join(", "))));
+                }
+            }
+            papers.iter().filter(|p| keys.iter().any(|k| k == p.key)).collect()
+        }
+    };
+    let options = samplab_report::Options {
+        scale: if full { samplab_report::Scale::Full } else { samplab_report::Scale::Fast },
+        seed: seed.map_or(Seed::DEFAULT, Seed),
+        out: out.into(),
+    };
+    let claims = py.detach(|| samplab_report::reproduce(&chosen, &options)).map_err(err)?;
+    let list: Vec<serde_json::Value> = claims
+        .iter()
+        .map(|(paper, c)| serde_json::json!({ "paper": paper, "id": c.id, "verdict": c.verdict() }))
+        .collect();
+    serde_json::to_string(&list).map_err(err)
+}
+
+/// The native module.
+#[pymodule]
+fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("Error", m.py().get_type::<Error>())?;
+    m.add_function(wrap_pyfunction!(default_seed, m)?)?;
+    m.add_function(wrap_pyfunction!(registry, m)?)?;
+    m.add_function(wrap_pyfunction!(generate, m)?)?;
+    m.add_function(wrap_pyfunction!(is_sequence, m)?)?;
+    m.add_function(wrap_pyfunction!(sequence_points, m)?)?;
+    m.add_function(wrap_pyfunction!(warp, m)?)?;
+    m.add_function(wrap_pyfunction!(discrepancy, m)?)?;
+    m.add_function(wrap_pyfunction!(metric_flags, m)?)?;
+    m.add_function(wrap_pyfunction!(spectrum, m)?)?;
+    m.add_function(wrap_pyfunction!(integrate, m)?)?;
+    m.add_function(wrap_pyfunction!(integrand_eval, m)?)?;
+    m.add_function(wrap_pyfunction!(reproduce, m)?)?;
+    Ok(())
+}

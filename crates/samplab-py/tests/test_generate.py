@@ -1,0 +1,113 @@
+"""Generation: against scipy's unscrambled sequences, the CLI's bytes, and the registry."""
+
+import numpy as np
+import pytest
+from scipy.stats import qmc
+
+import samplab
+from conftest import load_npy
+
+
+@pytest.mark.parametrize("d", [1, 2, 5])
+def test_unscrambled_sobol_equals_scipy(d):
+    ours = samplab.generate("sobol", n=256, d=d, seed=1)
+    theirs = qmc.Sobol(d, scramble=False).random(256)
+    assert np.array_equal(ours, theirs)
+
+
+@pytest.mark.parametrize("d", [1, 2, 7])
+def test_unscrambled_halton_equals_scipy(d):
+    ours = samplab.generate("halton", n=300, d=d, seed=1)
+    theirs = qmc.Halton(d, scramble=False).random(300)
+    np.testing.assert_allclose(ours, theirs, rtol=0, atol=1e-15)
+
+
+@pytest.mark.parametrize(
+    "spec,n,d,sets",
+    [("jitter", 64, 2, 3), ("sobol.owen", 100, 3, 2), ("poisson.fast", 50, 2, 1), ("GJittered:0.25", 16, 2, 1), ("nrooks", 33, 4, 5)],
+)
+def test_bytes_equal_the_cli(cli, tmp_path, spec, n, d, sets):
+    out = tmp_path / "p.npy"
+    cli("generate", spec, "-n", n, "-d", d, "--seed", 99, "--sets", sets, "-o", out)
+    theirs = load_npy(out)
+    ours = samplab.generate(spec, n=n, d=d, seed=99, sets=sets if sets > 1 else None)
+    assert ours.dtype == np.float64 and ours.flags.c_contiguous
+    assert ours.tobytes() == theirs.tobytes()
+
+
+def test_default_seed_is_the_clis(cli, tmp_path):
+    out = tmp_path / "p.npy"
+    cli("generate", "random", "-n", 8, "-o", out)
+    assert samplab.generate("random", n=8).tobytes() == load_npy(out).tobytes()
+
+
+def _count_for(name, d):
+    # a count every entry can make in d dimensions (as the Rust conformance test)
+    if name.startswith(("jitter", "regular")):
+        return 4**d
+    return 40 if name == "poisson.maximal" else 64
+
+
+def test_every_registered_sampler_generates():
+    for entry in samplab.samplers():
+        name = entry["name"]
+        d = 2
+        n = _count_for(name, d)
+        p = samplab.generate(name, n=n, d=d, seed=3)
+        assert p.shape == (n, d), name
+        assert ((p >= 0) & (p < 1)).all(), name
+        for alias in entry["aliases"]:
+            assert samplab.generate(alias, n=n, d=d, seed=3).tobytes() == p.tobytes(), alias
+
+
+def test_registry_entries_are_complete():
+    kinds = {
+        "samplers": samplab.samplers(),
+        "metrics": samplab.metrics(),
+        "warps": samplab.warps(),
+        "integrands": samplab.integrands(),
+        "formats": samplab.formats(),
+        "scenes": samplab.scenes(),
+    }
+    for kind, entries in kinds.items():
+        assert entries, kind
+        for e in entries:
+            assert set(e) >= {"name", "aliases", "summary", "params", "references", "details"}, (kind, e)
+            for p in e["params"]:
+                assert p["kind"] in ("real", "int", "choice") and "default" in p and p["doc"], (kind, e["name"], p)
+    sigma = next(p for e in kinds["samplers"] if e["name"] == "jitter.gaussian" for p in e["params"] if p["name"] == "sigma")
+    assert (sigma["default"], sigma["min"], sigma["max"]) == (0.25, 0.0, 8.0)
+    seed = next(p for e in kinds["metrics"] if e["name"] == "star-bound" for p in e["params"] if p["name"] == "seed")
+    assert seed["kind"] == "int" and seed["max"] == 2**64 - 1
+
+
+def test_sequences_have_random_access():
+    for spec in ("sobol.owen", "halton.xor"):
+        assert samplab.is_sequence(spec)
+        whole = samplab.generate(spec, n=200, d=3, seed=5)
+        tail = samplab.sequence_points(spec, start=120, n=80, d=3, seed=5)
+        assert tail.tobytes() == whole[120:].tobytes()
+    assert not samplab.is_sequence("jitter")
+    with pytest.raises(samplab.Error, match="cannot be extended"):
+        samplab.sequence_points("jitter", 0, 4)
+
+
+@pytest.mark.parametrize(
+    "call,message",
+    [
+        (lambda: samplab.generate("jitter", n=15), "9 and 16"),
+        (lambda: samplab.generate("sobl", n=4), "did you mean sobol"),
+        (lambda: samplab.generate("jitter.gaussian:sigma=-1", n=16), "'sigma'"),
+        (lambda: samplab.generate("pmj02", n=16, d=3), "3D is not supported"),
+        (lambda: samplab.generate("random", n=0), "n must be"),
+        (lambda: samplab.generate("random", n=2**40), "n must be"),
+        (lambda: samplab.generate("random", n=4, seed=-1), "seed"),
+        (lambda: samplab.generate("random", n=4.5), "whole number"),
+        (lambda: samplab.generate("random", n=4, sets=0), "sets"),
+        (lambda: samplab.sequence_points("sobol", start=2**32, n=1), "2\\^32 - 1"),
+    ],
+)
+def test_bad_input_raises_samplab_error(call, message):
+    with pytest.raises(samplab.Error, match=message):
+        call()
+    assert issubclass(samplab.Error, ValueError)

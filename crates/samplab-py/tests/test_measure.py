@@ -1,0 +1,121 @@
+"""Discrepancies, warps, spectra and integration: against scipy, brute force and the CLI."""
+
+import itertools
+import json
+
+import numpy as np
+import pytest
+from scipy.stats import qmc
+
+import samplab
+
+
+def brute_star(x):
+    """Star discrepancy by every critical box (corners at point coordinates or 1), open and
+    closed: O(n^(d+1)), for small sets."""
+    n, d = x.shape
+    axes = [np.unique(np.append(x[:, k], 1.0)) for k in range(d)]
+    worst = 0.0
+    for corner in itertools.product(*axes):
+        corner = np.array(corner)
+        vol = np.prod(corner)
+        open_count = np.all(x < corner, axis=1).sum() / n
+        closed_count = np.all(x <= corner, axis=1).sum() / n
+        worst = max(worst, vol - open_count, closed_count - vol)
+    return worst
+
+
+@pytest.mark.parametrize("d", [1, 2, 3])
+def test_star_equals_brute_force(d):
+    rng = np.random.default_rng(d)
+    for _ in range(5):
+        x = rng.random((int(rng.integers(3, 12)), d))
+        assert samplab.discrepancy("star", x) == pytest.approx(brute_star(x), abs=1e-12)
+
+
+@pytest.mark.parametrize("method,ours,squared", [("L2-star", "l2-star", False), ("CD", "centered", True), ("WD", "wraparound", True), ("MD", "mixture", True)])
+def test_l2_family_equals_scipy(method, ours, squared):
+    x = samplab.generate("sobol.owen", n=128, d=3, seed=2)
+    theirs = qmc.discrepancy(x, method=method)
+    value = samplab.discrepancy(ours, x)
+    assert (value**2 if squared else value) == pytest.approx(theirs, rel=1e-10)
+
+
+def test_stacks_and_flags():
+    stack = samplab.generate("jitter", n=16, sets=4, seed=1)
+    values = samplab.discrepancy("star", stack)
+    assert values.shape == (4,)
+    assert values[2] == samplab.discrepancy("star", stack[2])
+    flags = samplab.discrepancy_flags("wd")
+    assert flags == {"metric": "wraparound", "squared": False, "l2_closed_form": True, "toroidal_shift_invariant": True, "lower_bound": False}
+    assert samplab.discrepancy_flags("star-bound:seed=9007199254740993")["metric"].endswith("seed=9007199254740993")
+
+
+def test_discrepancy_equals_the_cli(cli):
+    out = json.loads(cli("discrepancy", "star", "l2-star", "extreme", "--sampler", "nrooks", "-n", 32, "--sets", 3, "--seed", 4, "--json"))
+    stack = samplab.generate("nrooks", n=32, sets=3, seed=4)
+    for row in out["metrics"]:
+        assert samplab.discrepancy(row["metric"], stack).tolist() == row["values"]
+
+
+def test_every_metric_and_warp_runs():
+    x = samplab.generate("jitter", n=64, seed=1)
+    for m in samplab.metrics():
+        assert 0 <= samplab.discrepancy(m["name"], x) <= 1, m["name"]
+    for w in samplab.warps():
+        y = samplab.warp(w["name"], x)
+        assert y.ndim == 2 and y.shape[0] <= 64 and np.isfinite(y).all(), w["name"]
+    disk = samplab.warp("disk.concentric", x)
+    assert (np.hypot(disk[:, 0], disk[:, 1]) <= 1).all()
+
+
+@pytest.mark.parametrize(
+    "call,message",
+    [
+        (lambda: samplab.discrepancy("star", [[0.5, 1.5]]), "point 0 coordinate 1 is 1.5"),
+        (lambda: samplab.discrepancy("star", [[0.5, np.nan]]), "not finite"),
+        (lambda: samplab.discrepancy("star", [0.5, 0.2]), "shape"),
+        (lambda: samplab.discrepancy("star", [["a", "b"]]), "dtype"),
+        (lambda: samplab.discrepancy("stra", [[0.5, 0.5]]), "did you mean star"),
+        (lambda: samplab.discrepancy("star", np.random.default_rng(0).random((400, 5)), max_work=1e5), "max_work"),
+        (lambda: samplab.warp("disk.concentric", np.zeros((3, 3))), "needs 2D"),
+    ],
+)
+def test_bad_arrays_raise(call, message):
+    with pytest.raises(samplab.Error, match=message):
+        call()
+
+
+def test_strided_input_is_copied_not_misread():
+    x = samplab.generate("random", n=50, d=4, seed=3)
+    view = x[:, ::2]  # not C-contiguous
+    assert samplab.discrepancy("l2-star", view) == samplab.discrepancy("l2-star", np.ascontiguousarray(view))
+
+
+def test_spectrum_equals_the_cli(cli, tmp_path):
+    cli("spectrum", "--sampler", "jitter.gaussian:sigma=0.25", "-n", 64, "--sets", 6, "--res", 16, "--seed", 8, "-o", tmp_path / "s")
+    theirs = json.loads((tmp_path / "s" / "spectrum.json").read_text())["statistics"]
+    stack = samplab.generate("jitter.gaussian:sigma=0.25", n=64, sets=6, seed=8)
+    ours = samplab.spectrum(stack, res=16)
+    for name in ("periodogram", "expected", "variance"):
+        assert ours[name].shape == (16, 16)
+        assert ours[name].ravel().tolist() == theirs[name]["grid"]
+        assert ours[f"{name}_radial"].tolist() == theirs[name]["radial"]
+    direct = samplab.spectrum(stack, res=16, direct=True)
+    np.testing.assert_allclose(direct["periodogram"], ours["periodogram"], atol=1e-8)
+
+
+def test_integration_study_equals_the_cli(cli):
+    theirs = json.loads(cli("integrate", "--sampler", "random", "--sampler", "jitter", "--integrand", "quad", "-n", "16,64", "--sets", 5, "--instances", 3, "--seed", 2, "--json"))
+    ours = samplab.integrate(["random", "jitter"], "quad", [16, 64], sets=5, instances=3, seed=2)
+    assert ours == theirs
+
+
+def test_integrands_evaluate_with_exact_integrals():
+    for fam in samplab.integrands():
+        d = int(fam["details"][0].split(": ")[1])
+        x = samplab.generate("sobol.owen", n=2**14, d=d, seed=1)
+        values, exact = samplab.integrand(fam["name"], x, instance=1, seed=5)
+        assert values.shape == (2**14,)
+        # a 2^14-point scrambled Sobol' estimate of a bounded integrand is close
+        assert values.mean() == pytest.approx(exact, abs=0.02), fam["name"]

@@ -1,0 +1,53 @@
+"""The scipy.stats.qmc engine: sequences extend, sets refuse to, qmc_quad works."""
+
+import numpy as np
+import pytest
+from scipy.integrate import qmc_quad
+from scipy.stats import qmc
+
+import samplab
+from samplab.qmc import Engine
+
+
+def test_sequence_engine_extends_and_resets():
+    e = Engine("sobol.owen", d=3, seed=7)
+    first, second = e.random(100), e.random(28)
+    whole = samplab.generate("sobol.owen", n=128, d=3, seed=7)
+    assert np.vstack([first, second]).tobytes() == whole.tobytes()
+    e.reset()
+    assert e.random(100).tobytes() == first.tobytes()
+    e.reset().fast_forward(100)
+    assert e.random(28).tobytes() == second.tobytes()
+
+
+def test_whole_set_engines_refuse_to_extend():
+    e = Engine("jitter", d=2, seed=1)
+    assert e.random(16).tobytes() == samplab.generate("jitter", n=16, seed=1).tobytes()
+    with pytest.raises(samplab.Error, match="cannot extend"):
+        e.random(16)
+    with pytest.raises(samplab.Error, match="cannot fast-forward"):
+        Engine("jitter").fast_forward(4)
+    assert isinstance(e, qmc.QMCEngine)
+
+
+def test_generator_seeds_are_deterministic():
+    a = Engine("halton.owen", d=2, seed=np.random.default_rng(3)).random(8)
+    b = Engine("halton.owen", d=2, seed=np.random.default_rng(3)).random(8)
+    c = Engine("halton.owen", d=2, seed=np.random.default_rng(4)).random(8)
+    assert a.tobytes() == b.tobytes() and a.tobytes() != c.tobytes()
+
+
+def test_qmc_quad_with_samplab_engines():
+    # the integral of prod(x_i^2) over [0,1]^3 is 1/27
+    def f(x):
+        return np.prod(x**2, axis=0)
+
+    for spec in ("sobol.owen", "halton.owen"):
+        res = qmc_quad(f, [0, 0, 0], [1, 1, 1], n_estimates=8, n_points=1024, qrng=Engine(spec, d=3, seed=1))
+        assert res.integral == pytest.approx(1 / 27, abs=5 * res.standard_error + 1e-6)
+        assert res.standard_error < 1e-3
+
+
+def test_scipy_discrepancy_takes_engine_points():
+    x = Engine("sobol.owen", d=2, seed=2).random(64)
+    assert qmc.discrepancy(x, method="L2-star") == pytest.approx(samplab.discrepancy("l2-star", x), rel=1e-10)
