@@ -78,7 +78,7 @@ fn in_flags(cause: &(dyn std::error::Error + 'static)) -> String {
         });
     match library {
         Some(samplab::Error::Setting { name, value, reason }) => {
-            let flag = if name.len() == 1 { format!("-{name}") } else { format!("--{name}") };
+            let flag = if name.len() == 1 { format!("-{name}") } else { format!("--{}", name.replace('_', "-")) };
             format!("{flag} {value}: {reason}")
         }
         Some(e @ samplab::Error::WorkLimit { .. }) => format!("{e}; raise it with --max-work"),

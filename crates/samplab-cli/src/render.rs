@@ -5,9 +5,9 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 use samplab::seed::Seed;
-use samplab_render::light::DiskMap;
-use samplab_render::scenes::{self, LightKind};
-use samplab_render::{Footprint, Image, Mode, Options, Pattern, Scene, render};
+use samplab_render::scenes;
+use samplab_render::settings::{self, Settings};
+use samplab_render::{Image, Options, Scene, render};
 
 /// The examples, and the built-in scenes with what each shows (from the scene registry).
 fn after_help() -> String {
@@ -35,10 +35,10 @@ pub struct Args {
     #[arg(long)]
     light: Option<String>,
     /// Strategy of the light samples (any sampler spec; see `samplab list samplers`)
-    #[arg(long, default_value = "jitter")]
+    #[arg(long, default_value = settings::SAMPLER)]
     sampler: String,
     /// Light samples per estimate and light
-    #[arg(short, default_value_t = 16)]
+    #[arg(short, default_value_t = settings::N)]
     n: usize,
     /// Secondary estimates per pixel (each one camera ray and n shadow rays per light)
     #[arg(long, default_value_t = 1)]
@@ -54,20 +54,20 @@ pub struct Args {
     #[arg(long, default_value = "center")]
     pixel: String,
     /// Strategy over the pixel area (spp points)
-    #[arg(long, default_value = "sobol.owen")]
+    #[arg(long, default_value = settings::SECONDARY)]
     pixel_sampler: String,
     /// Interleaved sampling: one pixel-sampler pattern of spp x W x H points over a tile of
     /// WxH pixels, repeated over the image (needs --pixel area)
     #[arg(long, value_name = "WxH")]
     interleave: Option<String>,
     /// Strategy over the lens (spp points), for scenes with an aperture
-    #[arg(long, default_value = "sobol.owen")]
+    #[arg(long, default_value = settings::SECONDARY)]
     lens_sampler: String,
     /// Strategy over the shutter time (spp points), for scenes that move
-    #[arg(long, default_value = "sobol.owen")]
+    #[arg(long, default_value = settings::SECONDARY)]
     time_sampler: String,
     /// Strategy over the glossy lobe (spp points), for scenes with an imperfect mirror
-    #[arg(long, default_value = "sobol.owen")]
+    #[arg(long, default_value = settings::SECONDARY)]
     gloss_sampler: String,
     /// estimate: an n-point pattern per estimate; pixel: one spp x n pattern per pixel dealt out
     #[arg(long, default_value = "estimate")]
@@ -104,27 +104,6 @@ pub struct Args {
     json: bool,
 }
 
-fn choose<T: Copy>(flag: &str, value: &str, table: &[(&str, T)]) -> anyhow::Result<T> {
-    table.iter().find(|(n, _)| n.eq_ignore_ascii_case(value)).map(|(_, v)| *v).with_context(|| {
-        format!(
-            "{flag}: unknown value '{value}' (one of: {})",
-            table.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
-        )
-    })
-}
-
-/// The scene a command line names: a built-in or a Mitsuba file.
-fn load_scene(name: &str, light: Option<&str>) -> anyhow::Result<Scene> {
-    let kind = light.map(LightKind::parse).transpose()?;
-    if name.to_ascii_lowercase().ends_with(".xml") {
-        if kind.is_some() {
-            bail!("--light replaces a built-in scene's light; a Mitsuba scene brings its own");
-        }
-        return Ok(samplab_render::mitsuba::load(Path::new(name))?);
-    }
-    Ok(scenes::builtin(name, kind)?)
-}
-
 /// A size WIDTHxHEIGHT given to `flag`.
 fn size(flag: &str, text: &str) -> anyhow::Result<(usize, usize)> {
     let parse = || {
@@ -159,36 +138,26 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     if !(a.error_scale.is_finite() && a.error_scale > 0.0) {
         bail!("--error-scale: {} must be a positive number", a.error_scale);
     }
-    let scene = load_scene(&a.scene, a.light.as_deref())?;
-    let (width, height) = a.res.as_deref().map(|r| size("--res", r)).transpose()?.unwrap_or(scene.resolution);
-    let sampler = |flag: &str, spec: &str| samplab::sampler::build(spec).with_context(|| flag.to_string());
-    let options = Options {
-        light: sampler("--sampler", &a.sampler)?,
+    let scene = settings::load_scene(&a.scene, a.light.as_deref())?;
+    let settings = Settings {
+        sampler: a.sampler.clone(),
         n: a.n,
         spp: a.spp,
-        mode: choose(
-            "--mode",
-            &a.mode,
-            &[("visibility", Mode::Visibility), ("direct", Mode::Direct), ("obscurance", Mode::Obscurance)],
-        )?,
-        footprint: choose(
-            "--pixel",
-            &a.pixel,
-            &[("center", Footprint::Centre), ("centre", Footprint::Centre), ("area", Footprint::Area)],
-        )?,
-        pixel: sampler("--pixel-sampler", &a.pixel_sampler)?,
-        lens: sampler("--lens-sampler", &a.lens_sampler)?,
-        time: sampler("--time-sampler", &a.time_sampler)?,
-        gloss: sampler("--gloss-sampler", &a.gloss_sampler)?,
-        pattern: choose("--pattern", &a.pattern, &[("estimate", Pattern::PerEstimate), ("pixel", Pattern::PerPixel)])?,
-        disk_map: a.disk_map.as_deref().map(|m| choose("--disk-map", m, &DiskMap::ALL)).transpose()?,
+        mode: a.mode.clone(),
+        pixel: a.pixel.clone(),
+        pixel_sampler: a.pixel_sampler.clone(),
+        lens_sampler: a.lens_sampler.clone(),
+        time_sampler: a.time_sampler.clone(),
+        gloss_sampler: a.gloss_sampler.clone(),
+        pattern: a.pattern.clone(),
+        disk_map: a.disk_map.clone(),
         range: a.range,
         interleave: a.interleave.as_deref().map(|t| size("--interleave", t)).transpose()?,
-        width,
-        height,
-        seed: Seed(a.seed),
+        res: a.res.as_deref().map(|r| size("--res", r)).transpose()?,
+        seed: a.seed,
     };
-    options.check(&scene)?;
+    let options = settings.options(&scene)?;
+    let (width, height) = (options.width, options.height);
     let reference = match &a.reference {
         Some(path) if path.exists() => Some((Image::read_exr(path)?, false)),
         Some(path) => {

@@ -307,6 +307,119 @@ fn integrand_eval<'py>(
     Ok((shaped(py, values, &[n])?, f.exact()))
 }
 
+/// Render settings from Python keywords, over the defaults of [`Settings`] (the CLI's).
+fn settings(given: Option<&Bound<'_, PyDict>>) -> PyResult<samplab_render::Settings> {
+    let mut s = samplab_render::Settings::default();
+    let Some(given) = given else { return Ok(s) };
+    for (key, value) in given.iter() {
+        let key: String = key.extract()?;
+        let bad = |e: PyErr| err(format!("{key}: {e}"));
+        match key.as_str() {
+            "sampler" => s.sampler = value.extract().map_err(bad)?,
+            "n" => s.n = value.extract().map_err(bad)?,
+            "spp" => s.spp = value.extract().map_err(bad)?,
+            "mode" => s.mode = value.extract().map_err(bad)?,
+            "pixel" => s.pixel = value.extract().map_err(bad)?,
+            "pixel_sampler" => s.pixel_sampler = value.extract().map_err(bad)?,
+            "lens_sampler" => s.lens_sampler = value.extract().map_err(bad)?,
+            "time_sampler" => s.time_sampler = value.extract().map_err(bad)?,
+            "gloss_sampler" => s.gloss_sampler = value.extract().map_err(bad)?,
+            "pattern" => s.pattern = value.extract().map_err(bad)?,
+            "disk_map" => s.disk_map = value.extract().map_err(bad)?,
+            "range" => s.range = value.extract().map_err(bad)?,
+            "interleave" => s.interleave = value.extract().map_err(bad)?,
+            "res" => s.res = value.extract().map_err(bad)?,
+            "seed" => s.seed = value.extract().map_err(bad)?,
+            _ => {
+                return Err(err(format!(
+                    "unknown render setting '{key}' (sampler, n, spp, mode, pixel, pixel_sampler, lens_sampler, \
+                     time_sampler, gloss_sampler, pattern, disk_map, range, interleave, res, seed)"
+                )));
+            }
+        }
+    }
+    Ok(s)
+}
+
+/// An image as a dictionary: rgb (h, w, 3) and visibility (h, w) float32 arrays.
+fn image_dict<'py>(py: Python<'py>, image: samplab_render::Image) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    let (w, h) = (image.width, image.height);
+    out.set_item("rgb", PyArray1::from_vec(py, image.rgb).reshape([h, w, 3])?)?;
+    match image.visibility {
+        Some(v) => out.set_item("visibility", PyArray1::from_vec(py, v).reshape([h, w])?)?,
+        None => out.set_item("visibility", py.None())?,
+    }
+    Ok(out)
+}
+
+/// Render `scene` (a built-in name or a Mitsuba XML file, lit by `light` if given) with the
+/// settings given (the CLI's defaults otherwise); `reference_samples` renders the reference
+/// `samplab render` would (converged, Owen-scrambled Sobol') instead.
+#[pyfunction]
+#[pyo3(signature = (scene, light=None, settings=None, reference_samples=None))]
+fn render<'py>(
+    py: Python<'py>,
+    scene: &str,
+    light: Option<&str>,
+    settings: Option<&Bound<'py, PyDict>>,
+    reference_samples: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let s = self::settings(settings)?;
+    let scene = samplab_render::settings::load_scene(scene, light).map_err(err)?;
+    let mut options = s.options(&scene).map_err(err)?;
+    if let Some(samples) = reference_samples {
+        options = options.reference(&scene, samples).map_err(err)?;
+    }
+    let rendered = py.detach(|| samplab_render::render(&scene, &options, &|_| {})).map_err(err)?;
+    let out = image_dict(py, rendered.image)?;
+    out.set_item("camera_rays", rendered.camera_rays)?;
+    out.set_item("shadow_rays", rendered.shadow_rays)?;
+    Ok(out)
+}
+
+/// An image from float32 arrays rgb (h, w, 3) and, optionally, visibility (h, w).
+fn image_of(
+    rgb: &PyReadonlyArray3<f32>,
+    visibility: Option<&PyReadonlyArray2<f32>>,
+) -> PyResult<samplab_render::Image> {
+    let shape = rgb.shape();
+    if shape[2] != 3 {
+        return Err(err(format!("rgb: expected shape (h, w, 3), got {shape:?}")));
+    }
+    let (h, w) = (shape[0], shape[1]);
+    let contiguous = |_| err("the array must be C-contiguous");
+    let visibility = match visibility {
+        Some(v) if v.shape() != [h, w] => {
+            return Err(err(format!("visibility: expected shape ({h}, {w}), got {:?}", v.shape())));
+        }
+        Some(v) => Some(v.as_slice().map_err(contiguous)?.to_vec()),
+        None => None,
+    };
+    Ok(samplab_render::Image { width: w, height: h, rgb: rgb.as_slice().map_err(contiguous)?.to_vec(), visibility })
+}
+
+/// Error metrics of an image against a reference (luminance, Rec. 709), as `samplab render
+/// --json` reports them; `penumbra` restricts them to the reference's 0 < V < 1.
+#[pyfunction]
+#[pyo3(signature = (rgb, reference_rgb, reference_visibility=None, penumbra=false))]
+fn image_errors(
+    rgb: PyReadonlyArray3<f32>,
+    reference_rgb: PyReadonlyArray3<f32>,
+    reference_visibility: Option<PyReadonlyArray2<f32>>,
+    penumbra: bool,
+) -> PyResult<String> {
+    let image = image_of(&rgb, None)?;
+    let reference = image_of(&reference_rgb, reference_visibility.as_ref())?;
+    serde_json::to_string(&image.errors(&reference, penumbra).map_err(err)?).map_err(err)
+}
+
+/// Read an OpenEXR image (as `samplab render` writes them).
+#[pyfunction]
+fn read_exr<'py>(py: Python<'py>, path: &str) -> PyResult<Bound<'py, PyDict>> {
+    image_dict(py, samplab_render::Image::read_exr(std::path::Path::new(path)).map_err(err)?)
+}
+
 /// Run the reproduction into `out` (replaced when complete); returns the claims as JSON.
 #[pyfunction]
 #[pyo3(signature = (out, full=false, only=None, seed=None))]
@@ -352,5 +465,8 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(integrand_eval, m)?)?;
     m.add_function(wrap_pyfunction!(reproduce, m)?)?;
+    m.add_function(wrap_pyfunction!(render, m)?)?;
+    m.add_function(wrap_pyfunction!(image_errors, m)?)?;
+    m.add_function(wrap_pyfunction!(read_exr, m)?)?;
     Ok(())
 }

@@ -20,8 +20,10 @@ mod packet;
 pub mod render;
 pub mod scene;
 pub mod scenes;
+pub mod settings;
 
 pub use error::{Error, Result};
 pub use image::{Errors, Image};
 pub use render::{Footprint, Mode, Options, Pattern, Rendered, render};
 pub use scene::Scene;
+pub use settings::Settings;

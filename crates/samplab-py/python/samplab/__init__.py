@@ -40,6 +40,9 @@ __all__ = [
     "integrate",
     "integrand",
     "reproduce",
+    "render",
+    "image_errors",
+    "read_exr",
 ]
 
 #: The seed the CLI uses when none is given.
@@ -220,3 +223,53 @@ def reproduce(out: str = "report", full: bool = False, only: Optional[Sequence[s
     as ``samplab reproduce``; returns each claim's paper, id and verdict."""
     keys = None if only is None else [only] if isinstance(only, str) else list(only)
     return json.loads(_samplab.reproduce(str(out), bool(full), keys, None if seed is None else _seed(seed)))
+
+
+def render(scene: str, light: Optional[str] = None, reference_samples: Optional[int] = None, **settings: Any) -> Dict[str, Any]:
+    """Render ``scene`` (a built-in scene, see ``scenes()``, or a Mitsuba 3 XML file),
+    lit by ``light`` (``"square"``, ``"disk"``, ``"linear"``, ``"gaussian"``) if given.
+
+    Keywords are the CLI's flags, with the CLI's defaults: ``sampler`` (light strategy,
+    ``"jitter"``), ``n`` (16), ``spp`` (1), ``mode`` (``"visibility"``, ``"direct"``,
+    ``"obscurance"``), ``pixel`` (``"center"``, ``"area"``), ``pixel_sampler``,
+    ``lens_sampler``, ``time_sampler``, ``gloss_sampler`` (``"sobol.owen"``), ``pattern``
+    (``"estimate"``, ``"pixel"``), ``disk_map``, ``range``, ``interleave`` ((w, h)), ``res``
+    ((width, height)), ``seed``. With ``reference_samples``, the converged reference the
+    CLI renders for these settings instead.
+
+    Returns ``{"rgb": (h, w, 3) float32, "visibility": (h, w) float32, "camera_rays",
+    "shadow_rays"}``: the same numbers ``samplab render -o x.exr`` writes.
+    """
+    if "seed" in settings:
+        settings["seed"] = _seed(settings["seed"])
+    samples = None if reference_samples is None else _count("reference_samples", reference_samples)
+    return _samplab.render(scene, light, settings, samples)
+
+
+def _image(a: Any, what: str, ndim: int) -> np.ndarray:
+    arr = np.ascontiguousarray(np.asarray(a), dtype=np.float32)
+    if arr.ndim != ndim:
+        raise Error(f"{what}: expected {ndim} dimensions, got shape {arr.shape}")
+    return arr
+
+
+def image_errors(image: Any, reference: Any, penumbra: bool = False) -> Dict[str, float]:
+    """Errors of ``image`` against ``reference`` on luminance (as ``samplab render --json``):
+    pixels, mse, rmse, relative, mean_abs, sd_abs, max_abs, bias. Each argument is a
+    ``render()`` result or an (h, w, 3) array; ``penumbra`` restricts the comparison to the
+    reference's 0 < V < 1 (it needs the reference's visibility)."""
+    def parts(x: Any, what: str):
+        if isinstance(x, dict):
+            v = x.get("visibility")
+            return _image(x["rgb"], what, 3), None if v is None else _image(v, what + " visibility", 2)
+        return _image(x, what, 3), None
+
+    rgb, _ = parts(image, "image")
+    ref_rgb, ref_vis = parts(reference, "reference")
+    return json.loads(_samplab.image_errors(rgb, ref_rgb, ref_vis, bool(penumbra)))
+
+
+def read_exr(path: str) -> Dict[str, Any]:
+    """An OpenEXR image as ``samplab render`` writes it: ``{"rgb": (h, w, 3), "visibility":
+    (h, w) or None}``, float32."""
+    return _samplab.read_exr(str(path))

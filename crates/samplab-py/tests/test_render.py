@@ -1,0 +1,56 @@
+"""Rendering: the CLI's bytes, its reference policy, errors, and bad settings."""
+
+import json
+
+import numpy as np
+import pytest
+
+import samplab
+
+
+@pytest.mark.parametrize(
+    "scene,args,settings",
+    [
+        ("spheres", ["--sampler", "jitter", "-n", 4], {"sampler": "jitter", "n": 4}),
+        ("sphere-box", ["--mode", "obscurance", "--range", 0.5, "-n", 4], {"mode": "obscurance", "range": 0.5, "n": 4}),
+        ("checker", ["--pixel", "area", "--spp", 4, "--interleave", "2x2", "--pixel-sampler", "jitter"], {"pixel": "area", "spp": 4, "interleave": (2, 2), "pixel_sampler": "jitter"}),
+        ("defocus", ["--spp", 4, "-n", 4], {"spp": 4, "n": 4}),
+    ],
+)
+def test_render_equals_the_cli(cli, tmp_path, scene, args, settings):
+    out = tmp_path / "x.exr"
+    cli("render", scene, *args, "--res", "24x16", "--seed", 20, "-o", out)
+    theirs = samplab.read_exr(out)
+    ours = samplab.render(scene, res=(24, 16), seed=20, **settings)
+    assert ours["rgb"].shape == (16, 24, 3) and ours["rgb"].dtype == np.float32
+    assert ours["rgb"].tobytes() == theirs["rgb"].tobytes()
+    assert ours["visibility"].tobytes() == theirs["visibility"].tobytes()
+
+
+def test_reference_and_errors_equal_the_cli(cli, tmp_path):
+    ref = tmp_path / "ref.exr"
+    summary = json.loads(
+        cli("render", "spheres", "--light", "disk", "-n", 4, "--res", "20x12", "--seed", 3, "-o", tmp_path / "x.exr",
+            "--reference", ref, "--reference-samples", 64, "--penumbra", "--json")
+    )
+    ours = samplab.render("spheres", light="disk", n=4, res=(20, 12), seed=3)
+    reference = samplab.render("spheres", light="disk", n=4, res=(20, 12), seed=3, reference_samples=64)
+    assert reference["rgb"].tobytes() == samplab.read_exr(ref)["rgb"].tobytes()
+    assert samplab.image_errors(ours, reference, penumbra=True) == summary["errors"]
+
+
+@pytest.mark.parametrize(
+    "call,message",
+    [
+        (lambda: samplab.render("spheres", mode="foo"), "mode = foo: unknown value"),
+        (lambda: samplab.render("spheres", sampler="jiter"), "did you mean jitter"),
+        (lambda: samplab.render("spheres", n=15), "9 and 16"),
+        (lambda: samplab.render("nosuch"), "unknown scene"),
+        (lambda: samplab.render("spheres", colour="red"), "unknown render setting 'colour'"),
+        (lambda: samplab.render("spheres", res=(0, 10)), "width 0"),
+        (lambda: samplab.image_errors(np.zeros((2, 2, 3)), np.zeros((3, 2, 3))), "but the reference is"),
+    ],
+)
+def test_bad_settings_raise(call, message):
+    with pytest.raises(samplab.Error, match=message):
+        call()

@@ -1,0 +1,153 @@
+//! Render settings as words and numbers, what the CLI's flags and the Python package's
+//! keywords carry, turned into [`Options`] in one place (one set of defaults, one set of
+//! names and errors). A setting that is wrong is a `samplab::Error::Setting` named as here
+//! (`mode`, `pixel_sampler`, ...); front ends map the names to their own flags.
+
+use std::path::Path;
+
+use samplab::Seed;
+
+use crate::error::Result;
+use crate::light::DiskMap;
+use crate::render::{Footprint, Mode, Options, Pattern};
+use crate::scene::Scene;
+use crate::scenes::{LightKind, builtin};
+
+/// The default light sampler.
+pub const SAMPLER: &str = "jitter";
+/// The default strategy over the pixel area, the lens, the shutter and the glossy lobe.
+pub const SECONDARY: &str = "sobol.owen";
+/// The default light samples per estimate.
+pub const N: usize = 16;
+/// Estimators, by name.
+pub const MODES: [(&str, Mode); 3] =
+    [("visibility", Mode::Visibility), ("direct", Mode::Direct), ("obscurance", Mode::Obscurance)];
+/// Pixel footprints, by name.
+pub const FOOTPRINTS: [(&str, Footprint); 3] =
+    [("center", Footprint::Centre), ("centre", Footprint::Centre), ("area", Footprint::Area)];
+/// Light-sample groupings, by name.
+pub const PATTERNS: [(&str, Pattern); 2] = [("estimate", Pattern::PerEstimate), ("pixel", Pattern::PerPixel)];
+
+/// Everything a render takes besides the scene, in words and numbers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// Light sampler spec.
+    pub sampler: String,
+    /// Light samples per estimate and light.
+    pub n: usize,
+    /// Secondary estimates per pixel.
+    pub spp: usize,
+    /// `visibility`, `direct` or `obscurance`.
+    pub mode: String,
+    /// `center` or `area`.
+    pub pixel: String,
+    /// Strategy over the pixel area.
+    pub pixel_sampler: String,
+    /// Strategy over the lens.
+    pub lens_sampler: String,
+    /// Strategy over the shutter.
+    pub time_sampler: String,
+    /// Strategy over the glossy lobe.
+    pub gloss_sampler: String,
+    /// `estimate` or `pixel`.
+    pub pattern: String,
+    /// `concentric`, `polar` or `reject` for every disk light (None: each light's own).
+    pub disk_map: Option<String>,
+    /// Obscurance range.
+    pub range: f64,
+    /// Interleaving tile (width, height).
+    pub interleave: Option<(usize, usize)>,
+    /// Image size (None: the scene's).
+    pub res: Option<(usize, usize)>,
+    /// Seed.
+    pub seed: u64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            sampler: SAMPLER.into(),
+            n: N,
+            spp: 1,
+            mode: "visibility".into(),
+            pixel: "center".into(),
+            pixel_sampler: SECONDARY.into(),
+            lens_sampler: SECONDARY.into(),
+            time_sampler: SECONDARY.into(),
+            gloss_sampler: SECONDARY.into(),
+            pattern: "estimate".into(),
+            disk_map: None,
+            range: 1.0,
+            interleave: None,
+            res: None,
+            seed: Seed::DEFAULT.0,
+        }
+    }
+}
+
+/// The value `table` gives `word` (case-insensitive), or a setting error listing the words.
+fn choose<T: Copy>(name: &'static str, word: &str, table: &[(&str, T)]) -> samplab::Result<T> {
+    table.iter().find(|(w, _)| w.eq_ignore_ascii_case(word)).map(|(_, v)| *v).ok_or_else(|| samplab::Error::Setting {
+        name,
+        value: word.to_string(),
+        reason: format!("unknown value (one of: {})", table.iter().map(|(w, _)| *w).collect::<Vec<_>>().join(", ")),
+    })
+}
+
+/// The sampler `spec` for the setting `name`, its error named by the setting.
+fn sampler(name: &'static str, spec: &str) -> samplab::Result<Box<dyn samplab::Sampler>> {
+    samplab::sampler::build(spec).map_err(|e| samplab::Error::Setting {
+        name,
+        value: spec.to_string(),
+        reason: e.to_string(),
+    })
+}
+
+impl Settings {
+    /// The options for rendering `scene` with these settings, every count checked.
+    ///
+    /// # Errors
+    /// An unknown word, a sampler spec that does not parse, or counts and sizes that
+    /// [`Options::check`] refuses.
+    pub fn options(&self, scene: &Scene) -> Result<Options> {
+        let (width, height) = self.res.unwrap_or(scene.resolution);
+        let options = Options {
+            light: sampler("sampler", &self.sampler)?,
+            n: self.n,
+            spp: self.spp,
+            mode: choose("mode", &self.mode, &MODES)?,
+            footprint: choose("pixel", &self.pixel, &FOOTPRINTS)?,
+            pixel: sampler("pixel_sampler", &self.pixel_sampler)?,
+            lens: sampler("lens_sampler", &self.lens_sampler)?,
+            time: sampler("time_sampler", &self.time_sampler)?,
+            gloss: sampler("gloss_sampler", &self.gloss_sampler)?,
+            pattern: choose("pattern", &self.pattern, &PATTERNS)?,
+            disk_map: self.disk_map.as_deref().map(|m| choose("disk_map", m, &DiskMap::ALL)).transpose()?,
+            range: self.range,
+            interleave: self.interleave,
+            width,
+            height,
+            seed: Seed(self.seed),
+        };
+        options.check(scene)?;
+        Ok(options)
+    }
+}
+
+/// The scene `name` names: a built-in (lit by `light` if given) or a Mitsuba 3 XML file.
+///
+/// # Errors
+/// An unknown scene or light, a light given for a Mitsuba scene (it brings its own), or a
+/// scene file that does not load.
+pub fn load_scene(name: &str, light: Option<&str>) -> Result<Scene> {
+    let kind = light.map(LightKind::parse).transpose()?;
+    if name.to_ascii_lowercase().ends_with(".xml") {
+        if kind.is_some() {
+            return Err(crate::Error::Invalid(
+                "a light replaces a built-in scene's light; a Mitsuba scene brings its own".into(),
+            ));
+        }
+        return crate::mitsuba::load(Path::new(name));
+    }
+    builtin(name, kind)
+}
