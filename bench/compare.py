@@ -5,7 +5,8 @@ Runs both in this one invocation on the same machine and prints medians and rati
 Usage: bench/compare [--quick] [SECTION...]
   installs the peers (bench/requirements.txt: scipy, Mitsuba 3) into bench/.venv, builds
   samplab, and runs the sections named (all by default): samplers, discrepancy, spectrum,
-  render. --quick: PoissonDisk at n = 10^4 instead of 10^5 (minutes less).
+  render. `bench/compare python` runs bench/python.py instead: the Python package against
+  the Rust core, scipy.stats.qmc and QMCPy. --quick: PoissonDisk at n = 10^4 instead of 10^5 (minutes less).
 """
 import json
 import math
