@@ -11,6 +11,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
+use rayon::prelude::*;
 use samplab::discrepancy::{Limits, Metric};
 use samplab::registry::{Entry, Registry};
 use samplab::spec::{Default, Kind};
@@ -114,8 +115,12 @@ fn generate<'py>(
     let data = py
         .detach(|| -> samplab::Result<Vec<f64>> {
             let plan = sampler.plan(n, d)?;
-            let sets = plan.generate_sets(Seed(seed), sets)?;
-            Ok(sets.into_iter().flat_map(PointSet::into_vec).collect())
+            // one buffer, filled in place: set k is rows k*n .. (k+1)*n
+            let mut data = vec![0.0; sets * n * d];
+            data.par_chunks_mut(n * d)
+                .enumerate()
+                .try_for_each(|(k, chunk)| plan.fill(Seed(seed).derive(k as u64), chunk))?;
+            Ok(data)
         })
         .map_err(err)?;
     shaped(py, data, &[sets, n, d])
@@ -208,7 +213,6 @@ fn discrepancy(
     };
     let sets = point_sets(&points)?;
     py.detach(|| {
-        use rayon::prelude::*;
         sets.par_iter()
             .enumerate()
             .map(|(k, s)| {
