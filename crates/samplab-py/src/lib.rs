@@ -183,6 +183,38 @@ fn point_sets(points: &PyReadonlyArray3<f64>) -> PyResult<Vec<PointSet>> {
     (0..sets).map(|k| PointSet::new(d, data[k * n * d..(k + 1) * n * d].to_vec()).map_err(err)).collect()
 }
 
+/// The format `name` (a registry name or extension), or the one `path`'s extension implies.
+fn format_of(path: &str, name: Option<&str>) -> PyResult<samplab::io::Format> {
+    match name {
+        Some(n) => samplab::io::Format::from_name(n).map_err(err),
+        None => Ok(samplab::io::Format::from_path(std::path::Path::new(path))),
+    }
+}
+
+/// Write a (sets, n, d) stack to `path` in `format` (text, csv, npy, json; by default
+/// from the extension), atomically, as `samplab generate -o` writes files.
+#[pyfunction]
+#[pyo3(signature = (path, points, format=None, header=None))]
+fn save(path: &str, points: PyReadonlyArray3<f64>, format: Option<&str>, header: Option<Vec<String>>) -> PyResult<()> {
+    let sets = point_sets(&points)?;
+    let bytes = samplab::io::encode(&sets, format_of(path, format)?, &header.unwrap_or_default()).map_err(err)?;
+    samplab::io::write_atomic(std::path::Path::new(path), &bytes).map_err(err)
+}
+
+/// Read every set of a point file (text, csv, npy, json; by default from the extension)
+/// as a list of (n, d) arrays; malformed or non-finite data is an error naming the line.
+#[pyfunction]
+#[pyo3(signature = (path, format=None))]
+fn load<'py>(py: Python<'py>, path: &str, format: Option<&str>) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    let sets = samplab::io::read(std::path::Path::new(path), Some(format_of(path, format)?)).map_err(err)?;
+    sets.into_iter()
+        .map(|s| {
+            let (n, d) = (s.len(), s.dims());
+            shaped(py, s.into_vec(), &[n, d])
+        })
+        .collect()
+}
+
 /// Warp an (n, d) array of points (rejection warps drop points).
 #[pyfunction]
 fn warp<'py>(py: Python<'py>, name: &str, points: PyReadonlyArray2<f64>) -> PyResult<Bound<'py, PyAny>> {
@@ -463,6 +495,8 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(is_sequence, m)?)?;
     m.add_function(wrap_pyfunction!(sequence_points, m)?)?;
     m.add_function(wrap_pyfunction!(warp, m)?)?;
+    m.add_function(wrap_pyfunction!(save, m)?)?;
+    m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(discrepancy, m)?)?;
     m.add_function(wrap_pyfunction!(metric_flags, m)?)?;
     m.add_function(wrap_pyfunction!(spectrum, m)?)?;

@@ -54,3 +54,20 @@ def test_reference_and_errors_equal_the_cli(cli, tmp_path):
 def test_bad_settings_raise(call, message):
     with pytest.raises(samplab.Error, match=message):
         call()
+
+
+def test_every_scene_renders():
+    for scene in samplab.scenes():
+        out = samplab.render(scene["name"], res=(8, 6), n=1, sampler="random", seed=1)
+        assert out["rgb"].shape == (6, 8, 3) and np.isfinite(out["rgb"]).all(), scene["name"]
+        assert out["camera_rays"] >= 48, scene["name"]
+
+
+def test_the_readme_gallery_runs(tmp_path):
+    import runpy
+    from pathlib import Path
+
+    gallery = runpy.run_path(str(Path(__file__).resolve().parents[1] / "examples" / "gallery.py"))
+    gallery["main"](tmp_path)
+    for name in ("pattern", "discrepancy", "periodogram", "convergence", "shadows"):
+        assert (tmp_path / f"{name}.png").read_bytes()[1:4] == b"PNG", name

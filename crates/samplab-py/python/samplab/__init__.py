@@ -34,6 +34,8 @@ __all__ = [
     "is_sequence",
     "sequence_points",
     "warp",
+    "save",
+    "load",
     "discrepancy",
     "discrepancy_flags",
     "spectrum",
@@ -156,6 +158,20 @@ def warp(name: str, points: Any) -> np.ndarray:
     """Warp an (n, d) array of points in [0, 1)^d (``"disk.concentric"``, ``"tent"``,
     ``"hemisphere.cosine"``, ...); rejection warps drop points."""
     return _samplab.warp(name, _points(points, stack=False))
+
+
+def save(path: str, points: Any, format: Optional[str] = None, header: Optional[Sequence[str]] = None) -> None:
+    """Write an (n, d) set or a (sets, n, d) stack to ``path`` in ``format`` (``"text"``,
+    ``"csv"``, ``"npy"``, ``"json"``; by default from the extension), atomically, as
+    ``samplab generate -o`` does. ``header`` lines go into text comments or JSON metadata."""
+    _samplab.save(str(path), _points(points, stack=True), format, None if header is None else list(header))
+
+
+def load(path: str, format: Optional[str] = None) -> List[np.ndarray]:
+    """Every set of a point file as a list of (n, d) float64 arrays (the formats of
+    ``formats()``; by default from the extension). Malformed or non-finite data raises
+    ``samplab.Error`` naming the file and line."""
+    return _samplab.load(str(path), format)
 
 
 def discrepancy(metric: str, points: Any, max_work: Optional[float] = None) -> Union[float, np.ndarray]:
