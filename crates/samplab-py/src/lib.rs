@@ -152,8 +152,13 @@ fn sequence_points<'py>(
             let access = sequence.access(d, Seed(seed).derive(0))?;
             let mut data = Vec::with_capacity(n * d);
             for i in 0..n as u64 {
+                let index = start.checked_add(i).ok_or_else(|| samplab::Error::Setting {
+                    name: "start",
+                    value: start.to_string(),
+                    reason: format!("start + {n} points passes the last index 2^64 - 1"),
+                })?;
                 for dim in 0..d {
-                    data.push(access.sample(start + i, dim)?);
+                    data.push(access.sample(index, dim)?);
                 }
             }
             Ok(data)

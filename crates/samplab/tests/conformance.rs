@@ -95,6 +95,12 @@ fn bad_input_errors_name_the_problem() {
     assert!(e.contains("'sigma'") && e.contains("[0, 8]"), "{e}");
     let e = err("poisson:radius=0.3", 16, 2).to_string();
     assert!(e.contains("radius 0.3 cannot fit 16 points"), "{e}");
+    // tiny radii: dart throwing falls back to the linked grid (it used to ask for a grid of
+    // 10^18 cells and panic); Bridson, which fills the square first, refuses before any work
+    let few = sampler::build("poisson:radius=1e-9").unwrap().generate(3, 2, Seed(1)).unwrap();
+    assert_eq!(few.len(), 3);
+    let e = err("poisson.fast:radius=1e-6", 10, 2).to_string();
+    assert!(e.contains("would fill the square with about") && e.contains("use a radius of at least"), "{e}");
     let e = err("poisson.fast:radius=0.2", 100, 2).to_string();
     assert!(e.contains("fewer than 100"), "{e}");
     let e = err("pmj02", 16, 3).to_string();

@@ -232,7 +232,15 @@ const NEAREST_FIRST: [(i8, i8); 25] = [
     (-2, -2),
 ];
 
+/// The most cells a one-point-per-cell grid may have (2^28: 4 GiB of slots).
+const MAX_GRID_CELLS: f64 = (1u64 << 28) as f64;
+
 impl DiskGrid {
+    /// The cells of the grid for `radius`, as a float (it may exceed any usize).
+    fn cells(radius: f64) -> f64 {
+        (2f64.sqrt() / radius).ceil().powi(2)
+    }
+
     fn new(radius: f64, torus: bool, capacity: usize) -> Self {
         let g = ((2f64.sqrt() / radius).ceil() as usize).max(1);
         DiskGrid {
@@ -473,7 +481,9 @@ impl Fill for DartThrowing {
     }
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         let r = self.radius.unwrap_or(AUTO_RELATIVE * packing_radius(n, dims));
-        let best = if dims == 2 {
+        // the one-point-per-cell grid has (sqrt 2 / r)^2 cells: for tiny radii the linked
+        // grid (capped at 2^22 cells, several points each) stands in
+        let best = if dims == 2 && DiskGrid::cells(r) <= MAX_GRID_CELLS {
             self.throw(&mut DiskGrid::new(r, self.torus, n), n, dims, seed, out)
         } else {
             self.throw(&mut NeighbourGrid::new(dims, r, self.torus, n), n, dims, seed, out)
@@ -587,6 +597,21 @@ impl Sampler for Bridson {
 }
 
 impl Fill for Bridson {
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        // Bridson fills the whole square before keeping n: its grid must fit
+        let r = self.radius.unwrap_or(0.72 * packing_radius(n, dims));
+        if DiskGrid::cells(r) > MAX_GRID_CELLS {
+            return Err(Error::Infeasible {
+                sampler: self.spec(),
+                reason: format!(
+                    "radius {r} would fill the square with about {:.1e} points before keeping {n}; use a radius of at least {:.2e} (or dart throwing, `poisson`)",
+                    (packing_radius(1, dims) / r).powi(2),
+                    2f64.sqrt() / MAX_GRID_CELLS.sqrt()
+                ),
+            });
+        }
+        Ok(())
+    }
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         let mut r = self.radius.unwrap_or(0.72 * packing_radius(n, dims));
         let mut rng = seed.rng();

@@ -1,0 +1,46 @@
+"""Bad input never crashes the interpreter: thousands of random calls with odd specs,
+counts, shapes and values raise only samplab.Error (never a Rust panic, which pyo3 would
+surface as pyo3_runtime.PanicException, nor a segfault, which would kill pytest)."""
+
+import numpy as np
+import pytest
+
+import samplab
+
+SPECS = [s["name"] for s in samplab.samplers()] + [
+    "", ":", "jitter:", "jitter:sigma", "jitter.gaussian:sigma=1e308", "jitter.gaussian:sigma=nan",
+    "poisson:radius=1e-9", "poisson:radius=1", "force-matrix:grid=1", "force-matrix:grid=16777216",
+    "jitter.uniform:offsets=1048576", "sobol:x=1", "halton,xor", "ñ", "jitter.box:delta=-0",
+]
+METRICS = [m["name"] for m in samplab.metrics()] + ["projected:angle=nan", "star-bound:iterations=0", "star-bound:seed=-1", "l2"]
+
+
+def _calls(rng):
+    spec = SPECS[rng.integers(len(SPECS))]
+    n = int(rng.choice([0, 1, 2, 3, 15, 16, 17, 64, 2**32 + 1]))
+    d = int(rng.choice([0, 1, 2, 3, 5, 65, 1025]))
+    shape = tuple(int(x) for x in rng.integers(0, 4, size=rng.integers(1, 4)))
+    values = rng.choice([0.5, 0.0, 1.0, -0.1, 1.5, np.nan, np.inf])
+    arr = np.full(shape, values)
+    return [
+        lambda: samplab.generate(spec, n=min(n, 4096), d=min(d, 70), seed=int(rng.integers(2**63))),
+        lambda: samplab.discrepancy(METRICS[rng.integers(len(METRICS))], arr),
+        lambda: samplab.warp(samplab.warps()[rng.integers(7)]["name"], arr),
+        lambda: samplab.spectrum(arr, res=int(rng.choice([0, 1, 3, 8]))),
+        lambda: samplab.sequence_points(spec, start=int(rng.choice([0, 2**32 - 1, 2**53, 2**64 - 1])), n=min(n, 8), d=min(d, 4)),
+        lambda: samplab.integrand(samplab.integrands()[rng.integers(13) % len(samplab.integrands())]["name"], arr),
+    ]
+
+
+def test_random_bad_calls_raise_only_samplab_errors():
+    rng = np.random.default_rng(2026)
+    errors = 0
+    for _ in range(400):
+        for call in _calls(rng):
+            try:
+                call()
+            except samplab.Error:
+                errors += 1
+            except BaseException as e:  # a panic or any other exception is a bug
+                pytest.fail(f"{type(e).__module__}.{type(e).__name__}: {e}")
+    assert errors > 1000  # most of these calls are bad input
