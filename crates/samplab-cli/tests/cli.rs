@@ -332,3 +332,27 @@ fn render_bad_input_exit_2_and_no_image() {
     assert_bad_input(&["render", "spheres", "-o", &dir.join("x.tif").display().to_string()], &[".exr or .png"]);
     assert!(!std::path::Path::new(&o).exists());
 }
+
+#[test]
+fn library_settings_are_named_by_their_flags() {
+    // the library speaks of settings (sets = 1, mode = foo, a work limit); the CLI names
+    // the flags that set them
+    let study = ["integrate", "--sampler", "random", "--integrand", "quad", "-n", "16"];
+    assert_bad_input(&[&study[..], &["--sets", "1"]].concat(), &["--sets 1: the variance needs at least 2"]);
+    assert_bad_input(&[&study[..], &["--instances", "0"]].concat(), &["--instances 0: at least 1 instance"]);
+    let dir = temp("flags");
+    let out = dir.join("x.png");
+    let render = ["render", "spheres", "--res", "8x8", "-o", out.to_str().unwrap()];
+    assert_bad_input(&[&render[..], &["--mode", "foo"]].concat(), &["--mode foo: unknown value (one of: visibility"]);
+    assert_bad_input(
+        &[&render[..], &["--pixel-sampler", "jiter"]].concat(),
+        &["--pixel-sampler jiter: unknown sampler"],
+    );
+    assert_bad_input(&[&render[..], &["--disk-map", "x"]].concat(), &["--disk-map x: unknown value"]);
+    assert_bad_input(&[&render[..], &["-n", "0"]].concat(), &["-n 0: light samples per estimate must be at least 1"]);
+    assert_bad_input(&[&render[..], &["--spp", "0"]].concat(), &["--spp 0: estimates per pixel must be at least 1"]);
+    assert_bad_input(
+        &["discrepancy", "star", "--sampler", "random", "-n", "3000", "-d", "6", "--max-work", "1e5"],
+        &["over the work limit 1.0e5; raise it with --max-work"],
+    );
+}
