@@ -7,6 +7,8 @@ use rayon::prelude::*;
 use samplab::PointSet;
 use samplab::discrepancy::{self, Limits, Metric};
 
+use crate::bar::Bar;
+
 /// The examples and the metrics (from the metric registry).
 fn after_help() -> String {
     format!(
@@ -53,7 +55,8 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         bail!("--max-work must be a positive number");
     }
     let crate::sets::Loaded { sets, source, .. } = a.source.load(file.as_deref(), 1, &(0.0..=1.0))?;
-    let bar = crate::generate::progress((sets.len() * metrics.len()) as u64, "evaluations");
+    let bar = Bar::new((sets.len() * metrics.len()) as u64, "evaluations");
+    let progress = bar.progress();
     // values[m][k]: metric m on set k, computed in parallel, deterministic
     let values: Vec<Vec<f64>> = metrics
         .iter()
@@ -61,14 +64,15 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
             sets.par_iter()
                 .enumerate()
                 .map(|(k, s)| {
-                    let v = discrepancy::compute(m, s, limits).with_context(|| format!("set {k}"));
-                    bar.inc(1);
-                    v
+                    progress.check()?;
+                    let v = discrepancy::compute(m, s, limits).with_context(|| format!("set {k}"))?;
+                    progress.advance(1)?;
+                    Ok(v)
                 })
                 .collect::<anyhow::Result<Vec<f64>>>()
         })
         .collect::<anyhow::Result<_>>()?;
-    bar.finish_and_clear();
+    drop(bar);
     let out = if a.json { json(&metrics, &values, &sets, &source) } else { table(&metrics, &values, &source) };
     crate::emit(None, out.as_bytes())
 }
@@ -104,17 +108,15 @@ fn json(metrics: &[Metric], values: &[Vec<f64>], sets: &[PointSet], source: &str
         .iter()
         .zip(values)
         .map(|(m, v)| {
-            let e = m.entry();
             let (mean, sd, max) = summary(v);
-            serde_json::json!({
-                "metric": m.spec(),
-                "squared": false,
-                "l2_closed_form": e.l2,
-                "toroidal_shift_invariant": e.shift_invariant,
-                "lower_bound": e.lower_bound,
-                "values": v,
-                "mean": mean, "sd": sd, "max": max,
-            })
+            let mut row = serde_json::to_value(m.flags()).expect("JSON of plain fields");
+            let fields = row.as_object_mut().expect("a struct is an object");
+            for (key, value) in
+                [("values", serde_json::json!(v)), ("mean", mean.into()), ("sd", sd.into()), ("max", max.into())]
+            {
+                fields.insert(key.into(), value);
+            }
+            row
         })
         .collect();
     let v = serde_json::json!({ "source": source, "sets": sets.len(), "n": sets.iter().map(PointSet::len).collect::<Vec<_>>(), "metrics": rows });

@@ -3,10 +3,10 @@
 use std::path::PathBuf;
 
 use anyhow::Context as _;
-use indicatif::{ProgressBar, ProgressStyle};
-use rayon::prelude::*;
 use samplab::io::{self, Format};
-use samplab::{PointSet, Seed, sampler, warp};
+use samplab::{Seed, sampler, warp};
+
+use crate::bar::Bar;
 
 /// The examples, the samplers and the warps (from their registries).
 fn after_help() -> String {
@@ -64,16 +64,9 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     }
     let plan = s.plan(a.n, a.dims)?;
     let seed = Seed(a.seed);
-    let bar = progress(a.sets as u64, "sets");
-    let sets: Vec<PointSet> = (0..a.sets as u64)
-        .into_par_iter()
-        .map(|k| {
-            let p = plan.generate(seed.derive(k));
-            bar.inc(1);
-            p
-        })
-        .collect::<Result<_, _>>()?;
-    bar.finish_and_clear();
+    let bar = Bar::new(a.sets as u64, "sets");
+    let sets = plan.generate_sets(seed, a.sets, &bar.progress())?;
+    drop(bar);
     let sets = match w {
         Some(w) => sets.iter().map(|p| warp::apply(w, p)).collect::<Result<Vec<_>, _>>()?,
         None => sets,
@@ -90,18 +83,4 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     )];
     let bytes = io::encode(&sets, format, &header)?;
     crate::emit(a.output.as_deref(), &bytes).with_context(|| "writing the points")
-}
-
-/// A progress bar on stderr (indicatif hides it when stderr is not a terminal), or none
-/// for a single item.
-pub(crate) fn progress(len: u64, unit: &str) -> ProgressBar {
-    if len < 2 {
-        return ProgressBar::hidden();
-    }
-    let bar = ProgressBar::new(len);
-    bar.set_style(
-        ProgressStyle::with_template(&format!("{{elapsed_precise}} [{{bar:40}}] {{pos}}/{{len}} {unit} (eta {{eta}})"))
-            .unwrap(),
-    );
-    bar
 }

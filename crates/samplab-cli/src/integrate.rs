@@ -8,6 +8,8 @@ use samplab::integrand::Family;
 use samplab::{Seed, sampler};
 use samplab_report::plot::{self as draw, LineChart, Series};
 
+use crate::bar::Bar;
+
 /// The examples and the integrands (from the integrand registry).
 fn after_help() -> String {
     format!(
@@ -68,9 +70,9 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         instances: a.instances,
         seed: Seed(a.seed),
     };
-    let bar = crate::generate::progress((samplers.len() * a.n.len() * a.instances) as u64, "instances");
-    let rows = experiment::run(&study, &|| bar.inc(1))?;
-    bar.finish_and_clear();
+    let bar = Bar::new((samplers.len() * a.n.len() * a.instances) as u64, "instances");
+    let rows = experiment::run(&study, &bar.progress())?;
+    drop(bar);
     let fits = experiment::fits(&rows);
     if let Some(path) = &a.plot {
         let chart = loglog_chart(&rows, &fits, &family.spec());

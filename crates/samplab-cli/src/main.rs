@@ -7,6 +7,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod bar;
 mod discrepancy;
 mod generate;
 mod integrate;
@@ -23,6 +24,14 @@ mod spectrum;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Memory the command may use (e.g. 8G, 512M), instead of what the system reports
+    /// available; larger requests are refused before any work
+    #[arg(long, global = true, value_name = "SIZE", value_parser = parse_size, display_order = 900)]
+    max_memory: Option<u64>,
+}
+
+fn parse_size(text: &str) -> Result<u64, samplab::Error> {
+    samplab::memory::parse_size(text)
 }
 
 #[derive(Subcommand)]
@@ -47,6 +56,8 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    bar::install();
+    samplab::memory::set_limit(cli.max_memory);
     let result = match cli.command {
         Command::Reproduce(a) => reproduce::run(&a),
         Command::List(a) => list::run(&a),
@@ -59,6 +70,10 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.chain().any(|c| library(c) == Some(&samplab::Error::Interrupted)) => {
+            eprintln!("samplab: interrupted: nothing was written");
+            ExitCode::from(bar::STOPPED)
+        }
         Err(e) => {
             // one line: the chain of causes joined, the library's settings named by their flags
             let msg = e.chain().map(in_flags).collect::<Vec<_>>().join(": ").replace('\n', " ");
@@ -71,19 +86,26 @@ fn main() -> ExitCode {
 /// One cause of an error, with the library's names for settings replaced by the flags that
 /// set them (`sets` is `--sets`, a work limit is raised by `--max-work`).
 fn in_flags(cause: &(dyn std::error::Error + 'static)) -> String {
-    let library =
-        cause.downcast_ref::<samplab::Error>().or_else(|| match cause.downcast_ref::<samplab_render::Error>() {
-            Some(samplab_render::Error::Samplab(e)) => Some(e),
-            _ => None,
-        });
-    match library {
+    match library(cause) {
         Some(samplab::Error::Setting { name, value, reason }) => {
             let flag = if name.len() == 1 { format!("-{name}") } else { format!("--{}", name.replace('_', "-")) };
             format!("{flag} {value}: {reason}")
         }
         Some(e @ samplab::Error::WorkLimit { .. }) => format!("{e}; raise it with --max-work"),
+        Some(e @ samplab::Error::Memory { .. }) => format!("{e}; set another limit with --max-memory"),
         _ => cause.to_string(),
     }
+}
+
+/// The library error a cause is, directly or wrapped by the renderer or the report.
+fn library<'e>(cause: &'e (dyn std::error::Error + 'static)) -> Option<&'e samplab::Error> {
+    cause.downcast_ref::<samplab::Error>().or_else(|| match cause.downcast_ref::<samplab_render::Error>() {
+        Some(samplab_render::Error::Samplab(e)) => Some(e),
+        _ => match cause.downcast_ref::<samplab_report::Error>() {
+            Some(samplab_report::Error::Samplab(e)) => Some(e),
+            _ => None,
+        },
+    })
 }
 
 /// Write `bytes` to `path` atomically, or to stdout when there is no path.

@@ -9,6 +9,8 @@ use samplab_render::scenes;
 use samplab_render::settings::{self, Settings};
 use samplab_render::{Image, Options, Scene, render};
 
+use crate::bar::Bar;
+
 /// The examples, and the built-in scenes with what each shows (from the scene registry).
 fn after_help() -> String {
     let scenes: String =
@@ -168,9 +170,9 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         None => None,
     };
     let started = Instant::now();
-    let bar = crate::generate::progress(height as u64, "rows");
-    let rendered = render(&scene, &options, &|_| bar.inc(1))?;
-    bar.finish_and_clear();
+    let bar = Bar::new(height as u64, "rows");
+    let rendered = render(&scene, &options, &bar.progress())?;
+    drop(bar);
     let seconds = started.elapsed().as_secs_f64();
     let errors = match &reference {
         Some((r, _)) => Some(rendered.image.errors(r, a.penumbra).context("--reference")?),
@@ -222,8 +224,6 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
 /// The converged reference for `options` ([`Options::reference`]), with a progress bar.
 fn render_reference(scene: &Scene, options: &Options, samples: usize) -> anyhow::Result<Image> {
     let reference = options.reference(scene, samples)?;
-    let bar = crate::generate::progress(options.height as u64, "reference rows");
-    let r = render(scene, &reference, &|_| bar.inc(1))?;
-    bar.finish_and_clear();
-    Ok(r.image)
+    let bar = Bar::new(options.height as u64, "reference rows");
+    Ok(render(scene, &reference, &bar.progress())?.image)
 }

@@ -38,7 +38,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     let options =
         Options { scale: if a.full { Scale::Full } else { Scale::Fast }, seed: Seed(a.seed), out: a.out.clone() };
     let start = Instant::now();
-    let claims = samplab_report::reproduce(&chosen, &options)?;
+    let claims = samplab_report::reproduce(&chosen, &options, &crate::bar::STOP)?;
     let count = |v: Verdict| claims.iter().filter(|(_, c)| c.verdict() == v).count();
     let explained =
         claims.iter().filter(|(_, c)| c.verdict() == Verdict::NotReproduced && c.explanation.is_some()).count();

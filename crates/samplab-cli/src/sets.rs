@@ -7,6 +7,8 @@ use anyhow::bail;
 use samplab::io::{self, Format};
 use samplab::{PointSet, Seed, sampler};
 
+use crate::bar::Bar;
+
 /// Where the sets come from (flattened into `discrepancy` and `spectrum`).
 #[derive(clap::Args)]
 pub struct SetSource {
@@ -59,9 +61,9 @@ impl SetSource {
                     bail!("--sets must be at least 1");
                 }
                 let s = sampler::build(spec)?;
-                let bar = crate::generate::progress(m as u64, "sets");
-                let sets = sampler::generate_sets(s.as_ref(), n, self.dims, Seed(self.seed), m)?;
-                bar.finish_and_clear();
+                let bar = Bar::new(m as u64, "sets");
+                let sets = s.plan(n, self.dims)?.generate_sets(Seed(self.seed), m, &bar.progress())?;
+                drop(bar);
                 Ok(Loaded {
                     sets,
                     source: format!("{} n={n} d={} sets={m} seed={}", s.spec(), self.dims, self.seed),

@@ -8,6 +8,8 @@ use samplab::PointSet;
 use samplab::spectrum::{self, Statistics};
 use samplab_report::plot::{self as draw, HeatMap, LineChart, Series};
 
+use crate::bar::Bar;
+
 /// Compute spectral statistics.
 #[derive(clap::Args)]
 #[command(
@@ -48,9 +50,9 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     }
     let crate::sets::Loaded { sets, source, spec } = a.source.load(a.file.as_deref(), 20, &samplab::io::ANY)?;
     let method = if a.direct { spectrum::Method::Direct } else { spectrum::Method::Fast { tol: a.tolerance } };
-    let bar = crate::generate::progress(sets.len() as u64, "spectra");
-    let st = spectrum::statistics_with_progress(&sets, a.res, method, &|| bar.inc(1))?;
-    bar.finish_and_clear();
+    let bar = Bar::new(sets.len() as u64, "spectra");
+    let st = spectrum::statistics_with_progress(&sets, a.res, method, &bar.progress())?;
+    drop(bar);
     let theory_curves = if a.theory { spec.as_deref().and_then(|s| theory_for(s, &sets[0])) } else { None };
     samplab_report::write_folder(&a.output, |dir| {
         write(dir, &st, a, &source, theory_curves.as_ref()).map_err(|e| samplab_report::Error::Invalid(e.to_string()))

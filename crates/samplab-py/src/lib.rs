@@ -4,7 +4,12 @@
 //! dtypes), and the scipy.stats.qmc engine.
 //!
 //! Every call that does real work releases the GIL; every samplab error becomes a
-//! `samplab.Error` (a `ValueError`) carrying the CLI's one-line message.
+//! `samplab.Error` (a `ValueError`) carrying the CLI's one-line message. Long calls can be
+//! stopped with Ctrl-C (`interruptible`).
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::RecvTimeoutError;
+use std::time::Duration;
 
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::create_exception;
@@ -13,6 +18,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
 use samplab::discrepancy::{Limits, Metric};
+use samplab::progress::Progress;
 use samplab::registry::{Entry, Registry};
 use samplab::spec::{Default, Kind};
 use samplab::{PointSet, Seed};
@@ -22,6 +28,51 @@ create_exception!(_samplab, Error, PyValueError, "Every samplab error: its messa
 /// A library error as `samplab.Error`.
 fn err(e: impl std::fmt::Display) -> PyErr {
     Error::new_err(e.to_string())
+}
+
+/// Jobs of fewer values than this run without a watcher thread ([`interruptible`]): they
+/// finish in well under a millisecond, less than the thread would cost.
+const SMALL: usize = 1 << 16;
+
+/// Run `work` (of about `size` values) with the GIL released, stoppable by Ctrl-C. The work
+/// runs on a thread of its own, given a stop flag that the library's long loops check
+/// ([`samplab::progress`]); this thread waits for it and, every 50 ms, takes the GIL to let
+/// Python run its signal handlers. When one raises (`KeyboardInterrupt` on Ctrl-C), the
+/// flag is raised, the work stops at its next check, and the handler's exception is raised
+/// in place of a result: nothing is returned or written.
+fn interruptible<R: Send, E: std::fmt::Display + Send>(
+    py: Python<'_>,
+    size: usize,
+    work: impl FnOnce(&AtomicBool) -> Result<R, E> + Send,
+) -> PyResult<R> {
+    let stop = AtomicBool::new(false);
+    if size < SMALL {
+        return py.detach(|| work(&stop)).map_err(err);
+    }
+    py.detach(|| {
+        std::thread::scope(|scope| {
+            let (tx, rx) = std::sync::mpsc::channel();
+            let stop = &stop;
+            scope.spawn(move || tx.send(work(stop)));
+            let mut raised = None;
+            loop {
+                match rx.recv_timeout(Duration::from_millis(50)) {
+                    Ok(result) => return raised.map_or_else(|| result.map_err(err), Err),
+                    Err(RecvTimeoutError::Timeout) => {
+                        if raised.is_none()
+                            && let Err(e) = Python::attach(|py| py.check_signals())
+                        {
+                            stop.store(true, Ordering::Relaxed);
+                            raised = Some(e);
+                        }
+                    }
+                    // the work panicked: the scope re-raises its panic (pyo3 turns it into
+                    // a PanicException)
+                    Err(RecvTimeoutError::Disconnected) => return Err(err("the computation failed")),
+                }
+            }
+        })
+    })
 }
 
 /// The seed the CLI uses when none is given.
@@ -112,17 +163,10 @@ fn generate<'py>(
         return Err(err("sets must be at least 1"));
     }
     let sampler = samplab::sampler::build(spec).map_err(err)?;
-    let data = py
-        .detach(|| -> samplab::Result<Vec<f64>> {
-            let plan = sampler.plan(n, d)?;
-            // one buffer, filled in place: set k is rows k*n .. (k+1)*n
-            let mut data = vec![0.0; sets * n * d];
-            data.par_chunks_mut(n * d)
-                .enumerate()
-                .try_for_each(|(k, chunk)| plan.fill(Seed(seed).derive(k as u64), chunk))?;
-            Ok(data)
-        })
-        .map_err(err)?;
+    let plan = sampler.plan(n, d).map_err(err)?;
+    let data = interruptible(py, sets.saturating_mul(n * d), |stop| {
+        plan.stack(Seed(seed), sets, &Progress::SILENT.stopped_by(stop))
+    })?;
     shaped(py, data, &[sets, n, d])
 }
 
@@ -249,10 +293,12 @@ fn discrepancy(
         None => Limits::default(),
     };
     let sets = point_sets(&points)?;
-    py.detach(|| {
+    interruptible(py, points.len(), |stop| {
+        let progress = Progress::SILENT.stopped_by(stop);
         sets.par_iter()
             .enumerate()
             .map(|(k, s)| {
+                progress.check().map_err(|e| e.to_string())?;
                 samplab::discrepancy::compute(&m, s, limits).map_err(|e| match e {
                     samplab::Error::WorkLimit { .. } => format!("set {k}: {e}; raise it with max_work"),
                     e => format!("set {k}: {e}"),
@@ -260,20 +306,12 @@ fn discrepancy(
             })
             .collect::<Result<Vec<f64>, String>>()
     })
-    .map_err(err)
 }
 
-/// A metric's canonical spec and flags, as `samplab discrepancy --json` prints them.
+/// A metric's canonical spec and flags ([`Metric::flags`]) as JSON.
 #[pyfunction]
-fn metric_flags<'py>(py: Python<'py>, metric: &str) -> PyResult<Bound<'py, PyDict>> {
-    let m = Metric::parse(metric).map_err(err)?;
-    let (e, flags) = (m.entry(), PyDict::new(py));
-    flags.set_item("metric", m.spec())?;
-    flags.set_item("squared", false)?;
-    flags.set_item("l2_closed_form", e.l2)?;
-    flags.set_item("toroidal_shift_invariant", e.shift_invariant)?;
-    flags.set_item("lower_bound", e.lower_bound)?;
-    Ok(flags)
+fn metric_flags(metric: &str) -> PyResult<String> {
+    serde_json::to_string(&Metric::parse(metric).map_err(err)?.flags()).map_err(err)
 }
 
 /// Periodogram, amplitude of the expected spectrum and variance of the spectrum of a
@@ -291,7 +329,9 @@ fn spectrum<'py>(
     let sets = point_sets(&points)?;
     let method =
         if direct { samplab::spectrum::Method::Direct } else { samplab::spectrum::Method::Fast { tol: tolerance } };
-    let st = py.detach(|| samplab::spectrum::statistics(&sets, res, method)).map_err(err)?;
+    let st = interruptible(py, usize::MAX, |stop| {
+        samplab::spectrum::statistics_with_progress(&sets, res, method, &Progress::SILENT.stopped_by(stop))
+    })?;
     let out = PyDict::new(py);
     let shape: Vec<usize> = vec![st.res; st.dims];
     for (name, values) in [("periodogram", &st.periodogram), ("expected", &st.expected), ("variance", &st.variance)] {
@@ -322,7 +362,8 @@ fn integrate(
     }
     let study =
         samplab::experiment::Study { samplers: &built, family: &family, ns: &ns, sets, instances, seed: Seed(seed) };
-    let rows = py.detach(|| samplab::experiment::run(&study, &|| {})).map_err(err)?;
+    let rows =
+        interruptible(py, usize::MAX, |stop| samplab::experiment::run(&study, &Progress::SILENT.stopped_by(stop)))?;
     let fits = samplab::experiment::fits(&rows);
     serde_json::to_string(&serde_json::json!({ "rows": rows, "fits": fits })).map_err(err)
 }
@@ -412,7 +453,9 @@ fn render<'py>(
     if let Some(samples) = reference_samples {
         options = options.reference(&scene, samples).map_err(err)?;
     }
-    let rendered = py.detach(|| samplab_render::render(&scene, &options, &|_| {})).map_err(err)?;
+    let rendered = interruptible(py, usize::MAX, |stop| {
+        samplab_render::render(&scene, &options, &Progress::SILENT.stopped_by(stop))
+    })?;
     let out = image_dict(py, rendered.image)?;
     out.set_item("camera_rays", rendered.camera_rays)?;
     out.set_item("shadow_rays", rendered.shadow_rays)?;
@@ -482,7 +525,7 @@ fn reproduce(py: Python<'_>, out: &str, full: bool, only: Option<Vec<String>>, s
         seed: seed.map_or(Seed::DEFAULT, Seed),
         out: out.into(),
     };
-    let claims = py.detach(|| samplab_report::reproduce(&chosen, &options)).map_err(err)?;
+    let claims = interruptible(py, usize::MAX, |stop| samplab_report::reproduce(&chosen, &options, stop))?;
     let list: Vec<serde_json::Value> = claims
         .iter()
         .map(|(paper, c)| serde_json::json!({ "paper": paper, "id": c.id, "verdict": c.verdict() }))

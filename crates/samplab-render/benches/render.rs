@@ -42,7 +42,7 @@ fn renders(c: &mut Criterion) {
     ];
     for (name, scene, o) in &cases {
         g.throughput(Throughput::Elements((o.width * o.height * o.spp * o.n) as u64));
-        g.bench_function(*name, |b| b.iter(|| render(scene, o, &|_| {}).unwrap()));
+        g.bench_function(*name, |b| b.iter(|| render(scene, o, &samplab::progress::Progress::SILENT).unwrap()));
     }
     g.finish();
 }

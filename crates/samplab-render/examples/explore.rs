@@ -13,7 +13,7 @@ fn main() {
         let mut refo = Options::new("sobol.owen", 4096, w, h).unwrap();
         refo.mode = Mode::Visibility;
         let t = std::time::Instant::now();
-        let reference = render(&scene, &refo, &|_| {}).unwrap();
+        let reference = render(&scene, &refo, &samplab::progress::Progress::SILENT).unwrap();
         eprintln!("{kind:?} ref {:.2}s", t.elapsed().as_secs_f64());
         for (spec, n, map) in [
             ("jitter", 16, DiskMap::Concentric),
@@ -31,7 +31,7 @@ fn main() {
                 let mut o = Options::new(spec, n, w, h).unwrap();
                 o.disk_map = Some(map);
                 o.seed = samplab::seed::Seed(s);
-                let img = render(&scene, &o, &|_| {}).unwrap();
+                let img = render(&scene, &o, &samplab::progress::Progress::SILENT).unwrap();
                 mse += img.image.errors(&reference.image, false).unwrap().mse / 4.0;
             }
             println!("{scene_name} {kind:?} {spec} n={n} {map:?}: mse {mse:.3e}");

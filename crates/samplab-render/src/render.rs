@@ -31,10 +31,10 @@
 //! pixels repeated over the image: each pixel takes the spp points in its cell of the tile.
 
 use std::f64::consts::PI;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 use glam::DVec3;
 use rayon::prelude::*;
+use samplab::progress::Progress;
 use samplab::sampler::{Plan, Sampler};
 use samplab::seed::{Rng, Seed, shuffle, uniform};
 
@@ -419,11 +419,13 @@ impl Dealt {
     }
 }
 
-/// Render `scene`; `progress` is called with the number of rows finished so far.
+/// Render `scene`; `progress` advances by one per row finished and is checked at every
+/// pixel.
 ///
 /// # Errors
-/// Options that do not fit the scene ([`Options::check`]).
-pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync)) -> Result<Rendered> {
+/// Options that do not fit the scene ([`Options::check`]), an image that does not fit in
+/// memory, a stop ([`samplab::Error::Interrupted`]).
+pub fn render(scene: &Scene, options: &Options, progress: &Progress) -> Result<Rendered> {
     let plans = options.plans(scene)?;
     let (w, h) = (options.width, options.height);
     let lights: Vec<Prepared> = scene
@@ -447,9 +449,10 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
         plain: scene.plain_albedos(),
         plans: &plans,
     };
-    let done = AtomicUsize::new(0);
-    let mut rgb = vec![0f32; 3 * w * h];
-    let mut vis = vec![0f32; w * h];
+    let image = || format!("a {w}x{h} image");
+    samplab::memory::check(image, 16 * w as u128 * h as u128)?;
+    let mut rgb = samplab::memory::zeroed(image, 3 * w * h)?;
+    let mut vis = samplab::memory::zeroed(image, w * h)?;
     let (camera_rays, shadow_rays) = rgb
         .par_chunks_mut(3 * w)
         .zip(vis.par_chunks_mut(w))
@@ -457,6 +460,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
         .map_init(Scratch::default, |scratch, (row, (rgb_row, vis_row))| -> Result<(u64, u64)> {
             let mut rays = (0u64, 0u64);
             for col in 0..w {
+                progress.check()?;
                 let pixel = Pixel { index: (row * w + col) as u64, col, row };
                 let (radiance, visible, r) = wide(
                     #[inline(always)]
@@ -470,7 +474,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &(dyn Fn(usize) + Sync
                 rays.0 += r.0;
                 rays.1 += r.1;
             }
-            progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+            progress.advance(1)?;
             Ok(rays)
         })
         .try_reduce(|| (0, 0), |a, b| Ok((a.0 + b.0, a.1 + b.1)))?;

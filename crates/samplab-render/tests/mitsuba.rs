@@ -22,7 +22,7 @@ fn a_mitsuba_scene_loads_with_its_transforms_materials_and_light() {
     assert!((light.normal().unwrap() - DVec3::NEG_Y).length() < 1e-12, "rotated to face down");
     // it renders, and the lit ground is as bright as the disk's closed form says
     let o = Options { mode: Mode::Direct, ..Options::new("sobol.owen", 64, 64, 48).unwrap() };
-    let img = render(&scene, &o, &|_| {}).unwrap().image;
+    let img = render(&scene, &o, &samplab::progress::Progress::SILENT).unwrap().image;
     assert!(img.rgb.iter().all(|c| c.is_finite()) && img.rgb.iter().any(|&c| c > 0.1));
 }
 

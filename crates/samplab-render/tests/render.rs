@@ -4,6 +4,7 @@
 use std::f64::consts::PI;
 
 use glam::DVec3;
+use samplab::progress::Progress;
 use samplab::seed::Seed;
 use samplab_render::bvh::Bvh;
 use samplab_render::camera::Camera;
@@ -35,7 +36,7 @@ fn ground_point(light: Light) -> Scene {
 fn pixel(scene: &Scene, mode: Mode, n: usize) -> f64 {
     let mut o = Options::new("sobol.owen", n, 1, 1).unwrap();
     o.mode = mode;
-    f64::from(render(scene, &o, &|_| {}).unwrap().image.rgb[0])
+    f64::from(render(scene, &o, &Progress::SILENT).unwrap().image.rgb[0])
 }
 
 #[test]
@@ -88,7 +89,7 @@ fn mirrors_reflect_their_albedo_of_what_they_face() {
         };
         let mut o = Options::new("sobol.owen", 1, 1, 1).unwrap();
         o.spp = 64;
-        let v = f64::from(render(&scene, &o, &|_| {}).unwrap().image.rgb[0]);
+        let v = f64::from(render(&scene, &o, &Progress::SILENT).unwrap().image.rgb[0]);
         assert!((v - 0.5).abs() < 1e-6, "{finish:?}: {v}");
     }
 }
@@ -120,14 +121,14 @@ fn mse(scene: &Scene, reference: &Image, spec: &str, n: usize, map: DiskMap, see
             let mut o = Options::new(spec, n, w, h).unwrap();
             o.disk_map = Some(map);
             o.seed = Seed(s);
-            render(scene, &o, &|_| {}).unwrap().image.errors(reference, false).unwrap().mse
+            render(scene, &o, &Progress::SILENT).unwrap().image.errors(reference, false).unwrap().mse
         })
         .sum::<f64>()
         / seeds as f64
 }
 
 fn reference(scene: &Scene, w: usize, h: usize) -> Image {
-    render(scene, &Options::new("sobol.owen", 2048, w, h).unwrap(), &|_| {}).unwrap().image
+    render(scene, &Options::new("sobol.owen", 2048, w, h).unwrap(), &Progress::SILENT).unwrap().image
 }
 
 #[test]
@@ -165,33 +166,33 @@ fn images_do_not_depend_on_the_thread_count() {
     o.footprint = samplab_render::Footprint::Area;
     o.mode = Mode::Direct;
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-    let a = one.install(|| render(&scene, &o, &|_| {}).unwrap().image);
-    let b = render(&scene, &o, &|_| {}).unwrap().image;
+    let a = one.install(|| render(&scene, &o, &Progress::SILENT).unwrap().image);
+    let b = render(&scene, &o, &Progress::SILENT).unwrap().image;
     assert_eq!(a, b);
     let motion = builtin("motion", None).unwrap();
-    let a = one.install(|| render(&motion, &o, &|_| {}).unwrap().image);
-    assert_eq!(a, render(&motion, &o, &|_| {}).unwrap().image);
+    let a = one.install(|| render(&motion, &o, &Progress::SILENT).unwrap().image);
+    assert_eq!(a, render(&motion, &o, &Progress::SILENT).unwrap().image);
     // one pattern per pixel dealt to the estimates; pixels whose first estimate misses
     // every surface still deal the rest
     o.pattern = samplab_render::Pattern::PerPixel;
     o.n = 1;
     o.light = samplab::sampler::build("jitter").unwrap();
     let ball = builtin("ball", None).unwrap();
-    let a = one.install(|| render(&ball, &o, &|_| {}).unwrap().image);
-    assert_eq!(a, render(&ball, &o, &|_| {}).unwrap().image);
+    let a = one.install(|| render(&ball, &o, &Progress::SILENT).unwrap().image);
+    assert_eq!(a, render(&ball, &o, &Progress::SILENT).unwrap().image);
 }
 
 #[test]
 fn counts_a_strategy_cannot_make_are_refused_before_any_work() {
     let scene = builtin("spheres", None).unwrap();
     let o = Options::new("jitter", 15, 8, 8).unwrap();
-    let e = render(&scene, &o, &|_| panic!("no row may start")).unwrap_err().to_string();
+    let e = render(&scene, &o, &Progress::new(&|_| panic!("no row may start"))).unwrap_err().to_string();
     assert!(e.contains("jitter") && e.contains("15"), "{e}");
     let mut o = Options::new("jitter", 16, 8, 8).unwrap();
     o.footprint = samplab_render::Footprint::Area;
     o.spp = 3;
     o.pixel = samplab::sampler::build("jitter").unwrap();
-    assert!(render(&scene, &o, &|_| {}).is_err());
+    assert!(render(&scene, &o, &Progress::SILENT).is_err());
 }
 
 #[test]
@@ -211,7 +212,7 @@ fn obscurance_under_a_parallel_plane_has_its_closed_form() {
         let mut o = Options::new("sobol.owen", 4096, 1, 1).unwrap();
         o.mode = Mode::Obscurance;
         o.range = range;
-        f64::from(render(scene, &o, &|_| {}).unwrap().image.rgb[0])
+        f64::from(render(scene, &o, &Progress::SILENT).unwrap().image.rgb[0])
     };
     assert_eq!(obscurance(&scene, 1.0), 1.0, "nothing above: every direction is open");
     let h = 0.25;
@@ -234,7 +235,7 @@ fn an_interleaving_tile_of_regular_points_is_the_regular_pattern_per_pixel() {
         o.spp = 16;
         o.pixel = samplab::sampler::build("regular").unwrap();
         o.interleave = interleave;
-        render(&scene, &o, &|_| {}).unwrap().image
+        render(&scene, &o, &Progress::SILENT).unwrap().image
     };
     assert_eq!(area(Some((2, 2))), area(None));
     // a pattern that does not split evenly is refused, naming the pixel and the count
@@ -243,8 +244,27 @@ fn an_interleaving_tile_of_regular_points_is_the_regular_pattern_per_pixel() {
     o.spp = 16;
     o.pixel = samplab::sampler::build("halton").unwrap();
     o.interleave = Some((2, 2));
-    let e = render(&scene, &o, &|_| panic!("no row may start")).unwrap_err().to_string();
+    let e = render(&scene, &o, &Progress::new(&|_| panic!("no row may start"))).unwrap_err().to_string();
     assert!(e.contains("17 of its 64 points") && e.contains("2x2"), "{e}");
     o.interleave = Some((4, 1));
-    assert!(render(&scene, &o, &|_| {}).is_ok(), "Halton's base-2 axis splits 64 points 16 per pixel");
+    assert!(render(&scene, &o, &Progress::SILENT).is_ok(), "Halton's base-2 axis splits 64 points 16 per pixel");
+}
+
+#[test]
+fn a_raised_stop_flag_stops_the_render_at_its_next_pixel() {
+    use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+    let scene = builtin("spheres", None).unwrap();
+    let o = Options::new("jitter", 16, 64, 64).unwrap();
+    let (stop, rows) = (AtomicBool::new(false), AtomicU64::new(0));
+    // the flag is raised after the third finished row: every later pixel check refuses
+    let report = |k| {
+        if rows.fetch_add(k, Ordering::Relaxed) + k >= 3 {
+            stop.store(true, Ordering::Relaxed);
+        }
+    };
+    let e = render(&scene, &o, &Progress::new(&report).stopped_by(&stop)).unwrap_err();
+    assert!(matches!(e, samplab_render::Error::Samplab(samplab::Error::Interrupted)), "{e}");
+    // rows already started may finish; no new one starts once the flag is up
+    let finished = rows.load(Ordering::Relaxed);
+    assert!((3..64).contains(&finished), "{finished} rows finished");
 }

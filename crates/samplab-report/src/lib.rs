@@ -11,10 +11,12 @@
 #![deny(missing_docs)]
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use samplab::Seed;
+use samplab::progress::Progress;
 use serde::Serialize;
 
 pub mod coverage;
@@ -55,17 +57,28 @@ pub enum Scale {
     Full,
 }
 
-/// What an experiment gets: its scale, seed and progress bar.
-pub struct Ctx {
+/// What an experiment gets: its scale, seed, progress bar and stop flag.
+pub struct Ctx<'a> {
     /// The scale.
     pub scale: Scale,
     /// The experiment's own seed (derived from the run's seed and the experiment id).
     pub seed: Seed,
     /// Progress of this experiment; set its length and increment it.
     pub progress: ProgressBar,
+    /// Raised to stop the run (Ctrl-C); long library calls are given it.
+    pub stop: &'a AtomicBool,
 }
 
-impl Ctx {
+impl Ctx<'_> {
+    /// `units` more units of this experiment are done.
+    ///
+    /// # Errors
+    /// [`samplab::Error::Interrupted`] once the run is asked to stop.
+    pub fn advance(&self, units: u64) -> Result<(), Error> {
+        self.progress.inc(units);
+        Ok(Progress::SILENT.stopped_by(self.stop).check()?)
+    }
+
     /// `fast` or `full`, by the scale.
     pub fn pick<T>(&self, fast: T, full: T) -> T {
         if self.scale == Scale::Fast { fast } else { full }
@@ -294,14 +307,16 @@ pub fn write_folder(out: &Path, fill: impl FnOnce(&Path) -> Result<(), Error>) -
     Ok(())
 }
 
-/// Run `papers` and write the report. Returns the claims.
+/// Run `papers` and write the report. Returns the claims. The run stops before the next
+/// experiment (and inside the integration studies) once `stop` is raised.
 ///
 /// # Errors
-/// An experiment or a write fails; the target folder is then left as it was.
+/// An experiment or a write fails, or the run was stopped ([`samplab::Error::Interrupted`]);
+/// the target folder is then left as it was.
 ///
 /// # Panics
 /// Never: the progress bars' template is a constant known to parse.
-pub fn reproduce(papers: &[&Paper], options: &Options) -> Result<Vec<(String, Claim)>, Error> {
+pub fn reproduce(papers: &[&Paper], options: &Options, stop: &AtomicBool) -> Result<Vec<(String, Claim)>, Error> {
     let bars = MultiProgress::new();
     let mut results: Vec<(&Paper, Vec<Done>)> = Vec::new();
     for paper in papers {
@@ -316,7 +331,11 @@ pub fn reproduce(papers: &[&Paper], options: &Options) -> Result<Vec<(String, Cl
                 scale: options.scale,
                 seed: options.seed.derive_str(&format!("{}/{}", paper.key, e.id)),
                 progress: bar.clone(),
+                stop,
             };
+            if stop.load(Ordering::Relaxed) {
+                return Err(samplab::Error::Interrupted.into());
+            }
             let start = Instant::now();
             let output = (e.run)(&ctx)?;
             bar.finish();

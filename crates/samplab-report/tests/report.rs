@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::LazyLock;
+use std::sync::atomic::AtomicBool;
 
 use samplab::Seed;
 use samplab_report::{Error, Experiment, Options, Paper, Scale, paper, reproduce};
@@ -24,7 +25,14 @@ fn attributes<'a>(html: &'a str, attr: &str) -> Vec<&'a str> {
 fn run(papers: &[Paper], out: &Path, threads: usize) -> Vec<(String, samplab_report::Claim)> {
     let refs: Vec<&Paper> = papers.iter().collect();
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-    pool.install(|| reproduce(&refs, &Options { scale: Scale::Fast, seed: Seed(7), out: out.to_path_buf() })).unwrap()
+    pool.install(|| {
+        reproduce(
+            &refs,
+            &Options { scale: Scale::Fast, seed: Seed(7), out: out.to_path_buf() },
+            &AtomicBool::new(false),
+        )
+    })
+    .unwrap()
 }
 
 /// The whole fast reproduction on two threads, run once and shared by the tests.
@@ -146,8 +154,12 @@ fn a_failed_run_leaves_the_old_report_alone() {
         title: "failing",
         experiments: vec![Experiment { id: "fails", title: "fails", source: "none", parameters: "none", run: failing }],
     };
-    let err = reproduce(&[&bad], &Options { scale: Scale::Fast, seed: Seed(1), out: out.clone() }).unwrap_err();
+    let options = Options { scale: Scale::Fast, seed: Seed(1), out: out.clone() };
+    let err = reproduce(&[&bad], &options, &AtomicBool::new(false)).unwrap_err();
     assert!(err.to_string().contains("on purpose"));
+    // a stopped run: the failing experiment is never started
+    let err = reproduce(&[&bad], &options, &AtomicBool::new(true)).unwrap_err();
+    assert!(matches!(err, Error::Samplab(samplab::Error::Interrupted)), "{err}");
     assert_eq!(std::fs::read_to_string(out.join("index.html")).unwrap(), "old");
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "a staging folder was left behind");
 }

@@ -93,6 +93,19 @@ pub enum Error {
         /// The limit.
         limit: f64,
     },
+    /// An allocation that does not fit in the memory available ([`crate::memory`]).
+    #[error("{what} needs {} of memory, over the {} available", crate::memory::human(*.need), crate::memory::human(u128::from(*.available)))]
+    Memory {
+        /// What would have been allocated, with its size.
+        what: String,
+        /// The bytes it needs.
+        need: u128,
+        /// The bytes available.
+        available: u64,
+    },
+    /// Work stopped on request (Ctrl-C, SIGTERM, a stop flag: [`crate::progress`]).
+    #[error("interrupted")]
+    Interrupted,
     /// Arguments that do not fit together (e.g. mismatched dimensions).
     #[error("{0}")]
     Invalid(String),

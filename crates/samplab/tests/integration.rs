@@ -4,6 +4,7 @@
 
 use samplab::experiment::{self, Row, Study};
 use samplab::integrand::{Family, INTEGRANDS};
+use samplab::progress::Progress;
 use samplab::{Sampler, Seed, sampler};
 
 /// Midpoint rule on a k^d grid.
@@ -67,7 +68,8 @@ fn delaunay_piecewise_functions_are_continuous_or_constant_where_expected() {
 fn study(samplers: &[&str], integrand: &str, ns: &[usize], sets: usize, instances: usize, seed: u64) -> Vec<Row> {
     let s: Vec<Box<dyn Sampler>> = samplers.iter().map(|x| sampler::build(x).unwrap()).collect();
     let family = Family::parse(integrand).unwrap();
-    experiment::run(&Study { samplers: &s, family: &family, ns, sets, instances, seed: Seed(seed) }, &|| {}).unwrap()
+    experiment::run(&Study { samplers: &s, family: &family, ns, sets, instances, seed: Seed(seed) }, &Progress::SILENT)
+        .unwrap()
 }
 
 #[test]
@@ -126,7 +128,10 @@ fn bad_studies_are_errors() {
     let s: Vec<Box<dyn Sampler>> = vec![sampler::build("jitter").unwrap()];
     let family = Family::parse("quad").unwrap();
     let run = |ns: &[usize], sets: usize| {
-        experiment::run(&Study { samplers: &s, family: &family, ns, sets, instances: 2, seed: Seed(1) }, &|| {})
+        experiment::run(
+            &Study { samplers: &s, family: &family, ns, sets, instances: 2, seed: Seed(1) },
+            &Progress::SILENT,
+        )
     };
     assert!(run(&[15], 10).unwrap_err().to_string().contains("9 and 16"));
     assert!(run(&[16], 1).unwrap_err().to_string().contains("at least 2"));

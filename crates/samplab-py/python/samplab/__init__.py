@@ -189,7 +189,7 @@ def discrepancy(metric: str, points: Any, max_work: Optional[float] = None) -> U
 def discrepancy_flags(metric: str) -> Dict[str, Any]:
     """The canonical spec of ``metric`` and its flags: squared, l2_closed_form,
     toroidal_shift_invariant, lower_bound (as ``samplab discrepancy --json``)."""
-    return _samplab.metric_flags(metric)
+    return json.loads(_samplab.metric_flags(metric))
 
 
 def spectrum(points: Any, res: int = 128, direct: bool = False, tolerance: float = 1e-9) -> Dict[str, np.ndarray]:

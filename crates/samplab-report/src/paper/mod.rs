@@ -20,6 +20,7 @@ pub fn keys() -> Vec<&'static str> {
 
 use samplab::experiment::{self, Row, Study};
 use samplab::integrand::Family;
+use samplab::progress::Progress;
 use samplab::{Sampler, Seed, sampler};
 
 use crate::{Ctx, Error};
@@ -36,5 +37,7 @@ pub(crate) fn study(
 ) -> Result<Vec<Row>, Error> {
     let s: Vec<Box<dyn Sampler>> = samplers.iter().map(|x| sampler::build(x)).collect::<Result<_, _>>()?;
     let family = Family::parse(integrand)?;
-    Ok(experiment::run(&Study { samplers: &s, family: &family, ns, sets, instances, seed }, &|| ctx.progress.inc(1))?)
+    let report = |k| ctx.progress.inc(k);
+    let progress = Progress::new(&report).stopped_by(ctx.stop);
+    Ok(experiment::run(&Study { samplers: &s, family: &family, ns, sets, instances, seed }, &progress)?)
 }

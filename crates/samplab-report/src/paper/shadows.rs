@@ -1,5 +1,6 @@
 //! What the rendering experiments share: references, errors over seeds, and images.
 
+use samplab::progress::Progress;
 use samplab::seed::Seed;
 use samplab_render::light::DiskMap;
 use samplab_render::scenes::{LightKind, builtin};
@@ -74,7 +75,7 @@ impl<'a> Setup<'a> {
     /// Render with `light` x `n` light samples and `spp` estimates per pixel.
     pub fn render(&self, light: &str, n: usize, spp: usize, seed: Seed) -> Result<Image, Error> {
         let o = self.options(light, n, spp, seed)?;
-        Ok(render(self.scene, &o, &|_| {}).map_err(render_error)?.image)
+        Ok(render(self.scene, &o, &Progress::SILENT).map_err(render_error)?.image)
     }
 
     /// A converged reference: Owen-scrambled Sobol' with `n` light samples and `spp`
@@ -87,7 +88,7 @@ impl<'a> Setup<'a> {
     /// Owen-scrambled Sobol' over the pixel, lens, time and gloss, one pattern per estimate.
     pub fn converged(&self, light: &str, n: usize, spp: usize, seed: Seed) -> Result<Image, Error> {
         let o = self.options(light, n, spp, seed)?.converged(light, n, spp).map_err(render_error)?;
-        Ok(render(self.scene, &o, &|_| {}).map_err(render_error)?.image)
+        Ok(render(self.scene, &o, &Progress::SILENT).map_err(render_error)?.image)
     }
 
     /// Errors against `reference` of each of `seeds` renders (seed k derived from `seed`).

@@ -111,6 +111,33 @@ impl Metric {
     pub fn spec(&self) -> String {
         canonical(&self.entry.about, &self.params)
     }
+
+    /// The canonical spec and the entry's flags.
+    pub fn flags(&self) -> Flags {
+        Flags {
+            metric: self.spec(),
+            squared: false,
+            l2_closed_form: self.entry.l2,
+            toroidal_shift_invariant: self.entry.shift_invariant,
+            lower_bound: self.entry.lower_bound,
+        }
+    }
+}
+
+/// What a metric's value is: its canonical spec and flags, as `samplab discrepancy --json`
+/// and the Python package report them.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Flags {
+    /// The canonical spec.
+    pub metric: String,
+    /// Whether values are squared (never: every value is reported unsquared).
+    pub squared: bool,
+    /// Whether the value is the root of a squared closed form.
+    pub l2_closed_form: bool,
+    /// Whether the value is invariant under toroidal shifts of the set.
+    pub toroidal_shift_invariant: bool,
+    /// Whether the value is only a lower bound.
+    pub lower_bound: bool,
 }
 
 /// Limits on the exact algorithms whose cost grows fastest.

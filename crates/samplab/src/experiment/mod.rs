@@ -10,6 +10,7 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::integrand::{Family, Integrand};
+use crate::progress::Progress;
 use crate::sampler::Sampler;
 use crate::seed::Seed;
 use crate::theory;
@@ -114,11 +115,13 @@ struct InstanceStats {
     prediction: Option<Prediction>,
 }
 
-/// Run the study; `progress` is called once per (sampler, N, instance).
+/// Run the study; `progress` advances by one per (sampler, N, instance) and is checked
+/// before each realization.
 ///
 /// # Errors
-/// M < 2, K < 1, a sampler that cannot make a count or dimension, an impossible instance.
-pub fn run(study: &Study, progress: &(dyn Fn() + Sync)) -> Result<Vec<Row>> {
+/// M < 2, K < 1, a sampler that cannot make a count or dimension, an impossible instance,
+/// a stop ([`Error::Interrupted`]).
+pub fn run(study: &Study, progress: &Progress) -> Result<Vec<Row>> {
     if study.sets < 2 {
         return Err(Error::Setting {
             name: "sets",
@@ -156,13 +159,14 @@ pub fn run(study: &Study, progress: &(dyn Fn() + Sync)) -> Result<Vec<Row>> {
                     let estimates: Vec<f64> = (0..study.sets as u64)
                         .into_par_iter()
                         .map(|m| {
+                            progress.check()?;
                             let pts = plan.generate(base.derive(k as u64).derive(m))?;
                             Ok(pts.iter().map(|x| f.eval(x)).sum::<f64>() / n as f64)
                         })
                         .collect::<Result<_>>()?;
                     let stats = crate::stats::Summary::of(&estimates);
                     let mse = estimates.iter().map(|e| (e - exact).powi(2)).sum::<f64>() / estimates.len() as f64;
-                    progress();
+                    progress.advance(1)?;
                     Ok(InstanceStats {
                         mean: stats.mean,
                         variance: stats.sd * stats.sd,

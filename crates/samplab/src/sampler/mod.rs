@@ -3,17 +3,18 @@
 //! Planned, then filled (as RustFFT's planner): `plan` (on `dyn Sampler`) checks a count and a
 //! dimension once and returns a [`Plan`], which fills buffers from seeds:
 //! - [`Plan::fill`] / [`Plan::generate`]: a batch of `n` points in `d` dimensions for a seed;
-//! - [`Plan::generate_sets`]: `m` independent realizations in parallel, realization `k`
-//!   seeded with `seed.derive(k)`, identical whatever the thread count;
+//! - [`Plan::generate_sets`] (or [`Plan::stack`], in one buffer): `m` independent
+//!   realizations in parallel, realization `k` seeded with `seed.derive(k)`, identical
+//!   whatever the thread count;
 //! - [`Sequence::access`]: random access to coordinate `dim` of point `index` (for the
 //!   progressive sequences: Halton, Sobol'), tables built once; it equals the batch bit for
 //!   bit.
 //!
 //! ```
-//! use samplab::{Seed, sampler};
+//! use samplab::{Seed, progress::Progress, sampler};
 //! let s = sampler::build("sobol.owen")?;
 //! let plan = s.plan(1024, 3)?;
-//! let sets = plan.generate_sets(Seed(7), 4)?;
+//! let sets = plan.generate_sets(Seed(7), 4, &Progress::SILENT)?;
 //! assert_eq!(sets[1], plan.generate(Seed(7).derive(1))?);
 //! let access = s.as_sequence().expect("Sobol' has random access").access(3, Seed(7))?;
 //! assert_eq!(access.sample(5, 2)?, plan.generate(Seed(7))?.point(5)[2]);
@@ -30,6 +31,7 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::points::PointSet;
+use crate::progress::Progress;
 use crate::seed::Seed;
 
 pub mod registry;
@@ -193,12 +195,50 @@ impl Plan<'_> {
     }
 
     /// `m` realizations in parallel; realization k uses `seed.derive(k)`, so the sets are
-    /// the same whatever the thread count.
+    /// the same whatever the thread count. `progress` advances by one per set and can stop
+    /// the work.
     ///
     /// # Errors
-    /// As [`Plan::fill`]; the first failing realization's error is returned.
-    pub fn generate_sets(&self, seed: Seed, m: usize) -> Result<Vec<PointSet>> {
-        (0..m as u64).into_par_iter().map(|k| self.generate(seed.derive(k))).collect()
+    /// [`Error::Memory`] before any work when the sets do not fit, a stop
+    /// ([`Error::Interrupted`]), or as [`Plan::fill`] (the first failing realization's).
+    pub fn generate_sets(&self, seed: Seed, m: usize, progress: &Progress) -> Result<Vec<PointSet>> {
+        crate::memory::check(|| self.describe(m), 8 * m as u128 * (self.n * self.dims) as u128)?;
+        (0..m as u64)
+            .into_par_iter()
+            .map(|k| {
+                progress.check()?;
+                let set = self.generate(seed.derive(k))?;
+                progress.advance(1)?;
+                Ok(set)
+            })
+            .collect()
+    }
+
+    /// `m sets of n dD points` (`n dD points` for one set), for messages.
+    fn describe(&self, m: usize) -> String {
+        match m {
+            1 => format!("{} {}D points", self.n, self.dims),
+            m => format!("{m} sets of {} {}D points", self.n, self.dims),
+        }
+    }
+
+    /// The realizations of [`Plan::generate_sets`] in one buffer of `m n dims` values, set
+    /// k at `[k n dims, (k + 1) n dims)` (an array of shape (m, n, dims), no copies), filled
+    /// in parallel; `progress` advances by one per set and can stop the work.
+    ///
+    /// # Errors
+    /// [`Error::Memory`] before any work when the buffer does not fit, a stop
+    /// ([`Error::Interrupted`]), or as [`Plan::fill`].
+    pub fn stack(&self, seed: Seed, m: usize, progress: &Progress) -> Result<Vec<f64>> {
+        let size = self.n * self.dims;
+        let len = m.saturating_mul(size);
+        let mut out = crate::memory::zeroed(|| self.describe(m), len)?;
+        out.par_chunks_mut(size).enumerate().try_for_each(|(k, set)| {
+            progress.check()?;
+            self.fill(seed.derive(k as u64), set)?;
+            progress.advance(1)
+        })?;
+        Ok(out)
     }
 }
 
@@ -229,7 +269,7 @@ pub trait Access: Send + Sync + Debug {
 /// # Errors
 /// As `plan` (on `dyn Sampler`) and [`Plan::fill`].
 pub fn generate_sets(sampler: &dyn Sampler, n: usize, dims: usize, seed: Seed, m: usize) -> Result<Vec<PointSet>> {
-    sampler.plan(n, dims)?.generate_sets(seed, m)
+    sampler.plan(n, dims)?.generate_sets(seed, m, &Progress::SILENT)
 }
 
 /// The integer k with k^d == n, if there is one; otherwise the two nearest valid counts.

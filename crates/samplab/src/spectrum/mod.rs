@@ -19,6 +19,7 @@ use rayon::prelude::*;
 
 use crate::error::{Error, Result};
 use crate::points::PointSet;
+use crate::progress::Progress;
 
 pub mod nufft;
 pub mod pixel_light;
@@ -174,18 +175,18 @@ pub fn periodogram(set: &PointSet, res: usize, method: Method) -> Result<Vec<f64
 /// assert!((st.periodogram[16 * 32 + 16] - 1.0).abs() < 1e-12);
 /// ```
 pub fn statistics(sets: &[PointSet], res: usize, method: Method) -> Result<Statistics> {
-    statistics_with_progress(sets, res, method, &|| {})
+    statistics_with_progress(sets, res, method, &Progress::SILENT)
 }
 
-/// [`statistics`], calling `progress` once per set transformed.
+/// [`statistics`], advancing `progress` by one per set transformed.
 ///
 /// # Errors
-/// As [`statistics`].
+/// As [`statistics`], or a stop ([`Error::Interrupted`]).
 pub fn statistics_with_progress(
     sets: &[PointSet],
     res: usize,
     method: Method,
-    progress: &(dyn Fn() + Sync),
+    progress: &Progress,
 ) -> Result<Statistics> {
     check_res(res)?;
     if sets.len() < 2 {
@@ -205,13 +206,22 @@ pub fn statistics_with_progress(
             "a {res}^{d} grid has {cells} frequencies, more than 2^26; lower the resolution"
         )));
     }
-    let spectra: Vec<Vec<Complex>> = match method {
-        Method::Direct => sets.par_iter().map(|s| direct_dft(s, res).inspect(|_| progress())).collect::<Result<_>>()?,
-        Method::Fast { tol } => {
-            let plan = nufft::Nufft::new(res, d, tol)?;
-            sets.par_iter().map(|s| plan.transform(s).inspect(|_| progress())).collect::<Result<_>>()?
-        }
+    let fast = match method {
+        Method::Direct => None,
+        Method::Fast { tol } => Some(nufft::Nufft::new(res, d, tol)?),
     };
+    let spectra: Vec<Vec<Complex>> = sets
+        .par_iter()
+        .map(|s| {
+            progress.check()?;
+            let spectrum = match &fast {
+                Some(plan) => plan.transform(s)?,
+                None => direct_dft(s, res)?,
+            };
+            progress.advance(1)?;
+            Ok(spectrum)
+        })
+        .collect::<Result<_>>()?;
     let mut mean = vec![[0.0f64; 2]; cells];
     let mut m2 = vec![0.0f64; cells];
     let mut power = vec![0.0f64; cells];

@@ -37,7 +37,7 @@ pub(super) fn pixel_light(ctx: &Ctx) -> Result<Output, Error> {
         &heat("Fig. 10(a): visibility", dense.product.clone()),
         (760, 640),
     )?);
-    ctx.progress.inc(1);
+    ctx.advance(1)?;
     for (i, (name, key, pattern)) in patterns.iter().enumerate() {
         let a = pixel_light::analyse(&scene, *pattern, pixels, n, res, ctx.seed.derive(10 + i as u64))?;
         if *pattern == Pattern::Uniform {
@@ -66,7 +66,7 @@ pub(super) fn pixel_light(ctx: &Ctx) -> Result<Output, Error> {
                 a.error_spectrum.iter().enumerate().skip(1).map(|(w, &e)| (w as f64, e.max(1e-9))).collect(),
             )
         });
-        ctx.progress.inc(1);
+        ctx.advance(1)?;
     }
     let chart = LineChart {
         title: format!(

@@ -26,7 +26,7 @@ pub(super) fn grids_linear(ctx: &Ctx) -> Result<Output, Error> {
     let grids = scene("grids", Some(LightKind::Linear))?;
     let setup = Setup::visibility(&grids, size, DiskMap::Concentric);
     let reference = setup.reference(reference_n, 1, ctx.seed.derive_str("reference"))?;
-    ctx.progress.inc(1);
+    ctx.advance(1)?;
     let published = published::table("ramamoorthi2012", "fig8");
     let mut rows = Vec::new();
     let mut mse = Vec::new();
@@ -38,7 +38,7 @@ pub(super) fn grids_linear(ctx: &Ctx) -> Result<Output, Error> {
     for (name, spec) in strategies {
         let each = setup.errors_each(&reference, spec, 16, 1, seeds, ctx.seed)?;
         let e = shadows::mean(&each);
-        ctx.progress.inc(seeds);
+        ctx.advance(seeds)?;
         mse.push(shadows::mse_estimate(&each));
         rows.push(vec![
             Cell::from(name),
@@ -103,13 +103,13 @@ pub(super) fn planar_lights(ctx: &Ctx) -> Result<Output, Error> {
             // Halton goes through the Shirley-Chiu (concentric) warp, as in Fig. 16(d)
             let warped = Setup::visibility(&s, size, DiskMap::Concentric);
             let reference = setup.reference(reference_n, 1, ctx.seed.derive_str("reference"))?;
-            ctx.progress.inc(1);
+            ctx.advance(1)?;
             let mut mse = Vec::new();
             let mut row = vec![Cell::from(scene_name), Cell::from(light_name)];
             for (_, spec) in strategies {
                 let run = if spec == "halton.shift" { warped } else { setup };
                 let each = run.errors_each(&reference, spec, 25, 1, seeds, ctx.seed)?;
-                ctx.progress.inc(seeds);
+                ctx.advance(seeds)?;
                 row.push(Cell::num(100.0 * shadows::mean(&each).relative, 2));
                 mse.push(shadows::mse_estimate(&each));
             }
@@ -201,7 +201,7 @@ pub(super) fn grids_lights(ctx: &Ctx) -> Result<Output, Error> {
             let s = scene(scene_name, Some(kind))?;
             let setup = Setup::visibility(&s, size, DiskMap::Reject);
             let reference = setup.reference(reference_n, 1, ctx.seed.derive_str("reference"))?;
-            ctx.progress.inc(1);
+            ctx.advance(1)?;
             let mut runs = vec![("stratified", "jitter", setup), ("uniform jitter", "jitter.uniform", setup)];
             if kind == LightKind::Disk {
                 runs.push((
@@ -214,7 +214,7 @@ pub(super) fn grids_lights(ctx: &Ctx) -> Result<Output, Error> {
             let mut row = vec![Cell::from(scene_name), Cell::from(light_name), Cell::num(n as f64, 0)];
             for (name, spec, run) in &runs {
                 let each = run.errors_each(&reference, spec, n, 1, seeds, ctx.seed)?;
-                ctx.progress.inc(seeds);
+                ctx.advance(seeds)?;
                 row.push(Cell::num(100.0 * shadows::mean(&each).relative, 2));
                 mse.push(shadows::mse_estimate(&each));
                 if scene_name == GRIDS[0] {
@@ -285,13 +285,13 @@ pub(super) fn error_vs_n(ctx: &Ctx) -> Result<Output, Error> {
         let s = scene(scene_name, Some(kind))?;
         let setup = Setup::visibility(&s, size, DiskMap::Reject);
         let reference = setup.reference(ctx.pick(2048, 8192), 1, ctx.seed.derive_str("reference"))?;
-        ctx.progress.inc(1);
+        ctx.advance(1)?;
         let mut series = Vec::new();
         for (name, spec) in strategies {
             let (mut points, mut intervals) = (Vec::new(), Vec::new());
             for &n in &ns {
                 let each = setup.errors_each(&reference, spec, n, 1, seeds, ctx.seed.derive(n as u64))?;
-                ctx.progress.inc(seeds);
+                ctx.advance(seeds)?;
                 let relative = Summary::of(&each.iter().map(|e| e.relative).collect::<Vec<_>>());
                 let se = relative.standard_error();
                 points.push((n as f64, relative.mean));

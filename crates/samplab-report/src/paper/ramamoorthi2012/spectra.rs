@@ -116,7 +116,7 @@ pub(super) fn gaussian_light(ctx: &Ctx) -> Result<Output, Error> {
         let points = (1..=64).map(|w| (w as f64, light.spectrum(Some(EDGE), w as f64))).collect();
         series.push(Series { markers: true, ..Series::line(format!("visibility x {name} light"), points) });
     }
-    ctx.progress.inc(1);
+    ctx.advance(1)?;
     let mut rows = Vec::new();
     let mut mse = Vec::new();
     for (light_name, light) in Light::BOTH {
@@ -124,7 +124,7 @@ pub(super) fn gaussian_light(ctx: &Ctx) -> Result<Output, Error> {
         let mut each = Vec::new();
         for (_, spec) in strategies {
             let e = edge_mse(ctx, spec, n, 1, light, trials)?;
-            ctx.progress.inc(1);
+            ctx.advance(1)?;
             row.push(Cell::num(e.value, 4));
             each.push(e);
         }
@@ -246,13 +246,13 @@ pub(super) fn square_light(ctx: &Ctx) -> Result<Output, Error> {
             (700, 600),
         )?);
     }
-    ctx.progress.inc(1);
+    ctx.advance(1)?;
     let mut rows = Vec::new();
     let mut ratios = Vec::new();
     for (light_name, light) in Light::BOTH {
         let strat = edge_mse(ctx, "jitter", n, 2, light, trials)?;
         let uj = edge_mse(ctx, "jitter.uniform", n, 2, light, trials)?;
-        ctx.progress.inc(2);
+        ctx.advance(2)?;
         let ratio = uj.ratio(strat);
         rows.push(vec![
             Cell::from(light_name),

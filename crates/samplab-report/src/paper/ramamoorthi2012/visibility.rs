@@ -49,7 +49,7 @@ pub(super) fn error_vs_position(ctx: &Ctx) -> Result<Output, Error> {
         }
         worst.push((name, spec, n as f64 * max_err));
         series.push(Series { colour_key: Some(spec.into()), ..Series::line(name, curve) });
-        ctx.progress.inc(1);
+        ctx.advance(1)?;
     }
     // theory within a stratum at relative position t: uniform |min(t, 1-t)|, stratified sqrt(t (1-t))
     let theory = |f: fn(f64) -> f64| {

@@ -26,7 +26,7 @@ pub(super) fn force_matrix(ctx: &Ctx) -> Result<Output, Error> {
             },
             (560, 560),
         )?);
-        ctx.progress.inc(1);
+        ctx.advance(1)?;
     }
     // the limit: all G^2 cells chosen is the systematic grid, one offset inside the cells
     let full = sampler::build(&format!("force-matrix:grid={grid}"))?.generate(grid * grid, 2, ctx.seed)?;
@@ -38,7 +38,7 @@ pub(super) fn force_matrix(ctx: &Ctx) -> Result<Output, Error> {
     let shared = full
         .iter()
         .all(|p| (offset(p[0]) - offset(first[0])).abs() < 1e-9 && (offset(p[1]) - offset(first[1])).abs() < 1e-9);
-    ctx.progress.inc(1);
+    ctx.advance(1)?;
     Ok(Output {
         tables: Vec::new(),
         figures,

@@ -308,7 +308,7 @@ fn offsets(ctx: &Ctx) -> Result<Output, Error> {
     let setup =
         Setup { mode: Mode::Direct, pattern: Pattern::PerEstimate, ..Setup::visibility(&s, size, DiskMap::Concentric) };
     let reference = setup.reference(reference_n, 1, ctx.seed.derive_str("reference"))?;
-    ctx.progress.inc(1);
+    ctx.advance(1)?;
     let published = published::table("sbert2006", "table1");
     let mut rows = Vec::new();
     let mut winners = Vec::new();
@@ -317,7 +317,7 @@ fn offsets(ctx: &Ctx) -> Result<Output, Error> {
         let mut mse: Vec<Summary> = Vec::new();
         for &(m, n) in group {
             let e = setup.errors_each(&reference, "jitter.uniform", n, m, seeds, ctx.seed)?;
-            ctx.progress.inc(seeds);
+            ctx.advance(seeds)?;
             mse.push(Summary::of(&e.iter().map(|e| e.mse).collect::<Vec<_>>()));
             let last = mse.last().expect("pushed");
             let name = format!("{m} x {n}");

@@ -22,7 +22,7 @@ pub(super) fn obscurance(ctx: &Ctx) -> Result<Output, Error> {
         let s = scene(scene_name, None)?;
         let setup = Setup { mode: Mode::Obscurance, range: 1.0, ..Setup::visibility(&s, size, DiskMap::Concentric) };
         let reference = setup.reference(reference_n, 1, ctx.seed.derive_str("reference"))?;
-        ctx.progress.inc(1);
+        ctx.advance(1)?;
         figures.push(shadows::picture(
             &format!("sbert2006-fig7-{scene_name}-reference"),
             &format!("Fig. 7 set-up: obscurances of the {scene_name} scene, converged"),
@@ -31,7 +31,7 @@ pub(super) fn obscurance(ctx: &Ctx) -> Result<Output, Error> {
         let mut mse = Vec::new();
         for (name, spec) in strategies {
             let each = setup.errors_each(&reference, spec, n, 1, seeds, ctx.seed)?;
-            ctx.progress.inc(seeds);
+            ctx.advance(seeds)?;
             let e = shadows::mse_estimate(&each);
             rows.push(vec![Cell::from(scene_name), Cell::from(name), Cell::num(e.value, 7), Cell::num(e.se, 7)]);
             mse.push(e);

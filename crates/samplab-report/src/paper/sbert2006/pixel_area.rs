@@ -67,7 +67,7 @@ pub(super) fn pixel_area(ctx: &Ctx) -> Result<Output, Error> {
     let base =
         Setup { footprint: Footprint::Area, displayed: true, ..Setup::visibility(&s, size, DiskMap::Concentric) };
     let reference = base.reference(1, reference_spp, ctx.seed.derive_str("reference"))?;
-    ctx.progress.inc(1);
+    ctx.advance(1)?;
     let mut figures =
         vec![shadows::picture("sbert2006-pixel-reference", "Shirley's checker-45: converged reference", &reference)?];
     let mut rows = Vec::new();
@@ -77,7 +77,7 @@ pub(super) fn pixel_area(ctx: &Ctx) -> Result<Output, Error> {
         for st in group {
             let setup = Setup { pixel: st.spec, interleave: st.tile, ..base };
             let each = setup.errors_each(&reference, "jitter", 1, spp, seeds, ctx.seed)?;
-            ctx.progress.inc(seeds);
+            ctx.advance(seeds)?;
             let e = shadows::mse_estimate(&each);
             let (table, row) = st.published;
             let published = published::table("sbert2006", table).row(row).map(|v| v[0]);

@@ -152,7 +152,7 @@ pub(super) fn tables(ctx: &Ctx) -> Result<Output, Error> {
             regular_set = Some(sets[0].clone());
         }
         measured.push(Measured { name, d, s, t, t_lattice });
-        ctx.progress.inc(1);
+        ctx.advance(1)?;
     }
     let (p5, p6, p7) = (
         published::table("shirley1991", "table5"),
@@ -400,7 +400,7 @@ pub(super) fn projected(ctx: &Ctx) -> Result<Output, Error> {
         }
         curves.push((*name, *spec, curve));
         axes.push(Summary::of(&on_axes));
-        ctx.progress.inc(1);
+        ctx.advance(1)?;
     }
     let at = |c: &[(f64, f64)], a: f64| c.iter().find(|p| (p.0 - a).abs() < 1e-9).map_or(f64::NAN, |p| p.1);
     let table = Table {

@@ -36,7 +36,7 @@ pub(super) fn pixel_errors(ctx: &Ctx) -> Result<Output, Error> {
             &format!("Figure {figure}: test scene {scene_name} (our re-creation; reference render)"),
             &reference,
         )?);
-        ctx.progress.inc(1);
+        ctx.advance(1)?;
         let published = published::table("shirley1991", table_id);
         let mut rows = Vec::new();
         let mut per = Vec::new();
@@ -64,7 +64,7 @@ pub(super) fn pixel_errors(ctx: &Ctx) -> Result<Output, Error> {
                     &with.render(spec, 1, N, ctx.seed.derive(0))?,
                 )?);
             }
-            ctx.progress.inc(1);
+            ctx.advance(1)?;
         }
         let mean_of = |name: &str| published.row(name).expect("every strategy is in the table")[0];
         let index = |name: &str| STRATEGIES.iter().position(|s| s.0 == name).expect("listed");
@@ -126,7 +126,7 @@ pub(super) fn pixel_errors(ctx: &Ctx) -> Result<Output, Error> {
         errors.push(per);
     }
     out.claims.push(thesis(ctx, &errors)?);
-    ctx.progress.inc(1);
+    ctx.advance(1)?;
     out.notes.push("The checkerboards are self-luminous (black 0, white 1) so the error is the antialiasing error alone; the ball is lit by two square lights (direct lighting); \"all\" adds a perfect mirror, a glossy mirror (Phong exponent 60) and a thin lens focused on the ball, every dimension sampled by the strategy (the lens and gloss samples dealt to the pixel samples in random orders). Errors are of the displayed images (every channel clamped to [0, 1]), as the paper's luminance errors of 8-bit images are, so that max|E| is comparable.".into());
     Ok(out)
 }

@@ -33,7 +33,7 @@ pub(super) fn nonuniform(ctx: &Ctx) -> Result<Output, Error> {
         decision: criteria::within(worst, 0.0, 1e-12),
         ..Claim::default()
     });
-    ctx.progress.inc(1);
+    ctx.advance(1)?;
     // Figures 7 and 8: one set of 16 jittered points with its strata, warped
     let jitter = sampler::build("jitter")?;
     let set = sampler::generate_sets(jitter.as_ref(), N, 2, ctx.seed.derive_str("figures"), 1)?.remove(0);
@@ -62,7 +62,7 @@ pub(super) fn nonuniform(ctx: &Ctx) -> Result<Output, Error> {
             (620, 620),
         )?);
     }
-    ctx.progress.inc(1);
+    ctx.advance(1)?;
     // the generalized discrepancy of the warped set, by brute force over every critical
     // rectangle anchored at (-1, -1), against the star discrepancy of the original set
     let mut rows = Vec::new();
@@ -96,7 +96,7 @@ pub(super) fn nonuniform(ctx: &Ctx) -> Result<Output, Error> {
         decision: criteria::within(largest, 0.0, 1e-12),
         ..Claim::default()
     });
-    ctx.progress.inc(1);
+    ctx.advance(1)?;
     Ok(out)
 }
 

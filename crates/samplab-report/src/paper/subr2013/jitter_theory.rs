@@ -255,7 +255,7 @@ pub(super) fn jitter_theory(ctx: &Ctx) -> Result<Output, Error> {
             worst = worst.max((radial[b - 1] / predicted[b - 1] - 1.0).abs());
         }
         rows_t.push(row);
-        ctx.progress.inc(1);
+        ctx.advance(1)?;
     }
     // each value is a chi-square estimate with 2(m-1) degrees of freedom (relative sd
     // 1/sqrt(m-1)); the annuli at 2, 4, 8 average at least 12 frequencies: 5 of their

@@ -52,7 +52,7 @@ fn bias_variance(ctx: &Ctx, r: &Rendered, seeds: u64) -> Result<Measured, Error>
         (r.reference)(&r.setup, ctx.seed.derive_str("reference"))?,
         (r.reference)(&r.setup, ctx.seed.derive_str("reference-2"))?,
     ];
-    ctx.progress.inc(1);
+    ctx.advance(1)?;
     let (a, b) = (halves[0].luminance(), halves[1].luminance());
     let truth: Vec<f64> = a.iter().zip(&b).map(|(x, y)| (x + y) / 2.0).collect();
     // per pixel, E[(a - b)^2] / 4 is the variance of their mean
@@ -81,7 +81,7 @@ fn bias_variance(ctx: &Ctx, r: &Rendered, seeds: u64) -> Result<Measured, Error>
                     *a += l;
                     *b += l * l;
                 }
-                ctx.progress.inc(1);
+                ctx.advance(1)?;
             }
             let m = seeds as f64;
             let (mut bias2, mut variance) = (0.0, 0.0);

@@ -38,7 +38,7 @@ pub(super) fn spectra(ctx: &Ctx) -> Result<Output, Error> {
             }
         }
         stats.push(st);
-        ctx.progress.inc(1);
+        ctx.advance(1)?;
     }
     // |<S>| of 20 realizations cannot fall below the mean of 20 independent spectra of
     // unit-variance noise: sqrt(1 / (20 N)), where E|S|^2 = 1/N off DC

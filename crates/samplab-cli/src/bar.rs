@@ -1,0 +1,58 @@
+//! Progress bars on stderr, and a clean stop on Ctrl-C, SIGTERM or SIGHUP.
+//!
+//! A signal raises [`STOP`]; long work checks it (through [`Bar::progress`])
+//! and stops, the command exits 130 saying so, and nothing is written: every output is
+//! written whole and renamed into place at the end. A second signal exits at once.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use indicatif::{ProgressBar, ProgressStyle};
+use samplab::progress::Progress;
+
+/// Raised by the first signal.
+pub(crate) static STOP: AtomicBool = AtomicBool::new(false);
+
+/// The exit code of a command stopped by a signal (128 + SIGINT, as shells report it).
+pub(crate) const STOPPED: u8 = 130;
+
+/// Route Ctrl-C, SIGTERM and SIGHUP to [`STOP`].
+pub(crate) fn install() {
+    // when no handler can be installed, the signals keep their default action (exit)
+    let _ = ctrlc::set_handler(|| {
+        if STOP.swap(true, Ordering::Relaxed) {
+            std::process::exit(i32::from(STOPPED));
+        }
+    });
+}
+
+/// A progress bar with a time estimate on stderr (hidden when stderr is not a terminal,
+/// and for a single item), cleared when dropped.
+pub(crate) struct Bar {
+    bar: ProgressBar,
+    report: Box<dyn Fn(u64) + Send + Sync>,
+}
+
+impl Bar {
+    /// A bar over `len` items called `unit`.
+    pub(crate) fn new(len: u64, unit: &str) -> Bar {
+        let bar = if len < 2 { ProgressBar::hidden() } else { ProgressBar::new(len) };
+        if let Ok(style) = ProgressStyle::with_template(&format!(
+            "{{elapsed_precise}} [{{bar:40}}] {{pos}}/{{len}} {unit} (eta {{eta}})"
+        )) {
+            bar.set_style(style);
+        }
+        let counter = bar.clone();
+        Bar { bar, report: Box::new(move |k| counter.inc(k)) }
+    }
+
+    /// What the library's long calls take: this bar, stopped by a signal.
+    pub(crate) fn progress(&self) -> Progress<'_> {
+        Progress::new(&*self.report).stopped_by(&STOP)
+    }
+}
+
+impl Drop for Bar {
+    fn drop(&mut self) {
+        self.bar.finish_and_clear();
+    }
+}

@@ -1,0 +1,109 @@
+//! Long commands stopped by a signal (Ctrl-C is SIGINT, `kill` sends SIGTERM): they exit
+//! 130 promptly with one line, and leave no output at all, neither under the final name nor
+//! as a temporary file beside it. Memory: requests larger than the memory available are
+//! refused in one line before any allocation, under the address-space limit `ulimit -v`.
+#![cfg(unix)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("samplab-signals-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Start `args` in `dir`, send `signal` after `after`, and check the stop: exit 130 within
+/// 10 s of the signal, one line on stderr, nothing left in `dir`.
+fn stopped(name: &str, args: &[&str], signal: &str, after: Duration) {
+    let dir = temp(name);
+    let mut child = Command::new(env!("CARGO_BIN_EXE_samplab"))
+        .args(args)
+        .current_dir(&dir)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(after);
+    assert!(child.try_wait().unwrap().is_none(), "{name}: finished before the signal; make it longer");
+    let sent = Instant::now();
+    let kill = Command::new("kill").args([signal, &child.id().to_string()]).status().unwrap();
+    assert!(kill.success());
+    let out = child.wait_with_output().unwrap();
+    let waited = sent.elapsed();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{name}: {stderr}");
+    assert!(waited < Duration::from_secs(10), "{name}: took {waited:?} to stop");
+    assert!(stderr.ends_with("samplab: interrupted: nothing was written\n"), "{name}: {stderr}");
+    assert_eq!(listing(&dir), Vec::<String>::new(), "{name}: files were left behind");
+}
+
+fn listing(dir: &Path) -> Vec<String> {
+    std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect()
+}
+
+#[test]
+fn a_long_render_stops_on_sigterm() {
+    stopped("render", &["render", "spheres", "--spp", "4096", "-o", "out.exr"], "-TERM", Duration::from_secs(1));
+}
+
+#[test]
+fn a_long_spectrum_stops_on_sigint() {
+    let args =
+        ["spectrum", "--sampler", "jitter", "-n", "4096", "--sets", "400", "--res", "256", "--direct", "-o", "spectra"];
+    stopped("spectrum", &args, "-INT", Duration::from_secs(1));
+}
+
+#[test]
+fn a_long_integration_study_stops_on_sigterm() {
+    let args = [
+        "integrate",
+        "--sampler",
+        "random",
+        "--sampler",
+        "jitter",
+        "--integrand",
+        "disk",
+        "-n",
+        "65536",
+        "--sets",
+        "100000",
+        "--plot",
+        "p.png",
+    ];
+    stopped("integrate", &args, "-TERM", Duration::from_secs(1));
+}
+
+#[test]
+fn a_long_reproduction_stops_on_sigint() {
+    stopped("reproduce", &["reproduce", "--full", "--out", "report"], "-INT", Duration::from_secs(2));
+}
+
+#[test]
+fn requests_past_the_memory_available_are_refused_before_any_allocation() {
+    let dir = temp("memory");
+    // 2^32 points need 32 GiB; under a 2 GiB address space an attempt would abort the process
+    let bin = env!("CARGO_BIN_EXE_samplab");
+    let out = Command::new("sh")
+        .args(["-c", &format!("ulimit -v 2000000 && exec '{bin}' generate random -n 4294967296 -d 1 -o x.npy")])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.starts_with("samplab: error: 4294967296 1D points needs 32.0 GiB of memory, over the "), "{stderr}");
+    assert!(stderr.ends_with(" available; set another limit with --max-memory\n") && stderr.lines().count() == 1);
+    // --max-memory sets the limit
+    let out = Command::new(bin)
+        .args(["generate", "jitter", "-n", "65536", "--sets", "4", "--max-memory", "1M"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "samplab: error: 4 sets of 65536 2D points needs 4.0 MiB of memory, over the 1.0 MiB available; set another limit with --max-memory\n"
+    );
+    assert_eq!(listing(&dir), Vec::<String>::new());
+}

@@ -1,0 +1,44 @@
+"""Ctrl-C stops a long call promptly: KeyboardInterrupt is raised, no result is returned
+and no output file is written. Each case runs in a child interpreter that sends SIGINT to
+itself while the call runs (as a terminal's Ctrl-C does)."""
+
+import os
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+CASES = {
+    "render": "samplab.render('spheres', spp=4096)",
+    "spectrum": "samplab.spectrum(samplab.generate('jitter', n=4096, sets=400), res=256, direct=True)",
+    "integrate": "samplab.integrate(['random', 'jitter'], 'disk', n=[65536], sets=100000)",
+    "generate": "samplab.generate('poisson', n=4096, sets=100000)",
+    "reproduce": "samplab.reproduce(out, full=True)",
+}
+
+
+@pytest.mark.skipif(os.name != "posix", reason="SIGINT to oneself")
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_ctrl_c_stops_a_long_call(name, tmp_path):
+    script = textwrap.dedent(
+        f"""
+        import os, signal, threading, time, samplab
+        out = {str(tmp_path / 'report')!r}
+        threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+        start = time.monotonic()
+        try:
+            {CASES[name]}
+        except KeyboardInterrupt:
+            print("stopped after", time.monotonic() - start)
+        else:
+            print("finished")
+        """
+    )
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    words = run.stdout.split()
+    assert words[0] == "stopped", run.stdout
+    # the signal came at 1 s; the call must be gone within a few seconds of it
+    assert float(words[-1]) < 6.0, run.stdout
+    assert os.listdir(tmp_path) == [], "an output was left behind"

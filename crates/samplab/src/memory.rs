@@ -1,0 +1,130 @@
+//! Memory: a large allocation is estimated and compared with what the process can have
+//! before any work, and refused in one line ([`Error::Memory`]) when it does not fit,
+//! instead of aborting the process halfway.
+//!
+//! What the process can have is the smallest of: the memory the kernel reports available
+//! (`MemAvailable` in `/proc/meminfo`), the room left under the cgroup's limit
+//! (`/sys/fs/cgroup/memory.max`), and the room left under the address-space limit
+//! (`ulimit -v`, from `/proc/self/limits` and `/proc/self/status`). A front end can set its
+//! own limit instead ([`set_limit`], the CLI's `--max-memory`). Where none of these can be
+//! read (not Linux), only the allocator's own refusal is caught.
+
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use crate::{Error, Result};
+
+/// The limit set by [`set_limit`]; 0 when none.
+static LIMIT: AtomicU64 = AtomicU64::new(0);
+
+/// Use `bytes` as the memory available instead of what the system reports (`None`: the
+/// system's figure again).
+pub fn set_limit(bytes: Option<u64>) {
+    LIMIT.store(bytes.unwrap_or(0), Ordering::Relaxed);
+}
+
+/// The bytes this process can still allocate: the limit set by [`set_limit`], else the
+/// smallest of the system's figures (module docs), else `u64::MAX` when none is known.
+pub fn available() -> u64 {
+    match LIMIT.load(Ordering::Relaxed) {
+        0 => system_available().unwrap_or(u64::MAX),
+        limit => limit,
+    }
+}
+
+/// The smallest of the system's figures, when one can be read.
+fn system_available() -> Option<u64> {
+    let read = |path: &str| std::fs::read_to_string(path).ok();
+    // a "Name:   1234 kB" line of a /proc file
+    let field = |text: &str, name: &str| -> Option<u64> {
+        let line = text.lines().find(|l| l.starts_with(name))?;
+        line[name.len()..].split_whitespace().next()?.parse::<u64>().ok().map(|kb| kb * 1024)
+    };
+    let meminfo = read("/proc/meminfo").and_then(|t| field(&t, "MemAvailable:"));
+    let cgroup = (|| {
+        let max: u64 = read("/sys/fs/cgroup/memory.max")?.trim().parse().ok()?;
+        let current: u64 = read("/sys/fs/cgroup/memory.current")?.trim().parse().ok()?;
+        Some(max.saturating_sub(current))
+    })();
+    let address_space = (|| {
+        let limits = read("/proc/self/limits")?;
+        let line = limits.lines().find(|l| l.starts_with("Max address space"))?;
+        let soft: u64 = line["Max address space".len()..].split_whitespace().next()?.parse().ok()?;
+        let size = field(&read("/proc/self/status")?, "VmSize:")?;
+        Some(soft.saturating_sub(size))
+    })();
+    [meminfo, cgroup, address_space].into_iter().flatten().min()
+}
+
+/// Refuse `bytes` for `what` when they are more than [`available`].
+///
+/// # Errors
+/// [`Error::Memory`], naming `what`, the bytes needed and the bytes available.
+pub fn check(what: impl FnOnce() -> String, bytes: u128) -> Result<()> {
+    let available = available();
+    if bytes > u128::from(available) {
+        return Err(Error::Memory { what: what(), need: bytes, available });
+    }
+    Ok(())
+}
+
+/// `len` zeros (default values) for `what`, after [`check`]. Numbers come from the
+/// allocator's zeroed pages, so the memory is only touched as it is filled.
+///
+/// # Errors
+/// [`Error::Memory`].
+pub fn zeroed<T: Clone + Default>(what: impl FnOnce() -> String, len: usize) -> Result<Vec<T>> {
+    check(what, len as u128 * std::mem::size_of::<T>() as u128)?;
+    Ok(vec![T::default(); len])
+}
+
+/// A size in bytes from `4G`, `512M`, `100k` or a plain number of bytes (powers of 1024).
+///
+/// # Errors
+/// [`Error::Invalid`] for anything else, or a size past 2^64 - 1 bytes.
+pub fn parse_size(text: &str) -> Result<u64> {
+    let bad = || Error::Invalid(format!("'{text}' is not a size (e.g. 4G, 512M, 100k or bytes)"));
+    let t = text.trim();
+    let (number, shift) = match t.char_indices().last().ok_or_else(bad)? {
+        (i, 'k' | 'K') => (&t[..i], 10),
+        (i, 'm' | 'M') => (&t[..i], 20),
+        (i, 'g' | 'G') => (&t[..i], 30),
+        (i, 't' | 'T') => (&t[..i], 40),
+        _ => (t, 0),
+    };
+    let x: f64 = number.trim().parse().map_err(|_| bad())?;
+    let bytes = x * f64::from(1u32 << (shift / 2)) * f64::from(1u32 << (shift - shift / 2));
+    // u64::MAX as f64 is 2^64: the sizes that fit are below it
+    if !(1.0..u64::MAX as f64).contains(&bytes) {
+        return Err(bad());
+    }
+    Ok(bytes as u64)
+}
+
+/// `bytes` for a person: `64.0 GiB`.
+pub fn human(bytes: u128) -> String {
+    const UNITS: [&str; 6] = ["B", "KiB", "MiB", "GiB", "TiB", "PiB"];
+    let mut x = bytes as f64;
+    let mut unit = 0;
+    while x >= 1024.0 && unit + 1 < UNITS.len() {
+        x /= 1024.0;
+        unit += 1;
+    }
+    if unit == 0 { format!("{bytes} B") } else { format!("{x:.1} {}", UNITS[unit]) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_parse_in_powers_of_1024() {
+        assert_eq!(parse_size("4G").unwrap(), 4 << 30);
+        assert_eq!(parse_size("1.5k").unwrap(), 1536);
+        assert_eq!(parse_size("100").unwrap(), 100);
+        for bad in ["", "G", "-1G", "0", "nanM", "1e30T", "4X"] {
+            assert!(parse_size(bad).is_err(), "{bad}");
+        }
+        assert_eq!(human(68_719_476_736), "64.0 GiB");
+        assert_eq!(human(12), "12 B");
+    }
+}
