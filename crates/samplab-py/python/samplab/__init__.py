@@ -4,7 +4,8 @@ Generate point sets with every strategy of Shirley 1991, Subr & Kautz 2013, Sber
 2006 and Ramamoorthi et al. 2012 and the modern low-discrepancy sequences; warp them;
 measure their discrepancies and spectra; run integration studies; reproduce the papers.
 Everything runs in the Rust core (the GIL is released), with the CLI's seeds: the same
-arguments give the same bytes as ``samplab generate`` and friends.
+arguments give the same bytes as ``samplab generate`` and friends. Ctrl-C stops a long
+call: ``KeyboardInterrupt`` is raised, and nothing is returned or written.
 
 The registries (``samplers()``, ``metrics()``, ``warps()``, ``integrands()``, ``formats()``,
 ``scenes()``) list every name, alias, parameter (default, range) and reference.
