@@ -139,3 +139,26 @@ fn bad_studies_are_errors() {
     assert!(Family::parse("disk:r=0.9").unwrap_err().to_string().contains("'r'"));
     assert!(Family::parse("disk:r=0.3,cx=0.1").unwrap().instance(Seed(1), 0).is_err());
 }
+
+#[test]
+fn a_study_computed_unit_by_unit_through_bytes_equals_the_whole_run() {
+    let s: Vec<Box<dyn Sampler>> = ["random", "jitter"].iter().map(|x| sampler::build(x).unwrap()).collect();
+    let family = Family::parse("disk").unwrap();
+    let study = Study { samplers: &s, family: &family, ns: &[16, 64], sets: 20, instances: 3, seed: Seed(4) };
+    let whole = experiment::run(&study, &Progress::SILENT).unwrap();
+    let prepared = study.prepare().unwrap();
+    assert_eq!(prepared.units(), 12);
+    // units in reverse order (as workers might finish), each through its bytes
+    let mut units: Vec<(usize, experiment::UnitStats)> = (0..12)
+        .rev()
+        .map(|u| {
+            let bytes = prepared.unit(u, &Progress::SILENT).unwrap().to_bytes();
+            (u, experiment::UnitStats::from_bytes(&bytes).unwrap())
+        })
+        .collect();
+    units.sort_by_key(|(u, _)| *u);
+    let rows = prepared.rows(&units.into_iter().map(|(_, s)| s).collect::<Vec<_>>()).unwrap();
+    assert_eq!(serde_json::to_string(&rows).unwrap(), serde_json::to_string(&whole).unwrap());
+    assert!(prepared.unit(12, &Progress::SILENT).is_err());
+    assert!(prepared.rows(&[]).is_err());
+}

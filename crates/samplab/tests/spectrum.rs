@@ -152,3 +152,48 @@ fn pixel_light_banding_frequencies() {
         assert!(mean.abs() < 4.0 * sd / (pixels as f64).sqrt(), "mean error {mean}, sd {sd}");
     }
 }
+
+#[test]
+fn the_merge_tree_gives_the_same_bits_however_the_sets_are_split_and_matches_two_pass_statistics() {
+    use samplab::progress::Progress;
+    use samplab::spectrum::tree::{self, Partial};
+    use samplab::spectrum::{Sets, Spectra};
+    let (n, m, res) = (64, 83, 16); // 6 blocks: a tree whose right edge has lone nodes
+    let jitter = sampler::build("jitter").unwrap();
+    let plan = jitter.plan(n, 2).unwrap();
+    let given = sets("jitter", n, m, 11);
+    let whole = spectrum::statistics(&given, res, Method::Direct).unwrap();
+    let generated = Sets::Generated { plan, seed: Seed(11), m };
+    let spectra = Spectra::new(res, 2, Method::Direct).unwrap();
+    let root = tree::root_level(m);
+    assert_eq!(root, 3);
+    for level in 0..=root {
+        // every node of a level computed on its own (as chunks on workers), through bytes
+        let parts: Vec<Partial> = (0..tree::nodes_at(m, level))
+            .map(|i| {
+                let p = spectra.node(&generated, level, i, &Progress::SILENT).unwrap();
+                Partial::from_bytes(&p.to_bytes()).unwrap()
+            })
+            .collect();
+        let merged = tree::merge_up(parts).unwrap().finish(res, 2, n).unwrap();
+        assert_eq!(merged.periodogram, whole.periodogram, "level {level}");
+        assert_eq!(merged.expected, whole.expected, "level {level}");
+        assert_eq!(merged.variance, whole.variance, "level {level}");
+    }
+    // against the textbook two-pass mean and variance of the direct spectra
+    let all: Vec<Vec<[f64; 2]>> = given.iter().map(|s| spectrum::direct_dft(s, res).unwrap()).collect();
+    for c in 0..res * res {
+        let mean = [0, 1].map(|p| all.iter().map(|s| s[c][p]).sum::<f64>() / m as f64);
+        let var =
+            all.iter().map(|s| (s[c][0] - mean[0]).powi(2) + (s[c][1] - mean[1]).powi(2)).sum::<f64>() / (m - 1) as f64;
+        let power = all.iter().map(|s| s[c][0] * s[c][0] + s[c][1] * s[c][1]).sum::<f64>() / m as f64;
+        assert!((whole.variance[c] - var).abs() <= 1e-13 * var.max(1e-3), "{c}");
+        assert!((whole.expected[c] - mean[0].hypot(mean[1])).abs() <= 1e-14);
+        assert!((whole.periodogram[c] - power).abs() <= 1e-13 * power.max(1e-3));
+    }
+    // bytes that are not a partial are refused
+    let bytes = spectra.node(&generated, 0, 0, &Progress::SILENT).unwrap().to_bytes();
+    assert!(Partial::from_bytes(&bytes[..bytes.len() - 8]).is_err());
+    assert!(Partial::from_bytes(&bytes[..10]).is_err());
+    assert!(spectra.node(&generated, 0, 6, &Progress::SILENT).is_err(), "past the last block");
+}

@@ -106,101 +106,195 @@ fn predict(sampler: &str, f: &dyn Integrand, n: usize) -> Option<Prediction> {
     }
 }
 
-/// The estimates of one instance, summarized.
-struct InstanceStats {
-    mean: f64,
-    variance: f64,
-    mse: f64,
-    exact: f64,
-    prediction: Option<Prediction>,
+/// The estimates of one unit of a study (one sampler, count and instance), summarized: what
+/// a chunk of a distributed study returns ([`Study::unit`]), merged by [`Study::rows`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UnitStats {
+    /// Mean of the M estimates.
+    pub mean: f64,
+    /// Their variance (divisor M - 1).
+    pub variance: f64,
+    /// Their mean squared error against the exact integral.
+    pub mse: f64,
+    /// The exact integral of the instance.
+    pub exact: f64,
+    /// The closed-form prediction's value for this instance (NaN where there is none).
+    pub prediction: f64,
 }
 
-/// Run the study; `progress` advances by one per (sampler, N, instance) and is checked
-/// before each realization.
+impl UnitStats {
+    /// Bytes: the five numbers as little-endian f64, in field order (exact, NaN included).
+    pub fn to_bytes(&self) -> [u8; 40] {
+        let mut out = [0u8; 40];
+        for (chunk, v) in out.chunks_exact_mut(8).zip([self.mean, self.variance, self.mse, self.exact, self.prediction])
+        {
+            chunk.copy_from_slice(&v.to_le_bytes());
+        }
+        out
+    }
+
+    /// The inverse of [`UnitStats::to_bytes`].
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] when `bytes` is not 40 long.
+    ///
+    /// # Panics
+    /// Never: the length is checked first.
+    pub fn from_bytes(bytes: &[u8]) -> Result<UnitStats> {
+        if bytes.len() != 40 {
+            return Err(Error::Invalid(format!("a unit's statistics are 40 bytes, got {}", bytes.len())));
+        }
+        let v: Vec<f64> =
+            bytes.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().expect("8-byte chunks"))).collect();
+        Ok(UnitStats { mean: v[0], variance: v[1], mse: v[2], exact: v[3], prediction: v[4] })
+    }
+}
+
+/// A study checked and prepared: its instances drawn, every (sampler, count) planned.
+pub struct Prepared<'s> {
+    study: &'s Study<'s>,
+    instances: Vec<Box<dyn Integrand>>,
+}
+
+impl<'a> Study<'a> {
+    /// Check the study (M >= 2, K >= 1, every sampler at every count) and draw its
+    /// instances.
+    ///
+    /// # Errors
+    /// M < 2, K < 1, a sampler that cannot make a count or dimension, an impossible instance.
+    pub fn prepare(&'a self) -> Result<Prepared<'a>> {
+        if self.sets < 2 {
+            return Err(Error::Setting {
+                name: "sets",
+                value: self.sets.to_string(),
+                reason: "the variance needs at least 2 realizations".into(),
+            });
+        }
+        if self.instances < 1 {
+            return Err(Error::Setting {
+                name: "instances",
+                value: self.instances.to_string(),
+                reason: "at least 1 instance is needed".into(),
+            });
+        }
+        let dims = self.family.entry.dims;
+        for s in self.samplers {
+            for &n in self.ns {
+                s.plan(n, dims)?;
+            }
+        }
+        let instances = (0..self.instances as u64)
+            .map(|k| self.family.instance(self.seed.derive_str("instances"), k))
+            .collect::<Result<_>>()?;
+        Ok(Prepared { study: self, instances })
+    }
+}
+
+impl Prepared<'_> {
+    /// The number of units: samplers x counts x instances. Unit u is sampler
+    /// `u / (counts x instances)`, count `u / instances % counts`, instance `u % instances`.
+    pub fn units(&self) -> usize {
+        self.study.samplers.len() * self.study.ns.len() * self.study.instances
+    }
+
+    /// (sampler, count index, instance) of unit `u`.
+    fn split(&self, u: usize) -> (usize, usize, usize) {
+        let k = self.study.instances;
+        (u / (k * self.study.ns.len()), u / k % self.study.ns.len(), u % k)
+    }
+
+    /// Unit `u`: its M realizations (in parallel; realization m seeded by hashing the seed,
+    /// the sampler, the count, the instance and m), summarized. `progress` is checked
+    /// before each realization.
+    ///
+    /// # Errors
+    /// `u` out of range ([`Error::Invalid`]), a sampler's fill, a stop.
+    pub fn unit(&self, u: usize, progress: &Progress) -> Result<UnitStats> {
+        if u >= self.units() {
+            return Err(Error::Invalid(format!("unit {u} of a study of {} units", self.units())));
+        }
+        let (s, c, k) = self.split(u);
+        let (sampler, n, f) = (&self.study.samplers[s], self.study.ns[c], &self.instances[k]);
+        let spec = sampler.spec();
+        let base = self.study.seed.derive_str(&spec).derive(n as u64).derive(k as u64);
+        let plan = sampler.plan(n, self.study.family.entry.dims)?;
+        let exact = f.exact();
+        let estimates: Vec<f64> = (0..self.study.sets as u64)
+            .into_par_iter()
+            .map(|m| {
+                progress.check()?;
+                let pts = plan.generate(base.derive(m))?;
+                Ok(pts.iter().map(|x| f.eval(x)).sum::<f64>() / n as f64)
+            })
+            .collect::<Result<_>>()?;
+        let stats = crate::stats::Summary::of(&estimates);
+        let mse = estimates.iter().map(|e| (e - exact).powi(2)).sum::<f64>() / estimates.len() as f64;
+        Ok(UnitStats {
+            mean: stats.mean,
+            variance: stats.sd * stats.sd,
+            mse,
+            exact,
+            prediction: predict(&spec, f.as_ref(), n).map_or(f64::NAN, |p| p.value),
+        })
+    }
+
+    /// The rows from every unit's statistics, in unit order (the merge of a study computed
+    /// in pieces: the same arithmetic in the same order as [`run`], so the same bits).
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] when `units` is not one per unit.
+    pub fn rows(&self, units: &[UnitStats]) -> Result<Vec<Row>> {
+        if units.len() != self.units() {
+            return Err(Error::Invalid(format!("{} unit results for a study of {} units", units.len(), self.units())));
+        }
+        let pairs = self.study.samplers.iter().flat_map(|s| self.study.ns.iter().map(move |&n| (s.spec(), n)));
+        Ok(pairs
+            .zip(units.chunks_exact(self.study.instances))
+            .map(|((spec, n), per)| self.row(&spec, n, per))
+            .collect())
+    }
+
+    /// The row of (sampler `spec`, count `n`) from its instances' statistics.
+    fn row(&self, spec: &str, n: usize, per: &[UnitStats]) -> Row {
+        let kf = per.len() as f64;
+        let mean_of = |g: &dyn Fn(&UnitStats) -> f64| per.iter().map(g).sum::<f64>() / kf;
+        let mse = mean_of(&|r| r.mse);
+        let theory =
+            predict(spec, self.instances[0].as_ref(), n).map(|p| Prediction { value: mean_of(&|r| r.prediction), ..p });
+        Row {
+            sampler: spec.to_string(),
+            integrand: self.study.family.spec(),
+            n,
+            relative_mean: mean_of(&|r| r.mean / r.exact),
+            // instances whose estimates are all zero have no relative variance: skipped
+            relative_variance: {
+                let v: Vec<f64> =
+                    per.iter().filter(|r| r.mean != 0.0).map(|r| r.variance / (r.mean * r.mean)).collect();
+                if v.is_empty() { f64::NAN } else { v.iter().sum::<f64>() / v.len() as f64 }
+            },
+            rmse: mse.sqrt(),
+            normalized_mse: mse * (n * n) as f64,
+            theory,
+        }
+    }
+}
+
+/// Run the study: every unit (in parallel), then [`Prepared::rows`]. `progress` advances by
+/// one per unit (sampler, N, instance) and is checked before each realization.
 ///
 /// # Errors
-/// M < 2, K < 1, a sampler that cannot make a count or dimension, an impossible instance,
-/// a stop ([`Error::Interrupted`]).
+/// As [`Study::prepare`] and [`Prepared::unit`].
 pub fn run(study: &Study, progress: &Progress) -> Result<Vec<Row>> {
-    if study.sets < 2 {
-        return Err(Error::Setting {
-            name: "sets",
-            value: study.sets.to_string(),
-            reason: "the variance needs at least 2 realizations".into(),
-        });
-    }
-    if study.instances < 1 {
-        return Err(Error::Setting {
-            name: "instances",
-            value: study.instances.to_string(),
-            reason: "at least 1 instance is needed".into(),
-        });
-    }
-    let dims = study.family.entry.dims;
-    for s in study.samplers {
-        for &n in study.ns {
-            s.plan(n, dims)?;
-        }
-    }
-    let instances: Vec<Box<dyn Integrand>> = (0..study.instances as u64)
-        .map(|k| study.family.instance(study.seed.derive_str("instances"), k))
+    let prepared = study.prepare()?;
+    let units: Vec<UnitStats> = (0..prepared.units())
+        .into_par_iter()
+        .map(|u| {
+            let stats = prepared.unit(u, progress)?;
+            progress.advance(1)?;
+            Ok(stats)
+        })
         .collect::<Result<_>>()?;
-    let mut rows = Vec::new();
-    for s in study.samplers {
-        let spec = s.spec();
-        for &n in study.ns {
-            let base = study.seed.derive_str(&spec).derive(n as u64);
-            let plan = s.plan(n, dims)?;
-            let per: Vec<InstanceStats> = instances
-                .par_iter()
-                .enumerate()
-                .map(|(k, f)| {
-                    let exact = f.exact();
-                    let estimates: Vec<f64> = (0..study.sets as u64)
-                        .into_par_iter()
-                        .map(|m| {
-                            progress.check()?;
-                            let pts = plan.generate(base.derive(k as u64).derive(m))?;
-                            Ok(pts.iter().map(|x| f.eval(x)).sum::<f64>() / n as f64)
-                        })
-                        .collect::<Result<_>>()?;
-                    let stats = crate::stats::Summary::of(&estimates);
-                    let mse = estimates.iter().map(|e| (e - exact).powi(2)).sum::<f64>() / estimates.len() as f64;
-                    progress.advance(1)?;
-                    Ok(InstanceStats {
-                        mean: stats.mean,
-                        variance: stats.sd * stats.sd,
-                        mse,
-                        exact,
-                        prediction: predict(&spec, f.as_ref(), n),
-                    })
-                })
-                .collect::<Result<_>>()?;
-            let kf = per.len() as f64;
-            let mean_of = |g: &dyn Fn(&InstanceStats) -> f64| per.iter().map(g).sum::<f64>() / kf;
-            let mse = mean_of(&|r| r.mse);
-            let theory = per[0].prediction.as_ref().map(|p| Prediction {
-                value: mean_of(&|r| r.prediction.as_ref().map_or(f64::NAN, |p| p.value)),
-                ..p.clone()
-            });
-            rows.push(Row {
-                sampler: spec.clone(),
-                integrand: study.family.spec(),
-                n,
-                relative_mean: mean_of(&|r| r.mean / r.exact),
-                // instances whose estimates are all zero have no relative variance: skipped
-                relative_variance: {
-                    let v: Vec<f64> =
-                        per.iter().filter(|r| r.mean != 0.0).map(|r| r.variance / (r.mean * r.mean)).collect();
-                    if v.is_empty() { f64::NAN } else { v.iter().sum::<f64>() / v.len() as f64 }
-                },
-                rmse: mse.sqrt(),
-                normalized_mse: mse * (n * n) as f64,
-                theory,
-            });
-        }
-    }
-    Ok(rows)
+    prepared.rows(&units)
 }
 
 /// Two-sided 97.5% Student t quantiles for 1..=30 degrees of freedom.

@@ -24,6 +24,9 @@ use crate::progress::Progress;
 pub mod nufft;
 pub mod pixel_light;
 pub mod theory;
+pub mod tree;
+
+pub use tree::{Sets, Spectra};
 
 /// A complex number (re, im).
 pub type Complex = [f64; 2];
@@ -159,8 +162,8 @@ pub fn periodogram(set: &PointSet, res: usize, method: Method) -> Result<Vec<f64
 }
 
 /// The statistics of `sets` (all of one size and dimension, at least two), in parallel
-/// over sets and folded in set order (Welford's update), so the result does not depend on
-/// the thread count.
+/// over sets and merged by a fixed tree over blocks of sets ([`tree`]), so the result does
+/// not depend on the thread count, nor on how a distributed study splits the sets.
 ///
 /// # Errors
 /// Fewer than two sets, sets of different sizes or dimensions, a bad resolution or tolerance.
@@ -188,63 +191,22 @@ pub fn statistics_with_progress(
     method: Method,
     progress: &Progress,
 ) -> Result<Statistics> {
-    check_res(res)?;
+    statistics_of(Sets::Given(sets), res, method, progress)
+}
+
+/// [`statistics`] of sets given or generated block by block (so that only a block's
+/// spectra are in memory at once), by the fixed merge tree of [`tree`]; `progress` advances
+/// by one per set transformed.
+///
+/// # Errors
+/// As [`statistics`], memory, or a stop ([`Error::Interrupted`]).
+pub fn statistics_of(sets: Sets, res: usize, method: Method, progress: &Progress) -> Result<Statistics> {
     if sets.len() < 2 {
         return Err(Error::Invalid(format!("the variance of the spectrum needs at least 2 sets, got {}", sets.len())));
     }
-    let (n, d) = (sets[0].len(), sets[0].dims());
-    if let Some(k) = sets.iter().position(|s| s.len() != n || s.dims() != d) {
-        return Err(Error::Invalid(format!(
-            "set {k} has {} {}D points, set 0 has {n} {d}D points",
-            sets[k].len(),
-            sets[k].dims()
-        )));
-    }
-    let cells = res.pow(d as u32);
-    if cells > 1 << 26 {
-        return Err(Error::Invalid(format!(
-            "a {res}^{d} grid has {cells} frequencies, more than 2^26; lower the resolution"
-        )));
-    }
-    let fast = match method {
-        Method::Direct => None,
-        Method::Fast { tol } => Some(nufft::Nufft::new(res, d, tol)?),
-    };
-    let spectra: Vec<Vec<Complex>> = sets
-        .par_iter()
-        .map(|s| {
-            progress.check()?;
-            let spectrum = match &fast {
-                Some(plan) => plan.transform(s)?,
-                None => direct_dft(s, res)?,
-            };
-            progress.advance(1)?;
-            Ok(spectrum)
-        })
-        .collect::<Result<_>>()?;
-    let mut mean = vec![[0.0f64; 2]; cells];
-    let mut m2 = vec![0.0f64; cells];
-    let mut power = vec![0.0f64; cells];
-    for (k, spec) in spectra.iter().enumerate() {
-        let kf = (k + 1) as f64;
-        for ((m, q), (s, p)) in mean.iter_mut().zip(m2.iter_mut()).zip(spec.iter().zip(power.iter_mut())) {
-            let delta = [s[0] - m[0], s[1] - m[1]];
-            m[0] += delta[0] / kf;
-            m[1] += delta[1] / kf;
-            *q += delta[0] * (s[0] - m[0]) + delta[1] * (s[1] - m[1]);
-            *p += (s[0] * s[0] + s[1] * s[1] - *p) / kf;
-        }
-    }
-    let m = sets.len() as f64;
-    Ok(Statistics {
-        res,
-        dims: d,
-        n,
-        sets: sets.len(),
-        periodogram: power,
-        expected: mean.iter().map(|c| c[0].hypot(c[1])).collect(),
-        variance: m2.iter().map(|q| q / (m - 1.0)).collect(),
-    })
+    let (n, d) = sets.shape()?;
+    let spectra = Spectra::new(res, d, method)?;
+    spectra.node(&sets, tree::root_level(sets.len()), 0, progress)?.finish(res, d, n)
 }
 
 /// Radial average (bins 1..=R/2-1 by rounded |w|, DC excluded) and anisotropy in dB of
