@@ -15,12 +15,13 @@ use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyReadonlyArray3, PyUnty
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyBytes, PyDict, PyList};
 use rayon::prelude::*;
 use samplab::discrepancy::{Limits, Metric};
 use samplab::progress::Progress;
 use samplab::registry::{Entry, Registry};
 use samplab::spec::{Default, Kind};
+use samplab::spectrum::tree::Partial;
 use samplab::{PointSet, Seed};
 
 create_exception!(_samplab, Error, PyValueError, "Every samplab error: its message names what is wrong and where.");
@@ -148,9 +149,11 @@ fn shaped<'py>(py: Python<'py>, data: Vec<f64>, shape: &[usize]) -> PyResult<Bou
     Ok(PyArray1::from_vec(py, data).reshape(shape)?.into_any())
 }
 
-/// `sets` realizations of `n` points in `d` dimensions as a (sets, n, d) array; set k is
-/// seeded `seed.derive(k)`, as `samplab generate` does, so the bytes are the CLI's.
+/// `sets` realizations of `n` points in `d` dimensions as a (sets, n, d) array, starting at
+/// realization `first`; set k is seeded `seed.derive(k)`, as `samplab generate` does, so
+/// the bytes are the CLI's.
 #[pyfunction]
+#[pyo3(signature = (spec, n, d, seed, sets, first=0))]
 fn generate<'py>(
     py: Python<'py>,
     spec: &str,
@@ -158,14 +161,16 @@ fn generate<'py>(
     d: usize,
     seed: u64,
     sets: usize,
+    first: u64,
 ) -> PyResult<Bound<'py, PyAny>> {
     if sets == 0 {
         return Err(err("sets must be at least 1"));
     }
+    let end = first.checked_add(sets as u64).ok_or_else(|| err("first + sets passes 2^64 - 1"))?;
     let sampler = samplab::sampler::build(spec).map_err(err)?;
     let plan = sampler.plan(n, d).map_err(err)?;
     let data = interruptible(py, sets.saturating_mul(n * d), |stop| {
-        plan.stack(Seed(seed), sets, &Progress::SILENT.stopped_by(stop))
+        plan.stack(Seed(seed), first..end, &Progress::SILENT.stopped_by(stop))
     })?;
     shaped(py, data, &[sets, n, d])
 }
@@ -327,11 +332,15 @@ fn spectrum<'py>(
     tolerance: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let sets = point_sets(&points)?;
-    let method =
-        if direct { samplab::spectrum::Method::Direct } else { samplab::spectrum::Method::Fast { tol: tolerance } };
+    let method = method(direct, tolerance);
     let st = interruptible(py, usize::MAX, |stop| {
         samplab::spectrum::statistics_with_progress(&sets, res, method, &Progress::SILENT.stopped_by(stop))
     })?;
+    statistics_dict(py, &st)
+}
+
+/// The spectrum statistics as `spectrum` returns them.
+fn statistics_dict<'py>(py: Python<'py>, st: &samplab::spectrum::Statistics) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
     let shape: Vec<usize> = vec![st.res; st.dims];
     for (name, values) in [("periodogram", &st.periodogram), ("expected", &st.expected), ("variance", &st.variance)] {
@@ -341,6 +350,177 @@ fn spectrum<'py>(
         out.set_item(format!("{name}_anisotropy_db"), PyArray1::from_vec(py, anisotropy))?;
     }
     Ok(out)
+}
+
+/// The shape of a spectrum study's merge tree for `sets` realizations: (the root's level,
+/// the number of nodes at each level from 0 to the root).
+#[pyfunction]
+fn spectrum_tree(sets: usize) -> (u32, Vec<usize>) {
+    let root = samplab::spectrum::tree::root_level(sets);
+    (root, (0..=root).map(|l| samplab::spectrum::tree::nodes_at(sets, l)).collect())
+}
+
+/// The direct DFT, or the fast path at `tolerance`.
+fn method(direct: bool, tolerance: f64) -> samplab::spectrum::Method {
+    if direct { samplab::spectrum::Method::Direct } else { samplab::spectrum::Method::Fast { tol: tolerance } }
+}
+
+/// Check a spectrum study's sampler (at `n` points in `d` dimensions), resolution and
+/// tolerance before any work.
+#[pyfunction]
+fn spectrum_check(spec: &str, n: usize, d: usize, res: usize, direct: bool, tolerance: f64) -> PyResult<()> {
+    samplab::sampler::build(spec).and_then(|s| s.plan(n, d).map(|_| ())).map_err(err)?;
+    let method = method(direct, tolerance);
+    samplab::spectrum::Spectra::new(res, d, method).map(|_| ()).map_err(err)
+}
+
+/// The partial statistics (bytes) of node (`level`, `index`) of the merge tree over `sets`
+/// realizations of `spec` (set k seeded `seed.derive(k)`): one chunk of a spectrum study.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+fn spectrum_node<'py>(
+    py: Python<'py>,
+    spec: &str,
+    n: usize,
+    d: usize,
+    sets: usize,
+    seed: u64,
+    res: usize,
+    direct: bool,
+    tolerance: f64,
+    level: u32,
+    index: usize,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let sampler = samplab::sampler::build(spec).map_err(err)?;
+    let plan = sampler.plan(n, d).map_err(err)?;
+    let method = method(direct, tolerance);
+    let spectra = samplab::spectrum::Spectra::new(res, d, method).map_err(err)?;
+    let source = samplab::spectrum::Sets::Generated { plan, seed: Seed(seed), m: sets };
+    let partial = interruptible(py, usize::MAX, |stop| {
+        spectra.node(&source, level, index, &Progress::SILENT.stopped_by(stop)).map(|p| p.to_bytes())
+    })?;
+    Ok(PyBytes::new(py, &partial))
+}
+
+/// The statistics (as `spectrum` returns them) from the partials of every node of one
+/// level of the merge tree, in index order.
+#[pyfunction]
+fn spectrum_merge<'py>(
+    py: Python<'py>,
+    parts: Vec<Vec<u8>>,
+    res: usize,
+    d: usize,
+    n: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let st = py
+        .detach(|| {
+            let partials = parts.iter().map(|b| Partial::from_bytes(b)).collect::<samplab::Result<Vec<_>>>()?;
+            samplab::spectrum::tree::merge_up(partials)?.finish(res, d, n)
+        })
+        .map_err(err)?;
+    statistics_dict(py, &st)
+}
+
+/// An integration study from its Python arguments (built samplers, parsed family).
+struct StudyArgs {
+    samplers: Vec<Box<dyn samplab::Sampler>>,
+    family: samplab::integrand::Family,
+}
+
+impl StudyArgs {
+    fn new(samplers: &[String], integrand: &str, ns: &[usize]) -> PyResult<StudyArgs> {
+        let samplers =
+            samplers.iter().map(|s| samplab::sampler::build(s)).collect::<samplab::Result<Vec<_>>>().map_err(err)?;
+        let family = samplab::integrand::Family::parse(integrand).map_err(err)?;
+        if ns.contains(&0) {
+            return Err(err("counts must be positive"));
+        }
+        Ok(StudyArgs { samplers, family })
+    }
+
+    fn study<'a>(
+        &'a self,
+        ns: &'a [usize],
+        sets: usize,
+        instances: usize,
+        seed: u64,
+    ) -> samplab::experiment::Study<'a> {
+        samplab::experiment::Study {
+            samplers: &self.samplers,
+            family: &self.family,
+            ns,
+            sets,
+            instances,
+            seed: Seed(seed),
+        }
+    }
+}
+
+/// The statistics (40 bytes each) of units `units` of an integration study: one chunk of
+/// a distributed study. Unit u is sampler u / (counts x instances), count u / instances %
+/// counts, instance u % instances.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+fn integrate_units<'py>(
+    py: Python<'py>,
+    samplers: Vec<String>,
+    integrand: &str,
+    ns: Vec<usize>,
+    sets: usize,
+    instances: usize,
+    seed: u64,
+    units: Vec<usize>,
+) -> PyResult<Vec<Bound<'py, PyBytes>>> {
+    let args = StudyArgs::new(&samplers, integrand, &ns)?;
+    let study = args.study(&ns, sets, instances, seed);
+    let prepared = study.prepare().map_err(err)?;
+    let stats = interruptible(py, usize::MAX, |stop| {
+        let progress = Progress::SILENT.stopped_by(stop);
+        units
+            .par_iter()
+            .map(|&u| prepared.unit(u, &progress).map(|s| s.to_bytes()))
+            .collect::<samplab::Result<Vec<_>>>()
+    })?;
+    Ok(stats.iter().map(|b| PyBytes::new(py, b)).collect())
+}
+
+/// The study's JSON (as `integrate` returns it) from every unit's statistics, in unit order.
+#[pyfunction]
+fn integrate_merge(
+    samplers: Vec<String>,
+    integrand: &str,
+    ns: Vec<usize>,
+    sets: usize,
+    instances: usize,
+    seed: u64,
+    units: Vec<Vec<u8>>,
+) -> PyResult<String> {
+    let args = StudyArgs::new(&samplers, integrand, &ns)?;
+    let study = args.study(&ns, sets, instances, seed);
+    let prepared = study.prepare().map_err(err)?;
+    let stats = units
+        .iter()
+        .map(|b| samplab::experiment::UnitStats::from_bytes(b))
+        .collect::<samplab::Result<Vec<_>>>()
+        .map_err(err)?;
+    study_json(&prepared.rows(&stats).map_err(err)?)
+}
+
+/// `{"rows": [...], "fits": [...]}`, as `samplab integrate --json` prints it.
+fn study_json(rows: &[samplab::experiment::Row]) -> PyResult<String> {
+    let fits = samplab::experiment::fits(rows);
+    serde_json::to_string(&serde_json::json!({ "rows": rows, "fits": fits })).map_err(err)
+}
+
+/// The summary (count, mean, sample sd, min, max; compensated sums) the CLI prints of a
+/// list of values.
+#[pyfunction]
+fn summary(values: Vec<f64>) -> PyResult<(usize, f64, f64, f64, f64)> {
+    if values.is_empty() {
+        return Err(err("a summary of no values"));
+    }
+    let s = samplab::stats::Summary::of(&values);
+    Ok((s.count, s.mean, s.sd, s.min, s.max))
 }
 
 /// An integration study, as `samplab integrate --json` prints it: {"rows": [...], "fits": [...]}.
@@ -354,18 +534,11 @@ fn integrate(
     instances: usize,
     seed: u64,
 ) -> PyResult<String> {
-    let built =
-        samplers.iter().map(|s| samplab::sampler::build(s)).collect::<samplab::Result<Vec<_>>>().map_err(err)?;
-    let family = samplab::integrand::Family::parse(integrand).map_err(err)?;
-    if ns.contains(&0) {
-        return Err(err("counts must be positive"));
-    }
-    let study =
-        samplab::experiment::Study { samplers: &built, family: &family, ns: &ns, sets, instances, seed: Seed(seed) };
+    let args = StudyArgs::new(&samplers, integrand, &ns)?;
+    let study = args.study(&ns, sets, instances, seed);
     let rows =
         interruptible(py, usize::MAX, |stop| samplab::experiment::run(&study, &Progress::SILENT.stopped_by(stop)))?;
-    let fits = samplab::experiment::fits(&rows);
-    serde_json::to_string(&serde_json::json!({ "rows": rows, "fits": fits })).map_err(err)
+    study_json(&rows)
 }
 
 /// Instance `instance` of the integrand family `spec` for `seed`: its values at the rows of
@@ -537,6 +710,7 @@ fn reproduce(py: Python<'_>, out: &str, full: bool, only: Option<Vec<String>>, s
 #[pymodule]
 fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("Error", m.py().get_type::<Error>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(default_seed, m)?)?;
     m.add_function(wrap_pyfunction!(registry, m)?)?;
     m.add_function(wrap_pyfunction!(generate, m)?)?;
@@ -549,6 +723,13 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(metric_flags, m)?)?;
     m.add_function(wrap_pyfunction!(spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
+    m.add_function(wrap_pyfunction!(integrate_units, m)?)?;
+    m.add_function(wrap_pyfunction!(integrate_merge, m)?)?;
+    m.add_function(wrap_pyfunction!(spectrum_tree, m)?)?;
+    m.add_function(wrap_pyfunction!(spectrum_check, m)?)?;
+    m.add_function(wrap_pyfunction!(spectrum_node, m)?)?;
+    m.add_function(wrap_pyfunction!(spectrum_merge, m)?)?;
+    m.add_function(wrap_pyfunction!(summary, m)?)?;
     m.add_function(wrap_pyfunction!(integrand_eval, m)?)?;
     m.add_function(wrap_pyfunction!(reproduce, m)?)?;
     m.add_function(wrap_pyfunction!(render, m)?)?;

@@ -20,10 +20,13 @@ from typing import Any, Dict, List, Optional, Sequence, Union
 import numpy as np
 
 from . import _samplab
-from ._samplab import Error
+from ._samplab import Error, __version__
 
 __all__ = [
     "Error",
+    "Study",
+    "StudyResult",
+    "__version__",
     "DEFAULT_SEED",
     "samplers",
     "metrics",
@@ -290,3 +293,6 @@ def read_exr(path: str) -> Dict[str, Any]:
     """An OpenEXR image as ``samplab render`` writes it: ``{"rgb": (h, w, 3), "visibility":
     (h, w) or None}``, float32."""
     return _samplab.read_exr(str(path))
+
+
+from .study import Study, StudyResult  # noqa: E402  (study.py imports this package's names)

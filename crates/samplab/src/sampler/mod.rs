@@ -222,20 +222,21 @@ impl Plan<'_> {
         }
     }
 
-    /// The realizations of [`Plan::generate_sets`] in one buffer of `m n dims` values, set
-    /// k at `[k n dims, (k + 1) n dims)` (an array of shape (m, n, dims), no copies), filled
-    /// in parallel; `progress` advances by one per set and can stop the work.
+    /// Realizations `sets` (set k seeded by `seed.derive(k)`, as in [`Plan::generate_sets`])
+    /// in one buffer, set `sets.start + j` at `[j n dims, (j + 1) n dims)` (an array of shape
+    /// (sets, n, dims), no copies), filled in parallel; `progress` advances by one per set
+    /// and can stop the work.
     ///
     /// # Errors
     /// [`Error::Memory`] before any work when the buffer does not fit, a stop
     /// ([`Error::Interrupted`]), or as [`Plan::fill`].
-    pub fn stack(&self, seed: Seed, m: usize, progress: &Progress) -> Result<Vec<f64>> {
-        let size = self.n * self.dims;
-        let len = m.saturating_mul(size);
-        let mut out = crate::memory::zeroed(|| self.describe(m), len)?;
-        out.par_chunks_mut(size).enumerate().try_for_each(|(k, set)| {
+    pub fn stack(&self, seed: Seed, sets: std::ops::Range<u64>, progress: &Progress) -> Result<Vec<f64>> {
+        let (size, m) =
+            (self.n * self.dims, usize::try_from(sets.end.saturating_sub(sets.start)).unwrap_or(usize::MAX));
+        let mut out = crate::memory::zeroed(|| self.describe(m), m.saturating_mul(size))?;
+        out.par_chunks_mut(size).enumerate().try_for_each(|(j, set)| {
             progress.check()?;
-            self.fill(seed.derive(k as u64), set)?;
+            self.fill(seed.derive(sets.start + j as u64), set)?;
             progress.advance(1)
         })?;
         Ok(out)

@@ -1,0 +1,580 @@
+"""Studies that outgrow one machine: integration error, spectrum statistics, discrepancy
+statistics and rendered error, split into chunks that run here or on a Dask cluster and
+merge to the same bits.
+
+A study is a fixed list of chunks, decided by its description alone (never by the cluster):
+
+- integration: units (sampler, count, instance), each with all its M realizations,
+  ``units_per_chunk`` consecutive units per chunk; the units are merged in unit order by the
+  same code that ``samplab integrate`` runs;
+- spectrum: the sets are cut into blocks of 16, and the statistics are merged by a fixed
+  binary tree over the blocks (Welford within a block, Chan et al.'s pairwise update above);
+  a chunk is one node of the tree (``sets_per_chunk`` sets, a power of two times 16), and
+  the client merges the nodes upward exactly as a local run does;
+- discrepancy: ``sets_per_chunk`` consecutive realizations, their values concatenated in
+  set order and summarized with the CLI's compensated sums;
+- rendered error: a reference chunk, then ``seeds_per_chunk`` seeds per chunk, each seed's
+  errors against the reference, in seed order.
+
+Every number of a chunk is a function of the study and the chunk alone (realization k is
+seeded by ``seed.derive(k)``), and partial results are merged in chunk order whatever order
+the workers finish in, so ``study.run()``, ``study.run(client)`` on any cluster, any resumed
+run, and the CLI give the same bytes.
+
+A checkpoint directory keeps each finished chunk in its own file, written to a temporary
+name and renamed (so a file is whole or absent). Each file carries the study's fingerprint,
+the chunk's index and a SHA-256 of its contents; a file that fails any check is refused with
+an error naming it, never used.
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import io
+import json
+import os
+import sys
+import time
+from dataclasses import dataclass, field
+from typing import Any, Dict, Iterable, List, Optional, Sequence
+
+import numpy as np
+
+from . import _samplab
+from ._samplab import Error
+
+__all__ = ["Study", "StudyResult"]
+
+FORMAT = 1
+MAGIC = b"samplab-chunk 1\n"
+BLOCK = 16
+
+
+def _canonical(value: Any) -> str:
+    return json.dumps(value, sort_keys=True, separators=(",", ":"))
+
+
+@dataclass
+class Study:
+    """A study: what to compute (``kind`` and ``params``) and its chunks. Build one with
+    ``Study.integrate``, ``Study.spectrum``, ``Study.discrepancy`` or ``Study.render``."""
+
+    kind: str
+    params: Dict[str, Any]
+    chunks: List[Any] = field(default_factory=list)
+
+    # ----- constructors -------------------------------------------------------------------
+
+    @classmethod
+    def integrate(
+        cls,
+        samplers: Sequence[str],
+        integrand: str,
+        n: Sequence[int],
+        *,
+        sets: int = 50,
+        instances: int = 10,
+        seed: Optional[int] = None,
+        units_per_chunk: int = 1,
+    ) -> "Study":
+        """Integration error of ``samplers`` x counts ``n`` on ``instances`` instances of the
+        integrand family, ``sets`` realizations each (``samplab integrate``). A unit is one
+        (sampler, count, instance) with all its realizations; a chunk is
+        ``units_per_chunk`` consecutive units."""
+        params = {
+            "samplers": list(samplers),
+            "integrand": integrand,
+            "n": [int(x) for x in n],
+            "sets": int(sets),
+            "instances": int(instances),
+            "seed": _seed(seed),
+        }
+        _positive("units_per_chunk", units_per_chunk)
+        # checks every sampler at every count and the settings before anything is planned
+        _samplab.integrate_units(*_integrate_args(params), [])
+        units = len(params["samplers"]) * len(params["n"]) * params["instances"]
+        chunks = [list(range(a, min(a + units_per_chunk, units))) for a in range(0, units, units_per_chunk)]
+        return cls("integrate", params, chunks)
+
+    @classmethod
+    def spectrum(
+        cls,
+        sampler: str,
+        n: int,
+        *,
+        sets: int,
+        res: int,
+        d: int = 2,
+        direct: bool = False,
+        tolerance: float = 1e-9,
+        seed: Optional[int] = None,
+        sets_per_chunk: int = 256,
+    ) -> "Study":
+        """Periodogram, expected spectrum and spectrum variance of ``sets`` realizations of
+        ``sampler`` (``samplab spectrum``). ``sets_per_chunk`` must be 16 times a power of
+        two: a chunk is one node of the merge tree."""
+        _positive("sets_per_chunk", sets_per_chunk)
+        blocks = sets_per_chunk // BLOCK
+        if sets_per_chunk % BLOCK or blocks & (blocks - 1):
+            raise Error(f"sets_per_chunk = {sets_per_chunk}: must be 16 times a power of two (16, 32, 64, ...)")
+        if sets < 2:
+            raise Error(f"sets = {sets}: the variance of the spectrum needs at least 2 sets")
+        params = {
+            "sampler": sampler,
+            "n": int(n),
+            "d": int(d),
+            "sets": int(sets),
+            "res": int(res),
+            "direct": bool(direct),
+            "tolerance": float(tolerance),
+            "seed": _seed(seed),
+        }
+        # the sampler at this count, the resolution and the tolerance, before any work
+        _samplab.spectrum_check(params["sampler"], params["n"], params["d"], params["res"], params["direct"], params["tolerance"])
+        root, counts = _samplab.spectrum_tree(params["sets"])
+        level = min(blocks.bit_length() - 1, root)
+        return cls("spectrum", params, [[level, i] for i in range(counts[level])])
+
+    @classmethod
+    def discrepancy(
+        cls,
+        metrics: Sequence[str],
+        sampler: str,
+        n: int,
+        *,
+        sets: int,
+        d: int = 2,
+        seed: Optional[int] = None,
+        max_work: Optional[float] = None,
+        sets_per_chunk: int = 100,
+    ) -> "Study":
+        """Discrepancies ``metrics`` of ``sets`` realizations of ``sampler`` (``samplab
+        discrepancy --sampler``), ``sets_per_chunk`` realizations per chunk."""
+        _positive("sets", sets)
+        _positive("sets_per_chunk", sets_per_chunk)
+        params = {
+            "metrics": list(metrics),
+            "sampler": sampler,
+            "n": int(n),
+            "d": int(d),
+            "sets": int(sets),
+            "seed": _seed(seed),
+            "max_work": max_work,
+        }
+        for m in params["metrics"]:
+            _samplab.metric_flags(m)
+        _samplab.generate(sampler, params["n"], params["d"], params["seed"], 1)
+        chunks = [[a, min(a + sets_per_chunk, sets)] for a in range(0, sets, sets_per_chunk)]
+        return cls("discrepancy", params, chunks)
+
+    @classmethod
+    def render(
+        cls,
+        scene: str,
+        seeds: Iterable[int],
+        *,
+        light: Optional[str] = None,
+        reference_samples: int = 1024,
+        penumbra: bool = False,
+        seeds_per_chunk: int = 1,
+        **settings: Any,
+    ) -> "Study":
+        """Error of renders of ``scene`` (the CLI's settings as keywords) against its
+        converged reference, one render per seed of ``seeds`` (``samplab render --reference
+        --json`` per seed). The reference is a chunk of its own, computed first."""
+        _positive("seeds_per_chunk", seeds_per_chunk)
+        seeds = [int(s) for s in seeds]
+        if not seeds:
+            raise Error("seeds: give at least one seed")
+        if "seed" in settings:
+            raise Error("seed: give the seeds as `seeds`")
+        params = {
+            "scene": scene,
+            "light": light,
+            "reference_samples": int(reference_samples),
+            "penumbra": bool(penumbra),
+            "settings": json.loads(_canonical(settings)),
+            "seeds": seeds,
+        }
+        chunks: List[Any] = ["reference"]
+        chunks += [seeds[a : a + seeds_per_chunk] for a in range(0, len(seeds), seeds_per_chunk)]
+        return cls("render", params, chunks)
+
+    # ----- identity -----------------------------------------------------------------------
+
+    @property
+    def fingerprint(self) -> str:
+        """SHA-256 of what the study computes and how it is chunked (and of the package
+        version): chunks of one study are never mistaken for another's."""
+        from . import __version__
+
+        text = _canonical({"format": FORMAT, "version": __version__, "kind": self.kind, "params": self.params, "chunks": self.chunks})
+        return hashlib.sha256(text.encode()).hexdigest()
+
+    # ----- running ------------------------------------------------------------------------
+
+    def run(
+        self,
+        client: Any = None,
+        *,
+        checkpoint: Optional[str] = None,
+        progress: Optional[bool] = None,
+        retries: int = 3,
+    ) -> "StudyResult":
+        """Compute the missing chunks (here, one after the other, each in parallel on the
+        Rust core; or on the Dask ``client``'s workers), keep each finished chunk in
+        ``checkpoint`` if given, and merge. ``progress``: a progress bar with the time left
+        on stderr (default: when stderr is a terminal or in Jupyter). ``retries``: how many
+        times Dask retries a chunk whose task failed (chunks of a lost worker are recomputed
+        by the scheduler anyway)."""
+        start = time.monotonic()
+        store = _Checkpoint(checkpoint, self) if checkpoint else None
+        results: Dict[int, bytes] = {}
+        if store:
+            results.update(store.load_all())
+        reused = len(results)
+        todo = [i for i in range(len(self.chunks)) if i not in results]
+        bar = _Bar(len(self.chunks), reused, progress)
+        computed = 0
+
+        def done(i: int, data: bytes) -> None:
+            nonlocal computed
+            results[i] = data
+            computed += 1
+            if store:
+                store.save(i, data)
+            bar.update(1)
+
+        try:
+            if client is None:
+                self._run_here(todo, results, done)
+            else:
+                self._run_dask(client, todo, results, done, retries)
+        finally:
+            bar.close()
+        data = _merge(self.kind, self.params, [results[i] for i in range(len(self.chunks))])
+        return StudyResult(self.kind, self.params, data, computed, reused, time.monotonic() - start)
+
+    def _run_here(self, todo: List[int], results: Dict[int, bytes], done: Any) -> None:
+        dependency = self._dependency(results, lambda i: _compute(self.kind, self.params, self.chunks[i]), done)
+        for i in todo:
+            if i in results:
+                continue
+            done(i, _compute(self.kind, self.params, self.chunks[i], dependency))
+
+    def _dependency(self, results: Dict[int, bytes], compute: Any, done: Any) -> Optional[bytes]:
+        """The reference of a render study (chunk 0), computed first when missing."""
+        if self.kind != "render":
+            return None
+        if 0 not in results:
+            done(0, compute(0))
+        return results[0]
+
+    def _run_dask(self, client: Any, todo: List[int], results: Dict[int, bytes], done: Any, retries: int) -> None:
+        from distributed import as_completed
+
+        fp = self.fingerprint[:12]
+
+        def submit(i: int, dependency: Any = None) -> Any:
+            return client.submit(
+                _compute, self.kind, self.params, self.chunks[i], dependency, key=f"samplab-{fp}-{i}", retries=retries
+            )
+
+        dependency = self._dependency(results, lambda i: submit(i).result(), done)
+        if dependency is not None:
+            dependency = client.scatter(dependency, broadcast=True)
+        futures = {submit(i, dependency): i for i in todo if i not in results}
+        for future in as_completed(list(futures)):
+            done(futures[future], future.result())
+
+
+def _seed(seed: Optional[int]) -> int:
+    return int(_samplab.default_seed() if seed is None else seed)
+
+
+def _positive(name: str, value: int) -> None:
+    if int(value) < 1:
+        raise Error(f"{name} = {value}: must be at least 1")
+
+
+def _integrate_args(p: Dict[str, Any]) -> tuple:
+    return (p["samplers"], p["integrand"], p["n"], p["sets"], p["instances"], p["seed"])
+
+
+def _spectrum_args(p: Dict[str, Any]) -> tuple:
+    return (p["sampler"], p["n"], p["d"], p["sets"], p["seed"], p["res"], p["direct"], p["tolerance"])
+
+
+def _compute(kind: str, params: Dict[str, Any], chunk: Any, dependency: Optional[bytes] = None) -> bytes:
+    """One chunk's partial result, as bytes (what workers run and checkpoints keep)."""
+    if kind == "integrate":
+        return b"".join(_samplab.integrate_units(*_integrate_args(params), list(chunk)))
+    if kind == "spectrum":
+        level, index = chunk
+        return bytes(_samplab.spectrum_node(*_spectrum_args(params), level, index))
+    if kind == "discrepancy":
+        first, end = chunk
+        stack = _samplab.generate(params["sampler"], params["n"], params["d"], params["seed"], end - first, first)
+        values = [_samplab.discrepancy(m, stack, params["max_work"]) for m in params["metrics"]]
+        return np.asarray(values, dtype="<f8").tobytes()
+    if kind == "render":
+        if chunk == "reference":
+            image = _samplab.render(
+                params["scene"], params["light"], _settings(params, None), params["reference_samples"]
+            )
+            return _arrays_bytes(image["rgb"], image["visibility"])
+        rgb, visibility = _bytes_arrays(dependency)
+        errors = []
+        for seed in chunk:
+            image = _samplab.render(params["scene"], params["light"], _settings(params, seed), None)
+            errors.append(json.loads(_samplab.image_errors(image["rgb"], rgb, visibility, params["penumbra"])))
+        return _canonical(errors).encode()
+    raise Error(f"unknown study kind '{kind}'")
+
+
+def _settings(params: Dict[str, Any], seed: Optional[int]) -> Dict[str, Any]:
+    s = dict(params["settings"])
+    # sizes are (w, h) pairs; JSON (the fingerprint, the checkpoint) keeps them as lists
+    for size in ("res", "interleave"):
+        if s.get(size) is not None:
+            s[size] = tuple(s[size])
+    if seed is not None:
+        s["seed"] = seed
+    return s
+
+
+def _arrays_bytes(rgb: np.ndarray, visibility: np.ndarray) -> bytes:
+    out = io.BytesIO()
+    np.save(out, np.ascontiguousarray(rgb, dtype=np.float32), allow_pickle=False)
+    np.save(out, np.ascontiguousarray(visibility, dtype=np.float32), allow_pickle=False)
+    return out.getvalue()
+
+
+def _bytes_arrays(data: Optional[bytes]) -> tuple:
+    if data is None:
+        raise Error("a render study's error chunk needs its reference")
+    f = io.BytesIO(data)
+    return np.load(f, allow_pickle=False), np.load(f, allow_pickle=False)
+
+
+def _merge(kind: str, params: Dict[str, Any], parts: List[bytes]) -> Dict[str, Any]:
+    """Every chunk's result, in chunk order, into the study's result."""
+    if kind == "integrate":
+        units = [part[i : i + 40] for part in parts for i in range(0, len(part), 40)]
+        return json.loads(_samplab.integrate_merge(*_integrate_args(params), units))
+    if kind == "spectrum":
+        return dict(_samplab.spectrum_merge(parts, params["res"], params["d"], params["n"]))
+    if kind == "discrepancy":
+        k = len(params["metrics"])
+        values = np.concatenate([np.frombuffer(p, dtype="<f8").reshape(k, -1) for p in parts], axis=1)
+        rows = []
+        for m, v in zip(params["metrics"], values):
+            row = json.loads(_samplab.metric_flags(m))
+            _, mean, sd, _, largest = _samplab.summary(v.tolist())
+            row.update(values=v.tolist(), mean=mean, sd=sd, max=largest)
+            rows.append(row)
+        source = f"{params['sampler']} n={params['n']} d={params['d']} sets={params['sets']} seed={params['seed']}"
+        return {"source": source, "sets": params["sets"], "n": [params["n"]] * params["sets"], "metrics": rows}
+    if kind == "render":
+        errors = [e for part in parts[1:] for e in json.loads(part)]
+        summary = {}
+        for name in errors[0]:
+            count, mean, sd, low, high = _samplab.summary([float(e[name]) for e in errors])
+            summary[name] = {"mean": mean, "sd": sd, "min": low, "max": high}
+        return {"seeds": params["seeds"], "errors": errors, "summary": summary}
+    raise Error(f"unknown study kind '{kind}'")
+
+
+@dataclass
+class StudyResult:
+    """A study's result: ``data`` (dicts and arrays, the CLI's JSON structure), how many
+    chunks this run ``computed`` and ``reused`` from the checkpoint, and its wall time."""
+
+    kind: str
+    params: Dict[str, Any]
+    data: Dict[str, Any]
+    computed: int
+    reused: int
+    seconds: float
+
+    def to_json(self, path: Optional[str] = None) -> str:
+        """The result as JSON (``samplab integrate --json``'s and ``samplab discrepancy
+        --json``'s structure; spectra as ``spectrum.json``'s grids and radial averages)."""
+        data = self.data
+        if self.kind == "spectrum":
+            data = {
+                name: {
+                    "grid": np.asarray(self.data[name]).ravel().tolist(),
+                    "radial": np.asarray(self.data[f"{name}_radial"]).tolist(),
+                    "anisotropy_db": np.asarray(self.data[f"{name}_anisotropy_db"]).tolist(),
+                }
+                for name in ("periodogram", "expected", "variance")
+            }
+        text = json.dumps(data, allow_nan=True)
+        if path:
+            _write_atomic(path, text.encode())
+        return text
+
+    def to_csv(self, path: Optional[str] = None) -> str:
+        """One row per result line: integration rows, per-metric summaries, per-seed
+        errors, or the radial averages of the spectra."""
+        out = io.StringIO()
+        w = csv.writer(out, lineterminator="\n")
+        if self.kind == "integrate":
+            keys = ["sampler", "integrand", "n", "relative_mean", "relative_variance", "rmse", "normalized_mse"]
+            w.writerow(keys + ["theory_statistic", "theory_value"])
+            for r in self.data["rows"]:
+                t = r.get("theory") or {}
+                w.writerow([r[k] for k in keys] + [t.get("statistic", ""), t.get("value", "")])
+        elif self.kind == "discrepancy":
+            w.writerow(["metric", "mean", "sd", "max"])
+            for r in self.data["metrics"]:
+                w.writerow([r["metric"], r["mean"], r["sd"], r["max"]])
+        elif self.kind == "render":
+            names = list(self.data["errors"][0])
+            w.writerow(["seed"] + names)
+            for seed, e in zip(self.data["seeds"], self.data["errors"]):
+                w.writerow([seed] + [e[k] for k in names])
+        else:
+            names = ("periodogram", "expected", "variance")
+            w.writerow(["frequency"] + [x for n in names for x in (n, f"{n}_anisotropy_db")])
+            for b in range(len(self.data["periodogram_radial"])):
+                w.writerow([b + 1] + [float(self.data[f"{x}"][b]) for n in names for x in (f"{n}_radial", f"{n}_anisotropy_db")])
+        text = out.getvalue()
+        if path:
+            _write_atomic(path, text.encode())
+        return text
+
+    def plot(self, ax: Any = None) -> Any:
+        """A matplotlib plot like the report's: relative variance against N (log-log),
+        radial spectra, discrepancy histograms or error per seed. Returns the axes."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(7, 4.5))
+        if self.kind == "integrate":
+            fits = {f["sampler"]: f["exponent"] for f in self.data["fits"]}
+            for s in dict.fromkeys(r["sampler"] for r in self.data["rows"]):
+                rows = [r for r in self.data["rows"] if r["sampler"] == s]
+                label = s + (f" (slope {fits[s]:.2f})" if s in fits else "")
+                ax.loglog([r["n"] for r in rows], [r["relative_variance"] for r in rows], marker="o", label=label)
+            ax.set(xlabel="N", ylabel="relative variance", title=self.params["integrand"])
+        elif self.kind == "spectrum":
+            for name in ("periodogram", "expected", "variance"):
+                radial = np.asarray(self.data[f"{name}_radial"])
+                ax.semilogy(np.arange(1, len(radial) + 1), radial, label=name)
+            ax.set(xlabel="radial frequency", ylabel="statistic", title=self.params["sampler"])
+        elif self.kind == "discrepancy":
+            for r in self.data["metrics"]:
+                ax.hist(r["values"], bins=30, alpha=0.6, label=r["metric"])
+            ax.set(xlabel="discrepancy", ylabel="sets", title=self.params["sampler"])
+        else:
+            key = "rmse" if "rmse" in self.data["errors"][0] else next(iter(self.data["errors"][0]))
+            ax.plot(self.data["seeds"], [e[key] for e in self.data["errors"]], marker="o", label=key)
+            ax.set(xlabel="seed", ylabel=key, title=self.params["scene"])
+        ax.legend()
+        return ax
+
+
+def _write_atomic(path: str, data: bytes) -> None:
+    tmp = f"{path}.tmp-{os.getpid()}"
+    with open(tmp, "wb") as f:
+        f.write(data)
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, path)
+
+
+class _Checkpoint:
+    """Finished chunks of one study in a directory: ``<fingerprint>-<chunk>.chunk``, each
+    MAGIC, a JSON header line (fingerprint, chunk, length), the payload, and a SHA-256 of
+    all that."""
+
+    def __init__(self, path: str, study: Study):
+        self.path = path
+        self.study = study
+        self.fp = study.fingerprint
+        os.makedirs(path, exist_ok=True)
+        manifest = os.path.join(path, "study.json")
+        mine = _canonical({"fingerprint": self.fp, "kind": study.kind, "params": study.params, "chunks": len(study.chunks)})
+        if os.path.exists(manifest):
+            with open(manifest, encoding="utf-8") as f:
+                theirs = f.read()
+            try:
+                their_fp = json.loads(theirs)["fingerprint"]
+            except (ValueError, KeyError, TypeError):
+                raise Error(f"{manifest}: not a samplab study manifest")
+            if their_fp != self.fp:
+                raise Error(f"{path}: the checkpoint holds another study (fingerprint {their_fp[:12]}, this one {self.fp[:12]}); use another directory")
+        else:
+            _write_atomic(manifest, mine.encode())
+
+    def _file(self, i: int) -> str:
+        return os.path.join(self.path, f"{self.fp[:16]}-{i}.chunk")
+
+    def save(self, i: int, data: bytes) -> None:
+        header = _canonical({"fingerprint": self.fp, "chunk": i, "length": len(data)}).encode() + b"\n"
+        body = MAGIC + header + data
+        _write_atomic(self._file(i), body + hashlib.sha256(body).digest())
+
+    def load_all(self) -> Dict[int, bytes]:
+        found = {}
+        for i in range(len(self.study.chunks)):
+            path = self._file(i)
+            if os.path.exists(path):
+                found[i] = self._load(path, i)
+        for name in os.listdir(self.path):
+            if name.endswith(".chunk") and not name.startswith(self.fp[:16]):
+                raise Error(f"{os.path.join(self.path, name)}: a chunk of another study; use another directory")
+        return found
+
+    def _load(self, path: str, i: int) -> bytes:
+        with open(path, "rb") as f:
+            raw = f.read()
+        bad = lambda why: Error(f"{path}: {why}; delete it to compute the chunk again")  # noqa: E731
+        if not raw.startswith(MAGIC) or len(raw) < len(MAGIC) + 32:
+            raise bad("not a samplab chunk file")
+        body, digest = raw[:-32], raw[-32:]
+        if hashlib.sha256(body).digest() != digest:
+            raise bad("corrupted (its checksum does not match)")
+        header_end = body.index(b"\n", len(MAGIC))
+        header = json.loads(body[len(MAGIC) : header_end])
+        data = body[header_end + 1 :]
+        if header.get("fingerprint") != self.fp:
+            raise bad("a chunk of another study")
+        if header.get("chunk") != i or header.get("length") != len(data):
+            raise bad(f"holds chunk {header.get('chunk')} of {header.get('length')} bytes, not chunk {i}")
+        return data
+
+
+class _Bar:
+    """A progress bar with the time left, on stderr: chunks done of the total."""
+
+    def __init__(self, total: int, done: int, show: Optional[bool]):
+        if show is None:
+            show = sys.stderr.isatty() or "ipykernel" in sys.modules
+        self.show, self.total, self.done, self.start_done = show, total, done, done
+        self.start = time.monotonic()
+        self._draw()
+
+    def update(self, k: int) -> None:
+        self.done += k
+        self._draw()
+
+    def _draw(self) -> None:
+        if not self.show:
+            return
+        elapsed = time.monotonic() - self.start
+        fresh = self.done - self.start_done
+        left = elapsed / fresh * (self.total - self.done) if fresh else float("nan")
+        width = 30
+        filled = width * self.done // max(self.total, 1)
+        eta = "?" if left != left else f"{left:.0f} s"
+        sys.stderr.write(f"\r[{'#' * filled}{'.' * (width - filled)}] {self.done}/{self.total} chunks, {elapsed:.0f} s, {eta} left ")
+        sys.stderr.flush()
+
+    def close(self) -> None:
+        if self.show:
+            sys.stderr.write("\n")
+            sys.stderr.flush()

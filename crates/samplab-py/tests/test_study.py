@@ -1,0 +1,192 @@
+"""Studies on a Dask cluster: the same bytes as a local run and as the CLI, whatever the
+chunking; a killed worker changes nothing; a stopped study resumes from its checkpoint and
+computes only what is missing; bad checkpoint files are refused."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import samplab
+from samplab import Study
+
+distributed = pytest.importorskip("distributed")
+
+
+@pytest.fixture(scope="module")
+def client():
+    """Two worker processes, one thread each (rayon uses one thread per worker too)."""
+    cluster = distributed.LocalCluster(
+        n_workers=2,
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=None,
+        env={"RAYON_NUM_THREADS": "1"},
+    )
+    with distributed.Client(cluster) as c:
+        yield c
+    cluster.close()
+
+
+def test_integration_study_local_dask_and_cli_agree(client, cli):
+    args = dict(sets=6, instances=3, seed=2)
+    study = Study.integrate(["random", "jitter"], "quad", [16, 64], units_per_chunk=1, **args)
+    local = study.run(progress=False)
+    on_dask = study.run(client, progress=False)
+    coarse = Study.integrate(["random", "jitter"], "quad", [16, 64], units_per_chunk=5, **args).run(client, progress=False)
+    theirs = json.loads(
+        cli("integrate", "--sampler", "random", "--sampler", "jitter", "--integrand", "quad", "-n", "16,64",
+            "--sets", 6, "--instances", 3, "--seed", 2, "--json")
+    )
+    assert local.data == theirs
+    assert on_dask.to_json() == local.to_json() == coarse.to_json()
+    assert (local.computed, on_dask.computed, coarse.computed) == (12, 12, 3)
+
+
+def test_spectrum_study_local_dask_and_cli_agree(client, cli, tmp_path):
+    # 83 sets: 6 blocks of 16, a merge tree with a lone node on its right edge
+    kw = dict(sets=83, res=16, seed=8)
+    local = Study.spectrum("jitter.gaussian:sigma=0.25", 64, sets_per_chunk=16, **kw).run(progress=False)
+    on_dask = Study.spectrum("jitter.gaussian:sigma=0.25", 64, sets_per_chunk=32, **kw).run(client, progress=False)
+    cli("spectrum", "--sampler", "jitter.gaussian:sigma=0.25", "-n", 64, "--sets", 83, "--res", 16, "--seed", 8,
+        "-o", tmp_path / "s")
+    theirs = json.loads((tmp_path / "s" / "spectrum.json").read_text())["statistics"]
+    assert json.loads(local.to_json()) == theirs
+    assert on_dask.to_json() == local.to_json()
+    in_memory = samplab.spectrum(samplab.generate("jitter.gaussian:sigma=0.25", n=64, sets=83, seed=8), res=16)
+    for name, values in in_memory.items():
+        assert np.array_equal(values, local.data[name], equal_nan=True), name
+
+
+def test_discrepancy_study_local_dask_and_cli_agree(client, cli):
+    kw = dict(sets=250, seed=3)
+    local = Study.discrepancy(["star", "l2-star", "centered"], "nrooks", 16, sets_per_chunk=100, **kw).run(progress=False)
+    on_dask = Study.discrepancy(["star", "l2-star", "centered"], "nrooks", 16, sets_per_chunk=7, **kw).run(client, progress=False)
+    theirs = json.loads(cli("discrepancy", "star", "l2-star", "centered", "--sampler", "nrooks", "-n", 16,
+                            "--sets", 250, "--seed", 3, "--json"))
+    assert local.data == theirs
+    assert on_dask.to_json() == local.to_json()
+
+
+def test_render_study_local_dask_and_cli_agree(client, cli, tmp_path):
+    settings = dict(sampler="jitter", n=4, res=(32, 24))
+    study = Study.render("spheres", [5, 6, 7], reference_samples=64, seeds_per_chunk=2, **settings)
+    local = study.run(progress=False)
+    on_dask = study.run(client, progress=False)
+    assert on_dask.to_json() == local.to_json()
+    # the study's reference is rendered for its settings (the default seed), as the CLI's
+    # first run writes one; the later runs compare with that file
+    cli("render", "spheres", "--sampler", "jitter", "-n", 4, "--res", "32x24", "--reference", tmp_path / "ref.exr",
+        "--reference-samples", 64, "-o", tmp_path / "first.exr")
+    for seed, errors in zip([5, 6, 7], local.data["errors"]):
+        out = json.loads(cli("render", "spheres", "--sampler", "jitter", "-n", 4, "--res", "32x24", "--seed", seed,
+                             "--reference", tmp_path / "ref.exr", "--reference-samples", 64, "--json",
+                             "-o", tmp_path / "img.exr"))
+        assert out["errors"] == errors
+
+
+def test_a_killed_worker_does_not_change_the_result(client):
+    # about 5 s of work in 24 chunks
+    study = Study.integrate(["random", "jitter"], "disk", [1024, 4096], sets=20000, instances=6, seed=5)
+    expected = study.run(progress=False)
+    pids = client.run(os.getpid)
+    killed = []
+
+    def kill_one():
+        time.sleep(1.0)
+        pid = next(iter(pids.values()))
+        os.kill(pid, signal.SIGKILL)
+        killed.append(time.monotonic())
+
+    killer = threading.Thread(target=kill_one)
+    start = time.monotonic()
+    killer.start()
+    result = study.run(client, progress=False)
+    end = time.monotonic()
+    killer.join()
+    assert killed and killed[0] < end, f"the study ended {end - start:.1f} s in, before the kill"
+    assert result.to_json() == expected.to_json()
+    client.wait_for_workers(2, timeout=60)
+
+
+def test_a_stopped_study_resumes_computing_only_the_missing_chunks(tmp_path):
+    box = tmp_path / "checkpoint"
+    # about 5 s of work in 24 chunks, stopped after 1.5 s
+    make = "Study.integrate(['random', 'jitter'], 'disk', [1024, 4096], sets=20000, instances=6, seed=9)"
+    script = textwrap.dedent(
+        f"""
+        import os, signal, threading, samplab
+        from samplab import Study
+        threading.Timer(1.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+        try:
+            {make}.run(checkpoint={str(box)!r}, progress=False)
+        except KeyboardInterrupt:
+            print("stopped")
+        """
+    )
+    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert run.stdout.strip() == "stopped", run.stdout + run.stderr
+    study = eval(make)
+    kept = [f for f in os.listdir(box) if f.endswith(".chunk")]
+    assert 0 < len(kept) < len(study.chunks), f"{len(kept)} chunks kept: stop earlier or make the study longer"
+    resumed = study.run(checkpoint=str(box), progress=False)
+    assert (resumed.reused, resumed.computed) == (len(kept), len(study.chunks) - len(kept))
+    assert resumed.to_json() == study.run(progress=False).to_json()
+    # a third run computes nothing
+    again = study.run(checkpoint=str(box), progress=False)
+    assert (again.reused, again.computed) == (len(study.chunks), 0)
+    assert again.to_json() == resumed.to_json()
+
+
+def test_corrupted_and_foreign_checkpoint_files_are_refused(tmp_path):
+    study = Study.discrepancy(["star"], "jitter", 16, sets=40, seed=1, sets_per_chunk=10)
+    box = tmp_path / "a"
+    study.run(checkpoint=str(box), progress=False)
+    files = sorted(f for f in os.listdir(box) if f.endswith(".chunk"))
+    assert len(files) == 4
+    # one flipped byte
+    path = box / files[1]
+    raw = bytearray(path.read_bytes())
+    raw[len(raw) // 2] ^= 1
+    path.write_bytes(bytes(raw))
+    with pytest.raises(samplab.Error, match="corrupted"):
+        study.run(checkpoint=str(box), progress=False)
+    # a chunk of another study under this study's name
+    other = Study.discrepancy(["star"], "jitter", 16, sets=40, seed=2, sets_per_chunk=10)
+    other_box = tmp_path / "b"
+    other.run(checkpoint=str(other_box), progress=False)
+    theirs = sorted(f for f in os.listdir(other_box) if f.endswith(".chunk"))[1]
+    path.write_bytes((other_box / theirs).read_bytes())
+    with pytest.raises(samplab.Error, match="another study"):
+        study.run(checkpoint=str(box), progress=False)
+    # another study's directory
+    with pytest.raises(samplab.Error, match="holds another study"):
+        other.run(checkpoint=str(box), progress=False)
+    # truncated to nothing useful
+    path.write_bytes(b"samplab")
+    with pytest.raises(samplab.Error, match="not a samplab chunk"):
+        study.run(checkpoint=str(box), progress=False)
+
+
+def test_bad_studies_are_refused_before_any_work():
+    with pytest.raises(samplab.Error, match="16 times a power of two"):
+        Study.spectrum("jitter", 64, sets=100, res=16, sets_per_chunk=48)
+    with pytest.raises(samplab.Error, match="9 and 16"):
+        Study.spectrum("jitter", 15, sets=100, res=16)
+    with pytest.raises(samplab.Error, match="resolution"):
+        Study.spectrum("jitter", 16, sets=100, res=15)
+    with pytest.raises(samplab.Error, match="sets"):
+        Study.integrate(["random"], "quad", [16], sets=1)
+    with pytest.raises(samplab.Error, match="did you mean"):
+        Study.integrate(["randm"], "quad", [16])
+    with pytest.raises(samplab.Error, match="unknown metric"):
+        Study.discrepancy(["strr"], "jitter", 16, sets=4)
+    with pytest.raises(samplab.Error, match="units_per_chunk"):
+        Study.integrate(["random"], "quad", [16], units_per_chunk=0)
