@@ -190,3 +190,10 @@ def test_bad_studies_are_refused_before_any_work():
         Study.discrepancy(["strr"], "jitter", 16, sets=4)
     with pytest.raises(samplab.Error, match="units_per_chunk"):
         Study.integrate(["random"], "quad", [16], units_per_chunk=0)
+
+
+def test_the_readme_example_runs(tmp_path):
+    example = os.path.join(os.path.dirname(__file__), "..", "examples", "study.py")
+    run = subprocess.run([sys.executable, example, str(tmp_path), "--quick"], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert sorted(os.listdir(tmp_path)) == ["fig6.ckpt", "fig6.csv", "fig6.png"]

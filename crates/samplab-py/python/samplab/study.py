@@ -36,6 +36,7 @@ import json
 import os
 import sys
 import time
+import uuid
 from dataclasses import dataclass, field
 from typing import Any, Dict, Iterable, List, Optional, Sequence
 
@@ -274,7 +275,9 @@ class Study:
     def _run_dask(self, client: Any, todo: List[int], results: Dict[int, bytes], done: Any, retries: int) -> None:
         from distributed import as_completed
 
-        fp = self.fingerprint[:12]
+        # a key per run: a finished run's results may linger on the scheduler, and a new run
+        # must compute (or a benchmark would time a cache)
+        fp = f"{self.fingerprint[:12]}-{uuid.uuid4().hex[:8]}"
 
         def submit(i: int, dependency: Any = None) -> Any:
             return client.submit(
