@@ -54,10 +54,38 @@ enum Command {
     Render(Box<render::Args>),
 }
 
+/// The exit code of a bug (a panic): 70, EX_SOFTWARE of sysexits.h.
+const BUG: u8 = 70;
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     bar::install();
     samplab::memory::set_limit(cli.max_memory);
+    std::panic::set_hook(Box::new(report_bug));
+    // a panic is a bug: one line asking for a report and exit code 70 (the hook printed it)
+    std::panic::catch_unwind(|| run(cli)).unwrap_or(ExitCode::from(BUG))
+}
+
+/// One line for a panic, asking for a report; the backtrace only with RUST_BACKTRACE set.
+fn report_bug(info: &std::panic::PanicHookInfo<'_>) {
+    let payload = info.payload();
+    let what = payload.downcast_ref::<&str>().copied().or_else(|| payload.downcast_ref::<String>().map(String::as_str));
+    let at = info.location().map_or(String::new(), |l| format!(" at {}:{}", l.file(), l.line()));
+    eprintln!(
+        "samplab: internal error (a bug): {}{at}; please report it with the command that caused it",
+        what.unwrap_or("panic").replace('\n', " ")
+    );
+    let trace = std::backtrace::Backtrace::capture();
+    if trace.status() == std::backtrace::BacktraceStatus::Captured {
+        eprintln!("{trace}");
+    }
+}
+
+fn run(cli: Cli) -> ExitCode {
+    // a hidden switch for the test that proves the panic path (exit 70, one line)
+    if std::env::var_os("SAMPLAB_TEST_PANIC").is_some() {
+        panic!("a panic on purpose (SAMPLAB_TEST_PANIC)");
+    }
     let result = match cli.command {
         Command::Reproduce(a) => reproduce::run(&a),
         Command::List(a) => list::run(&a),

@@ -356,3 +356,121 @@ fn library_settings_are_named_by_their_flags() {
         &["over the work limit 1.0e5; raise it with --max-work"],
     );
 }
+
+#[test]
+fn a_panic_is_one_line_and_exit_code_70() {
+    let out = Command::new(env!("CARGO_BIN_EXE_samplab"))
+        .args(["list", "samplers"])
+        .env("SAMPLAB_TEST_PANIC", "1")
+        .env_remove("RUST_BACKTRACE")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(70), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.starts_with("samplab: internal error (a bug): a panic on purpose"), "{stderr}");
+    assert!(stderr.contains("please report it"), "{stderr}");
+}
+
+#[test]
+fn every_subcommand_gives_the_same_bytes_on_1_2_and_the_default_threads() {
+    let dir = temp("threads");
+    let d = |name: &str| dir.join(name).display().to_string();
+    let (pts, spec_dir, img, plot) = (d("pts.txt"), d("spec"), d("img.exr"), d("plot.png"));
+    let commands: Vec<(Vec<String>, Vec<String>)> = vec![
+        (vec!["generate", "poisson", "-n", "64", "--sets", "12", "-o", pts.as_str()], vec![pts.clone()]),
+        (
+            vec![
+                "discrepancy",
+                "star",
+                "l2-star",
+                "centered",
+                "--sampler",
+                "jitter",
+                "-n",
+                "64",
+                "--sets",
+                "24",
+                "--json",
+            ],
+            vec![],
+        ),
+        (vec!["discrepancy", "star", "extreme", pts.as_str(), "--json"], vec![]),
+        (
+            vec![
+                "integrate",
+                "--sampler",
+                "random",
+                "--sampler",
+                "jitter.gaussian:0.25",
+                "--integrand",
+                "quad",
+                "-n",
+                "16,64",
+                "--sets",
+                "20",
+                "--instances",
+                "3",
+                "--json",
+            ],
+            vec![],
+        ),
+        (
+            vec![
+                "spectrum",
+                "--sampler",
+                "jitter",
+                "-n",
+                "256",
+                "--sets",
+                "40",
+                "--res",
+                "32",
+                "-o",
+                spec_dir.as_str(),
+            ],
+            vec![format!("{spec_dir}/spectrum.json"), format!("{spec_dir}/radial.csv")],
+        ),
+        (
+            vec![
+                "render",
+                "spheres",
+                "--sampler",
+                "sobol.owen",
+                "-n",
+                "4",
+                "--res",
+                "48x32",
+                "--pixel",
+                "area",
+                "--spp",
+                "2",
+                "-o",
+                img.as_str(),
+            ],
+            vec![img.clone()],
+        ),
+        (vec!["plot", pts.as_str(), "-o", plot.as_str()], vec![plot.clone()]),
+    ]
+    .into_iter()
+    .map(|(args, files)| (args.into_iter().map(String::from).collect(), files))
+    .collect();
+    for (args, files) in &commands {
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        let mut outputs = Vec::new();
+        for threads in ["1", "2", ""] {
+            let mut cmd = Command::new(env!("CARGO_BIN_EXE_samplab"));
+            cmd.args(&refs);
+            if threads.is_empty() {
+                cmd.env_remove("RAYON_NUM_THREADS");
+            } else {
+                cmd.env("RAYON_NUM_THREADS", threads);
+            }
+            let out = cmd.output().unwrap();
+            assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+            let written: Vec<Vec<u8>> = files.iter().map(|f| std::fs::read(f).unwrap()).collect();
+            outputs.push((out.stdout, written));
+        }
+        assert!(outputs.windows(2).all(|w| w[0] == w[1]), "{args:?}: the bytes depend on the thread count");
+    }
+}

@@ -107,7 +107,7 @@ fn predict(sampler: &str, f: &dyn Integrand, n: usize) -> Option<Prediction> {
 }
 
 /// The estimates of one unit of a study (one sampler, count and instance), summarized: what
-/// a chunk of a distributed study returns ([`Study::unit`]), merged by [`Study::rows`].
+/// a chunk of a distributed study returns ([`Prepared::unit`]), merged by [`Prepared::rows`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct UnitStats {
     /// Mean of the M estimates.
