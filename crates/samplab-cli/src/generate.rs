@@ -64,13 +64,6 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     }
     let plan = s.plan(a.n, a.dims)?;
     let seed = Seed(a.seed);
-    let bar = Bar::new(a.sets as u64, "sets");
-    let sets = plan.generate_sets(seed, a.sets, &bar.progress())?;
-    drop(bar);
-    let sets = match w {
-        Some(w) => sets.iter().map(|p| warp::apply(w, p)).collect::<Result<Vec<_>, _>>()?,
-        None => sets,
-    };
     let header = vec![format!(
         "samplab {} generate {} n={} d={} seed={} sets={}{}",
         env!("CARGO_PKG_VERSION"),
@@ -81,6 +74,29 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         a.sets,
         w.map_or(String::new(), |w| format!(" warp={}", w.name()))
     )];
+    // the points and their encoding, in memory at once
+    let points = a.n as u128 * a.sets as u128;
+    let need = 8 * points * a.dims as u128 + io::encoded_size(format, points as usize, a.dims);
+    let what = || format!("{} {}D points and their {} file", points, a.dims, io::format_name(format));
+    if need > u128::from(samplab::memory::available())
+        && let (Some(path), 1, None) = (&a.output, a.sets, w)
+        && format != Format::Json
+        && let Some(mut stream) = plan.stream(seed.derive(0))?
+    {
+        // one set larger than memory, from a sampler that makes its points in order: written
+        // chunk by chunk, the same bytes
+        let bar = Bar::new(io::stream_chunks(a.n) as u64, "chunks");
+        let mut fill = |out: &mut [f64]| stream.next(out);
+        return Ok(io::write_stream(path, format, &header, (a.n, a.dims), &mut fill, &bar.progress())?);
+    }
+    samplab::memory::check(what, need)?;
+    let bar = Bar::new(a.sets as u64, "sets");
+    let sets = plan.generate_sets(seed, a.sets, &bar.progress())?;
+    drop(bar);
+    let sets = match w {
+        Some(w) => sets.iter().map(|p| warp::apply(w, p)).collect::<Result<Vec<_>, _>>()?,
+        None => sets,
+    };
     let bytes = io::encode(&sets, format, &header)?;
     crate::emit(a.output.as_deref(), &bytes).with_context(|| "writing the points")
 }

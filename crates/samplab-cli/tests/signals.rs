@@ -84,18 +84,24 @@ fn a_long_reproduction_stops_on_sigint() {
 #[test]
 fn requests_past_the_memory_available_are_refused_before_any_allocation() {
     let dir = temp("memory");
-    // 2^32 points need 32 GiB; under a 2 GiB address space an attempt would abort the process
+    // 2^32 jittered points in 2D need 128 GiB with their file, and jitter cannot be made in
+    // pieces; under a 2 GiB address space an attempt would abort the process
     let bin = env!("CARGO_BIN_EXE_samplab");
     let out = Command::new("sh")
-        .args(["-c", &format!("ulimit -v 2000000 && exec '{bin}' generate random -n 4294967296 -d 1 -o x.npy")])
+        .args(["-c", &format!("ulimit -v 2000000 && exec '{bin}' generate jitter -n 4294967296 -o x.npy")])
         .current_dir(&dir)
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(stderr.starts_with("samplab: error: 4294967296 1D points needs 32.0 GiB of memory, over the "), "{stderr}");
+    assert!(
+        stderr.starts_with(
+            "samplab: error: 4294967296 2D points and their npy file needs 128.0 GiB of memory, over the "
+        ),
+        "{stderr}"
+    );
     assert!(stderr.ends_with(" available; set another limit with --max-memory\n") && stderr.lines().count() == 1);
-    // --max-memory sets the limit
+    // --max-memory sets the limit: 4 x 65536 2D points (4 MiB) and their text (12.5 MiB)
     let out = Command::new(bin)
         .args(["generate", "jitter", "-n", "65536", "--sets", "4", "--max-memory", "1M"])
         .output()
@@ -103,7 +109,36 @@ fn requests_past_the_memory_available_are_refused_before_any_allocation() {
     assert_eq!(out.status.code(), Some(2));
     assert_eq!(
         String::from_utf8_lossy(&out.stderr),
-        "samplab: error: 4 sets of 65536 2D points needs 4.0 MiB of memory, over the 1.0 MiB available; set another limit with --max-memory\n"
+        "samplab: error: 262144 2D points and their text file needs 16.5 MiB of memory, over the 1.0 MiB available; set another limit with --max-memory\n"
     );
     assert_eq!(listing(&dir), Vec::<String>::new());
+}
+
+#[test]
+fn a_set_larger_than_memory_is_streamed_to_the_same_bytes() {
+    let dir = temp("stream");
+    let bin = env!("CARGO_BIN_EXE_samplab");
+    for (spec, file) in [("random", "r.npy"), ("sobol.owen", "s.txt"), ("halton.xor", "h.csv")] {
+        let args = ["generate", spec, "-n", "300000", "-d", "3", "--seed", "4"];
+        let whole =
+            Command::new(bin).args(args).args(["-o", &format!("whole-{file}")]).current_dir(&dir).output().unwrap();
+        assert!(whole.status.success());
+        // 1 MiB holds neither the points (7 MB) nor the file: made and written in chunks
+        let streamed = Command::new(bin)
+            .args(args)
+            .args(["-o", &format!("streamed-{file}"), "--max-memory", "1M"])
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert!(streamed.status.success(), "{}", String::from_utf8_lossy(&streamed.stderr));
+        let read = |name: String| std::fs::read(dir.join(name)).unwrap();
+        assert!(read(format!("whole-{file}")) == read(format!("streamed-{file}")), "{spec}: the streamed file differs");
+    }
+    // a Ctrl-C while streaming leaves nothing
+    stopped(
+        "streamed",
+        &["generate", "halton.owen", "-n", "4294967296", "-d", "4", "-o", "big.txt", "--max-memory", "1G"],
+        "-INT",
+        Duration::from_secs(1),
+    );
 }

@@ -161,7 +161,8 @@ impl<'a> Study<'a> {
     /// instances.
     ///
     /// # Errors
-    /// M < 2, K < 1, a sampler that cannot make a count or dimension, an impossible instance.
+    /// M < 2, K < 1, a sampler that cannot make a count or dimension, an impossible
+    /// instance, realizations whose estimates do not fit in memory.
     pub fn prepare(&'a self) -> Result<Prepared<'a>> {
         if self.sets < 2 {
             return Err(Error::Setting {
@@ -177,6 +178,12 @@ impl<'a> Study<'a> {
                 reason: "at least 1 instance is needed".into(),
             });
         }
+        // each unit in flight holds its M estimates
+        let threads = rayon::current_num_threads() as u128;
+        crate::memory::check(
+            || format!("{} realizations on {threads} threads", self.sets),
+            8 * self.sets as u128 * threads,
+        )?;
         let dims = self.family.entry.dims;
         for s in self.samplers {
             for &n in self.ns {

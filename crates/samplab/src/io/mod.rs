@@ -20,6 +20,7 @@ use std::path::Path;
 
 use crate::error::{Error, Result};
 use crate::points::PointSet;
+use crate::progress::Progress;
 use crate::registry::{About, Entry, Registry};
 
 /// A point-set file format.
@@ -93,41 +94,43 @@ pub fn encode(sets: &[PointSet], format: Format, header: &[String]) -> Result<Ve
     if sets.iter().any(|s| s.dims() != dims) {
         return Err(Error::Invalid("cannot write sets of different dimensions to one file".into()));
     }
+    let n = sets.first().map_or(0, PointSet::len);
+    if format == Format::Npy && sets.iter().any(|s| s.len() != n) {
+        return Err(Error::Invalid("npy needs sets of equal size; use text, csv or json".into()));
+    }
+    if format == Format::Json {
+        let sets: Vec<Vec<&[f64]>> = sets.iter().map(|s| s.iter().collect()).collect();
+        let v = serde_json::json!({ "header": header, "dims": dims, "sets": sets });
+        let mut out = serde_json::to_vec(&v).map_err(|e| Error::Invalid(e.to_string()))?;
+        out.push(b'\n');
+        return Ok(out);
+    }
+    let mut out = prologue(format, header, sets.len(), n, dims);
+    let many = sets.len() > 1;
+    for (k, set) in sets.iter().enumerate() {
+        if k > 0 && format == Format::Text {
+            out.extend_from_slice(b"#\n");
+        }
+        rows(&mut out, format, set.as_slice(), dims, (many && format == Format::Csv).then_some(k));
+    }
+    Ok(out)
+}
+
+/// What comes before the points: text's header comments, CSV's column names, npy's header.
+fn prologue(format: Format, header: &[String], sets: usize, n: usize, dims: usize) -> Vec<u8> {
     let mut out = Vec::new();
     match format {
         Format::Text => {
             for h in header {
                 writeln!(out, "# {h}").unwrap();
             }
-            for (k, set) in sets.iter().enumerate() {
-                if k > 0 {
-                    out.extend_from_slice(b"#\n");
-                }
-                for p in set.iter() {
-                    write_row(&mut out, p, " ");
-                }
-            }
         }
         Format::Csv => {
-            let many = sets.len() > 1;
             let cols: Vec<String> = (0..dims).map(|d| format!("x{d}")).collect();
-            writeln!(out, "{}{}", if many { "set," } else { "" }, cols.join(",")).unwrap();
-            for (k, set) in sets.iter().enumerate() {
-                for p in set.iter() {
-                    if many {
-                        write!(out, "{k},").unwrap();
-                    }
-                    write_row(&mut out, p, ",");
-                }
-            }
+            writeln!(out, "{}{}", if sets > 1 { "set," } else { "" }, cols.join(",")).unwrap();
         }
         Format::Npy => {
-            let n = sets.first().map_or(0, PointSet::len);
-            if sets.iter().any(|s| s.len() != n) {
-                return Err(Error::Invalid("npy needs sets of equal size; use text, csv or json".into()));
-            }
-            let shape =
-                if sets.len() == 1 { format!("({n}, {dims})") } else { format!("({}, {n}, {dims})", sets.len()) };
+            let shape = if sets == 1 { format!("({n}, {dims})") } else { format!("({sets}, {n}, {dims})") };
             let mut dict = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}");
             // magic(6) + version(2) + len(2) + dict + '\n' is a multiple of 64
             while (10 + dict.len() + 1) % 64 != 0 {
@@ -137,30 +140,93 @@ pub fn encode(sets: &[PointSet], format: Format, header: &[String]) -> Result<Ve
             out.extend_from_slice(b"\x93NUMPY\x01\x00");
             out.extend_from_slice(&(dict.len() as u16).to_le_bytes());
             out.extend_from_slice(dict.as_bytes());
-            for set in sets {
-                for x in set.as_slice() {
-                    out.extend_from_slice(&x.to_le_bytes());
-                }
-            }
         }
-        Format::Json => {
-            let sets: Vec<Vec<&[f64]>> = sets.iter().map(|s| s.iter().collect()).collect();
-            let v = serde_json::json!({ "header": header, "dims": dims, "sets": sets });
-            serde_json::to_writer(&mut out, &v).map_err(|e| Error::Invalid(e.to_string()))?;
-            out.push(b'\n');
-        }
+        Format::Json => {}
     }
-    Ok(out)
+    out
 }
 
-fn write_row(out: &mut Vec<u8>, p: &[f64], sep: &str) {
-    for (d, x) in p.iter().enumerate() {
-        if d > 0 {
-            out.extend_from_slice(sep.as_bytes());
-        }
-        write!(out, "{x:?}").unwrap();
+/// Points (row-major, `dims` per point) in text, CSV (`set` first when given) or npy.
+fn rows(out: &mut Vec<u8>, format: Format, points: &[f64], dims: usize, set: Option<usize>) {
+    if format == Format::Npy {
+        points.iter().for_each(|x| out.extend_from_slice(&x.to_le_bytes()));
+        return;
     }
-    out.push(b'\n');
+    let sep = if format == Format::Csv { "," } else { " " };
+    for p in points.chunks_exact(dims) {
+        if let Some(k) = set {
+            write!(out, "{k},").unwrap();
+        }
+        for (d, x) in p.iter().enumerate() {
+            if d > 0 {
+                out.extend_from_slice(sep.as_bytes());
+            }
+            write!(out, "{x:?}").unwrap();
+        }
+        out.push(b'\n');
+    }
+}
+
+/// The most bytes `points` coordinates take encoded in `format` (for memory estimates):
+/// 8 in npy, 25 as text (24 characters of the longest f64 and a separator), 60 in JSON.
+pub fn encoded_size(format: Format, points: usize, dims: usize) -> u128 {
+    let per = match format {
+        Format::Npy => 8,
+        Format::Text | Format::Csv => 25,
+        Format::Json => 60,
+    };
+    per * points as u128 * dims as u128
+}
+
+/// The registered name of `format` (`text`, `csv`, `npy`, `json`).
+pub fn format_name(format: Format) -> &'static str {
+    FORMATS.iter().find(|e| e.format == format).map_or("text", |e| e.about.name)
+}
+
+/// Points per chunk of [`write_stream`].
+const STREAM_CHUNK: usize = 1 << 16;
+
+/// Write one set of `n` points in `dims` dimensions to `path`, made chunk by chunk by
+/// `fill` (each call fills the next `out.len() / dims` points): the bytes [`encode`] writes
+/// for the whole set, in memory of one chunk. Atomic as [`write_atomic`]; `progress`
+/// advances by one per chunk and can stop the work (the temporary file is then removed).
+///
+/// # Errors
+/// JSON (not streamed), `fill`'s errors, a stop, or the file cannot be written.
+pub fn write_stream(
+    path: &Path,
+    format: Format,
+    header: &[String],
+    (n, dims): (usize, usize),
+    fill: &mut dyn FnMut(&mut [f64]) -> Result<()>,
+    progress: &Progress,
+) -> Result<()> {
+    if format == Format::Json {
+        return Err(Error::Invalid("JSON is written whole; stream text, csv or npy".into()));
+    }
+    write_atomic_with(path, &mut |file| {
+        let io = |e: std::io::Error| Error::Io { path: path.display().to_string(), reason: e.to_string() };
+        file.write_all(&prologue(format, header, 1, n, dims)).map_err(io)?;
+        let mut points = vec![0.0; STREAM_CHUNK * dims];
+        let mut bytes = Vec::new();
+        let mut done = 0;
+        while done < n {
+            progress.check()?;
+            let k = STREAM_CHUNK.min(n - done);
+            fill(&mut points[..k * dims])?;
+            bytes.clear();
+            rows(&mut bytes, format, &points[..k * dims], dims, None);
+            file.write_all(&bytes).map_err(io)?;
+            done += k;
+            progress.advance(1)?;
+        }
+        Ok(())
+    })
+}
+
+/// The chunks [`write_stream`] takes for `n` points.
+pub fn stream_chunks(n: usize) -> usize {
+    n.div_ceil(STREAM_CHUNK)
 }
 
 /// Write `bytes` to `path` atomically: a temporary file in the same folder, then a rename.
@@ -169,20 +235,32 @@ fn write_row(out: &mut Vec<u8>, p: &[f64], sep: &str) {
 /// The folder cannot be written.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let io = |e: std::io::Error| Error::Io { path: path.display().to_string(), reason: e.to_string() };
+    write_atomic_with(path, &mut |file| file.write_all(bytes).map_err(io))
+}
+
+/// `write` into a temporary file beside `path`, then rename it to `path`; on any error the
+/// temporary file is removed and `path` is left as it was.
+fn write_atomic_with(
+    path: &Path,
+    write: &mut dyn FnMut(&mut std::io::BufWriter<std::fs::File>) -> Result<()>,
+) -> Result<()> {
+    let io = |e: std::io::Error| Error::Io { path: path.display().to_string(), reason: e.to_string() };
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let name = path
         .file_name()
         .ok_or_else(|| Error::Io { path: path.display().to_string(), reason: "not a file name".into() })?;
     let tmp = dir.join(format!(".{}.{}.tmp", name.to_string_lossy(), std::process::id()));
-    let result = std::fs::File::create(&tmp).and_then(|mut f| {
-        f.write_all(bytes)?;
-        f.sync_all()
+    let result = std::fs::File::create(&tmp).map_err(io).and_then(|f| {
+        let mut w = std::io::BufWriter::new(f);
+        write(&mut w)?;
+        let f = w.into_inner().map_err(|e| io(e.into_error()))?;
+        f.sync_all().map_err(io)?;
+        std::fs::rename(&tmp, path).map_err(io)
     });
-    if let Err(e) = result.and_then(|()| std::fs::rename(&tmp, path)) {
+    if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
-        return Err(io(e));
     }
-    Ok(())
+    result
 }
 
 /// Read every set in the file at `path`, in `format` (or the one its extension implies).

@@ -88,6 +88,13 @@ pub trait Sampler: Fill + Send + Sync + Debug {
         None
     }
 
+    /// The points of one set made chunk by chunk (for sets larger than memory), where the
+    /// method can: the same numbers [`Plan::fill`] writes for `seed`. The progressive
+    /// sequences stream through their random access ([`Plan::stream`]); others say here.
+    fn stream(&self, _dims: usize, _seed: Seed) -> Option<Box<dyn Stream>> {
+        None
+    }
+
     /// The closed form of the variance of the spectrum of `n` points in `dims` dimensions,
     /// where one is known (Gaussian and box jitter: Subr & Kautz 2013 eqs. 9 and 11 in their
     /// exact form).
@@ -152,7 +159,7 @@ pub struct Plan<'s> {
     dims: usize,
 }
 
-impl Plan<'_> {
+impl<'s> Plan<'s> {
     /// Points per set.
     pub fn n(&self) -> usize {
         self.n
@@ -214,6 +221,21 @@ impl Plan<'_> {
             .collect()
     }
 
+    /// The set for `seed` made chunk by chunk, equal to [`Plan::generate`]`(seed)`, for the
+    /// samplers that can (the sequences, random); `None` for the others.
+    ///
+    /// # Errors
+    /// A sequence's tables that cannot be built.
+    pub fn stream(&self, seed: Seed) -> Result<Option<Box<dyn Stream + 's>>> {
+        match self.sampler.as_sequence() {
+            Some(sequence) => {
+                let access = sequence.access(self.dims, seed)?;
+                Ok(Some(Box::new(Indexed { access, dims: self.dims, index: 0 })))
+            }
+            None => Ok(self.sampler.stream(self.dims, seed)),
+        }
+    }
+
     /// `m sets of n dD points` (`n dD points` for one set), for messages.
     fn describe(&self, m: usize) -> String {
         match m {
@@ -240,6 +262,34 @@ impl Plan<'_> {
             progress.advance(1)
         })?;
         Ok(out)
+    }
+}
+
+/// One set's points made in order, chunk by chunk ([`Plan::stream`]).
+pub trait Stream: Send {
+    /// Fill `out` with the next `out.len() / dims` points, row-major.
+    ///
+    /// # Errors
+    /// An index beyond the sequence.
+    fn next(&mut self, out: &mut [f64]) -> Result<()>;
+}
+
+/// A sequence streamed through its random access.
+struct Indexed<'a> {
+    access: Box<dyn Access + 'a>,
+    dims: usize,
+    index: u64,
+}
+
+impl Stream for Indexed<'_> {
+    fn next(&mut self, out: &mut [f64]) -> Result<()> {
+        for p in out.chunks_exact_mut(self.dims) {
+            for (d, x) in p.iter_mut().enumerate() {
+                *x = self.access.sample(self.index, d)?;
+            }
+            self.index += 1;
+        }
+        Ok(())
     }
 }
 

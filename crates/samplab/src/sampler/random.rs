@@ -3,10 +3,10 @@
 use std::ops::RangeInclusive;
 
 use super::registry::{ANY, SamplerEntry};
-use super::{Fill, Sampler};
+use super::{Fill, Sampler, Stream};
 use crate::error::Result;
 use crate::registry::About;
-use crate::seed::{Seed, uniform};
+use crate::seed::{Rng, Seed, uniform};
 
 /// Every coordinate an independent uniform draw in [0, 1). Any n, any d.
 #[derive(Debug, Clone, Copy, Default)]
@@ -18,6 +18,19 @@ impl Sampler for Random {
     }
     fn dims(&self) -> RangeInclusive<usize> {
         1..=usize::MAX
+    }
+    fn stream(&self, _dims: usize, seed: Seed) -> Option<Box<dyn Stream>> {
+        Some(Box::new(Draws(seed.rng())))
+    }
+}
+
+/// The draws of [`Random::fill`], continued chunk after chunk.
+struct Draws(Rng);
+
+impl Stream for Draws {
+    fn next(&mut self, out: &mut [f64]) -> Result<()> {
+        out.iter_mut().for_each(|x| *x = uniform(&mut self.0));
+        Ok(())
     }
 }
 

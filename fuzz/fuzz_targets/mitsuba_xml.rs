@@ -1,0 +1,9 @@
+//! Mitsuba 3 XML scenes (meshes resolved against the render crate's test scenes).
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    let dir = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../crates/samplab-render/tests/scenes"));
+    let _ = samplab_render::mitsuba::parse(&String::from_utf8_lossy(data), "fuzz.xml", dir);
+});
