@@ -101,6 +101,28 @@ fn requests_past_the_memory_available_are_refused_before_any_allocation() {
         "{stderr}"
     );
     assert!(stderr.ends_with(" available; set another limit with --max-memory\n") && stderr.lines().count() == 1);
+    // every command's large request, under the same limit
+    for (args, what) in [
+        ("render spheres --res 16384x16384 -n 1 -o x.exr", "a 16384x16384 image needs 4.0 GiB"),
+        ("spectrum --sampler jitter -n 16 --sets 2 --res 8192 -o s", "the spectra of 2 sets at 8192^2 needs 4.0 GiB"),
+        ("integrate --sampler random --integrand quad -n 16 --sets 1000000000", "1000000000 realizations on "),
+        (
+            "generate sobol -n 4294967296 -d 8 --sets 2 -o y.npy",
+            "8589934592 8D points and their npy file needs 1.0 TiB",
+        ),
+    ] {
+        let out = Command::new("sh")
+            .args(["-c", &format!("ulimit -v 2000000 && exec '{bin}' {args}")])
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args}: {stderr}");
+        assert!(
+            stderr.starts_with(&format!("samplab: error: {what}")) && stderr.lines().count() == 1,
+            "{args}: {stderr}"
+        );
+    }
     // --max-memory sets the limit: 4 x 65536 2D points (4 MiB) and their text (12.5 MiB)
     let out = Command::new(bin)
         .args(["generate", "jitter", "-n", "65536", "--sets", "4", "--max-memory", "1M"])

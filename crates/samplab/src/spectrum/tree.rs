@@ -273,9 +273,10 @@ impl Spectra {
         }
         if level == 0 {
             let cells = self.res.pow(self.dims as u32);
+            let k = range.len();
             crate::memory::check(
-                || format!("the spectra of {BLOCK} sets at {}^{}", self.res, self.dims),
-                (BLOCK as u128 + 2) * 16 * cells as u128,
+                || format!("the spectra of {k} sets at {}^{}", self.res, self.dims),
+                (k as u128 + 2) * 16 * cells as u128,
             )?;
             let spectra: Vec<Vec<Complex>> = range
                 .into_par_iter()
