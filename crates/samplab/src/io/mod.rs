@@ -416,10 +416,13 @@ fn decode_npy(bytes: &[u8], name: &str, domain: &RangeInclusive<f64>) -> Result<
         [m, n, d] => (m, n, d),
         _ => return Err(bad(format!("shape ({inner}) is not (n, d) or (m, n, d)"))),
     };
-    let count = m.checked_mul(n).and_then(|x| x.checked_mul(d)).ok_or_else(|| bad("shape too large".into()))?;
+    // the data bytes, checked: a shape whose byte count passes 2^64 once wrapped to match
+    // a short file (found by fuzzing)
+    let size = m.checked_mul(n).and_then(|x| x.checked_mul(d)).and_then(|x| x.checked_mul(8));
+    let size = size.ok_or_else(|| bad(format!("shape ({inner}) is too large")))?;
     let body = &bytes[start + header_len..];
-    if d == 0 || body.len() != count * 8 {
-        return Err(bad(format!("shape ({inner}) needs {} data bytes, file has {}", count * 8, body.len())));
+    if d == 0 || body.len() != size {
+        return Err(bad(format!("shape ({inner}) needs {size} data bytes, file has {}", body.len())));
     }
     let data: Vec<f64> = body.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect();
     if let Some((i, why)) = data.iter().enumerate().find_map(|(i, &x)| refuse(x, domain).map(|why| (i, why))) {
@@ -490,6 +493,22 @@ mod tests {
             let one = encode(&sets()[..1], f, &[]).unwrap();
             assert_eq!(decode(&one, f, "mem").unwrap(), sets()[..1].to_vec(), "{f:?} single");
         }
+    }
+
+    #[test]
+    fn an_npy_shape_whose_size_overflows_is_refused() {
+        // 2 x 2^61 x 1 values are 2^65 bytes: 0 once wrapped, the length of this empty body
+        let mut bytes = encode(&sets()[..1], Format::Npy, &[]).unwrap();
+        let header_len = usize::from(u16::from_le_bytes([bytes[8], bytes[9]]));
+        bytes.truncate(10 + header_len);
+        let header = String::from_utf8(bytes[10..].to_vec()).unwrap();
+        let forged = header.replace("(5, 3)", "(2, 2305843009213693952, 1)");
+        let forged = format!("{}{}", forged.trim_end(), " ".repeat(header.len() - forged.trim_end().len() - 1)) + "\n";
+        bytes.truncate(10);
+        bytes.extend_from_slice(forged.as_bytes());
+        bytes[8..10].copy_from_slice(&(forged.len() as u16).to_le_bytes());
+        let e = decode(&bytes, Format::Npy, "forged.npy").unwrap_err().to_string();
+        assert!(e.contains("too large"), "{e}");
     }
 
     #[test]
