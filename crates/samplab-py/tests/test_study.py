@@ -59,6 +59,7 @@ def test_spectrum_study_local_dask_and_cli_agree(client, cli, tmp_path):
         "-o", tmp_path / "s")
     theirs = json.loads((tmp_path / "s" / "spectrum.json").read_text())["statistics"]
     assert json.loads(local.to_json()) == theirs
+    assert local.to_csv() == (tmp_path / "s" / "radial.csv").read_text()
     assert on_dask.to_json() == local.to_json()
     in_memory = samplab.spectrum(samplab.generate("jitter.gaussian:sigma=0.25", n=64, sets=83, seed=8), res=16)
     for name, values in in_memory.items():

@@ -440,10 +440,12 @@ class StudyResult:
             for seed, e in zip(self.data["seeds"], self.data["errors"]):
                 w.writerow([seed] + [e[k] for k in names])
         else:
+            # radial.csv of `samplab spectrum`, byte for byte (numbers as Rust prints them)
             names = ("periodogram", "expected", "variance")
             w.writerow(["frequency"] + [x for n in names for x in (n, f"{n}_anisotropy_db")])
             for b in range(len(self.data["periodogram_radial"])):
-                w.writerow([b + 1] + [float(self.data[f"{x}"][b]) for n in names for x in (f"{n}_radial", f"{n}_anisotropy_db")])
+                values = [float(self.data[x][b]) for n in names for x in (f"{n}_radial", f"{n}_anisotropy_db")]
+                w.writerow([b + 1] + [_rust_float(v) for v in values])
         text = out.getvalue()
         if path:
             _write_atomic(path, text.encode())
@@ -478,6 +480,18 @@ class StudyResult:
             ax.set(xlabel="seed", ylabel=key, title=self.params["scene"])
         ax.legend()
         return ax
+
+
+def _rust_float(x: float) -> str:
+    """``x`` as Rust's ``{:?}`` prints it: Python's shortest repr, with Rust's spelling of
+    exponents (``1e-5``, not ``1e-05``) and of NaN."""
+    if x != x:
+        return "NaN"
+    text = repr(x)
+    if "e" in text:
+        mantissa, exponent = text.split("e")
+        text = f"{mantissa}e{int(exponent)}"
+    return text
 
 
 def _write_atomic(path: str, data: bytes) -> None:
