@@ -123,6 +123,19 @@ fn requests_past_the_memory_available_are_refused_before_any_allocation() {
             "{args}: {stderr}"
         );
     }
+    // a point file larger than memory (sparse: 64 GiB of nothing on disk)
+    let big = std::fs::File::create(dir.join("big.txt")).unwrap();
+    big.set_len(64 << 30).unwrap();
+    drop(big);
+    let out = Command::new("sh")
+        .args(["-c", &format!("ulimit -v 2000000 && exec '{bin}' discrepancy star big.txt")])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.starts_with("samplab: error: reading big.txt needs 320.0 GiB of memory"), "{stderr}");
+    std::fs::remove_file(dir.join("big.txt")).unwrap();
     // --max-memory sets the limit: 4 x 65536 2D points (4 MiB) and their text (12.5 MiB)
     let out = Command::new(bin)
         .args(["generate", "jitter", "-n", "65536", "--sets", "4", "--max-memory", "1M"])

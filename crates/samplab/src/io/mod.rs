@@ -283,8 +283,14 @@ pub const ANY: RangeInclusive<f64> = f64::MIN..=f64::MAX;
 /// As [`read`], and a coordinate outside `domain`.
 pub fn read_within(path: &Path, format: Option<Format>, domain: &RangeInclusive<f64>) -> Result<Vec<PointSet>> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| Error::Io { path: name.clone(), reason: e.to_string() })?;
-    decode_within(&bytes, format.unwrap_or_else(|| Format::from_path(path)), &name, domain)
+    let io = |e: std::io::Error| Error::Io { path: name.clone(), reason: e.to_string() };
+    let format = format.unwrap_or_else(|| Format::from_path(path));
+    // the file and its points in memory: npy holds 8 bytes per value; text at least two
+    // ("0\n") for 8, so at most 4 times the file
+    let len = u128::from(std::fs::metadata(path).map_err(io)?.len());
+    crate::memory::check(|| format!("reading {name}"), len * if format == Format::Npy { 2 } else { 5 })?;
+    let bytes = std::fs::read(path).map_err(io)?;
+    decode_within(&bytes, format, &name, domain)
 }
 
 /// Decode point sets from `bytes`; `name` is used in error messages.
