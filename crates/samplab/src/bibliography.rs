@@ -34,12 +34,15 @@ bib! {
     owen1995 => "A. B. Owen. Randomly permuted (t,m,s)-nets and (t,s)-sequences. Monte Carlo and Quasi-Monte Carlo Methods, 1995.",
     purgathofer1994 => "W. Purgathofer, R. Tobler, M. Geiler. Forced random dithering: improved threshold matrices for ordered dithering. ICIP 1994.",
     ramamoorthi2012 => "R. Ramamoorthi, J. Anderson, M. Meyer, D. Nowrouzezahrai. A theory of Monte Carlo visibility sampling. ACM TOG 31(5), 2012.",
+    roberts2018 => "M. Roberts. The unreasonable effectiveness of quasirandom sequences. extremelearning.com.au, 2018 (the generalized golden ratio R_d).",
     sbert2006 => "M. Sbert, J. Rigau, M. Feixas, L. Neumann. Systematic sampling in image synthesis. ICCSA 2006.",
     shirley1991 => "P. Shirley. Discrepancy as a quality measure for sample distributions. Eurographics 1991.",
     shirley1997 => "P. Shirley, K. Chiu. A low distortion map between disk and square. JGT 2(3), 1997.",
+    sloan1994 => "I. H. Sloan, S. Joe. Lattice Methods for Multiple Integration. Oxford University Press, 1994.",
     sobol1967 => "I. M. Sobol'. On the distribution of points in a cube and the approximate evaluation of integrals. USSR Comput. Math. Math. Phys. 7(4), 1967.",
     subr2013 => "K. Subr, J. Kautz. Fourier analysis of stochastic sampling strategies for assessing bias and variance in integration. ACM TOG 32(4), 2013.",
     vegdahl2021 => "N. Vegdahl. Building a better LK hash. psychopath.io blog, 2021 (constants of the Owen hash).",
+    weyl1916 => "H. Weyl. Über die Gleichverteilung von Zahlen mod. Eins. Math. Ann. 77, 1916.",
 }
 
 /// The reference for `key`, if it exists.

@@ -5,13 +5,14 @@ use samplab::sampler::{self, SAMPLERS, SamplerEntry};
 use samplab::{Error, Seed};
 
 /// Constructions with no randomness: the seed must not matter.
-const DETERMINISTIC: &[&str] = &["regular", "sobol", "halton", "hammersley"];
+const DETERMINISTIC: &[&str] = &["regular", "sobol", "halton", "hammersley", "kronecker", "lattice.fibonacci"];
 
 /// A count every entry can make in `d` dimensions.
 fn count_for(name: &str, d: usize) -> usize {
     match name {
         n if n.starts_with("jitter") || n.starts_with("regular") => 4usize.pow(d as u32),
         "poisson.maximal" => 40,
+        n if n.starts_with("lattice.fibonacci") => 55,
         _ => 64,
     }
 }

@@ -1,0 +1,100 @@
+//! The QMC constructions beyond the papers' strategies, each against its defining property:
+//! the R_d Kronecker sequence and the Fibonacci lattice.
+
+use samplab::discrepancy::{self, Limits, Metric};
+use samplab::progress::Progress;
+use samplab::sampler::{self, kronecker};
+use samplab::{PointSet, Seed};
+
+fn set(spec: &str, n: usize, d: usize, seed: u64) -> PointSet {
+    sampler::build(spec).unwrap().generate(n, d, Seed(seed)).unwrap()
+}
+
+#[test]
+fn the_generalized_golden_ratio_solves_its_equation() {
+    // d = 1 is the golden ratio
+    assert!((kronecker::alphas(1)[0] - (5f64.sqrt() - 1.0) / 2.0).abs() < 1e-15);
+    for d in 1..=12 {
+        let a = kronecker::alphas(d);
+        let phi = 1.0 / a[0];
+        assert!((phi.powi(d as i32 + 1) - phi - 1.0).abs() < 1e-12, "d = {d}");
+        for (j, &x) in a.iter().enumerate() {
+            assert!((x - phi.powi(-(j as i32 + 1))).abs() < 1e-15);
+        }
+    }
+}
+
+#[test]
+fn kronecker_points_are_the_formula_and_its_random_access() {
+    let (n, d) = (1000, 3);
+    let p = set("kronecker", n, d, 1);
+    let a = kronecker::alphas(d);
+    for i in 0..n {
+        for (j, alpha) in a.iter().enumerate() {
+            let x = (i as f64 * alpha).fract();
+            assert!((p.point(i)[j] - x).abs() < 1e-12, "point {i}, dim {j}");
+        }
+    }
+    let s = sampler::build("kronecker.shift").unwrap();
+    let access = s.as_sequence().unwrap().access(d, Seed(4)).unwrap();
+    let batch = s.generate(n, d, Seed(4)).unwrap();
+    for i in [0, 1, 17, 999] {
+        for j in 0..d {
+            assert_eq!(access.sample(i as u64, j).unwrap(), batch.point(i)[j]);
+        }
+    }
+    // far indices stay exact: the fixed-point product is exact mod 1
+    let far = access.sample(1 << 40, 0).unwrap();
+    assert!((0.0..1.0).contains(&far));
+}
+
+#[test]
+fn kronecker_star_discrepancy_falls_almost_like_one_over_n() {
+    let star = Metric::parse("star").unwrap();
+    let pts: Vec<(f64, f64)> = (6..=12)
+        .map(|m| {
+            let n = 1usize << m;
+            (n as f64, discrepancy::compute(&star, &set("kronecker", n, 2, 1), Limits::default()).unwrap())
+        })
+        .collect();
+    let (slope, _) = samplab::experiment::loglog_fit(&pts).unwrap();
+    // log N / N: a slope near -1 (random points: -1/2)
+    assert!(slope < -0.8, "slope {slope}");
+}
+
+#[test]
+fn shifted_constructions_integrate_without_bias() {
+    // the integral of x y over the square is 1/4; 400 shifted sets, within 4 standard errors
+    for (spec, n) in [("kronecker.shift", 64), ("lattice.fibonacci.shift", 55)] {
+        let plan = sampler::build(spec).unwrap();
+        let plan = plan.plan(n, 2).unwrap();
+        let sets = plan.generate_sets(Seed(9), 400, &Progress::SILENT).unwrap();
+        let est: Vec<f64> = sets.iter().map(|s| s.iter().map(|p| p[0] * p[1]).sum::<f64>() / n as f64).collect();
+        let s = samplab::stats::Summary::of(&est);
+        assert!((s.mean - 0.25).abs() < 4.0 * s.sd / 20.0, "{spec}: {} +- {}", s.mean, s.sd / 20.0);
+    }
+}
+
+#[test]
+fn the_fibonacci_lattice_is_latin_and_integrates_trigonometric_polynomials_exactly() {
+    let (n, g) = (89usize, 55i64);
+    let p = set("lattice.fibonacci", n, 2, 1);
+    for axis in 0..2 {
+        let mut v: Vec<f64> = p.iter().map(|q| q[axis]).collect();
+        v.sort_by(f64::total_cmp);
+        assert!(v.iter().enumerate().all(|(i, &x)| x == i as f64 / n as f64), "axis {axis} is not the grid i/n");
+    }
+    // sum_i exp(2 pi i h.x_i) is n when h.(1, g) = 0 mod n (h in the dual lattice), else 0
+    for h1 in -12i64..=12 {
+        for h2 in -12i64..=12 {
+            let sum: f64 =
+                p.iter().map(|q| (std::f64::consts::TAU * (h1 as f64 * q[0] + h2 as f64 * q[1])).cos()).sum();
+            let dual = (h1 + h2 * g).rem_euclid(n as i64) == 0;
+            let expected = if dual { n as f64 } else { 0.0 };
+            assert!((sum - expected).abs() < 1e-9, "h = ({h1}, {h2}): {sum}");
+        }
+    }
+    let e = sampler::build("fibonacci").unwrap().plan(90, 2).unwrap_err().to_string();
+    assert!(e.contains("89 and 144"), "{e}");
+    assert!(sampler::build("fibonacci").unwrap().plan(89, 3).is_err());
+}
