@@ -28,6 +28,7 @@ bib! {
     helmer2021 => "A. Helmer, P. Christensen, A. Kensler. Stochastic generation of (t,s) sample sequences. EGSR 2021.",
     joe2008 => "S. Joe, F. Y. Kuo. Constructing Sobol sequences with better two-dimensional projections. SIAM J. Sci. Comput. 30(5), 2008.",
     kensler2013 => "A. Kensler. Correlated multi-jittered sampling. Pixar Technical Memo 13-01, 2013.",
+    korobov1959 => "N. M. Korobov. The approximate computation of multiple integrals. Dokl. Akad. Nauk SSSR 124, 1959.",
     laine2011 => "S. Laine, T. Karras. Stratified sampling for stochastic transparency. EGSR 2011.",
     matousek1998 => "J. Matousek. On the L2-discrepancy for anchored boxes. J. Complexity 14, 1998 (random digit scrambling).",
     mckay1979 => "M. D. McKay, R. J. Beckman, W. J. Conover. A comparison of three methods for selecting values of input variables. Technometrics 21(2), 1979.",

@@ -1,5 +1,5 @@
 //! The QMC constructions beyond the papers' strategies, each against its defining property:
-//! the R_d Kronecker sequence and the Fibonacci lattice.
+//! the R_d Kronecker sequence, the Fibonacci lattice and Korobov lattices.
 
 use samplab::discrepancy::{self, Limits, Metric};
 use samplab::progress::Progress;
@@ -65,7 +65,7 @@ fn kronecker_star_discrepancy_falls_almost_like_one_over_n() {
 #[test]
 fn shifted_constructions_integrate_without_bias() {
     // the integral of x y over the square is 1/4; 400 shifted sets, within 4 standard errors
-    for (spec, n) in [("kronecker.shift", 64), ("lattice.fibonacci.shift", 55)] {
+    for (spec, n) in [("kronecker.shift", 64), ("lattice.fibonacci.shift", 55), ("lattice.korobov.shift", 64)] {
         let plan = sampler::build(spec).unwrap();
         let plan = plan.plan(n, 2).unwrap();
         let sets = plan.generate_sets(Seed(9), 400, &Progress::SILENT).unwrap();
@@ -97,4 +97,37 @@ fn the_fibonacci_lattice_is_latin_and_integrates_trigonometric_polynomials_exact
     let e = sampler::build("fibonacci").unwrap().plan(90, 2).unwrap_err().to_string();
     assert!(e.contains("89 and 144"), "{e}");
     assert!(sampler::build("fibonacci").unwrap().plan(89, 3).is_err());
+}
+
+#[test]
+fn korobov_lattices_are_their_generating_vector_and_the_search_finds_the_smallest_p2() {
+    // a = 55 at n = 89 is the Fibonacci lattice
+    assert_eq!(set("lattice.korobov:a=55", 89, 2, 1), set("lattice.fibonacci", 89, 2, 1));
+    // in 3D, z = (1, a, a^2 mod n): sum_i exp(2 pi i h.x_i) is n on the dual lattice, else 0
+    let (n, a) = (101i64, 40i64);
+    let p = set("lattice.korobov:a=40", n as usize, 3, 1);
+    let z = [1, a, a * a % n];
+    for h in [[1, 0, 0], [0, 1, 0], [3, -2, 1], [-a, 1, 0], [0, -a, 1], [a * a % n, 0, -1], [2, 5, -7]] {
+        let sum: f64 = p
+            .iter()
+            .map(|q| (std::f64::consts::TAU * h.iter().zip(q).map(|(&hj, &x)| hj as f64 * x).sum::<f64>()).cos())
+            .sum();
+        let dual = h.iter().zip(&z).map(|(hj, zj)| hj * zj).sum::<i64>().rem_euclid(n) == 0;
+        assert!((sum - if dual { n as f64 } else { 0.0 }).abs() < 1e-9, "h = {h:?}: {sum}");
+    }
+    // the searched a: no a in 1..n/2 has a smaller worst-case error (P_2 by brute force:
+    // the mean over points of prod (1 + 2 pi^2 B_2(x_j)), minus 1)
+    let p2 = |pts: &PointSet| {
+        let b2 = |x: f64| x * x - x + 1.0 / 6.0;
+        let c = 2.0 * std::f64::consts::PI.powi(2);
+        pts.iter().map(|q| q.iter().map(|&x| 1.0 + c * b2(x)).product::<f64>()).sum::<f64>() / pts.len() as f64 - 1.0
+    };
+    let searched = p2(&set("lattice.korobov", 101, 3, 1));
+    for a in 1..=50 {
+        let other = p2(&set(&format!("lattice.korobov:a={a}"), 101, 3, 1));
+        assert!(searched <= other + 1e-12, "a = {a}: {other} < {searched}");
+    }
+    let e = sampler::build("korobov").unwrap().plan(1 << 15, 2).unwrap_err().to_string();
+    assert!(e.contains("give a=A"), "{e}");
+    assert!(sampler::build("korobov:a=3").unwrap().plan(1 << 15, 2).is_ok());
 }
