@@ -131,3 +131,17 @@ fn korobov_lattices_are_their_generating_vector_and_the_search_finds_the_smalles
     assert!(e.contains("give a=A"), "{e}");
     assert!(sampler::build("korobov:a=3").unwrap().plan(1 << 15, 2).is_ok());
 }
+
+#[test]
+fn centered_latin_hypercubes_put_one_point_at_the_centre_of_every_slab() {
+    let (n, d) = (50, 4);
+    for seed in 1..4 {
+        let p = set("lhs.centered", n, d, seed);
+        for axis in 0..d {
+            let mut v: Vec<f64> = p.iter().map(|q| q[axis]).collect();
+            v.sort_by(f64::total_cmp);
+            assert!(v.iter().enumerate().all(|(i, &x)| (x - (i as f64 + 0.5) / n as f64).abs() < 1e-15), "axis {axis}");
+        }
+    }
+    assert_ne!(set("lhs.centered", n, d, 1), set("lhs.centered", n, d, 2));
+}
