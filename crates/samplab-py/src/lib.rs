@@ -170,7 +170,7 @@ fn generate<'py>(
     let sampler = samplab::sampler::build(spec).map_err(err)?;
     let plan = sampler.plan(n, d).map_err(err)?;
     let data = interruptible(py, sets.saturating_mul(n * d), |stop| {
-        plan.stack(Seed(seed), first..end, &Progress::SILENT.stopped_by(stop))
+        plan.stack(Seed(seed), first..end, &Progress::until(stop))
     })?;
     shaped(py, data, &[sets, n, d])
 }
@@ -299,7 +299,7 @@ fn discrepancy(
     };
     let sets = point_sets(&points)?;
     interruptible(py, points.len(), |stop| {
-        let progress = Progress::SILENT.stopped_by(stop);
+        let progress = Progress::until(stop);
         sets.par_iter()
             .enumerate()
             .map(|(k, s)| {
@@ -334,7 +334,7 @@ fn spectrum<'py>(
     let sets = point_sets(&points)?;
     let method = method(direct, tolerance);
     let st = interruptible(py, usize::MAX, |stop| {
-        samplab::spectrum::statistics_with_progress(&sets, res, method, &Progress::SILENT.stopped_by(stop))
+        samplab::spectrum::statistics_with_progress(&sets, res, method, &Progress::until(stop))
     })?;
     statistics_dict(py, &st)
 }
@@ -397,7 +397,7 @@ fn spectrum_node<'py>(
     let spectra = samplab::spectrum::Spectra::new(res, d, method).map_err(err)?;
     let source = samplab::spectrum::Sets::Generated { plan, seed: Seed(seed), m: sets };
     let partial = interruptible(py, usize::MAX, |stop| {
-        spectra.node(&source, level, index, &Progress::SILENT.stopped_by(stop)).map(|p| p.to_bytes())
+        spectra.node(&source, level, index, &Progress::until(stop)).map(|p| p.to_bytes())
     })?;
     Ok(PyBytes::new(py, &partial))
 }
@@ -475,7 +475,7 @@ fn integrate_units<'py>(
     let study = args.study(&ns, sets, instances, seed);
     let prepared = study.prepare().map_err(err)?;
     let stats = interruptible(py, usize::MAX, |stop| {
-        let progress = Progress::SILENT.stopped_by(stop);
+        let progress = Progress::until(stop);
         units
             .par_iter()
             .map(|&u| prepared.unit(u, &progress).map(|s| s.to_bytes()))
@@ -536,8 +536,7 @@ fn integrate(
 ) -> PyResult<String> {
     let args = StudyArgs::new(&samplers, integrand, &ns)?;
     let study = args.study(&ns, sets, instances, seed);
-    let rows =
-        interruptible(py, usize::MAX, |stop| samplab::experiment::run(&study, &Progress::SILENT.stopped_by(stop)))?;
+    let rows = interruptible(py, usize::MAX, |stop| samplab::experiment::run(&study, &Progress::until(stop)))?;
     study_json(&rows)
 }
 
@@ -626,9 +625,8 @@ fn render<'py>(
     if let Some(samples) = reference_samples {
         options = options.reference(&scene, samples).map_err(err)?;
     }
-    let rendered = interruptible(py, usize::MAX, |stop| {
-        samplab_render::render(&scene, &options, &Progress::SILENT.stopped_by(stop))
-    })?;
+    let rendered =
+        interruptible(py, usize::MAX, |stop| samplab_render::render(&scene, &options, &Progress::until(stop)))?;
     let out = image_dict(py, rendered.image)?;
     out.set_item("camera_rays", rendered.camera_rays)?;
     out.set_item("shadow_rays", rendered.shadow_rays)?;

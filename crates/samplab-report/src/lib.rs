@@ -76,7 +76,7 @@ impl Ctx<'_> {
     /// [`samplab::Error::Interrupted`] once the run is asked to stop.
     pub fn advance(&self, units: u64) -> Result<(), Error> {
         self.progress.inc(units);
-        Ok(Progress::SILENT.stopped_by(self.stop).check()?)
+        Ok(Progress::until(self.stop).check()?)
     }
 
     /// `fast` or `full`, by the scale.

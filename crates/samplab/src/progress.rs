@@ -47,6 +47,11 @@ impl<'a> Progress<'a> {
         Progress { report: Some(report), stop: None }
     }
 
+    /// No reports; the work stops once `stop` is true.
+    pub fn until(stop: &'a AtomicBool) -> Self {
+        Progress { report: None, stop: Some(stop) }
+    }
+
     /// The same reports; the work stops once `stop` is true.
     #[must_use]
     pub fn stopped_by(self, stop: &'a AtomicBool) -> Self {

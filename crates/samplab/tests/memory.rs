@@ -35,7 +35,7 @@ fn stacked_sets_are_the_sets_and_a_raised_flag_stops_them() {
     let tail = plan.stack(Seed(9), 2..5, &Progress::SILENT).unwrap();
     assert_eq!(tail, sets[2..].iter().flat_map(|s| s.as_slice().to_vec()).collect::<Vec<_>>());
     let stop = AtomicBool::new(true);
-    let stopped = Progress::SILENT.stopped_by(&stop);
+    let stopped = Progress::until(&stop);
     assert_eq!(plan.generate_sets(Seed(9), 5, &stopped), Err(Error::Interrupted));
     assert_eq!(plan.stack(Seed(9), 0..5, &stopped), Err(Error::Interrupted));
 }
