@@ -10,7 +10,9 @@ fixed seed; some with ties and coordinates 0 and 1) with scipy.stats.qmc.discrep
 for methods CD, WD, MD and L2-star, as scipy returns them (CD, WD and MD squared,
 L2-star unsquared).
 
-Usage: pip install scipy && python3 scripts/make_fixtures.py
+Writes the QMC constructions fixtures too (see the end of the file).
+
+Usage: apt-get install libgsl-dev && pip install scipy==1.17.1 qmcpy==2.4 && python3 scripts/make_fixtures.py
 """
 import json
 import os
@@ -41,4 +43,48 @@ for d, n in [(1, 7), (2, 16), (2, 100), (2, 257), (3, 50), (5, 64), (8, 33)]:
     cases.append({"dims": d, "points": x.tolist(), "scipy": values})
 with open(os.path.join(here, "scipy_discrepancy.json"), "w") as f:
     json.dump({"source": "scipy.stats.qmc.discrepancy %s (CD, WD, MD squared; L2-star unsquared)" % scipy.__version__, "cases": cases}, f)
+    f.write("\n")
+
+# --- QMC constructions (needs qmcpy==2.4, and GSL: apt-get install libgsl-dev) ---
+# crates/samplab/tests/fixtures/qmc_constructions.json: unrandomized points of QMCPy's
+# Faure and of its digital nets (base 2 and base 3) from the random generating matrices
+# written beside it in the LDData "dnet" format (net_b2.txt, net_b3.txt), and GSL's
+# Niederreiter base-2 sequence (Bratley, Fox & Niederreiter's construction, 30 bits).
+import subprocess
+import tempfile
+
+import numpy as np
+import qmcpy
+
+rng = np.random.default_rng(20261124)
+
+
+def write_dnet(path, base, mats, rows, note):
+    """mats: (d, m, rows) digits, row 0 the most significant digit of each column's integer."""
+    d, m, _ = mats.shape
+    weights = base ** np.arange(rows - 1, -1, -1, dtype=object)
+    with open(path, "w") as f:
+        f.write("# %s\n%d # base\n%d # dimensions\n%d # points\n%d # digits per column\n" % (note, base, d, base ** m, rows))
+        for j in range(d):
+            f.write(" ".join(str(int(sum(int(x) * w for x, w in zip(mats[j, k], weights)))) for k in range(m)) + "\n")
+
+
+out = {"source": "qmcpy %s (randomize=False); GNU GSL gsl_qrng_niederreiter_2" % qmcpy.__version__}
+out["faure"] = {str(d): qmcpy.Faure(d, randomize=False)(n, warn=False).tolist() for d, n in [(3, 243), (5, 125), (11, 121)]}
+b2 = rng.integers(0, 2, size=(4, 10, 30))
+write_dnet(os.path.join(here, "net_b2.txt"), 2, b2, 30, "random base-2 matrices for samplab's tests (scripts/make_fixtures.py)")
+ints = (b2 * (2 ** np.arange(29, -1, -1))).sum(axis=2).astype(np.uint64)
+out["net_b2"] = qmcpy.DigitalNetB2(4, randomize=False, generating_matrices=ints, msb=True, t=30)(1024, warn=False).tolist()
+b3 = rng.integers(0, 3, size=(3, 6, 12)).astype(np.uint64)
+write_dnet(os.path.join(here, "net_b3.txt"), 3, b3, 12, "random base-3 matrices for samplab's tests (scripts/make_fixtures.py)")
+out["net_b3"] = qmcpy.DigitalNetAnyBases(3, randomize="False", bases_generating_matrices=(3, b3))(729, warn=False).tolist()
+with tempfile.TemporaryDirectory() as tmp:
+    with open(os.path.join(tmp, "n.c"), "w") as f:
+        f.write("#include <stdio.h>\n#include <gsl/gsl_qrng.h>\nint main(void){gsl_qrng*q=gsl_qrng_alloc(gsl_qrng_niederreiter_2,12);double v[12];"
+                "for(int i=0;i<256;i++){gsl_qrng_get(q,v);for(int j=0;j<12;j++)printf(\"%.17g \",v[j]);printf(\"\\n\");}return 0;}\n")
+    subprocess.run(["gcc", os.path.join(tmp, "n.c"), "-o", os.path.join(tmp, "n"), "-lgsl", "-lgslcblas", "-lm"], check=True)
+    text = subprocess.run([os.path.join(tmp, "n")], check=True, capture_output=True, text=True).stdout
+out["niederreiter_gsl_12d_first_256"] = [[float(x) for x in line.split()] for line in text.splitlines()]
+with open(os.path.join(here, "qmc_constructions.json"), "w") as f:
+    json.dump(out, f)
     f.write("\n")

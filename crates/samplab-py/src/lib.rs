@@ -115,6 +115,7 @@ fn entries<'py, E: Entry>(py: Python<'py>, registry: &Registry<E>) -> PyResult<B
                     q.set_item("kind", "choice")?;
                     q.set_item("choices", c.to_vec())?;
                 }
+                Kind::Path => q.set_item("kind", "path")?,
             }
             match p.default {
                 Default::Number(x) => q.set_item("default", x)?,

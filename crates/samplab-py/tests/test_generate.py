@@ -78,7 +78,7 @@ def test_registry_entries_are_complete():
         for e in entries:
             assert set(e) >= {"name", "aliases", "summary", "params", "references", "details"}, (kind, e)
             for p in e["params"]:
-                assert p["kind"] in ("real", "int", "choice") and "default" in p and p["doc"], (kind, e["name"], p)
+                assert p["kind"] in ("real", "int", "choice", "path") and "default" in p and p["doc"], (kind, e["name"], p)
     sigma = next(p for e in kinds["samplers"] if e["name"] == "jitter.gaussian" for p in e["params"] if p["name"] == "sigma")
     assert (sigma["default"], sigma["min"], sigma["max"]) == (0.25, 0.0, 8.0)
     seed = next(p for e in kinds["metrics"] if e["name"] == "star-bound" for p in e["params"] if p["name"] == "seed")

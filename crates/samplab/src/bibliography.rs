@@ -17,12 +17,14 @@ macro_rules! bib {
 }
 
 bib! {
+    bratley1992 => "P. Bratley, B. L. Fox, H. Niederreiter. Implementation and tests of low-discrepancy sequences. ACM TOMACS 2(3), 1992.",
     bridson2007 => "R. Bridson. Fast Poisson disk sampling in arbitrary dimensions. SIGGRAPH sketches, 2007.",
     burley2020 => "B. Burley. Practical hash-based Owen scrambling. JCGT 9(4), 2020.",
     christensen2018 => "P. Christensen, A. Kensler, C. Kilpatrick. Progressive multi-jittered sample sequences. EGSR 2018.",
     cook1986 => "R. L. Cook. Stochastic sampling in computer graphics. ACM TOG 5(1), 1986.",
     cranley1976 => "R. Cranley, T. N. L. Patterson. Randomization of number theoretic methods for multiple integration. SIAM J. Numer. Anal. 13(6), 1976.",
     ebeida2012 => "M. Ebeida, S. Mitchell, A. Patney, A. Davidson, J. Owens. A simple algorithm for maximal Poisson-disk sampling in high dimensions. Eurographics 2012.",
+    faure1982 => "H. Faure. Discrepance de suites associees a un systeme de numeration (en dimension s). Acta Arith. 41, 1982.",
     halton1960 => "J. H. Halton. On the efficiency of certain quasi-random sequences of points in evaluating multi-dimensional integrals. Numer. Math. 2, 1960.",
     hammersley1964 => "J. M. Hammersley, D. C. Handscomb. Monte Carlo Methods. Methuen, 1964.",
     helmer2021 => "A. Helmer, P. Christensen, A. Kensler. Stochastic generation of (t,s) sample sequences. EGSR 2021.",
@@ -32,6 +34,8 @@ bib! {
     laine2011 => "S. Laine, T. Karras. Stratified sampling for stochastic transparency. EGSR 2011.",
     matousek1998 => "J. Matousek. On the L2-discrepancy for anchored boxes. J. Complexity 14, 1998 (random digit scrambling).",
     mckay1979 => "M. D. McKay, R. J. Beckman, W. J. Conover. A comparison of three methods for selecting values of input variables. Technometrics 21(2), 1979.",
+    niederreiter1988 => "H. Niederreiter. Low-discrepancy and low-dispersion sequences. J. Number Theory 30, 1988.",
+    niederreiter1992 => "H. Niederreiter. Random Number Generation and Quasi-Monte Carlo Methods. SIAM, 1992.",
     owen1995 => "A. B. Owen. Randomly permuted (t,m,s)-nets and (t,s)-sequences. Monte Carlo and Quasi-Monte Carlo Methods, 1995.",
     purgathofer1994 => "W. Purgathofer, R. Tobler, M. Geiler. Forced random dithering: improved threshold matrices for ordered dithering. ICIP 1994.",
     ramamoorthi2012 => "R. Ramamoorthi, J. Anderson, M. Meyer, D. Nowrouzezahrai. A theory of Monte Carlo visibility sampling. ACM TOG 31(5), 2012.",

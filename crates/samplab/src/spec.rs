@@ -61,6 +61,8 @@ pub enum Kind {
     },
     /// One of a fixed list of words.
     Choice(&'static [&'static str]),
+    /// A file's path (without commas: they separate parameters).
+    Path,
 }
 
 /// The default of a parameter.
@@ -96,6 +98,7 @@ impl ParamSpec {
             Kind::Real { min, max } => format!("a number in [{min}, {max}]"),
             Kind::Int { min, max } => format!("a whole number in [{min}, {max}]"),
             Kind::Choice(c) => format!("one of {}", c.join(", ")),
+            Kind::Path => "a file's path".into(),
         }
     }
 
@@ -132,7 +135,7 @@ pub enum Value {
     Number(f64),
     /// A whole number ([`Kind::Int`]), exact over the whole u64 range.
     Int(u64),
-    /// A word (Choice kind).
+    /// A word ([`Kind::Choice`]) or a path ([`Kind::Path`]).
     Word(String),
     /// Left to the method.
     Auto,
@@ -247,6 +250,18 @@ impl Params {
         }
     }
 
+    /// The path `name` holds, or None when it is left to the method (`auto`).
+    ///
+    /// # Panics
+    /// When `name` is not a declared path parameter.
+    pub fn path_or_auto(&self, name: &str) -> Option<&str> {
+        match self.get(name) {
+            Value::Word(w) => Some(w),
+            Value::Auto => None,
+            v => panic!("parameter '{name}' is not a path: {v:?}"),
+        }
+    }
+
     /// `name=value` pairs, for headers and logs.
     pub fn describe(&self) -> String {
         self.values
@@ -281,6 +296,7 @@ fn parse_value(owner: &str, spec: &ParamSpec, raw: Option<&str>) -> Result<Value
             .find(|c| c.eq_ignore_ascii_case(raw))
             .map(|c| Value::Word((*c).into()))
             .ok_or_else(|| bad(format!("'{raw}' is not {}", spec.range_text()))),
+        Kind::Path => Ok(Value::Word(raw.into())),
         Kind::Real { min, max } => {
             let x: f64 =
                 raw.parse().map_err(|_| bad(format!("'{raw}' is not a number; expected {}", spec.range_text())))?;

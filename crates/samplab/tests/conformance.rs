@@ -5,8 +5,18 @@ use samplab::sampler::{self, SAMPLERS, SamplerEntry};
 use samplab::{Error, Seed};
 
 /// Constructions with no randomness: the seed must not matter.
-const DETERMINISTIC: &[&str] =
-    &["regular", "sobol", "halton", "hammersley", "kronecker", "lattice.fibonacci", "lattice.korobov"];
+const DETERMINISTIC: &[&str] = &[
+    "regular",
+    "sobol",
+    "halton",
+    "hammersley",
+    "net",
+    "faure",
+    "niederreiter",
+    "kronecker",
+    "lattice.fibonacci",
+    "lattice.korobov",
+];
 
 /// A count every entry can make in `d` dimensions.
 fn count_for(name: &str, d: usize) -> usize {

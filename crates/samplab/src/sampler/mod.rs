@@ -41,7 +41,7 @@ crate::registry::registry_files! {
     /// Every sampler, in listing order, gathered from the files that declare them.
     pub static SAMPLERS: Registry<SamplerEntry> =
         ("sampler", "SAMPLERS  (spec: name[:key=value,...] or name[:value,...] in the order listed)")
-        from [random, grid, nrooks, poisson, pmj, force_matrix, sobol, radical, kronecker, lattice];
+        from [random, grid, nrooks, poisson, pmj, force_matrix, sobol, radical, net, kronecker, lattice];
 }
 
 pub use registry::{SamplerEntry, build};

@@ -54,6 +54,15 @@ pub fn sobol_u32(index: u32, dim: usize) -> u32 {
     x
 }
 
+/// The 32 direction numbers of dimension `dim` (column k of its generating matrix, row 0
+/// the most significant bit).
+///
+/// # Panics
+/// When `dim` is not below [`SOBOL_MAX_DIMS`].
+pub fn direction_numbers(dim: usize) -> [u32; 32] {
+    SOBOL_DIRECTIONS[dim]
+}
+
 /// Per-dimension randomization state derived from the seed.
 #[derive(Debug, Clone, Copy)]
 struct DimKey {

@@ -1,0 +1,912 @@
+//! Digital nets and sequences in a prime base b (Niederreiter 1992, "Random Number Generation
+//! and Quasi-Monte Carlo Methods", section 4.3): coordinate j of point i has the base-b
+//! digits y = C_j a (mod b), where a holds the digits of i (least significant first) and row
+//! r of y is the digit of weight b^-(r+1). Points come in natural order, so every prefix of
+//! b^m points is the net of the first m columns.
+//!
+//! The generating matrices C_j:
+//! - from a file (`net:matrices=FILE`), in the LDData "dnet" format (see [`Matrices::parse`]);
+//!   by default the Sobol' matrices of Joe & Kuo (2008);
+//! - Faure's (Faure 1982): base p the smallest prime >= d, C_j = P^j with P the Pascal
+//!   matrix mod p, entry (r, k) = binom(k, r) j^(k-r); a (0, s)-sequence in base p;
+//! - Niederreiter's (Niederreiter 1988), as Bratley, Fox & Niederreiter (1992, section 3.3)
+//!   compute them: dimension j takes the j-th monic irreducible polynomial p_j over F_b
+//!   (by degree, then by coefficients), and row r = Q e_j + u of C_j holds the terms
+//!   u, u+1, ... of a linear recurring sequence whose characteristic polynomial is
+//!   p_j^(Q+1); a (t, s)-sequence with t = sum_j (deg p_j - 1).
+//!
+//! Randomizations, each on the digits, seeded per dimension (so random access equals the
+//! batch):
+//! - `.xor`: a digital shift, y_r + e_r mod b with uniform digits e_r (an XOR in base 2);
+//! - `.lms`: Matousek's (1998) linear matrix scrambling, C_j replaced by L_j C_j with L_j
+//!   lower triangular (uniform non-zero diagonal, uniform below it), then a digital shift;
+//! - `.owen`: Owen's (1995) nested uniform scrambling: the permutation of digit r depends on
+//!   digits 0..r, hashed (Burley 2020 in base 2; Kensler's keyed permutations in base b);
+//! - `.shift`: a Cranley-Patterson shift mod 1 (not a net any more).
+//!
+//! The first three keep every (t, m, s)-net property of the construction.
+
+use std::ops::RangeInclusive;
+use std::sync::{Arc, Mutex};
+
+use super::grid::BELOW_ONE;
+use super::registry::SamplerEntry;
+use super::scramble::{Randomization, hash2, owen_scramble_u32, permute};
+use super::{Access, Fill, Sampler, Sequence};
+use crate::error::{Error, Result};
+use crate::registry::About;
+use crate::seed::{Seed, below, mix64, uniform, wrap01};
+use crate::spec::{Default, Kind, ParamSpec};
+
+/// Generating matrices of a digital net in a prime base: `cols` columns (input digits, so
+/// b^cols points) and `rows` rows (output digits) per dimension.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Matrices {
+    base: u32,
+    dims: usize,
+    cols: usize,
+    rows: usize,
+    /// Digit (row r, column k) of dimension d at `(d * cols + k) * rows + r`.
+    digits: Vec<u8>,
+}
+
+/// The largest base: digits are bytes.
+const MAX_BASE: u32 = 251;
+
+/// The output digits kept in base b: the most with b^P <= 2^63 (every b^P-th of the unit
+/// interval, at least 53 bits), 64 in base 2.
+fn precision(base: u32) -> usize {
+    if base == 2 {
+        return 64;
+    }
+    let mut p = 0;
+    let mut power = 1u128;
+    while power * u128::from(base) <= 1 << 63 {
+        power *= u128::from(base);
+        p += 1;
+    }
+    p
+}
+
+/// The columns needed for 2^32 points in base b (the most a set can have).
+fn columns_for_all_sets(base: u32) -> usize {
+    let mut cols = 0;
+    let mut power = 1u128;
+    while power < 1 << 32 {
+        power *= u128::from(base);
+        cols += 1;
+    }
+    cols
+}
+
+fn is_prime(b: u32) -> bool {
+    b >= 2 && (2..b).take_while(|k| k * k <= b).all(|k| !b.is_multiple_of(k))
+}
+
+impl Matrices {
+    /// Matrices from their digits (`(d * cols + k) * rows + r`).
+    ///
+    /// # Errors
+    /// A base that is not a prime below 256, a digit not below the base, or sizes that do
+    /// not match.
+    pub fn new(base: u32, dims: usize, cols: usize, rows: usize, digits: Vec<u8>) -> Result<Matrices> {
+        let invalid = |reason: String| Err(Error::Invalid(format!("generating matrices: {reason}")));
+        if !is_prime(base) || base > MAX_BASE {
+            return invalid(format!("base {base} is not a prime up to {MAX_BASE}"));
+        }
+        if dims == 0 || cols == 0 || rows == 0 || digits.len() != dims * cols * rows {
+            return invalid(format!("{} digits for {dims} dimensions x {cols} columns x {rows} rows", digits.len()));
+        }
+        if let Some(d) = digits.iter().find(|&&d| u32::from(d) >= base) {
+            return invalid(format!("digit {d} is not below the base {base}"));
+        }
+        Ok(Matrices { base, dims, cols, rows: rows.min(precision(base)), digits: truncate_rows(digits, rows, base) })
+    }
+
+    /// The base.
+    pub fn base(&self) -> u32 {
+        self.base
+    }
+
+    /// How many dimensions the matrices have.
+    pub fn dims(&self) -> usize {
+        self.dims
+    }
+
+    /// How many columns: the net has up to base^cols points.
+    pub fn cols(&self) -> usize {
+        self.cols
+    }
+
+    /// Digit (row `r`, column `k`) of dimension `d`'s matrix.
+    pub fn digit(&self, d: usize, r: usize, k: usize) -> u32 {
+        u32::from(self.digits[(d * self.cols + k) * self.rows + r])
+    }
+
+    /// The Sobol' matrices of Joe & Kuo (2008), 32 x 32 bits, for `dims` dimensions.
+    fn sobol(dims: usize) -> Matrices {
+        let digits = (0..dims)
+            .flat_map(|d| super::sobol::direction_numbers(d).into_iter())
+            .flat_map(|v| (0..32).map(move |r| ((v >> (31 - r)) & 1) as u8))
+            .collect();
+        Matrices { base: 2, dims, cols: 32, rows: 32, digits }
+    }
+
+    /// Faure's matrices for `dims` dimensions (module docs): base p the smallest prime >= d,
+    /// enough columns for 2^32 points.
+    pub fn faure(dims: usize) -> Matrices {
+        let base = faure_base(dims);
+        let b = base as usize;
+        let cols = columns_for_all_sets(base);
+        // binom(k, r) mod p by Pascal's rule
+        let mut binom = vec![vec![0usize; cols]; cols];
+        for k in 0..cols {
+            binom[k][0] = 1;
+            for r in 1..=k {
+                binom[k][r] = (binom[k - 1][r - 1] + if r < k { binom[k - 1][r] } else { 0 }) % b;
+            }
+        }
+        let mut digits = vec![0u8; dims * cols * cols];
+        for j in 0..dims {
+            for k in 0..cols {
+                let mut power = 1; // j^(k - r), from r = k down
+                for r in (0..=k).rev() {
+                    digits[(j * cols + k) * cols + r] = (binom[k][r] * power % b) as u8;
+                    power = power * (j % b) % b;
+                }
+            }
+        }
+        Matrices { base, dims, cols, rows: cols, digits }
+    }
+
+    /// Niederreiter's matrices in base `base` for `dims` dimensions (module docs), enough
+    /// columns for 2^32 points and every output digit kept.
+    ///
+    /// # Errors
+    /// A base that is not a prime up to 251.
+    pub fn niederreiter(base: u32, dims: usize) -> Result<Matrices> {
+        if !is_prime(base) || base > MAX_BASE {
+            return Err(Error::Invalid(format!("Niederreiter: base {base} is not a prime up to {MAX_BASE}")));
+        }
+        let (cols, rows) = (columns_for_all_sets(base), precision(base));
+        let b = base as u64;
+        let mut digits = vec![0u8; dims * cols * rows];
+        for (j, p) in irreducibles(base).take(dims).enumerate() {
+            let e = p.len() - 1;
+            let mut power = vec![1u64]; // p^Q, coefficients from degree 0
+            let mut v = Vec::new();
+            for r in 0..rows {
+                let u = r % e;
+                if u == 0 {
+                    // the sequence for p^(Q+1): zeros below deg p^Q, then ones, then the recurrence
+                    let low = power.len() - 1;
+                    power = multiply(&power, &p, b);
+                    let m = power.len() - 1;
+                    let len = (cols + e).max(m) + 1;
+                    v = vec![0u64; len];
+                    for x in v.iter_mut().take(m).skip(low) {
+                        *x = 1;
+                    }
+                    for i in m..len {
+                        let s: u64 = (0..m).map(|k| power[k] * v[i - m + k]).sum::<u64>() % b;
+                        v[i] = (b - s) % b;
+                    }
+                }
+                for k in 0..cols {
+                    digits[(j * cols + k) * rows + r] = v[k + u] as u8;
+                }
+            }
+        }
+        Ok(Matrices { base, dims, cols, rows, digits })
+    }
+
+    /// Parse generating matrices in the LDData "dnet" format (the Magic Point Shop's, read
+    /// by QMCPy): `#` starts a comment; then four numbers, one per line (the base b, the
+    /// dimensions s, the largest point count b^m, the digits per column R); then one line
+    /// per dimension with its m columns, each an integer whose base-b digits, most
+    /// significant first, are the column's rows 0..R-1. Rows past the precision kept
+    /// (64 bits in base 2; b^P <= 2^63 otherwise) are dropped.
+    ///
+    /// # Errors
+    /// A malformed file, with its line.
+    pub fn parse(text: &str, source: &str) -> Result<Matrices> {
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .map(|(i, l)| (i + 1, l.split('#').next().unwrap_or("").trim()))
+            .filter(|(_, l)| !l.is_empty());
+        let bad = |line: usize, reason: String| Error::Parse { location: format!("{source}:{line}"), reason };
+        let mut header = [0u64; 4];
+        let names = ["the base", "the dimensions", "the largest point count", "the digits per column"];
+        for (value, name) in header.iter_mut().zip(names) {
+            let (line, l) = lines.next().ok_or_else(|| bad(0, format!("the file ends before {name}")))?;
+            *value = l.parse().map_err(|_| bad(line, format!("'{l}' is not {name} (a whole number)")))?;
+        }
+        let [base, dims, _, rows] = header;
+        let base = u32::try_from(base).ok().filter(|&b| is_prime(b) && b <= MAX_BASE).ok_or_else(|| {
+            bad(0, format!("the base {base} is not a prime up to {MAX_BASE}"))
+        })?;
+        let width = (rows as f64 * f64::from(base).log2()).ceil();
+        if rows == 0 || width > 64.0 {
+            return Err(bad(0, format!("{rows} digits per column do not fit in 64 bits in base {base}")));
+        }
+        if dims == 0 || dims > 1 << 20 {
+            return Err(bad(0, format!("{dims} dimensions: expected 1 to 2^20")));
+        }
+        let (dims, rows) = (dims as usize, rows as usize);
+        let mut columns: Vec<Vec<u64>> = Vec::with_capacity(dims);
+        for (line, l) in lines {
+            if columns.len() == dims {
+                return Err(bad(line, format!("more than the {dims} dimensions the header announces")));
+            }
+            let row = l
+                .split_whitespace()
+                .map(|t| t.parse::<u64>().map_err(|_| bad(line, format!("'{t}' is not a whole number"))))
+                .collect::<Result<Vec<u64>>>()?;
+            if let Some(first) = columns.first().filter(|c| c.len() != row.len()) {
+                return Err(bad(line, format!("{} columns where the first dimension has {}", row.len(), first.len())));
+            }
+            let limit = u128::from(base).pow(rows as u32);
+            if let Some(c) = row.iter().find(|&&c| u128::from(c) >= limit) {
+                return Err(bad(line, format!("column {c} has more than {rows} digits in base {base}")));
+            }
+            columns.push(row);
+        }
+        if columns.len() < dims {
+            return Err(bad(0, format!("{} dimensions where the header announces {dims}", columns.len())));
+        }
+        let cols = columns[0].len();
+        let b = u64::from(base);
+        let mut digits = Vec::with_capacity(dims * cols * rows);
+        for c in columns.iter().flatten() {
+            let start = digits.len();
+            let mut rest = *c;
+            for _ in 0..rows {
+                digits.push((rest % b) as u8);
+                rest /= b;
+            }
+            digits[start..].reverse();
+        }
+        Matrices::new(base, dims, cols, rows, digits).map_err(|e| bad(0, e.to_string()))
+    }
+}
+
+/// Keep the first `precision(base)` rows of each column.
+fn truncate_rows(digits: Vec<u8>, rows: usize, base: u32) -> Vec<u8> {
+    let keep = precision(base);
+    if rows <= keep {
+        return digits;
+    }
+    digits.chunks_exact(rows).flat_map(|c| c[..keep].iter().copied()).collect()
+}
+
+/// The smallest prime >= d (2 for d = 1).
+fn faure_base(dims: usize) -> u32 {
+    (dims.max(2) as u32..).find(|&b| is_prime(b)).expect("primes are unbounded")
+}
+
+/// The product of two polynomials over F_b (coefficients from degree 0).
+fn multiply(a: &[u64], c: &[u64], b: u64) -> Vec<u64> {
+    let mut out = vec![0u64; a.len() + c.len() - 1];
+    for (i, &x) in a.iter().enumerate() {
+        for (j, &y) in c.iter().enumerate() {
+            out[i + j] = (out[i + j] + x * y) % b;
+        }
+    }
+    out
+}
+
+/// The monic irreducible polynomials over F_b in order of degree, then of their
+/// coefficients read as a base-b number (x, x+1, x^2+x+1, ... in base 2), coefficients from
+/// degree 0. Irreducibility by trial division by every monic polynomial of lower degree.
+fn irreducibles(base: u32) -> impl Iterator<Item = Vec<u64>> {
+    let b = u64::from(base);
+    let poly = move |mut code: u64, degree: usize| {
+        let mut p: Vec<u64> = (0..degree)
+            .map(|_| {
+                let c = code % b;
+                code /= b;
+                c
+            })
+            .collect();
+        p.push(1);
+        p
+    };
+    let divides = move |d: &[u64], p: &[u64]| {
+        let mut r = p.to_vec();
+        let k = d.len() - 1;
+        for top in (k..r.len()).rev() {
+            let q = r[top];
+            if q != 0 {
+                for (i, &di) in d.iter().enumerate() {
+                    r[top - k + i] = (r[top - k + i] + (b - q) * di) % b;
+                }
+            }
+        }
+        r[..k].iter().all(|&x| x == 0)
+    };
+    (1usize..).flat_map(move |degree| {
+        (0..b.pow(degree as u32)).map(move |code| poly(code, degree)).filter(move |p| {
+            (1..=(p.len() - 1) / 2).all(|dd| (0..b.pow(dd as u32)).all(|c| !divides(&poly(c, dd), p)))
+        })
+    })
+}
+
+/// Which matrices a net sampler uses.
+#[derive(Debug, Clone, PartialEq)]
+enum Source {
+    /// The Joe-Kuo Sobol' matrices.
+    Sobol,
+    /// Read from a file (kept with its path, for the spec).
+    File(String, Arc<Matrices>),
+    /// Faure's, for the dimension asked.
+    Faure,
+    /// Niederreiter's in a base.
+    Niederreiter(u32),
+}
+
+/// A digital net or sequence with a randomization.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Net {
+    source: Source,
+    randomization: Randomization,
+    lms: bool,
+}
+
+impl Net {
+    fn family(&self) -> &'static str {
+        match self.source {
+            Source::Sobol | Source::File(..) => "net",
+            Source::Faure => "faure",
+            Source::Niederreiter(_) => "niederreiter",
+        }
+    }
+
+    /// The matrices for `dims` dimensions; the built-in ones are made once per (family,
+    /// base, dimensions) and remembered, so many small fills pay nothing for them.
+    fn matrices(&self, dims: usize) -> Result<Arc<Matrices>> {
+        let key = match &self.source {
+            Source::File(_, m) => return Ok(Arc::clone(m)),
+            Source::Sobol => (0, 2, dims),
+            Source::Faure => (1, faure_base(dims), dims),
+            Source::Niederreiter(b) => (2, *b, dims),
+        };
+        let mut made = BUILT.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let Some((_, m)) = made.iter().find(|(k, _)| *k == key) {
+            return Ok(Arc::clone(m));
+        }
+        let m = Arc::new(match &self.source {
+            Source::Faure => Matrices::faure(dims),
+            Source::Niederreiter(b) => Matrices::niederreiter(*b, dims)?,
+            _ => Matrices::sobol(dims),
+        });
+        made.push((key, Arc::clone(&m)));
+        Ok(m)
+    }
+
+    fn base(&self, dims: usize) -> u32 {
+        match &self.source {
+            Source::Sobol => 2,
+            Source::File(_, m) => m.base,
+            Source::Faure => faure_base(dims),
+            Source::Niederreiter(b) => *b,
+        }
+    }
+
+    fn prepare(&self, dims: usize, seed: Seed) -> Result<Engine> {
+        Ok(Engine::new(&*self.matrices(dims)?, dims, self.randomization, self.lms, seed))
+    }
+}
+
+/// The built-in matrices made so far, by (family, base, dimensions).
+#[allow(clippy::type_complexity)]
+static BUILT: Mutex<Vec<((u8, u32, usize), Arc<Matrices>)>> = Mutex::new(Vec::new());
+
+/// Most dimensions of the built-in constructions (Faure's base and Niederreiter's
+/// polynomial degrees grow with it).
+const MAX_DIMS: usize = 1024;
+
+impl Sampler for Net {
+    fn spec(&self) -> String {
+        let suffix = if self.lms { "lms" } else { self.randomization.suffix() };
+        let name = if suffix.is_empty() { self.family().to_string() } else { format!("{}.{suffix}", self.family()) };
+        match &self.source {
+            Source::File(path, _) => format!("{name}:matrices={path}"),
+            Source::Niederreiter(b) if *b != 2 => format!("{name}:base={b}"),
+            _ => name,
+        }
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        match &self.source {
+            Source::Sobol => 1..=super::sobol::SOBOL_MAX_DIMS,
+            Source::File(_, m) => 1..=m.dims,
+            Source::Faure => 1..=MAX_BASE as usize,
+            Source::Niederreiter(_) => 1..=MAX_DIMS,
+        }
+    }
+    fn as_sequence(&self) -> Option<&dyn Sequence> {
+        Some(self)
+    }
+}
+
+impl Fill for Net {
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        let cols = match &self.source {
+            Source::Sobol => 32,
+            Source::File(_, m) => m.cols,
+            _ => columns_for_all_sets(self.base(dims)),
+        };
+        let most = u128::from(self.base(dims)).pow(cols as u32);
+        if n as u128 > most {
+            return Err(Error::InvalidCount {
+                sampler: self.spec(),
+                n,
+                dims,
+                reason: format!("the matrices have {cols} columns: at most {} points", most),
+            });
+        }
+        Ok(())
+    }
+
+    fn fill(&self, _n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        self.prepare(dims, seed)?.fill(out);
+        Ok(())
+    }
+}
+
+impl Sequence for Net {
+    fn access(&self, dims: usize, seed: Seed) -> Result<Box<dyn Access + '_>> {
+        (self as &dyn Sampler).plan(1, dims)?;
+        Ok(Box::new(self.prepare(dims, seed)?))
+    }
+}
+
+/// A prepared net: the (scrambled) columns, prefix sums for the natural-order walk, and the
+/// per-dimension randomization.
+#[derive(Debug)]
+enum Engine {
+    Binary(Binary),
+    Prime(Prime),
+}
+
+impl Engine {
+    fn new(m: &Matrices, dims: usize, randomization: Randomization, lms: bool, seed: Seed) -> Engine {
+        if m.base == 2 {
+            Engine::Binary(Binary::new(m, dims, randomization, lms, seed))
+        } else {
+            Engine::Prime(Prime::new(m, dims, randomization, lms, seed))
+        }
+    }
+
+    fn fill(&self, out: &mut [f64]) {
+        match self {
+            Engine::Binary(e) => e.fill(out),
+            Engine::Prime(e) => e.fill(out),
+        }
+    }
+}
+
+impl Access for Engine {
+    fn sample(&self, index: u64, dim: usize) -> Result<f64> {
+        let (cols, base) = match self {
+            Engine::Binary(e) => (e.cols, 2),
+            Engine::Prime(e) => (e.cols, e.base),
+        };
+        if u128::from(index) >= u128::from(base).pow(cols as u32) {
+            return Err(Error::Setting {
+                name: "index",
+                value: index.to_string(),
+                reason: format!("the matrices have {cols} columns: points stop at index {base}^{cols} - 1"),
+            });
+        }
+        Ok(match self {
+            Engine::Binary(e) => e.value(e.digits(index, dim), dim),
+            Engine::Prime(e) => e.value(&e.digits(index, dim), dim),
+        })
+    }
+}
+
+/// Per-dimension randomness, drawn in one order from the dimension's own stream.
+struct Draws(crate::seed::Rng);
+
+impl Draws {
+    fn new(seed: Seed, dim: usize) -> Draws {
+        Draws(seed.derive(dim as u64).rng())
+    }
+    fn below(&mut self, bound: u32) -> u32 {
+        below(&mut self.0, u64::from(bound)) as u32
+    }
+    fn bits(&mut self) -> u64 {
+        rand_core::Rng::next_u64(&mut self.0)
+    }
+}
+
+/// Base 2: columns as 64-bit words, row 0 the most significant bit.
+#[derive(Debug)]
+struct Binary {
+    dims: usize,
+    cols: usize,
+    /// `prefix[d * cols + k]` = C_0 ^ ... ^ C_k of dimension d (the step from index i to
+    /// i + 1 flips the trailing ones of i and the zero above them).
+    prefix: Vec<u64>,
+    columns: Vec<u64>,
+    shift: Vec<u64>,
+    owen: Option<Vec<u32>>,
+    offset: Option<Vec<f64>>,
+}
+
+impl Binary {
+    fn new(m: &Matrices, dims: usize, randomization: Randomization, lms: bool, seed: Seed) -> Binary {
+        let cols = m.cols;
+        let mut columns = vec![0u64; dims * cols];
+        let (mut shift, mut owen, mut offset) = (vec![0u64; dims], Vec::new(), Vec::new());
+        for d in 0..dims {
+            let mut draws = Draws::new(seed, d);
+            let lower: Vec<u64> = if lms {
+                // row j of L: its diagonal bit and uniform bits for the rows above it
+                (0..64).map(|j| (draws.bits() & (u64::MAX << (63 - j))) | (1u64 << (63 - j))).collect()
+            } else {
+                Vec::new()
+            };
+            for k in 0..cols {
+                let c = (0..m.rows).fold(0u64, |c, r| c | (u64::from(m.digit(d, r, k)) << (63 - r)));
+                columns[d * cols + k] = if lms {
+                    lower.iter().enumerate().fold(0, |acc, (j, l)| acc | (u64::from((l & c).count_ones() & 1) << (63 - j)))
+                } else {
+                    c
+                };
+            }
+            match randomization {
+                Randomization::Xor => shift[d] = draws.bits(),
+                Randomization::Owen => owen.push(draws.bits() as u32),
+                Randomization::Shift => offset.push(uniform(&mut draws.0)),
+                Randomization::None => {}
+            }
+        }
+        let prefix = prefix_xor(&columns, cols);
+        Binary {
+            dims,
+            cols,
+            prefix,
+            columns,
+            shift,
+            owen: (randomization == Randomization::Owen).then_some(owen),
+            offset: (randomization == Randomization::Shift).then_some(offset),
+        }
+    }
+
+    fn digits(&self, index: u64, dim: usize) -> u64 {
+        let mut x = 0;
+        let mut i = index;
+        let mut k = 0;
+        while i != 0 {
+            if i & 1 == 1 {
+                x ^= self.columns[dim * self.cols + k];
+            }
+            i >>= 1;
+            k += 1;
+        }
+        x
+    }
+
+    #[inline]
+    fn value(&self, x: u64, dim: usize) -> f64 {
+        let x = match &self.owen {
+            Some(keys) => {
+                // nested on 64 bits: the low half's scramble is keyed by the whole high half
+                let key = keys[dim];
+                let high = (x >> 32) as u32;
+                let low = owen_scramble_u32(x as u32, hash2(key, high));
+                (u64::from(owen_scramble_u32(high, key)) << 32) | u64::from(low)
+            }
+            None => x ^ self.shift[dim],
+        };
+        let v = (x >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
+        match &self.offset {
+            Some(u) => wrap01(v + u[dim]),
+            None => v,
+        }
+    }
+
+    fn fill(&self, out: &mut [f64]) {
+        let mut state = vec![0u64; self.dims];
+        for (i, p) in out.chunks_exact_mut(self.dims).enumerate() {
+            for (d, x) in p.iter_mut().enumerate() {
+                *x = self.value(state[d], d);
+            }
+            let c = ((i as u64).trailing_ones() as usize).min(self.cols - 1);
+            for (d, s) in state.iter_mut().enumerate() {
+                *s ^= self.prefix[d * self.cols + c];
+            }
+        }
+    }
+}
+
+/// Running XORs of each dimension's columns.
+fn prefix_xor(columns: &[u64], cols: usize) -> Vec<u64> {
+    let mut prefix = columns.to_vec();
+    for dim in prefix.chunks_exact_mut(cols) {
+        for k in 1..cols {
+            dim[k] ^= dim[k - 1];
+        }
+    }
+    prefix
+}
+
+/// An odd prime base: columns as digit vectors of the kept precision P.
+#[derive(Debug)]
+struct Prime {
+    base: u32,
+    dims: usize,
+    cols: usize,
+    digits: usize,
+    /// Column k of dimension d at `(d * cols + k) * digits`, and their running sums mod b.
+    columns: Vec<u8>,
+    prefix: Vec<u8>,
+    shift: Vec<u8>,
+    owen: Option<Vec<u64>>,
+    offset: Option<Vec<f64>>,
+    /// Digits in the exact leading part of a value: the most with b^high <= 2^53.
+    high: usize,
+    /// b^high and b^P.
+    powers: [f64; 2],
+}
+
+impl Prime {
+    fn new(m: &Matrices, dims: usize, randomization: Randomization, lms: bool, seed: Seed) -> Prime {
+        let (base, cols, p) = (m.base, m.cols, precision(m.base));
+        let b = base as usize;
+        let mut columns = vec![0u8; dims * cols * p];
+        let (mut shift, mut owen, mut offset) = (vec![0u8; dims * p], Vec::new(), Vec::new());
+        for d in 0..dims {
+            let mut draws = Draws::new(seed, d);
+            // L: lower triangular, row j: uniform digits below the diagonal, a non-zero one on it
+            let lower: Vec<Vec<u8>> = if lms {
+                (0..p)
+                    .map(|j| (0..=j).map(|i| (if i == j { 1 + draws.below(base - 1) } else { draws.below(base) }) as u8).collect())
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            for k in 0..cols {
+                let column = &mut columns[(d * cols + k) * p..][..p];
+                for (r, y) in column.iter_mut().enumerate().take(m.rows) {
+                    *y = m.digit(d, r, k) as u8;
+                }
+                if lms {
+                    let c = column.to_vec();
+                    for (j, row) in lower.iter().enumerate() {
+                        column[j] = (row.iter().zip(&c).map(|(&l, &x)| usize::from(l) * usize::from(x)).sum::<usize>() % b) as u8;
+                    }
+                }
+            }
+            match randomization {
+                Randomization::Xor => {
+                    for e in &mut shift[d * p..(d + 1) * p] {
+                        *e = draws.below(base) as u8;
+                    }
+                }
+                Randomization::Owen => owen.push(draws.bits()),
+                Randomization::Shift => offset.push(uniform(&mut draws.0)),
+                Randomization::None => {}
+            }
+        }
+        let high = (1..).find(|&k| u128::from(base).pow(k) > 1 << 53).expect("powers grow") as usize - 1;
+        let mut prefix = columns.clone();
+        for dim in prefix.chunks_exact_mut(cols * p) {
+            for k in 1..cols {
+                let (done, rest) = dim.split_at_mut(k * p);
+                add_mod(&mut rest[..p], &done[(k - 1) * p..], base as u8);
+            }
+        }
+        Prime {
+            base,
+            dims,
+            cols,
+            digits: p,
+            columns,
+            prefix,
+            shift,
+            owen: (randomization == Randomization::Owen).then_some(owen),
+            offset: (randomization == Randomization::Shift).then_some(offset),
+            high,
+            powers: [f64::from(base).powi(high as i32), f64::from(base).powi(p as i32)],
+        }
+    }
+
+    fn digits(&self, mut index: u64, dim: usize) -> Vec<u8> {
+        let p = self.digits;
+        let mut y = vec![0u8; p];
+        let mut k = 0;
+        while index != 0 {
+            let a = (index % u64::from(self.base)) as usize;
+            for _ in 0..a {
+                add_mod(&mut y, &self.columns[(dim * self.cols + k) * p..][..p], self.base as u8);
+            }
+            index /= u64::from(self.base);
+            k += 1;
+        }
+        y
+    }
+
+    /// The coordinate of the digits `y` of dimension `dim`, randomized: the first `high`
+    /// digits as one exact integer over b^high (<= 2^53, so the quotient is correctly
+    /// rounded), plus the rest over b^P.
+    fn value(&self, y: &[u8], dim: usize) -> f64 {
+        let b = u64::from(self.base);
+        let mut v = [0u64; 2];
+        let mut push = |r: usize, digit: u64| {
+            let part = &mut v[usize::from(r >= self.high)];
+            *part = *part * b + digit;
+        };
+        match &self.owen {
+            Some(keys) => {
+                let mut node = keys[dim];
+                for (r, &a) in y.iter().enumerate() {
+                    let key = (node >> 32) as u32 ^ node as u32;
+                    push(r, u64::from(permute(u32::from(a), self.base, key)));
+                    node = mix64(node.wrapping_add(u64::from(a) + 1));
+                }
+            }
+            None => {
+                let shift = &self.shift[dim * self.digits..][..self.digits];
+                for (r, (&a, &e)) in y.iter().zip(shift).enumerate() {
+                    let s = u64::from(a) + u64::from(e);
+                    push(r, if s >= b { s - b } else { s });
+                }
+            }
+        }
+        let x = (v[0] as f64 / self.powers[0] + v[1] as f64 / self.powers[1]).min(BELOW_ONE);
+        match &self.offset {
+            Some(u) => wrap01(x + u[dim]),
+            None => x,
+        }
+    }
+
+    fn fill(&self, out: &mut [f64]) {
+        let (p, b) = (self.digits, u64::from(self.base));
+        let mut state = vec![0u8; self.dims * p];
+        let mut index_digits = vec![0u32; self.cols + 1];
+        for p_out in out.chunks_exact_mut(self.dims) {
+            for (d, x) in p_out.iter_mut().enumerate() {
+                *x = self.value(&state[d * p..(d + 1) * p], d);
+            }
+            // the next index: digits b-1 roll over to 0 (adding their column once more),
+            // the first other digit goes up by one
+            let mut c = 0;
+            while c + 1 < self.cols && u64::from(index_digits[c]) == b - 1 {
+                index_digits[c] = 0;
+                c += 1;
+            }
+            index_digits[c] += 1;
+            for d in 0..self.dims {
+                add_mod(&mut state[d * p..(d + 1) * p], &self.prefix[(d * self.cols + c) * p..][..p], self.base as u8);
+            }
+        }
+    }
+}
+
+/// y += c digit by digit, mod b.
+#[inline]
+fn add_mod(y: &mut [u8], c: &[u8], b: u8) {
+    for (y, &c) in y.iter_mut().zip(c) {
+        let s = *y + c;
+        *y = if s >= b { s - b } else { s };
+    }
+}
+
+/// The matrices file parameter.
+const MATRICES: ParamSpec = ParamSpec {
+    name: "matrices",
+    kind: Kind::Path,
+    default: Default::Auto("the Sobol' matrices of Joe & Kuo, 1024 dimensions x 32 bits"),
+    doc: "generating matrices in the LDData dnet format (README: Digital nets)",
+};
+
+/// Niederreiter's base.
+const BASE: ParamSpec = ParamSpec {
+    name: "base",
+    kind: Kind::Int { min: 2, max: MAX_BASE as u64 },
+    default: Default::Int(2),
+    doc: "a prime: the field of the polynomials and of the digits",
+};
+
+fn read_matrices(path: &str) -> Result<Source> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::Io { path: path.into(), reason: e.to_string() })?;
+    Ok(Source::File(path.into(), Arc::new(Matrices::parse(&text, path)?)))
+}
+
+fn net_source(p: &crate::spec::Params) -> Result<Source> {
+    match p.path_or_auto("matrices") {
+        Some(path) => read_matrices(path),
+        None => Ok(Source::Sobol),
+    }
+}
+
+fn niederreiter_source(p: &crate::spec::Params) -> Result<Source> {
+    let base = p.int("base") as u32;
+    if !is_prime(base) {
+        return Err(Error::Param { owner: "niederreiter".into(), param: "base".into(), reason: format!("{base} is not a prime") });
+    }
+    Ok(Source::Niederreiter(base))
+}
+
+/// The five entries of a net family: plain, `.xor`, `.lms`, `.owen`, `.shift`.
+macro_rules! net_entries {
+    ($(($family:literal, $summary:literal, $aliases:expr, $params:expr, $source:expr, $counts:literal, $dims:literal, [$($r:literal),*])),+ $(,)?) => {
+        &[$(
+            SamplerEntry {
+                about: About::new($family, $summary).aliases($aliases).params($params).cite(&[$($r),*]),
+                counts: $counts,
+                dims: $dims,
+                build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::None, lms: false })),
+            },
+            SamplerEntry {
+                about: About::new(concat!($family, ".xor"), concat!($summary, ", digital shift"))
+                    .params($params)
+                    .cite(&[$($r,)* "matousek1998"]),
+                counts: $counts,
+                dims: $dims,
+                build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Xor, lms: false })),
+            },
+            SamplerEntry {
+                about: About::new(concat!($family, ".lms"), concat!($summary, ", linear matrix scrambling and a digital shift"))
+                    .params($params)
+                    .cite(&[$($r,)* "matousek1998"]),
+                counts: $counts,
+                dims: $dims,
+                build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Xor, lms: true })),
+            },
+            SamplerEntry {
+                about: About::new(concat!($family, ".owen"), concat!($summary, ", Owen's nested uniform scrambling"))
+                    .params($params)
+                    .cite(&[$($r,)* "owen1995", "burley2020", "kensler2013"]),
+                counts: $counts,
+                dims: $dims,
+                build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Owen, lms: false })),
+            },
+            SamplerEntry {
+                about: About::new(concat!($family, ".shift"), concat!($summary, ", Cranley-Patterson shift"))
+                    .params($params)
+                    .cite(&[$($r,)* "cranley1976"]),
+                counts: $counts,
+                dims: $dims,
+                build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Shift, lms: false })),
+            },
+        )+]
+    };
+}
+
+/// The samplers this file registers.
+pub(crate) static ENTRIES: &[SamplerEntry] = net_entries!(
+    (
+        "net",
+        "digital net in base b from generating matrices, natural order",
+        &["digitalnet", "digitalnetb2"],
+        &[MATRICES],
+        net_source,
+        "n <= b^m (m columns; nets at powers of b)",
+        "up to the file's",
+        ["niederreiter1992", "joe2008"]
+    ),
+    (
+        "faure",
+        "Faure (0,s)-sequence, base the smallest prime >= d",
+        &[],
+        &[],
+        |_: &crate::spec::Params| Ok::<_, Error>(Source::Faure),
+        "n <= 2^32 (nets at powers of the base)",
+        "1..=251",
+        ["faure1982"]
+    ),
+    (
+        "niederreiter",
+        "Niederreiter (t,s)-sequence from irreducible polynomials",
+        &[],
+        &[BASE],
+        niederreiter_source,
+        "n <= 2^32 (nets at powers of the base)",
+        "1..=1024",
+        ["niederreiter1988", "bratley1992"]
+    ),
+);

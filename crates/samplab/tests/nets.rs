@@ -1,0 +1,204 @@
+//! Digital nets in base b (Faure, Niederreiter, nets from generating-matrix files): their
+//! (t, m, s)-net property counted on every elementary interval, their points against
+//! independent implementations (QMCPy, GNU GSL; `scripts/make_fixtures.py`), and their
+//! randomizations (unbiased, batch == random access).
+
+use samplab::progress::Progress;
+use samplab::sampler;
+use samplab::{PointSet, Seed};
+
+fn set(spec: &str, n: usize, d: usize, seed: u64) -> PointSet {
+    sampler::build(spec).unwrap().generate(n, d, Seed(seed)).unwrap()
+}
+
+fn fixture(name: &str) -> String {
+    format!("{}/tests/fixtures/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn json() -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(fixture("qmc_constructions.json")).unwrap()).unwrap()
+}
+
+fn rows(v: &serde_json::Value) -> Vec<Vec<f64>> {
+    v.as_array().unwrap().iter().map(|r| r.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()).collect()
+}
+
+fn sorted(mut points: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+    points.sort_by(|a, b| {
+        a.iter().zip(b).map(|(x, y)| x.total_cmp(y)).find(|o| o.is_ne()).unwrap_or(std::cmp::Ordering::Equal)
+    });
+    points
+}
+
+fn points(p: &PointSet) -> Vec<Vec<f64>> {
+    p.iter().map(<[f64]>::to_vec).collect()
+}
+
+fn assert_close(ours: &[Vec<f64>], theirs: &[Vec<f64>], tol: f64, what: &str) {
+    assert_eq!(ours.len(), theirs.len(), "{what}");
+    for (i, (a, b)) in ours.iter().zip(theirs).enumerate() {
+        for (x, y) in a.iter().zip(b) {
+            assert!((x - y).abs() <= tol, "{what}: point {i}: {a:?} against {b:?}");
+        }
+    }
+}
+
+/// Every elementary interval of volume b^(t-m) (every split of m - t digits among the
+/// dimensions) holds exactly b^t of the b^m points: the (t, m, s)-net property.
+fn assert_net(p: &PointSet, base: usize, m: u32, t: u32, what: &str) {
+    let s = p.dims();
+    assert_eq!(p.len(), base.pow(m), "{what}");
+    let k = (m - t) as usize;
+    let mut split = vec![0usize; s];
+    split[s - 1] = k;
+    loop {
+        let mut count = vec![0usize; base.pow(k as u32)];
+        for x in p.iter() {
+            let cell = x.iter().zip(&split).fold(0, |acc, (&c, &kj)| {
+                let cells = base.pow(kj as u32);
+                // a hair over the point: unscrambled coordinates are rounded rationals
+                acc * cells + ((c * cells as f64 + 1e-9) as usize).min(cells - 1)
+            });
+            count[cell] += 1;
+        }
+        assert!(count.iter().all(|&c| c == base.pow(t)), "{what}: m = {m}, split {split:?} is not stratified");
+        // next composition of k into s parts
+        let Some(j) = (0..s - 1).rev().find(|&j| split[j + 1..].iter().sum::<usize>() > 0) else { break };
+        let rest: usize = split[j + 1..].iter().sum();
+        split[j] += 1;
+        split[j + 1..].iter_mut().for_each(|x| *x = 0);
+        split[s - 1] = rest - 1;
+    }
+}
+
+const VARIANTS: [&str; 4] = ["", ".xor", ".lms", ".owen"];
+
+#[test]
+fn faure_is_a_zero_net_in_its_base_scrambled_or_not() {
+    for (d, base, ms) in [(3usize, 3usize, 1..=7u32), (5, 5, 1..=5), (2, 2, 1..=11)] {
+        for v in VARIANTS {
+            let spec = format!("faure{v}");
+            for m in ms.clone() {
+                assert_net(&set(&spec, base.pow(m), d, 7), base, m, 0, &spec);
+            }
+        }
+    }
+    // a (0, s)-sequence: the second block of 5^4 points is a net too
+    let all = set("faure", 2 * 625, 5, 1);
+    let block = PointSet::new(5, all.as_slice()[625 * 5..].to_vec()).unwrap();
+    assert_net(&block, 5, 4, 0, "faure, points 625..1250");
+}
+
+#[test]
+fn niederreiter_t_is_the_sum_of_the_degrees_minus_one() {
+    // base 2: x, x+1, x^2+x+1, x^3+x+1, x^3+x^2+1 have degrees 1, 1, 2, 3, 3: t = 0, 0, 1, 3, 5
+    for (d, t) in [(2usize, 0u32), (3, 1), (4, 3), (5, 5)] {
+        for v in VARIANTS {
+            let spec = format!("niederreiter{v}");
+            for m in t.max(1)..=12 {
+                assert_net(&set(&spec, 1 << m, d, 3), 2, m, t, &format!("{spec} d = {d}"));
+            }
+        }
+    }
+    // base 3: x, x+1, x+2 and then x^2+1, x^2+x+2 (degree 2): t = 2 in 5 dimensions
+    for v in VARIANTS {
+        let spec = format!("niederreiter{v}:base=3");
+        for m in 2..=7 {
+            assert_net(&set(&spec, 3usize.pow(m), 5, 3), 3, m, 2, &spec);
+        }
+    }
+}
+
+#[test]
+fn nets_from_the_default_matrices_are_sobol() {
+    for m in [4, 10] {
+        let n = 1 << m;
+        assert_eq!(sorted(points(&set("net", n, 6, 1))), sorted(points(&set("sobol", n, 6, 1))), "m = {m}");
+    }
+    for v in VARIANTS {
+        let spec = format!("net{v}");
+        for m in 1..=11 {
+            assert_net(&set(&spec, 1 << m, 2, 5), 2, m, 0, &spec);
+        }
+    }
+}
+
+#[test]
+fn points_equal_qmcpy_and_gsl() {
+    let f = json();
+    for (d, n) in [(3usize, 243usize), (5, 125), (11, 121)] {
+        let theirs = rows(&f["faure"][d.to_string()]);
+        assert_close(&points(&set("faure", n, d, 1)), &theirs, 1e-15, &format!("faure d = {d}"));
+    }
+    let b2 = format!("net:matrices={}", fixture("net_b2.txt"));
+    assert_close(&sorted(points(&set(&b2, 1024, 4, 1))), &sorted(rows(&f["net_b2"])), 1e-15, "base-2 matrices");
+    let b3 = format!("net:matrices={}", fixture("net_b3.txt"));
+    assert_close(&sorted(points(&set(&b3, 729, 3, 1))), &sorted(rows(&f["net_b3"])), 1e-15, "base-3 matrices");
+    // GSL keeps 30 bits and walks in Gray-code order: the same 2^8 points, truncated
+    let ours: Vec<Vec<f64>> = points(&set("niederreiter", 256, 12, 1))
+        .into_iter()
+        .map(|p| p.into_iter().map(|x| (x * 2f64.powi(30)).floor() / 2f64.powi(30)).collect())
+        .collect();
+    assert_close(&sorted(ours), &sorted(rows(&f["niederreiter_gsl_12d_first_256"])), 0.0, "Niederreiter");
+}
+
+#[test]
+fn random_access_equals_the_batch_and_randomizations_are_unbiased() {
+    let b3 = format!("net:matrices={}", fixture("net_b3.txt"));
+    let families = ["faure", "niederreiter", "niederreiter:base=5", "net", b3.as_str()];
+    for family in families {
+        let (name, params) = family.split_once(':').map_or((family, String::new()), |(a, b)| (a, format!(":{b}")));
+        for v in [".xor", ".lms", ".owen", ".shift", ""] {
+            let spec = format!("{name}{v}{params}");
+            let s = sampler::build(&spec).unwrap();
+            let (n, d) = (81, 3);
+            let batch = s.generate(n, d, Seed(11)).unwrap();
+            let access = s.as_sequence().unwrap().access(d, Seed(11)).unwrap();
+            for i in [0, 1, 2, 40, 80] {
+                for j in 0..d {
+                    assert_eq!(access.sample(i as u64, j).unwrap(), batch.point(i)[j], "{spec}: point {i}");
+                }
+            }
+            if v.is_empty() {
+                continue;
+            }
+            // the integral of x y z is 1/8: 400 randomized sets of 81 points, within 4 standard errors
+            let sets = s.plan(n, d).unwrap().generate_sets(Seed(2), 400, &Progress::SILENT).unwrap();
+            let est: Vec<f64> =
+                sets.iter().map(|p| p.iter().map(|q| q[0] * q[1] * q[2]).sum::<f64>() / n as f64).collect();
+            let sum = samplab::stats::Summary::of(&est);
+            assert!((sum.mean - 0.125).abs() < 4.0 * sum.sd / 20.0, "{spec}: {} +- {}", sum.mean, sum.sd / 20.0);
+            assert!(sum.sd > 0.0, "{spec}: not random");
+        }
+    }
+}
+
+#[test]
+fn bad_matrix_files_are_refused_with_their_line() {
+    let dir = std::env::temp_dir().join(format!("samplab-nets-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (text, expected) in [
+        ("2\n2\n4\n", "ends before the digits per column"),
+        ("4 # base\n1\n4\n2\n1 2\n", "not a prime"),
+        ("2\n2\n4\n2\n2 1\n1\n", ":6: 1 columns where the first dimension has 2"),
+        ("2\n1\n4\n2\n2 x\n", ":5: 'x' is not a whole number"),
+        ("2\n1\n4\n2\n2 4\n", ":5: column 4 has more than 2 digits"),
+        ("2\n2\n4\n2\n2 1\n", "1 dimensions where the header announces 2"),
+        ("2\n1\n4\n2\n2 1\n3 1\n", ":6: more than the 1 dimensions"),
+    ] {
+        let path = dir.join("m.txt");
+        std::fs::write(&path, text).unwrap();
+        let e = sampler::build(&format!("net:matrices={}", path.display())).unwrap_err().to_string();
+        assert!(e.contains(expected) && e.contains("m.txt"), "{text:?}: {e}");
+    }
+    let e = sampler::build("net:matrices=/nonexistent/m.txt").unwrap_err().to_string();
+    assert!(e.contains("/nonexistent/m.txt"), "{e}");
+    // a file with 2 columns makes 4 points, no more
+    std::fs::write(dir.join("m.txt"), "2\n1\n4\n2\n2 1\n").unwrap();
+    let s = sampler::build(&format!("net:matrices={}", dir.join("m.txt").display())).unwrap();
+    assert_eq!(points(&s.generate(4, 1, Seed(1)).unwrap()), vec![vec![0.0], vec![0.5], vec![0.25], vec![0.75]]);
+    assert!(s.plan(5, 1).unwrap_err().to_string().contains("at most 4 points"));
+    assert!(s.plan(4, 2).is_err());
+    assert!(s.as_sequence().unwrap().access(1, Seed(1)).unwrap().sample(4, 0).is_err());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
