@@ -49,7 +49,8 @@ with open(os.path.join(here, "scipy_discrepancy.json"), "w") as f:
 # crates/samplab/tests/fixtures/qmc_constructions.json: unrandomized points of QMCPy's
 # Faure and of its digital nets (base 2 and base 3) from the random generating matrices
 # written beside it in the LDData "dnet" format (net_b2.txt, net_b3.txt), and GSL's
-# Niederreiter base-2 sequence (Bratley, Fox & Niederreiter's construction, 30 bits).
+# Niederreiter base-2 sequence (Bratley, Fox & Niederreiter's construction, 30 bits), and
+# QMCPy's lattice in radical-inverse order from the random vector in lattice_vector.txt.
 import subprocess
 import tempfile
 
@@ -85,6 +86,11 @@ with tempfile.TemporaryDirectory() as tmp:
     subprocess.run(["gcc", os.path.join(tmp, "n.c"), "-o", os.path.join(tmp, "n"), "-lgsl", "-lgslcblas", "-lm"], check=True)
     text = subprocess.run([os.path.join(tmp, "n")], check=True, capture_output=True, text=True).stdout
 out["niederreiter_gsl_12d_first_256"] = [[float(x) for x in line.split()] for line in text.splitlines()]
+z = np.concatenate([[1], 2 * rng.integers(0, 512, size=4) + 1]).astype(np.uint64)
+with open(os.path.join(here, "lattice_vector.txt"), "w") as f:
+    f.write("# a random generating vector for samplab's tests (scripts/make_fixtures.py)\n5 # dimensions\n1024 # points\n")
+    f.write("".join("%d\n" % x for x in z))
+out["lattice_radical_inverse"] = qmcpy.Lattice(5, randomize=False, generating_vector=z, m_max=10, order="RADICAL INVERSE")(1024, warn=False).tolist()
 with open(os.path.join(here, "qmc_constructions.json"), "w") as f:
     json.dump(out, f)
     f.write("\n")

@@ -14,6 +14,8 @@ const DETERMINISTIC: &[&str] = &[
     "faure",
     "niederreiter",
     "kronecker",
+    "lattice",
+    "lattice.cbc",
     "lattice.fibonacci",
     "lattice.korobov",
 ];

@@ -3,7 +3,7 @@
 
 use samplab::discrepancy::{self, Limits, Metric};
 use samplab::progress::Progress;
-use samplab::sampler::{self, kronecker};
+use samplab::sampler::{self, cbc, kronecker};
 use samplab::{PointSet, Seed};
 
 fn set(spec: &str, n: usize, d: usize, seed: u64) -> PointSet {
@@ -144,4 +144,102 @@ fn centered_latin_hypercubes_put_one_point_at_the_centre_of_every_slab() {
         }
     }
     assert_ne!(set("lhs.centered", n, d, 1), set("lhs.centered", n, d, 2));
+}
+
+/// The smallest worst-case error over every next component c coprime to n after `prefix`,
+/// by brute force (each lattice's error by its definition).
+fn naive_next(prefix: &[u64], n: usize, decay: f64) -> f64 {
+    let gcd = |mut a: usize, mut b: usize| {
+        while b != 0 {
+            (a, b) = (b, a % b);
+        }
+        a
+    };
+    (1..n)
+        .filter(|&c| gcd(c, n) == 1)
+        .map(|c| {
+            let mut t = prefix.to_vec();
+            t.push(c as u64);
+            cbc::worst_case_error(&t, n, decay)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+#[test]
+fn fast_cbc_finds_the_smallest_error_at_every_component() {
+    for (n, decay) in [(101usize, 2.0), (127, 0.0), (64, 2.0), (256, 1.0), (1024, 2.0), (2, 2.0), (8, 2.0)] {
+        let dims = 5;
+        let z = cbc::construct(n, dims, decay, false).unwrap();
+        assert_eq!(z[0], 1);
+        for s in 2..=dims {
+            let (fast, naive) = (cbc::worst_case_error(&z[..s], n, decay), naive_next(&z[..s - 1], n, decay));
+            assert!((fast - naive).abs() <= 1e-12 * naive.max(1.0), "n = {n}, s = {s}: {fast} against {naive}");
+        }
+        // the lattice sampler uses this vector, and with unit weights the error is Sloan & Joe's P_2
+        if decay == 0.0 {
+            assert!((cbc::worst_case_error(&z, n, 0.0) - samplab::sampler::lattice::p2(&z, n)).abs() < 1e-12);
+        }
+        let p = set(&format!("lattice.cbc:decay={decay}"), n, dims, 1);
+        for (i, q) in p.iter().enumerate().take(50) {
+            for (x, &zj) in q.iter().zip(&z) {
+                assert!((x - (i as u64 * zj % n as u64) as f64 / n as f64).abs() < 1e-15);
+            }
+        }
+    }
+    let e = sampler::build("lattice.cbc").unwrap().plan(100, 2).unwrap_err().to_string();
+    assert!(e.contains("97 and 101"), "{e}");
+}
+
+#[test]
+fn every_power_of_two_prefix_of_the_lattice_sequence_is_a_lattice() {
+    let n = 1 << 10;
+    for spec in ["lattice", "lattice:decay=0"] {
+        let p = set(spec, n, 3, 1);
+        // the last point's coordinates give z mod 2^10 (point 2^9 is phi_2 = 1/2... so read z off
+        // the 2^10 lattice: its point with phi_2(i) = 1/n is i = 2^9)
+        let z: Vec<u64> = p.point(n / 2).iter().map(|&x| (x * n as f64).round() as u64).collect();
+        for k in 1..=10 {
+            let m = 1usize << k;
+            let mut ours: Vec<Vec<u64>> = p
+                .iter()
+                .take(m)
+                .map(|q| q.iter().map(|&x| (x * m as f64).round() as u64 % m as u64).collect())
+                .collect();
+            let mut lattice: Vec<Vec<u64>> =
+                (0..m as u64).map(|i| z.iter().map(|&zj| i * zj % m as u64).collect()).collect();
+            // exact multiples of 1/m
+            assert!(p.iter().take(m).flatten().all(|&x| (x * m as f64).fract() == 0.0), "{spec}: k = {k}");
+            ours.sort();
+            lattice.sort();
+            assert_eq!(ours, lattice, "{spec}: the first {m} points are not the lattice of z mod {m}");
+        }
+    }
+    // the embedded choice keeps every prefix within a small factor of the best lattice of its size
+    let z = cbc::construct(1 << 10, 4, 2.0, true).unwrap();
+    for k in 3..=10usize {
+        let m = 1usize << k;
+        let zk: Vec<u64> = z.iter().map(|&zj| zj % m as u64).collect();
+        let embedded = cbc::worst_case_error(&zk, m, 2.0);
+        let best = cbc::worst_case_error(&cbc::construct(m, 4, 2.0, false).unwrap(), m, 2.0);
+        assert!(embedded <= 2.0 * best, "2^{k}: {embedded} against CBC's {best}");
+    }
+}
+
+#[test]
+fn shifted_lattices_are_unbiased_and_the_tent_transform_folds() {
+    for spec in ["lattice.shift", "lattice.cbc.shift", "lattice.shift:tent=yes", "lattice.cbc.shift:tent=yes"] {
+        let plan = sampler::build(spec).unwrap();
+        let plan = plan.plan(64, 2).unwrap();
+        let sets = plan.generate_sets(Seed(9), 400, &Progress::SILENT).unwrap();
+        let est: Vec<f64> = sets.iter().map(|s| s.iter().map(|p| p[0] * p[1]).sum::<f64>() / 64.0).collect();
+        let s = samplab::stats::Summary::of(&est);
+        assert!((s.mean - 0.25).abs() < 4.0 * s.sd / 20.0 && s.sd > 0.0, "{spec}: {} +- {}", s.mean, s.sd / 20.0);
+    }
+    let plain = set("lattice.cbc", 64, 2, 1);
+    let tent = set("lattice.cbc:tent=yes", 64, 2, 1);
+    for (a, b) in plain.iter().zip(tent.iter()) {
+        for (x, y) in a.iter().zip(b) {
+            assert!((y - (1.0 - (2.0 * x - 1.0).abs()).min(1.0 - f64::EPSILON / 2.0)).abs() < 1e-15);
+        }
+    }
 }

@@ -8,12 +8,21 @@
 //!   weighted Korobov space with alpha = 2 (Sloan & Joe eq. 5.9): P_2(z) = -1 + (1/n)
 //!   sum_i prod_j (1 + 2 pi^2 B_2({i z_j / n})), B_2(x) = x^2 - x + 1/6. The search costs
 //!   n^2 d / 2, so it is offered up to n = 2^14 and its result is remembered per (n, d).
+//! - CBC lattices (`lattice.cbc`): z by the fast component-by-component construction of
+//!   Nuyens & Cools (2006) for product weights, n a prime or a power of 2 ([`super::cbc`]).
+//! - The embedded lattice sequence (`lattice`): point i is frac(phi_2(i) z), phi_2 the
+//!   radical inverse in base 2, so every prefix of 2^k points is the lattice of 2^k points
+//!   (Hickernell, Hong, L'Ecuyer & Lemieux 2000); z from a file (`vector=FILE`) or by the
+//!   embedded fast CBC of Cools, Kuo & Nuyens (2006) for up to 2^20 points.
+//!
+//! The CBC lattice and the sequence take the baker's (tent) transform x -> 1 - |2x - 1|
+//! (Hickernell 2002) after the shift: `tent=yes`.
 
 use std::ops::RangeInclusive;
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 use super::registry::{ANY, SamplerEntry};
-use super::{Fill, Sampler};
+use super::{Access, Fill, Sampler, Sequence, cbc};
 use crate::error::{Error, Result};
 use crate::registry::About;
 use crate::spec::{Default, Kind, ParamSpec};
@@ -157,6 +166,232 @@ impl Fill for Korobov {
     }
 }
 
+/// A CBC lattice for the set's n, optionally shifted and tent-transformed.
+#[derive(Debug, Clone, Copy)]
+pub struct Cbc {
+    decay: f64,
+    shift: bool,
+    tent: bool,
+}
+
+/// Generating vectors made so far, by (n, dims, decay bits, embedded): the construction is
+/// deterministic, so remembering it only saves time.
+#[allow(clippy::type_complexity)]
+static CONSTRUCTED: Mutex<Vec<((usize, usize, u64, bool), Arc<Vec<u64>>)>> = Mutex::new(Vec::new());
+
+/// `cbc::construct`, remembered.
+fn constructed(n: usize, dims: usize, decay: f64, embedded: bool) -> Result<Arc<Vec<u64>>> {
+    let key = (n, dims, decay.to_bits(), embedded);
+    let lock = || CONSTRUCTED.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let Some((_, z)) = lock().iter().find(|(k, _)| *k == key) {
+        return Ok(Arc::clone(z));
+    }
+    let z = Arc::new(cbc::construct(n, dims, decay, embedded)?);
+    lock().push((key, Arc::clone(&z)));
+    Ok(z)
+}
+
+/// The name of a lattice variant with its parameters, for specs.
+fn lattice_spec(name: &str, shift: bool, params: &[String]) -> String {
+    let name = if shift { format!("{name}.shift") } else { name.to_string() };
+    let params: Vec<&String> = params.iter().filter(|p| !p.is_empty()).collect();
+    if params.is_empty() {
+        return name;
+    }
+    format!("{name}:{}", params.iter().map(|p| p.as_str()).collect::<Vec<_>>().join(","))
+}
+
+fn decay_text(decay: f64) -> String {
+    if decay == 2.0 { String::new() } else { format!("decay={decay}") }
+}
+
+fn tent_text(tent: bool) -> String {
+    if tent { "tent=yes".into() } else { String::new() }
+}
+
+impl Sampler for Cbc {
+    fn spec(&self) -> String {
+        lattice_spec("lattice.cbc", self.shift, &[decay_text(self.decay), tent_text(self.tent)])
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        1..=usize::MAX
+    }
+}
+
+impl Fill for Cbc {
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        if cbc::supports(n) {
+            return Ok(());
+        }
+        let (below, above) = cbc::neighbours(n);
+        Err(Error::InvalidCount {
+            sampler: self.spec(),
+            n,
+            dims,
+            reason: match above {
+                Some(a) => format!("the fast CBC needs n a prime or a power of 2: try {below} and {a}"),
+                None => format!("the fast CBC takes n up to 2^24: try {below}"),
+            },
+        })
+    }
+
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let z = constructed(n, dims, self.decay, false)?;
+        let offsets = Offsets::new(dims, self.shift, self.tent, seed);
+        for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+            for (d, (x, &zj)) in p.iter_mut().zip(z.iter()).enumerate() {
+                // (i z mod n) / n as a 64-bit binary fraction, exact to its last bit
+                let frac = ((i as u128 * u128::from(zj) % n as u128) << 64) / n as u128;
+                *x = offsets.value(frac as u64, d);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A lattice's per-dimension shifts (64-bit fixed point) and its tent option.
+#[derive(Debug)]
+struct Offsets {
+    shifts: Vec<u64>,
+    tent: bool,
+}
+
+impl Offsets {
+    fn new(dims: usize, shift: bool, tent: bool, seed: Seed) -> Offsets {
+        let mut rng = seed.rng();
+        Offsets { shifts: (0..dims).map(|_| if shift { rand_core::Rng::next_u64(&mut rng) } else { 0 }).collect(), tent }
+    }
+
+    /// The coordinate of the fixed-point fraction `x` in dimension `d`: shifted mod 1
+    /// (exactly, in fixed point), then tent-transformed.
+    #[inline]
+    fn value(&self, x: u64, d: usize) -> f64 {
+        let x = (x.wrapping_add(self.shifts[d]) >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
+        if self.tent { (1.0 - (2.0 * x - 1.0).abs()).min(super::grid::BELOW_ONE) } else { x }
+    }
+}
+
+/// The embedded lattice sequence, its vector from a file or constructed.
+#[derive(Debug, Clone)]
+pub struct Embedded {
+    vector: Vector,
+    shift: bool,
+    tent: bool,
+}
+
+/// Where an embedded sequence's generating vector comes from.
+#[derive(Debug, Clone)]
+enum Vector {
+    /// The embedded fast CBC for 2^20 points with weights j^-decay.
+    Constructed(f64),
+    /// Read from a file: its path, the vector and the largest point count it was made for.
+    File(String, Arc<Vec<u64>>, u64),
+}
+
+/// log2 of the point count the constructed vectors are made for.
+const EMBEDDED_M: u32 = 20;
+
+impl Embedded {
+    fn vector(&self, dims: usize) -> Result<Arc<Vec<u64>>> {
+        match &self.vector {
+            Vector::Constructed(decay) => constructed(1 << EMBEDDED_M, dims, *decay, true),
+            Vector::File(_, z, _) => Ok(Arc::clone(z)),
+        }
+    }
+
+    fn prepare(&self, dims: usize, seed: Seed) -> Result<Prepared> {
+        let z = self.vector(dims)?;
+        // z / n as a 64-bit binary fraction: exact for n a power of 2
+        let n = match &self.vector {
+            Vector::Constructed(_) => 1u64 << EMBEDDED_M,
+            Vector::File(_, _, n) => *n,
+        };
+        let steps = z.iter().take(dims).map(|&zj| ((u128::from(zj) << 64) / u128::from(n)) as u64).collect();
+        Ok(Prepared { steps, offsets: Offsets::new(dims, self.shift, self.tent, seed) })
+    }
+}
+
+/// A prepared embedded sequence: z_j / n in fixed point and the offsets.
+#[derive(Debug)]
+struct Prepared {
+    steps: Vec<u64>,
+    offsets: Offsets,
+}
+
+impl Access for Prepared {
+    fn sample(&self, index: u64, dim: usize) -> Result<f64> {
+        // phi_2(i) z / n mod 1, in 64-bit fixed point: phi_2(i) 2^64 is i's bits reversed
+        Ok(self.offsets.value(index.reverse_bits().wrapping_mul(self.steps[dim]), dim))
+    }
+}
+
+impl Sampler for Embedded {
+    fn spec(&self) -> String {
+        let source = match &self.vector {
+            Vector::Constructed(decay) => decay_text(*decay),
+            Vector::File(path, ..) => format!("vector={path}"),
+        };
+        lattice_spec("lattice", self.shift, &[source, tent_text(self.tent)])
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        match &self.vector {
+            Vector::Constructed(_) => 1..=usize::MAX,
+            Vector::File(_, z, _) => 1..=z.len(),
+        }
+    }
+    fn as_sequence(&self) -> Option<&dyn Sequence> {
+        Some(self)
+    }
+}
+
+impl Fill for Embedded {
+    fn fill(&self, _n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let prepared = self.prepare(dims, seed)?;
+        for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+            for (d, x) in p.iter_mut().enumerate() {
+                *x = prepared.sample(i as u64, d)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Sequence for Embedded {
+    fn access(&self, dims: usize, seed: Seed) -> Result<Box<dyn Access + '_>> {
+        (self as &dyn Sampler).plan(1, dims)?;
+        Ok(Box::new(self.prepare(dims, seed)?))
+    }
+}
+
+/// Read a generating vector in the LDData lattice format: `#` comments; the dimensions s
+/// and the largest point count n (a power of 2), one per line; then z_1 .. z_s, one per line.
+///
+/// # Errors
+/// A malformed file, with its line.
+pub fn parse_vector(text: &str, source: &str) -> Result<(Vec<u64>, u64)> {
+    let bad = |line: usize, reason: String| Error::Parse { location: format!("{source}:{line}"), reason };
+    let mut numbers = Vec::new();
+    for (line, l) in text.lines().enumerate().map(|(i, l)| (i + 1, l.split('#').next().unwrap_or("").trim())) {
+        if !l.is_empty() {
+            numbers.push((line, l.parse::<u64>().map_err(|_| bad(line, format!("'{l}' is not a whole number")))?));
+        }
+    }
+    let [(_, dims), (line, n), ..] = numbers[..] else {
+        return Err(bad(0, "the file ends before its dimensions and point count".into()));
+    };
+    if !n.is_power_of_two() {
+        return Err(bad(line, format!("the point count {n} is not a power of 2")));
+    }
+    let z: Vec<u64> = numbers[2..].iter().map(|&(_, z)| z).collect();
+    if z.len() as u64 != dims || dims == 0 {
+        return Err(bad(0, format!("{} components where the header announces {dims}", z.len())));
+    }
+    if let Some(&(line, zj)) = numbers[2..].iter().find(|(_, zj)| *zj >= n) {
+        return Err(bad(line, format!("component {zj} is not below the point count {n}")));
+    }
+    Ok((z, n))
+}
+
 /// x in [0, 2) taken mod 1.
 fn wrap(x: f64) -> f64 {
     if x >= 1.0 { x - 1.0 } else { x }
@@ -170,8 +405,84 @@ const A: ParamSpec = ParamSpec {
     doc: "generator: z = (1, a, a^2, ...) mod n",
 };
 
+/// The product weights' decay of the CBC constructions.
+const DECAY: ParamSpec = ParamSpec {
+    name: "decay",
+    kind: Kind::Real { min: 0.0, max: 16.0 },
+    default: Default::Number(2.0),
+    doc: "product weights gamma_j = j^-decay of the worst-case error the construction minimizes",
+};
+
+/// The baker's transform option.
+const TENT: ParamSpec = ParamSpec {
+    name: "tent",
+    kind: Kind::Choice(&["no", "yes"]),
+    default: Default::Word("no"),
+    doc: "apply the baker's (tent) transform 1 - |2x - 1| after the shift",
+};
+
+/// The embedded sequence's vector file.
+const VECTOR: ParamSpec = ParamSpec {
+    name: "vector",
+    kind: Kind::Path,
+    default: Default::Auto("the embedded fast CBC for 2^20 points (weights j^-decay)"),
+    doc: "a generating vector in the LDData lattice format (README: Lattices)",
+};
+
+fn cbc_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Sampler>> {
+    Ok(Box::new(Cbc { decay: p.real("decay"), shift, tent: p.word("tent") == "yes" }))
+}
+
+fn embedded_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Sampler>> {
+    let vector = match p.path_or_auto("vector") {
+        Some(path) => {
+            let text = std::fs::read_to_string(path).map_err(|e| Error::Io { path: path.into(), reason: e.to_string() })?;
+            let (z, n) = parse_vector(&text, path)?;
+            Vector::File(path.into(), Arc::new(z), n)
+        }
+        None => Vector::Constructed(p.real("decay")),
+    };
+    Ok(Box::new(Embedded { vector, shift, tent: p.word("tent") == "yes" }))
+}
+
 /// The samplers this file registers.
 pub(crate) static ENTRIES: &[SamplerEntry] = &[
+    SamplerEntry {
+        about: About::new("lattice", "embedded rank-1 lattice sequence, frac(phi_2(i) z), nets of 2^k points")
+            .aliases(&["rank1", "lattice-sequence"])
+            .params(&[VECTOR, DECAY, TENT])
+            .cite(&["hickernell2000", "cools2006", "hickernell2002"]),
+        counts: "any n (lattices at powers of 2)",
+        dims: "any d (a file's: its dimensions)",
+        build: |p| embedded_sampler(p, false),
+    },
+    SamplerEntry {
+        about: About::new("lattice.shift", "the embedded lattice sequence with a random shift mod 1")
+            .aliases(&["lattice-shift"])
+            .params(&[VECTOR, DECAY, TENT])
+            .cite(&["hickernell2000", "cools2006", "cranley1976"]),
+        counts: "any n (lattices at powers of 2)",
+        dims: "any d (a file's: its dimensions)",
+        build: |p| embedded_sampler(p, true),
+    },
+    SamplerEntry {
+        about: About::new("lattice.cbc", "rank-1 lattice, z by fast component-by-component construction")
+            .aliases(&["cbc"])
+            .params(&[DECAY, TENT])
+            .cite(&["nuyens2006", "sloan1994", "hickernell2002"]),
+        counts: "n a prime or a power of 2, up to 2^24",
+        dims: "any d",
+        build: |p| cbc_sampler(p, false),
+    },
+    SamplerEntry {
+        about: About::new("lattice.cbc.shift", "the CBC lattice with a random shift mod 1")
+            .aliases(&["cbc-shift"])
+            .params(&[DECAY, TENT])
+            .cite(&["nuyens2006", "sloan1994", "cranley1976"]),
+        counts: "n a prime or a power of 2, up to 2^24",
+        dims: "any d",
+        build: |p| cbc_sampler(p, true),
+    },
     SamplerEntry {
         about: About::new("lattice.fibonacci", "Fibonacci lattice (i/n, frac(i F_(m-1)/n)), n = F_m")
             .aliases(&["fibonacci"])

@@ -34,6 +34,7 @@ use crate::points::PointSet;
 use crate::progress::Progress;
 use crate::seed::Seed;
 
+pub mod cbc;
 pub mod registry;
 pub mod scramble;
 
