@@ -40,7 +40,9 @@ bib! {
     niederreiter1988 => "H. Niederreiter. Low-discrepancy and low-dispersion sequences. J. Number Theory 30, 1988.",
     niederreiter1992 => "H. Niederreiter. Random Number Generation and Quasi-Monte Carlo Methods. SIAM, 1992.",
     nuyens2006 => "D. Nuyens, R. Cools. Fast algorithms for component-by-component construction of rank-1 lattice rules in shift-invariant reproducing kernel Hilbert spaces. Math. Comp. 75, 2006.",
+    owen1992 => "A. B. Owen. Orthogonal arrays for computer experiments, integration and visualization. Statistica Sinica 2, 1992.",
     owen1995 => "A. B. Owen. Randomly permuted (t,m,s)-nets and (t,s)-sequences. Monte Carlo and Quasi-Monte Carlo Methods, 1995.",
+    petersen1962 => "D. P. Petersen, D. Middleton. Sampling and reconstruction of wave-number-limited functions in N-dimensional Euclidean spaces. Information and Control 5, 1962.",
     purgathofer1994 => "W. Purgathofer, R. Tobler, M. Geiler. Forced random dithering: improved threshold matrices for ordered dithering. ICIP 1994.",
     ramamoorthi2012 => "R. Ramamoorthi, J. Anderson, M. Meyer, D. Nowrouzezahrai. A theory of Monte Carlo visibility sampling. ACM TOG 31(5), 2012.",
     roberts2018 => "M. Roberts. The unreasonable effectiveness of quasirandom sequences. extremelearning.com.au, 2018 (the generalized golden ratio R_d).",
@@ -50,6 +52,7 @@ bib! {
     sloan1994 => "I. H. Sloan, S. Joe. Lattice Methods for Multiple Integration. Oxford University Press, 1994.",
     sobol1967 => "I. M. Sobol'. On the distribution of points in a cube and the approximate evaluation of integrals. USSR Comput. Math. Math. Phys. 7(4), 1967.",
     subr2013 => "K. Subr, J. Kautz. Fourier analysis of stochastic sampling strategies for assessing bias and variance in integration. ACM TOG 32(4), 2013.",
+    tang1993 => "B. Tang. Orthogonal array-based Latin hypercubes. J. Amer. Statist. Assoc. 88(424), 1993.",
     vegdahl2021 => "N. Vegdahl. Building a better LK hash. psychopath.io blog, 2021 (constants of the Owen hash).",
     weyl1916 => "H. Weyl. Über die Gleichverteilung von Zahlen mod. Eins. Math. Ann. 77, 1916.",
 }

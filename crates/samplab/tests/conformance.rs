@@ -25,6 +25,8 @@ fn count_for(name: &str, d: usize) -> usize {
     match name {
         n if n.starts_with("jitter") || n.starts_with("regular") => 4usize.pow(d as u32),
         "poisson.maximal" => 40,
+        "lhs.oa" => 49,
+        "hexagonal" => 56,
         n if n.starts_with("lattice.fibonacci") => 55,
         _ => 64,
     }

@@ -243,3 +243,51 @@ fn shifted_lattices_are_unbiased_and_the_tent_transform_folds() {
         }
     }
 }
+
+#[test]
+fn orthogonal_array_latin_hypercubes_have_strength_two() {
+    for (p, d) in [(5usize, 6usize), (7, 4), (11, 12), (3, 2)] {
+        let n = p * p;
+        for seed in 1..4 {
+            let pts = set("lhs.oa", n, d, seed);
+            for a in 0..d {
+                // a Latin hypercube in every axis
+                let mut slabs: Vec<usize> = pts.iter().map(|q| (q[a] * n as f64) as usize).collect();
+                slabs.sort_unstable();
+                assert_eq!(slabs, (0..n).collect::<Vec<_>>(), "p = {p}, axis {a}");
+                // one point per cell of the p x p grid in every 2D projection
+                for b in a + 1..d {
+                    let mut cells: Vec<usize> =
+                        pts.iter().map(|q| (q[a] * p as f64) as usize * p + (q[b] * p as f64) as usize).collect();
+                    cells.sort_unstable();
+                    assert_eq!(cells, (0..n).collect::<Vec<_>>(), "p = {p}, axes {a} and {b}");
+                }
+            }
+        }
+    }
+    let e = sampler::build("lhs.oa").unwrap().plan(50, 3).unwrap_err().to_string();
+    assert!(e.contains("49 and 121"), "{e}");
+    assert!(sampler::build("lhs.oa").unwrap().plan(25, 7).is_err());
+}
+
+#[test]
+fn the_hexagonal_lattice_gives_every_point_six_equidistant_neighbours() {
+    let k = 16usize;
+    let r = 2 * (k as f64 / 3f64.sqrt()).round() as usize;
+    let n = k * r;
+    let p = set("hexagonal", n, 2, 3);
+    let torus = |a: &[f64], b: &[f64]| {
+        let d = |x: f64, y: f64| (x - y).abs().min(1.0 - (x - y).abs());
+        d(a[0], b[0]).hypot(d(a[1], b[1]))
+    };
+    for a in p.iter() {
+        let mut dist: Vec<f64> = p.iter().map(|b| torus(a, b)).filter(|&x| x > 0.0).collect();
+        dist.sort_by(f64::total_cmp);
+        // six neighbours at 1/k (within the rounding of the row count), the seventh farther
+        let h = 1.0 / k as f64;
+        assert!(dist[..6].iter().all(|&x| (x - h).abs() < 0.05 * h), "{:?}", &dist[..7]);
+        assert!(dist[6] > 1.5 * h);
+    }
+    let e = sampler::build("hexagonal").unwrap().plan(100, 2).unwrap_err().to_string();
+    assert!(e.contains("90 and 120"), "{e}");
+}

@@ -235,6 +235,65 @@ impl Fill for RotatedGrid {
     }
 }
 
+/// A hexagonal (triangular) lattice on the torus with a uniformly random offset: k points
+/// per row at spacing 1/k, r = 2 round(k / sqrt 3) rows (even, so the half-spacing shift of
+/// odd rows wraps), which makes the rows' spacing 1/r the closest to the ideal sqrt(3) / (2k)
+/// that tiles the torus. n = k r. 2D.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Hexagonal;
+
+/// The rows of the hexagonal lattice with k points per row.
+fn hex_rows(k: usize) -> usize {
+    2 * ((k as f64 / 3f64.sqrt()).round() as usize).max(1)
+}
+
+/// The counts k r(k) the hexagonal lattice makes, in increasing order.
+fn hex_counts() -> impl Iterator<Item = (usize, usize)> {
+    (1..).map(|k| (k * hex_rows(k), k)).take_while(|&(n, _)| n <= super::MAX_POINTS)
+}
+
+impl Sampler for Hexagonal {
+    fn spec(&self) -> String {
+        "hexagonal".into()
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        2..=2
+    }
+}
+
+impl Fill for Hexagonal {
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        if hex_counts().any(|(c, _)| c == n) {
+            return Ok(());
+        }
+        let below = hex_counts().map(|(c, _)| c).take_while(|&c| c < n).last();
+        let above = hex_counts().map(|(c, _)| c).find(|&c| c > n).unwrap_or(n);
+        Err(Error::InvalidCount {
+            sampler: self.spec(),
+            n,
+            dims,
+            reason: match below {
+                Some(b) => format!("n must be k x 2 round(k / sqrt 3), k points per row: try {b} and {above}"),
+                None => format!("n must be k x 2 round(k / sqrt 3): try {above}"),
+            },
+        })
+    }
+
+    fn fill(&self, n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let (_, k) = hex_counts().find(|&(c, _)| c == n).expect("a checked count");
+        let r = hex_rows(k);
+        let mut rng = seed.rng();
+        let (ox, oy) = (uniform(&mut rng), uniform(&mut rng));
+        for (i, p) in out.chunks_exact_mut(2).enumerate() {
+            let (row, col) = (i / k, i % k);
+            let half = if row % 2 == 1 { 0.5 } else { 0.0 };
+            p[0] = wrap01((col as f64 + half + ox) / k as f64);
+            p[1] = wrap01((row as f64 + oy) / r as f64);
+        }
+        Ok(())
+    }
+}
+
 /// A grid entry: counts k^d, dimensions 1..=64.
 const fn grid_entry(about: About, build: fn(&crate::spec::Params) -> Result<Box<dyn Sampler>>) -> SamplerEntry {
     SamplerEntry { about, counts: GRID, dims: "1..=64", build }
@@ -260,6 +319,14 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         counts: GRID,
         dims: "2",
         build: |_| Ok(Box::new(RotatedGrid)),
+    },
+    SamplerEntry {
+        about: About::new("hexagonal", "hexagonal lattice on the torus, random offset")
+            .aliases(&["hex", "triangular"])
+            .cite(&["petersen1962"]),
+        counts: "n = k x 2 round(k / sqrt 3): 2, 4, 12, 16, 30, 36, 56, 80, ...",
+        dims: "2",
+        build: |_| Ok(Box::new(Hexagonal)),
     },
     grid_entry(
         About::new("jitter", "one uniform point per grid cell")

@@ -5,7 +5,7 @@ use std::ops::RangeInclusive;
 
 use super::registry::{ANY, SamplerEntry};
 use super::{Fill, Sampler};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::registry::About;
 use crate::seed::{Seed, below, uniform};
 
@@ -54,6 +54,84 @@ impl Fill for NRooks {
     }
 }
 
+/// Latin hypercubes of strength 2 from orthogonal arrays (Owen 1992; Tang 1993): Bose's
+/// OA(p^2, p + 1, p, 2) (p prime; row (a, b) has columns b, a, a + b, a + 2b, ..., a +
+/// (p - 1) b mod p), its symbols relabelled by a random permutation per column, then each
+/// symbol v's p occurrences in a column replaced by a random permutation of v p .. v p + p - 1
+/// and jittered uniformly within their slab. n = p^2 points in d <= p + 1 dimensions: every
+/// 1D projection is a Latin hypercube, and every 2D projection has one point in each cell
+/// of the p x p grid.
+#[derive(Debug, Clone, Copy)]
+pub struct OaLhs;
+
+impl Sampler for OaLhs {
+    fn spec(&self) -> String {
+        "lhs.oa".into()
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        1..=usize::MAX
+    }
+}
+
+fn is_prime(p: usize) -> bool {
+    p >= 2 && (2..).take_while(|k| k * k <= p).all(|k| !p.is_multiple_of(k))
+}
+
+impl Fill for OaLhs {
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        let p = (n as f64).sqrt().round() as usize;
+        if p * p == n && is_prime(p) && dims <= p + 1 {
+            return Ok(());
+        }
+        // the nearest squares of primes p with d <= p + 1
+        let fits = |p: &usize| is_prime(*p) && dims <= p + 1;
+        let below = (2..=p.max(2)).rev().filter(fits).map(|p| p * p).find(|&q| q < n);
+        let above = (2..).filter(fits).map(|p| p * p).find(|&q| q > n).unwrap_or(n);
+        Err(Error::InvalidCount {
+            sampler: self.spec(),
+            n,
+            dims,
+            reason: match below {
+                Some(b) => format!("n must be p^2 for a prime p >= d - 1: try {b} and {above}"),
+                None => format!("n must be p^2 for a prime p >= d - 1: try {above}"),
+            },
+        })
+    }
+
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let p = (n as f64).sqrt().round() as usize;
+        let mut rng = seed.rng();
+        let shuffle = |v: &mut Vec<usize>, rng: &mut crate::seed::Rng| {
+            for i in (1..v.len()).rev() {
+                v.swap(i, below(rng, i as u64 + 1) as usize);
+            }
+        };
+        for d in 0..dims {
+            let mut relabel: Vec<usize> = (0..p).collect();
+            shuffle(&mut relabel, &mut rng);
+            // slabs v p .. v p + p - 1, in a random order per symbol
+            let mut slabs: Vec<Vec<usize>> = (0..p)
+                .map(|v| {
+                    let mut s: Vec<usize> = (v * p..(v + 1) * p).collect();
+                    shuffle(&mut s, &mut rng);
+                    s
+                })
+                .collect();
+            for i in 0..n {
+                let (a, b) = (i / p, i % p);
+                let symbol = match d {
+                    0 => b,
+                    1 => a,
+                    d => (a + (d - 1) * b) % p,
+                };
+                let slab = slabs[relabel[symbol]].pop().expect("each symbol occurs p times");
+                out[i * dims + d] = ((slab as f64 + uniform(&mut rng)) / n as f64).min(super::grid::BELOW_ONE);
+            }
+        }
+        Ok(())
+    }
+}
+
 /// The samplers this file registers.
 pub(crate) static ENTRIES: &[SamplerEntry] = &[
     SamplerEntry {
@@ -71,5 +149,13 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         counts: ANY,
         dims: "any d",
         build: |_| Ok(Box::new(NRooks { centered: true })),
+    },
+    SamplerEntry {
+        about: About::new("lhs.oa", "Latin hypercube of strength 2 from Bose's orthogonal array")
+            .aliases(&["oa-lhs"])
+            .cite(&["owen1992", "tang1993"]),
+        counts: "n = p^2, p a prime >= d - 1",
+        dims: "d <= p + 1",
+        build: |_| Ok(Box::new(OaLhs)),
     },
 ];
