@@ -65,12 +65,6 @@ fn is_prime(n: usize) -> bool {
     n >= 2 && (2..).take_while(|k| k * k <= n).all(|k| !n.is_multiple_of(k))
 }
 
-/// The nearest counts below and above n that the fast construction takes.
-pub fn neighbours(n: usize) -> (usize, Option<usize>) {
-    let below = (1..n).rev().find(|&k| supports(k)).unwrap_or(1);
-    (below, (n + 1..=MAX_N).find(|&k| supports(k)))
-}
-
 /// One level of the search: indices `index[t]` of q (two per group element for n = 2^m,
 /// one for a prime), and omega at the group's powers, `w[t] = omega(g^t mod n' / n')`.
 struct Level {

@@ -248,7 +248,7 @@ fn hex_rows(k: usize) -> usize {
 }
 
 /// The counts k r(k) the hexagonal lattice makes, in increasing order.
-fn hex_counts() -> impl Iterator<Item = (usize, usize)> {
+fn hex_counts() -> impl Iterator<Item = (usize, usize)> + Clone {
     (1..).map(|k| (k * hex_rows(k), k)).take_while(|&(n, _)| n <= super::MAX_POINTS)
 }
 
@@ -263,20 +263,8 @@ impl Sampler for Hexagonal {
 
 impl Fill for Hexagonal {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        if hex_counts().any(|(c, _)| c == n) {
-            return Ok(());
-        }
-        let below = hex_counts().map(|(c, _)| c).take_while(|&c| c < n).last();
-        let above = hex_counts().map(|(c, _)| c).find(|&c| c > n).unwrap_or(n);
-        Err(Error::InvalidCount {
-            sampler: self.spec(),
-            n,
-            dims,
-            reason: match below {
-                Some(b) => format!("n must be k x 2 round(k / sqrt 3), k points per row: try {b} and {above}"),
-                None => format!("n must be k x 2 round(k / sqrt 3): try {above}"),
-            },
-        })
+        let rule = "n must be k x 2 round(k / sqrt 3), k points per row";
+        super::check_listed(self.spec(), n, dims, rule, hex_counts().map(|(c, _)| c))
     }
 
     fn fill(&self, n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {

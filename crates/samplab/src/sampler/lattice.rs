@@ -35,7 +35,7 @@ pub struct Fibonacci {
 }
 
 /// The Fibonacci numbers 1, 2, 3, 5, 8, ... up to 2^32, each with its predecessor.
-fn fibonacci() -> impl Iterator<Item = (usize, usize)> {
+fn fibonacci() -> impl Iterator<Item = (usize, usize)> + Clone {
     std::iter::successors(Some((1usize, 1usize)), |&(f, g)| Some((f + g, f))).take_while(|&(f, _)| f <= 1 << 32)
 }
 
@@ -50,20 +50,7 @@ impl Sampler for Fibonacci {
 
 impl Fill for Fibonacci {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        if fibonacci().any(|(f, _)| f == n) {
-            return Ok(());
-        }
-        let below = fibonacci().map(|(f, _)| f).take_while(|&f| f < n).last().unwrap_or(1);
-        let above = fibonacci().map(|(f, _)| f).find(|&f| f > n);
-        Err(Error::InvalidCount {
-            sampler: self.spec(),
-            n,
-            dims,
-            reason: match above {
-                Some(a) => format!("n must be a Fibonacci number: try {below} and {a}"),
-                None => format!("n must be a Fibonacci number up to 2^32: try {below}"),
-            },
-        })
+        super::check_listed(self.spec(), n, dims, "n must be a Fibonacci number", fibonacci().map(|(f, _)| f))
     }
 
     fn fill(&self, n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
@@ -223,16 +210,9 @@ impl Fill for Cbc {
         if cbc::supports(n) {
             return Ok(());
         }
-        let (below, above) = cbc::neighbours(n);
-        Err(Error::InvalidCount {
-            sampler: self.spec(),
-            n,
-            dims,
-            reason: match above {
-                Some(a) => format!("the fast CBC needs n a prime or a power of 2: try {below} and {a}"),
-                None => format!("the fast CBC takes n up to 2^24: try {below}"),
-            },
-        })
+        // the nearest valid counts lie within a prime gap (< 200 below 2^24) of n
+        let near = (n.min(cbc::MAX_N + 1).saturating_sub(1000)..=cbc::MAX_N).filter(|&k| cbc::supports(k));
+        super::check_listed(self.spec(), n, dims, "the fast CBC needs n a prime or a power of 2 up to 2^24", near)
     }
 
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {

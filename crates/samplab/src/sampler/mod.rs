@@ -324,6 +324,28 @@ pub fn generate_sets(sampler: &dyn Sampler, n: usize, dims: usize, seed: Seed, m
     sampler.plan(n, dims)?.generate_sets(seed, m, &Progress::SILENT)
 }
 
+/// Ok when `n` is one of `counts` (increasing), else the error naming the rule and the
+/// nearest counts below and above n.
+pub(crate) fn check_listed(
+    sampler: String,
+    n: usize,
+    dims: usize,
+    rule: &str,
+    counts: impl Iterator<Item = usize> + Clone,
+) -> Result<()> {
+    if counts.clone().take_while(|&c| c <= n).any(|c| c == n) {
+        return Ok(());
+    }
+    let below = counts.clone().take_while(|&c| c < n).last();
+    let above = counts.take_while(|&c| c <= MAX_POINTS).find(|&c| c > n);
+    let near = match (below, above) {
+        (Some(b), Some(a)) => format!("try {b} and {a}"),
+        (Some(c), None) | (None, Some(c)) => format!("try {c}"),
+        (None, None) => "no count fits".into(),
+    };
+    Err(Error::InvalidCount { sampler, n, dims, reason: format!("{rule}: {near}") })
+}
+
 /// The integer k with k^d == n, if there is one; otherwise the two nearest valid counts.
 pub(crate) fn exact_root(n: usize, dims: usize) -> std::result::Result<usize, (usize, usize)> {
     let guess = (n as f64).powf(1.0 / dims as f64).round() as usize;

@@ -5,7 +5,7 @@ use std::ops::RangeInclusive;
 
 use super::registry::{ANY, SamplerEntry};
 use super::{Fill, Sampler};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::registry::About;
 use crate::seed::{Seed, below, uniform};
 
@@ -79,23 +79,8 @@ fn is_prime(p: usize) -> bool {
 
 impl Fill for OaLhs {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        let p = (n as f64).sqrt().round() as usize;
-        if p * p == n && is_prime(p) && dims <= p + 1 {
-            return Ok(());
-        }
-        // the nearest squares of primes p with d <= p + 1
-        let fits = |p: &usize| is_prime(*p) && dims <= p + 1;
-        let below = (2..=p.max(2)).rev().filter(fits).map(|p| p * p).find(|&q| q < n);
-        let above = (2..).filter(fits).map(|p| p * p).find(|&q| q > n).unwrap_or(n);
-        Err(Error::InvalidCount {
-            sampler: self.spec(),
-            n,
-            dims,
-            reason: match below {
-                Some(b) => format!("n must be p^2 for a prime p >= d - 1: try {b} and {above}"),
-                None => format!("n must be p^2 for a prime p >= d - 1: try {above}"),
-            },
-        })
+        let squares = (2..).filter(move |&p| is_prime(p) && dims <= p + 1).map(|p| p * p);
+        super::check_listed(self.spec(), n, dims, "n must be p^2 for a prime p >= d - 1", squares)
     }
 
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
