@@ -49,7 +49,7 @@ def _count_for(name, d):
         return 4**d
     if name.startswith("lattice.fibonacci"):
         return 55
-    return 40 if name == "poisson.maximal" else 64
+    return {"poisson.maximal": 40, "lhs.oa": 49, "hexagonal": 56}.get(name, 64)
 
 
 def test_every_registered_sampler_generates():
