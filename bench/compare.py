@@ -20,6 +20,8 @@ import time
 import numpy as np
 from scipy.stats import qmc
 
+from timing import median_time
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXAMPLE = os.path.join(ROOT, "target", "release", "examples", "throughput")
 DISCREPANCY = os.path.join(ROOT, "target", "release", "examples", "discrepancy_timing")
@@ -30,17 +32,6 @@ SECTIONS = [a for a in sys.argv[1:] if not a.startswith("--")]
 
 def want(section):
     return not SECTIONS or section in SECTIONS
-
-
-def median_time(fn, min_runs=5, min_seconds=1.0, max_runs=50):
-    times = []
-    start = time.perf_counter()
-    while len(times) < min_runs or (time.perf_counter() - start < min_seconds and len(times) < max_runs):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    times.sort()
-    return times[len(times) // 2]
 
 
 def samplab(spec, n):
@@ -116,7 +107,7 @@ if want("discrepancy"):
         def run():
             box["v"] = qmc.discrepancy(x, method=method, workers=1)
 
-        peer = median_time(run, min_runs=3)
+        peer = median_time(run, min_runs=3, min_seconds=1.0)
         # the value on identical points (set 0 of seed 1) through the CLI; the timing from the example's own set
         out = subprocess.run([SAMPLAB, "discrepancy", metric, "--sampler", "random", "-n", str(n), "--seed", "1", "--json"],
                              check=True, capture_output=True, text=True).stdout

@@ -13,13 +13,12 @@ Run by `bench/compare study` (which installs the package and Dask into bench/.ve
 """
 
 import os
-import statistics
 import subprocess
 import sys
 import time
 
-import samplab
 from samplab import Study
+from timing import median_time
 
 NS = [16, 36, 64, 144, 256, 576, 1024]
 STRATEGIES = ["random", "poisson", "jitter", "sobol.owen", "halton.xor", "nrooks", "hammersley.xor",
@@ -28,28 +27,19 @@ STRATEGIES = ["random", "poisson", "jitter", "sobol.owen", "halton.xor", "nrooks
 CASES = ["quad", "delaunay-constant", "delaunay-linear"]
 
 
-def median_time(f, repeat=3):
-    times = []
-    for _ in range(repeat):
-        t = time.perf_counter()
-        f()
-        times.append(time.perf_counter() - t)
-    return statistics.median(times)
-
-
 def overhead():
     import distributed
 
     study = Study.integrate(["random", "jitter"], "disk", [4096], sets=60000, instances=4, seed=1)
     per_chunk = median_time(lambda: Study.integrate(["random"], "disk", [4096], sets=60000, instances=1, seed=1).run(progress=False), 1)
-    local = median_time(lambda: study.run(progress=False))
+    local = median_time(lambda: study.run(progress=False), min_runs=3)
     t = time.perf_counter()
     cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
                                        env={"RAYON_NUM_THREADS": "1"})
     client = distributed.Client(cluster)
     client.wait_for_workers(2)
     startup = time.perf_counter() - t
-    on_dask = median_time(lambda: study.run(client, progress=False))
+    on_dask = median_time(lambda: study.run(client, progress=False), min_runs=3)
     same = study.run(client, progress=False).to_json() == study.run(progress=False).to_json()
     client.close()
     cluster.close()

@@ -116,6 +116,11 @@ fn entries<'py, E: Entry>(py: Python<'py>, registry: &Registry<E>) -> PyResult<B
                     q.set_item("choices", c.to_vec())?;
                 }
                 Kind::Path => q.set_item("kind", "path")?,
+                Kind::Reals { min, max } => {
+                    q.set_item("kind", "reals")?;
+                    q.set_item("min", min)?;
+                    q.set_item("max", max)?;
+                }
             }
             match p.default {
                 Default::Number(x) => q.set_item("default", x)?,

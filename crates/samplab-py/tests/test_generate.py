@@ -45,7 +45,7 @@ def test_default_seed_is_the_clis(cli, tmp_path):
 
 def _count_for(name, d):
     # a count every entry can make in d dimensions (as the Rust conformance test)
-    if name.startswith(("jitter", "regular")):
+    if name.startswith(("jitter", "regular", "micro-jitter")):
         return 4**d
     if name.startswith("lattice.fibonacci"):
         return 55
@@ -78,7 +78,7 @@ def test_registry_entries_are_complete():
         for e in entries:
             assert set(e) >= {"name", "aliases", "summary", "params", "references", "details"}, (kind, e)
             for p in e["params"]:
-                assert p["kind"] in ("real", "int", "choice", "path") and "default" in p and p["doc"], (kind, e["name"], p)
+                assert p["kind"] in ("real", "int", "choice", "path", "reals") and "default" in p and p["doc"], (kind, e["name"], p)
     sigma = next(p for e in kinds["samplers"] if e["name"] == "jitter.gaussian" for p in e["params"] if p["name"] == "sigma")
     assert (sigma["default"], sigma["min"], sigma["max"]) == (0.25, 0.0, 8.0)
     seed = next(p for e in kinds["metrics"] if e["name"] == "star-bound" for p in e["params"] if p["name"] == "seed")

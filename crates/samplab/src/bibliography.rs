@@ -46,6 +46,7 @@ bib! {
     purgathofer1994 => "W. Purgathofer, R. Tobler, M. Geiler. Forced random dithering: improved threshold matrices for ordered dithering. ICIP 1994.",
     ramamoorthi2012 => "R. Ramamoorthi, J. Anderson, M. Meyer, D. Nowrouzezahrai. A theory of Monte Carlo visibility sampling. ACM TOG 31(5), 2012.",
     roberts2018 => "M. Roberts. The unreasonable effectiveness of quasirandom sequences. extremelearning.com.au, 2018 (the generalized golden ratio R_d).",
+    roberts2018jitter => "M. Roberts. A simple method to construct isotropic quasirandom blue noise point sequences. extremelearning.com.au, 2018 (the R_2 sequence jittered by a fraction of its spacing).",
     sbert2006 => "M. Sbert, J. Rigau, M. Feixas, L. Neumann. Systematic sampling in image synthesis. ICCSA 2006.",
     shirley1991 => "P. Shirley. Discrepancy as a quality measure for sample distributions. Eurographics 1991.",
     shirley1997 => "P. Shirley, K. Chiu. A low distortion map between disk and square. JGT 2(3), 1997.",

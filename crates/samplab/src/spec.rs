@@ -63,6 +63,14 @@ pub enum Kind {
     Choice(&'static [&'static str]),
     /// A file's path (without commas: they separate parameters).
     Path,
+    /// A list of real numbers, each in [min, max], separated by '/' (commas separate
+    /// parameters).
+    Reals {
+        /// Smallest valid value.
+        min: f64,
+        /// Largest valid value.
+        max: f64,
+    },
 }
 
 /// The default of a parameter.
@@ -99,6 +107,7 @@ impl ParamSpec {
             Kind::Int { min, max } => format!("a whole number in [{min}, {max}]"),
             Kind::Choice(c) => format!("one of {}", c.join(", ")),
             Kind::Path => "a file's path".into(),
+            Kind::Reals { min, max } => format!("numbers in [{min}, {max}] separated by '/'"),
         }
     }
 
@@ -137,6 +146,8 @@ pub enum Value {
     Int(u64),
     /// A word ([`Kind::Choice`]) or a path ([`Kind::Path`]).
     Word(String),
+    /// Real numbers ([`Kind::Reals`]).
+    Numbers(Vec<f64>),
     /// Left to the method.
     Auto,
 }
@@ -262,6 +273,18 @@ impl Params {
         }
     }
 
+    /// The real numbers `name` holds, or None when they are left to the method (`auto`).
+    ///
+    /// # Panics
+    /// When `name` is not a declared list parameter.
+    pub fn reals_or_auto(&self, name: &str) -> Option<&[f64]> {
+        match self.get(name) {
+            Value::Numbers(x) => Some(x),
+            Value::Auto => None,
+            v => panic!("parameter '{name}' is not a list of numbers: {v:?}"),
+        }
+    }
+
     /// `name=value` pairs, for headers and logs.
     pub fn describe(&self) -> String {
         self.values
@@ -270,6 +293,9 @@ impl Params {
                 Value::Number(x) => format!("{n}={x}"),
                 Value::Int(x) => format!("{n}={x}"),
                 Value::Word(w) => format!("{n}={w}"),
+                Value::Numbers(x) => {
+                    format!("{n}={}", x.iter().map(f64::to_string).collect::<Vec<_>>().join("/"))
+                }
                 Value::Auto => format!("{n}=auto"),
             })
             .collect::<Vec<_>>()
@@ -297,14 +323,10 @@ fn parse_value(owner: &str, spec: &ParamSpec, raw: Option<&str>) -> Result<Value
             .map(|c| Value::Word((*c).into()))
             .ok_or_else(|| bad(format!("'{raw}' is not {}", spec.range_text()))),
         Kind::Path => Ok(Value::Word(raw.into())),
-        Kind::Real { min, max } => {
-            let x: f64 =
-                raw.parse().map_err(|_| bad(format!("'{raw}' is not a number; expected {}", spec.range_text())))?;
-            if !x.is_finite() || x < min || x > max {
-                return Err(bad(format!("{raw} is out of range; expected {}", spec.range_text())));
-            }
-            Ok(Value::Number(x))
-        }
+        Kind::Real { min, max } => Ok(Value::Number(parse_real(raw, min, max, spec, &bad)?)),
+        Kind::Reals { min, max } => Ok(Value::Numbers(
+            raw.split('/').map(|x| parse_real(x.trim(), min, max, spec, &bad)).collect::<Result<_>>()?,
+        )),
         Kind::Int { min, max } => {
             let x: u64 = raw
                 .parse()
@@ -315,6 +337,15 @@ fn parse_value(owner: &str, spec: &ParamSpec, raw: Option<&str>) -> Result<Value
             Ok(Value::Int(x))
         }
     }
+}
+
+/// One finite number in [min, max].
+fn parse_real(raw: &str, min: f64, max: f64, spec: &ParamSpec, bad: &dyn Fn(String) -> Error) -> Result<f64> {
+    let x: f64 = raw.parse().map_err(|_| bad(format!("'{raw}' is not a number; expected {}", spec.range_text())))?;
+    if !x.is_finite() || x < min || x > max {
+        return Err(bad(format!("{raw} is out of range; expected {}", spec.range_text())));
+    }
+    Ok(x)
 }
 
 #[cfg(test)]

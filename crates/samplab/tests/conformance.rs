@@ -23,7 +23,7 @@ const DETERMINISTIC: &[&str] = &[
 /// A count every entry can make in `d` dimensions.
 fn count_for(name: &str, d: usize) -> usize {
     match name {
-        n if n.starts_with("jitter") || n.starts_with("regular") => 4usize.pow(d as u32),
+        n if n.starts_with("jitter") || n.starts_with("regular") || n == "micro-jitter" => 4usize.pow(d as u32),
         "poisson.maximal" => 40,
         "lhs.oa" => 49,
         "hexagonal" => 56,

@@ -49,6 +49,26 @@ fn kronecker_points_are_the_formula_and_its_random_access() {
 }
 
 #[test]
+fn kronecker_sequences_of_given_alphas_are_the_formula() {
+    // the fractional parts of sqrt 2 and sqrt 3, as a user would write them
+    let (r2, r3) = (2f64.sqrt() - 1.0, 3f64.sqrt() - 1.0);
+    let spec = format!("kronecker:alpha={r2}/{r3}");
+    let p = set(&spec, 500, 2, 1);
+    for i in 0..500 {
+        for (j, alpha) in [r2, r3].iter().enumerate() {
+            assert!((p.point(i)[j] - (i as f64 * alpha).fract()).abs() < 1e-12, "point {i}, dim {j}");
+        }
+    }
+    // the spec round-trips, and the alphas bound the dimension
+    let s = sampler::build(&spec).unwrap();
+    assert_eq!(sampler::build(&s.spec()).unwrap().generate(500, 2, Seed(1)).unwrap(), p);
+    assert!(s.generate(10, 3, Seed(1)).is_err());
+    for bad in ["kronecker:alpha=0.5/1", "kronecker:alpha=0/0.5", "kronecker:alpha=0.5/", "kronecker:alpha=-0.1"] {
+        assert!(sampler::build(bad).is_err(), "{bad}");
+    }
+}
+
+#[test]
 fn kronecker_star_discrepancy_falls_almost_like_one_over_n() {
     let star = Metric::parse("star").unwrap();
     let pts: Vec<(f64, f64)> = (6..=12)
@@ -65,7 +85,12 @@ fn kronecker_star_discrepancy_falls_almost_like_one_over_n() {
 #[test]
 fn shifted_constructions_integrate_without_bias() {
     // the integral of x y over the square is 1/4; 400 shifted sets, within 4 standard errors
-    for (spec, n) in [("kronecker.shift", 64), ("lattice.fibonacci.shift", 55), ("lattice.korobov.shift", 64)] {
+    for (spec, n) in [
+        ("kronecker.shift", 64),
+        ("lattice.fibonacci.shift", 55),
+        ("lattice.korobov.shift", 64),
+        ("lattice.cbc.shift+micro-jitter:0.5", 64),
+    ] {
         let plan = sampler::build(spec).unwrap();
         let plan = plan.plan(n, 2).unwrap();
         let sets = plan.generate_sets(Seed(9), 400, &Progress::SILENT).unwrap();
@@ -290,4 +315,50 @@ fn the_hexagonal_lattice_gives_every_point_six_equidistant_neighbours() {
     }
     let e = sampler::build("hexagonal").unwrap().plan(100, 2).unwrap_err().to_string();
     assert!(e.contains("90 and 120"), "{e}");
+}
+
+#[test]
+fn micro_jitter_moves_each_point_within_its_fraction_of_the_spacing() {
+    let (n, d) = (1000, 3);
+    let width = 0.3 * (n as f64).powf(-1.0 / 3.0);
+    let inner = set("kronecker", n, d, 5);
+    let moved = set("kronecker+micro-jitter:fraction=0.3", n, d, 5);
+    let mut largest: f64 = 0.0;
+    for (a, b) in inner.iter().zip(moved.iter()) {
+        for (x, y) in a.iter().zip(b) {
+            let gap = (x - y).abs().min(1.0 - (x - y).abs()); // on the torus
+            assert!(gap <= width / 2.0 + 1e-15, "moved {gap} > {}", width / 2.0);
+            largest = largest.max(gap);
+        }
+    }
+    assert!(largest > 0.45 * width, "offsets fill the cube: largest {largest} of {}", width / 2.0);
+    // fraction 0 is the sampler's own set; the spec round-trips
+    assert_eq!(set("sobol.owen+micro-jitter:0", 256, 2, 7), set("sobol.owen", 256, 2, 7));
+    let s = sampler::build("sobol.owen+microjitter:0.25").unwrap();
+    assert_eq!(s.spec(), "sobol.owen+micro-jitter:fraction=0.25");
+    assert_eq!(
+        sampler::build(&s.spec()).unwrap().generate(64, 2, Seed(2)).unwrap(),
+        s.generate(64, 2, Seed(2)).unwrap()
+    );
+    for bad in ["sobol+micro-jitter:1.5", "sobol+micro-jitter:fraction=x", "nosuch+micro-jitter"] {
+        assert!(sampler::build(bad).is_err(), "{bad}");
+    }
+    // a '+' inside a number is not a post-process
+    assert!(
+        sampler::build("poisson:radius=1e-1+micro-jitter").is_ok() && sampler::build("poisson:radius=1e+0").is_ok()
+    );
+}
+
+#[test]
+fn micro_jitter_alone_with_fraction_one_is_jittered_sampling() {
+    // one point in every cell of the k x k grid, and the count rule of the grid, named as written
+    let k = 12;
+    let p = set("micro-jitter:1", k * k, 2, 3);
+    let mut seen = vec![false; k * k];
+    for q in p.iter() {
+        let cell = (q[1] * k as f64) as usize * k + (q[0] * k as f64) as usize;
+        assert!(!std::mem::replace(&mut seen[cell], true), "two points in cell {cell}");
+    }
+    let err = sampler::build("micro-jitter").unwrap().generate(10, 2, Seed(1)).unwrap_err().to_string();
+    assert!(err.starts_with("micro-jitter") && err.contains("9 and 16"), "{err}");
 }

@@ -1,7 +1,8 @@
 //! Kronecker (Weyl) sequences: point i is frac(i alpha) for an irrational alpha (Weyl
 //! 1916), with Roberts' generalized golden ratio alpha_j = phi_d^-(j+1), phi_d the positive
-//! root of x^(d+1) = x + 1 (the R_d sequence, Roberts 2018); randomized by a random shift
-//! mod 1 (Cranley & Patterson 1976).
+//! root of x^(d+1) = x + 1 (the R_d sequence, Roberts 2018), or the alphas a user gives
+//! (`kronecker:alpha=0.4142135623730951/0.7320508075688772`: the fractional parts of sqrt 2
+//! and sqrt 3, say); randomized by a random shift mod 1 (Cranley & Patterson 1976).
 //!
 //! Arithmetic is in 64-bit fixed point: alpha_j is held as round(alpha_j 2^64) and point i
 //! as i alpha_j mod 2^64, exact modulo 1 for every index, so the coordinates of the 2^40-th
@@ -11,14 +12,17 @@ use std::ops::RangeInclusive;
 
 use super::registry::{ANY, SamplerEntry};
 use super::{Access, Fill, Sampler, Sequence};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::registry::About;
 use crate::seed::Seed;
+use crate::spec::{Default, Kind, ParamSpec};
 
-/// The R_d sequence, optionally shifted.
-#[derive(Debug, Clone, Copy)]
+/// The R_d sequence or a Kronecker sequence of given alphas, optionally shifted.
+#[derive(Debug, Clone)]
 pub struct Kronecker {
     shift: bool,
+    /// The user's alphas (None: R_d for whatever dimension is asked).
+    alphas: Option<Vec<f64>>,
 }
 
 /// alpha_j = phi_d^-(j+1) for j < d, phi_d the root of x^(d+1) = x + 1 above 1 (Newton's
@@ -44,10 +48,14 @@ struct Prepared {
 }
 
 impl Prepared {
-    fn new(dims: usize, shift: bool, seed: Seed) -> Prepared {
-        let steps = alphas(dims).into_iter().map(|a| (a * 18_446_744_073_709_551_616.0) as u64).collect();
+    fn new(k: &Kronecker, dims: usize, seed: Seed) -> Prepared {
+        let fixed = |a: f64| (a * 18_446_744_073_709_551_616.0) as u64;
+        let steps = match &k.alphas {
+            Some(given) => given[..dims].iter().map(|&a| fixed(a)).collect(),
+            None => alphas(dims).into_iter().map(fixed).collect(),
+        };
         let mut rng = seed.rng();
-        let shifts = (0..dims).map(|_| if shift { rand_core::Rng::next_u64(&mut rng) } else { 0 }).collect();
+        let shifts = (0..dims).map(|_| if k.shift { rand_core::Rng::next_u64(&mut rng) } else { 0 }).collect();
         Prepared { steps, shifts }
     }
 
@@ -60,10 +68,14 @@ impl Prepared {
 
 impl Sampler for Kronecker {
     fn spec(&self) -> String {
-        if self.shift { "kronecker.shift" } else { "kronecker" }.into()
+        let name = if self.shift { "kronecker.shift" } else { "kronecker" };
+        match &self.alphas {
+            Some(a) => format!("{name}:alpha={}", a.iter().map(f64::to_string).collect::<Vec<_>>().join("/")),
+            None => name.into(),
+        }
     }
     fn dims(&self) -> RangeInclusive<usize> {
-        1..=usize::MAX
+        1..=self.alphas.as_ref().map_or(usize::MAX, Vec::len)
     }
     fn as_sequence(&self) -> Option<&dyn Sequence> {
         Some(self)
@@ -72,7 +84,7 @@ impl Sampler for Kronecker {
 
 impl Fill for Kronecker {
     fn fill(&self, _n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let p = Prepared::new(dims, self.shift, seed);
+        let p = Prepared::new(self, dims, seed);
         for (i, point) in out.chunks_exact_mut(dims).enumerate() {
             for (d, x) in point.iter_mut().enumerate() {
                 *x = p.coordinate(i as u64, d);
@@ -85,7 +97,7 @@ impl Fill for Kronecker {
 impl Sequence for Kronecker {
     fn access(&self, dims: usize, seed: Seed) -> Result<Box<dyn Access + '_>> {
         (self as &dyn Sampler).plan(1, dims)?;
-        Ok(Box::new(Prepared::new(dims, self.shift, seed)))
+        Ok(Box::new(Prepared::new(self, dims, seed)))
     }
 }
 
@@ -95,22 +107,43 @@ impl Access for Prepared {
     }
 }
 
+const ALPHA: ParamSpec = ParamSpec {
+    name: "alpha",
+    kind: Kind::Reals { min: 0.0, max: 1.0 },
+    default: Default::Auto("R_d: phi_d^-1, ..., phi_d^-d"),
+    doc: "the increment of each dimension (irrational in theory; 53 bits here), one per dimension",
+};
+
+fn build(p: &crate::spec::Params, shift: bool, owner: &str) -> Result<Box<dyn Sampler>> {
+    let alphas = p.reals_or_auto("alpha").map(<[f64]>::to_vec);
+    if let Some(a) = alphas.as_ref().and_then(|a| a.iter().find(|&&a| a == 0.0 || a == 1.0)) {
+        return Err(Error::Param {
+            owner: owner.into(),
+            param: "alpha".into(),
+            reason: format!("{a} makes every point's coordinate the same; expected a number strictly between 0 and 1"),
+        });
+    }
+    Ok(Box::new(Kronecker { shift, alphas }))
+}
+
 /// The samplers this file registers.
 pub(crate) static ENTRIES: &[SamplerEntry] = &[
     SamplerEntry {
-        about: About::new("kronecker", "Kronecker sequence frac(i alpha), alpha from the generalized golden ratio (R_d)")
+        about: About::new("kronecker", "Kronecker sequence frac(i alpha), alpha from the generalized golden ratio (R_d) or given")
             .aliases(&["weyl", "rd", "r2"])
+            .params(&[ALPHA])
             .cite(&["weyl1916", "roberts2018"]),
         counts: ANY,
-        dims: "any d",
-        build: |_| Ok(Box::new(Kronecker { shift: false })),
+        dims: "any d (d <= the alphas given)",
+        build: |p| build(p, false, "kronecker"),
     },
     SamplerEntry {
-        about: About::new("kronecker.shift", "the R_d Kronecker sequence with a random shift mod 1")
+        about: About::new("kronecker.shift", "the Kronecker sequence (R_d or given alphas) with a random shift mod 1")
             .aliases(&["kronecker-shift"])
+            .params(&[ALPHA])
             .cite(&["weyl1916", "roberts2018", "cranley1976"]),
         counts: ANY,
-        dims: "any d",
-        build: |_| Ok(Box::new(Kronecker { shift: true })),
+        dims: "any d (d <= the alphas given)",
+        build: |p| build(p, true, "kronecker.shift"),
     },
 ];

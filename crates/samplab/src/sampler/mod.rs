@@ -41,8 +41,9 @@ pub mod scramble;
 crate::registry::registry_files! {
     /// Every sampler, in listing order, gathered from the files that declare them.
     pub static SAMPLERS: Registry<SamplerEntry> =
-        ("sampler", "SAMPLERS  (spec: name[:key=value,...] or name[:value,...] in the order listed)")
-        from [random, grid, nrooks, poisson, pmj, force_matrix, sobol, radical, net, kronecker, lattice];
+        ("sampler", "SAMPLERS  (spec: name[:key=value,...] or name[:value,...] in the order listed; \
+                     +micro-jitter[:fraction=F] after any spec micro-jitters its points)")
+        from [random, grid, nrooks, poisson, pmj, force_matrix, sobol, radical, net, kronecker, lattice, micro_jitter];
 }
 
 pub use registry::{SamplerEntry, build};

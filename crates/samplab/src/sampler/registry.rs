@@ -103,6 +103,9 @@ pub(crate) use randomized_entries;
 /// assert!(samplab::sampler::build("jitter.gaussian:sigma=-1").is_err());
 /// ```
 pub fn build(spec: &str) -> Result<Box<dyn Sampler>> {
+    if let Some((inner, post)) = super::micro_jitter::split(spec) {
+        return super::micro_jitter::over(build(inner)?, post);
+    }
     let (entry, params) = SAMPLERS.resolve(spec)?;
     entry.build(&params)
 }

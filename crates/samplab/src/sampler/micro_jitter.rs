@@ -1,0 +1,116 @@
+//! Micro-jittering: any set's points each moved by an independent uniform offset in a cube
+//! of side `fraction x h` centred on it, h = n^(-1/d) the mean spacing (1/k exactly for
+//! n = k^d), wrapped on the torus. It breaks the lattice-like alignments of a structured
+//! set (a Kronecker sequence, a lattice) while keeping most of its uniformity, as Roberts
+//! jitters the R_2 sequence by a fraction of its spacing; on the regular grid (the entry on
+//! its own) with fraction 1 it is Cook's jittered sampling, with less a partially jittered
+//! grid.
+//!
+//! Written after any sampler spec: `kronecker+micro-jitter:fraction=0.2`,
+//! `lattice.cbc.shift+micro-jitter`; fraction 0 gives the sampler's own bytes.
+
+use std::ops::RangeInclusive;
+
+use super::registry::{GRID, SamplerEntry};
+use super::{Fill, Sampler};
+use crate::error::{Error, Result};
+use crate::registry::About;
+use crate::seed::{Seed, uniform, wrap01};
+use crate::spec::{Default, Kind, ParamSpec, Params, Spec};
+
+/// A sampler whose points are micro-jittered.
+#[derive(Debug)]
+pub struct MicroJitter {
+    inner: Box<dyn Sampler>,
+    fraction: f64,
+    /// Whether the inner sampler is the implicit regular grid (`micro-jitter` alone).
+    alone: bool,
+}
+
+/// The spec split into the sampler's and the micro-jitter's, when it ends in
+/// `+micro-jitter[:...]` (at the first '+' whose remainder names this entry: a '+' inside a
+/// number, 1e+3, does not).
+pub(crate) fn split(spec: &str) -> Option<(&str, &str)> {
+    let about = &ENTRIES[0].about;
+    spec.match_indices('+').find_map(|(i, _)| {
+        let post = &spec[i + 1..];
+        let name = Spec::parse(post).ok()?.name.to_ascii_lowercase();
+        (about.name == name || about.aliases.contains(&name.as_str())).then_some((&spec[..i], post))
+    })
+}
+
+/// `inner` micro-jittered with the parameters of `post` (`micro-jitter[:fraction=F]`).
+///
+/// # Errors
+/// A malformed or out-of-range fraction.
+pub(crate) fn over(inner: Box<dyn Sampler>, post: &str) -> Result<Box<dyn Sampler>> {
+    let spec = Spec::parse(post)?;
+    let params = Params::resolve(ENTRIES[0].about.name, ENTRIES[0].about.params, &spec.args)?;
+    Ok(Box::new(MicroJitter { inner, fraction: params.real("fraction"), alone: false }))
+}
+
+/// The mean spacing of n points in d dimensions: 1/k when n = k^d, else n^(-1/d).
+fn spacing(n: usize, dims: usize) -> f64 {
+    let k = (n as f64).powf(1.0 / dims as f64).round();
+    if u32::try_from(dims).ok().and_then(|d| (k as usize).checked_pow(d)) == Some(n) {
+        1.0 / k
+    } else {
+        (n as f64).powf(-1.0 / dims as f64)
+    }
+}
+
+impl Sampler for MicroJitter {
+    fn spec(&self) -> String {
+        let own = format!("micro-jitter:fraction={}", self.fraction);
+        if self.alone { own } else { format!("{}+{own}", self.inner.spec()) }
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        self.inner.dims()
+    }
+}
+
+impl Fill for MicroJitter {
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        self.inner.check_count(n, dims).map_err(|e| match e {
+            // the error names what the user wrote, not the implicit grid
+            Error::InvalidCount { n, dims, reason, .. } => Error::InvalidCount { sampler: self.spec(), n, dims, reason },
+            other => other,
+        })
+    }
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        self.inner.fill(n, dims, seed, out)?;
+        if self.fraction == 0.0 {
+            return Ok(());
+        }
+        let width = self.fraction * spacing(n, dims);
+        let mut rng = seed.derive_str("micro-jitter").rng();
+        for x in out.iter_mut() {
+            *x = wrap01(*x + width * (uniform(&mut rng) - 0.5));
+        }
+        Ok(())
+    }
+}
+
+const FRACTION: ParamSpec = ParamSpec {
+    name: "fraction",
+    kind: Kind::Real { min: 0.0, max: 1.0 },
+    default: Default::Number(0.1),
+    doc: "side of the offset cube, a fraction of the mean spacing n^(-1/d)",
+};
+
+/// The entry this file registers.
+pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
+    about: About::new(
+        "micro-jitter",
+        "micro-jittering: each point moved uniformly within a fraction of the spacing; written after any spec \
+         (sobol+micro-jitter:0.2), alone on the regular grid",
+    )
+    .aliases(&["microjitter"])
+    .params(&[FRACTION])
+    .cite(&["cook1986", "roberts2018jitter"]),
+    counts: GRID,
+    dims: "1..=64 (after a spec: the sampler's)",
+    build: |p| {
+        Ok(Box::new(MicroJitter { inner: super::build("regular")?, fraction: p.real("fraction"), alone: true }))
+    },
+}];
