@@ -20,8 +20,9 @@
 //! - `.xor`: a digital shift, y_r + e_r mod b with uniform digits e_r (an XOR in base 2);
 //! - `.lms`: Matousek's (1998) linear matrix scrambling, C_j replaced by L_j C_j with L_j
 //!   lower triangular (uniform non-zero diagonal, uniform below it), then a digital shift;
-//! - `.owen`: Owen's (1995) nested uniform scrambling: the permutation of digit r depends on
-//!   digits 0..r, hashed (Burley 2020 in base 2; Kensler's keyed permutations in base b);
+//! - `.owen`: Owen's (1995) nested scrambling: the permutation of digit r depends on digits
+//!   0..r, hashed (Burley 2020 in base 2; in base b the random affine digit maps of
+//!   [`super::scramble`]'s `OwenDigits`, shared with Halton);
 //! - `.shift`: a Cranley-Patterson shift mod 1 (not a net any more).
 //!
 //! The first three keep every (t, m, s)-net property of the construction.
@@ -31,11 +32,11 @@ use std::sync::{Arc, Mutex};
 
 use super::grid::BELOW_ONE;
 use super::registry::SamplerEntry;
-use super::scramble::{Randomization, hash2, owen_scramble_u32, permute};
+use super::scramble::{OwenDigits, Randomization, hash2, owen_scramble_u32};
 use super::{Access, Fill, Sampler, Sequence};
 use crate::error::{Error, Result};
 use crate::registry::About;
-use crate::seed::{Seed, below, mix64, uniform, wrap01};
+use crate::seed::{Seed, below, uniform, wrap01};
 use crate::spec::{Default, Kind, ParamSpec};
 
 /// Generating matrices of a digital net in a prime base: `cols` columns (input digits, so
@@ -393,8 +394,10 @@ impl Net {
         }
     }
 
-    fn prepare(&self, dims: usize, seed: Seed) -> Result<Engine> {
-        Ok(Engine::new(&*self.matrices(dims)?, dims, self.randomization, self.lms, seed))
+    /// The engine for `dims` and `seed`; `bound` caps the prefix tables of an Owen scramble
+    /// in base b (the count of points to make; a cache only).
+    fn prepare(&self, dims: usize, seed: Seed, bound: u64) -> Result<Engine> {
+        Ok(Engine::new(&*self.matrices(dims)?, dims, self.randomization, self.lms, seed, bound))
     }
 }
 
@@ -448,8 +451,8 @@ impl Fill for Net {
         Ok(())
     }
 
-    fn fill(&self, _n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        self.prepare(dims, seed)?.fill(out);
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        self.prepare(dims, seed, n as u64)?.fill(out);
         Ok(())
     }
 }
@@ -457,7 +460,7 @@ impl Fill for Net {
 impl Sequence for Net {
     fn access(&self, dims: usize, seed: Seed) -> Result<Box<dyn Access + '_>> {
         (self as &dyn Sampler).plan(1, dims)?;
-        Ok(Box::new(self.prepare(dims, seed)?))
+        Ok(Box::new(self.prepare(dims, seed, u64::MAX)?))
     }
 }
 
@@ -470,11 +473,11 @@ enum Engine {
 }
 
 impl Engine {
-    fn new(m: &Matrices, dims: usize, randomization: Randomization, lms: bool, seed: Seed) -> Engine {
+    fn new(m: &Matrices, dims: usize, randomization: Randomization, lms: bool, seed: Seed, bound: u64) -> Engine {
         if m.base == 2 {
             Engine::Binary(Binary::new(m, dims, randomization, lms, seed))
         } else {
-            Engine::Prime(Prime::new(m, dims, randomization, lms, seed))
+            Engine::Prime(Prime::new(m, dims, randomization, lms, seed, bound))
         }
     }
 
@@ -644,7 +647,7 @@ struct Prime {
     columns: Vec<u8>,
     prefix: Vec<u8>,
     shift: Vec<u8>,
-    owen: Option<Vec<u64>>,
+    owen: Option<Vec<OwenDigits>>,
     offset: Option<Vec<f64>>,
     /// Digits in the exact leading part of a value: the most with b^high <= 2^53.
     high: usize,
@@ -653,7 +656,7 @@ struct Prime {
 }
 
 impl Prime {
-    fn new(m: &Matrices, dims: usize, randomization: Randomization, lms: bool, seed: Seed) -> Prime {
+    fn new(m: &Matrices, dims: usize, randomization: Randomization, lms: bool, seed: Seed, bound: u64) -> Prime {
         let (base, cols, p) = (m.base, m.cols, precision(m.base));
         let b = base as usize;
         let mut columns = vec![0u8; dims * cols * p];
@@ -686,7 +689,7 @@ impl Prime {
                         *e = draws.below(base) as u8;
                     }
                 }
-                Randomization::Owen => owen.push(draws.bits()),
+                Randomization::Owen => owen.push(OwenDigits::new(base, draws.bits(), bound)),
                 Randomization::Shift => offset.push(uniform(&mut draws.0)),
                 Randomization::None => {}
             }
@@ -731,30 +734,19 @@ impl Prime {
 
     /// The coordinate of the digits `y` of dimension `dim`, randomized: the first `high`
     /// digits as one exact integer over b^high (<= 2^53, so the quotient is correctly
-    /// rounded), plus the rest over b^P.
+    /// rounded), plus the rest over b^P; Owen-scrambled, the digit string as the integer
+    /// sum y_r b^r that [`OwenDigits`] scrambles.
     fn value(&self, y: &[u8], dim: usize) -> f64 {
         let b = u64::from(self.base);
+        if let Some(owen) = &self.owen {
+            return owen[dim].value(y.iter().rev().fold(0, |acc, &a| acc * b + u64::from(a)));
+        }
         let mut v = [0u64; 2];
-        let mut push = |r: usize, digit: u64| {
+        let shift = &self.shift[dim * self.digits..][..self.digits];
+        for (r, (&a, &e)) in y.iter().zip(shift).enumerate() {
+            let s = u64::from(a) + u64::from(e);
             let part = &mut v[usize::from(r >= self.high)];
-            *part = *part * b + digit;
-        };
-        match &self.owen {
-            Some(keys) => {
-                let mut node = keys[dim];
-                for (r, &a) in y.iter().enumerate() {
-                    let key = (node >> 32) as u32 ^ node as u32;
-                    push(r, u64::from(permute(u32::from(a), self.base, key)));
-                    node = mix64(node.wrapping_add(u64::from(a) + 1));
-                }
-            }
-            None => {
-                let shift = &self.shift[dim * self.digits..][..self.digits];
-                for (r, (&a, &e)) in y.iter().zip(shift).enumerate() {
-                    let s = u64::from(a) + u64::from(e);
-                    push(r, if s >= b { s - b } else { s });
-                }
-            }
+            *part = *part * b + if s >= b { s - b } else { s };
         }
         let x = (v[0] as f64 / self.powers[0] + v[1] as f64 / self.powers[1]).min(BELOW_ONE);
         match &self.offset {
@@ -860,7 +852,7 @@ macro_rules! net_entries {
             SamplerEntry {
                 about: About::new(concat!($family, ".owen"), concat!($summary, ", Owen's nested uniform scrambling"))
                     .params($params)
-                    .cite(&[$($r,)* "owen1995", "burley2020", "kensler2013"]),
+                    .cite(&[$($r,)* "owen1995", "owen1997", "matousek1998", "burley2020"]),
                 counts: $counts,
                 dims: $dims,
                 build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Owen, lms: false })),

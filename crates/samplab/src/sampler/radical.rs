@@ -1,6 +1,8 @@
 //! Radical-inverse constructions: the Halton sequence (Halton 1960, bases = the first d
 //! primes) and the Hammersley set (Hammersley & Handscomb 1964: i/n, then Halton), with
-//! the randomizations of [`Randomization`].
+//! the randomizations of [`Randomization`]; Owen scrambling in base b is the nested affine
+//! scramble of [`super::scramble`]'s `OwenDigits` (one hash per non-zero digit beyond a
+//! table of the first digits, the endless zero digits after the index's end in one step).
 //!
 //! A coordinate in base b is sum_j pi_j(a_j) b^-(j+1) over the base-b digits a_j of the
 //! index, for P_b = ceil(53 / log2 b) + 1 digit positions (enough to fill an f64); the
@@ -14,7 +16,7 @@ use std::sync::LazyLock;
 
 use super::grid::BELOW_ONE;
 use super::registry::{ANY, SamplerEntry, randomized_entries};
-use super::scramble::{Randomization, hash_unit, hash2, owen_scramble_u32, permute};
+use super::scramble::{OwenDigits, Randomization, hash_unit, owen_scramble_u32};
 use super::{Access, Fill, Sampler, Sequence};
 use crate::error::Result;
 use crate::registry::About;
@@ -156,58 +158,38 @@ impl<'a> Odometer<'a> {
 struct Coordinate {
     randomization: Randomization,
     table: DigitTable,
-    owen_key: u32,
+    owen: Option<OwenDigits>,
     shift: f64,
 }
 
 impl Coordinate {
-    fn new(base: u32, randomization: Randomization, seed: Seed, dim: usize) -> Self {
+    /// Coordinate `dim` in `base` for `seed`; an Owen scramble tabulates at most `bound`
+    /// prefixes (the count of points to make: tables are a cache, the bits do not depend
+    /// on it).
+    fn new(base: u32, randomization: Randomization, seed: Seed, dim: usize, bound: u64) -> Self {
         let s = seed.derive(dim as u64);
         let perms = (randomization == Randomization::Xor).then_some(s);
         Coordinate {
             randomization,
             table: DigitTable::new(base, perms),
-            owen_key: s.bits32(),
+            owen: (randomization == Randomization::Owen).then(|| OwenDigits::new(base, s.0, bound)),
             shift: hash_unit(dim as u64, s.0),
         }
     }
 
     fn value(&self, index: u64) -> f64 {
-        match self.randomization {
-            Randomization::Owen => self.owen(index),
-            Randomization::Shift => wrap01(self.table.value(index) + self.shift),
+        match (&self.owen, self.randomization) {
+            (Some(owen), _) => owen.value(index),
+            (None, Randomization::Shift) => wrap01(self.table.value(index) + self.shift),
             _ => self.table.value(index),
         }
     }
 
-    /// Owen scrambling in base b: the permutation of digit j is keyed by the digits
-    /// 0..j of the index (its value mod b^j), hashed with the dimension's key.
-    fn owen(&self, index: u64) -> f64 {
-        let b = u64::from(self.table.base);
-        let p = positions(self.table.base);
-        let mut digits = [0u32; 64];
-        let (mut rest, mut prefix, mut scale) = (index, 0u64, 1u64);
-        for (j, digit) in digits.iter_mut().enumerate().take(p) {
-            let a = (rest % b) as u32;
-            rest /= b;
-            let key = hash2(self.owen_key ^ j as u32, crate::seed::mix64(prefix) as u32);
-            *digit = permute(a, self.table.base, key);
-            prefix = prefix.wrapping_add(u64::from(a).wrapping_mul(scale));
-            scale = scale.wrapping_mul(b);
-        }
-        let mut v = 0.0;
-        let inv = 1.0 / b as f64;
-        for j in (0..p).rev() {
-            v = (v + f64::from(digits[j])) * inv;
-        }
-        v.min(BELOW_ONE)
-    }
-
     /// Values for indices start..start+count, written with stride `dims` into `out`.
     fn fill_strided(&self, start: u64, out: &mut [f64], dims: usize, offset: usize) {
-        if matches!(self.randomization, Randomization::Owen) {
+        if let Some(owen) = &self.owen {
             for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-                p[offset] = self.owen(start + i as u64);
+                p[offset] = owen.value(start + i as u64);
             }
             return;
         }
@@ -254,9 +236,9 @@ impl Sampler for Halton {
 }
 
 impl Fill for Halton {
-    fn fill(&self, _n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         for d in 0..dims {
-            Coordinate::new(PRIMES[d], self.randomization, seed, d).fill_strided(0, out, dims, d);
+            Coordinate::new(PRIMES[d], self.randomization, seed, d, n as u64).fill_strided(0, out, dims, d);
         }
         Ok(())
     }
@@ -265,7 +247,8 @@ impl Fill for Halton {
 impl Sequence for Halton {
     fn access(&self, dims: usize, seed: Seed) -> Result<Box<dyn Access + '_>> {
         (self as &dyn Sampler).plan(1, dims)?;
-        let coordinates = (0..dims).map(|d| Coordinate::new(PRIMES[d], self.randomization, seed, d)).collect();
+        let coordinates =
+            (0..dims).map(|d| Coordinate::new(PRIMES[d], self.randomization, seed, d, u64::MAX)).collect();
         Ok(Box::new(HaltonAccess { coordinates }))
     }
 }
@@ -342,7 +325,7 @@ impl Fill for Hammersley {
             };
         }
         for d in 1..dims {
-            Coordinate::new(PRIMES[d - 1], self.randomization, seed, d - 1).fill_strided(0, out, dims, d);
+            Coordinate::new(PRIMES[d - 1], self.randomization, seed, d - 1, n as u64).fill_strided(0, out, dims, d);
         }
         Ok(())
     }
@@ -368,13 +351,63 @@ mod tests {
     fn odometer_equals_random_access_bit_for_bit() {
         for base in [2u32, 3, 7, 8161] {
             for r in [Randomization::None, Randomization::Xor, Randomization::Shift] {
-                let c = Coordinate::new(base, r, Seed(11), 3);
+                let c = Coordinate::new(base, r, Seed(11), 3, 3000);
                 let mut out = vec![0.0; 3000];
                 c.fill_strided(17, &mut out, 1, 0);
                 for (i, v) in out.iter().enumerate() {
                     assert_eq!(v.to_bits(), c.value(17 + i as u64).to_bits(), "base {base} {r:?} index {i}");
                 }
             }
+        }
+    }
+
+    #[test]
+    fn owen_prefix_tables_are_a_cache_only() {
+        // no table, a small one and the largest give the same bits, far indices included
+        for base in [2u32, 3, 5, 61, 8161] {
+            let make = |bound| Coordinate::new(base, Randomization::Owen, Seed(5), 1, bound);
+            let (none, some, most) = (make(1), make(40), make(u64::MAX));
+            for i in (0..5000u64).chain([1 << 40, (1 << 40) + 7, (1 << 53) - 1, 3u64.pow(33) + 1]) {
+                let v = none.value(i);
+                assert!((0.0..1.0).contains(&v));
+                assert_eq!(v.to_bits(), some.value(i).to_bits(), "base {base} index {i}");
+                assert_eq!(v.to_bits(), most.value(i).to_bits(), "base {base} index {i}");
+            }
+        }
+    }
+
+    #[test]
+    fn owen_scrambling_is_nested_with_uniform_permutations() {
+        // Owen's definition: indices that share their first k digits share the first k
+        // scrambled digits, and digit k of two indices that differ there is a uniformly
+        // random ordered pair of distinct digits (chi-square over seeds, 1e-4 level)
+        // pairs of digits at position k: 0 against 1, and (base > 2) 1 against b - 1
+        for (base, k, da, db) in [(2u32, 3u32, 0, 1), (5, 1, 0, 1), (5, 1, 1, 4), (7, 2, 1, 6)] {
+            let b = u64::from(base);
+            let (i, j) = (4 + b.pow(k) * da + 2 * b.pow(k + 1), 4 + b.pow(k) * db + b.pow(k + 2)); // equal mod b^k
+            let cell = |v: f64, depth: u32| (v * (b.pow(depth)) as f64) as u64;
+            let seeds = 4000 * base as usize;
+            let mut counts = vec![0u32; (b * b) as usize];
+            for s in 0..seeds {
+                let c = Coordinate::new(base, Randomization::Owen, Seed(s as u64), 0, 64);
+                let (x, y) = (c.value(i), c.value(j));
+                assert_eq!(cell(x, k), cell(y, k), "base {base}: the first {k} digits must agree");
+                let (dx, dy) = (cell(x, k + 1) % b, cell(y, k + 1) % b);
+                assert_ne!(dx, dy, "base {base}: digit {k} must differ");
+                counts[(dx * b + dy) as usize] += 1;
+            }
+            let expect = seeds as f64 / (b * (b - 1)) as f64;
+            let chi2: f64 = (0..b * b)
+                .filter(|c| c / b != c % b)
+                .map(|c| (f64::from(counts[c as usize]) - expect).powi(2) / expect)
+                .sum();
+            // chi-square with b(b-1)-1 degrees of freedom: 1e-4 quantiles 15.1 (1), 43.8 (19), 71.3 (41)
+            let limit = match base {
+                2 => 15.1,
+                5 => 43.8,
+                _ => 71.3,
+            };
+            assert!(chi2 < limit, "base {base} ({da} {db}): chi2 {chi2} {counts:?}");
         }
     }
 }

@@ -75,7 +75,7 @@ macro_rules! randomized_entries {
             SamplerEntry {
                 about: About::new(concat!($family, ".owen"), concat!($summary, ", Owen scrambling (hash-based)"))
                     .aliases(&[concat!($family, "-owen")])
-                    .cite(&[$($r,)* "burley2020"]),
+                    .cite(&[$($r,)* "owen1995", "burley2020"]),
                 counts: $counts,
                 dims: $dims,
                 build: |_| Ok(Box::new(<$ty>::new(Randomization::Owen))),
