@@ -74,7 +74,29 @@ pub fn check(what: impl FnOnce() -> String, bytes: u128) -> Result<()> {
 /// [`Error::Memory`].
 pub fn zeroed<T: Clone + Default>(what: impl FnOnce() -> String, len: usize) -> Result<Vec<T>> {
     check(what, len as u128 * std::mem::size_of::<T>() as u128)?;
-    Ok(vec![T::default(); len])
+    let v = vec![T::default(); len];
+    #[cfg(target_os = "linux")]
+    huge_pages(&v);
+    Ok(v)
+}
+
+/// Ask Linux to back a large, still untouched buffer with 2 MB pages (as numpy does for
+/// its arrays): filling 256 MB of fresh 4 kB pages costs 65536 page faults, most of the time
+/// of writing a large set (Sobol' 2^20 x 32: 70% in the kernel). Advice only: nothing
+/// changes but the page size where the system allows it.
+#[cfg(target_os = "linux")]
+fn huge_pages<T>(v: &[T]) {
+    const PAGE: usize = 4096;
+    let (start, bytes) = (v.as_ptr() as usize, std::mem::size_of_val(v));
+    if bytes < 1 << 22 {
+        return;
+    }
+    let aligned = start.next_multiple_of(PAGE);
+    // SAFETY: [aligned, start + bytes) lies inside the vector's allocation; MADV_HUGEPAGE
+    // changes how the kernel backs the range, never its contents.
+    unsafe {
+        libc::madvise(aligned as *mut libc::c_void, start + bytes - aligned, libc::MADV_HUGEPAGE);
+    }
 }
 
 /// A size in bytes from `4G`, `512M`, `100k` or a plain number of bytes (powers of 1024).

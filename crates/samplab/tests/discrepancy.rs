@@ -127,12 +127,28 @@ fn centred_grids_have_the_closed_form_star_discrepancy() {
 }
 
 #[test]
-fn l2_star_fast_equals_warnock() {
+fn every_l2_sweep_equals_its_pair_by_pair_sum() {
+    // the O(n log n) 2D sweep against every pair's kernel, on sets with ties and points on
+    // the boundary, for each L2 discrepancy
     let mut rng = Seed(5).rng();
-    for trial in 0..2000 {
-        let n = 1 + below(&mut rng, 64) as usize;
-        let p = nasty(&mut rng, n, 2);
-        assert_close(l2::l2_star_sq_2d(&p), l2::l2_star_sq(&p, 2), &format!("trial {trial}"));
+    for (name, form) in [
+        ("star", l2::STAR),
+        ("extreme", l2::EXTREME),
+        ("centered", l2::CENTERED),
+        ("wrap", l2::WRAPAROUND),
+        ("mixture", l2::MIXTURE),
+    ] {
+        for trial in 0..600 {
+            let n = 1 + below(&mut rng, 64) as usize;
+            let p = nasty(&mut rng, n, 2);
+            assert_close(form.squared(&p, 2), form.squared_quadratic(&p, 2), &format!("{name} trial {trial}"));
+        }
+        // and a large Sobol' set, where the squared discrepancy (L2-extreme: 7e-9) is the
+        // difference of terms a million times larger (floating-point sums in the sweep were
+        // 1e-7 off here; its sums are exact)
+        let p = sampler::build("sobol.owen").unwrap().generate(1 << 13, 2, Seed(3)).unwrap();
+        let (fast, slow) = (form.squared(p.as_slice(), 2), form.squared_quadratic(p.as_slice(), 2));
+        assert!((fast - slow).abs() <= 1e-11 * slow.abs(), "{name} 2^13 Sobol': {fast} vs {slow}");
     }
 }
 
@@ -165,7 +181,9 @@ fn warnock_equals_the_defining_integral() {
     for _ in 0..300 {
         let n = 1 + below(&mut rng, 20) as usize;
         let p = nasty(&mut rng, n, 2);
-        assert!((l2::l2_star_sq(&p, 2) - l2_star_sq_by_integration(&p)).abs() < 1e-13);
+        let exact = l2_star_sq_by_integration(&p);
+        assert!((l2::STAR.squared_quadratic(&p, 2) - exact).abs() < 1e-13);
+        assert!((l2::STAR.squared(&p, 2) - exact).abs() < 1e-13);
     }
 }
 
@@ -185,9 +203,9 @@ fn l2_extreme_of_one_point_in_1d_by_integration() {
         }
         let integral = s * h * h;
         assert!(
-            (l2::l2_extreme_sq(&[x], 1) - integral).abs() < 2e-3,
+            (l2::EXTREME.squared(&[x], 1) - integral).abs() < 2e-3,
             "x = {x}: {} vs {integral}",
-            l2::l2_extreme_sq(&[x], 1)
+            l2::EXTREME.squared(&[x], 1)
         );
     }
 }
@@ -210,9 +228,11 @@ fn equal_scipy_on_stored_fixtures() {
         };
         let s = &case["scipy"];
         // scipy returns CD, WD, MD squared and L2-star unsquared
-        rel(l2::centered_sq(&pts, d), s["CD"].as_f64().unwrap(), "CD");
-        rel(l2::wraparound_sq(&pts, d), s["WD"].as_f64().unwrap(), "WD");
-        rel(l2::mixture_sq(&pts, d), s["MD"].as_f64().unwrap(), "MD");
+        for (form, key) in [(l2::CENTERED, "CD"), (l2::WRAPAROUND, "WD"), (l2::MIXTURE, "MD")] {
+            // the 2D sweep (d = 2) and the pair-by-pair sum both
+            rel(form.squared(&pts, d), s[key].as_f64().unwrap(), key);
+            rel(form.squared_quadratic(&pts, d), s[key].as_f64().unwrap(), key);
+        }
         let set = PointSet::new(d, pts.clone()).unwrap();
         rel(
             discrepancy::compute(&Metric::parse("l2-star").unwrap(), &set, Limits::default()).unwrap(),

@@ -71,22 +71,28 @@ fn sums(points: &[f64], dims: usize, f: impl Fn(f64) -> f64 + Sync, g: impl Fn(f
     (single.value() / n as f64, pair.value() / (n * n) as f64)
 }
 
-/// Independent Kahan-compensated accumulators: enough of them that the compiler can keep
-/// several vector registers busy, merged with Neumaier's sum.
+/// Independent Kahan-compensated accumulators: enough of them (16 for a row of pairs) that
+/// the compiler can keep several vector registers busy, merged with Neumaier's sum.
 const LANES: usize = 16;
 
-struct Lanes {
-    sum: [f64; LANES],
-    comp: [f64; LANES],
+struct Lanes<const N: usize> {
+    sum: [f64; N],
+    comp: [f64; N],
 }
 
-impl Lanes {
-    fn new() -> Lanes {
-        Lanes { sum: [0.0; LANES], comp: [0.0; LANES] }
+impl<const N: usize> Lanes<N> {
+    fn new() -> Lanes<N> {
+        Lanes { sum: [0.0; N], comp: [0.0; N] }
+    }
+
+    /// Each accumulator's compensated value.
+    #[inline(always)]
+    fn values(&self) -> [f64; N] {
+        std::array::from_fn(|k| self.sum[k] - self.comp[k])
     }
 
     #[inline(always)]
-    fn add(&mut self, values: [f64; LANES]) {
+    fn add(&mut self, values: [f64; N]) {
         for ((sum, comp), v) in self.sum.iter_mut().zip(&mut self.comp).zip(values) {
             let y = v - *comp;
             let t = *sum + y;
@@ -119,7 +125,7 @@ fn row_sum(p: &[f64], columns: &[Vec<f64>], from: usize, g: &impl Fn(f64, f64) -
 #[inline(always)]
 fn row_sum_any(p: &[f64], columns: &[Vec<f64>], from: usize, g: &impl Fn(f64, f64) -> f64) -> f64 {
     let n = columns[0].len();
-    let mut lanes = Lanes::new();
+    let mut lanes = Lanes::<LANES>::new();
     let mut j = from;
     while j + LANES <= n {
         let mut v = [1.0; LANES];
@@ -138,129 +144,252 @@ fn row_sum_any(p: &[f64], columns: &[Vec<f64>], from: usize, g: &impl Fn(f64, f6
     total.value()
 }
 
-/// Squared L2-star discrepancy (Warnock's formula):
-/// 3^-d - 2^(1-d)/N sum_i prod_k (1 - x_ik^2) + 1/N^2 sum_ij prod_k (1 - max(x_ik, x_jk)).
-pub fn l2_star_sq(points: &[f64], dims: usize) -> f64 {
-    let (a, b) = sums(points, dims, |x| 1.0 - x * x, |x, y| 1.0 - x.max(y));
-    3f64.powi(-(dims as i32)) - 2f64.powi(1 - dims as i32) * a + b
+/// One L2 discrepancy's closed form: D^2 = sign base^d - (2/N) sum_i prod_k f(x_ik) +
+/// (1/N^2) sum_ij prod_k g(x_ik, x_jk), the kernel g symmetric and, for u >= v, a sum of a
+/// few separable terms sum_r a_r(u) b_r(v), which is what lets the 2D pair sum be swept in
+/// O(n log n) ([`pair_sum_2d`]).
+#[derive(Clone, Copy)]
+pub struct Form {
+    base: f64,
+    sign: f64,
+    f: fn(f64) -> f64,
+    /// [`sums`] with f and g inlined (monomorphized: a call through `f` and `g` per pair
+    /// would not vectorize).
+    quadratic: fn(&[f64], usize) -> (f64, f64),
+    /// [`pair_sum_2d`] with g and its split inlined.
+    sweep: fn(&[f64]) -> f64,
 }
 
-/// Squared L2-extreme (unanchored) discrepancy, the mean over all boxes [u, v]:
-/// 12^-d - 2/N sum_i prod_k x_ik (1 - x_ik) / 2 + 1/N^2 sum_ij prod_k (min - x_ik x_jk).
-pub fn l2_extreme_sq(points: &[f64], dims: usize) -> f64 {
-    let (a, b) = sums(points, dims, |x| x * (1.0 - x) / 2.0, |x, y| x.min(y) - x * y);
-    12f64.powi(-(dims as i32)) - 2.0 * a + b
-}
-
-/// Squared centered L2 discrepancy (Hickernell 1998, eq. 5.1c).
-pub fn centered_sq(points: &[f64], dims: usize) -> f64 {
-    let (a, b) = sums(
-        points,
-        dims,
-        |x| {
-            let t = (x - 0.5).abs();
-            1.0 + 0.5 * t - 0.5 * t * t
-        },
-        |x, y| 1.0 + 0.5 * (x - 0.5).abs() + 0.5 * (y - 0.5).abs() - 0.5 * (x - y).abs(),
-    );
-    (13.0f64 / 12.0).powi(dims as i32) - 2.0 * a + b
-}
-
-/// Squared wrap-around L2 discrepancy (Hickernell 1998, eq. 5.1d); invariant under
-/// toroidal shifts of the set.
-pub fn wraparound_sq(points: &[f64], dims: usize) -> f64 {
-    let (_, b) = sums(
-        points,
-        dims,
-        |_| 0.0,
-        |x, y| {
-            let t = (x - y).abs();
-            1.5 - t * (1.0 - t)
-        },
-    );
-    -(4.0f64 / 3.0).powi(dims as i32) + b
-}
-
-/// Squared mixture L2 discrepancy (Zhou, Fang & Ning 2013, the "MD" of scipy).
-pub fn mixture_sq(points: &[f64], dims: usize) -> f64 {
-    let (a, b) = sums(
-        points,
-        dims,
-        |x| {
-            let t = (x - 0.5).abs();
-            5.0 / 3.0 - 0.25 * t - 0.25 * t * t
-        },
-        |x, y| {
-            let d = (x - y).abs();
-            15.0 / 8.0 - 0.25 * (x - 0.5).abs() - 0.25 * (y - 0.5).abs() - 0.75 * d + 0.5 * d * d
-        },
-    );
-    (19.0f64 / 12.0).powi(dims as i32) - 2.0 * a + b
-}
-
-/// Squared L2-star discrepancy in 2D in O(n log n) (Heinrich 1996's idea: the pair sum
-/// of Warnock's formula splits by which point is larger in x, and the inner sums over y
-/// are prefix sums kept in a Fenwick tree over y ranks).
-pub fn l2_star_sq_2d(points: &[f64]) -> f64 {
-    let n = points.len() / 2;
-    let mut pts: Vec<(f64, f64)> = points.chunks_exact(2).map(|p| (p[0], p[1])).collect();
-    pts.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-    // the rank of each point's y among the distinct y values, in x order
-    let mut by_y: Vec<u32> = (0..n as u32).collect();
-    by_y.sort_unstable_by(|&a, &b| pts[a as usize].1.total_cmp(&pts[b as usize].1));
-    let mut rank = vec![0usize; n];
-    let mut distinct = 0;
-    for (k, &i) in by_y.iter().enumerate() {
-        if k > 0 && pts[i as usize].1 != pts[by_y[k - 1] as usize].1 {
-            distinct += 1;
+/// A [`Form`] from its parts: `split` gives, for u >= v, g(u, v) = sum_r a_r(u) b_r(v) as
+/// `u -> (a(u), b(u))`.
+macro_rules! form {
+    (base: $base:expr, sign: $sign:expr, f: $f:expr, g: $g:expr, split: $split:expr $(,)?) => {
+        Form {
+            base: $base,
+            sign: $sign,
+            f: $f,
+            quadratic: |p, d| sums(p, d, $f, $g),
+            sweep: |p| pair_sum_2d(p, $g, $split),
         }
-        rank[i as usize] = distinct;
-    }
-    let ys = distinct + 1;
-    // per y rank: the count of earlier points and the sum of their (1 - y)
-    let mut tree = Fenwick::new(ys);
-    let mut total_tail = 0.0;
-    let (mut single, mut pair) = (Sum::default(), Sum::default());
-    for (&(x, y), &r) in pts.iter().zip(&rank) {
-        single.add((1.0 - x * x) * (1.0 - y * y));
-        // earlier points j have x_j <= x: (1 - x)(1 - max(y, y_j))
-        let [le, tail_le] = tree.prefix(r + 1);
-        let inner = le * (1.0 - y) + (total_tail - tail_le);
-        pair.add(2.0 * (1.0 - x) * inner + (1.0 - x) * (1.0 - y));
-        tree.add(r, [1.0, 1.0 - y]);
-        total_tail += 1.0 - y;
-    }
-    let (a, b) = (single.value() / n as f64, pair.value() / (n * n) as f64);
-    1.0 / 9.0 - 0.5 * a + b
+    };
 }
 
-/// A Fenwick (binary indexed) tree of pairs of f64 sums.
-struct Fenwick {
-    tree: Vec<[f64; 2]>,
-}
+/// Warnock's formula for the L2-star discrepancy: 3^-d - 2^(1-d)/N sum_i prod_k (1 - x_ik^2)
+/// + 1/N^2 sum_ij prod_k (1 - max(x_ik, x_jk)).
+pub const STAR: Form = form! {
+    base: 1.0 / 3.0,
+    sign: 1.0,
+    f: |x| (1.0 - x * x) / 2.0,
+    g: |x, y| 1.0 - x.max(y),
+    split: |u| ([1.0 - u], [1.0]),
+};
 
-impl Fenwick {
-    fn new(n: usize) -> Self {
-        Fenwick { tree: vec![[0.0; 2]; n + 1] }
-    }
-    fn add(&mut self, i: usize, v: [f64; 2]) {
-        let mut i = i + 1;
-        while i < self.tree.len() {
-            self.tree[i][0] += v[0];
-            self.tree[i][1] += v[1];
-            i += i & i.wrapping_neg();
+/// The L2-extreme (unanchored) discrepancy, the mean over all boxes [u, v]: 12^-d - 2/N
+/// sum_i prod_k x_ik (1 - x_ik) / 2 + 1/N^2 sum_ij prod_k (min - x_ik x_jk).
+pub const EXTREME: Form = form! {
+    base: 1.0 / 12.0,
+    sign: 1.0,
+    f: |x| x * (1.0 - x) / 2.0,
+    g: |x, y| x.min(y) - x * y,
+    split: |u| ([1.0 - u], [u]),
+};
+
+/// The centered L2 discrepancy (Hickernell 1998, eq. 5.1c).
+pub const CENTERED: Form = form! {
+    base: 13.0 / 12.0,
+    sign: 1.0,
+    f: |x| {
+        let t = (x - 0.5).abs();
+        1.0 + 0.5 * t - 0.5 * t * t
+    },
+    g: |x, y| 1.0 + 0.5 * (x - 0.5).abs() + 0.5 * (y - 0.5).abs() - 0.5 * (x - y).abs(),
+    // u >= v: (1 + |u - 1/2| / 2 - u / 2) + (|v - 1/2| / 2 + v / 2)
+    split: |u| {
+        let t = 0.5 * (u - 0.5).abs();
+        ([1.0 + t - 0.5 * u, 1.0], [1.0, t + 0.5 * u])
+    },
+};
+
+/// The wrap-around L2 discrepancy (Hickernell 1998, eq. 5.1d); invariant under toroidal
+/// shifts of the set.
+pub const WRAPAROUND: Form = form! {
+    base: 4.0 / 3.0,
+    sign: -1.0,
+    f: |_| 0.0,
+    g: |x, y| {
+        let t = (x - y).abs();
+        1.5 - t * (1.0 - t)
+    },
+    // u >= v, t = u - v: (3/2 - u + u^2) + (v + v^2) - 2 u v
+    split: |u| ([1.5 - u + u * u, 1.0, u], [1.0, u + u * u, -2.0 * u]),
+};
+
+/// The mixture L2 discrepancy (Zhou, Fang & Ning 2013, the "MD" of scipy).
+pub const MIXTURE: Form = form! {
+    base: 19.0 / 12.0,
+    sign: 1.0,
+    f: |x| {
+        let t = (x - 0.5).abs();
+        5.0 / 3.0 - 0.25 * t - 0.25 * t * t
+    },
+    g: |x, y| {
+        let d = (x - y).abs();
+        15.0 / 8.0 - 0.25 * (x - 0.5).abs() - 0.25 * (y - 0.5).abs() - 0.75 * d + 0.5 * d * d
+    },
+    // u >= v, d = u - v: (15/8 - |u - 1/2| / 4 - 3u/4 + u^2/2) + (-|v - 1/2| / 4 + 3v/4 + v^2/2) - u v
+    split: |u| {
+        let t = 0.25 * (u - 0.5).abs();
+        ([15.0 / 8.0 - t - 0.75 * u + 0.5 * u * u, 1.0, u], [1.0, -t + 0.75 * u + 0.5 * u * u, -u])
+    },
+};
+
+impl Form {
+    /// The squared discrepancy of `points` (`dims` coordinates each): the pair sum swept in
+    /// O(n log n) in 2D, else formed pair by pair (O(n^2 d); no better bound is known to us
+    /// for these in general d, Heinrich 1996's O(n log^d n) for L2-star aside).
+    pub fn squared(&self, points: &[f64], dims: usize) -> f64 {
+        if dims == 2 {
+            self.finish(self.single(points, dims), (self.sweep)(points), dims, points.len() / dims)
+        } else {
+            self.squared_quadratic(points, dims)
         }
     }
-    /// Sums of entries 0..i.
-    fn prefix(&self, i: usize) -> [f64; 2] {
-        let (mut i, mut s) = (i, [0.0; 2]);
-        while i > 0 {
-            s[0] += self.tree[i][0];
-            s[1] += self.tree[i][1];
-            i -= i & i.wrapping_neg();
-        }
-        s
+
+    /// The same, every pair's kernel formed (the oracle of the sweep).
+    pub fn squared_quadratic(&self, points: &[f64], dims: usize) -> f64 {
+        let (a, b) = (self.quadratic)(points, dims);
+        self.sign * self.base.powi(dims as i32) - 2.0 * a + b
     }
+
+    /// sum_i prod_k f(x_ik), compensated.
+    fn single(&self, points: &[f64], dims: usize) -> f64 {
+        let mut s = Sum::default();
+        for p in points.chunks_exact(dims) {
+            s.add(p.iter().map(|&x| (self.f)(x)).product());
+        }
+        s.value()
+    }
+
+    fn finish(&self, single: f64, pair: f64, dims: usize, n: usize) -> f64 {
+        let n = n as f64;
+        self.sign * self.base.powi(dims as i32) - 2.0 * single / n + pair / (n * n)
+    }
+}
+
+/// sum_ij g(x_i, x_j) g(y_i, y_j) over a 2D set in O(n log n) (the structure of Heinrich
+/// 1996's L2-star algorithm, for any kernel of finite separable rank): in x order, an
+/// earlier point j has x_j <= x_i, so g(x_i, x_j) = sum_r a_r(x_i) b_r(x_j); by y order,
+/// g(y_i, y_j) = sum_s a_s(y_i) b_s(y_j) when y_j <= y_i, else sum_s b_s(y_i) a_s(y_j). The
+/// sums over earlier j of b_r(x_j) b_s(y_j) (y_j <= y_i) and b_r(x_j) a_s(y_j) (y_j > y_i)
+/// are formed by a bottom-up merge sort on y over the x order (divide and conquer: the
+/// pairs split between two halves are met while merging them), with compensated running
+/// sums; memory O(n), sequential access. Ties on either axis fall in either case alike (g
+/// is continuous).
+pub fn pair_sum_2d<const R: usize>(
+    points: &[f64],
+    g: impl Fn(f64, f64) -> f64,
+    split: impl Fn(f64) -> ([f64; R], [f64; R]) + Copy,
+) -> f64 {
+    let mut pts: Vec<Point> = points.chunks_exact(2).map(|p| Point { x: p[0], y: p[1], inner: 0.0 }).collect();
+    pts.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    let n = pts.len();
+    // blocks of BLOCK points in x order: their pairs directly, then sorted by y
+    for block in pts.chunks_mut(BLOCK) {
+        for i in 1..block.len() {
+            let (done, rest) = block.split_at_mut(i);
+            let p = &mut rest[0];
+            p.inner = done.iter().map(|q| g(p.x, q.x) * g(p.y, q.y)).sum();
+        }
+        block.sort_by(|a, b| a.y.total_cmp(&b.y));
+    }
+    let mut spare = pts.clone();
+    let mut width = BLOCK;
+    while width < n {
+        for lo in (0..n).step_by(2 * width) {
+            let (mid, hi) = ((lo + width).min(n), (lo + 2 * width).min(n));
+            merge(split, &mut pts[lo..hi], mid - lo, &mut spare[lo..hi]);
+        }
+        width *= 2;
+    }
+    let mut pair = Sum::default();
+    for p in &pts {
+        pair.add(2.0 * p.inner + g(p.x, p.x) * g(p.y, p.y));
+    }
+    pair.value()
+}
+
+/// The sweep's leaves: blocks whose pairs are summed directly (fewer, longer merges).
+const BLOCK: usize = 32;
+
+/// A point of the sweep, with its sum over the earlier points met so far (a plain sum: a
+/// block's pairs, then one term per merge level; the running sums it is read from are the
+/// compensated ones).
+#[derive(Clone, Copy)]
+struct Point {
+    x: f64,
+    y: f64,
+    inner: f64,
+}
+
+/// The R x R products u_r v_s, row-major, in the first R^2 of 9 places.
+#[inline(always)]
+fn outer<const R: usize>(u: &[f64; R], v: &[f64; R]) -> [f64; 9] {
+    let mut out = [0.0; 9];
+    for (row, &a) in out.chunks_exact_mut(R).zip(u) {
+        for (o, &b) in row.iter_mut().zip(v) {
+            *o = a * b;
+        }
+    }
+    out
+}
+
+/// sum_rs u_r v_s sums_rs.
+#[inline(always)]
+fn contract<const R: usize>(u: &[f64; R], v: &[f64; R], sums: &Lanes<9>) -> f64 {
+    outer(u, v).iter().zip(sums.values()).map(|(w, s)| w * s).sum()
+}
+
+/// Merge the y-sorted halves `block[..mid]` (earlier in x) and `block[mid..]` (later), adding
+/// to each later point its sum over the earlier half: below it in y in a forward pass, above
+/// it in a backward one.
+#[inline(always)]
+fn merge<const R: usize>(
+    split: impl Fn(f64) -> ([f64; R], [f64; R]),
+    block: &mut [Point],
+    mid: usize,
+    spare: &mut [Point],
+) {
+    let (left, right) = block.split_at_mut(mid);
+    // forward: sum_{y_j <= y_i} sum_rs a_r(x_i) a_s(y_i) b_r(x_j) b_s(y_j)
+    let (mut below, mut j) = (Lanes::<9>::new(), 0);
+    for p in right.iter_mut() {
+        while j < left.len() && left[j].y <= p.y {
+            below.add(outer(&split(left[j].x).1, &split(left[j].y).1));
+            j += 1;
+        }
+        p.inner += contract(&split(p.x).0, &split(p.y).0, &below);
+    }
+    // backward: sum_{y_j > y_i} sum_rs a_r(x_i) b_s(y_i) b_r(x_j) a_s(y_j)
+    let (mut above, mut j) = (Lanes::<9>::new(), left.len());
+    for p in right.iter_mut().rev() {
+        while j > 0 && left[j - 1].y > p.y {
+            above.add(outer(&split(left[j - 1].x).1, &split(left[j - 1].y).0));
+            j -= 1;
+        }
+        p.inner += contract(&split(p.x).0, &split(p.y).1, &above);
+    }
+    // the two halves into one y order (stable: the earlier half first on ties)
+    let (mut i, mut j) = (0, 0);
+    for out in spare.iter_mut() {
+        let take_left = j == right.len() || (i < left.len() && left[i].y <= right[j].y);
+        *out = if take_left { left[i] } else { right[j] };
+        if take_left {
+            i += 1;
+        } else {
+            j += 1;
+        }
+    }
+    block.copy_from_slice(spare);
 }
 
 /// An L2 metric: the root of its squared closed form (clamped at zero: the closed forms
@@ -279,25 +408,25 @@ pub(crate) static ENTRIES: &[MetricEntry] = &[
         About::new("l2-star", "root mean square over anchored boxes (Shirley's S), Warnock's formula")
             .aliases(&["rms", "s", "warnock"])
             .cite(&["shirley1991"]),
-        |_, p, _| root(if p.dims() == 2 { l2_star_sq_2d(p.as_slice()) } else { l2_star_sq(p.as_slice(), p.dims()) }),
+        |_, p, _| root(STAR.squared(p.as_slice(), p.dims())),
     ),
     l2_entry(
         About::new("l2-extreme", "root mean square over all boxes").aliases(&["l2-unanchored"]).cite(&["shirley1991"]),
-        |_, p, _| root(l2_extreme_sq(p.as_slice(), p.dims())),
+        |_, p, _| root(EXTREME.squared(p.as_slice(), p.dims())),
     ),
     l2_entry(About::new("centered", "centered L2 discrepancy (Hickernell)").aliases(&["cd"]), |_, p, _| {
-        root(centered_sq(p.as_slice(), p.dims()))
+        root(CENTERED.squared(p.as_slice(), p.dims()))
     }),
     MetricEntry {
         shift_invariant: true,
         ..l2_entry(
             About::new("wraparound", "wrap-around L2 discrepancy (Hickernell); toroidal-shift invariant")
                 .aliases(&["wd", "wrap-around"]),
-            |_, p, _| root(wraparound_sq(p.as_slice(), p.dims())),
+            |_, p, _| root(WRAPAROUND.squared(p.as_slice(), p.dims())),
         )
     },
     l2_entry(About::new("mixture", "mixture L2 discrepancy").aliases(&["md"]), |_, p, _| {
-        root(mixture_sq(p.as_slice(), p.dims()))
+        root(MIXTURE.squared(p.as_slice(), p.dims()))
     }),
 ];
 

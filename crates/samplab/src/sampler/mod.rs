@@ -196,9 +196,9 @@ impl<'s> Plan<'s> {
     /// The `n` points for `seed`.
     ///
     /// # Errors
-    /// As [`Plan::fill`].
+    /// [`Error::Memory`] before any work when the set does not fit, or as [`Plan::fill`].
     pub fn generate(&self, seed: Seed) -> Result<PointSet> {
-        let mut data = vec![0.0; self.n * self.dims];
+        let mut data = crate::memory::zeroed(|| self.describe(1), self.n * self.dims)?;
         self.fill(seed, &mut data)?;
         Ok(PointSet::from_raw(self.dims, data))
     }

@@ -612,14 +612,26 @@ impl Binary {
     }
 
     fn fill(&self, out: &mut [f64]) {
-        let mut state = vec![0u64; self.dims];
-        for (i, p) in out.chunks_exact_mut(self.dims).enumerate() {
-            for (d, x) in p.iter_mut().enumerate() {
-                *x = self.value(state[d], d);
+        let dims = self.dims;
+        let mut state = vec![0u64; dims];
+        // the running XORs by column, then dimension: a step is one contiguous XOR
+        let steps: Vec<u64> =
+            (0..self.cols).flat_map(|c| (0..dims).map(move |d| self.prefix[d * self.cols + c])).collect();
+        let plain = self.owen.is_none() && self.offset.is_none();
+        for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+            if plain {
+                // value() without its branches: the digital shift and the 53 leading bits
+                for ((x, &s), &e) in p.iter_mut().zip(&state).zip(&self.shift) {
+                    *x = ((s ^ e) >> 11) as i64 as f64 * (1.0 / (1u64 << 53) as f64);
+                }
+            } else {
+                for (d, x) in p.iter_mut().enumerate() {
+                    *x = self.value(state[d], d);
+                }
             }
             let c = ((i as u64).trailing_ones() as usize).min(self.cols - 1);
-            for (d, s) in state.iter_mut().enumerate() {
-                *s ^= self.prefix[d * self.cols + c];
+            for (s, &t) in state.iter_mut().zip(&steps[c * dims..][..dims]) {
+                *s ^= t;
             }
         }
     }

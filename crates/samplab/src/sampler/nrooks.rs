@@ -121,7 +121,7 @@ impl Fill for OaLhs {
 pub(crate) static ENTRIES: &[SamplerEntry] = &[
     SamplerEntry {
         about: About::new("nrooks", "one point in every slab of every axis (Latin hypercube)")
-            .aliases(&["n-rooks", "separate", "lhcube", "latin-hypercube", "lhs"])
+            .aliases(&["n-rooks", "separate", "lhcube", "latin-hypercube", "lhs", "lhs.scrambled"])
             .cite(&["mckay1979", "shirley1991"]),
         counts: ANY,
         dims: "any d",
