@@ -619,19 +619,21 @@ impl Binary {
             (0..self.cols).flat_map(|c| (0..dims).map(move |d| self.prefix[d * self.cols + c])).collect();
         let plain = self.owen.is_none() && self.offset.is_none();
         for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+            let c = ((i as u64).trailing_ones() as usize).min(self.cols - 1);
+            let step = &steps[c * dims..][..dims];
+            // each coordinate read and stepped in one pass (a separate pass over the state
+            // stalled on store forwarding)
             if plain {
                 // value() without its branches: the digital shift and the 53 leading bits
-                for ((x, &s), &e) in p.iter_mut().zip(&state).zip(&self.shift) {
-                    *x = ((s ^ e) >> 11) as i64 as f64 * (1.0 / (1u64 << 53) as f64);
+                for (((x, s), &e), &t) in p.iter_mut().zip(state.iter_mut()).zip(&self.shift).zip(step) {
+                    *x = ((*s ^ e) >> 11) as i64 as f64 * (1.0 / (1u64 << 53) as f64);
+                    *s ^= t;
                 }
             } else {
-                for (d, x) in p.iter_mut().enumerate() {
-                    *x = self.value(state[d], d);
+                for (d, ((x, s), &t)) in p.iter_mut().zip(state.iter_mut()).zip(step).enumerate() {
+                    *x = self.value(*s, d);
+                    *s ^= t;
                 }
-            }
-            let c = ((i as u64).trailing_ones() as usize).min(self.cols - 1);
-            for (s, &t) in state.iter_mut().zip(&steps[c * dims..][..dims]) {
-                *s ^= t;
             }
         }
     }
