@@ -10,7 +10,10 @@ fn main() {
         let mut times: Vec<f64> = (0..5)
             .map(|_| {
                 let t = Instant::now();
-                std::hint::black_box(samplab::sampler::cbc::construct(n, s, 2.0, embedded).unwrap());
+                std::hint::black_box(
+                    samplab::sampler::cbc::construct(n, s, samplab::sampler::cbc::Weights::decaying(2.0), embedded)
+                        .unwrap(),
+                );
                 t.elapsed().as_secs_f64()
             })
             .collect();

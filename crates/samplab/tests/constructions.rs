@@ -3,6 +3,7 @@
 
 use samplab::discrepancy::{self, Limits, Metric};
 use samplab::progress::Progress;
+use samplab::sampler::cbc::Weights;
 use samplab::sampler::{self, cbc, kronecker};
 use samplab::{PointSet, Seed};
 
@@ -185,7 +186,7 @@ fn naive_next(prefix: &[u64], n: usize, decay: f64) -> f64 {
         .map(|c| {
             let mut t = prefix.to_vec();
             t.push(c as u64);
-            cbc::worst_case_error(&t, n, decay)
+            cbc::worst_case_error(&t, n, Weights::decaying(decay))
         })
         .fold(f64::INFINITY, f64::min)
 }
@@ -194,15 +195,19 @@ fn naive_next(prefix: &[u64], n: usize, decay: f64) -> f64 {
 fn fast_cbc_finds_the_smallest_error_at_every_component() {
     for (n, decay) in [(101usize, 2.0), (127, 0.0), (64, 2.0), (256, 1.0), (1024, 2.0), (2, 2.0), (8, 2.0)] {
         let dims = 5;
-        let z = cbc::construct(n, dims, decay, false).unwrap();
+        let z = cbc::construct(n, dims, Weights::decaying(decay), false).unwrap();
         assert_eq!(z[0], 1);
         for s in 2..=dims {
-            let (fast, naive) = (cbc::worst_case_error(&z[..s], n, decay), naive_next(&z[..s - 1], n, decay));
+            let (fast, naive) =
+                (cbc::worst_case_error(&z[..s], n, Weights::decaying(decay)), naive_next(&z[..s - 1], n, decay));
             assert!((fast - naive).abs() <= 1e-12 * naive.max(1.0), "n = {n}, s = {s}: {fast} against {naive}");
         }
         // the lattice sampler uses this vector, and with unit weights the error is Sloan & Joe's P_2
         if decay == 0.0 {
-            assert!((cbc::worst_case_error(&z, n, 0.0) - samplab::sampler::lattice::p2(&z, n)).abs() < 1e-12);
+            assert!(
+                (cbc::worst_case_error(&z, n, Weights::decaying(0.0)) - samplab::sampler::lattice::p2(&z, n)).abs()
+                    < 1e-12
+            );
         }
         let p = set(&format!("lattice.cbc:decay={decay}"), n, dims, 1);
         for (i, q) in p.iter().enumerate().take(50) {
@@ -213,6 +218,46 @@ fn fast_cbc_finds_the_smallest_error_at_every_component() {
     }
     let e = sampler::build("lattice.cbc").unwrap().plan(100, 2).unwrap_err().to_string();
     assert!(e.contains("97 and 101"), "{e}");
+}
+
+/// Whether `ours` rounds to `printed`, a value printed with 6 significant digits.
+fn rounds_to(ours: f64, printed: f64) -> bool {
+    let unit = 10f64.powf(printed.abs().log10().floor() - 5.0);
+    (ours - printed).abs() <= 0.5 * unit * (1.0 + 1e-9)
+}
+
+#[test]
+fn worst_case_errors_and_cbc_choices_match_lattice_builder() {
+    let text = include_str!("fixtures/latbuilder_p2.txt");
+    let w = Weights { first: 0.7, decay: 0.0 };
+    let n = 256;
+    let z = cbc::construct(n, 3, w, false).unwrap();
+    let (mut cbc_rows, mut level_rows) = (0, 0);
+    for line in text.lines().filter(|l| !l.starts_with('#') && !l.is_empty()) {
+        let (head, values) = line.split_once(" = ").unwrap();
+        let mut words = head.split_whitespace();
+        let kind = words.next().unwrap();
+        let vector: Vec<u64> = words.map(|w| w.parse().unwrap()).collect();
+        let values: Vec<f64> = values.split_whitespace().map(|v| v.parse().unwrap()).collect();
+        if kind == "cbc" {
+            // their lattice has the printed error, and so does ours of the same dimension:
+            // both are a minimum over the same candidates
+            let s = vector.len();
+            let (theirs, ours) = (cbc::worst_case_error(&vector, n, w), cbc::worst_case_error(&z[..s], n, w));
+            assert!(rounds_to(theirs, values[0]), "{vector:?}: {theirs} against printed {}", values[0]);
+            assert!(rounds_to(ours, values[0]), "our {:?}: {ours} against printed {}", &z[..s], values[0]);
+            cbc_rows += 1;
+        } else {
+            for (k, &printed) in values.iter().enumerate() {
+                let m = 1u64 << k;
+                let zk: Vec<u64> = vector.iter().map(|&zj| zj % m).collect();
+                let ours = cbc::worst_case_error(&zk, m as usize, w);
+                assert!(rounds_to(ours, printed), "{vector:?} at 2^{k}: {ours} against printed {printed}");
+            }
+            level_rows += 1;
+        }
+    }
+    assert_eq!((cbc_rows, level_rows), (5, 3));
 }
 
 #[test]
@@ -240,12 +285,13 @@ fn every_power_of_two_prefix_of_the_lattice_sequence_is_a_lattice() {
         }
     }
     // the embedded choice keeps every prefix within a small factor of the best lattice of its size
-    let z = cbc::construct(1 << 10, 4, 2.0, true).unwrap();
+    let w = Weights::decaying(2.0);
+    let z = cbc::construct(1 << 10, 4, w, true).unwrap();
     for k in 3..=10usize {
         let m = 1usize << k;
         let zk: Vec<u64> = z.iter().map(|&zj| zj % m as u64).collect();
-        let embedded = cbc::worst_case_error(&zk, m, 2.0);
-        let best = cbc::worst_case_error(&cbc::construct(m, 4, 2.0, false).unwrap(), m, 2.0);
+        let embedded = cbc::worst_case_error(&zk, m, w);
+        let best = cbc::worst_case_error(&cbc::construct(m, 4, w, false).unwrap(), m, w);
         assert!(embedded <= 2.0 * best, "2^{k}: {embedded} against CBC's {best}");
     }
 }

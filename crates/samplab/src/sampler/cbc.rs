@@ -7,7 +7,7 @@
 //!
 //!   e^2(z) = -1 + (1/n) sum_i prod_j (1 + gamma_j omega({i z_j / n})),  omega(x) = 2 pi^2 B_2(x),
 //!
-//! with gamma_j = j^-decay (j from 1). z_1 = 1; component s is the candidate minimizing
+//! with gamma_j = gamma_1 j^-decay (j from 1). z_1 = 1; component s is the candidate minimizing
 //! sum_i q_i omega({i z / n}), q_i the product over the components already chosen. Since
 //! omega(x) = omega(1 - x), z and n - z are equivalent, and the candidates are the units
 //! mod n up to sign. Ordered as powers of a generator of that group (a primitive root for
@@ -34,19 +34,36 @@ pub fn omega(x: f64) -> f64 {
     2.0 * std::f64::consts::PI * std::f64::consts::PI * (x * x - x + 1.0 / 6.0)
 }
 
-/// The weight of component j (from 0): (j + 1)^-decay.
-pub fn weight(j: usize, decay: f64) -> f64 {
-    ((j + 1) as f64).powf(-decay)
+/// Product weights gamma_j = first j^-decay (j from 1): `first` scales every coordinate
+/// alike (Lattice Builder's `product:w` is first = w, decay = 0), `decay` orders them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Weights {
+    /// gamma_1.
+    pub first: f64,
+    /// The exponent of j's decay.
+    pub decay: f64,
+}
+
+impl Weights {
+    /// gamma_j = j^-decay.
+    pub fn decaying(decay: f64) -> Weights {
+        Weights { first: 1.0, decay }
+    }
+
+    /// The weight of component j (from 0): first (j + 1)^-decay.
+    pub fn gamma(self, j: usize) -> f64 {
+        self.first * ((j + 1) as f64).powf(-self.decay)
+    }
 }
 
 /// The squared worst-case error e^2(z) of the lattice (module docs), by its definition:
 /// O(n s).
-pub fn worst_case_error(z: &[u64], n: usize, decay: f64) -> f64 {
+pub fn worst_case_error(z: &[u64], n: usize, weights: Weights) -> f64 {
     let sum: f64 = (0..n as u128)
         .map(|i| {
             z.iter()
                 .enumerate()
-                .map(|(j, &zj)| 1.0 + weight(j, decay) * omega((i * u128::from(zj) % n as u128) as f64 / n as f64))
+                .map(|(j, &zj)| 1.0 + weights.gamma(j) * omega((i * u128::from(zj) % n as u128) as f64 / n as f64))
                 .product::<f64>()
         })
         .sum();
@@ -220,11 +237,11 @@ impl Search {
 }
 
 /// A generating vector of `dims` components for n points by fast CBC (module docs), with
-/// weights gamma_j = j^-decay; `embedded` (n = 2^m) chooses for every prefix of 2^k points.
+/// product weights; `embedded` (n = 2^m) chooses for every prefix of 2^k points.
 ///
 /// # Errors
 /// n not a prime or a power of 2 up to [`MAX_N`], or `embedded` for n not a power of 2.
-pub fn construct(n: usize, dims: usize, decay: f64, embedded: bool) -> Result<Vec<u64>> {
+pub fn construct(n: usize, dims: usize, weights: Weights, embedded: bool) -> Result<Vec<u64>> {
     if !supports(n) || (embedded && !n.is_power_of_two()) {
         return Err(Error::Invalid(format!("fast CBC needs n a prime or a power of 2 up to 2^24, not {n}")));
     }
@@ -241,7 +258,7 @@ pub fn construct(n: usize, dims: usize, decay: f64, embedded: bool) -> Result<Ve
             1
         } else {
             let sums = search.sums(&q);
-            let gamma = weight(j, decay);
+            let gamma = weights.gamma(j);
             let full = sums.len() - 1;
             let pick = if embedded {
                 // e_k^2 = -1 + 2^-k (sum of q over the prefix + gamma * sums[k]); the sum of q
@@ -259,7 +276,7 @@ pub fn construct(n: usize, dims: usize, decay: f64, embedded: bool) -> Result<Ve
             };
             search.candidates[pick]
         };
-        let gamma = weight(j, decay);
+        let gamma = weights.gamma(j);
         // n <= 2^24: i z < 2^48 fits a u64
         for (i, qi) in q.iter_mut().take(n).enumerate() {
             *qi *= 1.0 + gamma * omega((i as u64 * zj % n as u64) as f64 / n as f64);

@@ -22,6 +22,7 @@ use std::ops::RangeInclusive;
 use std::sync::{Arc, Mutex};
 
 use super::registry::{ANY, SamplerEntry};
+use super::cbc::Weights;
 use super::{Access, Fill, Sampler, Sequence, cbc};
 use crate::error::{Error, Result};
 use crate::registry::About;
@@ -156,24 +157,24 @@ impl Fill for Korobov {
 /// A CBC lattice for the set's n, optionally shifted and tent-transformed.
 #[derive(Debug, Clone, Copy)]
 pub struct Cbc {
-    decay: f64,
+    weights: Weights,
     shift: bool,
     tent: bool,
 }
 
-/// Generating vectors made so far, by (n, dims, decay bits, embedded): the construction is
-/// deterministic, so remembering it only saves time.
+/// Generating vectors made so far, by (n, dims, weights' bits, embedded): the construction
+/// is deterministic, so remembering it only saves time.
 #[allow(clippy::type_complexity)]
-static CONSTRUCTED: Mutex<Vec<((usize, usize, u64, bool), Arc<Vec<u64>>)>> = Mutex::new(Vec::new());
+static CONSTRUCTED: Mutex<Vec<((usize, usize, [u64; 2], bool), Arc<Vec<u64>>)>> = Mutex::new(Vec::new());
 
 /// `cbc::construct`, remembered.
-fn constructed(n: usize, dims: usize, decay: f64, embedded: bool) -> Result<Arc<Vec<u64>>> {
-    let key = (n, dims, decay.to_bits(), embedded);
+fn constructed(n: usize, dims: usize, weights: Weights, embedded: bool) -> Result<Arc<Vec<u64>>> {
+    let key = (n, dims, [weights.first.to_bits(), weights.decay.to_bits()], embedded);
     let lock = || CONSTRUCTED.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
     if let Some((_, z)) = lock().iter().find(|(k, _)| *k == key) {
         return Ok(Arc::clone(z));
     }
-    let z = Arc::new(cbc::construct(n, dims, decay, embedded)?);
+    let z = Arc::new(cbc::construct(n, dims, weights, embedded)?);
     lock().push((key, Arc::clone(&z)));
     Ok(z)
 }
@@ -188,8 +189,11 @@ fn lattice_spec(name: &str, shift: bool, params: &[String]) -> String {
     format!("{name}:{}", params.iter().map(|p| p.as_str()).collect::<Vec<_>>().join(","))
 }
 
-fn decay_text(decay: f64) -> String {
-    if decay == 2.0 { String::new() } else { format!("decay={decay}") }
+/// The weights' parameters that differ from their defaults.
+fn weights_text(w: Weights) -> String {
+    let first = if w.first == 1.0 { String::new() } else { format!("gamma={}", w.first) };
+    let decay = if w.decay == 2.0 { String::new() } else { format!("decay={}", w.decay) };
+    [first, decay].into_iter().filter(|t| !t.is_empty()).collect::<Vec<_>>().join(",")
 }
 
 fn tent_text(tent: bool) -> String {
@@ -198,7 +202,7 @@ fn tent_text(tent: bool) -> String {
 
 impl Sampler for Cbc {
     fn spec(&self) -> String {
-        lattice_spec("lattice.cbc", self.shift, &[decay_text(self.decay), tent_text(self.tent)])
+        lattice_spec("lattice.cbc", self.shift, &[weights_text(self.weights), tent_text(self.tent)])
     }
     fn dims(&self) -> RangeInclusive<usize> {
         1..=usize::MAX
@@ -216,7 +220,7 @@ impl Fill for Cbc {
     }
 
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let z = constructed(n, dims, self.decay, false)?;
+        let z = constructed(n, dims, self.weights, false)?;
         let offsets = Offsets::new(dims, self.shift, self.tent, seed);
         for (i, p) in out.chunks_exact_mut(dims).enumerate() {
             for (d, (x, &zj)) in p.iter_mut().zip(z.iter()).enumerate() {
@@ -262,8 +266,8 @@ pub struct Embedded {
 /// Where an embedded sequence's generating vector comes from.
 #[derive(Debug, Clone)]
 enum Vector {
-    /// The embedded fast CBC for 2^20 points with weights j^-decay.
-    Constructed(f64),
+    /// The embedded fast CBC for 2^20 points with these weights.
+    Constructed(Weights),
     /// Read from a file: its path, the vector and the largest point count it was made for.
     File(String, Arc<Vec<u64>>, u64),
 }
@@ -274,7 +278,7 @@ const EMBEDDED_M: u32 = 20;
 impl Embedded {
     fn vector(&self, dims: usize) -> Result<Arc<Vec<u64>>> {
         match &self.vector {
-            Vector::Constructed(decay) => constructed(1 << EMBEDDED_M, dims, *decay, true),
+            Vector::Constructed(weights) => constructed(1 << EMBEDDED_M, dims, *weights, true),
             Vector::File(_, z, _) => Ok(Arc::clone(z)),
         }
     }
@@ -308,7 +312,7 @@ impl Access for Prepared {
 impl Sampler for Embedded {
     fn spec(&self) -> String {
         let source = match &self.vector {
-            Vector::Constructed(decay) => decay_text(*decay),
+            Vector::Constructed(weights) => weights_text(*weights),
             Vector::File(path, ..) => format!("vector={path}"),
         };
         lattice_spec("lattice", self.shift, &[source, tent_text(self.tent)])
@@ -390,8 +394,20 @@ const DECAY: ParamSpec = ParamSpec {
     name: "decay",
     kind: Kind::Real { min: 0.0, max: 16.0 },
     default: Default::Number(2.0),
-    doc: "product weights gamma_j = j^-decay of the worst-case error the construction minimizes",
+    doc: "product weights gamma_j = gamma j^-decay of the worst-case error the construction minimizes",
 };
+
+/// The product weights' scale of the CBC constructions.
+const GAMMA: ParamSpec = ParamSpec {
+    name: "gamma",
+    kind: Kind::Real { min: 1e-6, max: 1e6 },
+    default: Default::Number(1.0),
+    doc: "the first weight gamma_1 (gamma=0.7,decay=0 is Lattice Builder's product:0.7)",
+};
+
+fn weights(p: &crate::spec::Params) -> Weights {
+    Weights { first: p.real("gamma"), decay: p.real("decay") }
+}
 
 /// The baker's transform option.
 const TENT: ParamSpec = ParamSpec {
@@ -405,12 +421,12 @@ const TENT: ParamSpec = ParamSpec {
 const VECTOR: ParamSpec = ParamSpec {
     name: "vector",
     kind: Kind::Path,
-    default: Default::Auto("the embedded fast CBC for 2^20 points (weights j^-decay)"),
+    default: Default::Auto("the embedded fast CBC for 2^20 points (weights gamma j^-decay)"),
     doc: "a generating vector in the LDData lattice format (README: Lattices)",
 };
 
 fn cbc_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Sampler>> {
-    Ok(Box::new(Cbc { decay: p.real("decay"), shift, tent: p.word("tent") == "yes" }))
+    Ok(Box::new(Cbc { weights: weights(p), shift, tent: p.word("tent") == "yes" }))
 }
 
 fn embedded_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Sampler>> {
@@ -420,7 +436,7 @@ fn embedded_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Samp
             let (z, n) = parse_vector(&text, path)?;
             Vector::File(path.into(), Arc::new(z), n)
         }
-        None => Vector::Constructed(p.real("decay")),
+        None => Vector::Constructed(weights(p)),
     };
     Ok(Box::new(Embedded { vector, shift, tent: p.word("tent") == "yes" }))
 }
@@ -430,7 +446,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
     SamplerEntry {
         about: About::new("lattice", "embedded rank-1 lattice sequence, frac(phi_2(i) z), nets of 2^k points")
             .aliases(&["rank1", "lattice-sequence"])
-            .params(&[VECTOR, DECAY, TENT])
+            .params(&[VECTOR, GAMMA, DECAY, TENT])
             .cite(&["hickernell2000", "cools2006", "hickernell2002"]),
         counts: "any n (lattices at powers of 2)",
         dims: "any d (a file's: its dimensions)",
@@ -439,7 +455,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
     SamplerEntry {
         about: About::new("lattice.shift", "the embedded lattice sequence with a random shift mod 1")
             .aliases(&["lattice-shift"])
-            .params(&[VECTOR, DECAY, TENT])
+            .params(&[VECTOR, GAMMA, DECAY, TENT])
             .cite(&["hickernell2000", "cools2006", "cranley1976"]),
         counts: "any n (lattices at powers of 2)",
         dims: "any d (a file's: its dimensions)",
@@ -448,7 +464,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
     SamplerEntry {
         about: About::new("lattice.cbc", "rank-1 lattice, z by fast component-by-component construction")
             .aliases(&["cbc"])
-            .params(&[DECAY, TENT])
+            .params(&[GAMMA, DECAY, TENT])
             .cite(&["nuyens2006", "sloan1994", "hickernell2002"]),
         counts: "n a prime or a power of 2, up to 2^24",
         dims: "any d",
@@ -457,7 +473,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
     SamplerEntry {
         about: About::new("lattice.cbc.shift", "the CBC lattice with a random shift mod 1")
             .aliases(&["cbc-shift"])
-            .params(&[DECAY, TENT])
+            .params(&[GAMMA, DECAY, TENT])
             .cite(&["nuyens2006", "sloan1994", "cranley1976"]),
         counts: "n a prime or a power of 2, up to 2^24",
         dims: "any d",
