@@ -44,7 +44,8 @@ enum Command {
     Generate(generate::Args),
     /// Plot a point-set file as a scatter with 1D marginal histograms (PNG or SVG).
     Plot(plot::Args),
-    /// Discrepancies (star, extreme, L2 family, projected) of a file or of a sampler's sets.
+    /// Discrepancies (star, extreme, L2 family, diaphony, projected) and spacing statistics
+    /// (min-distance, relative radius, PCF, RDF) of a file or of a sampler's sets.
     Discrepancy(discrepancy::Args),
     /// Bias, variance and convergence exponents of samplers on the papers' test integrands.
     Integrate(integrate::Args),

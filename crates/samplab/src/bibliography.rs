@@ -28,12 +28,14 @@ bib! {
     faure1982 => "H. Faure. Discrepance de suites associees a un systeme de numeration (en dimension s). Acta Arith. 41, 1982.",
     halton1960 => "J. H. Halton. On the efficiency of certain quasi-random sequences of points in evaluating multi-dimensional integrals. Numer. Math. 2, 1960.",
     hammersley1964 => "J. M. Hammersley, D. C. Handscomb. Monte Carlo Methods. Methuen, 1964.",
+    heck2013 => "D. Heck, T. Schlömer, O. Deussen. Blue noise sampling with controlled aliasing. ACM TOG 32(3), 2013 (the PCF by a Gaussian kernel).",
     helmer2021 => "A. Helmer, P. Christensen, A. Kensler. Stochastic generation of (t,s) sample sequences. EGSR 2021.",
     hickernell2000 => "F. J. Hickernell, H. S. Hong, P. L'Ecuyer, C. Lemieux. Extensible lattice sequences for quasi-Monte Carlo quadrature. SIAM J. Sci. Comput. 22(3), 2000.",
     hickernell2002 => "F. J. Hickernell. Obtaining O(N^-2+e) convergence for lattice quadrature rules. Monte Carlo and Quasi-Monte Carlo Methods 2000, Springer, 2002.",
     joe2008 => "S. Joe, F. Y. Kuo. Constructing Sobol sequences with better two-dimensional projections. SIAM J. Sci. Comput. 30(5), 2008.",
     kensler2013 => "A. Kensler. Correlated multi-jittered sampling. Pixar Technical Memo 13-01, 2013.",
     korobov1959 => "N. M. Korobov. The approximate computation of multiple integrals. Dokl. Akad. Nauk SSSR 124, 1959.",
+    lagae2008 => "A. Lagae, P. Dutré. A comparison of methods for generating Poisson disk distributions. Computer Graphics Forum 27(1), 2008 (the relative radius).",
     laine2011 => "S. Laine, T. Karras. Stratified sampling for stochastic transparency. EGSR 2011.",
     matousek1998 => "J. Matousek. On the L2-discrepancy for anchored boxes. J. Complexity 14, 1998 (random digit scrambling).",
     mckay1979 => "M. D. McKay, R. J. Beckman, W. J. Conover. A comparison of three methods for selecting values of input variables. Technometrics 21(2), 1979.",
@@ -57,6 +59,7 @@ bib! {
     tang1993 => "B. Tang. Orthogonal array-based Latin hypercubes. J. Amer. Statist. Assoc. 88(424), 1993.",
     vegdahl2021 => "N. Vegdahl. Building a better LK hash. psychopath.io blog, 2021 (constants of the Owen hash).",
     weyl1916 => "H. Weyl. Über die Gleichverteilung von Zahlen mod. Eins. Math. Ann. 77, 1916.",
+    zinterhof1976 => "P. Zinterhof. Über einige Abschätzungen bei der Approximation von Funktionen mit Gleichverteilungsmethoden. Sitzungsber. Österr. Akad. Wiss. Math.-Natur. Kl. II 185, 1976 (the diaphony).",
 }
 
 /// The reference for `key`, if it exists.

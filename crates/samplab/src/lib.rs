@@ -40,6 +40,7 @@ pub mod registry;
 pub mod sampler;
 pub mod seed;
 pub mod simd;
+pub mod spatial;
 pub mod spec;
 pub mod spectrum;
 pub mod stats;

@@ -137,6 +137,7 @@ fn every_l2_sweep_equals_its_pair_by_pair_sum() {
         ("centered", l2::CENTERED),
         ("wrap", l2::WRAPAROUND),
         ("mixture", l2::MIXTURE),
+        ("diaphony", l2::DIAPHONY),
     ] {
         for trial in 0..600 {
             let n = 1 + below(&mut rng, 64) as usize;
@@ -145,10 +146,13 @@ fn every_l2_sweep_equals_its_pair_by_pair_sum() {
         }
         // and a large Sobol' set, where the squared discrepancy (L2-extreme: 7e-9) is the
         // difference of terms a million times larger (floating-point sums in the sweep were
-        // 1e-7 off here; its sums are exact)
+        // 1e-7 off here; its sums are compensated; relative 1e-11, but the diaphony is
         let p = sampler::build("sobol.owen").unwrap().generate(1 << 13, 2, Seed(3)).unwrap();
+        // 1e-5; the diaphony's kernel dips below zero (1 - pi^2 / 6) and its separable terms
+        // reach 4 pi^2, so its sweep is held to 1e-12 absolute, 1e-13 of its largest pair term)
         let (fast, slow) = (form.squared(p.as_slice(), 2), form.squared_quadratic(p.as_slice(), 2));
-        assert!((fast - slow).abs() <= 1e-11 * slow.abs(), "{name} 2^13 Sobol': {fast} vs {slow}");
+        let tolerance = if name == "diaphony" { 1e-12 } else { 1e-11 * slow.abs() };
+        assert!((fast - slow).abs() <= tolerance, "{name} 2^13 Sobol': {fast} vs {slow}");
     }
 }
 

@@ -224,6 +224,29 @@ pub const WRAPAROUND: Form = form! {
     split: |u| ([1.5 - u + u * u, 1.0, u], [1.0, u + u * u, -2.0 * u]),
 };
 
+/// 2 pi^2.
+const TWO_PI2: f64 = 2.0 * std::f64::consts::PI * std::f64::consts::PI;
+
+/// Zinterhof's diaphony, squared: sum over nonzero frequencies h of
+/// |(1/N) sum_i e^(2 pi i h.x_i)|^2 / prod_k max(1, |h_k|)^2, which, since
+/// sum_h e^(2 pi i h t) / max(1, |h|)^2 = 1 + 2 pi^2 B_2({t}), is
+/// -1 + (1/N^2) sum_ij prod_k (1 + 2 pi^2 B_2(|x_ik - x_jk|)), B_2(t) = t^2 - t + 1/6
+/// (even and 1-periodic, so |t| stands for {t}). Toroidal-shift invariant; for a rank-1
+/// lattice it equals the worst-case error P_2 (`sampler::lattice::p2`).
+pub const DIAPHONY: Form = form! {
+    base: 1.0,
+    sign: -1.0,
+    f: |_| 0.0,
+    g: |x, y| {
+        let t = (x - y).abs();
+        1.0 + TWO_PI2 * (t * t - t + 1.0 / 6.0)
+    },
+    // u >= v, t = u - v: (1 + pi^2/3 - 2 pi^2 u + 2 pi^2 u^2) + 2 pi^2 (v + v^2) - 4 pi^2 u v
+    split: |u| {
+        ([1.0 + TWO_PI2 / 6.0 - TWO_PI2 * u + TWO_PI2 * u * u, 1.0, u], [1.0, TWO_PI2 * (u + u * u), -2.0 * TWO_PI2 * u])
+    },
+};
+
 /// The mixture L2 discrepancy (Zhou, Fang & Ning 2013, the "MD" of scipy).
 pub const MIXTURE: Form = form! {
     base: 19.0 / 12.0,
@@ -428,6 +451,14 @@ pub(crate) static ENTRIES: &[MetricEntry] = &[
     l2_entry(About::new("mixture", "mixture L2 discrepancy").aliases(&["md"]), |_, p, _| {
         root(MIXTURE.squared(p.as_slice(), p.dims()))
     }),
+    MetricEntry {
+        shift_invariant: true,
+        ..l2_entry(
+            About::new("diaphony", "Zinterhof's diaphony: the Fourier coefficients' weighted energy")
+                .cite(&["zinterhof1976"]),
+            |_, p, _| root(DIAPHONY.squared(p.as_slice(), p.dims())),
+        )
+    },
 ];
 
 #[cfg(test)]

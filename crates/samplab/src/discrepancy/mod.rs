@@ -16,10 +16,11 @@
 //! |---|---|---|
 //! | `star` | 1D closed form; 2D sweep + kinetic segment tree; d >= 3 Dobkin-Eppstein-Mitchell cells + knapsack | n log n; n log^2 n; n^(1+d/2) |
 //! | `extreme` | 1D closed form; 2D slab sweep | n log n; n^3 |
-//! | `l2-star` | Warnock's closed form; 2D Fenwick-tree form | d n^2; n log n |
-//! | `l2-extreme`, `centered`, `wraparound`, `mixture` | Hickernell's closed forms | d n^2 |
+//! | `l2-star`, `l2-extreme`, `centered`, `wraparound`, `mixture`, `diaphony` | closed forms (Warnock, Hickernell, Zinterhof); in 2D a merge-sort sweep | d n^2; 2D n log n |
 //! | `projected` | 1D star/extreme of the projections against their exact CDF | n log n |
 //! | `star-bound` | threshold accepting: a LOWER BOUND on the star discrepancy | iterations x n d |
+//! | `min-distance`, `relative-radius` | grid of cells, rings widened until the smallest distance is confirmed | n expected (d <= 4); n^2 d |
+//! | `pcf`, `rdf` | pairs within reach through a grid of cells ([`crate::spatial`]) | pairs within reach x radii |
 
 use crate::error::{Error, Result};
 use crate::points::PointSet;
@@ -72,7 +73,7 @@ impl Entry for MetricEntry {
 crate::registry::registry_files! {
     /// Every metric, in listing order, gathered from the files that declare them.
     pub static METRICS: Registry<MetricEntry> =
-        ("metric", "METRICS  (values are never squared)") from [star, extreme, l2, bound, projected];
+        ("metric", "METRICS  (values are never squared)") from [star, extreme, l2, bound, projected, spacing];
 }
 
 /// A discrepancy to compute: a registered metric with its parameters.

@@ -1,0 +1,213 @@
+//! Spatial statistics against brute force over every pair, closed forms (packing radii, a
+//! grid's PCF peak, white noise's PCF of 1) and the diaphony's Fourier definition.
+
+use samplab::discrepancy::{self, Limits, Metric};
+use samplab::seed::{Rng, Seed, below, uniform};
+use samplab::{PointSet, sampler, spatial};
+
+/// Coordinates from a coarse lattice (ties, coincident points) mixed with uniform values,
+/// 0 and 1.
+fn nasty(rng: &mut Rng, n: usize, d: usize) -> PointSet {
+    let levels = 1 + below(rng, 8);
+    let data = (0..n * d)
+        .map(|_| match below(rng, 6) {
+            0 => 0.0,
+            1 => 1.0,
+            2 | 3 => below(rng, levels + 1) as f64 / levels as f64,
+            _ => uniform(rng),
+        })
+        .collect();
+    PointSet::new(d, data).unwrap()
+}
+
+/// The distance, on the torus as the difference less its nearest integer.
+fn distance(a: &[f64], b: &[f64], torus: bool) -> f64 {
+    let gaps = a.iter().zip(b).map(|(x, y)| if torus { (x - y) - (x - y).round() } else { x - y });
+    gaps.map(|t| t * t).sum::<f64>().sqrt()
+}
+
+/// Every pair's distance, i < j.
+fn all_distances(p: &PointSet, torus: bool) -> Vec<f64> {
+    let mut out = Vec::new();
+    for i in 0..p.len() {
+        for j in i + 1..p.len() {
+            out.push(distance(p.point(i), p.point(j), torus));
+        }
+    }
+    out
+}
+
+fn random_set(n: usize, d: usize, seed: u64) -> PointSet {
+    sampler::build("random").unwrap().generate(n, d, Seed(seed)).unwrap()
+}
+
+#[test]
+fn min_distance_equals_brute_force() {
+    let mut rng = Seed(3).rng();
+    for trial in 0..800 {
+        let d = 1 + below(&mut rng, 5) as usize;
+        let n = 2 + below(&mut rng, 300) as usize;
+        let p = if trial % 2 == 0 { nasty(&mut rng, n, d) } else { random_set(n, d, trial) };
+        for torus in [true, false] {
+            let want = all_distances(&p, torus).into_iter().fold(f64::INFINITY, f64::min);
+            assert_eq!(spatial::min_distance(&p, torus), want, "trial {trial}, {n} points in {d}D, torus {torus}");
+        }
+    }
+    // clustered: every point but two on a coarse grid, those two very close (rings grow)
+    let mut data: Vec<f64> =
+        (0..100).flat_map(|i| [(i % 10) as f64 / 10.0 + 0.05, (i / 10) as f64 / 10.0 + 0.05]).collect();
+    data.extend([0.5, 0.5, 0.5 + 1e-9, 0.5]);
+    let p = PointSet::new(2, data).unwrap();
+    assert!((spatial::min_distance(&p, true) - 1e-9).abs() < 1e-15);
+    assert_eq!(spatial::min_distance(&random_set(1, 2, 0), true), f64::INFINITY);
+}
+
+#[test]
+fn packing_radii_are_the_known_packings() {
+    // 2D hexagonal: sqrt(1 / (2 sqrt 3 n)); 3D face-centred cubic: (1 / (4 sqrt 2 n))^(1/3);
+    // 1D: 1 / (2n)
+    for n in [1usize, 7, 1000] {
+        let n_f = n as f64;
+        let close = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-14;
+        assert!(close(spatial::packing_radius(n, 1).unwrap(), 0.5 / n_f));
+        assert!(close(spatial::packing_radius(n, 2).unwrap(), (1.0 / (2.0 * 3f64.sqrt() * n_f)).sqrt()));
+        assert!(close(spatial::packing_radius(n, 3).unwrap(), (1.0 / (4.0 * 2f64.sqrt() * n_f)).cbrt()));
+    }
+    assert!(spatial::packing_radius(10, 9).is_err());
+    // a hexagonal arrangement that tiles the torus (k columns, 2m rows, spacing ratio close
+    // to sqrt 3 / 2) is within a few percent of the packing; white noise far from it
+    let hex = sampler::build("hexagonal").unwrap().generate(32 * 2 * 18, 2, Seed(1)).unwrap();
+    let rho = spatial::relative_radius(&hex).unwrap();
+    assert!((0.97..=1.0).contains(&rho), "hexagonal: {rho}");
+    let rho = spatial::relative_radius(&random_set(1152, 2, 1)).unwrap();
+    assert!(rho < 0.1, "white noise: {rho}");
+}
+
+/// The Gaussian-kernel PCF over every ordered pair, by its definition.
+fn pcf_brute(p: &PointSet, r: f64, sigma: f64) -> f64 {
+    let n = p.len() as f64;
+    let surface = p.dims() as f64 * spatial::unit_ball_volume(p.dims());
+    let sum: f64 = all_distances(p, true).iter().map(|&d| (-((r - d) / sigma).powi(2)).exp()).sum();
+    2.0 * sum / (std::f64::consts::PI.sqrt() * sigma) / (n * (n - 1.0) * surface * r.powi(p.dims() as i32 - 1))
+}
+
+#[test]
+fn pcf_and_rdf_equal_their_definitions() {
+    let mut rng = Seed(4).rng();
+    for trial in 0..60 {
+        let d = 1 + below(&mut rng, 3) as usize;
+        let n = 2 + below(&mut rng, 400) as usize;
+        let p = if trial % 2 == 0 { nasty(&mut rng, n, d) } else { random_set(n, d, trial) };
+        let sigma = 0.002 + 0.05 * uniform(&mut rng);
+        // evenly spaced radii (the kernel by a recurrence) and uneven ones
+        let even: Vec<f64> = (1..=40).map(|i| i as f64 * 0.0125).collect();
+        let uneven: Vec<f64> = (1..=20).map(|i| 0.5 * (i as f64 / 20.0).powi(2)).collect();
+        for radii in [even, uneven] {
+            let fast = spatial::pcf(&p, &radii, sigma).unwrap();
+            for (&r, &g) in radii.iter().zip(&fast) {
+                let want = pcf_brute(&p, r, sigma);
+                assert!((g - want).abs() <= 1e-12 * want.max(1.0), "trial {trial}: r = {r}: {g} vs {want}");
+            }
+        }
+        let edges: Vec<f64> = (0..=25).map(|i| i as f64 * 0.02).collect();
+        let fast = spatial::rdf(&p, &edges).unwrap();
+        let distances = all_distances(&p, true);
+        let ball = spatial::unit_ball_volume(d);
+        for (b, w) in edges.windows(2).enumerate() {
+            let count = distances.iter().filter(|&&x| w[0] <= x && x < w[1]).count() as f64;
+            let want = 2.0 * count / (n as f64 * (n as f64 - 1.0) * ball * (w[1].powi(d as i32) - w[0].powi(d as i32)));
+            assert!((fast[b] - want).abs() <= 1e-12 * want.max(1.0), "trial {trial}: shell {b}");
+        }
+    }
+    let p = random_set(10, 2, 0);
+    assert!(spatial::pcf(&p, &[0.6], 0.01).is_err());
+    assert!(spatial::pcf(&p, &[0.2, 0.1], 0.01).is_err());
+    assert!(spatial::pcf(&p, &[0.1], 0.0).is_err());
+}
+
+#[test]
+fn white_noise_has_pcf_one_and_a_grid_peaks_at_its_spacing() {
+    // white noise: the estimator is unbiased for r > 3 sigma (exactly in 2D); the mean of
+    // 40 sets of 2000 points within 4 standard errors of 1
+    let radii: Vec<f64> = (1..=20).map(|i| 0.02 * i as f64).collect();
+    let sets: Vec<Vec<f64>> = (0..40).map(|s| spatial::pcf(&random_set(2000, 2, s), &radii, 0.005).unwrap()).collect();
+    for (b, &r) in radii.iter().enumerate() {
+        let v: Vec<f64> = sets.iter().map(|g| g[b]).collect();
+        let s = samplab::stats::Summary::of(&v);
+        assert!((s.mean - 1.0).abs() <= 4.0 * s.standard_error(), "r = {r}: {} +- {}", s.mean, s.standard_error());
+    }
+    // a k x k grid: each point has 4 neighbours at h = 1/k and the next shell is at sqrt(2) h,
+    // so with sigma = h / 20 g(h) = 4 / ((n - 1) sqrt(pi) sigma 2 pi h) (to e^-68)
+    let k = 32usize;
+    let grid = sampler::build("regular").unwrap().generate(k * k, 2, Seed(0)).unwrap();
+    let (h, n) = (1.0 / k as f64, (k * k) as f64);
+    let sigma = h / 20.0;
+    let g = spatial::pcf(&grid, &[h, 1.2 * h], sigma).unwrap();
+    let want = 4.0 / ((n - 1.0) * std::f64::consts::PI.sqrt() * sigma * 2.0 * std::f64::consts::PI * h);
+    assert!((g[0] / want - 1.0).abs() < 1e-12, "{} vs {want}", g[0]);
+    assert!(g[1] < 1e-6 * g[0], "between the shells: {}", g[1]);
+}
+
+#[test]
+fn spacing_metrics_go_through_the_registry() {
+    let grid = sampler::build("regular").unwrap().generate(256, 2, Seed(0)).unwrap();
+    let m = |spec: &str| discrepancy::compute(&Metric::parse(spec).unwrap(), &grid, Limits::default()).unwrap();
+    assert!((m("min-distance") - 1.0 / 16.0).abs() < 1e-15);
+    let r_max = spatial::packing_radius(256, 2).unwrap();
+    assert!((m("relative-radius") - 1.0 / 32.0 / r_max).abs() < 1e-12);
+    // a grid's highest PCF value is near its spacing h = 1/16, the closed form of the 4
+    // neighbours there for the default sigma = d_max / 8 (the peak of exp(-(r - h)^2 / sigma^2)
+    // / r lies a little below h and a little higher); its RDF's highest shell holds them too
+    let (h, sigma) = (1.0 / 16.0, 2.0 * r_max / 8.0);
+    let peak = 4.0 / (255.0 * std::f64::consts::PI.sqrt() * sigma * 2.0 * std::f64::consts::PI * h);
+    assert!((1.0..1.02).contains(&(m("pcf") / peak)), "{} vs {peak}", m("pcf"));
+    // the RDF in the default shell (width d_max / 10) around h holds those 4 neighbours alone
+    let (lo, hi) = (h - 0.1 * r_max, h + 0.1 * r_max);
+    let shell = 4.0 / (255.0 * std::f64::consts::PI * (hi * hi - lo * lo));
+    let spec = format!("rdf:r={}", h / (2.0 * r_max));
+    let at_h = discrepancy::compute(&Metric::parse(&spec).unwrap(), &grid, Limits::default()).unwrap();
+    assert!((at_h / shell - 1.0).abs() < 1e-12, "{at_h} vs {shell}");
+    assert!(m("rdf") > 2.0, "{}", m("rdf"));
+    let noise = random_set(4096, 2, 2);
+    let g = discrepancy::compute(&Metric::parse("pcf:r=2").unwrap(), &noise, Limits::default()).unwrap();
+    assert!((g - 1.0).abs() < 0.1, "white noise at 2 d_max: {g}");
+}
+
+#[test]
+fn diaphony_is_its_fourier_sum_and_a_lattice_s_p2() {
+    // the Fourier definition, truncated at |h_k| <= H: the tail sum_(|h| > H) 1/h^2 < 2/H
+    // per axis bounds the gap
+    let mut rng = Seed(6).rng();
+    let form = |p: &PointSet| discrepancy::l2::DIAPHONY.squared(p.as_slice(), p.dims());
+    for trial in 0..5 {
+        let n = 1 + below(&mut rng, 12) as usize;
+        let p = nasty(&mut rng, n, 2);
+        let h_max = 300i64;
+        let mut sum = 0.0;
+        for h1 in -h_max..=h_max {
+            for h2 in -h_max..=h_max {
+                if (h1, h2) == (0, 0) {
+                    continue;
+                }
+                let (mut re, mut im) = (0.0, 0.0);
+                for q in p.iter() {
+                    let a = 2.0 * std::f64::consts::PI * (h1 as f64 * q[0] + h2 as f64 * q[1]);
+                    re += a.cos();
+                    im += a.sin();
+                }
+                let n = p.len() as f64;
+                sum += (re * re + im * im) / (n * n) / ((h1.abs().max(1) * h2.abs().max(1)) as f64).powi(2);
+            }
+        }
+        let bound = 2.0 * (2.0 / h_max as f64) * (1.0 + std::f64::consts::PI.powi(2) / 3.0);
+        assert!((form(&p) - sum).abs() <= bound, "trial {trial}: {} vs {sum}", form(&p));
+    }
+    // a rank-1 lattice's diaphony^2 is its worst-case error P_2 (a sum over n, not n^2)
+    for (n, z) in [(89usize, vec![1u64, 55]), (101, vec![1, 40, 85]), (64, vec![1, 19])] {
+        let points: Vec<f64> =
+            (0..n as u64).flat_map(|i| z.iter().map(move |&zj| (i * zj % n as u64) as f64 / n as f64)).collect();
+        let p = PointSet::new(z.len(), points).unwrap();
+        let p2 = samplab::sampler::lattice::p2(&z, n);
+        assert!((form(&p) - p2).abs() <= 1e-12 * p2, "n = {n}: {} vs {p2}", form(&p));
+    }
+}
