@@ -59,6 +59,7 @@ bib! {
     tang1993 => "B. Tang. Orthogonal array-based Latin hypercubes. J. Amer. Statist. Assoc. 88(424), 1993.",
     vegdahl2021 => "N. Vegdahl. Building a better LK hash. psychopath.io blog, 2021 (constants of the Owen hash).",
     weyl1916 => "H. Weyl. Über die Gleichverteilung von Zahlen mod. Eins. Math. Ann. 77, 1916.",
+    yuksel2015 => "C. Yuksel. Sample elimination for generating Poisson disk sample sets. Computer Graphics Forum 34(2), Eurographics 2015.",
     zinterhof1976 => "P. Zinterhof. Über einige Abschätzungen bei der Approximation von Funktionen mit Gleichverteilungsmethoden. Sitzungsber. Österr. Akad. Wiss. Math.-Natur. Kl. II 185, 1976 (the diaphony).",
 }
 

@@ -20,7 +20,7 @@ const CHUNK: usize = 512;
 
 /// Squared distance between two points, on the torus or in the cube.
 #[inline]
-fn distance2(a: &[f64], b: &[f64], torus: bool) -> f64 {
+pub(crate) fn distance2(a: &[f64], b: &[f64], torus: bool) -> f64 {
     a.iter()
         .zip(b)
         .map(|(x, y)| {
@@ -31,21 +31,23 @@ fn distance2(a: &[f64], b: &[f64], torus: bool) -> f64 {
         .sum()
 }
 
-/// Points binned into k^d cells of side 1/k.
-struct Grid<'a> {
-    points: &'a [f64],
+/// Points binned into k^d cells of side 1/k, copied in cell order (neighbours lie close
+/// in memory): position q holds the point `ids[q]` of the input.
+pub(crate) struct Grid {
     dims: usize,
     k: usize,
-    /// Cell c's points are `members[start[c]..start[c + 1]]`.
+    /// The coordinates in cell order.
+    coords: Vec<f64>,
+    /// The input index of each position.
+    pub(crate) ids: Vec<u32>,
+    /// Cell c's points are at positions `start[c]..start[c + 1]`.
     start: Vec<usize>,
-    members: Vec<u32>,
 }
 
-impl<'a> Grid<'a> {
-    fn new(points: &'a [f64], dims: usize, k: usize) -> Grid<'a> {
+impl Grid {
+    fn new(points: &[f64], dims: usize, k: usize) -> Grid {
         let n = points.len() / dims;
-        let cell_of = |p: &[f64]| p.iter().rev().fold(0, |c, &x| c * k + ((x * k as f64) as usize).min(k - 1));
-        let cells: Vec<usize> = points.chunks_exact(dims).map(cell_of).collect();
+        let cells: Vec<usize> = points.chunks_exact(dims).map(|p| Grid::cell(k, p)).collect();
         let mut start = vec![0usize; k.pow(dims as u32) + 1];
         for &c in &cells {
             start[c + 1] += 1;
@@ -54,47 +56,77 @@ impl<'a> Grid<'a> {
             start[c] += start[c - 1];
         }
         let mut fill = start.clone();
-        let mut members = vec![0u32; n];
+        let mut ids = vec![0u32; n];
         for (i, &c) in cells.iter().enumerate() {
-            members[fill[c]] = i as u32;
+            ids[fill[c]] = i as u32;
             fill[c] += 1;
         }
-        Grid { points, dims, k, start, members }
+        let coords =
+            ids.iter().flat_map(|&i| points[i as usize * dims..(i as usize + 1) * dims].iter().copied()).collect();
+        Grid { dims, k, coords, ids, start }
     }
 
-    fn point(&self, i: usize) -> &[f64] {
-        &self.points[i * self.dims..(i + 1) * self.dims]
+    /// The cell of a point.
+    fn cell(k: usize, p: &[f64]) -> usize {
+        p.iter().rev().fold(0, |c, &x| c * k + ((x * k as f64) as usize).min(k - 1))
     }
 
-    /// Every cell within `ring` cells of point i's cell along each axis, each once
-    /// (wrapping around on the torus), by its point indices.
-    fn near(&self, i: usize, ring: usize, torus: bool, mut visit: impl FnMut(&[u32])) {
+    /// Cells of side at least `reach` (at most about 4n of them): every pair closer than
+    /// `reach` lies within one cell of each other.
+    pub(crate) fn covering(points: &[f64], dims: usize, reach: f64) -> Grid {
+        let n = points.len() / dims;
+        let fine = (1.0 / reach).floor().max(1.0) as usize;
+        let coarse = ((4.0 * n as f64).powf(1.0 / dims as f64).floor() as usize).max(1);
+        Grid::new(points, dims, fine.min(coarse))
+    }
+
+    /// How many points.
+    pub(crate) fn len(&self) -> usize {
+        self.ids.len()
+    }
+
+    /// The point at position q.
+    #[inline]
+    pub(crate) fn point(&self, q: usize) -> &[f64] {
+        &self.coords[q * self.dims..(q + 1) * self.dims]
+    }
+
+    /// Every cell within `ring` cells of the cell of the point at position q along each
+    /// axis, each once (wrapping around on the torus), as its range of positions.
+    pub(crate) fn near(&self, q: usize, ring: usize, torus: bool, mut visit: impl FnMut(std::ops::Range<usize>)) {
         let k = self.k;
-        let axes: Vec<Vec<usize>> = self
-            .point(i)
-            .iter()
-            .map(|&x| {
-                let c = ((x * k as f64) as usize).min(k - 1);
-                if torus && 2 * ring + 1 >= k {
-                    (0..k).collect()
-                } else if torus {
-                    (0..=2 * ring).map(|o| (c + k + o - ring) % k).collect()
-                } else {
-                    (c.saturating_sub(ring)..=(c + ring).min(k - 1)).collect()
-                }
-            })
-            .collect();
-        let mut at = vec![0usize; self.dims];
+        // per axis: the first cell and how many follow it (mod k on the torus); on the stack
+        // up to 8 dimensions
+        let (mut stack, mut at_stack) = ([(0usize, 0usize); 8], [0usize; 8]);
+        let (mut heap, mut at_heap) = (Vec::new(), Vec::new());
+        let (axes, at): (&mut [(usize, usize)], &mut [usize]) = if self.dims <= stack.len() {
+            (&mut stack[..self.dims], &mut at_stack[..self.dims])
+        } else {
+            heap.resize(self.dims, (0, 0));
+            at_heap.resize(self.dims, 0);
+            (&mut heap, &mut at_heap)
+        };
+        for (axis, &x) in axes.iter_mut().zip(self.point(q)) {
+            let c = ((x * k as f64) as usize).min(k - 1);
+            *axis = if torus && 2 * ring + 1 >= k {
+                (0, k)
+            } else if torus {
+                ((c + k - ring) % k, 2 * ring + 1)
+            } else {
+                let first = c.saturating_sub(ring);
+                (first, (c + ring).min(k - 1) + 1 - first)
+            };
+        }
         loop {
-            let cell = axes.iter().zip(&at).rev().fold(0, |c, (axis, &a)| c * k + axis[a]);
-            visit(&self.members[self.start[cell]..self.start[cell + 1]]);
+            let cell = axes.iter().zip(at.iter()).rev().fold(0, |c, (&(first, _), &a)| c * k + (first + a) % k);
+            visit(self.start[cell]..self.start[cell + 1]);
             let mut axis = 0;
             loop {
                 if axis == self.dims {
                     return;
                 }
                 at[axis] += 1;
-                if at[axis] < axes[axis].len() {
+                if at[axis] < axes[axis].1 {
                     break;
                 }
                 at[axis] = 0;
@@ -109,8 +141,8 @@ impl<'a> Grid<'a> {
     }
 }
 
-/// `visit(acc, i, j, d2)` for every pair i < j whose cells lie within `ring` cells of each
-/// other, one accumulator per chunk of i, returned in chunk order.
+/// `visit(acc, d2)` for every pair of positions q < r whose cells lie within `ring` cells of
+/// each other, one accumulator per chunk of q, returned in chunk order.
 fn pairs<A: Send>(
     grid: &Grid,
     ring: usize,
@@ -118,16 +150,16 @@ fn pairs<A: Send>(
     init: impl Fn() -> A + Sync,
     visit: impl Fn(&mut A, f64) + Sync,
 ) -> Vec<A> {
-    let n = grid.points.len() / grid.dims;
+    let n = grid.len();
     (0..n.div_ceil(CHUNK))
         .into_par_iter()
         .map(|chunk| {
             let mut acc = init();
-            for i in chunk * CHUNK..((chunk + 1) * CHUNK).min(n) {
-                let p = grid.point(i);
-                grid.near(i, ring, torus, |cell| {
-                    for &j in cell.iter().filter(|&&j| j as usize > i) {
-                        visit(&mut acc, distance2(p, grid.point(j as usize), torus));
+            for q in chunk * CHUNK..((chunk + 1) * CHUNK).min(n) {
+                let p = grid.point(q);
+                grid.near(q, ring, torus, |cell| {
+                    for r in cell.start.max(q + 1)..cell.end {
+                        visit(&mut acc, distance2(p, grid.point(r), torus));
                     }
                 });
             }
@@ -230,14 +262,6 @@ fn check_radii(points: &PointSet, radii: &[f64], zero: bool) -> Result<()> {
     Ok(())
 }
 
-/// A grid whose neighbouring cells hold every pair closer than `reach`.
-fn grid_for(points: &PointSet, reach: f64) -> Grid<'_> {
-    let (n, dims) = (points.len(), points.dims());
-    let fine = (1.0 / reach).floor().max(1.0) as usize;
-    let coarse = ((4.0 * n as f64).powf(1.0 / dims as f64).floor() as usize).max(1);
-    Grid::new(points.as_slice(), dims, fine.min(coarse))
-}
-
 /// The pair correlation function on the torus at each of `radii` by the Gaussian-kernel
 /// estimator of Heck, Schlömer & Deussen (2013):
 ///
@@ -259,7 +283,7 @@ pub fn pcf(points: &PointSet, radii: &[f64], sigma: f64) -> Result<Vec<f64>> {
     let Some(&last) = radii.last() else { return Ok(Vec::new()) };
     let cut = 6.0 * sigma;
     let reach = last + cut;
-    let grid = grid_for(points, reach);
+    let grid = Grid::covering(points.as_slice(), points.dims(), reach);
     let norm = 1.0 / (std::f64::consts::PI.sqrt() * sigma);
     // evenly spaced radii (to 1e-12 of their range): the kernel by a recurrence
     let spacing = if radii.len() > 1 { (last - radii[0]) / (radii.len() - 1) as f64 } else { 0.0 };
@@ -327,7 +351,7 @@ pub fn rdf(points: &PointSet, edges: &[f64]) -> Result<Vec<f64>> {
         return Ok(Vec::new());
     }
     let reach = edges[edges.len() - 1];
-    let grid = grid_for(points, reach);
+    let grid = Grid::covering(points.as_slice(), points.dims(), reach);
     let parts = pairs(
         &grid,
         1,

@@ -211,3 +211,64 @@ fn diaphony_is_its_fourier_sum_and_a_lattice_s_p2() {
         assert!((form(&p) - p2).abs() <= 1e-12 * p2, "n = {n}: {} vs {p2}", form(&p));
     }
 }
+
+/// Sample elimination by its definition: every step recomputes every remaining point's
+/// weight over all pairs and removes the largest (ties: the lower index).
+fn eliminate_naive(points: &[f64], dims: usize, target: usize) -> Vec<usize> {
+    let m = points.len() / dims;
+    let r_max = spatial::packing_radius(target, dims).unwrap();
+    let r_min = r_max * (1.0 - (target as f64 / m as f64).powf(1.5)) * 0.65;
+    let point = |i: usize| &points[i * dims..(i + 1) * dims];
+    let mut alive: Vec<usize> = (0..m).collect();
+    let mut gone = Vec::new();
+    while alive.len() > target {
+        let weight = |i: usize| -> u64 {
+            alive
+                .iter()
+                .filter(|&&j| j != i)
+                .map(|&j| distance(point(i), point(j), true))
+                .filter(|&d| d < 2.0 * r_max)
+                .map(|d| samplab::sampler::elimination::pair_weight(d, r_min, 2.0 * r_max))
+                .sum()
+        };
+        let (k, _) = alive.iter().enumerate().fold((0, None), |best, (k, &i)| {
+            let w = weight(i);
+            if best.1.is_none_or(|b| w > b) { (k, Some(w)) } else { best }
+        });
+        gone.push(alive.remove(k));
+    }
+    gone
+}
+
+#[test]
+fn sample_elimination_removes_the_heaviest_point_each_step() {
+    // weights in fixed point: the same sums whatever their order, so the orders agree
+    // exactly, ties (clamped pairs, isolated points) included
+    let mut rng = Seed(8).rng();
+    for trial in 0..30 {
+        let dims = 1 + trial % 3;
+        let target = 4 + below(&mut rng, 40) as usize;
+        let m = target * (2 + below(&mut rng, 5) as usize);
+        let points: Vec<f64> = (0..m * dims).map(|_| uniform(&mut rng)).collect();
+        let (kept, gone) = samplab::sampler::elimination::eliminate(&points, dims, target, true).unwrap();
+        assert_eq!(gone, eliminate_naive(&points, dims, target), "trial {trial}: {m} to {target} in {dims}D");
+        assert_eq!(kept.len(), target);
+    }
+}
+
+#[test]
+fn eliminated_sets_and_their_prefixes_are_blue_noise() {
+    // every prefix of n / 2^k points is a stage's survivors: spread far beyond white noise
+    // (whose relative radius at these n is about 0.02-0.1) and above 0.5
+    let n = 4096;
+    let set = sampler::build("elimination").unwrap().generate(n, 2, Seed(5)).unwrap();
+    for k in [4096usize, 1024, 256, 64] {
+        let prefix = PointSet::new(2, set.as_slice()[..2 * k].to_vec()).unwrap();
+        let rho = spatial::relative_radius(&prefix).unwrap();
+        assert!(rho > 0.5, "first {k}: relative radius {rho}");
+    }
+    // its low frequencies: the PCF below half the packing distance is near 0 (no close pairs)
+    let d_max = 2.0 * spatial::packing_radius(n, 2).unwrap();
+    let g = spatial::pcf(&set, &[0.4 * d_max], 0.05 * d_max).unwrap();
+    assert!(g[0] < 0.05, "PCF at 0.4 d_max: {}", g[0]);
+}

@@ -286,7 +286,7 @@ fn maximal_poisson_is_maximal_and_exact() {
     let p = make("poisson.maximal", n, 2, 3);
     assert_eq!(p.len(), n);
     let r_min = min_distance(&p, true);
-    let rel = r_min / sampler::poisson::packing_radius(n, 2);
+    let rel = r_min / (2.0 * samplab::spatial::packing_radius(n, 2).unwrap());
     assert!((0.70..0.85).contains(&rel), "relative radius {rel}");
     // no room left: every probe point of a fine lattice lies within r of some point
     let probes = 200;
@@ -332,7 +332,7 @@ fn force_matrix_is_spread_out() {
     // that of random points (expected ~ 0.5/n for n = 64 random points)
     let p = make("force-matrix", 64, 2, 2);
     let d = min_distance(&p, true);
-    assert!(d > 0.5 * sampler::poisson::packing_radius(64, 2), "min distance {d}");
+    assert!(d > 0.5 * (2.0 * samplab::spatial::packing_radius(64, 2).unwrap()), "min distance {d}");
     // full grid: the limiting case is the systematic grid
     let full = make("force-matrix:grid=8", 64, 2, 2);
     let mut cells = [false; 64];

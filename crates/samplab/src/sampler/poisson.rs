@@ -17,7 +17,6 @@
 //! Distances are toroidal by default (`edge=torus`); `edge=plain` measures them inside the
 //! square, as Shirley 1991 did.
 
-use std::f64::consts::PI;
 use std::ops::RangeInclusive;
 
 use rand_core::Rng as _;
@@ -29,27 +28,10 @@ use crate::registry::About;
 use crate::seed::{Rng, Seed, below, uniform, wrap01};
 use crate::spec::{Default, Kind, ParamSpec};
 
-/// The hexagonal-packing radius of n points in the unit torus (d = 2), and its analogues
-/// for d = 1, 3, 4 from the densest lattice packings: the largest possible minimum distance.
-pub fn packing_radius(n: usize, dims: usize) -> f64 {
-    let density = match dims {
-        1 => 1.0,
-        2 => PI / 12f64.sqrt(),
-        3 => PI / 18f64.sqrt(),
-        _ => PI * PI / 16.0,
-    };
-    // n balls of radius r/2 fill at most `density` of the unit volume
-    let unit_ball = PI.powf(dims as f64 / 2.0) / gamma_half(dims + 2);
-    2.0 * (density / (n as f64 * unit_ball)).powf(1.0 / dims as f64)
-}
-
-/// Gamma(k/2) for small whole k.
-fn gamma_half(k: usize) -> f64 {
-    match k {
-        1 => PI.sqrt(),
-        2 => 1.0,
-        _ => (k as f64 / 2.0 - 1.0) * gamma_half(k - 2),
-    }
+/// d_max: the largest possible minimum distance of n points in the unit torus, the
+/// diameter of the densest known packing's balls ([`crate::spatial::packing_radius`]).
+fn packing_distance(n: usize, dims: usize) -> Result<f64> {
+    Ok(2.0 * crate::spatial::packing_radius(n, dims)?)
 }
 
 /// Relative radius used when none is given: 0.7 of the packing radius for dart throwing,
@@ -389,7 +371,7 @@ pub(crate) fn edge_is_torus(word: &str) -> bool {
     word == "torus"
 }
 
-fn edge_word(torus: bool) -> &'static str {
+pub(crate) fn edge_word(torus: bool) -> &'static str {
     if torus { "torus" } else { "plain" }
 }
 
@@ -414,7 +396,7 @@ pub struct DartThrowing {
 }
 
 impl DartThrowing {
-    /// `radius` None means 0.7 x [`packing_radius`]; `attempts` is the number of
+    /// `radius` None means 0.7 x [`packing_distance`]; `attempts` is the number of
     /// consecutive rejected candidates after which a try is abandoned (16 tries in all).
     pub(crate) fn new(radius: Option<f64>, torus: bool, attempts: u64) -> Self {
         DartThrowing { radius, torus, attempts }
@@ -464,23 +446,23 @@ impl Sampler for DartThrowing {
 
 impl Fill for DartThrowing {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        let r = self.radius.unwrap_or(AUTO_RELATIVE * packing_radius(n, dims));
+        let r = self.radius.unwrap_or(AUTO_RELATIVE * packing_distance(n, dims)?);
         // with plain edges the disks may poke out of the square by r/2
         let room = if self.torus { 1.0 } else { (1.0 + r).powi(dims as i32) };
-        let most = (room * (packing_radius(1, dims) / r).powi(dims as i32)).floor();
+        let most = (room * (packing_distance(1, dims)? / r).powi(dims as i32)).floor();
         if n as f64 > most {
             return Err(Error::Infeasible {
                 sampler: self.spec(),
                 reason: format!(
                     "radius {r} cannot fit {n} points in {dims}D: even the densest packing holds at most {most}; use a radius below {:.6}",
-                    packing_radius(n, dims) * room.powf(1.0 / dims as f64)
+                    packing_distance(n, dims)? * room.powf(1.0 / dims as f64)
                 ),
             });
         }
         Ok(())
     }
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let r = self.radius.unwrap_or(AUTO_RELATIVE * packing_radius(n, dims));
+        let r = self.radius.unwrap_or(AUTO_RELATIVE * packing_distance(n, dims)?);
         // the one-point-per-cell grid has (sqrt 2 / r)^2 cells: for tiny radii the linked
         // grid (capped at 2^22 cells, several points each) stands in
         let best = if dims == 2 && DiskGrid::cells(r) <= MAX_GRID_CELLS {
@@ -496,7 +478,7 @@ impl Fill for DartThrowing {
             reason: format!(
                 "radius {r} is too large for {n} points: dart throwing placed at most {best} ({TRIES} tries, {} consecutive misses each); use a smaller radius (the packing limit is {:.6}) or more attempts",
                 self.attempts,
-                packing_radius(n, dims)
+                packing_distance(n, dims)?
             ),
         })
     }
@@ -579,7 +561,7 @@ pub struct Bridson {
 }
 
 impl Bridson {
-    /// `radius` None means 0.72 x [`packing_radius`], shrunk when a fill falls short of
+    /// `radius` None means 0.72 x [`packing_distance`], shrunk when a fill falls short of
     /// n; `k` candidates per active point.
     pub(crate) fn new(radius: Option<f64>, torus: bool, k: u32) -> Self {
         Bridson { radius, torus, k }
@@ -599,13 +581,13 @@ impl Sampler for Bridson {
 impl Fill for Bridson {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         // Bridson fills the whole square before keeping n: its grid must fit
-        let r = self.radius.unwrap_or(0.72 * packing_radius(n, dims));
+        let r = self.radius.unwrap_or(0.72 * packing_distance(n, dims)?);
         if DiskGrid::cells(r) > MAX_GRID_CELLS {
             return Err(Error::Infeasible {
                 sampler: self.spec(),
                 reason: format!(
                     "radius {r} would fill the square with about {:.1e} points before keeping {n}; use a radius of at least {:.2e} (or dart throwing, `poisson`)",
-                    (packing_radius(1, dims) / r).powi(2),
+                    (packing_distance(1, dims)? / r).powi(2),
                     2f64.sqrt() / MAX_GRID_CELLS.sqrt()
                 ),
             });
@@ -613,7 +595,7 @@ impl Fill for Bridson {
         Ok(())
     }
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let mut r = self.radius.unwrap_or(0.72 * packing_radius(n, dims));
+        let mut r = self.radius.unwrap_or(0.72 * packing_distance(n, dims)?);
         let mut rng = seed.rng();
         let mut grid = DiskGrid::new(r, self.torus, n + n / 4);
         bridson(r, self.torus, self.k, &mut rng, &mut grid);
@@ -699,7 +681,7 @@ impl Sampler for Maximal {
 
 impl Fill for Maximal {
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let rmax = packing_radius(n, dims);
+        let rmax = packing_distance(n, dims)?;
         for t in 0..8 {
             let s = seed.derive(t);
             let (mut lo, mut hi) = (0.5 * rmax, rmax);
@@ -816,6 +798,7 @@ mod tests {
         };
         let crit = 1.63 / (n as f64).sqrt();
         assert!(ks(&radii, &|x| (x * x - r * r) / (3.0 * r * r)) < crit);
+        use std::f64::consts::PI;
         assert!(ks(&angles, &|t| (t + PI) / (2.0 * PI)) < crit);
         // and the naive r (1 + u) would fail the same test
         let naive: Vec<f64> = {
