@@ -272,3 +272,55 @@ fn eliminated_sets_and_their_prefixes_are_blue_noise() {
     let g = spatial::pcf(&set, &[0.4 * d_max], 0.05 * d_max).unwrap();
     assert!(g[0] < 0.05, "PCF at 0.4 d_max: {}", g[0]);
 }
+
+/// Voronoi centroids and the quantization energy sum_i integral_(cell i) |x - p_i|^2 by
+/// quadrature: the midpoints of a g x g grid, each given to its nearest point by brute force.
+fn voronoi_by_quadrature(points: &[f64], torus: bool, g: usize) -> (Vec<f64>, f64) {
+    let n = points.len() / 2;
+    let (mut sum, mut count, mut energy) = (vec![0.0; 2 * n], vec![0.0; n], 0.0);
+    for a in 0..g {
+        for b in 0..g {
+            let x = [(a as f64 + 0.5) / g as f64, (b as f64 + 0.5) / g as f64];
+            let offset = |i: usize, k: usize| {
+                let t = x[k] - points[2 * i + k];
+                if torus { t - t.round() } else { t }
+            };
+            let d2 = |i: usize| offset(i, 0).powi(2) + offset(i, 1).powi(2);
+            let best = (0..n).min_by(|&i, &j| d2(i).total_cmp(&d2(j))).unwrap();
+            sum[2 * best] += offset(best, 0);
+            sum[2 * best + 1] += offset(best, 1);
+            count[best] += 1.0;
+            energy += d2(best);
+        }
+    }
+    let centroids = (0..2 * n).map(|k| points[k] + sum[k] / count[k / 2]).collect();
+    (centroids, energy / (g * g) as f64)
+}
+
+#[test]
+fn lloyd_moves_points_to_their_cells_centroids_and_lowers_the_energy() {
+    for torus in [true, false] {
+        for (n, seed) in [(1usize, 1u64), (2, 2), (5, 3), (40, 4)] {
+            let p = random_set(n, 2, seed);
+            let ours = samplab::sampler::lloyd::centroids(p.as_slice(), torus).unwrap();
+            let (want, _) = voronoi_by_quadrature(p.as_slice(), torus, 600);
+            for (k, (a, b)) in ours.iter().zip(&want).enumerate() {
+                let gap = if torus { (a - b) - (a - b).round() } else { a - b };
+                assert!(gap.abs() < 2e-3, "torus {torus}, n = {n}, coordinate {k}: {a} vs {b}");
+            }
+        }
+        // each step lowers the energy (Lloyd's descent), here by far more than the quadrature's error
+        let mut points = random_set(32, 2, 9).as_slice().to_vec();
+        let mut last = voronoi_by_quadrature(&points, torus, 300).1;
+        for step in 0..6 {
+            points = samplab::sampler::lloyd::centroids(&points, torus).unwrap();
+            let e = voronoi_by_quadrature(&points, torus, 300).1;
+            assert!(e < last, "torus {torus}, step {step}: energy {e} after {last}");
+            last = e;
+        }
+    }
+    // relaxed sets are well spread: relative radius above dart throwing's usual 0.7
+    let set = sampler::build("lloyd").unwrap().generate(1024, 2, Seed(3)).unwrap();
+    let rho = spatial::relative_radius(&set).unwrap();
+    assert!(rho > 0.7, "lloyd: relative radius {rho}");
+}

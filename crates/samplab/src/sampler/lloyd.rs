@@ -1,0 +1,173 @@
+//! Lloyd relaxation (Lloyd 1982): uniform random points, each iteration moving every point
+//! to the centroid of its Voronoi cell, towards a centroidal Voronoi tessellation (Du,
+//! Faber & Gunzburger 1999). 2D. On the torus the cells are those of the periodic set; in
+//! the square they are clipped by its sides.
+//!
+//! The cells come from spade's Delaunay triangulation of the points and their copies
+//! within a margin of the square: translated by +-1 on the torus, reflected across the
+//! sides in the square (the bisector of a point and its mirror image is the side, so the
+//! cells are clipped exactly). A triangle at a point is kept only when its circumcircle lies
+//! within the copied band (no point outside it can fall inside); otherwise the margin
+//! doubles and the iteration starts again, so the cells are exact for any set.
+
+use std::ops::RangeInclusive;
+
+use spade::{DelaunayTriangulation, HasPosition, Point2, Triangulation};
+
+use super::poisson::{edge_is_torus, edge_word};
+use super::registry::{ANY, EDGE, SamplerEntry};
+use super::{Fill, Sampler};
+use crate::error::{Error, Result};
+use crate::registry::About;
+use crate::seed::{Seed, uniform, wrap01};
+use crate::spec::{Default, Kind, ParamSpec};
+
+/// Lloyd relaxation of uniform random points.
+#[derive(Debug, Clone, Copy)]
+pub struct Lloyd {
+    iterations: usize,
+    torus: bool,
+}
+
+/// A triangulated point: a site (index < n) or a copy of one.
+#[derive(Debug, Clone, Copy)]
+struct Site {
+    position: Point2<f64>,
+    index: u32,
+}
+
+impl HasPosition for Site {
+    type Scalar = f64;
+    fn position(&self) -> Point2<f64> {
+        self.position
+    }
+}
+
+/// The centroids of the Voronoi cells of the 2D `points` (interleaved x, y), on the torus
+/// or clipped by the unit square.
+///
+/// # Errors
+/// Coincident points (a cell would be empty) or a triangulation failure.
+pub fn centroids(points: &[f64], torus: bool) -> Result<Vec<f64>> {
+    let n = points.len() / 2;
+    let mut margin = (4.0 / (n as f64).sqrt()).min(0.5);
+    loop {
+        if let Some(c) = try_centroids(points, torus, margin)? {
+            return Ok(c);
+        }
+        if margin >= 2.0 {
+            return Err(Error::Invalid(format!("the Voronoi cells of {n} points did not close within a margin of 2")));
+        }
+        margin *= 2.0;
+    }
+}
+
+/// The centroids with copies within `margin` of the square, or None if a cell's
+/// triangles reach beyond them.
+fn try_centroids(points: &[f64], torus: bool, margin: f64) -> Result<Option<Vec<f64>>> {
+    let n = points.len() / 2;
+    let mut sites: Vec<Site> =
+        points.chunks_exact(2).enumerate().map(|(i, p)| Site { position: Point2::new(p[0], p[1]), index: i as u32 }).collect();
+    // copies: every tile offset (ox, oy), up to 2 tiles away when the margin is that wide
+    let reach = margin.ceil() as i32;
+    for ox in -reach..=reach {
+        for oy in -reach..=reach {
+            if (ox, oy) == (0, 0) {
+                continue;
+            }
+            // translated, or reflected: odd tiles are mirror images (-x, 2 - x, ...)
+            let copy = |x: f64, o: i32| if torus || o % 2 == 0 { o as f64 + x } else { o as f64 + 1.0 - x };
+            for (i, p) in points.chunks_exact(2).enumerate() {
+                let (x, y) = (copy(p[0], ox), copy(p[1], oy));
+                if (-margin..=1.0 + margin).contains(&x) && (-margin..=1.0 + margin).contains(&y) {
+                    sites.push(Site { position: Point2::new(x, y), index: (n + i) as u32 });
+                }
+            }
+        }
+    }
+    let tri: DelaunayTriangulation<Site> =
+        DelaunayTriangulation::bulk_load(sites).map_err(|e| Error::Invalid(format!("Voronoi cells: {e}")))?;
+    let mut out = vec![f64::NAN; 2 * n];
+    for v in tri.vertices() {
+        let site = *v.data();
+        if site.index as usize >= n {
+            continue;
+        }
+        let p = site.position;
+        // the cell's corners (circumcentres of the triangles around p), relative to p
+        let mut corners = Vec::new();
+        for e in v.out_edges() {
+            let Some(face) = e.face().as_inner() else { return Ok(None) };
+            let c = face.circumcenter();
+            let r = ((c.x - p.x).powi(2) + (c.y - p.y).powi(2)).sqrt();
+            let inside = |t: f64| t - r >= -margin && t + r <= 1.0 + margin;
+            if !(inside(c.x) && inside(c.y)) {
+                return Ok(None);
+            }
+            corners.push((c.x - p.x, c.y - p.y));
+        }
+        // the polygon's centroid (shoelace), the corners in their order around p
+        let (mut area, mut cx, mut cy) = (0.0, 0.0, 0.0);
+        for (k, &(x0, y0)) in corners.iter().enumerate() {
+            let (x1, y1) = corners[(k + 1) % corners.len()];
+            let cross = x0 * y1 - x1 * y0;
+            area += cross;
+            cx += (x0 + x1) * cross;
+            cy += (y0 + y1) * cross;
+        }
+        let (x, y) = (p.x + cx / (3.0 * area), p.y + cy / (3.0 * area));
+        let i = site.index as usize;
+        (out[2 * i], out[2 * i + 1]) = if torus { (wrap01(x), wrap01(y)) } else { (clamp01(x), clamp01(y)) };
+    }
+    if out.iter().any(|x| x.is_nan()) {
+        return Err(Error::Invalid("coincident points: a Voronoi cell is empty".into()));
+    }
+    Ok(Some(out))
+}
+
+/// x in [0, 1), a centroid on the square's far side kept inside.
+fn clamp01(x: f64) -> f64 {
+    x.clamp(0.0, super::grid::BELOW_ONE)
+}
+
+impl Sampler for Lloyd {
+    fn spec(&self) -> String {
+        format!("lloyd:iterations={},edge={}", self.iterations, edge_word(self.torus))
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        2..=2
+    }
+}
+
+impl Fill for Lloyd {
+    fn fill(&self, _n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let mut rng = seed.rng();
+        for x in out.iter_mut() {
+            *x = uniform(&mut rng);
+        }
+        for _ in 0..self.iterations {
+            let next = centroids(out, self.torus)?;
+            out.copy_from_slice(&next);
+        }
+        Ok(())
+    }
+}
+
+/// The samplers this file registers.
+pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
+    about: About::new("lloyd", "Lloyd relaxation of random points towards a centroidal Voronoi tessellation")
+        .aliases(&["cvt", "lloyd-relaxation"])
+        .params(&[
+            ParamSpec {
+                name: "iterations",
+                kind: Kind::Int { min: 0, max: 100_000 },
+                default: Default::Int(50),
+                doc: "Lloyd steps",
+            },
+            EDGE,
+        ])
+        .cite(&["lloyd1982", "du1999"]),
+    counts: ANY,
+    dims: "2",
+    build: |p| Ok(Box::new(Lloyd { iterations: p.int("iterations") as usize, torus: edge_is_torus(p.word("edge")) })),
+}];
