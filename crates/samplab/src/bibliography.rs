@@ -47,6 +47,7 @@ bib! {
     owen1992 => "A. B. Owen. Orthogonal arrays for computer experiments, integration and visualization. Statistica Sinica 2, 1992.",
     owen1995 => "A. B. Owen. Randomly permuted (t,m,s)-nets and (t,s)-sequences. Monte Carlo and Quasi-Monte Carlo Methods, 1995.",
     owen1997 => "A. B. Owen. Monte Carlo variance of scrambled net quadrature. SIAM J. Numer. Anal. 34(5), 1997.",
+    paulin2020 => "L. Paulin, N. Bonneel, D. Coeurjolly, J.-C. Iehl, A. Webanck, M. Desbrun, V. Ostromoukhov. Sliced optimal transport sampling. ACM TOG 39(4), 2020.",
     petersen1962 => "D. P. Petersen, D. Middleton. Sampling and reconstruction of wave-number-limited functions in N-dimensional Euclidean spaces. Information and Control 5, 1962.",
     purgathofer1994 => "W. Purgathofer, R. Tobler, M. Geiler. Forced random dithering: improved threshold matrices for ordered dithering. ICIP 1994.",
     ramamoorthi2012 => "R. Ramamoorthi, J. Anderson, M. Meyer, D. Nowrouzezahrai. A theory of Monte Carlo visibility sampling. ACM TOG 31(5), 2012.",

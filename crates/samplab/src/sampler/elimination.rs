@@ -16,7 +16,8 @@ use super::registry::{ANY, EDGE, SamplerEntry};
 use super::{Fill, Sampler};
 use crate::error::{Error, Result};
 use crate::registry::About;
-use crate::seed::{Seed, uniform};
+use super::random::Random;
+use crate::seed::Seed;
 use crate::spatial::{Grid, distance2, packing_radius};
 use crate::spec::{Default, Kind, ParamSpec};
 use rayon::prelude::*;
@@ -221,8 +222,8 @@ impl Fill for Elimination {
             return Ok(());
         }
         let m = ((n as f64 * self.ratio).ceil() as usize).max(n);
-        let mut rng = seed.rng();
-        let candidates: Vec<f64> = (0..m * dims).map(|_| uniform(&mut rng)).collect();
+        let mut candidates = vec![0.0; m * dims];
+        Random.fill(m, dims, seed, &mut candidates)?;
         for (p, i) in out.chunks_exact_mut(dims).zip(progressive(&candidates, dims, n, self.torus)?) {
             p.copy_from_slice(&candidates[i * dims..(i + 1) * dims]);
         }

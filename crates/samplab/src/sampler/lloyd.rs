@@ -19,7 +19,8 @@ use super::registry::{ANY, EDGE, SamplerEntry};
 use super::{Fill, Sampler};
 use crate::error::{Error, Result};
 use crate::registry::About;
-use crate::seed::{Seed, uniform, wrap01};
+use super::random::Random;
+use crate::seed::{Seed, wrap01};
 use crate::spec::{Default, Kind, ParamSpec};
 
 /// Lloyd relaxation of uniform random points.
@@ -140,11 +141,8 @@ impl Sampler for Lloyd {
 }
 
 impl Fill for Lloyd {
-    fn fill(&self, _n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let mut rng = seed.rng();
-        for x in out.iter_mut() {
-            *x = uniform(&mut rng);
-        }
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        Random.fill(n, dims, seed, out)?;
         for _ in 0..self.iterations {
             let next = centroids(out, self.torus)?;
             out.copy_from_slice(&next);

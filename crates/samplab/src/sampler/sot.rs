@@ -1,0 +1,216 @@
+//! Sliced optimal transport sampling (Paulin et al. 2020): uniform random points in
+//! [0,1)^d moved, each iteration, by the mean over a batch of random directions theta of the
+//! 1D optimal transport of their projections onto theta to the projection of the uniform
+//! measure of the cube: the point of rank r goes to the quantile (r + 1/2) / n of
+//! sum_k theta_k U_k (U_k independent uniforms). Minimizes the sliced Wasserstein distance
+//! to the uniform measure.
+//!
+//! The quantiles: with a_k = |theta_k|, sum_k a_k U_k has the CDF
+//! F(y) = sum over subsets S of (-1)^|S| (y - a_S)_+^d / (d! prod_k a_k), a_S the sum of S's
+//! a_k (inclusion and exclusion over the corners of the box), inverted by Newton's method
+//! kept inside a bisection bracket. Components below 1e-3 of the largest would make that
+//! sum cancel badly: they are replaced by their mean a_k / 2 (a quantile error below
+//! 5e-4 of the largest component, in a direction the next batches redraw).
+
+use std::ops::RangeInclusive;
+
+use rayon::prelude::*;
+
+use super::registry::{ANY, SamplerEntry};
+use super::{Fill, Sampler};
+use crate::error::Result;
+use crate::registry::About;
+use super::random::Random;
+use crate::seed::{Seed, normal};
+use crate::spec::{Default, Kind, ParamSpec};
+
+/// Sliced optimal transport sampling.
+#[derive(Debug, Clone, Copy)]
+pub struct Sot {
+    iterations: usize,
+    directions: usize,
+}
+
+/// The projection of the uniform measure on the cube onto a direction: sum_k a_k U_k plus
+/// a shift, with its CDF's inclusion-exclusion terms.
+#[derive(Debug, Clone)]
+pub struct Projected {
+    /// The subset sums a_S and their signs (-1)^|S|.
+    corners: Vec<(f64, f64)>,
+    /// d! prod a_k over the components kept.
+    scale: f64,
+    /// (d - 1)! prod a_k, the density's.
+    density_scale: f64,
+    /// How many components are kept.
+    kept: i32,
+    /// The sum of the kept a_k (the support's width).
+    width: f64,
+    /// Added to every quantile: the negative components' sum and the dropped ones' means.
+    shift: f64,
+}
+
+impl Projected {
+    /// The projection onto `theta` (any nonzero vector).
+    pub fn new(theta: &[f64]) -> Projected {
+        let largest = theta.iter().fold(0.0f64, |m, t| m.max(t.abs()));
+        let mut shift = theta.iter().filter(|&&t| t < 0.0).sum::<f64>();
+        let mut a = Vec::new();
+        for &t in theta {
+            if t.abs() >= 1e-3 * largest {
+                a.push(t.abs());
+            } else {
+                shift += t.abs() / 2.0;
+            }
+        }
+        let mut corners = vec![(0.0, 1.0)];
+        for &ak in &a {
+            let more: Vec<(f64, f64)> = corners.iter().map(|&(s, sign)| (s + ak, -sign)).collect();
+            corners.extend(more);
+        }
+        let factorial = |k: usize| (1..=k).map(|i| i as f64).product::<f64>();
+        let product: f64 = a.iter().product();
+        Projected {
+            corners,
+            scale: factorial(a.len()) * product,
+            density_scale: factorial(a.len() - 1) * product,
+            kept: a.len() as i32,
+            width: a.iter().sum(),
+            shift,
+        }
+    }
+
+    /// The CDF and density of sum_k a_k U_k at y.
+    fn cdf_density(&self, y: f64) -> (f64, f64) {
+        let (mut f, mut p) = (0.0, 0.0);
+        for &(s, sign) in &self.corners {
+            let t = y - s;
+            if t > 0.0 {
+                let power = t.powi(self.kept - 1);
+                f += sign * power * t;
+                p += sign * power;
+            }
+        }
+        (f / self.scale, p / self.density_scale)
+    }
+
+    /// The quantile at u in (0, 1), the shift included.
+    pub fn quantile(&self, u: f64) -> f64 {
+        // symmetric about the middle: solve in the lower half
+        let (v, upper) = if u > 0.5 { (1.0 - u, true) } else { (u, false) };
+        let (mut lo, mut hi) = (0.0, self.width / 2.0);
+        let mut y = self.width * v;
+        for _ in 0..200 {
+            let (f, p) = self.cdf_density(y);
+            if f < v {
+                lo = y;
+            } else {
+                hi = y;
+            }
+            let step = if p > 0.0 { y - (f - v) / p } else { f64::NAN };
+            let next = if step > lo && step < hi { step } else { 0.5 * (lo + hi) };
+            if (next - y).abs() <= 1e-15 * self.width || hi - lo <= 1e-15 * self.width {
+                y = next;
+                break;
+            }
+            y = next;
+        }
+        self.shift + if upper { self.width - y } else { y }
+    }
+}
+
+/// One batch's displacement of every point: the mean over `k` directions (seeded from
+/// `seed`) of each point's move to its rank's quantile along the direction.
+fn batch(points: &[f64], dims: usize, k: usize, seed: Seed) -> Vec<f64> {
+    let n = points.len() / dims;
+    let moves: Vec<Vec<f64>> = (0..k)
+        .into_par_iter()
+        .map(|j| {
+            let mut rng = seed.derive(j as u64).rng();
+            let theta: Vec<f64> = loop {
+                let t: Vec<f64> = (0..dims).map(|_| normal(&mut rng)).collect();
+                let norm = t.iter().map(|x| x * x).sum::<f64>().sqrt();
+                if norm > 0.0 {
+                    break t.iter().map(|x| x / norm).collect();
+                }
+            };
+            let projection: Vec<f64> = points.chunks_exact(dims).map(|p| p.iter().zip(&theta).map(|(x, t)| x * t).sum()).collect();
+            let mut order: Vec<u32> = (0..n as u32).collect();
+            order.sort_by(|&a, &b| projection[a as usize].total_cmp(&projection[b as usize]).then(a.cmp(&b)));
+            let target = Projected::new(&theta);
+            let mut delta = vec![0.0; n * dims];
+            for (rank, &i) in order.iter().enumerate() {
+                let gap = target.quantile((rank as f64 + 0.5) / n as f64) - projection[i as usize];
+                for (d, t) in delta[i as usize * dims..(i as usize + 1) * dims].iter_mut().zip(&theta) {
+                    *d = gap * t;
+                }
+            }
+            delta
+        })
+        .collect();
+    let mut total = vec![0.0; n * dims];
+    for m in moves {
+        for (t, x) in total.iter_mut().zip(m) {
+            *t += x / k as f64;
+        }
+    }
+    total
+}
+
+/// The sliced Wasserstein distance squared between `points` and the uniform measure of the
+/// cube, averaged over `k` directions seeded from `seed`: the mean squared gap between each
+/// sorted projection and its quantile. What the iterations lower.
+pub fn sliced_distance2(points: &[f64], dims: usize, k: usize, seed: Seed) -> f64 {
+    let n = points.len() / dims;
+    // one direction per batch: each point's move is its gap times the unit direction
+    let per_direction = |j: usize| {
+        let moves = batch(points, dims, 1, seed.derive(j as u64));
+        moves.chunks_exact(dims).map(|d| d.iter().map(|x| x * x).sum::<f64>()).sum::<f64>() / n as f64
+    };
+    (0..k).map(per_direction).sum::<f64>() / k as f64
+}
+
+impl Sampler for Sot {
+    fn spec(&self) -> String {
+        format!("sot:iterations={},directions={}", self.iterations, self.directions)
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        2..=8
+    }
+}
+
+impl Fill for Sot {
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        Random.fill(n, dims, seed, out)?;
+        for it in 0..self.iterations {
+            let delta = batch(out, dims, self.directions, seed.derive(1 + it as u64));
+            for (x, d) in out.iter_mut().zip(delta) {
+                *x = (*x + d).clamp(0.0, super::grid::BELOW_ONE);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The samplers this file registers.
+pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
+    about: About::new("sot", "sliced optimal transport sampling: random points moved along batches of 1D transports")
+        .aliases(&["sliced-ot"])
+        .params(&[
+            ParamSpec {
+                name: "iterations",
+                kind: Kind::Int { min: 0, max: 1_000_000 },
+                default: Default::Int(200),
+                doc: "batches of directions",
+            },
+            ParamSpec {
+                name: "directions",
+                kind: Kind::Int { min: 1, max: 4096 },
+                default: Default::Int(32),
+                doc: "random directions per batch, their transports averaged",
+            },
+        ])
+        .cite(&["paulin2020"]),
+    counts: ANY,
+    dims: "2..=8",
+    build: |p| Ok(Box::new(Sot { iterations: p.int("iterations") as usize, directions: p.int("directions") as usize })),
+}];
