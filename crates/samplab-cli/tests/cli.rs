@@ -117,6 +117,26 @@ fn every_format_through_the_cli_and_plot() {
 }
 
 #[test]
+fn plot_draws_the_pair_correlation() {
+    let dir = temp("pcfplot");
+    let f = dir.join("e.txt");
+    assert!(samplab(&["generate", "elimination", "-n", "512", "-o", f.to_str().unwrap()]).status.success());
+    let o = dir.join("e.svg");
+    let r = samplab(&["plot", f.to_str().unwrap(), "--pcf", "-o", o.to_str().unwrap()]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let svg = std::fs::read_to_string(&o).unwrap();
+    assert!(svg.contains("pair correlation") && svg.contains("r / d_max"), "{}", &svg[..200.min(svg.len())]);
+    // 9D: no packing radius to scale by, one line and exit 2, no file
+    let f9 = dir.join("p9.txt");
+    assert!(samplab(&["generate", "random", "-n", "16", "-d", "9", "-o", f9.to_str().unwrap()]).status.success());
+    let o9 = dir.join("p9.png");
+    let r = samplab(&["plot", f9.to_str().unwrap(), "--pcf", "-o", o9.to_str().unwrap()]);
+    assert_eq!(r.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&r.stderr).contains("1 to 8 dimensions"));
+    assert!(!o9.exists());
+}
+
+#[test]
 fn plot_rejects_bad_files_with_file_and_line() {
     let dir = temp("badplot");
     let f = dir.join("bad.txt");
