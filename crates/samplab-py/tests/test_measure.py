@@ -122,3 +122,17 @@ def test_integrands_evaluate_with_exact_integrals():
         assert values.shape == (2**14,)
         # a 2^14-point scrambled Sobol' estimate of a bounded integrand is close
         assert values.mean() == pytest.approx(exact, abs=0.02), fam["name"]
+
+
+def test_blue_noise_samplers_and_spacing_metrics_from_python():
+    # the registries reach Python as they are: blue-noise sets are far better spread than
+    # white noise by the relative radius, and a white-noise PCF at 2 d_max is near 1
+    noise = samplab.generate("random", n=2048, seed=3)
+    assert samplab.discrepancy("relative-radius", noise) < 0.1
+    assert abs(samplab.discrepancy("pcf:r=2", noise) - 1) < 0.15
+    for spec in ["elimination", "lloyd:iterations=20", "sot:iterations=50"]:
+        x = samplab.generate(spec, n=512, seed=1)
+        assert x.shape == (512, 2) and ((0 <= x) & (x < 1)).all(), spec
+        assert samplab.discrepancy("relative-radius", x) > 0.3, spec
+    d = samplab.discrepancy("min-distance", samplab.generate("regular", n=256))
+    assert abs(d - 1 / 16) < 1e-15

@@ -134,7 +134,7 @@ impl Fill for ForceMatrix {
 /// The sampler this file registers.
 pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
     about: About::new("force-matrix", "n cells of a fine grid chosen by least repulsion energy exp(-(r/s)^p)")
-        .aliases(&["forcematrix"])
+        .aliases(&["forcematrix", "forced-random"])
         .params(&[
             ParamSpec {
                 name: "s",
