@@ -384,3 +384,51 @@ fn sliced_transport_lowers_the_sliced_distance() {
         assert!(end_sw < start_sw / 10.0, "{dims}D: sliced distance^2 {end_sw} from {start_sw}");
     }
 }
+
+#[test]
+fn gaussian_blue_noise_descends_its_energy() {
+    use samplab::sampler::gbn;
+    // one step against every pair's pull by brute force (the same 5 sigma reach)
+    let (n, dims) = (300usize, 2usize);
+    let start = random_set(n, dims, 21).as_slice().to_vec();
+    let sigma = 0.5 / (n as f64).sqrt();
+    let mut ours = start.clone();
+    gbn::descend(&mut ours, dims, sigma, 0.5);
+    for i in 0..n {
+        let mut push = [0.0; 2];
+        for j in (0..n).filter(|&j| j != i) {
+            let offset: Vec<f64> = (0..dims)
+                .map(|k| {
+                    (start[i * dims + k] - start[j * dims + k]) - (start[i * dims + k] - start[j * dims + k]).round()
+                })
+                .collect();
+            let d2: f64 = offset.iter().map(|t| t * t).sum();
+            if d2 < (5.0 * sigma).powi(2) {
+                for k in 0..dims {
+                    push[k] += 0.5 * offset[k] * (-d2 / (2.0 * sigma * sigma)).exp();
+                }
+            }
+        }
+        for k in 0..dims {
+            let want = start[i * dims + k] + push[k];
+            let want = want - want.floor();
+            let gap = (ours[i * dims + k] - want) - (ours[i * dims + k] - want).round();
+            assert!(gap.abs() < 1e-14, "point {i}: {} vs {want}", ours[i * dims + k]);
+        }
+    }
+    // the energy falls at every step, and the result is well spread
+    for dims in [2usize, 3] {
+        let mut points = random_set(512, dims, 5).as_slice().to_vec();
+        let sigma = 0.5 * 512f64.powf(-1.0 / dims as f64);
+        let mut last = gbn::energy(&points, dims, sigma);
+        for step in 0..30 {
+            gbn::descend(&mut points, dims, sigma, 0.5);
+            let e = gbn::energy(&points, dims, sigma);
+            assert!(e < last, "{dims}D step {step}: energy {e} after {last}");
+            last = e;
+        }
+    }
+    let set = sampler::build("gbn").unwrap().generate(1024, 2, Seed(2)).unwrap();
+    let rho = spatial::relative_radius(&set).unwrap();
+    assert!(rho > 0.7, "gbn: relative radius {rho}");
+}
