@@ -432,3 +432,23 @@ fn gaussian_blue_noise_descends_its_energy() {
     let rho = spatial::relative_radius(&set).unwrap();
     assert!(rho > 0.7, "gbn: relative radius {rho}");
 }
+
+#[test]
+fn ccvt_keeps_capacities_and_lowers_its_energy() {
+    use samplab::sampler::ccvt::State;
+    for dims in [2usize, 3] {
+        let mut state = State::new(64, dims, 32, Seed(4)).unwrap();
+        let mut last = state.energy();
+        for round in 0..15 {
+            let swaps = state.iterate();
+            let e = state.energy();
+            assert!(state.counts().iter().all(|&c| c == 32), "{dims}D round {round}: capacities {:?}", state.counts());
+            assert!(e < last || (swaps == 0 && e <= last), "{dims}D round {round}: energy {e} after {last}");
+            last = e;
+        }
+    }
+    let set = sampler::build("ccvt:capacity=128").unwrap().generate(512, 2, Seed(2)).unwrap();
+    let rho = spatial::relative_radius(&set).unwrap();
+    let noise = spatial::relative_radius(&random_set(512, 2, 2)).unwrap();
+    assert!(rho > 0.5 && rho > 5.0 * noise, "ccvt: relative radius {rho} (white noise {noise})");
+}

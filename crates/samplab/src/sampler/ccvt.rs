@@ -1,0 +1,225 @@
+//! Capacity-constrained Voronoi tessellation (Balzer, Schlömer & Deussen 2009): n sites
+//! and `capacity` x n uniform random points on the torus, each site owning exactly
+//! `capacity` of them (a random assignment to start). An iteration visits every pair of
+//! neighbouring sites (closer than 3 mean spacings) and swaps their points while a swap
+//! lowers the energy sum |x - s(x)|^2: the point of site i that gains most by moving to j
+//! against the point of j that gains most by moving to i, while the two gains sum above
+//! zero; then every site moves to the centroid of its points. It stops when an iteration
+//! swaps nothing, or after `iterations`. Each site keeps its capacity throughout, so the
+//! cells have equal areas (to the points' resolution) while Lloyd's drift to hexagons is
+//! resisted.
+
+use std::ops::RangeInclusive;
+
+use super::random::Random;
+use super::registry::{ANY, SamplerEntry};
+use super::{Fill, Sampler};
+use crate::error::{Error, Result};
+use crate::registry::About;
+use crate::seed::{Seed, wrap01};
+use crate::spatial::Grid;
+use crate::spec::{Default, Kind, ParamSpec};
+
+/// Capacity-constrained Voronoi tessellation.
+#[derive(Debug, Clone, Copy)]
+pub struct Ccvt {
+    capacity: usize,
+    iterations: usize,
+}
+
+/// The offset from s to x on the torus (coordinates in [0, 1)).
+fn offset(x: &[f64], s: &[f64]) -> impl Iterator<Item = f64> {
+    x.iter().zip(s).map(|(a, b)| {
+        let t = a - b;
+        if t > 0.5 {
+            t - 1.0
+        } else if t < -0.5 {
+            t + 1.0
+        } else {
+            t
+        }
+    })
+}
+
+fn distance2(x: &[f64], s: &[f64]) -> f64 {
+    offset(x, s).map(|t| t * t).sum()
+}
+
+/// The state of the optimization: sites, points and which site owns each point.
+pub struct State {
+    dims: usize,
+    /// Site coordinates.
+    pub sites: Vec<f64>,
+    points: Vec<f64>,
+    /// The points of each site.
+    members: Vec<Vec<u32>>,
+}
+
+impl State {
+    /// `n` random sites and `capacity` random points each, assigned at random.
+    ///
+    /// # Errors
+    /// None in practice (the random sampler's own checks).
+    pub fn new(n: usize, dims: usize, capacity: usize, seed: Seed) -> Result<State> {
+        let mut sites = vec![0.0; n * dims];
+        Random.fill(n, dims, seed, &mut sites)?;
+        let m = n * capacity;
+        let mut points = vec![0.0; m * dims];
+        Random.fill(m, dims, seed.derive(1), &mut points)?;
+        // the points are independent of the sites: owning them in blocks is a random assignment
+        let members = (0..n).map(|s| (s * capacity..(s + 1) * capacity).map(|k| k as u32).collect()).collect();
+        Ok(State { dims, sites, points, members })
+    }
+
+    fn site(&self, s: usize) -> &[f64] {
+        &self.sites[s * self.dims..(s + 1) * self.dims]
+    }
+
+    fn point(&self, k: u32) -> &[f64] {
+        &self.points[k as usize * self.dims..(k as usize + 1) * self.dims]
+    }
+
+    /// The energy sum over points of the squared distance to their site.
+    pub fn energy(&self) -> f64 {
+        self.members.iter().enumerate().map(|(s, m)| m.iter().map(|&k| distance2(self.point(k), self.site(s))).sum::<f64>()).sum()
+    }
+
+    /// How many points each site owns.
+    pub fn counts(&self) -> Vec<usize> {
+        self.members.iter().map(Vec::len).collect()
+    }
+
+    /// One iteration: swaps over every pair of neighbouring sites, then the sites to their
+    /// centroids. Returns how many swaps it made.
+    pub fn iterate(&mut self) -> usize {
+        let n = self.members.len();
+        let reach = 3.0 * (n as f64).powf(-1.0 / self.dims as f64);
+        let grid = Grid::covering(&self.sites, self.dims, reach.min(0.5));
+        let mut pairs = Vec::new();
+        for q in 0..grid.len() {
+            let i = grid.ids[q] as usize;
+            grid.near(q, 1, true, |cell| {
+                for r in cell {
+                    let j = grid.ids[r] as usize;
+                    if i < j && distance2(self.site(i), self.site(j)) < reach * reach {
+                        pairs.push((i, j));
+                    }
+                }
+            });
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        let mut swaps = 0;
+        for (i, j) in pairs {
+            swaps += self.swap(i, j);
+        }
+        for s in 0..n {
+            let mut mean = vec![0.0; self.dims];
+            for &k in &self.members[s] {
+                for (m, t) in mean.iter_mut().zip(offset(self.point(k), self.site(s))) {
+                    *m += t;
+                }
+            }
+            let count = self.members[s].len() as f64;
+            for (d, m) in mean.into_iter().enumerate() {
+                self.sites[s * self.dims + d] = wrap01(self.sites[s * self.dims + d] + m / count);
+            }
+        }
+        swaps
+    }
+
+    /// Swap points between sites i and j while the swap lowers the energy.
+    fn swap(&mut self, i: usize, j: usize) -> usize {
+        // the gain of moving each point of a to b
+        let gains = |a: usize, b: usize| -> Vec<(f64, u32, usize)> {
+            self.members[a]
+                .iter()
+                .enumerate()
+                .map(|(slot, &k)| (distance2(self.point(k), self.site(a)) - distance2(self.point(k), self.site(b)), k, slot))
+                .collect()
+        };
+        let (mut from_i, mut from_j) = (gains(i, j), gains(j, i));
+        let best = |g: &[(f64, u32, usize)]| g.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.0));
+        let (best_i, best_j) = (best(&from_i), best(&from_j));
+        if best_i + best_j <= 0.0 {
+            return 0;
+        }
+        // only a point whose gain beats the other side's best loss can take part; largest
+        // gain first (ties: the lower point index)
+        let order = |g: &mut Vec<(f64, u32, usize)>, other: f64| {
+            g.retain(|x| x.0 + other > 0.0);
+            g.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
+        };
+        order(&mut from_i, best_j);
+        order(&mut from_j, best_i);
+        let mut count = 0;
+        for (&(gi, _, si), &(gj, _, sj)) in from_i.iter().zip(&from_j) {
+            if gi + gj <= 0.0 {
+                break;
+            }
+            let (ki, kj) = (self.members[i][si], self.members[j][sj]);
+            self.members[i][si] = kj;
+            self.members[j][sj] = ki;
+            count += 1;
+        }
+        count
+    }
+}
+
+impl Sampler for Ccvt {
+    fn spec(&self) -> String {
+        format!("ccvt:capacity={},iterations={}", self.capacity, self.iterations)
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        1..=4
+    }
+}
+
+impl Fill for Ccvt {
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        if n.saturating_mul(self.capacity) > 1 << 28 {
+            return Err(Error::InvalidCount {
+                sampler: self.spec(),
+                n,
+                dims,
+                reason: format!("{n} sites x capacity {} points exceed 2^28", self.capacity),
+            });
+        }
+        Ok(())
+    }
+
+    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let mut state = State::new(n, dims, self.capacity, seed)?;
+        for _ in 0..self.iterations {
+            if state.iterate() == 0 {
+                break;
+            }
+        }
+        out.copy_from_slice(&state.sites);
+        Ok(())
+    }
+}
+
+/// The samplers this file registers.
+pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
+    about: About::new("ccvt", "capacity-constrained Voronoi tessellation: equal-capacity point swaps, on the torus")
+        .aliases(&["capacity-constrained"])
+        .params(&[
+            ParamSpec {
+                name: "capacity",
+                kind: Kind::Int { min: 1, max: 1 << 16 },
+                default: Default::Int(64),
+                doc: "points per site (the cells' area resolution)",
+            },
+            ParamSpec {
+                name: "iterations",
+                kind: Kind::Int { min: 0, max: 100_000 },
+                default: Default::Int(50),
+                doc: "most swap-and-centre rounds (fewer when a round swaps nothing)",
+            },
+        ])
+        .cite(&["balzer2009"]),
+    counts: ANY,
+    dims: "1..=4",
+    build: |p| Ok(Box::new(Ccvt { capacity: p.int("capacity") as usize, iterations: p.int("iterations") as usize })),
+}];
