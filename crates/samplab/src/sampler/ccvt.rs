@@ -1,7 +1,7 @@
 //! Capacity-constrained Voronoi tessellation (Balzer, Schlömer & Deussen 2009): n sites
 //! and `capacity` x n uniform random points on the torus, each site owning exactly
 //! `capacity` of them (a random assignment to start). An iteration visits every pair of
-//! neighbouring sites (closer than 3 mean spacings) and swaps their points while a swap
+//! neighbouring sites (closer than 2 mean spacings) and swaps their points while a swap
 //! lowers the energy sum |x - s(x)|^2: the point of site i that gains most by moving to j
 //! against the point of j that gains most by moving to i, while the two gains sum above
 //! zero; then every site moves to the centroid of its points. It stops when an iteration
@@ -92,8 +92,9 @@ impl State {
     /// One iteration: swaps over every pair of neighbouring sites, then the sites to their
     /// centroids. Returns how many swaps it made.
     pub fn iterate(&mut self) -> usize {
+        self.regroup();
         let n = self.members.len();
-        let reach = 3.0 * (n as f64).powf(-1.0 / self.dims as f64);
+        let reach = 2.0 * (n as f64).powf(-1.0 / self.dims as f64);
         let grid = Grid::covering(&self.sites, self.dims, reach.min(0.5));
         let mut pairs = Vec::new();
         for q in 0..grid.len() {
@@ -126,6 +127,21 @@ impl State {
             }
         }
         swaps
+    }
+
+    /// Store each site's points together, in site order (the swaps scatter them; a site's
+    /// points are then read from one stretch of memory).
+    fn regroup(&mut self) {
+        let mut points = Vec::with_capacity(self.points.len());
+        let mut k = 0u32;
+        for members in &mut self.members {
+            for id in members.iter_mut() {
+                points.extend_from_slice(&self.points[*id as usize * self.dims..(*id as usize + 1) * self.dims]);
+                *id = k;
+                k += 1;
+            }
+        }
+        self.points = points;
     }
 
     /// Swap points between sites i and j while the swap lowers the energy.
