@@ -18,14 +18,26 @@ use crate::points::PointSet;
 /// Points per unit of parallel work (fixed: the sums' order depends on it alone).
 const CHUNK: usize = 512;
 
+/// x - y for coordinates in [0, 1] on the circle of length 1: the signed gap in [-1/2, 1/2].
+#[inline]
+pub(crate) fn torus_gap(x: f64, y: f64) -> f64 {
+    let t = x - y;
+    if t > 0.5 {
+        t - 1.0
+    } else if t < -0.5 {
+        t + 1.0
+    } else {
+        t
+    }
+}
+
 /// Squared distance between two points, on the torus or in the cube.
 #[inline]
 pub(crate) fn distance2(a: &[f64], b: &[f64], torus: bool) -> f64 {
     a.iter()
         .zip(b)
-        .map(|(x, y)| {
-            let t = (x - y).abs();
-            let t = if torus { t.min(1.0 - t) } else { t };
+        .map(|(&x, &y)| {
+            let t = if torus { torus_gap(x, y) } else { x - y };
             t * t
         })
         .sum()

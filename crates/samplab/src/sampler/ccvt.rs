@@ -17,7 +17,7 @@ use super::{Fill, Sampler};
 use crate::error::{Error, Result};
 use crate::registry::About;
 use crate::seed::{Seed, wrap01};
-use crate::spatial::Grid;
+use crate::spatial::{Grid, distance2, torus_gap};
 use crate::spec::{Default, Kind, ParamSpec};
 
 /// Capacity-constrained Voronoi tessellation.
@@ -25,24 +25,6 @@ use crate::spec::{Default, Kind, ParamSpec};
 pub struct Ccvt {
     capacity: usize,
     iterations: usize,
-}
-
-/// The offset from s to x on the torus (coordinates in [0, 1)).
-fn offset(x: &[f64], s: &[f64]) -> impl Iterator<Item = f64> {
-    x.iter().zip(s).map(|(a, b)| {
-        let t = a - b;
-        if t > 0.5 {
-            t - 1.0
-        } else if t < -0.5 {
-            t + 1.0
-        } else {
-            t
-        }
-    })
-}
-
-fn distance2(x: &[f64], s: &[f64]) -> f64 {
-    offset(x, s).map(|t| t * t).sum()
 }
 
 /// The state of the optimization: sites, points and which site owns each point.
@@ -81,7 +63,7 @@ impl State {
 
     /// The energy sum over points of the squared distance to their site.
     pub fn energy(&self) -> f64 {
-        self.members.iter().enumerate().map(|(s, m)| m.iter().map(|&k| distance2(self.point(k), self.site(s))).sum::<f64>()).sum()
+        self.members.iter().enumerate().map(|(s, m)| m.iter().map(|&k| distance2(self.point(k), self.site(s), true)).sum::<f64>()).sum()
     }
 
     /// How many points each site owns.
@@ -102,7 +84,7 @@ impl State {
             grid.near(q, 1, true, |cell| {
                 for r in cell {
                     let j = grid.ids[r] as usize;
-                    if i < j && distance2(self.site(i), self.site(j)) < reach * reach {
+                    if i < j && distance2(self.site(i), self.site(j), true) < reach * reach {
                         pairs.push((i, j));
                     }
                 }
@@ -117,8 +99,8 @@ impl State {
         for s in 0..n {
             let mut mean = vec![0.0; self.dims];
             for &k in &self.members[s] {
-                for (m, t) in mean.iter_mut().zip(offset(self.point(k), self.site(s))) {
-                    *m += t;
+                for ((m, &x), &c) in mean.iter_mut().zip(self.point(k)).zip(self.site(s)) {
+                    *m += torus_gap(x, c);
                 }
             }
             let count = self.members[s].len() as f64;
@@ -151,7 +133,7 @@ impl State {
             self.members[a]
                 .iter()
                 .enumerate()
-                .map(|(slot, &k)| (distance2(self.point(k), self.site(a)) - distance2(self.point(k), self.site(b)), k, slot))
+                .map(|(slot, &k)| (distance2(self.point(k), self.site(a), true) - distance2(self.point(k), self.site(b), true), k, slot))
                 .collect()
         };
         let (mut from_i, mut from_j) = (gains(i, j), gains(j, i));

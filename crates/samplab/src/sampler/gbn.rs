@@ -20,7 +20,7 @@ use super::{Fill, Sampler};
 use crate::error::Result;
 use crate::registry::About;
 use crate::seed::{Seed, wrap01};
-use crate::spatial::Grid;
+use crate::spatial::{Grid, distance2, torus_gap};
 use crate::spec::{Default, Kind, ParamSpec};
 
 /// Gaussian blue noise by gradient descent.
@@ -44,7 +44,7 @@ pub fn energy(points: &[f64], dims: usize, sigma: f64) -> f64 {
             let mut e = 0.0;
             grid.near(q, 1, true, |cell| {
                 for r in cell.filter(|&r| r > q) {
-                    let d2 = crate::spatial::distance2(grid.point(q), grid.point(r), true);
+                    let d2 = distance2(grid.point(q), grid.point(r), true);
                     if d2 < (CUT * sigma).powi(2) {
                         e += (-d2 / (2.0 * sigma * sigma)).exp();
                     }
@@ -68,13 +68,11 @@ pub fn descend(points: &mut [f64], dims: usize, sigma: f64, step: f64) {
             grid.near(q, 1, true, |cell| {
                 for r in cell.filter(|&r| r != q) {
                     let o = grid.point(r);
-                    // the offset from o to p on the torus
-                    let offset: Vec<f64> = p.iter().zip(o).map(|(a, b)| (a - b) - (a - b).round()).collect();
-                    let d2: f64 = offset.iter().map(|t| t * t).sum();
+                    let d2 = distance2(p, o, true);
                     if d2 < (CUT * sigma).powi(2) {
                         let w = (-d2 / (2.0 * sigma * sigma)).exp();
-                        for (m, t) in push.iter_mut().zip(&offset) {
-                            *m += step * t * w;
+                        for ((m, &x), &y) in push.iter_mut().zip(p).zip(o) {
+                            *m += step * torus_gap(x, y) * w;
                         }
                     }
                 }
