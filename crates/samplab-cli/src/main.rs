@@ -45,7 +45,8 @@ enum Command {
     /// Plot a point-set file as a scatter with 1D marginal histograms (PNG or SVG).
     Plot(plot::Args),
     /// Discrepancies (star, extreme, L2 family, diaphony, projected) and spacing statistics
-    /// (min-distance, relative radius, PCF, RDF) of a file or of a sampler's sets.
+    /// (min-distance, relative radius, PCF, RDF) and aliasing measures (effective Nyquist
+    /// frequency, oscillation) of a file or of a sampler's sets.
     Discrepancy(discrepancy::Args),
     /// Bias, variance and convergence exponents of samplers on the papers' test integrands.
     Integrate(integrate::Args),

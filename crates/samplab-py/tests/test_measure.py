@@ -136,3 +136,6 @@ def test_blue_noise_samplers_and_spacing_metrics_from_python():
         assert samplab.discrepancy("relative-radius", x) > 0.3, spec
     d = samplab.discrepancy("min-distance", samplab.generate("regular", n=256))
     assert abs(d - 1 / 16) < 1e-15
+    # a grid's zero region ends at sqrt(n) exactly; white noise has none
+    assert samplab.discrepancy("nyquist", samplab.generate("regular", n=256)) == pytest.approx(1, abs=1e-12)
+    assert samplab.discrepancy("nyquist", noise) < 0.1

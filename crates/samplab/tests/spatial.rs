@@ -168,6 +168,8 @@ fn spacing_metrics_go_through_the_registry() {
     let at_h = discrepancy::compute(&Metric::parse(&spec).unwrap(), &grid, Limits::default()).unwrap();
     assert!((at_h / shell - 1.0).abs() < 1e-12, "{at_h} vs {shell}");
     assert!(m("rdf") > 2.0, "{}", m("rdf"));
+    // the grid's periodogram is zero inside |k| < 16 = sqrt(n) and n on the reciprocal lattice
+    assert!((m("nyquist") - 1.0).abs() < 1e-12 && (m("effective-nyquist") - 1.0).abs() < 1e-12);
     let noise = random_set(4096, 2, 2);
     let g = discrepancy::compute(&Metric::parse("pcf:r=2").unwrap(), &noise, Limits::default()).unwrap();
     assert!((g - 1.0).abs() < 0.1, "white noise at 2 d_max: {g}");

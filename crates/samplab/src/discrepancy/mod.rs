@@ -21,6 +21,7 @@
 //! | `star-bound` | threshold accepting: a LOWER BOUND on the star discrepancy | iterations x n d |
 //! | `min-distance`, `relative-radius` | grid of cells, rings widened until the smallest distance is confirmed | n expected (d <= 4); n^2 d |
 //! | `pcf`, `rdf` | pairs within reach through a grid of cells ([`crate::spatial`]) | pairs within reach x radii |
+//! | `nyquist`, `oscillation` | the periodogram at the integer frequencies out to 2 sqrt(n) or 7 sqrt(n) (NUFFT) | n + R^2 log R, R ~ sqrt(n) |
 
 use crate::error::{Error, Result};
 use crate::points::PointSet;
@@ -73,7 +74,7 @@ impl Entry for MetricEntry {
 crate::registry::registry_files! {
     /// Every metric, in listing order, gathered from the files that declare them.
     pub static METRICS: Registry<MetricEntry> =
-        ("metric", "METRICS  (values are never squared)") from [star, extreme, l2, bound, projected, spacing];
+        ("metric", "METRICS  (values are never squared)") from [star, extreme, l2, bound, projected, spacing, aliasing];
 }
 
 /// A discrepancy to compute: a registered metric with its parameters.

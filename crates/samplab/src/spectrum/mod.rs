@@ -21,6 +21,7 @@ use crate::error::{Error, Result};
 use crate::points::PointSet;
 use crate::progress::Progress;
 
+pub mod aliasing;
 pub mod nufft;
 pub mod pixel_light;
 pub mod theory;
