@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds the UTK executables bench/blue.py compares against, from UTK's public source, with
+# Builds the UTK executables bench/blue.py compares against (DartThrowing, Bridson, Step,
+# SinglePeak, and SOT when its source is given), from UTK's public source, with
 # Debian's packages instead of the downloads UTK's CMake makes (CPM from GitHub):
 #
 #   bench/utk.sh UTK_SOURCE BUILD_DIR [SOT_SOURCE]
@@ -18,7 +19,7 @@ fi
 printf 'include(CPM)\nfind_package(spdlog REQUIRED)\n' > "$src/cmake/spdlog.cmake"
 printf 'find_package(CLI11 REQUIRED)\n' > "$src/cmake/cli11.cmake"
 printf 'include_directories(/usr/include/stb)\n' > "$src/cmake/stb.cmake"
-targets=(DartThrowing Bridson)
+targets=(DartThrowing Bridson Step SinglePeak)
 extra=()
 if [ -n "$sot" ]; then
   sot=$(realpath "$sot")

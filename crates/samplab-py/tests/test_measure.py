@@ -139,3 +139,5 @@ def test_blue_noise_samplers_and_spacing_metrics_from_python():
     # a grid's zero region ends at sqrt(n) exactly; white noise has none
     assert samplab.discrepancy("nyquist", samplab.generate("regular", n=256)) == pytest.approx(1, abs=1e-12)
     assert samplab.discrepancy("nyquist", noise) < 0.1
+    step = samplab.generate("step:iterations=100", n=512, seed=2)
+    assert samplab.discrepancy("nyquist", step) > 0.4

@@ -28,6 +28,7 @@ bib! {
     cranley1976 => "R. Cranley, T. N. L. Patterson. Randomization of number theoretic methods for multiple integration. SIAM J. Numer. Anal. 13(6), 1976.",
     du1999 => "Q. Du, V. Faber, M. Gunzburger. Centroidal Voronoi tessellations: applications and algorithms. SIAM Review 41(4), 1999.",
     ebeida2012 => "M. Ebeida, S. Mitchell, A. Patney, A. Davidson, J. Owens. A simple algorithm for maximal Poisson-disk sampling in high dimensions. Eurographics 2012.",
+    fattal2011 => "R. Fattal. Blue-noise point sampling using kernel density model. ACM TOG 30(4), SIGGRAPH 2011.",
     faure1982 => "H. Faure. Discrepance de suites associees a un systeme de numeration (en dimension s). Acta Arith. 41, 1982.",
     halton1960 => "J. H. Halton. On the efficiency of certain quasi-random sequences of points in evaluating multi-dimensional integrals. Numer. Math. 2, 1960.",
     hammersley1964 => "J. M. Hammersley, D. C. Handscomb. Monte Carlo Methods. Methuen, 1964.",

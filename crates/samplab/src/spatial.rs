@@ -86,8 +86,16 @@ impl Grid {
     /// Cells of side at least `reach` (at most about 4n of them): every pair closer than
     /// `reach` lies within one cell of each other.
     pub(crate) fn covering(points: &[f64], dims: usize, reach: f64) -> Grid {
+        Grid::within(points, dims, reach, 1)
+    }
+
+    /// Cells of side at least `reach` / `ring` (at most about 4n of them): every pair closer
+    /// than `reach` lies within `ring` cells of each other. Smaller cells and a wider ring
+    /// compare fewer pairs beyond `reach` (in 2D, (2 ring + 1)^2 / ring^2 squares of `reach`
+    /// for pi of them within).
+    pub(crate) fn within(points: &[f64], dims: usize, reach: f64, ring: usize) -> Grid {
         let n = points.len() / dims;
-        let fine = (1.0 / reach).floor().max(1.0) as usize;
+        let fine = (ring as f64 / reach).floor().max(1.0) as usize;
         let coarse = ((4.0 * n as f64).powf(1.0 / dims as f64).floor() as usize).max(1);
         Grid::new(points, dims, fine.min(coarse))
     }
@@ -155,7 +163,7 @@ impl Grid {
 
 /// `visit(acc, d2)` for every pair of positions q < r whose cells lie within `ring` cells of
 /// each other, one accumulator per chunk of q, returned in chunk order.
-fn pairs<A: Send>(
+pub(crate) fn pairs<A: Send>(
     grid: &Grid,
     ring: usize,
     torus: bool,

@@ -454,3 +454,86 @@ fn ccvt_keeps_capacities_and_lowers_its_energy() {
     let noise = spatial::relative_radius(&random_set(512, 2, 2)).unwrap();
     assert!(rho > 0.5 && rho > 5.0 * noise, "ccvt: relative radius {rho} (white noise {noise})");
 }
+
+#[test]
+fn step_and_single_peak_sets_have_the_spectra_they_target() {
+    use samplab::spectrum::{Method, periodogram};
+    // Heck et al.'s claims, measured on 2 sets of 1024 points: a step at nu = 0.564 sqrt(n)
+    // gives an effective Nyquist frequency near nu and a flat spectrum past it (oscillation
+    // under 0.7, white noise's floor being ~0.45 here, Lloyd's above 2); the peak moves the
+    // zero region's edge out; both keep the low frequencies (|k| < nu sqrt(n) / 2) under a
+    // tenth of white noise's power
+    let metric = |spec: &str, set: &PointSet| {
+        discrepancy::compute(&Metric::parse(spec).unwrap(), set, Limits::default()).unwrap()
+    };
+    let mut nyquist = Vec::new();
+    for (spec, nu) in [("step", 0.564), ("single-peak", 0.8)] {
+        let sampler = sampler::build(spec).unwrap();
+        let (mut nu_eff, mut osc, mut low) = (0.0, 0.0, 0.0);
+        for s in 0..2 {
+            let set = sampler.generate(1024, 2, Seed(40 + s)).unwrap();
+            nu_eff += metric("nyquist", &set) / 2.0;
+            osc += metric("oscillation", &set) / 2.0;
+            let res = 64;
+            let p = periodogram(&set, res, Method::default()).unwrap();
+            let (mut sum, mut count) = (0.0, 0);
+            for (idx, v) in p.iter().enumerate() {
+                let (i, j) = ((idx / res) as f64 - 32.0, (idx % res) as f64 - 32.0);
+                let r = i.hypot(j);
+                if r > 0.0 && r < nu * 32.0 / 2.0 {
+                    sum += 1024.0 * v;
+                    count += 1;
+                }
+            }
+            low += sum / count as f64 / 2.0;
+        }
+        assert!((nu_eff - nu).abs() < 0.06, "{spec}: effective Nyquist {nu_eff} for a target at {nu}");
+        assert!(low < 0.1, "{spec}: low-frequency power {low} of white noise's");
+        if spec == "step" {
+            assert!(osc < 0.7, "step: oscillation {osc}");
+        }
+        nyquist.push(nu_eff);
+    }
+    assert!(nyquist[1] > nyquist[0] + 0.1);
+}
+
+#[test]
+fn kdm_langevin_steps_sample_the_gibbs_distribution() {
+    use samplab::sampler::gbn;
+    // two points on a circle: their gap d follows Langevin dynamics for E(d) = exp(-d^2 /
+    // (2 sigma^2)) at temperature T, whose stationary density is exp(-E(d) / T); the share of
+    // time spent at |d| < sigma against that density's, by quadrature (within 20%: the
+    // chain's statistical error and Euler's step bias are a few percent here, while halving or
+    // doubling the temperature moves the share by a factor of 2 or more)
+    let (sigma, t, step) = (0.1, 0.25, 0.1);
+    let mut rng = Seed(9).rng();
+    let mut points = vec![0.1, 0.6];
+    let (mut near, total) = (0usize, 400_000usize);
+    for _ in 0..total {
+        gbn::langevin(&mut points, 1, sigma, step, t, &mut rng);
+        let d = (points[0] - points[1]) - (points[0] - points[1]).round();
+        near += usize::from(d.abs() < sigma);
+    }
+    let weight = |d: f64| (-(-d * d / (2.0 * sigma * sigma)).exp() / t).exp();
+    let integral = |a: f64, b: f64| {
+        let m = 20_000;
+        (0..m).map(|i| weight(a + (i as f64 + 0.5) * (b - a) / m as f64)).sum::<f64>() * (b - a) / m as f64
+    };
+    let want = integral(-sigma, sigma) / integral(-0.5, 0.5);
+    let got = near as f64 / total as f64;
+    assert!((got / want - 1.0).abs() < 0.2, "share at |d| < sigma: {got} vs Gibbs {want}");
+    // the model's limits: cold, the energy's minimum (regular: large relative radius, high
+    // oscillation); hot, white noise; in between both fall as the temperature rises
+    let kdm = |t: f64| {
+        let set = sampler::build(&format!("kdm:temperature={t}")).unwrap().generate(1024, 2, Seed(4)).unwrap();
+        let oscillation =
+            discrepancy::compute(&Metric::parse("oscillation").unwrap(), &set, Limits::default()).unwrap();
+        (spatial::relative_radius(&set).unwrap(), oscillation)
+    };
+    let runs: Vec<(f64, f64)> = [0.0, 0.02, 0.1, 100.0].into_iter().map(kdm).collect();
+    assert!(
+        runs.windows(2).all(|w| w[1].0 < w[0].0 && w[1].1 < w[0].1),
+        "(relative radius, oscillation) by temperature: {runs:?}"
+    );
+    assert!(runs[0].0 > 0.7 && runs[3].0 < 0.3, "{runs:?}");
+}

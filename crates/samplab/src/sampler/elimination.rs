@@ -29,6 +29,10 @@ pub struct Elimination {
     torus: bool,
 }
 
+/// The start of the optimizers that need a set whose long wavelengths are already settled
+/// (`kdm`, `step`, `single-peak`): elimination from 5n candidates on the torus.
+pub(crate) const SETTLED: Elimination = Elimination { ratio: 5.0, torus: true };
+
 /// The weight exponent alpha and the weight-limiting constants beta and gamma (Yuksel 2015).
 const ALPHA: i32 = 8;
 const BETA: f64 = 0.65;

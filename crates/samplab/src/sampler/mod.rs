@@ -43,7 +43,7 @@ crate::registry::registry_files! {
     pub static SAMPLERS: Registry<SamplerEntry> =
         ("sampler", "SAMPLERS  (spec: name[:key=value,...] or name[:value,...] in the order listed; \
                      +micro-jitter[:fraction=F] after any spec micro-jitters its points)")
-        from [random, grid, nrooks, poisson, elimination, lloyd, ccvt, sot, gbn, pmj, force_matrix, sobol, radical, net, kronecker, lattice, micro_jitter];
+        from [random, grid, nrooks, poisson, elimination, lloyd, ccvt, sot, gbn, heck, pmj, force_matrix, sobol, radical, net, kronecker, lattice, micro_jitter];
 }
 
 pub use registry::{SamplerEntry, build};
