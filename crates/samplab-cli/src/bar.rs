@@ -8,6 +8,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use samplab::progress::Progress;
+use samplab::sampler::Plan;
 
 /// Raised by the first signal.
 pub(crate) static STOP: AtomicBool = AtomicBool::new(false);
@@ -43,6 +44,15 @@ impl Bar {
         }
         let counter = bar.clone();
         Bar { bar, report: Box::new(move |k| counter.inc(k)) }
+    }
+
+    /// A bar over the making of `m` sets by `plan`: sets, or an optimizer's iterations
+    /// (shown for a single set too).
+    pub(crate) fn sets(plan: &Plan, m: usize) -> Bar {
+        match plan.units() {
+            1 => Bar::new(m as u64, "sets"),
+            units => Bar::new(m as u64 * units, "iterations"),
+        }
     }
 
     /// What the library's long calls take: this bar, stopped by a signal.

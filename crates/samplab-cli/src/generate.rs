@@ -90,7 +90,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         return Ok(io::write_stream(path, format, &header, (a.n, a.dims), &mut fill, &bar.progress())?);
     }
     samplab::memory::check(what, need)?;
-    let bar = Bar::new(a.sets as u64, "sets");
+    let bar = Bar::sets(&plan, a.sets);
     let sets = plan.generate_sets(seed, a.sets, &bar.progress())?;
     drop(bar);
     let sets = match w {

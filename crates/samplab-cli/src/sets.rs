@@ -61,8 +61,9 @@ impl SetSource {
                     bail!("--sets must be at least 1");
                 }
                 let s = sampler::build(spec)?;
-                let bar = Bar::new(m as u64, "sets");
-                let sets = s.plan(n, self.dims)?.generate_sets(Seed(self.seed), m, &bar.progress())?;
+                let plan = s.plan(n, self.dims)?;
+                let bar = Bar::sets(&plan, m);
+                let sets = plan.generate_sets(Seed(self.seed), m, &bar.progress())?;
                 drop(bar);
                 Ok(Loaded {
                     sets,

@@ -15,6 +15,7 @@ use super::random::Random;
 use super::registry::{ANY, SamplerEntry};
 use super::{Fill, Sampler};
 use crate::error::{Error, Result};
+use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Seed, wrap01};
 use crate::spatial::{Grid, distance2, torus_gap};
@@ -187,11 +188,20 @@ impl Fill for Ccvt {
     }
 
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        self.fill_reporting(n, dims, seed, out, &Progress::SILENT)
+    }
+    fn units(&self) -> u64 {
+        self.iterations as u64
+    }
+    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         let mut state = State::new(n, dims, self.capacity, seed)?;
-        for _ in 0..self.iterations {
+        for it in 0..self.iterations {
             if state.iterate() == 0 {
+                // converged: the remaining iterations are done
+                progress.advance((self.iterations - it) as u64)?;
                 break;
             }
+            progress.advance(1)?;
         }
         out.copy_from_slice(&state.sites);
         Ok(())

@@ -32,6 +32,7 @@ use super::random::Random;
 use super::registry::{ANY, SamplerEntry};
 use super::{Fill, Sampler};
 use crate::error::Result;
+use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Rng, Seed, normal, wrap01};
 use crate::spatial::{Grid, distance2, torus_gap};
@@ -123,10 +124,17 @@ impl Sampler for Gbn {
 
 impl Fill for Gbn {
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        self.fill_reporting(n, dims, seed, out, &Progress::SILENT)
+    }
+    fn units(&self) -> u64 {
+        self.iterations as u64
+    }
+    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         Random.fill(n, dims, seed, out)?;
         let sigma = self.sigma * (n as f64).powf(-1.0 / dims as f64);
         for _ in 0..self.iterations {
             descend(out, dims, sigma, self.step);
+            progress.advance(1)?;
         }
         Ok(())
     }
@@ -158,6 +166,12 @@ impl Fill for Kdm {
         SETTLED.check_count(n, dims)
     }
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        self.fill_reporting(n, dims, seed, out, &Progress::SILENT)
+    }
+    fn units(&self) -> u64 {
+        self.iterations as u64
+    }
+    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         SETTLED.fill(n, dims, seed, out)?;
         // the pair energy's width: sqrt(2) times the kernel's
         let sigma = std::f64::consts::SQRT_2 * self.sigma * (n as f64).powf(-1.0 / dims as f64);
@@ -165,6 +179,7 @@ impl Fill for Kdm {
         for it in 0..self.iterations {
             let t = if it + 1 < self.iterations { self.temperature } else { 0.0 };
             langevin(out, dims, sigma, self.step, t, &mut rng);
+            progress.advance(1)?;
         }
         Ok(())
     }

@@ -57,6 +57,7 @@ use super::elimination::SETTLED;
 use super::registry::{ANY, SamplerEntry};
 use super::{Fill, Sampler};
 use crate::error::{Error, Result};
+use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Seed, wrap01};
 use crate::spatial::{self, Grid, distance2, torus_gap};
@@ -336,8 +337,9 @@ impl Matching {
 }
 
 impl Heck {
-    /// The descent from `points` for `iterations` steps; returns E before and after.
-    fn descend(&self, points: &mut [f64], n: usize) -> (f64, f64) {
+    /// The descent from `points` for `iterations` steps, advancing `progress` by one per
+    /// step; returns E before and after.
+    fn descend(&self, points: &mut [f64], n: usize, progress: &Progress) -> Result<(f64, f64)> {
         let m = Matching::new(self.shape, n, self.sigma, self.reach);
         let mut current = m.measure(points);
         let first = m.energy(&current.estimate);
@@ -346,7 +348,8 @@ impl Heck {
         // the first step moves the most-pushed point by a tenth of the mean spacing
         let largest = gradient.chunks_exact(2).map(|g| g[0].hypot(g[1])).fold(0.0, f64::max);
         if largest == 0.0 {
-            return (first, energy);
+            progress.advance(self.units())?;
+            return Ok((first, energy));
         }
         let mut eta = 0.1 / (n as f64).sqrt() / largest;
         let mut trial = points.to_vec();
@@ -364,8 +367,9 @@ impl Heck {
             } else {
                 eta *= 0.5;
             }
+            progress.advance(1)?;
         }
-        (first, energy)
+        Ok((first, energy))
     }
 }
 
@@ -387,9 +391,17 @@ impl Fill for Heck {
         SETTLED.check_count(n, dims)
     }
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        self.fill_reporting(n, dims, seed, out, &Progress::SILENT)
+    }
+    fn units(&self) -> u64 {
+        self.iterations as u64
+    }
+    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         SETTLED.fill(n, dims, seed, out)?;
         if n >= 2 {
-            self.descend(out, n);
+            self.descend(out, n, progress)?;
+        } else {
+            progress.advance(self.units())?;
         }
         Ok(())
     }
@@ -557,7 +569,7 @@ mod tests {
         let mut points = vec![0.0; 2 * n];
         Random.fill(n, 2, Seed(9), &mut points).unwrap();
         let heck = Heck { name: "step", shape: Shape::Step { nu: 0.55 }, iterations: 100, sigma: 0.1, reach: 6.0 };
-        let (first, last) = heck.descend(&mut points, n);
+        let (first, last) = heck.descend(&mut points, n, &Progress::SILENT).unwrap();
         assert!(last < 0.05 * first, "{first} -> {last}");
     }
 }

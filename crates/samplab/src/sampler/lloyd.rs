@@ -18,6 +18,7 @@ use super::poisson::{edge_is_torus, edge_word};
 use super::registry::{ANY, EDGE, SamplerEntry};
 use super::{Fill, Sampler};
 use crate::error::{Error, Result};
+use crate::progress::Progress;
 use crate::registry::About;
 use super::random::Random;
 use crate::seed::{Seed, wrap01};
@@ -142,10 +143,17 @@ impl Sampler for Lloyd {
 
 impl Fill for Lloyd {
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        self.fill_reporting(n, dims, seed, out, &Progress::SILENT)
+    }
+    fn units(&self) -> u64 {
+        self.iterations as u64
+    }
+    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         Random.fill(n, dims, seed, out)?;
         for _ in 0..self.iterations {
             let next = centroids(out, self.torus)?;
             out.copy_from_slice(&next);
+            progress.advance(1)?;
         }
         Ok(())
     }

@@ -14,6 +14,7 @@ use std::ops::RangeInclusive;
 use super::registry::{GRID, SamplerEntry};
 use super::{Fill, Sampler};
 use crate::error::{Error, Result};
+use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Seed, uniform, wrap01};
 use crate::spec::{Default, Kind, ParamSpec, Params, Spec};
@@ -78,7 +79,13 @@ impl Fill for MicroJitter {
         })
     }
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        self.inner.fill(n, dims, seed, out)?;
+        self.fill_reporting(n, dims, seed, out, &Progress::SILENT)
+    }
+    fn units(&self) -> u64 {
+        self.inner.units()
+    }
+    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        self.inner.fill_reporting(n, dims, seed, out, progress)?;
         if self.fraction == 0.0 {
             return Ok(());
         }

@@ -54,6 +54,7 @@ pub const MAX_POINTS: usize = 1 << 32;
 
 mod sealed {
     use crate::error::Result;
+    use crate::progress::Progress;
     use crate::seed::Seed;
 
     /// What every sampler implements inside samplab: its count rule and its filling. Reached
@@ -70,6 +71,25 @@ mod sealed {
         /// Write `n` points of `dims` coordinates into `out` (length `n * dims`), row-major.
         /// Called only by a [`super::Plan`], after every check passed.
         fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()>;
+
+        /// The units of progress one set reports: an optimizer's iterations, 1 otherwise.
+        fn units(&self) -> u64 {
+            1
+        }
+
+        /// [`Fill::fill`], advancing `progress` by [`Fill::units`] in all: the optimizers
+        /// once per iteration, stopping between iterations when `progress` says so.
+        fn fill_reporting(
+            &self,
+            n: usize,
+            dims: usize,
+            seed: Seed,
+            out: &mut [f64],
+            progress: &Progress,
+        ) -> Result<()> {
+            self.fill(n, dims, seed, out)?;
+            progress.advance(self.units())
+        }
     }
 }
 
@@ -198,14 +218,25 @@ impl<'s> Plan<'s> {
     /// # Errors
     /// [`Error::Memory`] before any work when the set does not fit, or as [`Plan::fill`].
     pub fn generate(&self, seed: Seed) -> Result<PointSet> {
+        self.generate_reporting(seed, &Progress::SILENT)
+    }
+
+    /// [`Plan::generate`], advancing `progress` by [`Plan::units`].
+    fn generate_reporting(&self, seed: Seed, progress: &Progress) -> Result<PointSet> {
         let mut data = crate::memory::zeroed(|| self.describe(1), self.n * self.dims)?;
-        self.fill(seed, &mut data)?;
+        self.sampler.fill_reporting(self.n, self.dims, seed, &mut data, progress)?;
         Ok(PointSet::from_raw(self.dims, data))
     }
 
+    /// The units of progress one set reports ([`Plan::generate_sets`], [`Plan::stack`]): an
+    /// optimizer's iterations, 1 for the other samplers.
+    pub fn units(&self) -> u64 {
+        self.sampler.units()
+    }
+
     /// `m` realizations in parallel; realization k uses `seed.derive(k)`, so the sets are
-    /// the same whatever the thread count. `progress` advances by one per set and can stop
-    /// the work.
+    /// the same whatever the thread count. `progress` advances by [`Plan::units`] per set
+    /// (an optimizer: one per iteration) and can stop the work.
     ///
     /// # Errors
     /// [`Error::Memory`] before any work when the sets do not fit, a stop
@@ -216,9 +247,7 @@ impl<'s> Plan<'s> {
             .into_par_iter()
             .map(|k| {
                 progress.check()?;
-                let set = self.generate(seed.derive(k))?;
-                progress.advance(1)?;
-                Ok(set)
+                self.generate_reporting(seed.derive(k), progress)
             })
             .collect()
     }
@@ -248,8 +277,8 @@ impl<'s> Plan<'s> {
 
     /// Realizations `sets` (set k seeded by `seed.derive(k)`, as in [`Plan::generate_sets`])
     /// in one buffer, set `sets.start + j` at `[j n dims, (j + 1) n dims)` (an array of shape
-    /// (sets, n, dims), no copies), filled in parallel; `progress` advances by one per set
-    /// and can stop the work.
+    /// (sets, n, dims), no copies), filled in parallel; `progress` advances by [`Plan::units`]
+    /// per set and can stop the work.
     ///
     /// # Errors
     /// [`Error::Memory`] before any work when the buffer does not fit, a stop
@@ -260,8 +289,7 @@ impl<'s> Plan<'s> {
         let mut out = crate::memory::zeroed(|| self.describe(m), m.saturating_mul(size))?;
         out.par_chunks_mut(size).enumerate().try_for_each(|(j, set)| {
             progress.check()?;
-            self.fill(seed.derive(sets.start + j as u64), set)?;
-            progress.advance(1)
+            self.sampler.fill_reporting(self.n, self.dims, seed.derive(sets.start + j as u64), set, progress)
         })?;
         Ok(out)
     }
@@ -378,5 +406,46 @@ mod tests {
         assert_eq!(exact_root(28, 3), Err((27, 64)));
         assert_eq!(exact_root(7, 1), Ok(7));
         assert_eq!(exact_root(2, 2), Err((1, 4)));
+    }
+
+    #[test]
+    fn optimizers_report_each_iteration_and_stop_between_them() {
+        use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+        // every optimizer reports its iterations (ccvt the rest at once when it converges);
+        // the others one unit per set
+        for (spec, units) in [
+            ("lloyd:iterations=7", 7),
+            ("ccvt:iterations=7", 7),
+            ("sot:iterations=7", 7),
+            ("gbn:iterations=7", 7),
+            ("kdm:iterations=7", 7),
+            ("step:iterations=7", 7),
+            ("lloyd:iterations=7+micro-jitter", 7),
+            ("jitter", 1),
+        ] {
+            let sampler = build(spec).unwrap();
+            let plan = sampler.plan(64, 2).unwrap();
+            assert_eq!(plan.units(), units, "{spec}");
+            let done = AtomicU64::new(0);
+            let report = |k| {
+                done.fetch_add(k, Ordering::Relaxed);
+            };
+            let sets = plan.generate_sets(Seed(1), 3, &Progress::new(&report)).unwrap();
+            assert_eq!(done.load(Ordering::Relaxed), 3 * units, "{spec}");
+            // the same sets as without a report
+            assert_eq!(sets[1], plan.generate(Seed(1).derive(1)).unwrap(), "{spec}");
+        }
+        // a stop raised during the iterations of one set ends the work there
+        let plan = build("gbn:iterations=1000").unwrap();
+        let plan = plan.plan(256, 2).unwrap();
+        let (done, stop) = (AtomicU64::new(0), AtomicBool::new(false));
+        let report = |k| {
+            if done.fetch_add(k, Ordering::Relaxed) + k >= 5 {
+                stop.store(true, Ordering::Relaxed);
+            }
+        };
+        let progress = Progress::new(&report).stopped_by(&stop);
+        assert_eq!(plan.generate_sets(Seed(1), 1, &progress).unwrap_err(), Error::Interrupted);
+        assert_eq!(done.load(Ordering::Relaxed), 5);
     }
 }

@@ -20,6 +20,7 @@ use rayon::prelude::*;
 use super::registry::{ANY, SamplerEntry};
 use super::{Fill, Sampler};
 use crate::error::Result;
+use crate::progress::Progress;
 use crate::registry::About;
 use super::random::Random;
 use crate::seed::{Seed, normal};
@@ -210,12 +211,19 @@ impl Sampler for Sot {
 
 impl Fill for Sot {
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+        self.fill_reporting(n, dims, seed, out, &Progress::SILENT)
+    }
+    fn units(&self) -> u64 {
+        self.iterations as u64
+    }
+    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         Random.fill(n, dims, seed, out)?;
         for it in 0..self.iterations {
             let delta = batch(out, dims, self.directions, seed.derive(1 + it as u64));
             for (x, d) in out.iter_mut().zip(delta) {
                 *x = (*x + d).clamp(0.0, super::grid::BELOW_ONE);
             }
+            progress.advance(1)?;
         }
         Ok(())
     }
