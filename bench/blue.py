@@ -5,7 +5,7 @@ same iteration counts; medians of 3 runs (one when a run takes over 10 s). Besid
 the quality of the set made, measured by samplab on both files: the relative radius, or for
 the spectral targets (step, single-peak) the effective Nyquist frequency and oscillation.
 
-Run by `bench/compare blue [--utk DIR] [WORDS]`, DIR holding UTK's executables (built from
+Run by `bench/compare blue [--utk DIR] [--limit SECONDS] [WORDS]`, DIR holding UTK's executables (built from
 its public source; UTK is on no package registry), WORDS picking rows by family. Without
 --utk only samplab's rows are printed.
 """
@@ -22,7 +22,7 @@ SAMPLAB = os.path.join(os.path.dirname(__file__), "..", "target", "release", "sa
 ARGS = sys.argv[1:]
 UTK = ARGS[ARGS.index("--utk") + 1] if "--utk" in ARGS else None
 # rows whose family contains one of the remaining words (all by default)
-ONLY = [w for k, w in enumerate(ARGS) if w not in ("blue", "--utk") and (k == 0 or ARGS[k - 1] != "--utk")]
+ONLY = [w for k, w in enumerate(ARGS) if w not in ("blue", "--utk", "--limit") and (k == 0 or ARGS[k - 1] not in ("--utk", "--limit"))]
 
 RHO = ["relative-radius"]
 SPECTRAL = ["nyquist", "oscillation"]
@@ -46,8 +46,8 @@ CASES = [
 ]
 
 
-# a UTK run longer than this is stopped and reported as such
-LIMIT = 600
+# a UTK run longer than this (--limit SECONDS) is stopped and reported as such
+LIMIT = float(ARGS[ARGS.index("--limit") + 1]) if "--limit" in ARGS else 600
 
 
 def run(cmd, limit=None):
@@ -93,7 +93,7 @@ for family, spec, utk, metrics in CASES:
             print(line, "UTK failed: exit %d" % e.returncode, flush=True)
             continue
         except subprocess.TimeoutExpired:
-            print(line, "UTK > %d s (stopped)" % LIMIT, flush=True)
+            print(line, "UTK > %g s (stopped)" % LIMIT, flush=True)
             continue
         utk_points(dat, txt)
         print(line, "%9.3f  %s  %7.1fx" % (u, quality(txt, metrics), u / t), flush=True)
