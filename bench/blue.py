@@ -51,7 +51,8 @@ LIMIT = float(ARGS[ARGS.index("--limit") + 1]) if "--limit" in ARGS else 600
 
 
 def run(cmd, limit=None):
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, timeout=limit)
+    # in the scratch folder: UTK's Step and SinglePeak write force.dat where they run
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, timeout=limit, cwd=tmp)
 
 
 def timed(cmd, limit=None):
