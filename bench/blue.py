@@ -18,9 +18,9 @@ from timing import median_time
 
 os.environ["RAYON_NUM_THREADS"] = "1"
 os.environ["OMP_NUM_THREADS"] = "1"
-SAMPLAB = os.path.join(os.path.dirname(__file__), "..", "target", "release", "samplab")
+SAMPLAB = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "target", "release", "samplab"))
 ARGS = sys.argv[1:]
-UTK = ARGS[ARGS.index("--utk") + 1] if "--utk" in ARGS else None
+UTK = os.path.abspath(ARGS[ARGS.index("--utk") + 1]) if "--utk" in ARGS else None
 # rows whose family contains one of the remaining words (all by default)
 ONLY = [w for k, w in enumerate(ARGS) if w not in ("blue", "--utk", "--limit") and (k == 0 or ARGS[k - 1] not in ("--utk", "--limit"))]
 
