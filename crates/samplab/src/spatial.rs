@@ -170,16 +170,29 @@ pub(crate) fn pairs<A: Send>(
     init: impl Fn() -> A + Sync,
     visit: impl Fn(&mut A, f64) + Sync,
 ) -> Vec<A> {
+    indexed_pairs(grid, ring, torus, CHUNK, init, |acc, _, _, d2| visit(acc, d2))
+}
+
+/// [`pairs`] with the positions: `visit(acc, q, r, d2)`, one accumulator per `chunk`
+/// positions q (a fixed size: the sums' order depends on it alone).
+pub(crate) fn indexed_pairs<A: Send>(
+    grid: &Grid,
+    ring: usize,
+    torus: bool,
+    chunk: usize,
+    init: impl Fn() -> A + Sync,
+    visit: impl Fn(&mut A, usize, usize, f64) + Sync,
+) -> Vec<A> {
     let n = grid.len();
-    (0..n.div_ceil(CHUNK))
+    (0..n.div_ceil(chunk))
         .into_par_iter()
-        .map(|chunk| {
+        .map(|c| {
             let mut acc = init();
-            for q in chunk * CHUNK..((chunk + 1) * CHUNK).min(n) {
+            for q in c * chunk..((c + 1) * chunk).min(n) {
                 let p = grid.point(q);
                 grid.near(q, ring, torus, |cell| {
                     for r in cell.start.max(q + 1)..cell.end {
-                        visit(&mut acc, distance2(p, grid.point(r), torus));
+                        visit(&mut acc, q, r, distance2(p, grid.point(r), torus));
                     }
                 });
             }

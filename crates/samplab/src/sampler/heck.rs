@@ -51,7 +51,6 @@
 use std::f64::consts::{PI, TAU};
 use std::ops::RangeInclusive;
 
-use rayon::prelude::*;
 
 use super::elimination::SETTLED;
 use super::registry::{ANY, SamplerEntry};
@@ -60,7 +59,7 @@ use crate::error::{Error, Result};
 use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Seed, wrap01};
-use crate::spatial::{self, Grid, distance2, torus_gap};
+use crate::spatial::{self, Grid, torus_gap};
 use crate::spec::{Default, Kind, ParamSpec, Params};
 
 /// A target radial power spectrum (frequencies in units of sqrt(n)).
@@ -247,7 +246,8 @@ impl Matching {
             |acc, d2| {
                 if d2 < cut * cut {
                     let x = d2.sqrt() / h;
-                    let (i, f) = (x as usize, x.fract());
+                    let i = x as usize;
+                    let f = x - i as f64;
                     acc[i] += 1.0 - f;
                     acc[i + 1] += f;
                 }
@@ -301,36 +301,41 @@ impl Matching {
     }
 
     /// The gradient of E with respect to every coordinate (in input order), for the table,
-    /// over the pairs of the measured set.
+    /// over the pairs of the measured set: each pair once, its push added to both points,
+    /// in 16 fixed chunks of points whose sums are added in order.
     fn gradient(&self, measured: &Measured, table: &[f64]) -> Vec<f64> {
         let (cut, h, grid) = (self.cut(), self.node(), &measured.grid);
-        let per_point: Vec<(u32, [f64; 2])> = (0..grid.len())
-            .into_par_iter()
-            .map(|q| {
-                let p = grid.point(q);
-                let mut g = [0.0; 2];
-                grid.near(q, RING, true, |cell| {
-                    for r in cell.filter(|&r| r != q) {
-                        let o = grid.point(r);
-                        let d2 = distance2(p, o, true);
-                        if d2 >= cut * cut || d2 == 0.0 {
-                            continue;
-                        }
-                        let d = d2.sqrt();
-                        let x = d / h;
-                        let i = x as usize;
-                        let slope = (table[i + 1] - table[i]) / (h * d);
-                        for (gk, (&a, &b)) in g.iter_mut().zip(p.iter().zip(o)) {
-                            *gk += slope * torus_gap(a, b);
-                        }
-                    }
-                });
-                (grid.ids[q], g)
-            })
-            .collect();
-        let mut out = vec![0.0; 2 * grid.len()];
-        for (i, g) in per_point {
-            out[2 * i as usize..2 * i as usize + 2].copy_from_slice(&g);
+        let n = grid.len();
+        let parts = spatial::indexed_pairs(
+            grid,
+            RING,
+            true,
+            n.div_ceil(16),
+            || vec![0.0; 2 * n],
+            |acc, q, r, d2| {
+                if d2 >= cut * cut || d2 == 0.0 {
+                    return;
+                }
+                let d = d2.sqrt();
+                let i = (d / h) as usize;
+                let slope = (table[i + 1] - table[i]) / (h * d);
+                let (p, o) = (grid.point(q), grid.point(r));
+                for k in 0..2 {
+                    let push = slope * torus_gap(p[k], o[k]);
+                    acc[2 * q + k] += push;
+                    acc[2 * r + k] -= push;
+                }
+            },
+        );
+        let mut sum = vec![0.0; 2 * n];
+        for part in &parts {
+            for (s, x) in sum.iter_mut().zip(part) {
+                *s += x;
+            }
+        }
+        let mut out = vec![0.0; 2 * n];
+        for (q, &i) in grid.ids.iter().enumerate() {
+            out[2 * i as usize..2 * i as usize + 2].copy_from_slice(&sum[2 * q..2 * q + 2]);
         }
         out
     }
