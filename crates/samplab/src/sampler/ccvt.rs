@@ -187,9 +187,6 @@ impl Fill for Ccvt {
         Ok(())
     }
 
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        self.fill_reporting(n, dims, seed, out, &Progress::SILENT)
-    }
     fn units(&self) -> u64 {
         self.iterations as u64
     }

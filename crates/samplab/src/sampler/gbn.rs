@@ -123,9 +123,6 @@ impl Sampler for Gbn {
 }
 
 impl Fill for Gbn {
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        self.fill_reporting(n, dims, seed, out, &Progress::SILENT)
-    }
     fn units(&self) -> u64 {
         self.iterations as u64
     }
@@ -164,9 +161,6 @@ impl Sampler for Kdm {
 impl Fill for Kdm {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         SETTLED.check_count(n, dims)
-    }
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        self.fill_reporting(n, dims, seed, out, &Progress::SILENT)
     }
     fn units(&self) -> u64 {
         self.iterations as u64

@@ -17,7 +17,7 @@
 //! - **single-peak**: the step smoothed by a Gaussian of standard deviation `width` plus a
 //!   Gaussian peak of that width and area `power` at nu: P(a) = Phi((a - nu) / width) +
 //!   power phi_width(a - nu); its g in closed form below nu - 8 width (where P = 0 to 1e-15)
-//!   and by quadrature (composite Simpson, 256 intervals) on the 16 widths around nu. A step beyond 0.564 makes g negative near 0; the peak lifts it,
+//!   and by quadrature (16 panels of Gauss-Legendre) on the 16 widths around nu. A step beyond 0.564 makes g negative near 0; the peak lifts it,
 //!   and with `power` = auto the smallest power keeping g >= 0 at every rho in [0, 12] (in
 //!   steps of 0.02) is used (g is linear in the power, so that power is a maximum of ratios).
 //!   Targets with g < 0 somewhere are refused: a PCF is never negative.
@@ -56,6 +56,7 @@ use super::elimination::SETTLED;
 use super::registry::{ANY, SamplerEntry};
 use super::{Fill, Sampler};
 use crate::error::{Error, Result};
+use crate::integrand::quadrature::gauss_legendre;
 use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Seed, wrap01};
@@ -81,18 +82,9 @@ pub enum Shape {
     },
 }
 
-/// Simpson intervals of the Hankel quadrature over a Gaussian's +-8 widths.
-const INTERVALS: usize = 256;
-
-/// 2 pi int_from^to f(a) J0(2 pi a rho) a da by composite Simpson.
+/// 2 pi int_from^to f(a) J0(2 pi a rho) a da, by 16 panels of Gauss-Legendre.
 pub fn hankel(f: impl Fn(f64) -> f64, from: f64, to: f64, rho: f64) -> f64 {
-    let h = (to - from) / INTERVALS as f64;
-    let term = |i: usize| {
-        let a = from + i as f64 * h;
-        f(a) * libm::j0(TAU * a * rho) * a
-    };
-    let inner: f64 = (1..INTERVALS).map(|i| if i % 2 == 1 { 4.0 } else { 2.0 } * term(i)).sum();
-    TAU * h / 3.0 * (term(0) + inner + term(INTERVALS))
+    TAU * gauss_legendre(|a| f(a) * libm::j0(TAU * a * rho) * a, from, to, 16)
 }
 
 /// The transform of the disk indicator: 2 pi int_0^a J0(2 pi a' rho) a' da' = a J1(2 pi a rho)
@@ -204,13 +196,8 @@ impl Matching {
             .iter()
             .map(|&r| {
                 let (from, to) = ((r - 5.0 * sigma).max(0.0), r + 5.0 * sigma);
-                let h = (to - from) / 64.0;
-                let term = |i: usize| {
-                    let t = from + i as f64 * h;
-                    shape.pcf(t / s) * (-((r - t) / sigma).powi(2)).exp() * t
-                };
-                let inner: f64 = (1..64).map(|i| if i % 2 == 1 { 4.0 } else { 2.0 } * term(i)).sum();
-                h / 3.0 * (term(0) + inner + term(64)) / (PI.sqrt() * sigma * r)
+                let smoothed = |t: f64| shape.pcf(t / s) * (-((r - t) / sigma).powi(2)).exp() * t;
+                gauss_legendre(smoothed, from, to, 4) / (PI.sqrt() * sigma * r)
             })
             .collect();
         let kernel = (0..=10 * NODES).map(|j| (-((j as f64 - 5.0 * NODES as f64) / NODES as f64).powi(2)).exp()).collect();
@@ -394,9 +381,6 @@ impl Sampler for Heck {
 impl Fill for Heck {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         SETTLED.check_count(n, dims)
-    }
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        self.fill_reporting(n, dims, seed, out, &Progress::SILENT)
     }
     fn units(&self) -> u64 {
         self.iterations as u64

@@ -78,9 +78,6 @@ impl Fill for MicroJitter {
             other => other,
         })
     }
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        self.fill_reporting(n, dims, seed, out, &Progress::SILENT)
-    }
     fn units(&self) -> u64 {
         self.inner.units()
     }

@@ -69,8 +69,12 @@ mod sealed {
         }
 
         /// Write `n` points of `dims` coordinates into `out` (length `n * dims`), row-major.
-        /// Called only by a [`super::Plan`], after every check passed.
-        fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()>;
+        /// Called only by a [`super::Plan`], after every check passed. Every sampler
+        /// implements this or [`Fill::fill_reporting`] (the optimizers), each defined by the
+        /// other.
+        fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+            self.fill_reporting(n, dims, seed, out, &Progress::SILENT)
+        }
 
         /// The units of progress one set reports: an optimizer's iterations, 1 otherwise.
         fn units(&self) -> u64 {
