@@ -268,6 +268,8 @@ fn every_power_of_two_prefix_of_the_lattice_sequence_is_a_lattice() {
         // the last point's coordinates give z mod 2^10 (point 2^9 is phi_2 = 1/2... so read z off
         // the 2^10 lattice: its point with phi_2(i) = 1/n is i = 2^9)
         let z: Vec<u64> = p.point(n / 2).iter().map(|&x| (x * n as f64).round() as u64).collect();
+        // odd components: every prefix's one-dimensional projections are all distinct
+        assert!(z.iter().all(|&zj| zj % 2 == 1), "{spec}: z = {z:?}");
         for k in 1..=10 {
             let m = 1usize << k;
             let mut ours: Vec<Vec<u64>> = p

@@ -134,6 +134,9 @@ fn points_equal_qmcpy_and_gsl() {
     assert_close(&sorted(points(&set(&b2, 1024, 4, 1))), &sorted(rows(&f["net_b2"])), 1e-15, "base-2 matrices");
     let b3 = format!("net:matrices={}", fixture("net_b3.txt"));
     assert_close(&sorted(points(&set(&b3, 729, 3, 1))), &sorted(rows(&f["net_b3"])), 1e-15, "base-3 matrices");
+    // the embedded lattice in radical-inverse order, from the same vector file
+    let lattice = format!("lattice:vector={}", fixture("lattice_vector.txt"));
+    assert_close(&points(&set(&lattice, 1024, 5, 1)), &rows(&f["lattice_radical_inverse"]), 0.0, "lattice");
     // GSL keeps 30 bits and walks in Gray-code order: the same 2^8 points, truncated
     let ours: Vec<Vec<f64>> = points(&set("niederreiter", 256, 12, 1))
         .into_iter()

@@ -268,8 +268,8 @@ pub struct Embedded {
 enum Vector {
     /// The embedded fast CBC for 2^20 points with these weights.
     Constructed(Weights),
-    /// Read from a file: its path, the vector and the largest point count it was made for.
-    File(String, Arc<Vec<u64>>, u64),
+    /// Read from a file: its path and the vector.
+    File(String, Arc<Vec<u64>>),
 }
 
 /// log2 of the point count the constructed vectors are made for.
@@ -279,23 +279,19 @@ impl Embedded {
     fn vector(&self, dims: usize) -> Result<Arc<Vec<u64>>> {
         match &self.vector {
             Vector::Constructed(weights) => constructed(1 << EMBEDDED_M, dims, *weights, true),
-            Vector::File(_, z, _) => Ok(Arc::clone(z)),
+            Vector::File(_, z) => Ok(Arc::clone(z)),
         }
     }
 
     fn prepare(&self, dims: usize, seed: Seed) -> Result<Prepared> {
         let z = self.vector(dims)?;
-        // z / n as a 64-bit binary fraction: exact for n a power of 2
-        let n = match &self.vector {
-            Vector::Constructed(_) => 1u64 << EMBEDDED_M,
-            Vector::File(_, _, n) => *n,
-        };
-        let steps = z.iter().take(dims).map(|&zj| ((u128::from(zj) << 64) / u128::from(n)) as u64).collect();
+        // phi_2(i) z mod 1 with phi_2(i) a 64-bit binary fraction: multiply by the integer z
+        let steps = z.iter().take(dims).copied().collect();
         Ok(Prepared { steps, offsets: Offsets::new(dims, self.shift, self.tent, seed) })
     }
 }
 
-/// A prepared embedded sequence: z_j / n in fixed point and the offsets.
+/// A prepared embedded sequence: the integers z_j and the offsets.
 #[derive(Debug)]
 struct Prepared {
     steps: Vec<u64>,
@@ -304,7 +300,8 @@ struct Prepared {
 
 impl Access for Prepared {
     fn sample(&self, index: u64, dim: usize) -> Result<f64> {
-        // phi_2(i) z / n mod 1, in 64-bit fixed point: phi_2(i) 2^64 is i's bits reversed
+        // phi_2(i) z mod 1 in 64-bit fixed point (phi_2(i) 2^64 is i's bits reversed): with
+        // n = 2^m and i < n this is the lattice point k z / n of k = phi_2(i) n
         Ok(self.offsets.value(index.reverse_bits().wrapping_mul(self.steps[dim]), dim))
     }
 }
@@ -320,7 +317,7 @@ impl Sampler for Embedded {
     fn dims(&self) -> RangeInclusive<usize> {
         match &self.vector {
             Vector::Constructed(_) => 1..=usize::MAX,
-            Vector::File(_, z, _) => 1..=z.len(),
+            Vector::File(_, z) => 1..=z.len(),
         }
     }
     fn as_sequence(&self) -> Option<&dyn Sequence> {
@@ -352,7 +349,7 @@ impl Sequence for Embedded {
 ///
 /// # Errors
 /// A malformed file, with its line.
-pub fn parse_vector(text: &str, source: &str) -> Result<(Vec<u64>, u64)> {
+pub fn parse_vector(text: &str, source: &str) -> Result<Vec<u64>> {
     let bad = |line: usize, reason: String| Error::Parse { location: format!("{source}:{line}"), reason };
     let mut numbers = Vec::new();
     for (line, l) in text.lines().enumerate().map(|(i, l)| (i + 1, l.split('#').next().unwrap_or("").trim())) {
@@ -373,7 +370,7 @@ pub fn parse_vector(text: &str, source: &str) -> Result<(Vec<u64>, u64)> {
     if let Some(&(line, zj)) = numbers[2..].iter().find(|(_, zj)| *zj >= n) {
         return Err(bad(line, format!("component {zj} is not below the point count {n}")));
     }
-    Ok((z, n))
+    Ok(z)
 }
 
 /// x in [0, 2) taken mod 1.
@@ -433,8 +430,7 @@ fn embedded_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Samp
     let vector = match p.path_or_auto("vector") {
         Some(path) => {
             let text = std::fs::read_to_string(path).map_err(|e| Error::Io { path: path.into(), reason: e.to_string() })?;
-            let (z, n) = parse_vector(&text, path)?;
-            Vector::File(path.into(), Arc::new(z), n)
+            Vector::File(path.into(), Arc::new(parse_vector(&text, path)?))
         }
         None => Vector::Constructed(weights(p)),
     };
