@@ -1,6 +1,6 @@
 //! The exact discrepancies at the sizes the discrepancy issue targets: 2D star at n = 10^3..10^6,
 //! d-D star (3D n = 2000, 5D n = 400) on random and Sobol' points, 2D L2-star at 10^3..10^6,
-//! centered and wrap-around at 2^14, 2D extreme at 10^3.
+//! centered and wrap-around at 2^14, 2D extreme at 10^3 and 10^4.
 //! `cargo bench -p samplab --bench discrepancy` (all threads; `RAYON_NUM_THREADS=1` for one core);
 //! side by side with scipy, on one core: `bench/compare discrepancy`.
 
@@ -39,7 +39,7 @@ fn discrepancies(c: &mut Criterion) {
     bench(c, "l2-star-2d", "l2-star", &star_2d);
     bench(c, "centered", "centered", &[("random", 1 << 14, 2)]);
     bench(c, "wraparound", "wraparound", &[("random", 1 << 14, 2)]);
-    bench(c, "extreme-2d", "extreme", &[("random", 1000, 2)]);
+    bench(c, "extreme-2d", "extreme", &[("random", 1000, 2), ("random", 10_000, 2), ("sobol.owen", 10_000, 2)]);
 }
 
 criterion_group!(benches, discrepancies);

@@ -77,7 +77,35 @@ fn extreme_fast_equals_naive_1d_2d() {
         let x = nasty(&mut rng, n, 1);
         assert_close(extreme::extreme_1d(&x), extreme_1d_naive(&x), &format!("1D trial {trial}: {x:?}"));
         let p = nasty(&mut rng, n, 2);
-        assert_close(extreme::extreme_2d(&p), extreme::extreme_2d_naive(&p), &format!("2D trial {trial}: {p:?}"));
+        let naive = extreme::extreme_2d_naive(&p);
+        assert_close(extreme::extreme_2d(&p), naive, &format!("2D trial {trial}: {p:?}"));
+        assert_close(extreme::extreme_2d_sweep(&p), naive, &format!("2D sweep, trial {trial}: {p:?}"));
+    }
+}
+
+#[test]
+fn extreme_branch_and_bound_equals_the_sweep_on_larger_sets() {
+    // the sweep (O(n^3), every pair) is the oracle; the sets range from easy to prune
+    // (random) to the hardest (nets and lattices, whose boxes all come near the maximum),
+    // and grids whose every side and edge is a tie
+    for (spec, n) in [
+        ("random", 700),
+        ("jitter", 400),
+        ("sobol.owen", 512),
+        ("hammersley", 256),
+        ("lattice", 256),
+        ("lattice.fibonacci", 233),
+        ("grid", 400),
+        ("nrooks", 300),
+    ] {
+        let p = sampler::build(spec).unwrap().generate(n, 2, Seed(5)).unwrap();
+        let x = p.as_slice();
+        assert_close(extreme::extreme_2d(x), extreme::extreme_2d_sweep(x), &format!("{spec} n = {n}"));
+    }
+    let mut rng = Seed(6).rng();
+    for n in [200, 600] {
+        let q = nasty(&mut rng, n, 2);
+        assert_close(extreme::extreme_2d(&q), extreme::extreme_2d_sweep(&q), &format!("ties, n = {n}"));
     }
 }
 

@@ -4,6 +4,9 @@
 //! faces pass through points or the cube's faces; degenerate closed boxes (zero width,
 //! points on them) count, as limits of half-open boxes.
 
+use std::collections::BinaryHeap;
+use std::collections::binary_heap::PeekMut;
+
 use rayon::prelude::*;
 
 use super::star::critical;
@@ -83,8 +86,9 @@ pub fn extreme_2d_naive(points: &[f64]) -> f64 {
 /// Exact 2D extreme discrepancy in O(n^3): for every left side, sweep the right side
 /// through the points in x order, keeping the slab's y values sorted; for each slab the
 /// best lower and upper sides come from one linear scan (a running minimum for open
-/// boxes, a running maximum for closed ones). The left sides run in parallel.
-pub fn extreme_2d(points: &[f64]) -> f64 {
+/// boxes, a running maximum for closed ones). The left sides run in parallel. The
+/// reference [`extreme_2d`] is tested against on sets too large for the brute force.
+pub fn extreme_2d_sweep(points: &[f64]) -> f64 {
     let n = points.len() / 2;
     let inv = 1.0 / n as f64;
     let mut pts: Vec<(f64, f64)> = points.chunks_exact(2).map(|p| (p[0], p[1])).collect();
@@ -98,22 +102,22 @@ pub fn extreme_2d(points: &[f64]) -> f64 {
         .par_iter()
         .map_init(
             || Vec::with_capacity(n),
-            |slab: &mut Vec<f64>, &c| {
+            |slab_ys: &mut Vec<f64>, &c| {
                 let mut worst: f64 = 0.0;
                 // open slabs (c, a): points with x > c; closed slabs [c, a]: points with x >= c
                 let first_open = pts.partition_point(|p| p.0 <= c);
                 let first_closed = pts.partition_point(|p| p.0 < c);
                 // open boxes: the right side a runs over the x values above c, then 1
-                slab.clear();
+                slab_ys.clear();
                 let mut i = first_open;
                 loop {
                     let a = if i < n { pts[i].0 } else { 1.0 };
-                    worst = worst.max(open_slab(slab, a - c, inv));
+                    worst = worst.max(slab(slab_ys.iter().copied(), a - c, inv, true));
                     if i >= n {
                         break;
                     }
                     while i < n && pts[i].0 == a {
-                        insert_sorted(slab, pts[i].1);
+                        insert_sorted(slab_ys, pts[i].1);
                         i += 1;
                     }
                     if i >= n && a == 1.0 {
@@ -121,15 +125,15 @@ pub fn extreme_2d(points: &[f64]) -> f64 {
                     }
                 }
                 // closed boxes: the right side a runs over the x values at or above c
-                slab.clear();
+                slab_ys.clear();
                 let mut i = first_closed;
                 while i < n {
                     let a = pts[i].0;
                     while i < n && pts[i].0 == a {
-                        insert_sorted(slab, pts[i].1);
+                        insert_sorted(slab_ys, pts[i].1);
                         i += 1;
                     }
-                    worst = worst.max(closed_slab(slab, a - c, inv));
+                    worst = worst.max(slab(slab_ys.iter().copied(), a - c, inv, false));
                 }
                 worst
             },
@@ -142,45 +146,312 @@ fn insert_sorted(v: &mut Vec<f64>, y: f64) {
     v.insert(at, y);
 }
 
-/// max over d < b of w (b - d) - #{d < y < b} / N, with d, b among 0, the ys and 1.
-fn open_slab(ys: &[f64], w: f64, inv: f64) -> f64 {
-    // value(d = s_i, b = s_j) = (w s_j - below(s_j)/N) - (w s_i - upto(s_i)/N)
+/// The best box of a slab of width `w` whose points have the sorted y values `ys`:
+/// open boxes, max over d < b of w (b - d) - #{d < y < b} / N with d, b among 0, the ys
+/// and 1; closed boxes, max over d <= b of #{d <= y <= b} / N - w (b - d) with d, b among
+/// the ys. One pass with a running minimum of the lower side's term (the maximum
+/// subarray); 0 at least (the empty box).
+fn slab(ys: impl Iterator<Item = f64>, w: f64, inv: f64, open: bool) -> f64 {
+    let mut ys = ys.peekable();
     let mut best: f64 = 0.0;
-    let mut min_left = 0.0; // d = 0: w*0 - 0
-    let mut i = 0;
-    while i <= ys.len() {
-        let b = if i < ys.len() { ys[i] } else { 1.0 };
-        best = best.max(w * b - i as f64 * inv - min_left);
-        if i == ys.len() {
-            break;
+    // open: the lower side d = 0 costs nothing; closed: no lower side yet
+    let mut min_left = if open { 0.0 } else { f64::INFINITY };
+    let mut count = 0usize;
+    while let Some(b) = ys.next() {
+        let below = count;
+        count += 1;
+        while ys.next_if_eq(&b).is_some() {
+            count += 1;
         }
-        let mut j = i;
-        while j < ys.len() && ys[j] == b {
-            j += 1;
+        if open {
+            // value(d, b) = (w b - below(b) / N) - (w d - upto(d) / N)
+            best = best.max(w * b - below as f64 * inv - min_left);
+            min_left = min_left.min(w * b - count as f64 * inv);
+        } else {
+            // value(d, b) = (upto(b) / N - w b) - (below(d) / N - w d)
+            min_left = min_left.min(below as f64 * inv - w * b);
+            best = best.max(count as f64 * inv - w * b - min_left);
         }
-        min_left = f64::min(min_left, w * b - j as f64 * inv);
-        i = j;
+    }
+    if open {
+        best = best.max(w - count as f64 * inv - min_left); // the upper side b = 1
     }
     best
 }
 
-/// max over d <= b of #{d <= y <= b} / N - w (b - d), d and b among the ys.
-fn closed_slab(ys: &[f64], w: f64, inv: f64) -> f64 {
-    // value = (upto(s_j)/N - w s_j) - (below(s_i)/N - w s_i)
+/// Exact 2D extreme discrepancy by best-first branch and bound over the pairs (left
+/// side c, right side a) of critical boxes. The bound of a block of pairs, c in [c0, c1]
+/// and a in [a0, a1], is that of Thiemard's partitions for the star discrepancy (J.
+/// Complexity 17, 2001: the outer box's count against the inner box's volume) applied to
+/// slabs: the best closed box of the outer slab [c0, a1] at the least width a0 - c1, the
+/// best open box of the inner slab (c1, a0) at the greatest width a1 - c0. It is tightened
+/// by splitting a box's value into its three parts, [c, c1) + [c1, a0] + (a0, a] (open:
+/// (c, c1] + (c1, a0) + [a0, a)), each at most the best box of its own slab: the inner
+/// slab's at its exact width, plus the best boxes of the two strips, precomputed once per
+/// node of the two halving trees of sides (O(k^2) for a node of k sides, up to 2048).
+/// A block of one pair is bounded by its exact value (all three slabs are the pair's), so
+/// the search refines the blocks of largest bound, 256 at a time (their children bounded
+/// in parallel), until no bound exceeds the best exact value found: the result is the
+/// maximum over every pair whatever the order or the thread count. A bound is one pass
+/// over a slab's points in y order (read from a bitmap of y ranks), O(n).
+///
+/// How many blocks are refined depends on the set; the worst case is every pair, O(n^3)
+/// as [`extreme_2d_sweep`]. Measured on two cores at n = 10^4 (2026-11-25): random 0.49
+/// s, jittered 1.0 s, Owen-scrambled Sobol' 5.2 s, Halton 1.6 s; at n = 4096 the
+/// Hammersley set, a (0, 12, 2)-net whose boxes come within a point of the maximum
+/// almost everywhere, takes 24 s (4% of the pairs evaluated exactly).
+pub fn extreme_2d(points: &[f64]) -> f64 {
+    let sides = Sides::new(points);
     let mut best: f64 = 0.0;
-    let mut min_left = f64::INFINITY;
-    let mut i = 0;
-    while i < ys.len() {
-        let b = ys[i];
-        let mut j = i;
-        while j < ys.len() && ys[j] == b {
-            j += 1;
+    let mut heap = BinaryHeap::new();
+    heap.push(sides.bound(Block { i: 1, j: 1, ub: 0.0 }, &mut vec![0; sides.words]));
+    // blocks whose bound, computed in floating point, is within this of the best may
+    // still hold a pair worth it: refined rather than dropped
+    const SLACK: f64 = 1e-13;
+    let mut batch = Vec::new();
+    loop {
+        batch.clear();
+        while batch.len() < 256 {
+            match heap.peek_mut() {
+                Some(top) if top.ub >= best - SLACK => batch.push(PeekMut::pop(top)),
+                _ => break,
+            }
         }
-        min_left = min_left.min(i as f64 * inv - w * b);
-        best = best.max(j as f64 * inv - w * b - min_left);
-        i = j;
+        if batch.is_empty() {
+            return best;
+        }
+        let children: Vec<Block> = batch.iter().flat_map(|b| sides.split(b)).collect();
+        let bounded: Vec<Block> = children
+            .par_iter()
+            .map_init(|| vec![0u64; sides.words], |bits, &b| sides.bound(b, bits))
+            .collect();
+        for b in bounded {
+            if sides.lefts.len(b.i) == 1 && sides.rights.len(b.j) == 1 {
+                best = best.max(b.ub); // one pair: its exact value
+            } else if b.ub >= best - SLACK {
+                heap.push(b);
+            }
+        }
     }
-    best
+}
+
+/// Strips up to this many sides get their own best boxes precomputed (O(k^2) each).
+const STRIPS: usize = 2048;
+
+/// A block of pairs: the left sides of node `i` of the left tree, the right sides of
+/// node `j` of the right tree; with an upper bound of its boxes.
+#[derive(Clone, Copy)]
+struct Block {
+    i: u32,
+    j: u32,
+    ub: f64,
+}
+
+impl PartialEq for Block {
+    fn eq(&self, other: &Self) -> bool {
+        self.ub.total_cmp(&other.ub).is_eq()
+    }
+}
+impl Eq for Block {}
+impl PartialOrd for Block {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Block {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        self.ub.total_cmp(&other.ub)
+    }
+}
+
+/// Ranges of sides halved down to single sides, as a segment tree (node 1 is every
+/// side, node k's halves are 2k and 2k + 1), with the best closed and open box of each
+/// node's strip (see [`Sides::bound`]).
+struct Tree {
+    lo: Vec<u32>,
+    hi: Vec<u32>,
+    closed: Vec<f64>,
+    open: Vec<f64>,
+}
+
+impl Tree {
+    fn new(sides: usize) -> Self {
+        let mut t = Tree { lo: vec![0; 4 * sides], hi: vec![0; 4 * sides], closed: vec![], open: vec![] };
+        let mut stack = if sides > 0 { vec![(1usize, 0u32, sides as u32)] } else { vec![] };
+        while let Some((k, lo, hi)) = stack.pop() {
+            (t.lo[k], t.hi[k]) = (lo, hi);
+            if hi - lo > 1 {
+                let mid = lo + (hi - lo) / 2;
+                stack.extend([(2 * k, lo, mid), (2 * k + 1, mid, hi)]);
+            }
+        }
+        t
+    }
+
+    fn len(&self, k: u32) -> usize {
+        (self.hi[k as usize] - self.lo[k as usize]) as usize
+    }
+
+    /// The node itself when it is one side, else its halves.
+    fn halves(&self, k: u32) -> impl Iterator<Item = u32> {
+        let one = self.len(k) == 1;
+        if one { k..k + 1 } else { 2 * k..2 * k + 2 }
+    }
+
+    /// Fill the strips' best boxes with `strip(lo, hi, open)` for nodes up to STRIPS sides.
+    fn strips(&mut self, strip: impl Fn(usize, usize, bool) -> f64 + Sync) {
+        let (lo, hi) = (&self.lo, &self.hi);
+        let of = |open: bool| -> Vec<f64> {
+            (0..lo.len())
+                .into_par_iter()
+                .map(|k| {
+                    let (a, b) = (lo[k] as usize, hi[k] as usize);
+                    if b > a && b - a <= STRIPS { strip(a, b, open) } else { f64::INFINITY }
+                })
+                .collect()
+        };
+        (self.closed, self.open) = (of(false), of(true));
+    }
+}
+
+/// The critical sides of a 2D set and the slabs between them.
+struct Sides {
+    inv: f64,
+    /// left sides: 0 and the distinct x values; right sides: the distinct x values and 1
+    left: Vec<f64>,
+    right: Vec<f64>,
+    /// per left side, the first point (in x order) with x >= c (closed) and x > c (open)
+    from_closed: Vec<u32>,
+    from_open: Vec<u32>,
+    /// per right side, the end of the points (in x order) with x <= a (closed), x < a (open)
+    to_closed: Vec<u32>,
+    to_open: Vec<u32>,
+    /// per point in x order, its rank in y order; the y values in y order
+    yrank: Vec<u32>,
+    ys: Vec<f64>,
+    words: usize,
+    lefts: Tree,
+    rights: Tree,
+}
+
+impl Sides {
+    fn new(points: &[f64]) -> Self {
+        let n = points.len() / 2;
+        let mut by_x: Vec<usize> = (0..n).collect();
+        by_x.sort_by(|&a, &b| points[2 * a].total_cmp(&points[2 * b]));
+        let mut by_y: Vec<usize> = (0..n).collect();
+        by_y.sort_by(|&a, &b| points[2 * a + 1].total_cmp(&points[2 * b + 1]));
+        let mut rank = vec![0u32; n];
+        for (r, &p) in by_y.iter().enumerate() {
+            rank[p] = r as u32;
+        }
+        let xs: Vec<f64> = by_x.iter().map(|&p| points[2 * p]).collect();
+        let mut left = vec![0.0];
+        left.extend(&xs);
+        left.dedup();
+        let mut right = xs.clone();
+        right.push(1.0);
+        right.dedup();
+        let at = |pred: &dyn Fn(f64) -> bool| xs.partition_point(|&x| pred(x)) as u32;
+        let mut sides = Sides {
+            inv: 1.0 / n as f64,
+            from_closed: left.iter().map(|&c| at(&|x| x < c)).collect(),
+            from_open: left.iter().map(|&c| at(&|x| x <= c)).collect(),
+            to_closed: right.iter().map(|&a| at(&|x| x <= a)).collect(),
+            to_open: right.iter().map(|&a| at(&|x| x < a)).collect(),
+            lefts: Tree::new(left.len()),
+            rights: Tree::new(right.len()),
+            left,
+            right,
+            yrank: by_x.iter().map(|&p| rank[p]).collect(),
+            ys: by_y.iter().map(|&p| points[2 * p + 1]).collect(),
+            words: n.div_ceil(64),
+        };
+        // the strip left of c1 = the node's last left side: [c, c1) closed, (c, c1] open
+        let mut lefts = std::mem::replace(&mut sides.lefts, Tree::new(0));
+        lefts.strips(|i0, i1, open| {
+            let (c1, from) = (sides.left[i1 - 1], if open { &sides.from_open } else { &sides.from_closed });
+            sides.strip_best((i0..i1 - 1).rev().map(|i| (from[i]..from[i + 1], c1 - sides.left[i])), open)
+        });
+        // the strip right of a0 = the node's first right side: (a0, a] closed, [a0, a) open
+        let mut rights = std::mem::replace(&mut sides.rights, Tree::new(0));
+        rights.strips(|j0, j1, open| {
+            let (a0, to) = (sides.right[j0], if open { &sides.to_open } else { &sides.to_closed });
+            sides.strip_best((j0 + 1..j1).map(|j| (to[j - 1]..to[j], sides.right[j] - a0)), open)
+        });
+        (sides.lefts, sides.rights) = (lefts, rights);
+        sides
+    }
+
+    /// The children of a block that hold a pair with the right side at or above the left.
+    fn split<'a>(&'a self, b: &Block) -> impl Iterator<Item = Block> + 'a {
+        let js: Vec<u32> = self.rights.halves(b.j).collect();
+        self.lefts
+            .halves(b.i)
+            .flat_map(move |i| js.clone().into_iter().map(move |j| Block { i, j, ub: 0.0 }))
+            .filter(|c| self.right[self.rights.hi[c.j as usize] as usize - 1] >= self.left[self.lefts.lo[c.i as usize] as usize])
+    }
+
+    /// The block with its upper bound (its exact value when it is one pair).
+    fn bound(&self, mut b: Block, bits: &mut [u64]) -> Block {
+        let (bi, bj) = (b.i as usize, b.j as usize);
+        let (i0, i1, j0, j1) =
+            (self.lefts.lo[bi] as usize, self.lefts.hi[bi] as usize, self.rights.lo[bj] as usize, self.rights.hi[bj] as usize);
+        let (c1, a0) = (self.left[i1 - 1], self.right[j0]);
+        let w_min = (a0 - c1).max(0.0);
+        let mut closed = self.slab_best(self.from_closed[i0], self.to_closed[j1 - 1], w_min, false, bits);
+        let strips = self.lefts.closed[bi] + self.rights.closed[bj];
+        if a0 >= c1 && strips < closed {
+            // [c, a] = [c, c1) + [c1, a0] + (a0, a] and a - c = (c1 - c) + (a0 - c1) + (a - a0):
+            // a box's value is the sum of its three parts', each at most its slab's best
+            let inner = self.slab_best(self.from_closed[i1 - 1], self.to_closed[j0], a0 - c1, false, bits);
+            closed = closed.min(inner + strips);
+        }
+        let w_max = self.right[j1 - 1] - self.left[i0];
+        let mut open =
+            if w_max > 0.0 { self.slab_best(self.from_open[i1 - 1], self.to_open[j0], w_max, true, bits) } else { 0.0 };
+        let strips = self.lefts.open[bi] + self.rights.open[bj];
+        if a0 > c1 && strips < open {
+            // (c, a) = (c, c1] + (c1, a0) + [a0, a), likewise
+            let inner = self.slab_best(self.from_open[i1 - 1], self.to_open[j0], a0 - c1, true, bits);
+            open = open.min(inner + strips);
+        }
+        b.ub = closed.max(open);
+        b
+    }
+
+    /// The best box of a strip grown step by step: each step adds the points of a range
+    /// (in x order) and takes the best box at its width.
+    fn strip_best(&self, steps: impl Iterator<Item = (std::ops::Range<u32>, f64)>, open: bool) -> f64 {
+        let mut ys: Vec<f64> = Vec::new();
+        let mut best: f64 = 0.0;
+        for (range, w) in steps {
+            for p in range {
+                insert_sorted(&mut ys, self.ys[self.yrank[p as usize] as usize]);
+            }
+            best = best.max(slab(ys.iter().copied(), w, self.inv, open));
+        }
+        best
+    }
+
+    /// The best box of the points from..to (in x order) at width `w`.
+    fn slab_best(&self, from: u32, to: u32, w: f64, open: bool, bits: &mut [u64]) -> f64 {
+        for &r in self.yrank.get(from as usize..to as usize).unwrap_or(&[]) {
+            bits[r as usize / 64] |= 1 << (r % 64);
+        }
+        let ys = &self.ys;
+        let iter = bits.iter_mut().enumerate().flat_map(|(k, word)| {
+            let mut v = std::mem::take(word);
+            std::iter::from_fn(move || {
+                (v != 0).then(|| {
+                    let bit = v.trailing_zeros() as usize;
+                    v &= v - 1;
+                    ys[64 * k + bit]
+                })
+            })
+        });
+        slab(iter, w, self.inv, open)
+    }
 }
 
 /// The metric this file registers.
@@ -198,7 +469,9 @@ fn extreme(_: &Params, points: &PointSet, limits: Limits) -> Result<f64> {
     match points.dims() {
         1 => Ok(extreme_1d(x)),
         2 => {
-            limits.allow("the exact extreme discrepancy", points, (points.len() as f64).powi(3))?;
+            // the branch and bound's typical work: n^2 log2 n (its worst case is n^3)
+            let n = points.len() as f64;
+            limits.allow("the exact extreme discrepancy", points, n * n * n.log2().max(1.0))?;
             Ok(extreme_2d(x))
         }
         d => Err(Error::Invalid(format!("the exact extreme discrepancy is implemented in 1D and 2D, not {d}D"))),
