@@ -4,8 +4,18 @@
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use samplab::{Seed, sampler};
 
-const SPECS: &[&str] =
-    &["random", "jitter", "nrooks", "halton.xor", "halton.owen", "sobol.xor", "sobol.owen", "pmj02", "poisson.fast"];
+const SPECS: &[&str] = &[
+    "random",
+    "jitter",
+    "nrooks",
+    "halton.xor",
+    "halton.owen",
+    "sobol.xor",
+    "sobol.owen",
+    "pmj02",
+    "poisson",
+    "poisson.fast",
+];
 
 fn samplers(c: &mut Criterion) {
     for spec in SPECS {
