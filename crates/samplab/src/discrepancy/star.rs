@@ -278,6 +278,8 @@ struct Dem<'a> {
     lists: Vec<Vec<u32>>,
     table: Vec<f64>,
     next: Vec<f64>,
+    /// Sorting scratch: (key << 32 | point), which sorts faster than points by a looked-up key.
+    packed: Vec<u64>,
 }
 
 /// One slab lo..=hi of an axis: the first `inside` points of the level (sorted by the
@@ -301,10 +303,22 @@ impl Dem<'_> {
         corner.iter().zip(self.axes).map(|(&i, a)| a[i as usize]).product()
     }
 
+    /// Sort points by their key on axis j.
+    fn sort_by_axis(&mut self, points: &mut [u32], j: usize) {
+        let mut packed = std::mem::take(&mut self.packed);
+        packed.clear();
+        packed.extend(points.iter().map(|&p| (u64::from(self.key(p, j)) << 32) | u64::from(p)));
+        packed.sort_unstable();
+        for (p, &v) in points.iter_mut().zip(&packed) {
+            *p = v as u32;
+        }
+        self.packed = packed;
+    }
+
     /// Sort the points of level j by axis j and cut the axis into slabs.
-    fn slabs(&self, j: usize, inside: &mut [u32], partial: &mut [u32]) -> Vec<Slab> {
-        inside.sort_unstable_by_key(|&p| self.key(p, j));
-        partial.sort_unstable_by_key(|&p| self.key(p, j));
+    fn slabs(&mut self, j: usize, inside: &mut [u32], partial: &mut [u32]) -> Vec<Slab> {
+        self.sort_by_axis(inside, j);
+        self.sort_by_axis(partial, j);
         let last = self.axes[j].len() as u32 - 1;
         let mut slabs = Vec::new();
         let (mut p, mut q, mut r, mut lo) = (0, 0, 0, 0);
@@ -394,22 +408,19 @@ impl Dem<'_> {
         self.axes[k][c as usize]
     }
 
-    /// A bound on a fully cut cell from one axis at a time: the other axes at hi (open;
-    /// none of their partial points) or at lo (closed; all of them), the best this axis
-    /// alone reaches. The smallest over the axes.
-    fn axis_bound(&self, inside: usize, partial: usize) -> f64 {
+    /// Whether a bound on a fully cut cell from one axis at a time cannot beat the best:
+    /// the other axes at hi (open; none of their partial points) or at lo (closed; all of
+    /// them), the best this axis alone reaches; the cell is pruned when any axis's is
+    /// no better than the best.
+    fn axis_prunes(&self, inside: usize, partial: usize) -> bool {
         let open = self.sign > 0.0;
         let at = |i: usize| self.axes[i][if open { self.hi[i] } else { self.lo[i] } as usize];
-        (0..self.dims)
-            .map(|k| {
-                let others: f64 = (0..self.dims).filter(|&i| i != k).map(at).product();
-                let m = self.lists[k].len();
-                let fixed = if open { inside } else { inside + partial - m };
-                (0..=m)
-                    .map(|t| self.sign * (others * self.corner(k, t) - (fixed + t) as f64 / self.n))
-                    .fold(f64::NEG_INFINITY, f64::max)
-            })
-            .fold(f64::INFINITY, f64::min)
+        (0..self.dims).any(|k| {
+            let others: f64 = (0..self.dims).filter(|&i| i != k).map(at).product();
+            let m = self.lists[k].len();
+            let fixed = if open { inside } else { inside + partial - m };
+            (0..=m).all(|t| self.sign * (others * self.corner(k, t) - (fixed + t) as f64 / self.n) <= self.best)
+        })
     }
 
     /// The best corner of a fully cut cell: `inside` points count everywhere, `earlier`
@@ -434,7 +445,7 @@ impl Dem<'_> {
         // the corners lo (inside points only) and hi (every partial point too) are exact
         let (v_lo, v_hi) = (self.volume(&self.lo), self.volume(&self.hi));
         self.best = self.best.max(self.sign * (v_lo - count(0))).max(self.sign * (v_hi - count(partial)));
-        if partial == 0 || self.axis_bound(inside, partial) <= self.best {
+        if partial == 0 || self.axis_prunes(inside, partial) {
             return;
         }
         // knapsack: table[t] = the best volume over the axes so far taking t partial points
@@ -449,10 +460,11 @@ impl Dem<'_> {
             for t in 0..=m {
                 let v = self.corner(k, t);
                 let slots = next[t..t + self.table.len()].iter_mut().zip(&self.table);
+                // plain comparisons (no NaN here) compile to one max / min instruction
                 if open {
-                    slots.for_each(|(slot, &prev)| *slot = slot.max(prev * v));
+                    slots.for_each(|(slot, &prev)| *slot = if prev * v > *slot { prev * v } else { *slot });
                 } else {
-                    slots.for_each(|(slot, &prev)| *slot = slot.min(prev * v));
+                    slots.for_each(|(slot, &prev)| *slot = if prev * v < *slot { prev * v } else { *slot });
                 }
             }
             self.next = std::mem::replace(&mut self.table, next);
@@ -488,7 +500,7 @@ pub fn star_dem(points: &[f64], dims: usize) -> f64 {
     // closed boxes [0, q]: when at or below it (key rank)
     for (shift, sign) in [(1u32, 1.0), (0, -1.0)] {
         let keys: Vec<u32> = points.iter().enumerate().map(|(i, &x)| rank(i % dims, x) + shift).collect();
-        let dem = Dem {
+        let mut dem = Dem {
             axes: &axes,
             keys: &keys,
             dims,
@@ -502,6 +514,7 @@ pub fn star_dem(points: &[f64], dims: usize) -> f64 {
             lists: vec![Vec::new(); dims],
             table: Vec::new(),
             next: Vec::new(),
+            packed: Vec::new(),
         };
         let mut all: Vec<u32> = (0..n as u32).collect();
         let slabs = dem.slabs(0, &mut all, &mut []);
