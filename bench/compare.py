@@ -127,7 +127,7 @@ if want("discrepancy"):
         t2, _ = samplab_disc("extreme", n, 2, sampler, threads=2)
         print("samplab extreme  n=%-8d d=2 %-10s: %.3f s on one thread, %.3f s on two (value %.6g)" % (n, sampler, t1, t2, v), flush=True)
     # exact d-D star discrepancy (Dobkin-Eppstein-Mitchell): low-discrepancy sets prune less than random ones
-    for n, d in [(2000, 3), (400, 5)]:
+    for n, d in [(2000, 3), (400, 5), (1000, 5)]:
         for sampler in ["random", "sobol", "halton"]:
             t1, v = samplab_disc("star", n, d, sampler)
             t2, _ = samplab_disc("star", n, d, sampler, threads=2)
@@ -142,6 +142,42 @@ if want("spectrum"):
         r = json.loads(line)
         print("spectrum n=%-6d sets=%-3d R=%-4d direct %8.3f s | fast %7.3f s | ratio %6.1fx | max periodogram error %.1e"
               % (r["n"], r["sets"], r["res"], r["direct_seconds"], r["fast_seconds"], r["ratio"], r["max_periodogram_error"]), flush=True)
+    # against FINUFFT (pip finufft, one thread, eps 1e-9): the same work per set, a 2D type-1
+    # transform of n random points to R x R frequencies and the periodogram's and mean's
+    # running sums, plan made once per grid cell; medians of 3
+    import finufft
+
+    def finufft_statistics(n, m, res):
+        rng = np.random.default_rng(1)
+        sets = [rng.random((n, 2)) for _ in range(m)]
+        ones = np.ones(n, dtype=np.complex128)
+
+        def run():
+            plan = finufft.Plan(1, (res, res), 1, eps=1e-9, isign=-1, nthreads=1)
+            power, mean = np.zeros((res, res)), np.zeros((res, res), complex)
+            for p in sets:
+                plan.setpts(2 * np.pi * p[:, 0], 2 * np.pi * p[:, 1])
+                f = plan.execute(ones) / n
+                power += f.real ** 2 + f.imag ** 2
+                mean += f
+        return median_time(run, min_runs=3, min_seconds=0.0)
+
+    cells = [(n, 2, res) for n in (256, 4096, 65536, 1_000_000) for res in (128, 512, 2048)] + [(100_000, 2, 256), (4096, 20, 512)]
+    out = subprocess.run([os.path.join(ROOT, "target", "release", "examples", "spectrum_timing")] + ["%d:%d:%d" % c for c in cells],
+                         check=True, capture_output=True, text=True, env=dict(os.environ, RAYON_NUM_THREADS="1")).stdout
+    for line in out.strip().splitlines():
+        r = json.loads(line)
+        theirs = finufft_statistics(r["n"], r["sets"], r["res"])
+        print("spectrum n=%-7d sets=%-3d R=%-4d FINUFFT %8.4f s | samplab %8.4f s | ratio %5.2fx"
+              % (r["n"], r["sets"], r["res"], theirs, r["fast_seconds"], theirs / r["fast_seconds"]), flush=True)
+    # FINUFFT's own error against the direct DFT on a small cell (samplab's is printed above)
+    x = np.random.default_rng(2).random((4096, 2))
+    k = np.arange(-64, 64)
+    ex, ey = np.exp(-2j * np.pi * np.outer(k, x[:, 0])), np.exp(-2j * np.pi * np.outer(k, x[:, 1]))
+    direct = (ex @ ey.T) / len(x)
+    fast = finufft.nufft2d1(2 * np.pi * x[:, 0], 2 * np.pi * x[:, 1], np.ones(len(x), complex), (128, 128), eps=1e-9, isign=-1, nthreads=1) / len(x)
+    print("FINUFFT eps 1e-9, n=4096, R=128: max |S| error against the direct DFT %.1e (relative to DC)" % np.abs(fast - direct).max(), flush=True)
+
 
 if want("render"):
     # renderer: samples per CPU-second, one thread, 256x256, pixel area, one camera ray and one

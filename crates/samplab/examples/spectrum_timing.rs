@@ -1,17 +1,42 @@
-//! Direct DFT against the fast path (tolerance 1e-9) on the benchmark
-//! configurations; one JSON object per line. Used by `bench/compare`.
+//! Spectrum statistics timed: with no arguments, the direct DFT against the fast path
+//! (tolerance 1e-9) on the two configurations; with arguments `N:SETS:RES ...`,
+//! the fast path alone on random sets (one JSON object per line; `bench/compare spectrum`
+//! runs FINUFFT on the same points beside it). Seeds: Seed(1) for every set list.
 
 use std::time::Instant;
 
 use samplab::spectrum::{self, Method};
-use samplab::{Seed, sampler};
+use samplab::{PointSet, Seed, sampler};
+
+fn sets(spec: &str, n: usize, m: usize) -> Vec<PointSet> {
+    sampler::generate_sets(sampler::build(spec).unwrap().as_ref(), n, 2, Seed(1), m).unwrap()
+}
 
 fn main() {
+    let cells: Vec<(usize, usize, usize)> = std::env::args()
+        .skip(1)
+        .map(|a| {
+            let v: Vec<usize> = a.split(':').map(|x| x.parse().expect("N:SETS:RES")).collect();
+            (v[0], v[1], v[2])
+        })
+        .collect();
+    if !cells.is_empty() {
+        for (n, m, res) in cells {
+            let sets = sets("random", n, m);
+            let mut times: Vec<f64> = (0..3)
+                .map(|_| {
+                    let t = Instant::now();
+                    spectrum::statistics(&sets, res, Method::Fast { tol: 1e-9 }).unwrap();
+                    t.elapsed().as_secs_f64()
+                })
+                .collect();
+            times.sort_by(f64::total_cmp);
+            println!("{{\"n\": {n}, \"sets\": {m}, \"res\": {res}, \"fast_seconds\": {:.5}}}", times[1]);
+        }
+        return;
+    }
     for (n, m, res) in [(4096usize, 20usize, 512usize), (100_000, 2, 256)] {
-        let sets =
-            sampler::generate_sets(sampler::build("jitter").unwrap().as_ref(), n, 2, Seed(1), m).unwrap_or_else(|_| {
-                sampler::generate_sets(sampler::build("random").unwrap().as_ref(), n, 2, Seed(1), m).unwrap()
-            });
+        let sets = if n == 4096 { sets("jitter", n, m) } else { sets("random", n, m) };
         let time = |method| {
             let t = Instant::now();
             let st = spectrum::statistics(&sets, res, method).unwrap();

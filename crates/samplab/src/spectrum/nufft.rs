@@ -2,7 +2,14 @@
 //! 1D and 2D, in the manner of FINUFFT (Barnett, Magland & af Klinteberg 2019): every
 //! point spreads an "exponential of semicircle" kernel psi(t) = exp(beta (sqrt(1 - (2t/w)^2) - 1))
 //! of width w onto a periodic grid oversampled by 2; one FFT; each frequency divided by the
-//! kernel's Fourier transform (computed by Gauss-Legendre quadrature). The kernel width
+//! kernel's Fourier transform (computed by Gauss-Legendre quadrature). As in FINUFFT, a
+//! point's w kernel values are polynomials in its offset within its grid cell (Chebyshev
+//! interpolants, evaluated by Horner's rule for all w at once), the degree the least that
+//! keeps them within tol / 1000 of the kernel (or of its jump exp(-beta) at the support's
+//! ends); a point away from the grid's seam adds 16 values to each of its w rows (w of them
+//! nonzero) without wrapping indices. The grid is real: its rows go through the FFT in
+//! pairs, as the real and imaginary parts of one complex row, and only the R kept columns
+//! are unpacked and transformed again. The kernel width
 //! and shape follow from the tolerance: w = ceil(log10(1/tol)) + 3, beta = 2.30 w, which
 //! keeps the largest error against the direct DFT below tol relative to DC for random and
 //! structured sets alike (tested).
@@ -21,7 +28,9 @@ pub struct Nufft {
     dims: usize,
     grid: usize,
     width: usize,
-    beta: f64,
+    /// The kernel's w values at a point, as polynomials in the point's offset within a grid
+    /// cell: `kernel[d][k]` is the coefficient of v^d of value k (zero beyond w).
+    kernel: Vec<[f64; 16]>,
     /// 1 / (kernel's Fourier transform) at each output frequency k - R/2.
     correction: Vec<f64>,
     fft: std::sync::Arc<dyn rustfft::Fft<f64>>,
@@ -59,29 +68,36 @@ impl Nufft {
         // grid-index units, so it is evaluated at xi = k / grid
         let psi =
             move |t: f64| if t.abs() >= hw { 0.0 } else { (beta * ((1.0 - (t / hw).powi(2)).sqrt() - 1.0)).exp() };
-        let correction = (0..res)
-            .map(|i| {
-                let xi = (i as f64 - half) / grid as f64;
-                let ft = 2.0 * gauss_legendre(|t| psi(t) * (std::f64::consts::TAU * xi * t).cos(), 0.0, hw, 8 * width);
-                1.0 / ft
-            })
-            .collect();
+        // psi is even, so its transform is: one quadrature per distinct |k|
+        let ft_at = |k: usize| {
+            let xi = k as f64 / grid as f64;
+            2.0 * gauss_legendre(|t| psi(t) * (std::f64::consts::TAU * xi * t).cos(), 0.0, hw, 2 * width)
+        };
+        let inverse: Vec<f64> = (0..=res / 2).map(|k| 1.0 / ft_at(k)).collect();
+        let correction = (0..res).map(|i| inverse[(i as f64 - half).abs() as usize]).collect();
+        // the kernel jumps by exp(-beta) at its support's ends, which no polynomial follows:
+        // the fit aims at tol / 1000, or a few times that jump
+        let kernel = kernel_polynomials(&psi, width, (tol / 1000.0).max(4.0 * (-beta).exp()));
         let fft = FftPlanner::new().plan_fft_forward(grid);
-        Ok(Nufft { res, dims, grid, width, beta, correction, fft })
+        Ok(Nufft { res, dims, grid, width, kernel, correction, fft })
     }
 
-    /// The kernel weights of a point at x on the grid: the first grid index and w values.
-    #[inline]
-    fn weights(&self, x: f64, out: &mut [f64; 16]) -> i64 {
+    /// The kernel weights of a point at x on the grid: the first grid index and 16 values
+    /// (the first w the kernel's, the rest 0).
+    #[inline(always)]
+    fn weights(&self, x: f64) -> (i64, [f64; 16]) {
         let g = x * self.grid as f64;
-        let hw = self.width as f64 / 2.0;
-        let first = (g - hw).ceil() as i64;
-        for (k, o) in out.iter_mut().enumerate().take(self.width) {
-            let t = (first + k as i64) as f64 - g;
-            let z = t / hw;
-            *o = if z.abs() >= 1.0 { 0.0 } else { (self.beta * ((1.0 - z * z).sqrt() - 1.0)).exp() };
+        let first = (g - self.width as f64 / 2.0).ceil();
+        // the offset of the first index, first - g + w/2 in [0, 1), mapped to [-1, 1]
+        let v = 2.0 * (first - g + self.width as f64 / 2.0) - 1.0;
+        let (top, rest) = self.kernel.split_last().expect("a kernel polynomial");
+        let mut out = *top;
+        for c in rest.iter().rev() {
+            for (o, &ck) in out.iter_mut().zip(c) {
+                *o = *o * v + ck;
+            }
         }
-        first
+        (first as i64, out)
     }
 
     /// S(w) = (1/N) sum_j exp(-2 pi i w.x_j) at the centred frequencies, row-major.
@@ -103,58 +119,158 @@ impl Nufft {
         if points.dims() != self.dims {
             return Err(Error::Invalid(format!("planned for {}D points, got {}D", self.dims, points.dims())));
         }
-        let g = self.grid;
+        let (g, w) = (self.grid, self.width);
         let wrap = |i: i64| i.rem_euclid(g as i64) as usize;
-        let mut grid = vec![C64::new(0.0, 0.0); g.pow(self.dims as u32)];
-        let (mut wx, mut wy) = ([0.0; 16], [0.0; 16]);
-        for (j, p) in points.iter().enumerate() {
-            let c = weights.map_or(1.0, |w| w[j]);
-            let fx = self.weights(p[0], &mut wx);
-            if self.dims == 1 {
-                for (k, &w) in wx.iter().enumerate().take(self.width) {
-                    grid[wrap(fx + k as i64)].re += c * w;
-                }
-            } else {
-                let fy = self.weights(p[1], &mut wy);
-                for (a, &u) in wx.iter().enumerate().take(self.width) {
-                    let row = wrap(fx + a as i64) * g;
-                    let cu = c * u;
-                    for (b, &v) in wy.iter().enumerate().take(self.width) {
-                        grid[row + wrap(fy + b as i64)].re += cu * v;
+        // spread into a real grid: 16 values from each first index (the last 16 - w zero)
+        // where they fit, index by index around the torus near its seam
+        let mut real = vec![0.0; g.pow(self.dims as u32)];
+        let inner = |f: i64| f >= 0 && f as usize + 16 <= g;
+        crate::simd::wide(
+            #[inline(always)]
+            || {
+                // a local slice and kernel values by value: no aliasing for the vectorizer to fear
+                let real = real.as_mut_slice();
+                for (j, p) in points.iter().enumerate() {
+                    let c = weights.map_or(1.0, |wt| wt[j]);
+                    let (fx, wx) = self.weights(p[0]);
+                    if self.dims == 1 {
+                        if inner(fx)
+                            && let Some(cells) = real[fx as usize..].first_chunk_mut::<16>()
+                        {
+                            for (cell, &u) in cells.iter_mut().zip(&wx) {
+                                *cell += c * u;
+                            }
+                        } else {
+                            for (a, &u) in wx[..w].iter().enumerate() {
+                                real[wrap(fx + a as i64)] += c * u;
+                            }
+                        }
+                        continue;
+                    }
+                    let (fy, wy) = self.weights(p[1]);
+                    for (a, &u) in wx[..w].iter().enumerate() {
+                        let (cu, row) = (c * u, wrap(fx + a as i64) * g);
+                        if inner(fy)
+                            && let Some(cells) = real[row + fy as usize..].first_chunk_mut::<16>()
+                        {
+                            for (cell, &v) in cells.iter_mut().zip(&wy) {
+                                *cell += cu * v;
+                            }
+                        } else {
+                            for (b, &v) in wy[..w].iter().enumerate() {
+                                real[row + wrap(fy + b as i64)] += cu * v;
+                            }
+                        }
                     }
                 }
-            }
-        }
-        // forward FFT of every row in one batched call
-        self.fft.process(&mut grid);
+            },
+        );
         let inv = 1.0 / points.len() as f64;
         let half = (self.res / 2) as i64;
         let at = |k: usize| wrap(k as i64 - half);
-        if self.dims == 2 {
-            // only the R columns of kept frequencies need the second pass: gather each
-            // into a contiguous row, transform them together, and read the result transposed
-            let mut cols = vec![C64::new(0.0, 0.0); self.res * g];
-            for (j, col) in cols.chunks_exact_mut(g).enumerate() {
-                let c = at(j);
-                for (r, v) in col.iter_mut().enumerate() {
-                    *v = grid[r * g + c];
-                }
-            }
-            self.fft.process(&mut cols);
-            let mut out = Vec::with_capacity(self.res * self.res);
-            for i in 0..self.res {
-                for j in 0..self.res {
-                    let v = cols[j * g + at(i)] * (self.correction[i] * self.correction[j] * inv);
-                    out.push([v.re, v.im]);
-                }
-            }
-            return Ok(out);
+        if self.dims == 1 {
+            let mut row: Vec<C64<f64>> = real.iter().map(|&v| C64::new(v, 0.0)).collect();
+            self.fft.process(&mut row);
+            return Ok((0..self.res)
+                .map(|i| {
+                    let v = row[at(i)] * (self.correction[i] * inv);
+                    [v.re, v.im]
+                })
+                .collect());
         }
-        Ok((0..self.res)
-            .map(|i| {
-                let v = grid[at(i)] * (self.correction[i] * inv);
-                [v.re, v.im]
-            })
-            .collect())
+        // the rows are real: rows 2p and 2p + 1 go through one complex FFT as z = a + i b,
+        // and A_k = (Z_k + conj Z_-k) / 2, B_k = (Z_k - conj Z_-k) / 2i are unpacked for the
+        // R kept columns only
+        let mut z: Vec<C64<f64>> = real
+            .chunks_exact(2 * g)
+            .flat_map(|pair| pair[..g].iter().zip(&pair[g..]).map(|(&a, &b)| C64::new(a, b)))
+            .collect();
+        self.fft.process(&mut z);
+        // the second pass on the kept columns: gather each into a contiguous row, transform
+        // them together, and read the result transposed
+        let mut cols = vec![C64::new(0.0, 0.0); self.res * g];
+        for (j, col) in cols.chunks_exact_mut(g).enumerate() {
+            let (k, minus) = (at(j), (g - at(j)) % g);
+            for (p, ab) in col.chunks_exact_mut(2).enumerate() {
+                let (zk, zm) = (z[p * g + k], z[p * g + minus].conj());
+                ab[0] = (zk + zm) * 0.5;
+                ab[1] = (zk - zm) * C64::new(0.0, -0.5);
+            }
+        }
+        self.fft.process(&mut cols);
+        let mut out = Vec::with_capacity(self.res * self.res);
+        for i in 0..self.res {
+            for j in 0..self.res {
+                let v = cols[j * g + at(i)] * (self.correction[i] * self.correction[j] * inv);
+                out.push([v.re, v.im]);
+            }
+        }
+        Ok(out)
     }
+}
+
+/// The kernel's values at the w grid indices around a point, as polynomials in the point's
+/// offset v in [-1, 1] (value k is psi(k - w/2 + (v + 1) / 2)): Chebyshev interpolants,
+/// rewritten in powers of v, of the least degree (from w + 2) whose largest error on a fine
+/// sample of v is at most `target` (degree 28 at most).
+fn kernel_polynomials(psi: &impl Fn(f64) -> f64, width: usize, target: f64) -> Vec<[f64; 16]> {
+    let hw = width as f64 / 2.0;
+    let value = |k: usize, v: f64| psi(k as f64 - hw + (v + 1.0) / 2.0);
+    let mut best: Option<(f64, Vec<[f64; 16]>)> = None;
+    for degree in width + 2..=28 {
+        let mut coef = vec![[0.0; 16]; degree + 1];
+        for k in 0..width {
+            for (row, c) in coef.iter_mut().zip(chebyshev_powers(|v| value(k, v), degree)) {
+                row[k] = c;
+            }
+        }
+        let err = (0..=100)
+            .map(|i| -1.0 + i as f64 / 50.0)
+            .flat_map(|v| (0..width).map(move |k| (k, v)))
+            .map(|(k, v)| (coef.iter().rev().fold(0.0, |acc, c| acc * v + c[k]) - value(k, v)).abs())
+            .fold(0.0, f64::max);
+        if best.as_ref().is_none_or(|(e, _)| err < *e) {
+            best = Some((err, coef));
+        }
+        if err <= target {
+            break;
+        }
+    }
+    best.expect("at least one degree").1
+}
+
+/// The interpolant of f at the degree + 1 Chebyshev points of [-1, 1], as coefficients of
+/// 1, v, .., v^degree.
+fn chebyshev_powers(f: impl Fn(f64) -> f64, degree: usize) -> Vec<f64> {
+    let m = degree + 1;
+    let nodes: Vec<f64> = (0..m).map(|i| (std::f64::consts::PI * (i as f64 + 0.5) / m as f64).cos()).collect();
+    let values: Vec<f64> = nodes.iter().map(|&x| f(x)).collect();
+    // Chebyshev coefficients c_j = (2 / m) sum_i f(x_i) T_j(x_i), c_0 halved
+    let cheb: Vec<f64> = (0..m)
+        .map(|j| {
+            let s: f64 = nodes.iter().zip(&values).map(|(&x, &y)| y * (j as f64 * x.acos()).cos()).sum();
+            if j == 0 { s / m as f64 } else { 2.0 * s / m as f64 }
+        })
+        .collect();
+    // T_j in powers of v by T_{j+1} = 2 v T_j - T_{j-1}
+    let mut out = vec![0.0; m];
+    let (mut prev, mut cur) = (vec![0.0; m], vec![0.0; m]);
+    prev[0] = 1.0; // T_0
+    if m > 1 {
+        cur[1] = 1.0; // T_1
+    }
+    for (j, &c) in cheb.iter().enumerate() {
+        let t = if j == 0 { &prev } else { &cur };
+        for (o, &a) in out.iter_mut().zip(t) {
+            *o += c * a;
+        }
+        if j >= 1 {
+            let mut next = vec![0.0; m];
+            for i in 0..m {
+                next[i] = -prev[i] + if i > 0 { 2.0 * cur[i - 1] } else { 0.0 };
+            }
+            prev = std::mem::replace(&mut cur, next);
+        }
+    }
+    out
 }
