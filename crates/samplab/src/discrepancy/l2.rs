@@ -326,14 +326,21 @@ pub fn pair_sum_2d<const R: usize>(
         block.sort_by(|a, b| a.y.total_cmp(&b.y));
     }
     let mut spare = pts.clone();
-    let mut width = BLOCK;
-    while width < n {
-        for lo in (0..n).step_by(2 * width) {
-            let (mid, hi) = ((lo + width).min(n), (lo + 2 * width).min(n));
-            merge(split, &mut pts[lo..hi], mid - lo, &mut spare[lo..hi]);
-        }
-        width *= 2;
-    }
+    // the merges compiled for the widest vector instructions (the nine running sums are
+    // independent lanes: the same bits on every instruction set)
+    crate::simd::wide(
+        #[inline(always)]
+        || {
+            let mut width = BLOCK;
+            while width < n {
+                for lo in (0..n).step_by(2 * width) {
+                    let (mid, hi) = ((lo + width).min(n), (lo + 2 * width).min(n));
+                    merge(split, &mut pts[lo..hi], mid - lo, &mut spare[lo..hi]);
+                }
+                width *= 2;
+            }
+        },
+    );
     let mut pair = Sum::default();
     for p in &pts {
         pair.add(2.0 * p.inner + g(p.x, p.x) * g(p.y, p.y));
