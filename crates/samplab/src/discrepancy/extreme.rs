@@ -469,7 +469,7 @@ fn extreme(_: &Params, points: &PointSet, limits: Limits) -> Result<f64> {
     match points.dims() {
         1 => Ok(extreme_1d(x)),
         2 => {
-            // the branch and bound's typical work: n^2 log2 n (its worst case is n^3)
+            // a nominal n^2 log2 n: the branch and bound's work depends on the set (at worst n^3)
             let n = points.len() as f64;
             limits.allow("the exact extreme discrepancy", points, n * n * n.log2().max(1.0))?;
             Ok(extreme_2d(x))

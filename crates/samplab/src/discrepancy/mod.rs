@@ -15,7 +15,7 @@
 //! | metric | algorithm | cost |
 //! |---|---|---|
 //! | `star` | 1D closed form; 2D sweep + kinetic segment tree; d >= 3 Dobkin-Eppstein-Mitchell cells + knapsack | n log n; n log^2 n; n^(1+d/2) |
-//! | `extreme` | 1D closed form; 2D branch and bound over slabs | n log n; typically n^2 log n, at worst n^3 |
+//! | `extreme` | 1D closed form; 2D branch and bound over slabs | n log n; data-dependent (n = 10^4: 0.5-5 s for random to Sobol' sets on two cores), at worst n^3 |
 //! | `l2-star`, `l2-extreme`, `centered`, `wraparound`, `mixture`, `diaphony` | closed forms (Warnock, Hickernell, Zinterhof); in 2D a merge-sort sweep | d n^2; 2D n log n |
 //! | `projected` | 1D star/extreme of the projections against their exact CDF | n log n |
 //! | `star-bound` | threshold accepting: a LOWER BOUND on the star discrepancy | iterations x n d |
@@ -146,7 +146,8 @@ pub struct Flags {
 #[derive(Debug, Clone, Copy)]
 pub struct Limits {
     /// The largest number of elementary steps an exact algorithm may take, estimated before
-    /// the work: n^(1 + d/2) for the d-D star discrepancy (d >= 3), n^2 log2 n for the 2D extreme.
+    /// the work: n^(1 + d/2) for the d-D star discrepancy (d >= 3), n^2 log2 n for the 2D
+    /// extreme (a nominal figure: its branch and bound's work depends on the set).
     pub max_work: f64,
 }
 
