@@ -277,7 +277,7 @@ struct Tree {
 impl Tree {
     fn new(sides: usize) -> Self {
         let mut t = Tree { lo: vec![0; 4 * sides], hi: vec![0; 4 * sides], closed: vec![], open: vec![] };
-        let mut stack = if sides > 0 { vec![(1usize, 0u32, sides as u32)] } else { vec![] };
+        let mut stack = vec![(1usize, 0u32, sides as u32)];
         while let Some((k, lo, hi)) = stack.pop() {
             (t.lo[k], t.hi[k]) = (lo, hi);
             if hi - lo > 1 {
@@ -298,19 +298,19 @@ impl Tree {
         if one { k..k + 1 } else { 2 * k..2 * k + 2 }
     }
 
-    /// Fill the strips' best boxes with `strip(lo, hi, open)` for nodes up to STRIPS sides.
-    fn strips(&mut self, strip: impl Fn(usize, usize, bool) -> f64 + Sync) {
-        let (lo, hi) = (&self.lo, &self.hi);
+    /// The strips' best boxes, closed and open, by `strip(lo, hi, open)` for the nodes of up
+    /// to STRIPS sides (infinite, so never used, above).
+    fn strips(&self, strip: impl Fn(usize, usize, bool) -> f64 + Sync) -> (Vec<f64>, Vec<f64>) {
         let of = |open: bool| -> Vec<f64> {
-            (0..lo.len())
+            (0..self.lo.len())
                 .into_par_iter()
                 .map(|k| {
-                    let (a, b) = (lo[k] as usize, hi[k] as usize);
+                    let (a, b) = (self.lo[k] as usize, self.hi[k] as usize);
                     if b > a && b - a <= STRIPS { strip(a, b, open) } else { f64::INFINITY }
                 })
                 .collect()
         };
-        (self.closed, self.open) = (of(false), of(true));
+        (of(false), of(true))
     }
 }
 
@@ -368,18 +368,17 @@ impl Sides {
             words: n.div_ceil(64),
         };
         // the strip left of c1 = the node's last left side: [c, c1) closed, (c, c1] open
-        let mut lefts = std::mem::replace(&mut sides.lefts, Tree::new(0));
-        lefts.strips(|i0, i1, open| {
+        let (closed, open) = sides.lefts.strips(|i0, i1, open| {
             let (c1, from) = (sides.left[i1 - 1], if open { &sides.from_open } else { &sides.from_closed });
             sides.strip_best((i0..i1 - 1).rev().map(|i| (from[i]..from[i + 1], c1 - sides.left[i])), open)
         });
+        (sides.lefts.closed, sides.lefts.open) = (closed, open);
         // the strip right of a0 = the node's first right side: (a0, a] closed, [a0, a) open
-        let mut rights = std::mem::replace(&mut sides.rights, Tree::new(0));
-        rights.strips(|j0, j1, open| {
+        let (closed, open) = sides.rights.strips(|j0, j1, open| {
             let (a0, to) = (sides.right[j0], if open { &sides.to_open } else { &sides.to_closed });
             sides.strip_best((j0 + 1..j1).map(|j| (to[j - 1]..to[j], sides.right[j] - a0)), open)
         });
-        (sides.lefts, sides.rights) = (lefts, rights);
+        (sides.rights.closed, sides.rights.open) = (closed, open);
         sides
     }
 
