@@ -71,41 +71,50 @@ fn sums(points: &[f64], dims: usize, f: impl Fn(f64) -> f64 + Sync, g: impl Fn(f
     (single.value() / n as f64, pair.value() / (n * n) as f64)
 }
 
-/// Independent Kahan-compensated accumulators: enough of them (16 for a row of pairs) that
-/// the compiler can keep several vector registers busy, merged with Neumaier's sum.
+/// Independent compensated accumulators: enough of them (16 for a row of pairs) that the
+/// compiler can keep several vector registers busy, merged with Neumaier's sum. Each adds
+/// by Knuth's TwoSum, its rounding error gathered apart (Ogita, Rump & Oishi 2005's Sum2):
+/// no branch, and only the one addition on the running sum's dependency chain.
 const LANES: usize = 16;
 
 struct Lanes<const N: usize> {
     sum: [f64; N],
-    comp: [f64; N],
+    err: [f64; N],
 }
 
 impl<const N: usize> Lanes<N> {
     fn new() -> Lanes<N> {
-        Lanes { sum: [0.0; N], comp: [0.0; N] }
+        Lanes { sum: [0.0; N], err: [0.0; N] }
     }
 
     /// Each accumulator's compensated value.
     #[inline(always)]
     fn values(&self) -> [f64; N] {
-        std::array::from_fn(|k| self.sum[k] - self.comp[k])
+        array(|k| self.sum[k] + self.err[k])
     }
 
     #[inline(always)]
     fn add(&mut self, values: [f64; N]) {
-        for ((sum, comp), v) in self.sum.iter_mut().zip(&mut self.comp).zip(values) {
-            let y = v - *comp;
-            let t = *sum + y;
-            *comp = (t - *sum) - y;
+        for ((sum, err), v) in self.sum.iter_mut().zip(&mut self.err).zip(values) {
+            let t = *sum + v;
+            let w = t - *sum;
+            *err += (*sum - (t - w)) + (v - w);
             *sum = t;
         }
     }
 
+    /// This total less a running sum, part by part (the difference of the leading parts is
+    /// exact or rounded at its own scale, not the total's).
+    #[inline(always)]
+    fn less(&self, running: &Lanes<N>) -> [f64; N] {
+        array(|k| (self.sum[k] - running.sum[k]) + (self.err[k] - running.err[k]))
+    }
+
     fn total(&self) -> Sum {
         let mut s = Sum::default();
-        for (&sum, &comp) in self.sum.iter().zip(&self.comp) {
+        for (&sum, &err) in self.sum.iter().zip(&self.err) {
             s.add(sum);
-            s.add(-comp);
+            s.add(err);
         }
         s
     }
@@ -313,43 +322,103 @@ pub fn pair_sum_2d<const R: usize>(
     g: impl Fn(f64, f64) -> f64,
     split: impl Fn(f64) -> ([f64; R], [f64; R]) + Copy,
 ) -> f64 {
-    let mut pts: Vec<Point> = points.chunks_exact(2).map(|p| Point { x: p[0], y: p[1], inner: 0.0 }).collect();
-    pts.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    let pts: Vec<Point> = points.chunks_exact(2).map(|p| Point { x: p[0], y: p[1], inner: 0.0 }).collect();
     let n = pts.len();
-    // blocks of BLOCK points in x order: their pairs directly, then sorted by y
-    for block in pts.chunks_mut(BLOCK) {
-        for i in 1..block.len() {
-            let (done, rest) = block.split_at_mut(i);
-            let p = &mut rest[0];
-            p.inner = done.iter().map(|q| g(p.x, q.x) * g(p.y, q.y)).sum();
-        }
-        block.sort_by(|a, b| a.y.total_cmp(&b.y));
-    }
-    let mut spare = pts.clone();
-    // the merges compiled for the widest vector instructions (the nine running sums are
-    // independent lanes: the same bits on every instruction set)
+    let (mut pts, mut spare) = radix_sort_x(pts);
+    // compiled for the widest vector instructions (the sums are independent lanes: the same
+    // bits on every instruction set)
+    let (mut from, mut to) = (&mut pts, &mut spare);
     crate::simd::wide(
         #[inline(always)]
         || {
+            // blocks of BLOCK points in x order: their pairs directly, then sorted by y
+            for block in from.chunks_mut(BLOCK) {
+                block_pairs(&g, block);
+                block.sort_unstable_by_key(|p| order_key(p.y));
+            }
+            // then the merges, each level from one buffer into the other
             let mut width = BLOCK;
             while width < n {
                 for lo in (0..n).step_by(2 * width) {
                     let (mid, hi) = ((lo + width).min(n), (lo + 2 * width).min(n));
-                    merge(split, &mut pts[lo..hi], mid - lo, &mut spare[lo..hi]);
+                    merge(split, &from[lo..hi], mid - lo, &mut to[lo..hi]);
                 }
+                std::mem::swap(&mut from, &mut to);
                 width *= 2;
             }
         },
     );
     let mut pair = Sum::default();
-    for p in &pts {
+    for p in from.iter() {
         pair.add(2.0 * p.inner + g(p.x, p.x) * g(p.y, p.y));
     }
     pair.value()
 }
 
+/// The points in x order (`f64::total_cmp`'s), by a least-significant-digit radix sort on
+/// the bits (11 at a time, a pass skipped where every key has the same digit), and a spare
+/// buffer of the same length.
+fn radix_sort_x(mut pts: Vec<Point>) -> (Vec<Point>, Vec<Point>) {
+    const BITS: usize = 11;
+    const PASSES: usize = 64_usize.div_ceil(BITS);
+    let key = |p: &Point| (order_key(p.x) as u64) ^ (1 << 63);
+    let digit = |k: u64, pass: usize| (k >> (BITS * pass)) as usize & ((1 << BITS) - 1);
+    let mut counts = vec![[0usize; 1 << BITS]; PASSES];
+    for p in &pts {
+        let k = key(p);
+        for (pass, count) in counts.iter_mut().enumerate() {
+            count[digit(k, pass)] += 1;
+        }
+    }
+    let mut spare = pts.clone();
+    for (pass, count) in counts.iter_mut().enumerate() {
+        if count.contains(&pts.len()) {
+            continue;
+        }
+        let mut start = 0;
+        for c in count.iter_mut() {
+            (*c, start) = (start, start + *c);
+        }
+        for p in &pts {
+            let d = digit(key(p), pass);
+            spare[count[d]] = *p;
+            count[d] += 1;
+        }
+        std::mem::swap(&mut pts, &mut spare);
+    }
+    (pts, spare)
+}
+
+/// A coordinate's place in `f64::total_cmp`'s order, as an integer (sorts faster).
+#[inline(always)]
+fn order_key(v: f64) -> i64 {
+    let bits = v.to_bits() as i64;
+    bits ^ (((bits >> 63) as u64) >> 1) as i64
+}
+
 /// The sweep's leaves: blocks whose pairs are summed directly (fewer, longer merges).
-const BLOCK: usize = 32;
+const BLOCK: usize = 64;
+
+/// Each point's sum over the block's earlier points of g(x_i, x_j) g(y_i, y_j), in eight
+/// lanes (j mod 8) over the whole block, the later points' terms weighted by zero.
+#[inline(always)]
+fn block_pairs(g: &impl Fn(f64, f64) -> f64, block: &mut [Point]) {
+    let mut xs = [0.0; BLOCK];
+    let mut ys = [0.0; BLOCK];
+    for (k, p) in block.iter().enumerate() {
+        (xs[k], ys[k]) = (p.x, p.y);
+    }
+    for (i, p) in block.iter_mut().enumerate() {
+        let mut lanes = [0.0; 8];
+        for (c, (x, y)) in xs.chunks_exact(8).zip(ys.chunks_exact(8)).enumerate() {
+            for k in 0..8 {
+                let weight = if 8 * c + k < i { 1.0 } else { 0.0 };
+                lanes[k] += weight * (g(p.x, x[k]) * g(p.y, y[k]));
+            }
+        }
+        p.inner = lanes.iter().sum();
+    }
+}
 
 /// A point of the sweep, with its sum over the earlier points met so far (a plain sum: a
 /// block's pairs, then one term per merge level; the running sums it is read from are the
@@ -361,65 +430,99 @@ struct Point {
     inner: f64,
 }
 
-/// The R x R products u_r v_s, row-major, in the first R^2 of 9 places.
+/// The R x R products u_r v_s, row-major.
 #[inline(always)]
-fn outer<const R: usize>(u: &[f64; R], v: &[f64; R]) -> [f64; 9] {
-    let mut out = [0.0; 9];
-    for (row, &a) in out.chunks_exact_mut(R).zip(u) {
-        for (o, &b) in row.iter_mut().zip(v) {
-            *o = a * b;
-        }
-    }
-    out
+fn outer<const R: usize, const RR: usize>(u: &[f64; R], v: &[f64; R]) -> [f64; RR] {
+    array(|k| u[k / R] * v[k % R])
 }
 
 /// sum_rs u_r v_s sums_rs.
 #[inline(always)]
-fn contract<const R: usize>(u: &[f64; R], v: &[f64; R], sums: &Lanes<9>) -> f64 {
-    outer(u, v).iter().zip(sums.values()).map(|(w, s)| w * s).sum()
+fn contract<const R: usize, const RR: usize>(u: &[f64; R], v: &[f64; R], sums: &[f64; RR]) -> f64 {
+    outer::<R, RR>(u, v).iter().zip(sums).map(|(w, s)| w * s).sum()
 }
 
-/// Merge the y-sorted halves `block[..mid]` (earlier in x) and `block[mid..]` (later), adding
-/// to each later point its sum over the earlier half: below it in y in a forward pass, above
-/// it in a backward one.
+/// Merge the y-sorted halves `from[..mid]` (earlier in x) and `from[mid..]` (later) into
+/// `to`, adding to each later point its pairs with the earlier half: those below it in y
+/// from the running sums over the earlier points met before it, those above from the
+/// half's total less them. One pass without branches on the data: both candidates' terms
+/// are formed at every step, the one not taken weighted by zero (which leaves the running
+/// sums' bits as they are).
 #[inline(always)]
-fn merge<const R: usize>(
-    split: impl Fn(f64) -> ([f64; R], [f64; R]),
-    block: &mut [Point],
-    mid: usize,
-    spare: &mut [Point],
+fn merge<const R: usize>(split: impl Fn(f64) -> ([f64; R], [f64; R]), from: &[Point], mid: usize, to: &mut [Point]) {
+    let (left, right) = from.split_at(mid);
+    if right.is_empty() {
+        to.copy_from_slice(left);
+        return;
+    }
+    // RR = R^2 products, W >= 2 RR running sums padded to whole vectors
+    match R {
+        1 => merge_rank::<R, 1, 8>(&split, left, right, to),
+        2 => merge_rank::<R, 4, 8>(&split, left, right, to),
+        _ => merge_rank::<R, 9, 24>(&split, left, right, to),
+    }
+}
+
+#[inline(always)]
+fn merge_rank<const R: usize, const RR: usize, const W: usize>(
+    split: &impl Fn(f64) -> ([f64; R], [f64; R]),
+    left: &[Point],
+    right: &[Point],
+    to: &mut [Point],
 ) {
-    let (left, right) = block.split_at_mut(mid);
-    // forward: sum_{y_j <= y_i} sum_rs a_r(x_i) a_s(y_i) b_r(x_j) b_s(y_j)
-    let (mut below, mut j) = (Lanes::<9>::new(), 0);
-    for p in right.iter_mut() {
-        while j < left.len() && left[j].y <= p.y {
-            below.add(outer(&split(left[j].x).1, &split(left[j].y).1));
-            j += 1;
-        }
-        p.inner += contract(&split(p.x).0, &split(p.y).0, &below);
+    let mut total = Lanes::<W>::new();
+    for q in left {
+        total.add(earlier::<R, RR, W>(split, q, 1.0));
     }
-    // backward: sum_{y_j > y_i} sum_rs a_r(x_i) b_s(y_i) b_r(x_j) a_s(y_j)
-    let (mut above, mut j) = (Lanes::<9>::new(), left.len());
-    for p in right.iter_mut().rev() {
-        while j > 0 && left[j - 1].y > p.y {
-            above.add(outer(&split(left[j - 1].x).1, &split(left[j - 1].y).0));
-            j -= 1;
-        }
-        p.inner += contract(&split(p.x).0, &split(p.y).1, &above);
-    }
-    // the two halves into one y order (stable: the earlier half first on ties)
+    let mut below = Lanes::<W>::new();
     let (mut i, mut j) = (0, 0);
-    for out in spare.iter_mut() {
-        let take_left = j == right.len() || (i < left.len() && left[i].y <= right[j].y);
-        *out = if take_left { left[i] } else { right[j] };
-        if take_left {
-            i += 1;
-        } else {
-            j += 1;
-        }
+    for out in to.iter_mut() {
+        let (q, p) = (left[i.min(left.len() - 1)], right[j.min(right.len() - 1)]);
+        let take_left = (j == right.len()) | ((i < left.len()) & (q.y <= p.y));
+        below.add(earlier::<R, RR, W>(split, &q, if take_left { 1.0 } else { 0.0 }));
+        *out = if take_left { q } else { later::<R, RR, W>(split, &p, &below.values(), &total.less(&below)) };
+        i += usize::from(take_left);
+        j += usize::from(!take_left);
     }
-    block.copy_from_slice(spare);
+}
+
+/// An earlier point's terms times `weight`: b_r(x_j) b_s(y_j), then b_r(x_j) a_s(y_j), then
+/// zeros.
+#[inline(always)]
+fn earlier<const R: usize, const RR: usize, const W: usize>(
+    split: &impl Fn(f64) -> ([f64; R], [f64; R]),
+    q: &Point,
+    weight: f64,
+) -> [f64; W] {
+    let ((_, bx), (ay, by)) = (split(q.x), split(q.y));
+    let (bb, ba): ([f64; RR], [f64; RR]) = (outer(&bx, &by), outer(&bx, &ay));
+    array(|k| weight * if k < RR { bb[k] } else if k < 2 * RR { ba[k - RR] } else { 0.0 })
+}
+
+/// A later point with its pairs with the earlier points added, from their sums (the terms
+/// of [`earlier`]) below it and above it in y: g(y_i, y_j) is sum_s a_s(y_i) b_s(y_j) for
+/// those below, sum_s b_s(y_i) a_s(y_j) for those above.
+#[inline(always)]
+fn later<const R: usize, const RR: usize, const W: usize>(
+    split: &impl Fn(f64) -> ([f64; R], [f64; R]),
+    p: &Point,
+    below: &[f64; W],
+    above: &[f64; W],
+) -> Point {
+    let ((ax, _), (ay, by)) = (split(p.x), split(p.y));
+    let (below_b, above_a): ([f64; RR], [f64; RR]) = (array(|k| below[k]), array(|k| above[RR + k]));
+    Point { inner: p.inner + contract(&ax, &ay, &below_b) + contract(&ax, &by, &above_a), ..*p }
+}
+
+/// The array of f(0), f(1), ... (as `std::array::from_fn`, but always inlined: the hot
+/// loops here are compiled wide only where everything they call is).
+#[inline(always)]
+fn array<const N: usize>(f: impl Fn(usize) -> f64) -> [f64; N] {
+    let mut out = [0.0; N];
+    for (k, o) in out.iter_mut().enumerate() {
+        *o = f(k);
+    }
+    out
 }
 
 /// An L2 metric: the root of its squared closed form (clamped at zero: the closed forms
@@ -471,6 +574,28 @@ pub(crate) static ENTRIES: &[MetricEntry] = &[
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn radix_sort_gives_total_cmp_order() {
+        let mut rng = crate::Seed(12).rng();
+        let special = [0.0, -0.0, 1.0, 0.5, f64::MIN_POSITIVE, 1e-310, 0.25, 0.75];
+        for n in [1, 2, 7, 64, 1000, 5000] {
+            let coords: Vec<f64> = (0..2 * n)
+                .map(|k| match k % 5 {
+                    0 => special[crate::seed::below(&mut rng, special.len() as u64) as usize],
+                    1 => (crate::seed::uniform(&mut rng) * 16.0).floor() / 16.0,
+                    _ => crate::seed::uniform(&mut rng),
+                })
+                .collect();
+            let pts: Vec<Point> = coords.chunks_exact(2).map(|p| Point { x: p[0], y: p[1], inner: 0.0 }).collect();
+            let mut want: Vec<f64> = coords.iter().step_by(2).copied().collect();
+            want.sort_by(f64::total_cmp);
+            let (sorted, spare) = radix_sort_x(pts);
+            assert_eq!(spare.len(), n);
+            let got: Vec<u64> = sorted.iter().map(|p| p.x.to_bits()).collect();
+            assert_eq!(got, want.iter().map(|x| x.to_bits()).collect::<Vec<_>>(), "n = {n}");
+        }
+    }
 
     #[test]
     fn every_instruction_set_gives_the_same_bits() {
