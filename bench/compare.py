@@ -7,6 +7,8 @@ Usage: bench/compare [--quick] [SECTION...]
   samplab, and runs the sections named (all by default): samplers, discrepancy, spectrum,
   render. `bench/compare python` runs bench/python.py instead: the Python package against
   the Rust core, scipy.stats.qmc and QMCPy. --quick: PoissonDisk at n = 10^4 instead of 10^5 (minutes less).
+  `bench/compare goals` (only when named) prints the speed issue's goal table: each row timed
+  here and by its criterion benchmark in the same run, beside its anchor (about 15 minutes).
 """
 import json
 import math
@@ -42,6 +44,71 @@ def samplab(spec, n):
 
 def packing_radius(n):
     return math.sqrt(2.0 / (math.sqrt(3.0) * n))
+
+
+def samplab_disc(metric, n, d=2, sampler="random", threads=1):
+    """(median seconds, value) of a metric on the example's set (seed 1)."""
+    out = subprocess.run([DISCREPANCY, "%s:%d:%d:%s" % (metric, n, d, sampler)], check=True, capture_output=True, text=True,
+                         env=dict(os.environ, RAYON_NUM_THREADS=str(threads))).stdout
+    row = json.loads(out.strip().splitlines()[-1])
+    return row["seconds"], row["value"]
+
+
+def l2_against_scipy(metric, n):
+    """scipy's qmc.discrepancy and samplab on the same random 2D set (set 0 of seed 1, read
+    back from the CLI), one core: (scipy seconds, samplab seconds, scipy value, samplab value),
+    the values as samplab reports them (scipy gives CD and WD squared)."""
+    method, squared = {"l2-star": ("L2-star", False), "centered": ("CD", True), "wraparound": ("WD", True)}[metric]
+    out = subprocess.run([SAMPLAB, "generate", "random", "-n", str(n), "-d", "2", "--seed", "1", "--format", "json"],
+                         check=True, capture_output=True, text=True).stdout
+    x = np.array(json.loads(out)["sets"][0])
+    box = {}
+
+    def run():
+        box["v"] = qmc.discrepancy(x, method=method, workers=1)
+
+    peer = median_time(run, min_runs=3, min_seconds=1.0)
+    # the value on identical points through the CLI; the timing from the example's own set
+    out = subprocess.run([SAMPLAB, "discrepancy", metric, "--sampler", "random", "-n", str(n), "--seed", "1", "--json"],
+                         check=True, capture_output=True, text=True).stdout
+    ours_value = json.loads(out)["metrics"][0]["values"][0]
+    ours_time, _ = samplab_disc(metric, n)
+    return peer, ours_time, math.sqrt(box["v"]) if squared else box["v"], ours_value
+
+
+# spectrum cells (n, sets, R): the grid n = 256..10^6 x R = 128..2048, then two more
+SPECTRUM_CELLS = [(n, 2, res) for n in (256, 4096, 65536, 1_000_000) for res in (128, 512, 2048)] + [(100_000, 2, 256), (4096, 20, 512)]
+
+
+def spectrum_against_finufft(cells):
+    """[(n, sets, R, FINUFFT seconds, samplab seconds)], one thread each. FINUFFT (pip, eps
+    1e-9) does the same work per set: a 2D type-1 transform of n random points to R x R
+    frequencies and the periodogram's and mean's running sums, plan made once per cell;
+    medians of 3."""
+    import finufft
+
+    def finufft_statistics(n, m, res):
+        rng = np.random.default_rng(1)
+        sets = [rng.random((n, 2)) for _ in range(m)]
+        ones = np.ones(n, dtype=np.complex128)
+
+        def run():
+            plan = finufft.Plan(1, (res, res), 1, eps=1e-9, isign=-1, nthreads=1)
+            power, mean = np.zeros((res, res)), np.zeros((res, res), complex)
+            for p in sets:
+                plan.setpts(2 * np.pi * p[:, 0], 2 * np.pi * p[:, 1])
+                f = plan.execute(ones) / n
+                power += f.real ** 2 + f.imag ** 2
+                mean += f
+        return median_time(run, min_runs=3, min_seconds=0.0)
+
+    out = subprocess.run([os.path.join(ROOT, "target", "release", "examples", "spectrum_timing")] + ["%d:%d:%d" % c for c in cells],
+                         check=True, capture_output=True, text=True, env=dict(os.environ, RAYON_NUM_THREADS="1")).stdout
+    rows = []
+    for line in out.strip().splitlines():
+        r = json.loads(line)
+        rows.append((r["n"], r["sets"], r["res"], finufft_statistics(r["n"], r["sets"], r["res"]), r["fast_seconds"]))
+    return rows
 
 
 rows = []
@@ -86,35 +153,8 @@ if want("samplers"):
 if want("discrepancy"):
     # discrepancies: scipy on the same points (samplab's random set, read back from its CLI)
     print()
-
-
-    def samplab_disc(metric, n, d=2, sampler="random", threads=1):
-        out = subprocess.run([DISCREPANCY, "%s:%d:%d:%s" % (metric, n, d, sampler)], check=True, capture_output=True, text=True,
-                             env=dict(os.environ, RAYON_NUM_THREADS=str(threads))).stdout
-        row = json.loads(out.strip().splitlines()[-1])
-        return row["seconds"], row["value"]
-
-
-    def points(n, d=2):
-        out = subprocess.run([SAMPLAB, "generate", "random", "-n", str(n), "-d", str(d), "--seed", "1", "--format", "json"],
-                             check=True, capture_output=True, text=True).stdout
-        return np.array(json.loads(out)["sets"][0])
-
-
-    for metric, method, squared, n in [("l2-star", "L2-star", False, 1 << 14), ("centered", "CD", True, 1 << 14), ("wraparound", "WD", True, 1 << 14)]:
-        x = points(n)
-        box = {}
-
-        def run():
-            box["v"] = qmc.discrepancy(x, method=method, workers=1)
-
-        peer = median_time(run, min_runs=3, min_seconds=1.0)
-        # the value on identical points (set 0 of seed 1) through the CLI; the timing from the example's own set
-        out = subprocess.run([SAMPLAB, "discrepancy", metric, "--sampler", "random", "-n", str(n), "--seed", "1", "--json"],
-                             check=True, capture_output=True, text=True).stdout
-        ours_value = json.loads(out)["metrics"][0]["values"][0]
-        ours_time, _ = samplab_disc(metric, n)
-        theirs = math.sqrt(box["v"]) if squared else box["v"]
+    for metric, n in [("l2-star", 1 << 14), ("centered", 1 << 14), ("wraparound", 1 << 14)]:
+        peer, ours_time, theirs, ours_value = l2_against_scipy(metric, n)
         print("%-10s n=%-6d scipy %9.4f s | samplab %9.5f s | ratio %8.1fx | values %.12g vs %.12g (rel. diff %.1e)"
               % (metric, n, peer, ours_time, peer / ours_time, theirs, ours_value, abs(theirs - ours_value) / theirs), flush=True)
     for metric, n, d in [("star", 1000, 2), ("star", 100000, 2), ("star", 1000000, 2), ("l2-star", 1000000, 2)]:
@@ -142,34 +182,10 @@ if want("spectrum"):
         r = json.loads(line)
         print("spectrum n=%-6d sets=%-3d R=%-4d direct %8.3f s | fast %7.3f s | ratio %6.1fx | max periodogram error %.1e"
               % (r["n"], r["sets"], r["res"], r["direct_seconds"], r["fast_seconds"], r["ratio"], r["max_periodogram_error"]), flush=True)
-    # against FINUFFT (pip finufft, one thread, eps 1e-9): the same work per set, a 2D type-1
-    # transform of n random points to R x R frequencies and the periodogram's and mean's
-    # running sums, plan made once per grid cell; medians of 3
-    import finufft
-
-    def finufft_statistics(n, m, res):
-        rng = np.random.default_rng(1)
-        sets = [rng.random((n, 2)) for _ in range(m)]
-        ones = np.ones(n, dtype=np.complex128)
-
-        def run():
-            plan = finufft.Plan(1, (res, res), 1, eps=1e-9, isign=-1, nthreads=1)
-            power, mean = np.zeros((res, res)), np.zeros((res, res), complex)
-            for p in sets:
-                plan.setpts(2 * np.pi * p[:, 0], 2 * np.pi * p[:, 1])
-                f = plan.execute(ones) / n
-                power += f.real ** 2 + f.imag ** 2
-                mean += f
-        return median_time(run, min_runs=3, min_seconds=0.0)
-
-    cells = [(n, 2, res) for n in (256, 4096, 65536, 1_000_000) for res in (128, 512, 2048)] + [(100_000, 2, 256), (4096, 20, 512)]
-    out = subprocess.run([os.path.join(ROOT, "target", "release", "examples", "spectrum_timing")] + ["%d:%d:%d" % c for c in cells],
-                         check=True, capture_output=True, text=True, env=dict(os.environ, RAYON_NUM_THREADS="1")).stdout
-    for line in out.strip().splitlines():
-        r = json.loads(line)
-        theirs = finufft_statistics(r["n"], r["sets"], r["res"])
+    for n, m, res, theirs, ours in spectrum_against_finufft(SPECTRUM_CELLS):
         print("spectrum n=%-7d sets=%-3d R=%-4d FINUFFT %8.4f s | samplab %8.4f s | ratio %5.2fx"
-              % (r["n"], r["sets"], r["res"], theirs, r["fast_seconds"], theirs / r["fast_seconds"]), flush=True)
+              % (n, m, res, theirs, ours, theirs / ours), flush=True)
+    import finufft
     # FINUFFT's own error against the direct DFT on a small cell (samplab's is printed above)
     x = np.random.default_rng(2).random((4096, 2))
     k = np.arange(-64, 64)
@@ -230,3 +246,79 @@ if want("render"):
         t = samplab_render(scene, spp)
         print("render %-16s 256x256 x %-3d spp, one thread: %.3f s (median of 3) = %.2f M samples per CPU-second"
               % (scene, spp, t, 256 * 256 * spp / t / 1e6), flush=True)
+
+
+def criterion(bench, pattern):
+    """Run a criterion benchmark of the samplab crate (its filter `pattern`, all threads) and
+    return {benchmark id: median seconds} read from criterion's estimates."""
+    print("(criterion: cargo bench --bench %s -- '%s')" % (bench, pattern), flush=True)
+    start = time.time()
+    subprocess.run(["cargo", "bench", "--quiet", "-p", "samplab", "--bench", bench, "--", pattern], check=True, cwd=ROOT,
+                   stdout=subprocess.DEVNULL)
+    found = {}
+    base = os.path.join(ROOT, "target", "criterion")
+    for path, _, files in os.walk(base):
+        fresh = "estimates.json" in files and os.path.getmtime(os.path.join(path, "estimates.json")) >= start
+        if fresh and os.path.basename(path) == "new":
+            with open(os.path.join(path, "estimates.json")) as f:
+                found[os.path.relpath(os.path.dirname(path), base)] = json.load(f)["median"]["point_estimate"] / 1e9
+    return found
+
+
+if "goals" in SECTIONS:
+    # the speed issue's goal table in one run: each operation timed by this script (one thread
+    # unless said) and by its criterion benchmark (all threads; medians of 10 samples), beside
+    # the anchor measured now where there is one
+    print("\nspeed goals, %s, %d cores" % (time.strftime("%Y-%m-%d"), os.cpu_count()))
+    table = []
+
+    def row(operation, anchor, ours, crit, goal, met):
+        table.append((operation, anchor, ours, crit, goal, "yes" if met else "NO"))
+        print("| %s | %s | %s | %s | %s | %s |" % table[-1], flush=True)
+
+    crit = {}
+    crit.update(criterion("spectrum", "spectrum/"))
+    crit.update(criterion("discrepancy", "^(extreme-2d/.*/10000|l2-star-2d/random-2D/(16384|1000000)|centered/.*|wraparound/.*|star-dd/.*-5D/1000)$"))
+    crit.update(criterion("samplers", "^poisson/1000000$"))
+    print("| operation | anchor | samplab (bench/compare) | samplab (criterion) | goal | met |")
+    print("|---|---|---|---|---|---|")
+    cells = spectrum_against_finufft(SPECTRUM_CELLS)
+    for n, m, res, theirs, ours in cells[-2:]:
+        row("spectrum statistics, %d sets of %d points, %d^2" % (m, n, res), "FINUFFT %.4f s" % theirs,
+            "%.4f s (%.2fx FINUFFT)" % (ours, theirs / ours), "%.4f s" % crit["spectrum/%dx%d/%d" % (m, n, res)],
+            "at least FINUFFT's speed", theirs >= ours)
+    worst = min(cells[:-2], key=lambda c: c[3] / c[4])
+    row("spectrum statistics, grid n = 256..10^6 x R = 128..2048 (2 sets)", "FINUFFT",
+        "least ratio %.2fx (n = %d, R = %d); ratios %s" % (worst[3] / worst[4], worst[0], worst[2],
+                                                          " ".join("%.2f" % (c[3] / c[4]) for c in cells[:-2])),
+        "%.4f s at 2 x 65536 x 128^2" % crit["spectrum/2x65536/128"], "at least FINUFFT's speed at every cell",
+        worst[3] >= worst[4])
+    for sampler, n in [("random", 10_000), ("sobol.owen", 10_000), ("halton", 10_000), ("hammersley", 4096)]:
+        one = samplab_disc("extreme", n, 2, sampler)[0] if n == 10_000 else None
+        two = samplab_disc("extreme", n, 2, sampler, threads=2)[0]
+        key = "extreme-2d/%s-2D/%d" % (sampler, n)
+        row("exact 2D extreme discrepancy, %s, n = %d" % (sampler, n), "none computes it exactly",
+            ("%.2f s one thread, " % one if one else "") + "%.2f s two" % two,
+            "%.2f s" % crit[key] if key in crit else "-", "n = 10^4 under 10 s", n == 10_000 and two < 10)
+    for metric in ["l2-star", "centered", "wraparound"]:
+        peer, ours, theirs_value, ours_value = l2_against_scipy(metric, 1 << 14)
+        big, _ = samplab_disc(metric, 1_000_000)
+        key = "%s/random-2D/16384" % ("l2-star-2d" if metric == "l2-star" else metric)
+        row("%s, n = 2^14 and 10^6, 2D" % metric, "scipy %.4f s (value rel. diff %.1e)" % (peer, abs(theirs_value - ours_value) / theirs_value),
+            "%.2f ms (%.0fx scipy); 10^6: %.3f s" % (ours * 1e3, peer / ours, big), "%.2f ms" % (crit[key] * 1e3),
+            ">= 100x scipy at 2^14, 10^6 under 1 s", peer / ours >= 100 and big < 1)
+    t = samplab("poisson", 1_000_000)
+    row("Poisson disk (dart throwing), 10^6 points, auto radius", "UTK Bridson 41.8 s (issue)", "%.3f s" % t,
+        "%.3f s" % crit["poisson/1000000"], "under 1 s, exactly n", t < 1)
+    for n in [10_000, 100_000]:
+        start = time.perf_counter()
+        subprocess.run([SAMPLAB, "generate", "poisson.maximal", "-n", str(n), "-o", os.path.join(tempfile.gettempdir(), "maximal.npy")],
+                       check=True, capture_output=True)
+        row("maximal Poisson disk, exactly n = %d" % n, "-", "%.1f s (CLI, writing included)" % (time.perf_counter() - start), "-",
+            "under 1 s at 10^6", False)
+    for sampler in ["random", "sobol.owen", "halton"]:
+        one = samplab_disc("star", 1000, 5, sampler)[0]
+        two = samplab_disc("star", 1000, 5, sampler, threads=2)[0]
+        key = "star-dd/%s-5D/1000" % sampler
+        row("exact 5D star discrepancy, %s, n = 1000" % sampler, "-", "%.1f s one thread, %.1f s two" % (one, two),
+            "%.1f s" % crit[key] if key in crit else "-", "under 10 s", two < 10)
