@@ -1,7 +1,7 @@
 //! The exact discrepancies at the sizes the discrepancy and speed issues target: 2D star at
-//! n = 10^3..10^6, d-D star (3D n = 2000, 5D n = 400 and 1000) on random and Sobol' points,
-//! 2D L2-star at 10^3..10^6 and 2^14, centered and wrap-around at 2^14, 2D extreme at 10^3
-//! and 10^4.
+//! n = 10^3..10^6, d-D star (3D n = 2000, 5D n = 400 and 1000) on random, Sobol' (and
+//! Halton) points, 2D L2-star at 10^3..10^6 and 2^14, centered and wrap-around at 2^14, 2D
+//! extreme at 10^3 and 10^4 (and the Hammersley set at 4096, the hard case).
 //! `cargo bench -p samplab --bench discrepancy` (all threads; `RAYON_NUM_THREADS=1` for one core);
 //! side by side with scipy, on one core: `bench/compare discrepancy`.
 
@@ -42,12 +42,24 @@ fn discrepancies(c: &mut Criterion) {
             ("sobol.owen", 400, 5),
             ("random", 1000, 5),
             ("sobol.owen", 1000, 5),
+            ("halton", 1000, 5),
         ],
     );
     bench(c, "l2-star-2d", "l2-star", &[star_2d.as_slice(), &[("random", 1 << 14, 2)]].concat());
     bench(c, "centered", "centered", &[("random", 1 << 14, 2)]);
     bench(c, "wraparound", "wraparound", &[("random", 1 << 14, 2)]);
-    bench(c, "extreme-2d", "extreme", &[("random", 1000, 2), ("random", 10_000, 2), ("sobol.owen", 10_000, 2)]);
+    bench(
+        c,
+        "extreme-2d",
+        "extreme",
+        &[
+            ("random", 1000, 2),
+            ("random", 10_000, 2),
+            ("sobol.owen", 10_000, 2),
+            ("halton", 10_000, 2),
+            ("hammersley", 4096, 2),
+        ],
+    );
 }
 
 criterion_group!(benches, discrepancies);

@@ -1,4 +1,5 @@
-//! Points per second in 2D for the samplers that the foundation issue targets, n = 10^3..10^6.
+//! Points per second in 2D for the samplers that the foundation issue targets, n = 10^3..10^6;
+//! the maximal Poisson disk at 10^4; random access against the batch.
 //! `cargo bench -p samplab --bench samplers`; side-by-side ratios against peers: `bench/compare`.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
@@ -34,6 +35,18 @@ fn samplers(c: &mut Criterion) {
     }
 }
 
+/// The maximal Poisson disk with exactly n points (a search over whole maximal sets: seconds
+/// at 10^4, so that size only).
+fn maximal(c: &mut Criterion) {
+    let s = sampler::build("poisson.maximal").unwrap();
+    let mut group = c.benchmark_group("poisson.maximal");
+    group.sample_size(10);
+    group.bench_with_input(BenchmarkId::from_parameter(10_000), &10_000, |b, &n| {
+        b.iter(|| s.generate(n, 2, Seed(1)).unwrap())
+    });
+    group.finish();
+}
+
 /// Random access against the batch, per coordinate, at dimension 1000: one access prepared
 /// (tables built once), then single coordinates of scattered points.
 fn random_access(c: &mut Criterion) {
@@ -64,5 +77,5 @@ fn random_access(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, samplers, random_access);
+criterion_group!(benches, samplers, maximal, random_access);
 criterion_main!(benches);
