@@ -355,10 +355,18 @@ pub fn pair_sum_2d<const R: usize>(
     pair.value()
 }
 
+/// Below this many points a comparison sort is faster than the radix sort's histograms.
+const RADIX_FROM: usize = 4096;
+
 /// The points in x order (`f64::total_cmp`'s), by a least-significant-digit radix sort on
-/// the bits (11 at a time, a pass skipped where every key has the same digit), and a spare
-/// buffer of the same length.
+/// the bits (11 at a time, a pass skipped where every key has the same digit; a comparison
+/// sort below [`RADIX_FROM`] points), and a spare buffer of the same length.
 fn radix_sort_x(mut pts: Vec<Point>) -> (Vec<Point>, Vec<Point>) {
+    if pts.len() < RADIX_FROM {
+        pts.sort_unstable_by_key(|p| order_key(p.x));
+        let spare = pts.clone();
+        return (pts, spare);
+    }
     const BITS: usize = 11;
     const PASSES: usize = 64_usize.div_ceil(BITS);
     let key = |p: &Point| (order_key(p.x) as u64) ^ (1 << 63);
@@ -579,7 +587,7 @@ mod tests {
     fn radix_sort_gives_total_cmp_order() {
         let mut rng = crate::Seed(12).rng();
         let special = [0.0, -0.0, 1.0, 0.5, f64::MIN_POSITIVE, 1e-310, 0.25, 0.75];
-        for n in [1, 2, 7, 64, 1000, 5000] {
+        for n in [1, 2, 7, 64, 1000, 5000, 20000] {
             let coords: Vec<f64> = (0..2 * n)
                 .map(|k| match k % 5 {
                     0 => special[crate::seed::below(&mut rng, special.len() as u64) as usize],
