@@ -467,7 +467,8 @@ fn merge<const R: usize>(split: impl Fn(f64) -> ([f64; R], [f64; R]), from: &[Po
     match R {
         1 => merge_rank::<R, 1, 8>(&split, left, right, to),
         2 => merge_rank::<R, 4, 8>(&split, left, right, to),
-        _ => merge_rank::<R, 9, 24>(&split, left, right, to),
+        3 => merge_rank::<R, 9, 24>(&split, left, right, to),
+        _ => unreachable!("the closed forms here have kernels of rank 1 to 3"),
     }
 }
 
