@@ -2,7 +2,9 @@
 //!
 //! A signal raises [`STOP`]; long work checks it (through [`Bar::progress`])
 //! and stops, the command exits 130 saying so, and nothing is written: every output is
-//! written whole and renamed into place at the end. A second signal exits at once.
+//! written whole and renamed into place at the end. A command that has not stopped [`GRACE`]
+//! after the signal (a blocking open of a FIFO, a loop between checks) is ended then, after
+//! its temporary outputs are removed ([`samplab::io::abandon`]).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -16,13 +18,19 @@ pub(crate) static STOP: AtomicBool = AtomicBool::new(false);
 /// The exit code of a command stopped by a signal (128 + SIGINT, as shells report it).
 pub(crate) const STOPPED: u8 = 130;
 
+/// How long after a signal the work may take to stop by itself.
+const GRACE: std::time::Duration = std::time::Duration::from_millis(700);
+
 /// Route Ctrl-C, SIGTERM and SIGHUP to [`STOP`].
 pub(crate) fn install() {
     // when no handler can be installed, the signals keep their default action (exit)
     let _ = ctrlc::set_handler(|| {
-        if STOP.swap(true, Ordering::Relaxed) {
-            std::process::exit(i32::from(STOPPED));
+        if !STOP.swap(true, Ordering::Relaxed) {
+            // ctrlc's own thread: the first signal waits here, a second one finds it busy
+            std::thread::sleep(GRACE);
         }
+        crate::say!("samplab: interrupted: nothing was written");
+        samplab::io::abandon(i32::from(STOPPED))
     });
 }
 

@@ -4,8 +4,18 @@
 //! code 2; nothing is written when a command fails.
 
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory as _, FromArgMatches as _, Parser, Subcommand};
+
+/// A line on stderr; a stderr that cannot be written (closed, full) is not an error.
+macro_rules! say {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($t)*);
+    }};
+}
+pub(crate) use say;
 
 mod bar;
 mod discrepancy;
@@ -20,7 +30,14 @@ mod spectrum;
 
 /// Sampling patterns for Monte Carlo integration in rendering.
 #[derive(Parser)]
-#[command(name = "samplab", version, about, long_about = None, max_term_width = 100)]
+#[command(
+    name = "samplab",
+    version,
+    about,
+    long_about = None,
+    max_term_width = 100,
+    after_help = "Exit codes: 0 done; 2 an error (one line on stderr: bad input, a refused output, a failed\nwrite, stdout closed); 130 stopped by Ctrl-C, SIGTERM or SIGHUP (nothing written); 141 stdout\nclosed by its reader (a broken pipe, as `| head`: quiet, as a process killed by SIGPIPE);\n70 a bug."
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -59,8 +76,65 @@ enum Command {
 /// The exit code of a bug (a panic): 70, EX_SOFTWARE of sysexits.h.
 const BUG: u8 = 70;
 
+/// The exit code of a broken pipe on stdout: 128 + SIGPIPE, what a shell reports for a
+/// process killed by it.
+const BROKEN_PIPE: u8 = 141;
+
+/// Set when stdout was closed at the start (`>&-`): what is printed there is an error.
+static STDOUT_CLOSED: AtomicBool = AtomicBool::new(false);
+
+/// Record whether stdout is closed (`>&-`), before Rust's runtime starts: it then gives a
+/// closed standard stream `/dev/null`'s descriptor (so that no file opened later takes its
+/// number), after which a closed stdout looks like `> /dev/null`.
+#[cfg(target_os = "linux")]
+#[used]
+#[unsafe(link_section = ".init_array")]
+static CHECK_STDOUT: extern "C" fn() = check_stdout;
+
+#[cfg(target_os = "linux")]
+extern "C" fn check_stdout() {
+    // SAFETY: fcntl on a plain descriptor number reads its flags, nothing else.
+    if unsafe { libc::fcntl(1, libc::F_GETFD) } == -1 {
+        STDOUT_CLOSED.store(true, Ordering::Relaxed);
+    }
+}
+
+/// The command line, with every value allowed to start with '-' when it is a number, so
+/// that `-n -1` is refused by the value's parser, not taken for a flag.
+fn parse() -> Result<Cli, clap::Error> {
+    let command = Cli::command().mut_subcommands(|sub| {
+        sub.mut_args(|a| if a.get_action().takes_values() { a.allow_negative_numbers(true) } else { a })
+    });
+    Cli::from_arg_matches(&command.try_get_matches()?)
+}
+
+/// Help and version on stdout (exit 0, or 2 when stdout cannot take them); every other
+/// parse error as one line on stderr, exit 2 (clap's message without its usage block).
+fn refuse(e: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => match emit(None, e.render().to_string().as_bytes()) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => finish(Err(e)),
+        },
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            say!("{}", e.render().to_string().trim_end());
+            ExitCode::from(2)
+        }
+        _ => {
+            let text = e.render().to_string();
+            let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("invalid arguments");
+            say!("samplab: error: {}; see --help", first.trim().trim_start_matches("error: "));
+            ExitCode::from(2)
+        }
+    }
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match parse() {
+        Ok(cli) => cli,
+        Err(e) => return refuse(&e),
+    };
     bar::install();
     samplab::memory::set_limit(cli.max_memory);
     std::panic::set_hook(Box::new(report_bug));
@@ -73,13 +147,13 @@ fn report_bug(info: &std::panic::PanicHookInfo<'_>) {
     let payload = info.payload();
     let what = payload.downcast_ref::<&str>().copied().or_else(|| payload.downcast_ref::<String>().map(String::as_str));
     let at = info.location().map_or(String::new(), |l| format!(" at {}:{}", l.file(), l.line()));
-    eprintln!(
+    say!(
         "samplab: internal error (a bug): {}{at}; please report it with the command that caused it",
         what.unwrap_or("panic").replace('\n', " ")
     );
     let trace = std::backtrace::Backtrace::capture();
     if trace.status() == std::backtrace::BacktraceStatus::Captured {
-        eprintln!("{trace}");
+        say!("{trace}");
     }
 }
 
@@ -88,7 +162,7 @@ fn run(cli: Cli) -> ExitCode {
     if std::env::var_os("SAMPLAB_TEST_PANIC").is_some() {
         panic!("a panic on purpose (SAMPLAB_TEST_PANIC)");
     }
-    let result = match cli.command {
+    finish(match cli.command {
         Command::Reproduce(a) => reproduce::run(&a),
         Command::List(a) => list::run(&a),
         Command::Generate(a) => generate::run(&a),
@@ -97,21 +171,38 @@ fn run(cli: Cli) -> ExitCode {
         Command::Integrate(a) => integrate::run(&a),
         Command::Spectrum(a) => spectrum::run(&a),
         Command::Render(a) => render::run(&a),
-    };
+    })
+}
+
+/// The exit code of a command's result, with its one line on stderr.
+fn finish(result: anyhow::Result<()>) -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) if e.chain().any(|c| library(c) == Some(&samplab::Error::Interrupted)) => {
-            eprintln!("samplab: interrupted: nothing was written");
+            say!("samplab: interrupted: nothing was written");
             ExitCode::from(bar::STOPPED)
         }
+        Err(e) if e.chain().any(|c| c.is::<BrokenPipe>()) => ExitCode::from(BROKEN_PIPE),
         Err(e) => {
             // one line: the chain of causes joined, the library's settings named by their flags
             let msg = e.chain().map(in_flags).collect::<Vec<_>>().join(": ").replace('\n', " ");
-            eprintln!("samplab: error: {msg}");
+            say!("samplab: error: {msg}");
             ExitCode::from(2)
         }
     }
 }
+
+/// Stdout's reader went away (a broken pipe): a quiet exit, [`BROKEN_PIPE`].
+#[derive(Debug)]
+struct BrokenPipe;
+
+impl std::fmt::Display for BrokenPipe {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("standard output: broken pipe")
+    }
+}
+
+impl std::error::Error for BrokenPipe {}
 
 /// One cause of an error, with the library's names for settings replaced by the flags that
 /// set them (`sets` is `--sets`, a work limit is raised by `--max-work`).
@@ -138,17 +229,21 @@ fn library<'e>(cause: &'e (dyn std::error::Error + 'static)) -> Option<&'e sampl
     })
 }
 
-/// Write `bytes` to `path` atomically, or to stdout when there is no path.
+/// Write `bytes` to `path` atomically, or to stdout when there is no path: a stdout that
+/// is closed or cannot take them (a full disk) is an error, a broken pipe a quiet exit.
 pub(crate) fn emit(path: Option<&std::path::Path>, bytes: &[u8]) -> anyhow::Result<()> {
     use std::io::Write as _;
     match path {
         Some(p) => Ok(samplab::io::write_atomic(p, bytes)?),
+        None if STDOUT_CLOSED.load(Ordering::Relaxed) => {
+            anyhow::bail!("standard output is closed; nothing was written (use -o FILE, or redirect it)")
+        }
         None => {
             let mut out = std::io::stdout().lock();
             match out.write_all(bytes).and_then(|()| out.flush()) {
-                // a closed pipe (e.g. `| head`) is not an error of ours
-                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-                r => Ok(r?),
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Err(BrokenPipe.into()),
+                Err(e) => anyhow::bail!("standard output: {e}"),
+                Ok(()) => Ok(()),
             }
         }
     }

@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use anyhow::{Context, bail};
 use samplab::seed::Seed;
+use samplab_render::mitsuba::Paths;
 use samplab_render::scenes;
 use samplab_render::settings::{self, Settings};
 use samplab_render::{Image, Options, Scene, render};
@@ -33,6 +34,10 @@ fn after_help() -> String {
 pub struct Args {
     /// A built-in scene name or a Mitsuba 3 .xml file
     scene: String,
+    /// Let a Mitsuba scene name files outside its own folder (`..`, absolute paths, links
+    /// leading out): only for scenes you trust
+    #[arg(long)]
+    allow_paths_outside_scene: bool,
     /// Replace a built-in scene's light: square, disk, linear, gaussian
     #[arg(long)]
     light: Option<String>,
@@ -140,7 +145,8 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     if !(a.error_scale.is_finite() && a.error_scale > 0.0) {
         bail!("--error-scale: {} must be a positive number", a.error_scale);
     }
-    let scene = settings::load_scene(&a.scene, a.light.as_deref())?;
+    let paths = if a.allow_paths_outside_scene { Paths::Anywhere } else { Paths::InsideScene };
+    let scene = settings::load_scene(&a.scene, a.light.as_deref(), paths)?;
     let settings = Settings {
         sampler: a.sampler.clone(),
         n: a.n,
@@ -160,11 +166,13 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     };
     let options = settings.options(&scene)?;
     let (width, height) = (options.width, options.height);
+    // every output is staged and appears with the others, or none does
+    let mut outputs = samplab::io::Staged::new();
     let reference = match &a.reference {
         Some(path) if path.exists() => Some((Image::read_exr(path)?, false)),
         Some(path) => {
             let r = render_reference(&scene, &options, a.reference_samples)?;
-            r.write_exr(path)?;
+            r.stage_exr(&mut outputs, path)?;
             Some((r, true))
         }
         None => None,
@@ -178,15 +186,10 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         Some((r, _)) => Some(rendered.image.errors(r, a.penumbra).context("--reference")?),
         None => None,
     };
-    // every output is checked before any is written; each is written atomically
-    let error_image = match (&a.error_image, &reference) {
-        (Some(_), Some((r, _))) => Some(rendered.image.error_image(r, a.error_scale)?),
-        _ => None,
-    };
-    rendered.image.write(&a.output)?;
-    if let (Some(path), Some(img)) = (&a.error_image, &error_image) {
-        samplab_render::image::write_png(img, path)?;
+    if let (Some(path), Some((r, _))) = (&a.error_image, &reference) {
+        samplab_render::image::stage_png(&rendered.image.error_image(r, a.error_scale)?, &mut outputs, path)?;
     }
+    rendered.image.stage(&mut outputs, &a.output)?;
     let rays = rendered.camera_rays + rendered.shadow_rays;
     let summary = serde_json::json!({
         "scene": a.scene, "sampler": options.light.spec(), "n": a.n, "spp": a.spp, "mode": a.mode,
@@ -196,8 +199,9 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         "penumbra_only": a.penumbra,
         "reference_rendered": reference.as_ref().map(|r| r.1),
     });
+    outputs.commit()?;
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        crate::emit(None, format!("{}\n", serde_json::to_string_pretty(&summary)?).as_bytes())?;
     }
     let error_text = errors.map_or(String::new(), |e| {
         format!(
@@ -208,7 +212,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
             e.mean_abs
         )
     });
-    eprintln!(
+    crate::say!(
         "{} {width}x{height}, {} x{} x{} spp, seed {}: {seconds:.2} s, {:.1} M rays/s{error_text} -> {}",
         a.scene,
         options.light.spec(),

@@ -22,9 +22,13 @@ pub struct Args {
     /// Seed of the whole run
     #[arg(long, default_value_t = Seed::DEFAULT.0)]
     seed: u64,
-    /// Output folder (replaced when the run completes)
+    /// Output folder (replaced when the run completes; an existing folder only if samplab
+    /// made it)
     #[arg(long, default_value = "report")]
     out: PathBuf,
+    /// Replace the output folder even when it holds files samplab did not write
+    #[arg(long)]
+    force: bool,
 }
 
 pub fn run(a: &Args) -> anyhow::Result<()> {
@@ -35,14 +39,18 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         }
     }
     let chosen: Vec<_> = all.iter().filter(|p| a.only.is_empty() || a.only.iter().any(|k| k == p.key)).collect();
-    let options =
-        Options { scale: if a.full { Scale::Full } else { Scale::Fast }, seed: Seed(a.seed), out: a.out.clone() };
+    let options = Options {
+        scale: if a.full { Scale::Full } else { Scale::Fast },
+        seed: Seed(a.seed),
+        out: a.out.clone(),
+        replace: if a.force { samplab::io::Replace::Force } else { samplab::io::Replace::IfOurs },
+    };
     let start = Instant::now();
     let claims = samplab_report::reproduce(&chosen, &options, &crate::bar::STOP)?;
     let count = |v: Verdict| claims.iter().filter(|(_, c)| c.verdict() == v).count();
     let explained =
         claims.iter().filter(|(_, c)| c.verdict() == Verdict::NotReproduced && c.explanation.is_some()).count();
-    eprintln!(
+    crate::say!(
         "{} claims: {} reproduced, {} not reproduced ({explained} of them explained), {} undecided; {:.1} s. Report: {}",
         claims.len(),
         count(Verdict::Reproduced),

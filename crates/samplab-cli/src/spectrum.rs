@@ -35,9 +35,12 @@ pub struct Args {
     /// Overlay the closed forms for Gaussian and box jitter (Subr & Kautz eqs. 8-11)
     #[arg(long)]
     theory: bool,
-    /// Output folder (replaced when complete)
+    /// Output folder (replaced when complete; an existing folder only if samplab made it)
     #[arg(short, long)]
     output: PathBuf,
+    /// Replace the output folder even when it holds files samplab did not write
+    #[arg(long)]
+    force: bool,
 }
 
 const STATS: [&str; 3] = ["periodogram", "expected", "variance"];
@@ -48,16 +51,16 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
             bail!("--stat: unknown statistic '{s}' (periodogram, expected, variance)");
         }
     }
+    let replace = if a.force { samplab::io::Replace::Force } else { samplab::io::Replace::IfOurs };
+    samplab::io::check_folder(&a.output, replace)?;
     let crate::sets::Loaded { sets, source, spec } = a.source.load(a.file.as_deref(), 20, &samplab::io::ANY)?;
     let method = if a.direct { spectrum::Method::Direct } else { spectrum::Method::Fast { tol: a.tolerance } };
     let bar = Bar::new(sets.len() as u64, "spectra");
     let st = spectrum::statistics_with_progress(&sets, a.res, method, &bar.progress())?;
     drop(bar);
     let theory_curves = if a.theory { spec.as_deref().and_then(|s| theory_for(s, &sets[0])) } else { None };
-    samplab_report::write_folder(&a.output, |dir| {
-        write(dir, &st, a, &source, theory_curves.as_ref()).map_err(|e| samplab_report::Error::Invalid(e.to_string()))
-    })?;
-    eprintln!("spectrum of {} sets of {} points at {}^{}: {}", st.sets, st.n, st.res, st.dims, a.output.display());
+    samplab::io::write_folder(&a.output, replace, |dir| write(dir, &st, a, &source, theory_curves.as_ref()))?;
+    crate::say!("spectrum of {} sets of {} points at {}^{}: {}", st.sets, st.n, st.res, st.dims, a.output.display());
     Ok(())
 }
 

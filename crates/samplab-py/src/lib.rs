@@ -617,16 +617,22 @@ fn image_dict<'py>(py: Python<'py>, image: samplab_render::Image) -> PyResult<Bo
 /// settings given (the CLI's defaults otherwise); `reference_samples` renders the reference
 /// `samplab render` would (converged, Owen-scrambled Sobol') instead.
 #[pyfunction]
-#[pyo3(signature = (scene, light=None, settings=None, reference_samples=None))]
+#[pyo3(signature = (scene, light=None, settings=None, reference_samples=None, allow_paths_outside_scene=false))]
 fn render<'py>(
     py: Python<'py>,
     scene: &str,
     light: Option<&str>,
     settings: Option<&Bound<'py, PyDict>>,
     reference_samples: Option<usize>,
+    allow_paths_outside_scene: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let s = self::settings(settings)?;
-    let scene = samplab_render::settings::load_scene(scene, light).map_err(err)?;
+    let paths = if allow_paths_outside_scene {
+        samplab_render::mitsuba::Paths::Anywhere
+    } else {
+        samplab_render::mitsuba::Paths::InsideScene
+    };
+    let scene = samplab_render::settings::load_scene(scene, light, paths).map_err(err)?;
     let mut options = s.options(&scene).map_err(err)?;
     if let Some(samples) = reference_samples {
         options = options.reference(&scene, samples).map_err(err)?;
@@ -681,10 +687,18 @@ fn read_exr<'py>(py: Python<'py>, path: &str) -> PyResult<Bound<'py, PyDict>> {
     image_dict(py, samplab_render::Image::read_exr(std::path::Path::new(path)).map_err(err)?)
 }
 
-/// Run the reproduction into `out` (replaced when complete); returns the claims as JSON.
+/// Run the reproduction into `out` (replaced when complete, if samplab made it or `force`);
+/// returns the claims as JSON.
 #[pyfunction]
-#[pyo3(signature = (out, full=false, only=None, seed=None))]
-fn reproduce(py: Python<'_>, out: &str, full: bool, only: Option<Vec<String>>, seed: Option<u64>) -> PyResult<String> {
+#[pyo3(signature = (out, full=false, only=None, seed=None, force=false))]
+fn reproduce(
+    py: Python<'_>,
+    out: &str,
+    full: bool,
+    only: Option<Vec<String>>,
+    seed: Option<u64>,
+    force: bool,
+) -> PyResult<String> {
     let papers = samplab_report::paper::all();
     let chosen: Vec<&samplab_report::Paper> = match &only {
         None => papers.iter().collect(),
@@ -701,6 +715,7 @@ fn reproduce(py: Python<'_>, out: &str, full: bool, only: Option<Vec<String>>, s
         scale: if full { samplab_report::Scale::Full } else { samplab_report::Scale::Fast },
         seed: seed.map_or(Seed::DEFAULT, Seed),
         out: out.into(),
+        replace: if force { samplab::io::Replace::Force } else { samplab::io::Replace::IfOurs },
     };
     let claims = interruptible(py, usize::MAX, |stop| samplab_report::reproduce(&chosen, &options, stop))?;
     let list: Vec<serde_json::Value> = claims

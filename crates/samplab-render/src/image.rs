@@ -4,7 +4,7 @@
 use std::io::Cursor;
 use std::path::Path;
 
-use samplab::io::write_atomic;
+use samplab::io::Staged;
 
 use crate::error::{Error, Result};
 
@@ -143,11 +143,11 @@ impl Image {
         image::RgbImage::from_raw(self.width as u32, self.height as u32, bytes).expect("3 channels per pixel")
     }
 
-    /// Write an OpenEXR file (32-bit float R, G, B and V when known), atomically.
+    /// Stage an OpenEXR file (32-bit float R, G, B and V when known) for `path`.
     ///
     /// # Errors
     /// The file cannot be written.
-    pub fn write_exr(&self, path: &Path) -> Result<()> {
+    pub fn stage_exr(&self, out: &mut Staged, path: &Path) -> Result<()> {
         use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, Layer, LayerAttributes, WritableImage};
         let fail = |m: String| Error::Image { path: path.display().to_string(), message: m };
         let w = self.width;
@@ -161,7 +161,7 @@ impl Image {
         let layer = Layer::new((w, self.height), LayerAttributes::default(), Encoding::SMALL_LOSSLESS, channels);
         let mut bytes = Cursor::new(Vec::new());
         exr::image::Image::from_layer(layer).write().to_buffered(&mut bytes).map_err(|e| fail(e.to_string()))?;
-        write_atomic(path, bytes.get_ref()).map_err(|e| fail(e.to_string()))
+        out.file(path, bytes.get_ref()).map_err(|e| fail(e.to_string()))
     }
 
     /// Read an OpenEXR file's first layer: R, G, B (Y alone is read as grey) and V if there.
@@ -205,9 +205,20 @@ impl Image {
     /// # Errors
     /// Another extension, or the file cannot be written.
     pub fn write(&self, path: &Path) -> Result<()> {
+        let mut out = Staged::new();
+        self.stage(&mut out, path)?;
+        out.commit().map_err(|e| Error::Image { path: path.display().to_string(), message: e.to_string() })
+    }
+
+    /// Stage the image for `path` as [`Image::write`] writes it, to appear with the other
+    /// outputs of `out`.
+    ///
+    /// # Errors
+    /// As [`Image::write`].
+    pub fn stage(&self, out: &mut Staged, path: &Path) -> Result<()> {
         match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
-            Some("exr") => self.write_exr(path),
-            Some("png") => write_png(&self.to_srgb(), path),
+            Some("exr") => self.stage_exr(out, path),
+            Some("png") => stage_png(&self.to_srgb(), out, path),
             _ => Err(Error::Image {
                 path: path.display().to_string(),
                 message: "unknown image format (use .exr or .png)".into(),
@@ -216,13 +227,13 @@ impl Image {
     }
 }
 
-/// Encode an 8-bit RGB image as PNG, atomically.
+/// Stage an 8-bit RGB image as PNG for `path`.
 ///
 /// # Errors
 /// The file cannot be written.
-pub fn write_png(img: &image::RgbImage, path: &Path) -> Result<()> {
+pub fn stage_png(img: &image::RgbImage, out: &mut Staged, path: &Path) -> Result<()> {
     let fail = |m: String| Error::Image { path: path.display().to_string(), message: m };
-    write_atomic(path, &png_bytes(img).map_err(|e| fail(e.to_string()))?).map_err(|e| fail(e.to_string()))
+    out.file(path, &png_bytes(img).map_err(|e| fail(e.to_string()))?).map_err(|e| fail(e.to_string()))
 }
 
 /// Encode an 8-bit RGB image as PNG bytes.

@@ -9,7 +9,7 @@
 //! testbed has its own).
 
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Component, Path, PathBuf};
 
 use glam::{DAffine3, DMat3, DMat4, DVec3};
 use roxmltree::Node;
@@ -22,26 +22,40 @@ use crate::light::{DiskMap, Light, LightShape};
 use crate::scene::{Finish, Material, Scene, Texture};
 use crate::scenes::cuboid;
 
-/// Load a Mitsuba 3 XML scene.
-///
-/// # Errors
-/// The file cannot be read or parsed, or uses an element this subset does not support;
-/// the message names the file, line and element.
-pub fn load(path: &Path) -> Result<Scene> {
-    let (file, text) = crate::obj::read_scene_file(path)?;
-    parse(&text, &file, path.parent().unwrap_or(Path::new(".")))
+/// Where the files a scene names (OBJ meshes) may be.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Paths {
+    /// In the scene's folder or below it: a path with `..`, an absolute path, or a link
+    /// leading out of the folder is refused, so a scene received from someone else cannot
+    /// make samplab read (and quote) the user's other files.
+    #[default]
+    InsideScene,
+    /// Anywhere (the CLI's `--allow-paths-outside-scene`, for the user's own scenes).
+    Anywhere,
 }
 
-/// Parse Mitsuba XML text; `file` names it in errors, OBJ files are found relative to `dir`.
+/// Load a Mitsuba 3 XML scene; the files it names must be where `paths` allows.
+///
+/// # Errors
+/// The file cannot be read or parsed, or uses an element this subset does not support, or
+/// names a file outside its folder (under [`Paths::InsideScene`]); the message names the
+/// file, line and element.
+pub fn load(path: &Path, paths: Paths) -> Result<Scene> {
+    let (file, text) = crate::obj::read_scene_file(path)?;
+    parse(&text, &file, path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new(".")), paths)
+}
+
+/// Parse Mitsuba XML text; `file` names it in errors, OBJ files are found relative to `dir`,
+/// where `paths` allows.
 ///
 /// # Errors
 /// As [`load`].
-pub fn parse(text: &str, file: &str, dir: &Path) -> Result<Scene> {
+pub fn parse(text: &str, file: &str, dir: &Path, paths: Paths) -> Result<Scene> {
     let doc = roxmltree::Document::parse(text).map_err(|e| {
         let pos = e.pos();
         Error::Scene { file: file.into(), line: pos.row as usize, message: format!("malformed XML: {e}") }
     })?;
-    let mut reader = Reader { file, doc: &doc, dir, defaults: HashMap::new(), bsdfs: HashMap::new() };
+    let mut reader = Reader { file, doc: &doc, dir, paths, defaults: HashMap::new(), bsdfs: HashMap::new() };
     reader.scene(doc.root_element())
 }
 
@@ -49,6 +63,7 @@ struct Reader<'a, 'input> {
     file: &'a str,
     doc: &'a roxmltree::Document<'input>,
     dir: &'a Path,
+    paths: Paths,
     defaults: HashMap<String, String>,
     bsdfs: HashMap<String, Material>,
 }
@@ -131,6 +146,29 @@ impl Reader<'_, '_> {
             }
         }
         Ok(v)
+    }
+
+    /// The file a `filename` names, where [`Paths`] allows it.
+    fn file_path(&self, node: Node, name: &str) -> Result<PathBuf> {
+        let path = self.dir.join(name);
+        if self.paths == Paths::Anywhere {
+            return Ok(path);
+        }
+        let refuse = |why: &str| {
+            let name = samplab::error::excerpt(name);
+            self.fail(node, format!("filename {name} {why}; allow it with --allow-paths-outside-scene"))
+        };
+        if Path::new(name).components().any(|c| !matches!(c, Component::Normal(_) | Component::CurDir)) {
+            return Err(refuse("leads outside the scene's folder"));
+        }
+        let real = |p: &Path| std::fs::canonicalize(p);
+        match (real(self.dir), real(&path)) {
+            (Ok(dir), Ok(file)) if file.starts_with(&dir) => Ok(file),
+            (Ok(_), Ok(_)) => Err(refuse("is a link leading outside the scene's folder")),
+            (_, Err(e)) | (Err(e), _) => {
+                Err(self.fail(node, format!("filename {}: cannot read: {e}", samplab::error::excerpt(name))))
+            }
+        }
     }
 
     fn scene(&mut self, root: Node) -> Result<Scene> {
@@ -412,7 +450,7 @@ impl Reader<'_, '_> {
             ("obj", None) => {
                 let name =
                     filename.ok_or_else(|| self.fail(node, "<shape type=\"obj\"> needs <string name=\"filename\">"))?;
-                for [a, b, c] in crate::obj::load(&self.dir.join(name))? {
+                for [a, b, c] in crate::obj::load(&self.file_path(node, &name)?)? {
                     let (a, b, c) = (point(a), point(b), point(c));
                     push(Shape::Triangle { p: a, e1: b - a, e2: c - a });
                 }

@@ -6,6 +6,8 @@ use std::path::Path;
 
 use glam::DVec3;
 
+use samplab::error::excerpt;
+
 use crate::error::{Error, Result};
 
 /// The triangles of an OBJ file, as vertex triples.
@@ -22,13 +24,18 @@ pub fn load(path: &Path) -> Result<Vec<[DVec3; 3]>> {
 /// A scene file's name (for errors) and text.
 ///
 /// # Errors
-/// The file cannot be read.
+/// The file cannot be read, is not a regular file (a device or a FIFO, whose reading may
+/// never end), or is larger than the memory available.
 pub(crate) fn read_scene_file(path: &Path) -> Result<(String, String)> {
     let file = path.display().to_string();
-    match std::fs::read_to_string(path) {
-        Ok(text) => Ok((file, text)),
-        Err(e) => Err(Error::Scene { file, line: 0, message: format!("cannot read: {e}") }),
+    let fail = |message: String| Error::Scene { file: file.clone(), line: 0, message };
+    let meta = std::fs::metadata(path).map_err(|e| fail(format!("cannot read: {e}")))?;
+    if !meta.is_file() {
+        return Err(fail("not a regular file".into()));
     }
+    samplab::memory::check(|| format!("reading {file}"), u128::from(meta.len()))?;
+    let text = std::fs::read_to_string(path).map_err(|e| fail(format!("cannot read: {e}")))?;
+    Ok((file, text))
 }
 
 /// Parse OBJ text; `file` names it in errors.
@@ -52,7 +59,7 @@ pub fn parse(text: &str, file: &str) -> Result<Vec<[DVec3; 3]>> {
                         .parse::<f64>()
                         .ok()
                         .filter(|x| x.is_finite())
-                        .ok_or_else(|| fail(format!("bad coordinate '{w}'")))?;
+                        .ok_or_else(|| fail(format!("bad coordinate {}", excerpt(w))))?;
                 }
                 vertices.push(DVec3::from(xyz));
             }
@@ -60,7 +67,7 @@ pub fn parse(text: &str, file: &str) -> Result<Vec<[DVec3; 3]>> {
                 let corners = words
                     .map(|w| {
                         let first = w.split('/').next().unwrap_or("");
-                        let i: i64 = first.parse().map_err(|_| fail(format!("bad vertex index '{w}'")))?;
+                        let i: i64 = first.parse().map_err(|_| fail(format!("bad vertex index {}", excerpt(w))))?;
                         let n = vertices.len() as i64;
                         let at = if i > 0 { i - 1 } else { n + i };
                         if i == 0 || !(0..n).contains(&at) {
@@ -77,7 +84,7 @@ pub fn parse(text: &str, file: &str) -> Result<Vec<[DVec3; 3]>> {
                 }
             }
             "vt" | "vn" | "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "l" | "p" => {}
-            other => return Err(fail(format!("unknown OBJ keyword '{other}'"))),
+            other => return Err(fail(format!("unknown OBJ keyword {}", excerpt(other)))),
         }
     }
     Ok(triangles)

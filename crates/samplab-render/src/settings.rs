@@ -9,6 +9,7 @@ use samplab::Seed;
 
 use crate::error::Result;
 use crate::light::DiskMap;
+use crate::mitsuba::Paths;
 use crate::render::{Footprint, Mode, Options, Pattern};
 use crate::scene::Scene;
 use crate::scenes::{LightKind, builtin};
@@ -134,12 +135,13 @@ impl Settings {
     }
 }
 
-/// The scene `name` names: a built-in (lit by `light` if given) or a Mitsuba 3 XML file.
+/// The scene `name` names: a built-in (lit by `light` if given) or a Mitsuba 3 XML file
+/// (whose meshes must be where `paths` allows).
 ///
 /// # Errors
 /// An unknown scene or light, a light given for a Mitsuba scene (it brings its own), or a
 /// scene file that does not load.
-pub fn load_scene(name: &str, light: Option<&str>) -> Result<Scene> {
+pub fn load_scene(name: &str, light: Option<&str>, paths: Paths) -> Result<Scene> {
     let kind = light.map(LightKind::parse).transpose()?;
     if name.to_ascii_lowercase().ends_with(".xml") {
         if kind.is_some() {
@@ -147,7 +149,7 @@ pub fn load_scene(name: &str, light: Option<&str>) -> Result<Scene> {
                 "a light replaces a built-in scene's light; a Mitsuba scene brings its own".into(),
             ));
         }
-        return crate::mitsuba::load(Path::new(name));
+        return crate::mitsuba::load(Path::new(name), paths);
     }
     builtin(name, kind)
 }

@@ -5,13 +5,13 @@ use std::path::Path;
 
 use glam::DVec3;
 use samplab_render::light::LightShape;
-use samplab_render::mitsuba::{load, parse};
+use samplab_render::mitsuba::{Paths, load, parse};
 use samplab_render::scene::{Finish, Texture};
 use samplab_render::{Mode, Options, render};
 
 #[test]
 fn a_mitsuba_scene_loads_with_its_transforms_materials_and_light() {
-    let scene = load(Path::new("tests/scenes/sphere-box.xml")).unwrap();
+    let scene = load(Path::new("tests/scenes/sphere-box.xml"), Paths::InsideScene).unwrap();
     assert_eq!(scene.resolution, (64, 48), "$res substituted from <default>");
     assert!((scene.camera.eye - DVec3::new(0.4, 2.2, 3.4)).length() < 1e-12);
     assert_eq!(scene.shapes(), 1 + 1 + 12, "ground, sphere, 6 quads as 12 triangles");
@@ -60,7 +60,7 @@ fn unsupported_or_malformed_scenes_name_the_element_and_line() {
         ),
         (format!("{sensor}\n<shape type=\"cube\"></shap>"), "s.xml:3: malformed XML"),
     ] {
-        let e = parse(&wrap(&body), "s.xml", Path::new(".")).map(|_| ()).unwrap_err().to_string();
+        let e = parse(&wrap(&body), "s.xml", Path::new("."), Paths::InsideScene).map(|_| ()).unwrap_err().to_string();
         assert!(e.starts_with(want), "{e}\n  wanted: {want}");
     }
 }
@@ -74,11 +74,69 @@ fn conductors_are_mirrors_and_rough_ones_glossy() {
 <shape type="rectangle"><ref id="m"/></shape>
 <shape type="rectangle"><ref id="g"/></shape>
 </scene>"#;
-    let scene = parse(xml, "s.xml", Path::new(".")).unwrap();
+    let scene = parse(xml, "s.xml", Path::new("."), Paths::InsideScene).unwrap();
     let finishes: Vec<Finish> = scene.materials.iter().map(|m| m.finish).collect();
     assert!(finishes.contains(&Finish::Mirror), "{finishes:?}");
     // Beckmann alpha 0.2 is Phong exponent 2 / 0.04 - 2 = 48
     assert!(finishes.iter().any(|f| matches!(f, Finish::Glossy { exponent } if (exponent - 48.0).abs() < 1e-9)));
     assert!(scene.materials.iter().any(|m| m.albedo == Texture::Constant(DVec3::splat(0.8))));
     assert!(scene.glossy());
+}
+
+/// A scene in a fresh folder whose one mesh is `filename`; the folder's path.
+#[cfg(unix)]
+fn scene_naming(name: &str, filename: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("samplab-confined-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.join("scene")).unwrap();
+    let xml = std::fs::read_to_string("tests/scenes/sphere-box.xml").unwrap();
+    assert!(xml.contains("\"cube.obj\""));
+    std::fs::write(dir.join("scene/s.xml"), xml.replace("\"cube.obj\"", &format!("\"{filename}\""))).unwrap();
+    std::fs::copy("tests/scenes/cube.obj", dir.join("scene/cube.obj")).unwrap();
+    // a file outside the scene's folder, holding what must never be read or quoted
+    std::fs::write(dir.join("secret.obj"), "password=hunter2!and-more\n").unwrap();
+    dir
+}
+
+#[cfg(unix)]
+#[test]
+fn a_scene_cannot_make_samplab_read_a_file_outside_its_folder() {
+    use std::os::unix::fs::symlink;
+    let secret = |dir: &Path| dir.join("secret.obj").display().to_string();
+    let refused = |dir: &Path| {
+        let e = load(&dir.join("scene/s.xml"), Paths::InsideScene).map(|_| ()).unwrap_err().to_string();
+        assert!(e.contains("outside the scene's folder") && !e.contains("hunter2"), "{e}");
+        // allowed: the file is read (and refused as a mesh, quoting at most a token)
+        let e = load(&dir.join("scene/s.xml"), Paths::Anywhere).map(|_| ()).unwrap_err().to_string();
+        assert!(e.contains("unknown OBJ keyword 'password=hunter2…'"), "{e}");
+    };
+    // `..`
+    refused(&scene_naming("up", "../secret.obj"));
+    // an absolute path
+    let dir = scene_naming("absolute", "ABS");
+    let xml = std::fs::read_to_string(dir.join("scene/s.xml")).unwrap().replace("ABS", &secret(&dir));
+    std::fs::write(dir.join("scene/s.xml"), xml).unwrap();
+    refused(&dir);
+    // a link in the scene's folder leading out
+    let dir = scene_naming("link", "mesh.obj");
+    symlink(dir.join("secret.obj"), dir.join("scene/mesh.obj")).unwrap();
+    refused(&dir);
+    // a link inside a folder that is itself a link leading out
+    let dir = scene_naming("folder-link", "meshes/mesh.obj");
+    std::fs::create_dir(dir.join("elsewhere")).unwrap();
+    symlink(dir.join("secret.obj"), dir.join("elsewhere/mesh.obj")).unwrap();
+    symlink(dir.join("elsewhere"), dir.join("scene/meshes")).unwrap();
+    refused(&dir);
+    // a link that stays inside, and a subfolder, are fine
+    let dir = scene_naming("inside", "sub/mesh.obj");
+    std::fs::create_dir(dir.join("scene/sub")).unwrap();
+    symlink(dir.join("scene/cube.obj"), dir.join("scene/sub/mesh.obj")).unwrap();
+    assert_eq!(load(&dir.join("scene/s.xml"), Paths::InsideScene).unwrap().shapes(), 14);
+    // a FIFO is refused before it is opened (an open would wait for a writer)
+    let dir = scene_naming("fifo", "pipe.obj");
+    let c = std::ffi::CString::new(dir.join("scene/pipe.obj").to_str().unwrap()).unwrap();
+    // SAFETY: a valid NUL-terminated path.
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+    let e = load(&dir.join("scene/s.xml"), Paths::InsideScene).map(|_| ()).unwrap_err().to_string();
+    assert!(e.contains("not a regular file"), "{e}");
 }

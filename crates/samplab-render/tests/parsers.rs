@@ -144,7 +144,12 @@ proptest! {
         let seed = std::fs::read("tests/scenes/sphere-box.xml").unwrap();
         let input = apply(&seed, &edits);
         bounded("Mitsuba XML", &input, |b| {
-            let _ = samplab_render::mitsuba::parse(&String::from_utf8_lossy(b), "fuzz.xml", Path::new("tests/scenes"));
+            let _ = samplab_render::mitsuba::parse(
+                &String::from_utf8_lossy(b),
+                "fuzz.xml",
+                Path::new("tests/scenes"),
+                samplab_render::mitsuba::Paths::InsideScene,
+            );
         })?;
     }
 

@@ -256,6 +256,8 @@ pub struct Options {
     pub seed: Seed,
     /// Where the report goes (replaced when the run completes).
     pub out: PathBuf,
+    /// Whether `out` may be replaced when samplab did not make it.
+    pub replace: samplab::io::Replace,
 }
 
 /// The outcome of one experiment, for the pages.
@@ -276,37 +278,6 @@ fn io_error(p: &Path, e: std::io::Error) -> Error {
     Error::Io { path: p.display().to_string(), reason: e.to_string() }
 }
 
-/// Fill the folder `out` atomically: `fill` writes into a hidden staging folder beside it,
-/// which replaces `out` only when `fill` succeeds; on failure `out` is left as it was and
-/// the staging folder is removed. An interruption leaves at most the hidden staging folder.
-///
-/// # Errors
-/// `fill` fails, or the folders cannot be created or renamed.
-pub fn write_folder(out: &Path, fill: impl FnOnce(&Path) -> Result<(), Error>) -> Result<(), Error> {
-    let parent = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = out
-        .file_name()
-        .ok_or_else(|| Error::Invalid(format!("{}: not a folder name", out.display())))?
-        .to_string_lossy()
-        .to_string();
-    let staging = parent.join(format!(".{name}.partial-{}", std::process::id()));
-    std::fs::create_dir_all(parent).map_err(|e| io_error(parent, e))?;
-    let _ = std::fs::remove_dir_all(&staging);
-    std::fs::create_dir_all(&staging).map_err(|e| io_error(&staging, e))?;
-    if let Err(e) = fill(&staging) {
-        let _ = std::fs::remove_dir_all(&staging);
-        return Err(e);
-    }
-    // the old folder (if any) is removed only after the new one is complete
-    let old = parent.join(format!(".{name}.old-{}", std::process::id()));
-    if out.exists() {
-        std::fs::rename(out, &old).map_err(|e| io_error(out, e))?;
-    }
-    std::fs::rename(&staging, out).map_err(|e| io_error(out, e))?;
-    let _ = std::fs::remove_dir_all(&old);
-    Ok(())
-}
-
 /// Run `papers` and write the report. Returns the claims. The run stops before the next
 /// experiment (and inside the integration studies) once `stop` is raised.
 ///
@@ -317,6 +288,8 @@ pub fn write_folder(out: &Path, fill: impl FnOnce(&Path) -> Result<(), Error>) -
 /// # Panics
 /// Never: the progress bars' template is a constant known to parse.
 pub fn reproduce(papers: &[&Paper], options: &Options, stop: &AtomicBool) -> Result<Vec<(String, Claim)>, Error> {
+    // refused before the run, not after it
+    samplab::io::check_folder(&options.out, options.replace)?;
     let bars = MultiProgress::new();
     let mut results: Vec<(&Paper, Vec<Done>)> = Vec::new();
     for paper in papers {
@@ -350,7 +323,7 @@ pub fn reproduce(papers: &[&Paper], options: &Options, stop: &AtomicBool) -> Res
         results.push((paper, done));
     }
     let mut claims = Vec::new();
-    write_folder(&options.out, |staging| {
+    samplab::io::write_folder(&options.out, options.replace, |staging| -> Result<(), Error> {
         for sub in ["figures", "tables"] {
             std::fs::create_dir_all(staging.join(sub)).map_err(|e| io_error(staging, e))?;
         }

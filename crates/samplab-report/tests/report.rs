@@ -6,6 +6,7 @@ use std::sync::LazyLock;
 use std::sync::atomic::AtomicBool;
 
 use samplab::Seed;
+use samplab::io::Replace;
 use samplab_report::{Error, Experiment, Options, Paper, Scale, paper, reproduce};
 
 fn temp(name: &str) -> PathBuf {
@@ -28,7 +29,7 @@ fn run(papers: &[Paper], out: &Path, threads: usize) -> Vec<(String, samplab_rep
     pool.install(|| {
         reproduce(
             &refs,
-            &Options { scale: Scale::Fast, seed: Seed(7), out: out.to_path_buf() },
+            &Options { scale: Scale::Fast, seed: Seed(7), out: out.to_path_buf(), replace: Replace::IfOurs },
             &AtomicBool::new(false),
         )
     })
@@ -149,12 +150,13 @@ fn a_failed_run_leaves_the_old_report_alone() {
     let out = dir.join("report");
     std::fs::create_dir_all(&out).unwrap();
     std::fs::write(out.join("index.html"), "old").unwrap();
+    std::fs::write(out.join(samplab::io::MANIFEST), "index.html\n").unwrap();
     let bad = Paper {
         key: "shirley1991",
         title: "failing",
         experiments: vec![Experiment { id: "fails", title: "fails", source: "none", parameters: "none", run: failing }],
     };
-    let options = Options { scale: Scale::Fast, seed: Seed(1), out: out.clone() };
+    let options = Options { scale: Scale::Fast, seed: Seed(1), out: out.clone(), replace: Replace::IfOurs };
     let err = reproduce(&[&bad], &options, &AtomicBool::new(false)).unwrap_err();
     assert!(err.to_string().contains("on purpose"));
     // a stopped run: the failing experiment is never started

@@ -151,6 +151,21 @@ fn edit_distance(a: &str, b: &str) -> usize {
     row[b.len()]
 }
 
+/// `text` quoted for an error message: at most [`EXCERPT`] characters of it (an ellipsis
+/// marks a cut), control characters as `?`. A message about a file quotes the offending
+/// token through this, never a whole line: the file may not be one the user meant to show
+/// (a scene naming `/etc/shadow`, a point file that is `/proc/self/environ`).
+pub fn excerpt(text: &str) -> String {
+    let mut out: String = text.chars().take(EXCERPT).map(|c| if c.is_control() { '?' } else { c }).collect();
+    if text.chars().nth(EXCERPT).is_some() {
+        out.push('…');
+    }
+    format!("'{out}'")
+}
+
+/// The most characters of a file's content that [`excerpt`] quotes.
+pub const EXCERPT: usize = 16;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -168,5 +183,12 @@ mod tests {
         assert_eq!(closest_names("sobl", known)[0], "sobol");
         assert_eq!(closest_names("haltn", known)[0], "halton");
         assert!(closest_names("zzzzzzzzzz", known).is_empty());
+    }
+
+    #[test]
+    fn excerpts_are_short_and_printable() {
+        assert_eq!(excerpt("abc"), "'abc'");
+        assert_eq!(excerpt("root:*:19000:0:99999:7:::"), "'root:*:19000:0:9…'");
+        assert_eq!(excerpt("a\u{1b}[2Jb"), "'a?[2Jb'");
     }
 }

@@ -238,14 +238,15 @@ def integrand(spec: str, points: Any, instance: int = 0, seed: Optional[int] = N
     return values, exact
 
 
-def reproduce(out: str = "report", full: bool = False, only: Optional[Sequence[str]] = None, seed: Optional[int] = None) -> List[Dict[str, str]]:
+def reproduce(out: str = "report", full: bool = False, only: Optional[Sequence[str]] = None, seed: Optional[int] = None, force: bool = False) -> List[Dict[str, str]]:
     """Reproduce the papers into the folder ``out`` (replaced only when the run completes),
-    as ``samplab reproduce``; returns each claim's paper, id and verdict."""
+    as ``samplab reproduce``; returns each claim's paper, id and verdict. An existing ``out``
+    that holds files samplab did not write is refused unless ``force`` (as ``--force``)."""
     keys = None if only is None else [only] if isinstance(only, str) else list(only)
-    return json.loads(_samplab.reproduce(str(out), bool(full), keys, None if seed is None else _seed(seed)))
+    return json.loads(_samplab.reproduce(str(out), bool(full), keys, None if seed is None else _seed(seed), bool(force)))
 
 
-def render(scene: str, light: Optional[str] = None, reference_samples: Optional[int] = None, **settings: Any) -> Dict[str, Any]:
+def render(scene: str, light: Optional[str] = None, reference_samples: Optional[int] = None, allow_paths_outside_scene: bool = False, **settings: Any) -> Dict[str, Any]:
     """Render ``scene`` (a built-in scene, see ``scenes()``, or a Mitsuba 3 XML file),
     lit by ``light`` (``"square"``, ``"disk"``, ``"linear"``, ``"gaussian"``) if given.
 
@@ -255,7 +256,8 @@ def render(scene: str, light: Optional[str] = None, reference_samples: Optional[
     ``lens_sampler``, ``time_sampler``, ``gloss_sampler`` (``"sobol.owen"``), ``pattern``
     (``"estimate"``, ``"pixel"``), ``disk_map``, ``range``, ``interleave`` ((w, h)), ``res``
     ((width, height)), ``seed``. With ``reference_samples``, the converged reference the
-    CLI renders for these settings instead.
+    CLI renders for these settings instead. A Mitsuba scene may name meshes only inside its
+    own folder unless ``allow_paths_outside_scene`` (for scenes you trust).
 
     Returns ``{"rgb": (h, w, 3) float32, "visibility": (h, w) float32, "camera_rays",
     "shadow_rays"}``: the same numbers ``samplab render -o x.exr`` writes.
@@ -263,7 +265,7 @@ def render(scene: str, light: Optional[str] = None, reference_samples: Optional[
     if "seed" in settings:
         settings["seed"] = _seed(settings["seed"])
     samples = None if reference_samples is None else _count("reference_samples", reference_samples)
-    return _samplab.render(scene, light, settings, samples)
+    return _samplab.render(scene, light, settings, samples, bool(allow_paths_outside_scene))
 
 
 def _image(a: Any, what: str, ndim: int) -> np.ndarray:

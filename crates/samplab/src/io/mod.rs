@@ -23,6 +23,10 @@ use crate::points::PointSet;
 use crate::progress::Progress;
 use crate::registry::{About, Entry, Registry};
 
+mod output;
+use output::write_atomic_with;
+pub use output::{MANIFEST, Replace, Staged, abandon, check_folder, write_atomic, write_folder};
+
 /// A point-set file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
@@ -229,40 +233,6 @@ pub fn stream_chunks(n: usize) -> usize {
     n.div_ceil(STREAM_CHUNK)
 }
 
-/// Write `bytes` to `path` atomically: a temporary file in the same folder, then a rename.
-///
-/// # Errors
-/// The folder cannot be written.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let io = |e: std::io::Error| Error::Io { path: path.display().to_string(), reason: e.to_string() };
-    write_atomic_with(path, &mut |file| file.write_all(bytes).map_err(io))
-}
-
-/// `write` into a temporary file beside `path`, then rename it to `path`; on any error the
-/// temporary file is removed and `path` is left as it was.
-fn write_atomic_with(
-    path: &Path,
-    write: &mut dyn FnMut(&mut std::io::BufWriter<std::fs::File>) -> Result<()>,
-) -> Result<()> {
-    let io = |e: std::io::Error| Error::Io { path: path.display().to_string(), reason: e.to_string() };
-    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .ok_or_else(|| Error::Io { path: path.display().to_string(), reason: "not a file name".into() })?;
-    let tmp = dir.join(format!(".{}.{}.tmp", name.to_string_lossy(), std::process::id()));
-    let result = std::fs::File::create(&tmp).map_err(io).and_then(|f| {
-        let mut w = std::io::BufWriter::new(f);
-        write(&mut w)?;
-        let f = w.into_inner().map_err(|e| io(e.into_error()))?;
-        f.sync_all().map_err(io)?;
-        std::fs::rename(&tmp, path).map_err(io)
-    });
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
-
 /// Read every set in the file at `path`, in `format` (or the one its extension implies).
 ///
 /// # Errors
@@ -372,9 +342,11 @@ fn decode_delimited(bytes: &[u8], csv: bool, name: &str, domain: &RangeInclusive
             return Err(at(lineno, format!("{} coordinates where earlier points have {dims}", coords.len())));
         }
         for (d, f) in coords.iter().enumerate() {
-            let x: f64 = f.parse().map_err(|_| at(lineno, format!("coordinate {} is not a number: '{f}'", d + 1)))?;
+            let x: f64 = f.parse().map_err(|_| {
+                at(lineno, format!("coordinate {} is not a number: {}", d + 1, crate::error::excerpt(f)))
+            })?;
             if let Some(why) = refuse(x, domain) {
-                return Err(at(lineno, format!("coordinate {} {why}: '{f}'", d + 1)));
+                return Err(at(lineno, format!("coordinate {} {why}: {}", d + 1, crate::error::excerpt(f))));
             }
             current.push(x);
         }
@@ -415,7 +387,7 @@ fn decode_npy(bytes: &[u8], name: &str, domain: &RangeInclusive<f64>) -> Result<
         .split(',')
         .map(str::trim)
         .filter(|s| !s.is_empty())
-        .map(|s| s.parse().map_err(|_| bad(format!("bad shape '{inner}'"))))
+        .map(|s| s.parse().map_err(|_| bad(format!("bad shape {}", crate::error::excerpt(inner)))))
         .collect::<Result<_>>()?;
     let (m, n, d) = match shape[..] {
         [n, d] => (1, n, d),
@@ -547,17 +519,5 @@ mod tests {
         let s = decode(b"# header\n0.1 0.2\n0.3 0.4\n#\n0.5 0.6\n", Format::Text, "m").unwrap();
         assert_eq!(s.len(), 2);
         assert_eq!(s[1].point(0), &[0.5, 0.6]);
-    }
-
-    #[test]
-    fn atomic_write_leaves_no_temporary() {
-        let dir = std::env::temp_dir().join(format!("samplab-io-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("p.txt");
-        write_atomic(&path, b"0.5 0.5\n").unwrap();
-        assert_eq!(std::fs::read(&path).unwrap(), b"0.5 0.5\n");
-        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
-        assert!(write_atomic(&dir.join("missing/q.txt"), b"x").is_err());
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

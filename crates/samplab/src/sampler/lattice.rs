@@ -354,7 +354,7 @@ pub fn parse_vector(text: &str, source: &str) -> Result<Vec<u64>> {
     let mut numbers = Vec::new();
     for (line, l) in text.lines().enumerate().map(|(i, l)| (i + 1, l.split('#').next().unwrap_or("").trim())) {
         if !l.is_empty() {
-            numbers.push((line, l.parse::<u64>().map_err(|_| bad(line, format!("'{l}' is not a whole number")))?));
+            numbers.push((line, l.parse::<u64>().map_err(|_| bad(line, format!("{} is not a whole number", crate::error::excerpt(l))))?));
         }
     }
     let [(_, dims), (line, n), ..] = numbers[..] else {

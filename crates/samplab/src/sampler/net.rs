@@ -221,7 +221,7 @@ impl Matrices {
         let names = ["the base", "the dimensions", "the largest point count", "the digits per column"];
         for (value, name) in header.iter_mut().zip(names) {
             let (line, l) = lines.next().ok_or_else(|| bad(0, format!("the file ends before {name}")))?;
-            *value = l.parse().map_err(|_| bad(line, format!("'{l}' is not {name} (a whole number)")))?;
+            *value = l.parse().map_err(|_| bad(line, format!("{} is not {name} (a whole number)", crate::error::excerpt(l))))?;
         }
         let [base, dims, _, rows] = header;
         let base = u32::try_from(base).ok().filter(|&b| is_prime(b) && b <= MAX_BASE).ok_or_else(|| {
@@ -242,7 +242,7 @@ impl Matrices {
             }
             let row = l
                 .split_whitespace()
-                .map(|t| t.parse::<u64>().map_err(|_| bad(line, format!("'{t}' is not a whole number"))))
+                .map(|t| t.parse::<u64>().map_err(|_| bad(line, format!("{} is not a whole number", crate::error::excerpt(t)))))
                 .collect::<Result<Vec<u64>>>()?;
             if let Some(first) = columns.first().filter(|c| c.len() != row.len()) {
                 return Err(bad(line, format!("{} columns where the first dimension has {}", row.len(), first.len())));
