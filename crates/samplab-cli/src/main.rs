@@ -17,6 +17,7 @@ macro_rules! say {
 }
 pub(crate) use say;
 
+mod alloc;
 mod bar;
 mod discrepancy;
 mod generate;
@@ -27,6 +28,9 @@ mod render;
 mod reproduce;
 mod sets;
 mod spectrum;
+
+#[global_allocator]
+static ALLOCATOR: alloc::Checked = alloc::Checked;
 
 /// Sampling patterns for Monte Carlo integration in rendering.
 #[derive(Parser)]
@@ -41,8 +45,8 @@ mod spectrum;
 struct Cli {
     #[command(subcommand)]
     command: Command,
-    /// Memory the command may use (e.g. 8G, 512M), instead of what the system reports
-    /// available; larger requests are refused before any work
+    /// Memory the command may use (e.g. 8G, 8GiB, 512MB), instead of what the system reports
+    /// available; larger requests are refused, before any work where they can be foreseen
     #[arg(long, global = true, value_name = "SIZE", value_parser = parse_size, display_order = 900)]
     max_memory: Option<u64>,
 }
@@ -137,6 +141,7 @@ fn main() -> ExitCode {
     };
     bar::install();
     samplab::memory::set_limit(cli.max_memory);
+    alloc::set_limit(cli.max_memory);
     std::panic::set_hook(Box::new(report_bug));
     // a panic is a bug: one line asking for a report and exit code 70 (the hook printed it)
     std::panic::catch_unwind(|| run(cli)).unwrap_or(ExitCode::from(BUG))

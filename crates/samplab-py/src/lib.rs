@@ -205,6 +205,7 @@ fn sequence_points<'py>(
     let data = py
         .detach(|| -> samplab::Result<Vec<f64>> {
             let access = sequence.access(d, Seed(seed).derive(0))?;
+            samplab::memory::check(|| format!("{n} points of {d} dimensions"), 8 * n as u128 * d as u128)?;
             let mut data = Vec::with_capacity(n * d);
             for i in 0..n as u64 {
                 let index = start.checked_add(i).ok_or_else(|| samplab::Error::Setting {

@@ -107,22 +107,31 @@ fn huge_pages<T>(v: &[T]) {
     }
 }
 
-/// A size in bytes from `4G`, `512M`, `100k` or a plain number of bytes (powers of 1024).
+/// A size in bytes from `4G`, `8GiB`, `512MB`, `100k` or a plain number of bytes: K, M,
+/// G, T (with or without `iB`, any case) are powers of 1024; kB, MB, GB, TB powers of 1000.
 ///
 /// # Errors
 /// [`Error::Invalid`] for anything else, or a size past 2^64 - 1 bytes.
 pub fn parse_size(text: &str) -> Result<u64> {
-    let bad = || Error::Invalid(format!("'{text}' is not a size (e.g. 4G, 512M, 100k or bytes)"));
+    let bad = || Error::Invalid(format!("'{text}' is not a size (e.g. 8G, 8GiB, 512MB, 100k or bytes)"));
     let t = text.trim();
-    let (number, shift) = match t.char_indices().last().ok_or_else(bad)? {
-        (i, 'k' | 'K') => (&t[..i], 10),
-        (i, 'm' | 'M') => (&t[..i], 20),
-        (i, 'g' | 'G') => (&t[..i], 30),
-        (i, 't' | 'T') => (&t[..i], 40),
-        _ => (t, 0),
+    let digits = t.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(t.len());
+    let (number, unit) = (&t[..digits], &t[digits..]);
+    let prefix = |c: char| "kmgt".find(c.to_ascii_lowercase()).map(|i| i as i32 + 1);
+    let mut chars = unit.chars();
+    let scale = match (chars.next(), chars.as_str()) {
+        (None, _) | (Some('b' | 'B'), "") => 1.0,
+        (Some(p), rest) => {
+            let power = prefix(p).ok_or_else(bad)?;
+            match rest {
+                "" | "i" | "iB" | "ib" | "IB" => 1024f64.powi(power),
+                "B" | "b" => 1000f64.powi(power),
+                _ => return Err(bad()),
+            }
+        }
     };
     let x: f64 = number.trim().parse().map_err(|_| bad())?;
-    let bytes = x * f64::from(1u32 << (shift / 2)) * f64::from(1u32 << (shift - shift / 2));
+    let bytes = (x * scale).round();
     // u64::MAX as f64 is 2^64: the sizes that fit are below it
     if !(1.0..u64::MAX as f64).contains(&bytes) {
         return Err(bad());
@@ -130,7 +139,7 @@ pub fn parse_size(text: &str) -> Result<u64> {
     Ok(bytes as u64)
 }
 
-/// `bytes` for a person: `64.0 GiB`.
+/// `bytes` for a person: `64.0 GiB` (exact bytes under 10 KiB).
 pub fn human(bytes: u128) -> String {
     const UNITS: [&str; 6] = ["B", "KiB", "MiB", "GiB", "TiB", "PiB"];
     let mut x = bytes as f64;
@@ -139,7 +148,7 @@ pub fn human(bytes: u128) -> String {
         x /= 1024.0;
         unit += 1;
     }
-    if unit == 0 { format!("{bytes} B") } else { format!("{x:.1} {}", UNITS[unit]) }
+    if bytes < 10 << 10 { format!("{bytes} B") } else { format!("{x:.1} {}", UNITS[unit]) }
 }
 
 #[cfg(test)]
@@ -151,7 +160,12 @@ mod tests {
         assert_eq!(parse_size("4G").unwrap(), 4 << 30);
         assert_eq!(parse_size("1.5k").unwrap(), 1536);
         assert_eq!(parse_size("100").unwrap(), 100);
-        for bad in ["", "G", "-1G", "0", "nanM", "1e30T", "4X"] {
+        assert_eq!(parse_size("8GiB").unwrap(), 8 << 30);
+        assert_eq!(parse_size("8gib").unwrap(), 8 << 30);
+        assert_eq!(parse_size("512MB").unwrap(), 512_000_000);
+        assert_eq!(parse_size("2kB").unwrap(), 2000);
+        assert_eq!(parse_size("64B").unwrap(), 64);
+        for bad in ["", "G", "-1G", "0", "nanM", "1e30T", "4X", "4GiBs", "4 G B", "GiB"] {
             assert!(parse_size(bad).is_err(), "{bad}");
         }
         assert_eq!(human(68_719_476_736), "64.0 GiB");

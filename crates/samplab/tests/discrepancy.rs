@@ -420,3 +420,48 @@ fn threshold_accepting_is_a_lower_bound_and_usually_finds_the_maximum() {
     assert_eq!(m(1).to_bits(), m(1).to_bits());
     assert!(m(1) > 0.0 && m(1) < 1.0);
 }
+
+/// Past the double range of a product of d factors, the L2 forms are summed from
+/// logarithms: the values agree with the plain products where both apply, match closed
+/// forms of one-point sets at thousands of dimensions, and a value beyond the double range
+/// is an error, never 0.
+#[test]
+fn l2_forms_in_thousands_of_dimensions() {
+    let forms = [
+        ("l2-star", l2::STAR),
+        ("l2-extreme", l2::EXTREME),
+        ("centered", l2::CENTERED),
+        ("wraparound", l2::WRAPAROUND),
+        ("mixture", l2::MIXTURE),
+        ("diaphony", l2::DIAPHONY),
+    ];
+    // the scaled sums against the plain ones, at 60 dimensions
+    let set = sampler::build("random").unwrap().generate(40, 60, Seed(3)).unwrap();
+    for (name, form) in forms {
+        let plain = form.squared(set.as_slice(), 60);
+        let (bracket, log) = form.squared_scaled(set.as_slice(), 60);
+        let scaled = bracket * log.exp();
+        assert!((plain - scaled).abs() <= 1e-9 * plain.abs(), "{name}: {plain} vs {scaled}");
+    }
+    let value = |name: &str, point: &[f64]| {
+        let set = PointSet::new(point.len(), point.to_vec()).unwrap();
+        discrepancy::compute(&Metric::parse(name).unwrap(), &set, Limits::default())
+    };
+    // one point at the origin: wrap-around D^2 = 1.5^d - (4/3)^d
+    let d = 1800;
+    let exact = (0.5 * d as f64 * 1.5f64.ln() + 0.5 * (1.0 - (8.0f64 / 9.0).powi(d)).ln()).exp();
+    let wd = value("wraparound", &vec![0.0; d as usize]).unwrap();
+    assert!((wd - exact).abs() < 1e-12 * exact, "{wd} vs {exact}");
+    assert!(wd > 1e158);
+    // one point at the centre: centered D^2 = (13/12)^d - 2 + 1
+    let d = 4000;
+    let exact = (0.5 * d as f64 * (13.0f64 / 12.0).ln()).exp();
+    let cd = value("centered", &vec![0.5; d]).unwrap();
+    assert!((cd - exact).abs() < 1e-12 * exact, "{cd} vs {exact}");
+    // one point at the origin: L2-star D^2 = 3^-d - 2^(1-d) + 1, whose root is 1
+    let star = value("l2-star", &vec![0.0; 3000]).unwrap();
+    assert!((star - 1.0).abs() < 1e-12, "{star}");
+    // one point at (1, ..., 1): L2-star D^2 = 3^-d, below the double range at d = 1500
+    let err = value("l2-star", &vec![1.0; 1500]).unwrap_err().to_string();
+    assert!(err.contains("10^-357.8") && err.contains("outside the double-precision range"), "{err}");
+}

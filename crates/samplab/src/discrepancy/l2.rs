@@ -6,7 +6,7 @@
 //! where the convention is the root (see [`super::Metric`]).
 
 use super::{Limits, MetricEntry};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::points::PointSet;
 use crate::registry::About;
 use crate::spec::Params;
@@ -162,6 +162,7 @@ pub struct Form {
     base: f64,
     sign: f64,
     f: fn(f64) -> f64,
+    g: fn(f64, f64) -> f64,
     /// [`sums`] with f and g inlined (monomorphized: a call through `f` and `g` per pair
     /// would not vectorize).
     quadratic: fn(&[f64], usize) -> (f64, f64),
@@ -177,6 +178,7 @@ macro_rules! form {
             base: $base,
             sign: $sign,
             f: $f,
+            g: $g,
             quadratic: |p, d| sums(p, d, $f, $g),
             sweep: |p| pair_sum_2d(p, $g, $split),
         }
@@ -305,6 +307,124 @@ impl Form {
     fn finish(&self, single: f64, pair: f64, dims: usize, n: usize) -> f64 {
         let n = n as f64;
         self.sign * self.base.powi(dims as i32) - 2.0 * single / n + pair / (n * n)
+    }
+
+    /// The discrepancy itself (the root of [`Form::squared`], clamped at zero): in up to
+    /// [`PLAIN_DIMS`] dimensions from the plain products, beyond from their logarithms
+    /// ([`Form::squared_scaled`]), since a product of d factors leaves the double range
+    /// (the wrap-around form's 1.5^d passes 10^308 at d = 1750).
+    ///
+    /// # Errors
+    /// A value outside the double range (about 10^-308 to 10^308), which is stated, never
+    /// rounded to 0 or infinity.
+    pub fn value(&self, points: &[f64], dims: usize) -> Result<f64> {
+        if dims <= PLAIN_DIMS {
+            return Ok(self.squared(points, dims).max(0.0).sqrt());
+        }
+        let (bracket, log_scale) = self.squared_scaled(points, dims);
+        if bracket <= 0.0 {
+            return Ok(0.0);
+        }
+        // D = exp(M / 2) sqrt(bracket)
+        let log = 0.5 * (log_scale + bracket.ln());
+        let value = log.exp();
+        if value == 0.0 || !value.is_finite() {
+            return Err(Error::Invalid(format!(
+                "the value, 10^{:.1}, is outside the double-precision range (10^-308 to 10^308) in {dims} dimensions",
+                log / std::f64::consts::LN_10
+            )));
+        }
+        Ok(value)
+    }
+
+    /// The squared discrepancy as (bracket, M) with D^2 = e^M bracket: every product of d
+    /// factors is summed as sign e^(sum of log |factor| - M), M the largest such sum (kept
+    /// as the sums go, the partial sums rescaled when it grows), so no product over- or
+    /// underflows. O(n^2 d) logarithms.
+    pub fn squared_scaled(&self, points: &[f64], dims: usize) -> (f64, f64) {
+        let n = points.len() / dims;
+        // the logarithms summed compensated: a plain sum of 1000 of them loses 10 bits
+        let log_product = |values: &mut dyn Iterator<Item = f64>| {
+            let (mut log, mut sign) = (Sum::default(), 1.0);
+            for v in values {
+                if v == 0.0 {
+                    return (f64::NEG_INFINITY, 1.0);
+                }
+                log.add(v.abs().ln());
+                sign *= v.signum();
+            }
+            (log.value(), sign)
+        };
+        let rows: Vec<ScaledSum> = (0..n)
+            .into_par_iter()
+            .map(|i| {
+                let p = &points[i * dims..(i + 1) * dims];
+                let mut row = ScaledSum::default();
+                let (log, sign) = log_product(&mut p.iter().map(|&x| (self.f)(x)));
+                row.add(-2.0 * sign / n as f64, log);
+                let (log, sign) = log_product(&mut p.iter().map(|&x| (self.g)(x, x)));
+                row.add(sign / (n * n) as f64, log);
+                for j in i + 1..n {
+                    let q = &points[j * dims..(j + 1) * dims];
+                    let (log, sign) = log_product(&mut p.iter().zip(q).map(|(&x, &y)| (self.g)(x, y)));
+                    row.add(2.0 * sign / (n * n) as f64, log);
+                }
+                row
+            })
+            .collect();
+        let mut total = ScaledSum::default();
+        total.add(self.sign, dims as f64 * self.base.ln());
+        for row in rows {
+            total.merge(row);
+        }
+        (total.sum.value(), total.log)
+    }
+}
+
+/// Up to this many dimensions [`Form::value`] multiplies the factors as they are.
+pub const PLAIN_DIMS: usize = 64;
+
+/// A compensated sum of terms c e^l, kept as e^log sum.
+struct ScaledSum {
+    log: f64,
+    sum: Sum,
+}
+
+impl Default for ScaledSum {
+    fn default() -> Self {
+        ScaledSum { log: f64::NEG_INFINITY, sum: Sum::default() }
+    }
+}
+
+impl ScaledSum {
+    /// Add c e^l (nothing for a zero factor, l = -inf).
+    fn add(&mut self, c: f64, l: f64) {
+        if l == f64::NEG_INFINITY || c == 0.0 {
+            return;
+        }
+        if l > self.log {
+            self.rescale(l);
+        }
+        self.sum.add(c * (l - self.log).exp());
+    }
+
+    /// The same sum, kept as e^log sum.
+    fn rescale(&mut self, log: f64) {
+        let factor = if self.log == f64::NEG_INFINITY { 0.0 } else { (self.log - log).exp() };
+        self.sum = Sum { sum: self.sum.sum * factor, err: self.sum.err * factor };
+        self.log = log;
+    }
+
+    fn merge(&mut self, mut other: ScaledSum) {
+        if other.log == f64::NEG_INFINITY {
+            return;
+        }
+        if other.log > self.log {
+            self.rescale(other.log);
+        } else {
+            other.rescale(self.log);
+        }
+        self.sum.merge(other.sum);
     }
 }
 
@@ -540,9 +660,6 @@ const fn l2_entry(about: About, compute: fn(&Params, &PointSet, Limits) -> Resul
     MetricEntry { l2: true, ..MetricEntry::new(about, compute) }
 }
 
-fn root(sq: f64) -> Result<f64> {
-    Ok(sq.max(0.0).sqrt())
-}
 
 /// The metrics this file registers.
 pub(crate) static ENTRIES: &[MetricEntry] = &[
@@ -550,32 +667,32 @@ pub(crate) static ENTRIES: &[MetricEntry] = &[
         About::new("l2-star", "root mean square over anchored boxes (Shirley's S), Warnock's formula")
             .aliases(&["rms", "s", "warnock"])
             .cite(&["shirley1991"]),
-        |_, p, _| root(STAR.squared(p.as_slice(), p.dims())),
+        |_, p, _| STAR.value(p.as_slice(), p.dims()),
     ),
     l2_entry(
         About::new("l2-extreme", "root mean square over all boxes").aliases(&["l2-unanchored"]).cite(&["shirley1991"]),
-        |_, p, _| root(EXTREME.squared(p.as_slice(), p.dims())),
+        |_, p, _| EXTREME.value(p.as_slice(), p.dims()),
     ),
     l2_entry(About::new("centered", "centered L2 discrepancy (Hickernell)").aliases(&["cd"]), |_, p, _| {
-        root(CENTERED.squared(p.as_slice(), p.dims()))
+        CENTERED.value(p.as_slice(), p.dims())
     }),
     MetricEntry {
         shift_invariant: true,
         ..l2_entry(
             About::new("wraparound", "wrap-around L2 discrepancy (Hickernell); toroidal-shift invariant")
                 .aliases(&["wd", "wrap-around"]),
-            |_, p, _| root(WRAPAROUND.squared(p.as_slice(), p.dims())),
+            |_, p, _| WRAPAROUND.value(p.as_slice(), p.dims()),
         )
     },
     l2_entry(About::new("mixture", "mixture L2 discrepancy").aliases(&["md"]), |_, p, _| {
-        root(MIXTURE.squared(p.as_slice(), p.dims()))
+        MIXTURE.value(p.as_slice(), p.dims())
     }),
     MetricEntry {
         shift_invariant: true,
         ..l2_entry(
             About::new("diaphony", "Zinterhof's diaphony: the Fourier coefficients' weighted energy")
                 .cite(&["zinterhof1976"]),
-            |_, p, _| root(DIAPHONY.squared(p.as_slice(), p.dims())),
+            |_, p, _| DIAPHONY.value(p.as_slice(), p.dims()),
         )
     },
 ];

@@ -12,7 +12,7 @@ use rayon::prelude::*;
 
 use super::kinetic::KineticTree;
 use super::{Limits, MetricEntry};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::points::PointSet;
 use crate::registry::About;
 use crate::spec::Params;
@@ -543,9 +543,20 @@ fn star(_: &Params, points: &PointSet, limits: Limits) -> Result<f64> {
     Ok(match d {
         1 => star_1d(x),
         2 => star_2d(x),
+        _ if d > DEM_DIMS => {
+            return Err(Error::Invalid(format!(
+                "the exact star discrepancy is computed up to {DEM_DIMS} dimensions (its recursion goes one level \
+                 deeper per axis), not {d}; its work, n^(1 + d/2), is beyond reach there for any n > 1"
+            )));
+        }
         _ => {
             limits.allow("the exact star discrepancy", points, star_dem_work(points.len(), d))?;
             star_dem(x, d)
         }
     })
 }
+
+/// The most dimensions [`star_dem`] is run in: its recursion takes one frame (a few hundred
+/// bytes) per axis, on a worker thread's stack of 2 MiB; 2^(1 + d/2) steps for two points
+/// already pass any work limit from d = 120.
+const DEM_DIMS: usize = 1000;

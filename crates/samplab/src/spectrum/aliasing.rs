@@ -36,6 +36,12 @@ fn powers(set: &PointSet, reach: usize) -> Result<Vec<(u64, f64)>> {
         )));
     }
     let res = 2 * (reach + 1);
+    // the periodogram, its NUFFT's oversampled grid and the sorted list: about 64 bytes a
+    // frequency
+    crate::memory::check(
+        || format!("the {res}^2 periodogram of {} points", set.len()),
+        64 * (res as u128) * (res as u128),
+    )?;
     let values = periodogram(set, res, Method::default())?;
     let n = set.len() as f64;
     let half = (res / 2) as i64;
