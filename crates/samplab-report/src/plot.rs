@@ -123,9 +123,36 @@ fn range(v: &[f64]) -> (f64, f64) {
     if lo >= 0.0 && hi <= 1.0 {
         (0.0, 1.0)
     } else {
-        let pad = 0.02 * (hi - lo).max(1e-9);
+        let (lo, hi) = span(lo, hi);
+        let pad = 0.02 * (hi - lo);
         (lo - pad, hi + pad)
     }
+}
+
+/// The most an axis reaches: past it a span of two values can overflow, and plotters'
+/// search for ticks does not end on an infinite or empty range.
+const AXIS_LIMIT: f64 = 1e300;
+
+/// A linear axis over [lo, hi]: clamped to +-[`AXIS_LIMIT`], widened when empty ([0, 1]
+/// when there is no finite value).
+fn span(lo: f64, hi: f64) -> (f64, f64) {
+    if !(lo <= hi) || !lo.is_finite() && !hi.is_finite() {
+        return (0.0, 1.0);
+    }
+    let (lo, hi) = (lo.clamp(-AXIS_LIMIT, AXIS_LIMIT), hi.clamp(-AXIS_LIMIT, AXIS_LIMIT));
+    if hi > lo && (hi - lo) > 1e-9 * lo.abs().max(hi.abs()) {
+        return (lo, hi);
+    }
+    let w = (1e-3 * lo.abs()).max(1e-3);
+    (lo - w, hi + w)
+}
+
+/// A logarithmic axis over [lo, hi]: within [1 / [`AXIS_LIMIT`], [`AXIS_LIMIT`]]; the decade
+/// below `hi` when it is empty or no value is positive.
+fn log_span(lo: f64, hi: f64) -> (f64, f64) {
+    let hi = if hi > 0.0 { hi.clamp(1.0 / AXIS_LIMIT, AXIS_LIMIT) } else { 1.0 };
+    let lo = if lo > 0.0 { lo.clamp(1.0 / AXIS_LIMIT, hi) } else { hi / 10.0 };
+    if hi > lo * (1.0 + 1e-9) { (lo, hi) } else { (hi / 10.0, hi) }
 }
 
 /// Counts per bin as a density relative to uniform (1 = exactly uniform).
@@ -368,9 +395,8 @@ impl Drawable for LineChart {
             .fold((f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY), |(a, b, c, d), (x, y)| {
                 (a.min(x), b.max(x), c.min(y), d.max(y))
             });
-        if !x0.is_finite() {
-            (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
-        }
+        (x0, x1) = span(x0, x1);
+        (y0, y1) = span(y0, y1);
         if self.polar {
             let r = y1.max(1e-12) * 1.05;
             let mut chart = ChartBuilder::on(&root)
@@ -429,10 +455,7 @@ impl Drawable for LineChart {
                 .map_err(err)?;
             return root.present().map_err(err);
         }
-        if x1 <= x0 {
-            x1 = x0 + 1.0;
-        }
-        let pad = 0.05 * (y1 - y0).abs().max(1e-12);
+        let pad = 0.05 * (y1 - y0);
         macro_rules! finish {
             ($chart:expr) => {{
                 let mut chart = $chart;
@@ -492,7 +515,8 @@ impl Drawable for LineChart {
             .flat_map(|s| s.points.iter().map(|p| p.1))
             .filter(|&y| y > 0.0)
             .fold(f64::INFINITY, f64::min);
-        let (ylog, xlog) = (ylo * 0.8..y1 * 1.25, x0 * 0.8..x1 * 1.25);
+        let ((ya, yb), (xa, xb)) = (log_span(ylo * 0.8, y1 * 1.25), log_span(x0 * 0.8, x1 * 1.25));
+        let (ylog, xlog) = (ya..yb, xa..xb);
         let ylin = (y0 - pad).min(0.0)..y1 + pad;
         match (self.log_x, self.log_y) {
             (true, true) => finish!(builder.build_cartesian_2d(xlog.log_scale(), ylog.log_scale()).map_err(err)?),
@@ -525,7 +549,7 @@ impl Drawable for DotChart {
         root.fill(&WHITE).map_err(err)?;
         let vals = self.series.iter().flat_map(|s| s.2.iter().flatten());
         let (lo, hi) = vals.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &(v, e)| (l.min(v - e), h.max(v + e)));
-        let (lo, hi) = if lo.is_finite() { (0f64.min(lo), hi * 1.1) } else { (0.0, 1.0) };
+        let (lo, hi) = if lo.is_finite() { span(0f64.min(lo), hi * 1.1) } else { (0.0, 1.0) };
         let k = self.categories.len();
         let mut chart = ChartBuilder::on(&root)
             .caption(&self.title, ("sans-serif", 20))
