@@ -250,6 +250,13 @@ impl Reader<'_, '_> {
                 return Err(self.fail(node, format!("fov_axis '{other}' is not supported (x, y, smaller, larger)")));
             }
         };
+        // a singular matrix maps the camera's frame to a plane, a line or a point
+        let det = DMat3::from_mat4(to_world).determinant();
+        if !det.is_finite() || det.abs() < 1e-12 {
+            return Err(
+                self.fail(node, format!("the sensor's to_world is singular (determinant {det:e}): no camera frame"))
+            );
+        }
         camera.eye = to_world.transform_point3(DVec3::ZERO);
         camera.target = camera.eye + to_world.transform_vector3(DVec3::Z);
         camera.up = to_world.transform_vector3(DVec3::Y);

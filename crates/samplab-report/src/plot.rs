@@ -136,7 +136,7 @@ const AXIS_LIMIT: f64 = 1e300;
 /// A linear axis over [lo, hi]: clamped to +-[`AXIS_LIMIT`], widened when empty ([0, 1]
 /// when there is no finite value).
 fn span(lo: f64, hi: f64) -> (f64, f64) {
-    if !(lo <= hi) || !lo.is_finite() && !hi.is_finite() {
+    if lo.is_nan() || hi.is_nan() || lo > hi || !lo.is_finite() && !hi.is_finite() {
         return (0.0, 1.0);
     }
     let (lo, hi) = (lo.clamp(-AXIS_LIMIT, AXIS_LIMIT), hi.clamp(-AXIS_LIMIT, AXIS_LIMIT));
@@ -258,9 +258,13 @@ impl Drawable for Scatter<'_> {
         } else {
             3
         };
+        // a value past the axis (clamped to +-1e300) is drawn at its edge
+        let at = |v: f64, (lo, hi): (f64, f64)| v.clamp(lo, hi);
         chart
             .draw_series(
-                xs.iter().zip(&ys).map(|(&x, &y)| Circle::new((x, y), radius, RGBColor(31, 119, 180).filled())),
+                xs.iter()
+                    .zip(&ys)
+                    .map(|(&x, &y)| Circle::new((at(x, rx), at(y, ry)), radius, RGBColor(31, 119, 180).filled())),
             )
             .map_err(err)?;
         marginal(&top_hist, &hx, rx, hmax, false)?;

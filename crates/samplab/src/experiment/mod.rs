@@ -184,6 +184,13 @@ impl<'a> Study<'a> {
             || format!("{} realizations on {threads} threads", self.sets),
             8 * self.sets as u128 * threads,
         )?;
+        // each instance (a boxed integrand, at most a few hundred bytes) and each unit's
+        // statistics (a few numbers), before any is made
+        let units = self.samplers.len() as u128 * self.ns.len() as u128 * self.instances as u128;
+        crate::memory::check(
+            || format!("{} instances and {units} units", self.instances),
+            256 * self.instances as u128 + 64 * units,
+        )?;
         let dims = self.family.entry.dims;
         for s in self.samplers {
             for &n in self.ns {

@@ -208,6 +208,9 @@ pub fn write_stream(
     if format == Format::Json {
         return Err(Error::Invalid("JSON is written whole; stream text, csv or npy".into()));
     }
+    // at least 8 bytes a coordinate (npy exactly; text and CSV take about 20): refused
+    // before any work when the disk cannot hold it
+    output::check_disk(path, 8 * n as u128 * dims as u128)?;
     write_atomic_with(path, &mut |file| {
         let io = |e: std::io::Error| Error::Io { path: path.display().to_string(), reason: e.to_string() };
         file.write_all(&prologue(format, header, 1, n, dims)).map_err(io)?;
@@ -323,12 +326,31 @@ fn decode_delimited(bytes: &[u8], csv: bool, name: &str, domain: &RangeInclusive
             if csv { line.split(',').map(str::trim).collect() } else { line.split_whitespace().collect() };
         if !header_seen {
             header_seen = true;
-            if fields.iter().any(|f| f.parse::<f64>().is_err()) {
+            // a header names every column; a row of numbers is a point; anything else is
+            // a malformed row, never taken for a header
+            let numbers = fields.iter().filter(|f| f.parse::<f64>().is_ok()).count();
+            if numbers == 0 {
                 set_column = fields.first().is_some_and(|f| f.eq_ignore_ascii_case("set"));
                 continue;
             }
+            if numbers < fields.len() {
+                let name = fields.iter().find(|f| f.parse::<f64>().is_err()).copied().unwrap_or_default();
+                return Err(at(
+                    lineno,
+                    format!(
+                        "the first row mixes numbers with {}: neither a header (names only) nor a point",
+                        crate::error::excerpt(name)
+                    ),
+                ));
+            }
         }
         let (set_id, coords) = if set_column { (Some(fields[0]), &fields[1..]) } else { (None, &fields[..]) };
+        if let Some(id) = set_id.filter(|id| id.parse::<u64>().is_err()) {
+            return Err(at(
+                lineno,
+                format!("set id {} is not a whole number from 0 to 2^64 - 1", crate::error::excerpt(id)),
+            ));
+        }
         if set_column && current_set.as_deref() != set_id {
             finish(&mut current, dims, &mut sets);
             current_set = set_id.map(str::to_string);
@@ -382,7 +404,12 @@ fn decode_npy(bytes: &[u8], name: &str, domain: &RangeInclusive<f64>) -> Result<
         return Err(bad("Fortran-order arrays are not supported; save with C order".into()));
     }
     let shape_text = field("shape").ok_or_else(|| bad("header has no shape".into()))?;
-    let inner = shape_text.trim_start_matches('(').split(')').next().unwrap_or("");
+    // one tuple of whole numbers: `((2, 2),)` is not a shape
+    let inner = shape_text
+        .strip_prefix('(')
+        .and_then(|t| t.split(')').next())
+        .filter(|t| !t.contains('('))
+        .ok_or_else(|| bad(format!("bad shape {}", crate::error::excerpt(shape_text))))?;
     let shape: Vec<usize> = inner
         .split(',')
         .map(str::trim)

@@ -84,6 +84,36 @@ fn split(path: &Path) -> Result<(PathBuf, String)> {
     Ok((dir.to_path_buf(), name.to_string_lossy().into_owned()))
 }
 
+/// Refuse a file of at least `bytes` for `path` when its file system has less room free
+/// (a streamed output that would fill the disk after hours of work).
+///
+/// # Errors
+/// [`Error::Io`] with both sizes.
+pub(crate) fn check_disk(path: &Path, bytes: u128) -> Result<()> {
+    #[cfg(unix)]
+    {
+        let (dir, _) = split(path)?;
+        let Ok(c) = std::ffi::CString::new(dir.as_os_str().as_encoded_bytes()) else { return Ok(()) };
+        // SAFETY: statvfs fills the zeroed struct from a NUL-terminated path.
+        let mut st: libc::statvfs = unsafe { std::mem::zeroed() };
+        if unsafe { libc::statvfs(c.as_ptr(), &raw mut st) } != 0 {
+            return Ok(());
+        }
+        let free = u128::from(st.f_bavail) * u128::from(st.f_frsize);
+        if bytes > free && !matches!(existing(path), Existing::Special) {
+            return Err(Error::Io {
+                path: path.display().to_string(),
+                reason: format!(
+                    "needs at least {} on disk, {} free there",
+                    crate::memory::human(bytes),
+                    crate::memory::human(free)
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Outputs of one command, staged as temporary files and renamed into place together by
 /// [`Staged::commit`]; dropped uncommitted, they leave nothing behind.
 #[derive(Debug, Default)]

@@ -75,7 +75,8 @@ impl Sampler for Kronecker {
         }
     }
     fn dims(&self) -> RangeInclusive<usize> {
-        1..=self.alphas.as_ref().map_or(usize::MAX, Vec::len)
+        // given alphas fix the dimension: one per axis, none left unused
+        self.alphas.as_ref().map_or(1..=usize::MAX, |a| a.len()..=a.len())
     }
     fn as_sequence(&self) -> Option<&dyn Sequence> {
         Some(self)
