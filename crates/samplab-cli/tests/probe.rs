@@ -204,6 +204,8 @@ fn sizes_past_the_memory_available_exit_2_in_one_line_within_5_s() {
             format!("render spheres --reference ref.exr --reference-samples {v} -o r.exr"),
             format!("render spheres --res {v}x16 -o r.exr"),
             format!("plot one.txt --grid {v} -o p.png"),
+            // a point file that never ends
+            "discrepancy star /dev/zero".into(),
         ] {
             let (out, took) = sh(&dir, &format!("ulimit -v 2000000 && exec \"$S\" {args}"), SECOND * 30);
             refused(&out, &args, "");
@@ -242,6 +244,7 @@ fn one_signal_stops_any_command_within_a_second() {
         ("generate random -n 20000000 --sets 2 -o big.txt", 4.0),
         ("generate poisson -n 3000000 -o p.txt", 1.0),
         ("generate elimination -n 1000000 -o e.txt", 1.0),
+        ("generate poisson.maximal -n 100000 -o m.txt", 1.0),
         ("discrepancy star --sampler random -n 4000 -d 6 --max-work inf", 1.0),
         ("discrepancy star fifo", 0.5),
     ] {
@@ -332,7 +335,7 @@ fn bad_input_that_was_accepted_is_refused() {
         ("$S discrepancy star mixed.csv", "mixed.csv:1: the first row mixes numbers with 'abc'"),
         ("$S discrepancy star big-id.csv", "big-id.csv:2: set id"),
         ("$S discrepancy star negative-id.csv", "negative-id.csv:2: set id '-1'"),
-        ("$S discrepancy star empty.json", "empty"),
+        ("$S plot empty.json -o e.png", "empty.json: set 1 has no points"),
         ("$S discrepancy star nested.npy", "bad shape"),
         ("$S generate kronecker:alpha=0.1/0.2/0.3 -n 4 -d 2", "2D is not supported"),
     ] {

@@ -158,10 +158,12 @@ fn a_set_larger_than_memory_is_streamed_to_the_same_bytes() {
         let whole =
             Command::new(bin).args(args).args(["-o", &format!("whole-{file}")]).current_dir(&dir).output().unwrap();
         assert!(whole.status.success());
-        // 1 MiB holds neither the points (7 MB) nor the file: made and written in chunks
+        // 12 MiB holds the chunks' buffers (about 6 MiB for text; every block from 64 KiB
+        // counts against --max-memory) but not the points (7.2 MB) with their file (7.2 MB
+        // as npy, more as text): made and written in chunks
         let streamed = Command::new(bin)
             .args(args)
-            .args(["-o", &format!("streamed-{file}"), "--max-memory", "1M"])
+            .args(["-o", &format!("streamed-{file}"), "--max-memory", "12M"])
             .current_dir(&dir)
             .output()
             .unwrap();
@@ -172,7 +174,8 @@ fn a_set_larger_than_memory_is_streamed_to_the_same_bytes() {
     // a Ctrl-C while streaming leaves nothing
     stopped(
         "streamed",
-        &["generate", "halton.owen", "-n", "4294967296", "-d", "4", "-o", "big.txt", "--max-memory", "1G"],
+        // 2^28 points: past memory, and within a disk's room (8 GiB at 8 bytes a coordinate)
+        &["generate", "halton.owen", "-n", "268435456", "-d", "4", "-o", "big.txt", "--max-memory", "1G"],
         "-INT",
         Duration::from_secs(1),
     );

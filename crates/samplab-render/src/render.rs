@@ -451,6 +451,16 @@ pub fn render(scene: &Scene, options: &Options, progress: &Progress) -> Result<R
     };
     let image = || format!("a {w}x{h} image");
     samplab::memory::check(image, 16 * w as u128 * h as u128)?;
+    // each thread holds one pixel's points: up to 3 coordinates of every light point, and
+    // the pixel, lens, shutter and lobe points of every estimate
+    let (n, spp) = (options.n as u128, options.spp as u128);
+    let light_points = if options.pattern == Pattern::PerPixel { n * spp } else { n };
+    let per_thread = 8 * (3 * light_points * scene.lights.len().max(1) as u128 + 7 * spp);
+    let threads = rayon::current_num_threads() as u128;
+    samplab::memory::check(
+        || format!("the points of one pixel ({n} light x {spp} spp) on {threads} threads"),
+        threads * per_thread,
+    )?;
     let mut rgb = samplab::memory::zeroed(image, 3 * w * h)?;
     let mut vis = samplab::memory::zeroed(image, w * h)?;
     let (camera_rays, shadow_rays) = rgb

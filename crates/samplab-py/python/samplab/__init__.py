@@ -89,6 +89,8 @@ def _points(points: Any, what: str = "points", *, stack: bool) -> np.ndarray:
     if a.ndim != want:
         shape = "(sets, n, d) or (n, d)" if stack else "(n, d)"
         raise Error(f"{what}: expected shape {shape}, got {a.shape}")
+    if 0 in a.shape:
+        raise Error(f"{what}: empty (shape {a.shape}); give at least one set of one point")
     bad = np.flatnonzero(~np.isfinite(a))
     if bad.size:
         index = np.unravel_index(bad[0], a.shape)

@@ -42,7 +42,7 @@ from typing import Any, Dict, Iterable, List, Optional, Sequence
 
 import numpy as np
 
-from . import _samplab
+from . import _count, _samplab
 from ._samplab import Error
 
 __all__ = ["Study", "StudyResult"]
@@ -84,14 +84,15 @@ class Study:
         (sampler, count, instance) with all its realizations; a chunk is
         ``units_per_chunk`` consecutive units."""
         params = {
-            "samplers": list(samplers),
+            "samplers": _some("samplers", [samplers] if isinstance(samplers, str) else list(samplers)),
             "integrand": integrand,
-            "n": [int(x) for x in n],
-            "sets": int(sets),
-            "instances": int(instances),
+            "n": _some("n", [_count("n", x) for x in ([n] if isinstance(n, int) else n)]),
+            "sets": _count("sets", sets),
+            "instances": _count("instances", instances),
             "seed": _seed(seed),
         }
         _positive("units_per_chunk", units_per_chunk)
+        _chunks("units", len(params["samplers"]) * len(params["n"]) * params["instances"], units_per_chunk)
         # checks every sampler at every count and the settings before anything is planned
         _samplab.integrate_units(*_integrate_args(params), [])
         units = len(params["samplers"]) * len(params["n"]) * params["instances"]
@@ -119,14 +120,15 @@ class Study:
         blocks = sets_per_chunk // BLOCK
         if sets_per_chunk % BLOCK or blocks & (blocks - 1):
             raise Error(f"sets_per_chunk = {sets_per_chunk}: must be 16 times a power of two (16, 32, 64, ...)")
-        if sets < 2:
+        if _count("sets", sets) < 2:
             raise Error(f"sets = {sets}: the variance of the spectrum needs at least 2 sets")
+        _chunks("sets", sets, sets_per_chunk)
         params = {
             "sampler": sampler,
-            "n": int(n),
-            "d": int(d),
-            "sets": int(sets),
-            "res": int(res),
+            "n": _count("n", n),
+            "d": _count("d", d),
+            "sets": _count("sets", sets),
+            "res": _count("res", res),
             "direct": bool(direct),
             "tolerance": float(tolerance),
             "seed": _seed(seed),
@@ -152,14 +154,15 @@ class Study:
     ) -> "Study":
         """Discrepancies ``metrics`` of ``sets`` realizations of ``sampler`` (``samplab
         discrepancy --sampler``), ``sets_per_chunk`` realizations per chunk."""
-        _positive("sets", sets)
+        _positive("sets", _count("sets", sets))
         _positive("sets_per_chunk", sets_per_chunk)
+        _chunks("sets", sets, sets_per_chunk)
         params = {
-            "metrics": list(metrics),
+            "metrics": _some("metrics", [metrics] if isinstance(metrics, str) else list(metrics)),
             "sampler": sampler,
-            "n": int(n),
-            "d": int(d),
-            "sets": int(sets),
+            "n": _count("n", n),
+            "d": _count("d", d),
+            "sets": sets,
             "seed": _seed(seed),
             "max_work": max_work,
         }
@@ -185,7 +188,7 @@ class Study:
         converged reference, one render per seed of ``seeds`` (``samplab render --reference
         --json`` per seed). The reference is a chunk of its own, computed first."""
         _positive("seeds_per_chunk", seeds_per_chunk)
-        seeds = [int(s) for s in seeds]
+        seeds = [_count("seed", s) for s in seeds]
         if not seeds:
             raise Error("seeds: give at least one seed")
         if "seed" in settings:
@@ -193,7 +196,7 @@ class Study:
         params = {
             "scene": scene,
             "light": light,
-            "reference_samples": int(reference_samples),
+            "reference_samples": _count("reference_samples", reference_samples),
             "penumbra": bool(penumbra),
             "settings": json.loads(_canonical(settings)),
             "seeds": seeds,
@@ -229,6 +232,8 @@ class Study:
         on stderr (default: when stderr is a terminal or in Jupyter). ``retries``: how many
         times Dask retries a chunk whose task failed (chunks of a lost worker are recomputed
         by the scheduler anyway)."""
+        if client is not None and not callable(getattr(client, "submit", None)):
+            raise Error(f"client: {client!r} is not a Dask client (give a dask.distributed.Client, or nothing to run here)")
         start = time.monotonic()
         store = _Checkpoint(checkpoint, self) if checkpoint else None
         results: Dict[int, bytes] = {}
@@ -297,8 +302,24 @@ def _seed(seed: Optional[int]) -> int:
 
 
 def _positive(name: str, value: int) -> None:
-    if int(value) < 1:
+    if _count(name, value) < 1:
         raise Error(f"{name} = {value}: must be at least 1")
+
+
+def _some(name: str, values: List[Any]) -> List[Any]:
+    if not values:
+        raise Error(f"{name}: empty; give at least one")
+    return values
+
+
+#: The most chunks a study is cut into: each is a Python object and a task.
+MAX_CHUNKS = 10**7
+
+
+def _chunks(name: str, items: int, per_chunk: int) -> None:
+    count = -(-_count(name, items) // max(1, _count("per chunk", per_chunk)))
+    if count > MAX_CHUNKS:
+        raise Error(f"{name} = {items} at {per_chunk} per chunk make {count} chunks, more than {MAX_CHUNKS}; put more in each chunk")
 
 
 def _integrate_args(p: Dict[str, Any]) -> tuple:
@@ -512,6 +533,8 @@ class _Checkpoint:
         self.path = path
         self.study = study
         self.fp = study.fingerprint
+        if os.path.exists(path) and not os.path.isdir(path):
+            raise Error(f"{path}: the checkpoint must be a folder, and this is a file")
         os.makedirs(path, exist_ok=True)
         manifest = os.path.join(path, "study.json")
         mine = _canonical({"fingerprint": self.fp, "kind": study.kind, "params": study.params, "chunks": len(study.chunks)})
@@ -547,9 +570,12 @@ class _Checkpoint:
         return found
 
     def _load(self, path: str, i: int) -> bytes:
+        bad = lambda why: Error(f"{path}: {why}; delete it to compute the chunk again")  # noqa: E731
+        # a link to a device (/dev/zero) or a FIFO would be read without end
+        if not os.path.isfile(path):
+            raise bad("not a regular file")
         with open(path, "rb") as f:
             raw = f.read()
-        bad = lambda why: Error(f"{path}: {why}; delete it to compute the chunk again")  # noqa: E731
         if not raw.startswith(MAGIC) or len(raw) < len(MAGIC) + 32:
             raise bad("not a samplab chunk file")
         body, digest = raw[:-32], raw[-32:]

@@ -260,9 +260,30 @@ pub fn read_within(path: &Path, format: Option<Format>, domain: &RangeInclusive<
     let format = format.unwrap_or_else(|| Format::from_path(path));
     // the file and its points in memory: npy holds 8 bytes per value; text at least two
     // ("0\n") for 8, so at most 4 times the file
-    let len = u128::from(std::fs::metadata(path).map_err(io)?.len());
-    crate::memory::check(|| format!("reading {name}"), len * if format == Format::Npy { 2 } else { 5 })?;
-    let bytes = std::fs::read(path).map_err(io)?;
+    let factor = if format == Format::Npy { 2 } else { 5 };
+    let meta = std::fs::metadata(path).map_err(io)?;
+    let bytes = if meta.is_file() {
+        crate::memory::check(|| format!("reading {name}"), u128::from(meta.len()) * factor)?;
+        std::fs::read(path).map_err(io)?
+    } else {
+        // a pipe or a device has no length: read while the memory allows (`/dev/zero` never
+        // ends), checked as it grows
+        use std::io::Read as _;
+        let mut file = std::fs::File::open(path).map_err(io)?;
+        let mut bytes = Vec::new();
+        let mut chunk = vec![0u8; 1 << 16];
+        loop {
+            let got = file.read(&mut chunk).map_err(io)?;
+            if got == 0 {
+                break;
+            }
+            bytes.extend_from_slice(&chunk[..got]);
+            if bytes.len().is_power_of_two() || bytes.len() % (64 << 20) < got {
+                crate::memory::check(|| format!("reading {name} (not a regular file)"), bytes.len() as u128 * factor)?;
+            }
+        }
+        bytes
+    };
     decode_within(&bytes, format, &name, domain)
 }
 
@@ -293,6 +314,9 @@ fn decode_within(bytes: &[u8], format: Format, name: &str, domain: &RangeInclusi
     };
     if sets.is_empty() || sets.iter().all(PointSet::is_empty) {
         return Err(Error::Parse { location: name.into(), reason: "no points".into() });
+    }
+    if let Some(k) = sets.iter().position(PointSet::is_empty) {
+        return Err(Error::Parse { location: name.into(), reason: format!("set {k} has no points") });
     }
     Ok(sets)
 }

@@ -123,6 +123,9 @@ impl Nufft {
         let wrap = |i: i64| i.rem_euclid(g as i64) as usize;
         // spread into a real grid: 16 values from each first index (the last 16 - w zero)
         // where they fit, index by index around the torus near its seam
+        // the real grid, and as much again for the transform's complex rows and output
+        let cells = (g as u128).pow(self.dims as u32);
+        crate::memory::check(|| format!("a non-uniform FFT on a {g}^{} grid", self.dims), 16 * cells)?;
         let mut real = vec![0.0; g.pow(self.dims as u32)];
         let inner = |f: i64| f >= 0 && f as usize + 16 <= g;
         crate::simd::wide(

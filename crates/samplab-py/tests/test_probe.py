@@ -1,0 +1,73 @@
+"""The adversarial probe's Python cases: allocations past the memory available raise
+samplab.Error instead of aborting the interpreter, and bad study arguments raise
+samplab.Error naming them instead of bare MemoryError / OverflowError / AttributeError /
+FileExistsError, or being accepted."""
+
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import samplab
+from samplab import Study
+
+
+def test_allocations_past_an_address_space_limit_raise_samplab_errors():
+    # under `ulimit -v 2000000`, as the CLI's probe: each call must raise samplab.Error
+    code = """
+import resource, samplab
+resource.setrlimit(resource.RLIMIT_AS, (2_000_000 * 1024, resource.RLIM_INFINITY))
+for call in [
+    lambda: samplab.discrepancy("oscillation", samplab.generate("random", n=100000)),
+    lambda: samplab.sequence_points("sobol", 0, 2**40),
+    lambda: samplab.render("spheres", n=2**32),
+    lambda: samplab.integrate(["random"], "quad", [16], sets=2, instances=10**12),
+]:
+    try:
+        call()
+    except samplab.Error as e:
+        print("refused:", str(e).splitlines()[0])
+    else:
+        print("accepted")
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    lines = out.stdout.splitlines()
+    assert len(lines) == 4 and all(line.startswith("refused: ") for line in lines), out.stdout
+
+
+def test_study_arguments_are_checked_with_samplab_errors(tmp_path):
+    with pytest.raises(samplab.Error, match="sets"):
+        Study.spectrum("jitter", 16, sets=10**15, res=8)
+    with pytest.raises(samplab.Error, match="out of range"):
+        Study.integrate(["random"], "quad", [-1])
+    with pytest.raises(samplab.Error, match="whole number"):
+        Study.integrate(["random"], "quad", [16.7])
+    with pytest.raises(samplab.Error, match="n: empty"):
+        Study.integrate(["random"], "quad", [])
+    with pytest.raises(samplab.Error, match="samplers: empty"):
+        Study.integrate([], "quad", [16])
+    study = Study.integrate(["random"], "quad", [16], sets=2, instances=1)
+    with pytest.raises(samplab.Error, match="not a Dask client"):
+        study.run("nope")
+    file = tmp_path / "file"
+    file.write_text("mine")
+    with pytest.raises(samplab.Error, match="must be a folder"):
+        study.run(checkpoint=str(file))
+    assert file.read_text() == "mine"
+    # a chunk linked to /dev/zero is refused, not read until memory runs out
+    folder = tmp_path / "checkpoint"
+    study.run(checkpoint=str(folder))
+    chunk = next(p for p in folder.iterdir() if p.name.endswith(".chunk"))
+    chunk.unlink()
+    os.symlink("/dev/zero", chunk)
+    with pytest.raises(samplab.Error, match="not a regular file"):
+        study.run(checkpoint=str(folder))
+
+
+def test_empty_stacks_are_refused():
+    for empty in [np.empty((0, 4, 2)), np.empty((2, 0, 2)), np.empty((0, 2))]:
+        with pytest.raises(samplab.Error, match="empty"):
+            samplab.discrepancy("star", empty)
