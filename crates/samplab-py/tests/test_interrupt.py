@@ -14,6 +14,10 @@ CASES = {
     "spectrum": "samplab.spectrum(samplab.generate('jitter', n=4096, sets=400), res=256, direct=True)",
     "integrate": "samplab.integrate(['random', 'jitter'], 'disk', n=[65536], sets=100000)",
     "generate": "samplab.generate('poisson', n=4096, sets=100000)",
+    # one set whose making used to ignore the stop: each stops within its own loop now
+    "force-matrix": "samplab.generate('force-matrix', n=100000)",
+    "dart-throwing": "samplab.generate('poisson', n=3000000)",
+    "maximal-poisson": "samplab.generate('poisson.maximal', n=300000)",
     "reproduce": "samplab.reproduce(out, full=True)",
 }
 

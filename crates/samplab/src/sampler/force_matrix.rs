@@ -8,6 +8,7 @@ use std::ops::RangeInclusive;
 use super::registry::SamplerEntry;
 use super::{Fill, Sampler};
 use crate::error::{Error, Result};
+use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Seed, below, uniform};
 use crate::spec::{Default, Kind, ParamSpec};
@@ -71,7 +72,7 @@ impl Fill for ForceMatrix {
         }
         Ok(())
     }
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         let g = self.grid_size(n, dims);
         let cells = g.pow(dims as u32);
         let mut rng = seed.rng();
@@ -92,7 +93,11 @@ impl Fill for ForceMatrix {
         let span = 2 * reach + 1;
         let window = span.pow(dims as u32);
         let mut chosen = Vec::with_capacity(n);
-        for _ in 0..n {
+        for i in 0..n {
+            // a stop every 256 points (each point scans every cell: 0.1 s for 256 at 10^5)
+            if i % 256 == 0 {
+                progress.check()?;
+            }
             // least energy among free cells, uniform among exact ties
             let (mut best, mut ties, mut best_e) = (0usize, 0u64, f64::INFINITY);
             for (c, &e) in energy.iter().enumerate() {
@@ -127,7 +132,7 @@ impl Fill for ForceMatrix {
                 p[d] = ((x as f64 + offset[d]) / g as f64).min(super::grid::BELOW_ONE);
             }
         }
-        Ok(())
+        progress.advance(1)
     }
 }
 
