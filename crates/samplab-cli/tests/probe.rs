@@ -18,10 +18,13 @@ fn temp(name: &str) -> PathBuf {
     dir
 }
 
-/// `script` run by sh in `dir`, `$S` the samplab binary, with a time limit.
+/// `script` run by sh in `dir`, `$S` the samplab binary, with a time limit (past it the
+/// script's whole process group is killed, so no samplab is left running).
 fn sh(dir: &Path, script: &str, limit: Duration) -> (Output, Duration) {
+    use std::os::unix::process::CommandExt as _;
     let start = Instant::now();
     let mut child = Command::new("sh")
+        .process_group(0)
         .args(["-c", script])
         .env("S", BIN)
         .current_dir(dir)
@@ -32,7 +35,9 @@ fn sh(dir: &Path, script: &str, limit: Duration) -> (Output, Duration) {
         .unwrap();
     while child.try_wait().unwrap().is_none() {
         if start.elapsed() > limit {
-            let _ = child.kill();
+            // SAFETY: kill(2) on the process group this test made.
+            unsafe { libc::kill(-(child.id() as i32), libc::SIGKILL) };
+            let _ = child.wait();
             panic!("{script}: still running after {limit:?}");
         }
         std::thread::sleep(Duration::from_millis(20));
@@ -258,7 +263,10 @@ fn one_signal_stops_any_command_within_a_second() {
                 Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap().success()
             );
             while child.try_wait().unwrap().is_none() {
-                assert!(sent.elapsed() < SECOND, "{args}: still running 1 s after SIG{signal}");
+                if sent.elapsed() > SECOND {
+                    let _ = child.kill();
+                    panic!("{args}: still running 1 s after SIG{signal}");
+                }
                 std::thread::sleep(Duration::from_millis(10));
             }
             let out = child.wait_with_output().unwrap();
