@@ -558,5 +558,5 @@ fn star(_: &Params, points: &PointSet, limits: Limits) -> Result<f64> {
 
 /// The most dimensions [`star_dem`] is run in: its recursion takes one frame (a few hundred
 /// bytes) per axis, on a worker thread's stack of 2 MiB; 2^(1 + d/2) steps for two points
-/// already pass any work limit from d = 120.
+/// pass the default work limit (2e10) from d = 68.
 const DEM_DIMS: usize = 1000;
