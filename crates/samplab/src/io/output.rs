@@ -34,12 +34,14 @@ fn register(path: &Path) {
     staged().push(path.to_path_buf());
 }
 
-fn unregister(list: &mut Vec<PathBuf>, path: &Path) {
-    list.retain(|p| p != path);
-}
-
 fn remove(path: &Path) {
     let _ = std::fs::remove_file(path).or_else(|_| std::fs::remove_dir_all(path));
+}
+
+/// Remove a temporary path and forget it (`list` is the held [`STAGED`]).
+fn discard(list: &mut Vec<PathBuf>, path: &Path) {
+    remove(path);
+    list.retain(|p| p != path);
 }
 
 /// Remove every temporary output that exists now and exit the process with `code`, holding
@@ -182,9 +184,7 @@ impl Staged {
             f.sync_all().map_err(|e| io_error(path, &e))
         });
         if result.is_err() {
-            let mut list = staged();
-            remove(tmp);
-            unregister(&mut list, tmp);
+            discard(&mut staged(), tmp);
         }
         result
     }
@@ -202,9 +202,10 @@ impl Staged {
                 result = std::fs::rename(tmp, target).map_err(|e| io_error(target, &e));
             }
             if result.is_err() {
-                remove(tmp);
+                discard(&mut list, tmp);
+            } else {
+                list.retain(|p| p != tmp);
             }
-            unregister(&mut list, tmp);
         }
         result
     }
@@ -214,8 +215,7 @@ impl Drop for Staged {
     fn drop(&mut self) {
         let mut list = staged();
         for (tmp, _) in &self.files {
-            remove(tmp);
-            unregister(&mut list, tmp);
+            discard(&mut list, tmp);
         }
     }
 }
@@ -273,30 +273,12 @@ fn protected(target: &Path) -> Option<&'static str> {
     None
 }
 
-/// The first entry of the folder `dir` that its manifest does not list, if any.
+/// The first entry of the folder `dir` (in [`entries`]' order) that its manifest does not
+/// list, if any.
 fn foreign_entry(dir: &Path) -> Result<Option<String>> {
     let listed: std::collections::HashSet<String> =
         std::fs::read_to_string(dir.join(MANIFEST)).map(|t| t.lines().map(str::to_owned).collect()).unwrap_or_default();
-    let mut stack = vec![PathBuf::new()];
-    while let Some(rel) = stack.pop() {
-        let entries = std::fs::read_dir(dir.join(&rel)).map_err(|e| io_error(&dir.join(&rel), &e))?;
-        let mut names: Vec<_> = entries.filter_map(|e| e.ok()).collect();
-        names.sort_by_key(std::fs::DirEntry::file_name);
-        for entry in names {
-            let path = rel.join(entry.file_name());
-            let key = path.to_string_lossy().into_owned();
-            if rel.as_os_str().is_empty() && key == MANIFEST {
-                continue;
-            }
-            if !listed.contains(&key) {
-                return Ok(Some(key));
-            }
-            if entry.file_type().is_ok_and(|t| t.is_dir()) {
-                stack.push(path);
-            }
-        }
-    }
-    Ok(None)
+    Ok(entries(dir)?.into_iter().find(|e| e != MANIFEST && !listed.contains(e)))
 }
 
 /// Every entry under `dir`, relative, in sorted order (for its manifest).
@@ -356,14 +338,9 @@ pub fn write_folder<E: From<Error>>(
     std::fs::create_dir_all(&parent).map_err(|e| io_error(&parent, &e))?;
     let staging = parent.join(format!(".{name}.partial-{}", std::process::id()));
     register(&staging);
-    let discard = |staging: &Path| {
-        let mut list = staged();
-        remove(staging);
-        unregister(&mut list, staging);
-    };
     let _ = std::fs::remove_dir_all(&staging);
     if let Err(e) = std::fs::create_dir(&staging) {
-        discard(&staging);
+        discard(&mut staged(), &staging);
         return Err(io_error(&staging, &e).into());
     }
     let filled = fill(&staging).and_then(|()| {
@@ -372,7 +349,7 @@ pub fn write_folder<E: From<Error>>(
         std::fs::write(staging.join(MANIFEST), manifest).map_err(|e| E::from(io_error(&staging, &e)))
     });
     if let Err(e) = filled {
-        discard(&staging);
+        discard(&mut staged(), &staging);
         return Err(e);
     }
     // the old folder (if any) goes only once the new one is complete
@@ -386,9 +363,10 @@ pub fn write_folder<E: From<Error>>(
         std::fs::rename(&staging, out).map_err(|e| io_error(out, &e))
     })();
     if result.is_err() {
-        remove(&staging);
+        discard(&mut list, &staging);
+    } else {
+        list.retain(|p| p != &staging);
     }
-    unregister(&mut list, &staging);
     drop(list);
     let _ = std::fs::remove_dir_all(&old);
     Ok(result?)
