@@ -39,6 +39,16 @@ for f in npy json csv; do
   "$bin" generate sobol.owen -n 100 --sets 3 --seed 14 -o "p.$f" >/dev/null 2>&1
   row "generate sobol.owen -o p.$f" "$(hash < "p.$f")"
 done
+# every registered sampler with its defaults, by the registry's own listing (the counts some
+# cannot make are recorded as their errors), and random access against the batch
+for s in $("$bin" list samplers | awk '/^[a-z]/ {print $1}'); do
+  run generate "$s" -n 64 --seed 31
+  run generate "$s" -n 55 -d 2 --seed 32
+  run generate "$s" -n 27 -d 3 --seed 33
+done
+for s in kronecker+micro-jitter lattice.cbc.shift+micro-jitter:fraction=0.3 net.owen:matrices=/nonexistent; do
+  run generate "$s" -n 64 --seed 34
+done
 run generate sobol -n 4294967297
 run generate nosuch -n 4
 

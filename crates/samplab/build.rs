@@ -3,7 +3,8 @@
 //! Input: `data/new-joe-kuo-6.1024.txt` (`d s a m_1..m_s` per line, dimensions 2..=1024).
 //! Output: `$OUT_DIR/sobol_directions.rs` holding `SOBOL_DIRECTIONS: [[u32; 32]; 1024]`,
 //! where entry [j][k] is the direction number v_k = m_k * 2^(31-k) of dimension j
-//! (dimension 0 is van der Corput: m_k = 1). Recurrence: Bratley & Fox (1988), eq. in
+//! (dimension 0 is van der Corput: m_k = 1), and the same numbers bit-reversed as
+//! `REVERSED_DIRECTIONS` (Owen scrambling works on reversed digits). Recurrence: Bratley & Fox (1988), eq. in
 //! Joe & Kuo (2008) section 2: m_k = 2a_1 m_{k-1} ^ 4a_2 m_{k-2} ^ ... ^ 2^s m_{k-s} ^ m_{k-s}.
 
 use std::fmt::Write as _;
@@ -36,16 +37,23 @@ fn main() {
         }
         table.push(std::array::from_fn(|k| (m[k] << (31 - k)) as u32));
     }
-    let mut out = format!("/// Joe–Kuo direction numbers, {} dimensions x 32 bits.\n", table.len());
-    writeln!(out, "pub(crate) static SOBOL_DIRECTIONS: [[u32; 32]; {}] = [", table.len()).unwrap();
-    for row in &table {
-        out.push('[');
-        for v in row {
-            write!(out, "{v:#x},").unwrap();
+    let mut out = String::new();
+    let reversed: Vec<[u32; 32]> = table.iter().map(|row| row.map(u32::reverse_bits)).collect();
+    for (name, what, rows) in [
+        ("SOBOL_DIRECTIONS", "Joe–Kuo direction numbers", &table),
+        ("REVERSED_DIRECTIONS", "The same direction numbers bit-reversed (for Owen scrambling)", &reversed),
+    ] {
+        writeln!(out, "/// {what}, {} dimensions x 32 bits.", rows.len()).unwrap();
+        writeln!(out, "pub(crate) static {name}: [[u32; 32]; {}] = [", rows.len()).unwrap();
+        for row in rows.iter() {
+            out.push('[');
+            for v in row {
+                write!(out, "{v:#x},").unwrap();
+            }
+            out.push_str("],\n");
         }
-        out.push_str("],\n");
+        out.push_str("];\n");
     }
-    out.push_str("];\n");
     let dest = std::path::Path::new(&std::env::var("OUT_DIR").unwrap()).join("sobol_directions.rs");
     std::fs::write(dest, out).expect("writing the direction table");
 }

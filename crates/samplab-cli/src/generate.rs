@@ -81,7 +81,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     if need > u128::from(samplab::memory::available())
         && let (Some(path), 1, None) = (&a.output, a.sets, w)
         && format != Format::Json
-        && let Some(mut stream) = plan.stream(seed.derive(0))?
+        && let Some(mut stream) = plan.stream(seed.derive(0))
     {
         // one set larger than memory, from a sampler that makes its points in order: written
         // chunk by chunk, the same bytes

@@ -184,7 +184,10 @@ fn generate<'py>(
 /// Whether `spec` names a progressive sequence (random access, extensible).
 #[pyfunction]
 fn is_sequence(spec: &str) -> PyResult<bool> {
-    Ok(samplab::sampler::build(spec).map_err(err)?.as_sequence().is_some())
+    let sampler = samplab::sampler::build(spec).map_err(err)?;
+    // a sequence makes any count, so one point in its fewest dimensions plans
+    let plan = sampler.plan(1, *sampler.dims().start());
+    Ok(plan.is_ok_and(|p| p.access(Seed(0)).is_some()))
 }
 
 /// Points `start .. start + n` of the sequence `spec` in `d` dimensions, randomized as set 0
@@ -199,12 +202,18 @@ fn sequence_points<'py>(
     seed: u64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let sampler = samplab::sampler::build(spec).map_err(err)?;
-    let Some(sequence) = sampler.as_sequence() else {
-        return Err(err(format!("{}: makes whole sets, not a sequence: it cannot be extended", sampler.spec())));
+    let whole = || err(format!("{}: makes whole sets, not a sequence: it cannot be extended", sampler.spec()));
+    // a sequence makes any count: a plan of one point fails only on the dimension
+    let plan = match sampler.plan(1, d) {
+        Ok(plan) => plan,
+        Err(e @ samplab::Error::InvalidDims { .. }) => return Err(err(e)),
+        Err(_) => return Err(whole()),
+    };
+    let Some(access) = plan.access(Seed(seed).derive(0)) else {
+        return Err(whole());
     };
     let data = py
         .detach(|| -> samplab::Result<Vec<f64>> {
-            let access = sequence.access(d, Seed(seed).derive(0))?;
             samplab::memory::check(|| format!("{n} points of {d} dimensions"), 8 * n as u128 * d as u128)?;
             let mut data = Vec::with_capacity(n * d);
             for i in 0..n as u64 {
@@ -402,7 +411,7 @@ fn spectrum_node<'py>(
     let plan = sampler.plan(n, d).map_err(err)?;
     let method = method(direct, tolerance);
     let spectra = samplab::spectrum::Spectra::new(res, d, method).map_err(err)?;
-    let source = samplab::spectrum::Sets::Generated { plan, seed: Seed(seed), m: sets };
+    let source = samplab::spectrum::Sets::Generated { plan: &plan, seed: Seed(seed), m: sets };
     let partial = interruptible(py, usize::MAX, |stop| {
         spectra.node(&source, level, index, &Progress::until(stop)).map(|p| p.to_bytes())
     })?;

@@ -97,7 +97,7 @@ impl Entry for Builtin {
 
 /// Every built-in scene (a Mitsuba 3 XML file is the other kind of scene).
 pub static SCENES: Registry<Builtin> =
-    Registry::new("scene", "SCENES  (built in; or a Mitsuba 3 .xml file)", &[BUILTINS]);
+    Registry::new("scene", "SCENES  (built in; or a Mitsuba 3 .xml file)", &[&[BUILTINS]]);
 
 static BUILTINS: &[Builtin] = &[
     Builtin {

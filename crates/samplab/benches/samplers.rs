@@ -61,7 +61,9 @@ fn random_access(c: &mut Criterion) {
         group.throughput(Throughput::Elements((BATCH * DIMS) as u64));
         group.bench_function("batch", |b| b.iter(|| s.generate(BATCH, DIMS, Seed(1)).unwrap()));
         group.throughput(Throughput::Elements((POINTS * DIMS) as u64));
-        let access = s.as_sequence().unwrap().access(DIMS, Seed(1)).unwrap();
+        let planned = s.plan(1, DIMS).unwrap();
+
+        let access = planned.access(Seed(1)).unwrap();
         group.bench_function("random access", |b| {
             b.iter(|| {
                 let mut sum = 0.0;

@@ -11,8 +11,13 @@ fn main() {
             .map(|_| {
                 let t = Instant::now();
                 std::hint::black_box(
-                    samplab::sampler::cbc::construct(n, s, samplab::sampler::cbc::Weights::decaying(2.0), embedded)
-                        .unwrap(),
+                    samplab::sampler::qmc::cbc::construct(
+                        n,
+                        s,
+                        samplab::sampler::qmc::cbc::Weights::decaying(2.0),
+                        embedded,
+                    )
+                    .unwrap(),
                 );
                 t.elapsed().as_secs_f64()
             })

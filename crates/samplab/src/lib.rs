@@ -34,6 +34,7 @@ pub mod experiment;
 pub mod integrand;
 pub mod io;
 pub mod memory;
+pub mod numeric;
 pub mod points;
 pub mod progress;
 pub mod registry;
@@ -49,5 +50,5 @@ pub mod warp;
 
 pub use error::{Error, Result};
 pub use points::PointSet;
-pub use sampler::{Sampler, Sequence};
+pub use sampler::{Access, Sampler};
 pub use seed::Seed;

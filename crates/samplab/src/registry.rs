@@ -34,12 +34,20 @@ pub struct About {
     pub params: &'static [ParamSpec],
     /// Bibliography keys ([`crate::bibliography`]).
     pub references: &'static [&'static str],
+    /// Whether the canonical spec leaves out the parameters at their defaults (the
+    /// constructions named by their family alone: `net`, `lattice`, ...).
+    pub terse: bool,
 }
 
 impl About {
     /// An entry with a name and a summary, and no aliases, parameters or references.
     pub const fn new(name: &'static str, summary: &'static str) -> About {
-        About { name, aliases: &[], summary, params: &[], references: &[] }
+        About { name, aliases: &[], summary, params: &[], references: &[], terse: false }
+    }
+
+    /// The same, its canonical spec leaving out the parameters at their defaults.
+    pub const fn terse(self) -> About {
+        About { terse: true, ..self }
     }
 
     /// The same, with these aliases.
@@ -80,13 +88,15 @@ pub trait Entry: Sync + 'static {
 pub struct Registry<E: 'static> {
     kind: &'static str,
     heading: &'static str,
-    parts: &'static [&'static [E]],
+    /// Groups (a family folder's files), each a list of per-file tables.
+    parts: &'static [&'static [&'static [E]]],
 }
 
 impl<E: Entry> Registry<E> {
     /// A registry of `kind` ("sampler", "metric", ...) whose listing starts with `heading`,
-    /// made of the per-file tables `parts` in listing order.
-    pub const fn new(kind: &'static str, heading: &'static str, parts: &'static [&'static [E]]) -> Self {
+    /// made of the per-file tables `parts` in listing order, in groups (one per family
+    /// folder; a registry of one folder has one group).
+    pub const fn new(kind: &'static str, heading: &'static str, parts: &'static [&'static [&'static [E]]]) -> Self {
         Registry { kind, heading, parts }
     }
 
@@ -97,7 +107,7 @@ impl<E: Entry> Registry<E> {
 
     /// Every entry, in listing order.
     pub fn iter(&self) -> impl Iterator<Item = &'static E> + use<E> {
-        self.parts.iter().flat_map(|p| p.iter())
+        self.parts.iter().flat_map(|g| g.iter()).flat_map(|p| p.iter())
     }
 
     /// The entry called `name` (canonical or alias, case-insensitive).
@@ -192,7 +202,8 @@ impl<E: Entry> Registry<E> {
 
 /// Declare the files of one registry kind and the registry gathered from them: each file is
 /// a module with a `pub(crate) static ENTRIES` table, so adding an entry is its file plus its
-/// name in this list.
+/// name in this list. A family folder declares its files the same way (`Family<Entry>`),
+/// and the registry lists the families' `FILES`.
 macro_rules! registry_files {
     (
         $(#[$doc:meta])*
@@ -202,15 +213,26 @@ macro_rules! registry_files {
 
         $(#[$doc])*
         $vis static $name: $crate::registry::Registry<$entry> =
-            $crate::registry::Registry::new($kind, $heading, &[$($file::ENTRIES),+]);
+            $crate::registry::Registry::new($kind, $heading, &[&[$($file::ENTRIES),+]]);
+    };
+    (
+        $(#[$doc:meta])*
+        $vis:vis static $name:ident: Family<$entry:ty> = [$($file:ident),+ $(,)?];
+    ) => {
+        $(pub mod $file;)+
+
+        $(#[$doc])*
+        $vis static $name: &[&[$entry]] = &[$($file::ENTRIES),+];
     };
 }
 pub(crate) use registry_files;
 
 /// The canonical spec of an entry with resolved parameters: `name`, or
-/// `name:key=value,...` when it has parameters.
+/// `name:key=value,...` with every parameter in declared order (a [`About::terse`] entry:
+/// those not at their defaults).
 pub fn canonical(about: &About, params: &Params) -> String {
-    if about.params.is_empty() { about.name.to_string() } else { format!("{}:{}", about.name, params.describe()) }
+    let shown = params.describe(|name| !about.terse || !params.is_default(about.params, name));
+    if shown.is_empty() { about.name.to_string() } else { format!("{}:{shown}", about.name) }
 }
 
 #[cfg(test)]
@@ -233,7 +255,7 @@ mod tests {
         &[ParamSpec { name: "size", kind: Kind::Int { min: 1, max: 9 }, default: Default::Int(3), doc: "how big" }];
     static A: &[Thing] = &[Thing(About::new("alpha", "first").aliases(&["a"]).params(SIZE).cite(&["cook1986"]))];
     static B: &[Thing] = &[Thing(About::new("beta.two", "second"))];
-    static THINGS: Registry<Thing> = Registry::new("thing", "THINGS", &[A, B]);
+    static THINGS: Registry<Thing> = Registry::new("thing", "THINGS", &[&[A], &[B]]);
 
     #[test]
     fn looks_up_names_and_aliases_and_suggests() {

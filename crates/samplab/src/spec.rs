@@ -285,10 +285,35 @@ impl Params {
         }
     }
 
-    /// `name=value` pairs, for headers and logs.
-    pub fn describe(&self) -> String {
+    /// The value `name` holds is its declared default (`specs` the declarations).
+    pub fn is_default(&self, specs: &[ParamSpec], name: &str) -> bool {
+        let Some(spec) = specs.iter().find(|s| s.name == name) else {
+            return false;
+        };
+        match (self.get(name), spec.default) {
+            (Value::Number(x), Default::Number(d)) => *x == d,
+            (Value::Int(x), Default::Int(d)) => *x == d,
+            (Value::Word(w), Default::Word(d)) => w == d,
+            (Value::Auto, Default::Auto(_)) => true,
+            _ => false,
+        }
+    }
+
+    /// Set `name` to `value`: a method that resolves an `auto` parameter records what it
+    /// chose, so that its spec names it.
+    ///
+    /// # Panics
+    /// When `name` is not declared (a programming error).
+    pub fn set(&mut self, name: &str, value: Value) {
+        let slot = self.values.iter_mut().find(|(n, _)| *n == name);
+        slot.unwrap_or_else(|| panic!("parameter '{name}' is not declared")).1 = value;
+    }
+
+    /// `name=value` pairs of the parameters `shown` keeps, for specs, headers and logs.
+    pub fn describe(&self, shown: impl Fn(&str) -> bool) -> String {
         self.values
             .iter()
+            .filter(|(n, _)| shown(n))
             .map(|(n, v)| match v {
                 Value::Number(x) => format!("{n}={x}"),
                 Value::Int(x) => format!("{n}={x}"),
@@ -379,7 +404,7 @@ mod tests {
         for raw in ["9007199254740993", "18446744073709551615"] {
             let p = Params::resolve("g", SEED, &Spec::parse(&format!("g:seed={raw}")).unwrap().args).unwrap();
             assert_eq!(p.int("seed").to_string(), raw);
-            assert_eq!(p.describe(), format!("seed={raw}"));
+            assert_eq!(p.describe(|_| true), format!("seed={raw}"));
         }
         let e = Params::resolve("g", SEED, &Spec::parse("g:seed=18446744073709551616").unwrap().args).unwrap_err();
         assert!(e.to_string().contains("'seed'"), "{e}");

@@ -3,8 +3,8 @@
 
 use samplab::discrepancy::{self, Limits, Metric};
 use samplab::progress::Progress;
-use samplab::sampler::cbc::Weights;
-use samplab::sampler::{self, cbc, kronecker};
+use samplab::sampler::qmc::cbc::Weights;
+use samplab::sampler::{self, qmc::cbc, qmc::kronecker};
 use samplab::{PointSet, Seed};
 
 fn set(spec: &str, n: usize, d: usize, seed: u64) -> PointSet {
@@ -37,7 +37,9 @@ fn kronecker_points_are_the_formula_and_its_random_access() {
         }
     }
     let s = sampler::build("kronecker.shift").unwrap();
-    let access = s.as_sequence().unwrap().access(d, Seed(4)).unwrap();
+    let planned = s.plan(1, d).unwrap();
+
+    let access = planned.access(Seed(4)).unwrap();
     let batch = s.generate(n, d, Seed(4)).unwrap();
     for i in [0, 1, 17, 999] {
         for j in 0..d {
@@ -205,7 +207,8 @@ fn fast_cbc_finds_the_smallest_error_at_every_component() {
         // the lattice sampler uses this vector, and with unit weights the error is Sloan & Joe's P_2
         if decay == 0.0 {
             assert!(
-                (cbc::worst_case_error(&z, n, Weights::decaying(0.0)) - samplab::sampler::lattice::p2(&z, n)).abs()
+                (cbc::worst_case_error(&z, n, Weights::decaying(0.0)) - samplab::sampler::qmc::lattice::p2(&z, n))
+                    .abs()
                     < 1e-12
             );
         }

@@ -156,7 +156,9 @@ fn random_access_equals_the_batch_and_randomizations_are_unbiased() {
             let s = sampler::build(&spec).unwrap();
             let (n, d) = (81, 3);
             let batch = s.generate(n, d, Seed(11)).unwrap();
-            let access = s.as_sequence().unwrap().access(d, Seed(11)).unwrap();
+            let planned = s.plan(1, d).unwrap();
+
+            let access = planned.access(Seed(11)).unwrap();
             for i in [0, 1, 2, 40, 80] {
                 for j in 0..d {
                     assert_eq!(access.sample(i as u64, j).unwrap(), batch.point(i)[j], "{spec}: point {i}");
@@ -202,6 +204,6 @@ fn bad_matrix_files_are_refused_with_their_line() {
     assert_eq!(points(&s.generate(4, 1, Seed(1)).unwrap()), vec![vec![0.0], vec![0.5], vec![0.25], vec![0.75]]);
     assert!(s.plan(5, 1).unwrap_err().to_string().contains("at most 4 points"));
     assert!(s.plan(4, 2).is_err());
-    assert!(s.as_sequence().unwrap().access(1, Seed(1)).unwrap().sample(4, 0).is_err());
+    assert!(s.plan(1, 1).unwrap().access(Seed(1)).unwrap().sample(4, 0).is_err());
     std::fs::remove_dir_all(&dir).unwrap();
 }

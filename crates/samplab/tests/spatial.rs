@@ -209,7 +209,7 @@ fn diaphony_is_its_fourier_sum_and_a_lattice_s_p2() {
         let points: Vec<f64> =
             (0..n as u64).flat_map(|i| z.iter().map(move |&zj| (i * zj % n as u64) as f64 / n as f64)).collect();
         let p = PointSet::new(z.len(), points).unwrap();
-        let p2 = samplab::sampler::lattice::p2(&z, n);
+        let p2 = samplab::sampler::qmc::lattice::p2(&z, n);
         assert!((form(&p) - p2).abs() <= 1e-12 * p2, "n = {n}: {} vs {p2}", form(&p));
     }
 }
@@ -230,7 +230,7 @@ fn eliminate_naive(points: &[f64], dims: usize, target: usize) -> Vec<usize> {
                 .filter(|&&j| j != i)
                 .map(|&j| distance(point(i), point(j), true))
                 .filter(|&d| d < 2.0 * r_max)
-                .map(|d| samplab::sampler::elimination::pair_weight(d, r_min, 2.0 * r_max))
+                .map(|d| samplab::sampler::blue_noise::elimination::pair_weight(d, r_min, 2.0 * r_max))
                 .sum()
         };
         let (k, _) = alive.iter().enumerate().fold((0, None), |best, (k, &i)| {
@@ -252,7 +252,7 @@ fn sample_elimination_removes_the_heaviest_point_each_step() {
         let target = 4 + below(&mut rng, 40) as usize;
         let m = target * (2 + below(&mut rng, 5) as usize);
         let points: Vec<f64> = (0..m * dims).map(|_| uniform(&mut rng)).collect();
-        let (kept, gone) = samplab::sampler::elimination::eliminate(&points, dims, target, true).unwrap();
+        let (kept, gone) = samplab::sampler::blue_noise::elimination::eliminate(&points, dims, target, true).unwrap();
         assert_eq!(gone, eliminate_naive(&points, dims, target), "trial {trial}: {m} to {target} in {dims}D");
         assert_eq!(kept.len(), target);
     }
@@ -304,7 +304,7 @@ fn lloyd_moves_points_to_their_cells_centroids_and_lowers_the_energy() {
     for torus in [true, false] {
         for (n, seed) in [(1usize, 1u64), (2, 2), (5, 3), (40, 4)] {
             let p = random_set(n, 2, seed);
-            let ours = samplab::sampler::lloyd::centroids(p.as_slice(), torus).unwrap();
+            let ours = samplab::sampler::blue_noise::lloyd::centroids(p.as_slice(), torus).unwrap();
             let (want, _) = voronoi_by_quadrature(p.as_slice(), torus, 600);
             for (k, (a, b)) in ours.iter().zip(&want).enumerate() {
                 let gap = if torus { (a - b) - (a - b).round() } else { a - b };
@@ -315,7 +315,7 @@ fn lloyd_moves_points_to_their_cells_centroids_and_lowers_the_energy() {
         let mut points = random_set(32, 2, 9).as_slice().to_vec();
         let mut last = voronoi_by_quadrature(&points, torus, 300).1;
         for step in 0..6 {
-            points = samplab::sampler::lloyd::centroids(&points, torus).unwrap();
+            points = samplab::sampler::blue_noise::lloyd::centroids(&points, torus).unwrap();
             let e = voronoi_by_quadrature(&points, torus, 300).1;
             assert!(e < last, "torus {torus}, step {step}: energy {e} after {last}");
             last = e;
@@ -329,7 +329,7 @@ fn lloyd_moves_points_to_their_cells_centroids_and_lowers_the_energy() {
 
 #[test]
 fn projected_cube_quantiles_invert_their_cdf() {
-    use samplab::sampler::sot::Projected;
+    use samplab::sampler::blue_noise::sot::Projected;
     // 2D: the trapezoid's quantile in closed form (a <= b the two widths)
     let trapezoid = |a: f64, b: f64, u: f64| {
         let q = |v: f64| {
@@ -375,7 +375,7 @@ fn projected_cube_quantiles_invert_their_cdf() {
 
 #[test]
 fn sliced_transport_lowers_the_sliced_distance() {
-    use samplab::sampler::sot::sliced_distance2;
+    use samplab::sampler::blue_noise::sot::sliced_distance2;
     // the distance SOT descends, measured along 64 directions it did not use, against the
     // a uniform random set of the same size (what it starts from)
     for dims in [2usize, 3] {
@@ -389,7 +389,7 @@ fn sliced_transport_lowers_the_sliced_distance() {
 
 #[test]
 fn gaussian_blue_noise_descends_its_energy() {
-    use samplab::sampler::gbn;
+    use samplab::sampler::blue_noise::gbn;
     // one step against every pair's pull by brute force (the same 5 sigma reach)
     let (n, dims) = (300usize, 2usize);
     let start = random_set(n, dims, 21).as_slice().to_vec();
@@ -437,7 +437,7 @@ fn gaussian_blue_noise_descends_its_energy() {
 
 #[test]
 fn ccvt_keeps_capacities_and_lowers_its_energy() {
-    use samplab::sampler::ccvt::State;
+    use samplab::sampler::blue_noise::ccvt::State;
     for dims in [2usize, 3] {
         let mut state = State::new(64, dims, 32, Seed(4)).unwrap();
         let mut last = state.energy();
@@ -499,7 +499,7 @@ fn step_and_single_peak_sets_have_the_spectra_they_target() {
 
 #[test]
 fn kdm_langevin_steps_sample_the_gibbs_distribution() {
-    use samplab::sampler::gbn;
+    use samplab::sampler::blue_noise::gbn;
     // two points on a circle: their gap d follows Langevin dynamics for E(d) = exp(-d^2 /
     // (2 sigma^2)) at temperature T, whose stationary density is exp(-E(d) / T); the share of
     // time spent at |d| < sigma against that density's, by quadrature (within 20%: the

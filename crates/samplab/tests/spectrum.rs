@@ -163,7 +163,7 @@ fn the_merge_tree_gives_the_same_bits_however_the_sets_are_split_and_matches_two
     let plan = jitter.plan(n, 2).unwrap();
     let given = sets("jitter", n, m, 11);
     let whole = spectrum::statistics(&given, res, Method::Direct).unwrap();
-    let generated = Sets::Generated { plan, seed: Seed(11), m };
+    let generated = Sets::Generated { plan: &plan, seed: Seed(11), m };
     let spectra = Spectra::new(res, 2, Method::Direct).unwrap();
     let root = tree::root_level(m);
     assert_eq!(root, 3);

@@ -2,7 +2,7 @@
 //! net properties, reference values from independent implementations, minimum distances,
 //! and batch == random access.
 
-use samplab::sampler::{self, radical};
+use samplab::sampler::{self, qmc::halton};
 use samplab::{PointSet, Seed};
 
 fn make(spec: &str, n: usize, d: usize, seed: u64) -> PointSet {
@@ -179,7 +179,7 @@ fn halton_first_points_by_hand() {
     // radical inverse in base 2 is bit reversal
     for i in 0u64..1000 {
         let rev = (i.reverse_bits() >> 11) as f64 / (1u64 << 53) as f64;
-        assert_eq!(radical::radical_inverse(i, 2), rev);
+        assert_eq!(halton::radical_inverse(i, 2), rev);
     }
 }
 
@@ -189,11 +189,11 @@ fn batch_equals_random_access() {
         for suffix in ["", ".xor", ".owen", ".shift"] {
             // random access reached from the registry
             let s = sampler::build(&format!("{family}{suffix}")).unwrap();
-            let seq = s.as_sequence().unwrap_or_else(|| panic!("{family}{suffix} has no random access"));
             // each walk the fill has (one to three dimensions, more), whole blocks and a tail
             for (n, dims) in [(300, 5), (64, 1), (64, 2), (77, 2), (301, 3)] {
                 let p = s.generate(n, dims, Seed(42)).unwrap();
-                let access = seq.access(dims, Seed(42)).unwrap();
+                let plan = s.plan(n, dims).unwrap();
+                let access = plan.access(Seed(42)).unwrap_or_else(|| panic!("{family}{suffix} has no random access"));
                 for i in 0..n {
                     for d in 0..dims {
                         assert_eq!(
@@ -207,14 +207,16 @@ fn batch_equals_random_access() {
             }
         }
     }
-    assert!(sampler::build("jitter").unwrap().as_sequence().is_none());
+    assert!(sampler::build("jitter").unwrap().plan(4, 2).unwrap().access(Seed(1)).is_none());
 }
 
 #[test]
 fn random_access_refuses_indices_beyond_the_tables() {
     // the old random access cast the index to u32: point 2^32 + 5 came back as point 5
     let s = sampler::build("sobol.owen").unwrap();
-    let access = s.as_sequence().unwrap().access(2, Seed(1)).unwrap();
+    let planned = s.plan(1, 2).unwrap();
+
+    let access = planned.access(Seed(1)).unwrap();
     let last = access.sample((1 << 32) - 1, 1).unwrap();
     assert!((0.0..1.0).contains(&last));
     let e = access.sample((1 << 32) + 5, 1).unwrap_err().to_string();
@@ -222,7 +224,9 @@ fn random_access_refuses_indices_beyond_the_tables() {
     // Halton's digit tables hold 53 bits: beyond, an error (it used to index past them)
     for spec in ["halton", "halton.xor", "halton.owen", "halton.shift"] {
         let h = sampler::build(spec).unwrap();
-        let access = h.as_sequence().unwrap().access(2, Seed(1)).unwrap();
+        let planned = h.plan(1, 2).unwrap();
+
+        let access = planned.access(Seed(1)).unwrap();
         for dim in 0..2 {
             assert!((0.0..1.0).contains(&access.sample((1 << 53) - 1, dim).unwrap()), "{spec}");
             let e = access.sample(u64::MAX, dim).unwrap_err().to_string();

@@ -243,7 +243,7 @@ const TWO_PI2: f64 = 2.0 * std::f64::consts::PI * std::f64::consts::PI;
 /// sum_h e^(2 pi i h t) / max(1, |h|)^2 = 1 + 2 pi^2 B_2({t}), is
 /// -1 + (1/N^2) sum_ij prod_k (1 + 2 pi^2 B_2(|x_ik - x_jk|)), B_2(t) = t^2 - t + 1/6
 /// (even and 1-periodic, so |t| stands for {t}). Toroidal-shift invariant; for a rank-1
-/// lattice it equals the worst-case error P_2 (`sampler::lattice::p2`).
+/// lattice it equals the worst-case error P_2 (`sampler::qmc::lattice::p2`).
 pub const DIAPHONY: Form = form! {
     base: 1.0,
     sign: -1.0,

@@ -15,7 +15,7 @@ use crate::seed::{Rng, Seed, uniform};
 use crate::spec::{Default, Kind, ParamSpec, Params};
 
 mod delaunay;
-pub mod quadrature;
+use crate::numeric::quadrature;
 
 pub use delaunay::Delaunay;
 
@@ -308,7 +308,7 @@ impl Entry for IntegrandEntry {
 pub static INTEGRANDS: Registry<IntegrandEntry> = Registry::new(
     "integrand",
     "INTEGRANDS  (exact integrals; random families draw instance k from a hashed seed)",
-    &[FAMILIES],
+    &[&[FAMILIES]],
 );
 
 const fn auto(name: &'static str, min: f64, max: f64, how: &'static str, doc: &'static str) -> ParamSpec {
@@ -338,6 +338,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             summary: "Subr & Kautz test case I: 0 inside a random quad with one vertex on each side, 1 outside",
             params: &[],
             references: &["subr2013"],
+            terse: false,
         },
         dims: 2,
         build: |_, rng| Ok(Box::new(Quad::random(rng))),
@@ -349,6 +350,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             summary: "Subr & Kautz test case II: piecewise constant over a Delaunay triangulation of sparse random points and the corners",
             params: &[DELAUNAY_POINTS],
             references: &["subr2013"],
+            terse: false,
         },
         dims: 2,
         build: |p, rng| Ok(Box::new(Delaunay::random(p.int("points") as usize, false, rng)?)),
@@ -360,6 +362,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             summary: "Subr & Kautz test case III: piecewise linear over a Delaunay triangulation, random weights per vertex",
             params: &[DELAUNAY_POINTS],
             references: &["subr2013"],
+            terse: false,
         },
         dims: 2,
         build: |p, rng| Ok(Box::new(Delaunay::random(p.int("points") as usize, true, rng)?)),
@@ -376,6 +379,7 @@ static FAMILIES: &[IntegrandEntry] = &[
                 doc: "chirp rate, radians per unit r^2",
             }],
             references: &["subr2013"],
+            terse: false,
         },
         dims: 2,
         build: |p, _| Ok(Box::new(ZonePlate { a: p.real("a") })),
@@ -401,6 +405,7 @@ static FAMILIES: &[IntegrandEntry] = &[
                 auto("phase", 0.0, std::f64::consts::TAU, "uniform", "phase, radians"),
             ],
             references: &["subr2013"],
+            terse: false,
         },
         dims: 2,
         build: |p, rng| {
@@ -425,6 +430,7 @@ static FAMILIES: &[IntegrandEntry] = &[
                 auto("cy", 0.0, 1.0, "random, keeping the disk inside the square", "centre y"),
             ],
             references: &["sbert2006"],
+            terse: false,
         },
         dims: 2,
         build: |p, rng| {
@@ -451,6 +457,7 @@ static FAMILIES: &[IntegrandEntry] = &[
                 auto("y", 0.0, 1.0, "uniform", "a point on the line, y"),
             ],
             references: &["sbert2006"],
+            terse: false,
         },
         dims: 2,
         build: |p, rng| {
@@ -475,6 +482,7 @@ static FAMILIES: &[IntegrandEntry] = &[
                 auto("cy", 0.0, 1.0, "uniform", "centre y"),
             ],
             references: &[],
+            terse: false,
         },
         dims: 2,
         build: |p, rng| {
@@ -491,6 +499,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             summary: "smooth non-periodic exp(a x + b y), a and b uniform in [0.5, 2]",
             params: &[],
             references: &[],
+            terse: false,
         },
         dims: 2,
         build: |_, rng| Ok(Box::new(Smooth { a: 0.5 + 1.5 * uniform(rng), b: 0.5 + 1.5 * uniform(rng) })),
@@ -502,6 +511,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             summary: "1D visibility H(y - y0): one discontinuity (Ramamoorthi et al. eq. 5)",
             params: &[auto("y0", 0.0, 1.0, "uniform", "discontinuity")],
             references: &["ramamoorthi2012"],
+            terse: false,
         },
         dims: 1,
         build: |p, rng| Ok(Box::new(Visibility { edges: vec![or_random(p, "y0", rng, 0.0, 1.0)], start: 0.0 })),
@@ -516,6 +526,7 @@ static FAMILIES: &[IntegrandEntry] = &[
                 auto("z0", 0.0, 1.0, "the larger", "second discontinuity"),
             ],
             references: &["ramamoorthi2012"],
+            terse: false,
         },
         dims: 1,
         build: |p, rng| {
@@ -547,6 +558,7 @@ static FAMILIES: &[IntegrandEntry] = &[
                 doc: "number of discontinuities",
             }],
             references: &["ramamoorthi2012"],
+            terse: false,
         },
         dims: 1,
         build: |p, rng| {

@@ -57,7 +57,7 @@ impl Entry for FormatEntry {
 }
 
 /// Every format, for `--format` and `samplab list formats`.
-pub static FORMATS: Registry<FormatEntry> = Registry::new("format", "FORMATS", &[FORMAT_ENTRIES]);
+pub static FORMATS: Registry<FormatEntry> = Registry::new("format", "FORMATS", &[&[FORMAT_ENTRIES]]);
 
 static FORMAT_ENTRIES: &[FormatEntry] = &[
     FormatEntry {

@@ -6,9 +6,12 @@
 //! - [`Plan::generate_sets`] (or [`Plan::stack`], in one buffer): `m` independent
 //!   realizations in parallel, realization `k` seeded with `seed.derive(k)`, identical
 //!   whatever the thread count;
-//! - [`Sequence::access`]: random access to coordinate `dim` of point `index` (for the
-//!   progressive sequences: Halton, Sobol'), tables built once; it equals the batch bit for
-//!   bit.
+//! - [`Plan::access`]: random access to coordinate `dim` of point `index` (for the
+//!   progressive sequences: Halton, Sobol', nets, the lattice sequence), from the same
+//!   prepared tables; it equals the batch bit for bit.
+//!
+//! The [`Plan`] owns everything prepared before a seed is known ([`Sampler::prepare`]:
+//! generating vectors, matrices, digit tables): no sampler keeps a process-wide cache.
 //!
 //! ```
 //! use samplab::{Seed, progress::Progress, sampler};
@@ -16,7 +19,7 @@
 //! let plan = s.plan(1024, 3)?;
 //! let sets = plan.generate_sets(Seed(7), 4, &Progress::SILENT)?;
 //! assert_eq!(sets[1], plan.generate(Seed(7).derive(1))?);
-//! let access = s.as_sequence().expect("Sobol' has random access").access(3, Seed(7))?;
+//! let access = plan.access(Seed(7)).expect("Sobol' has random access");
 //! assert_eq!(access.sample(5, 2)?, plan.generate(Seed(7))?.point(5)[2]);
 //! # Ok::<(), samplab::Error>(())
 //! ```
@@ -34,92 +37,126 @@ use crate::points::PointSet;
 use crate::progress::Progress;
 use crate::seed::Seed;
 
-pub mod cbc;
+pub mod blue_noise;
+pub mod qmc;
+pub mod random;
+pub mod randomize;
 pub mod registry;
-pub mod scramble;
+pub mod stratified;
 
-crate::registry::registry_files! {
-    /// Every sampler, in listing order, gathered from the files that declare them.
-    pub static SAMPLERS: Registry<SamplerEntry> =
-        ("sampler", "SAMPLERS  (spec: name[:key=value,...] or name[:value,...] in the order listed; \
-                     +micro-jitter[:fraction=F] after any spec micro-jitters its points)")
-        from [random, grid, nrooks, poisson, elimination, lloyd, ccvt, sot, gbn, heck, pmj, force_matrix, sobol, radical, net, kronecker, lattice, micro_jitter];
-}
+/// Every sampler, in listing order: random, then the families' files in their folders'
+/// order.
+pub static SAMPLERS: crate::registry::Registry<SamplerEntry> = crate::registry::Registry::new(
+    "sampler",
+    "SAMPLERS  (spec: name[:key=value,...] or name[:value,...] in the order listed; \
+     +micro-jitter[:fraction=F] after any spec micro-jitters its points)",
+    &[&[random::ENTRIES], stratified::FILES, blue_noise::FILES, qmc::FILES, randomize::FILES],
+);
 
+pub use randomize::scramble::Randomization;
 pub use registry::{SamplerEntry, build};
-pub use scramble::Randomization;
 
 /// The largest point count samplab will allocate for one set (2^32 points).
 pub const MAX_POINTS: usize = 1 << 32;
 
-mod sealed {
-    use crate::error::Result;
-    use crate::progress::Progress;
-    use crate::seed::Seed;
+/// The count and dimension a plan was checked for. Only `plan` (on `dyn Sampler`) makes
+/// one, so [`Sampler::prepare`], which takes it, is reached only after every check passed:
+/// the shape is the token that keeps the checks, for samplers written outside samplab too.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shape {
+    n: usize,
+    dims: usize,
+}
 
-    /// What every sampler implements inside samplab: its count rule and its filling. Reached
-    /// from outside only through a checked [`super::Plan`] (the trait is not nameable
-    /// outside the crate, so the unchecked entry points are not public).
-    pub trait Fill {
-        /// Whether exactly `n` points can be made in `dims` dimensions (the dimension is
-        /// already checked); a count the method cannot make is an error naming the nearest
-        /// counts that work (never rounded).
-        fn check_count(&self, _n: usize, _dims: usize) -> Result<()> {
-            Ok(())
-        }
+impl Shape {
+    /// Points per set.
+    pub fn n(&self) -> usize {
+        self.n
+    }
 
-        /// Write `n` points of `dims` coordinates into `out` (length `n * dims`), row-major.
-        /// Called only by a [`super::Plan`], after every check passed. Every sampler
-        /// implements this or [`Fill::fill_reporting`] (the optimizers), each defined by the
-        /// other.
-        fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-            self.fill_reporting(n, dims, seed, out, &Progress::SILENT)
-        }
-
-        /// The units of progress one set reports: an optimizer's iterations, 1 otherwise.
-        fn units(&self) -> u64 {
-            1
-        }
-
-        /// [`Fill::fill`], advancing `progress` by [`Fill::units`] in all: the optimizers
-        /// once per iteration, stopping between iterations when `progress` says so.
-        fn fill_reporting(
-            &self,
-            n: usize,
-            dims: usize,
-            seed: Seed,
-            out: &mut [f64],
-            progress: &Progress,
-        ) -> Result<()> {
-            self.fill(n, dims, seed, out)?;
-            progress.advance(self.units())
-        }
+    /// Dimensions.
+    pub fn dims(&self) -> usize {
+        self.dims
     }
 }
 
-pub(crate) use sealed::Fill;
-
 /// A sampling strategy: an immutable value; randomness comes from the seed. Make points by
-/// planning first (`plan` on `dyn Sampler`: every check, once), then filling from
-/// seeds, as often as needed.
-pub trait Sampler: Fill + Send + Sync + Debug {
+/// planning first (`plan` on `dyn Sampler`: every check, then [`Sampler::prepare`], once),
+/// then filling from seeds, as often as needed.
+///
+/// The trait is open: a sampler written outside samplab implements `spec`, `dims` and
+/// `prepare` (and `check_count` when not every count works), and is then planned, measured
+/// and integrated like a built-in one:
+///
+/// ```
+/// use std::ops::RangeInclusive;
+/// use samplab::discrepancy::{self, Limits, Metric};
+/// use samplab::sampler::{self, Prepared, Sampler, Shape};
+/// use samplab::spectrum::{self, Method};
+/// use samplab::{Result, Seed, progress::Progress};
+///
+/// /// A 2D Korobov lattice with a fixed multiplier a, its points centred in their columns:
+/// /// point i at ((i + 1/2) / n, frac(a (i + 1/2) / n)).
+/// #[derive(Debug)]
+/// struct Centred {
+///     a: u64,
+/// }
+///
+/// impl Sampler for Centred {
+///     fn spec(&self) -> String {
+///         format!("centred:a={}", self.a)
+///     }
+///     fn dims(&self) -> RangeInclusive<usize> {
+///         2..=2
+///     }
+///     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+///         let n = shape.n() as f64;
+///         Ok(sampler::from_fill(move |_seed, out| {
+///             for (i, p) in out.chunks_exact_mut(2).enumerate() {
+///                 let x = (i as f64 + 0.5) / n;
+///                 p[0] = x;
+///                 p[1] = (self.a as f64 * x).fract();
+///             }
+///             Ok(())
+///         }))
+///     }
+/// }
+///
+/// let mine: Box<dyn Sampler> = Box::new(Centred { a: 13 });
+/// assert!(mine.plan(64, 3).is_err()); // the dimension check holds for it too
+/// let plan = mine.plan(64, 2)?;
+/// let points = plan.generate(Seed(1))?;
+/// let star = discrepancy::compute(&Metric::parse("star")?, &points, Limits::default())?;
+/// assert!(star > 0.0 && star < 0.2, "{star}");
+/// let sets = plan.generate_sets(Seed(1), 2, &Progress::SILENT)?;
+/// let st = spectrum::statistics(&sets, 16, Method::Direct)?;
+/// assert!((st.periodogram[8 * 16 + 8] - 1.0).abs() < 1e-12); // the DC of a set is 1
+/// # Ok::<(), samplab::Error>(())
+/// ```
+pub trait Sampler: Send + Sync + Debug {
     /// The canonical spec (name and parameters), for messages and headers.
     fn spec(&self) -> String;
 
     /// The dimensions this method supports.
     fn dims(&self) -> RangeInclusive<usize>;
 
-    /// Random access to the points, for the progressive sequences (Sobol', Halton).
-    fn as_sequence(&self) -> Option<&dyn Sequence> {
-        None
+    /// Whether exactly `n` points can be made in `dims` dimensions (the dimension is
+    /// already checked); a count the method cannot make is an error naming the nearest
+    /// counts that work (never rounded).
+    ///
+    /// # Errors
+    /// [`Error::InvalidCount`] for a count the method cannot make.
+    fn check_count(&self, _n: usize, _dims: usize) -> Result<()> {
+        Ok(())
     }
 
-    /// The points of one set made chunk by chunk (for sets larger than memory), where the
-    /// method can: the same numbers [`Plan::fill`] writes for `seed`. The progressive
-    /// sequences stream through their random access ([`Plan::stream`]); others say here.
-    fn stream(&self, _dims: usize, _seed: Seed) -> Option<Box<dyn Stream>> {
-        None
-    }
+    /// Everything a set of `shape` needs before any seed is known (generating vectors,
+    /// matrices, digit tables), built once; the [`Plan`] owns it, and every fill, stream
+    /// and random access reads it. Called only by `plan`, after the checks.
+    ///
+    /// # Errors
+    /// Tables that cannot be built (a construction that fails for this count).
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>>;
 
     /// The closed form of the variance of the spectrum of `n` points in `dims` dimensions,
     /// where one is known (Gaussian and box jitter: Subr & Kautz 2013 eqs. 9 and 11 in their
@@ -129,8 +166,100 @@ pub trait Sampler: Fill + Send + Sync + Debug {
     }
 }
 
+/// A built-in construction: a [`Sampler`] without its name. The registry gives it one: a
+/// spec resolves to an entry and its parameters, and [`registry::Registered`] wraps the
+/// construction the entry builds with them, deriving its spec from both (so no
+/// construction prints or stores its own name). A construction's errors leave the
+/// sampler's name empty; the registered sampler fills it in.
+pub(crate) trait Construction: Send + Sync + Debug {
+    /// As [`Sampler::dims`].
+    fn dims(&self) -> RangeInclusive<usize>;
+
+    /// As [`Sampler::check_count`].
+    fn check_count(&self, _n: usize, _dims: usize) -> Result<()> {
+        Ok(())
+    }
+
+    /// As [`Sampler::prepare`].
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>>;
+
+    /// As [`Sampler::spectrum_theory`].
+    fn spectrum_theory(&self, _n: usize, _dims: usize) -> Option<crate::spectrum::theory::VarianceTheory> {
+        None
+    }
+}
+
+/// A sampler prepared for one [`Shape`] ([`Sampler::prepare`]): it fills sets from seeds,
+/// and, for the progressive sequences, gives random access and streams.
+pub trait Prepared: Send + Sync {
+    /// Write the set for `seed` into `out` (length `n * dims`, row-major), advancing
+    /// `progress` by [`Prepared::units`] in all (an optimizer once per iteration, stopping
+    /// between iterations when `progress` says so).
+    ///
+    /// # Errors
+    /// A construction that fails for this seed ([`Error::Infeasible`]), or a stop.
+    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()>;
+
+    /// The units of progress one set reports: an optimizer's iterations, 1 otherwise.
+    fn units(&self) -> u64 {
+        1
+    }
+
+    /// Random access to coordinate `dim` of point `index` for `seed` (the progressive
+    /// sequences: Halton, Sobol', nets, the lattice sequence), equal bit for bit to the
+    /// batch; `None` for the other samplers.
+    fn access(&self, _seed: Seed) -> Option<Box<dyn Access + '_>> {
+        None
+    }
+
+    /// The set for `seed` made chunk by chunk, for a sampler without random access that can
+    /// (random); the sequences stream through [`Prepared::access`].
+    fn stream(&self, _seed: Seed) -> Option<Box<dyn Stream + '_>> {
+        None
+    }
+}
+
+/// The prepared state of a sampler that needs no tables: `fill(seed, out)` writes one set
+/// (`out` holds n x dims coordinates, row-major); one unit of progress per set.
+pub fn from_fill<'s>(fill: impl Fn(Seed, &mut [f64]) -> Result<()> + Send + Sync + 's) -> Box<dyn Prepared + 's> {
+    Box::new(FromFill(fill))
+}
+
+/// The prepared state of an optimizer without tables: `units` units of progress per set,
+/// which `fill(seed, out, progress)` reports itself (once per iteration).
+pub fn from_fill_reporting<'s>(
+    units: u64,
+    fill: impl Fn(Seed, &mut [f64], &Progress) -> Result<()> + Send + Sync + 's,
+) -> Box<dyn Prepared + 's> {
+    Box::new(FromFillReporting { units, fill })
+}
+
+struct FromFill<F>(F);
+
+impl<F: Fn(Seed, &mut [f64]) -> Result<()> + Send + Sync> Prepared for FromFill<F> {
+    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        (self.0)(seed, out)?;
+        progress.advance(1)
+    }
+}
+
+struct FromFillReporting<F> {
+    units: u64,
+    fill: F,
+}
+
+impl<F: Fn(Seed, &mut [f64], &Progress) -> Result<()> + Send + Sync> Prepared for FromFillReporting<F> {
+    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        (self.fill)(seed, out, progress)
+    }
+    fn units(&self) -> u64 {
+        self.units
+    }
+}
+
 impl<'s> dyn Sampler + 's {
-    /// Check that `n` points in `dims` dimensions can be made, and prepare to make them.
+    /// Check that `n` points in `dims` dimensions can be made, and prepare to make them
+    /// ([`Sampler::prepare`]: every table built here, once).
     ///
     /// # Errors
     /// An unsupported dimension ([`Error::InvalidDims`]), a count the method cannot make
@@ -165,7 +294,8 @@ impl<'s> dyn Sampler + 's {
             });
         }
         self.check_count(n, dims)?;
-        Ok(Plan { sampler: self, n, dims })
+        let shape = Shape { n, dims };
+        Ok(Plan { sampler: self, shape, prepared: self.prepare(shape)? })
     }
 
     /// `n` points in [0,1)^dims for `seed`: `plan`, then [`Plan::generate`].
@@ -177,23 +307,29 @@ impl<'s> dyn Sampler + 's {
     }
 }
 
-/// A sampler checked for one count and dimension: fill it from as many seeds as needed.
-#[derive(Debug, Clone, Copy)]
+/// A sampler checked for one count and dimension, with its prepared tables: fill it from as
+/// many seeds as needed.
 pub struct Plan<'s> {
     sampler: &'s dyn Sampler,
-    n: usize,
-    dims: usize,
+    shape: Shape,
+    prepared: Box<dyn Prepared + 's>,
+}
+
+impl Debug for Plan<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Plan({}, n = {}, d = {})", self.sampler.spec(), self.shape.n, self.shape.dims)
+    }
 }
 
 impl<'s> Plan<'s> {
     /// Points per set.
     pub fn n(&self) -> usize {
-        self.n
+        self.shape.n
     }
 
     /// Dimensions.
     pub fn dims(&self) -> usize {
-        self.dims
+        self.shape.dims
     }
 
     /// The sampler's canonical spec.
@@ -201,9 +337,8 @@ impl<'s> Plan<'s> {
         self.sampler.spec()
     }
 
-    /// Write the `n` points for `seed` into `out` (length `n * dims`, row-major), without
-    /// allocating for the grids, the sequences, random, N-rooks and the multi-jittered
-    /// patterns.
+    /// Write the `n` points for `seed` into `out` (length `n * dims`, row-major), reading
+    /// the tables built by `plan`.
     ///
     /// # Errors
     /// Only the stochastic constructions that can fail for a seed: Poisson-disk samplers
@@ -213,8 +348,13 @@ impl<'s> Plan<'s> {
     /// # Panics
     /// When `out.len() != n * dims`.
     pub fn fill(&self, seed: Seed, out: &mut [f64]) -> Result<()> {
-        assert_eq!(out.len(), self.n * self.dims, "the buffer must hold n x dims coordinates");
-        self.sampler.fill(self.n, self.dims, seed, out)
+        self.fill_reporting(seed, out, &Progress::SILENT)
+    }
+
+    /// [`Plan::fill`], advancing `progress` by [`Plan::units`].
+    fn fill_reporting(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        assert_eq!(out.len(), self.shape.n * self.shape.dims, "the buffer must hold n x dims coordinates");
+        self.prepared.fill(seed, out, progress)
     }
 
     /// The `n` points for `seed`.
@@ -227,15 +367,15 @@ impl<'s> Plan<'s> {
 
     /// [`Plan::generate`], advancing `progress` by [`Plan::units`].
     fn generate_reporting(&self, seed: Seed, progress: &Progress) -> Result<PointSet> {
-        let mut data = crate::memory::zeroed(|| self.describe(1), self.n * self.dims)?;
-        self.sampler.fill_reporting(self.n, self.dims, seed, &mut data, progress)?;
-        Ok(PointSet::from_raw(self.dims, data))
+        let mut data = crate::memory::zeroed(|| self.describe(1), self.shape.n * self.shape.dims)?;
+        self.fill_reporting(seed, &mut data, progress)?;
+        Ok(PointSet::from_raw(self.shape.dims, data))
     }
 
     /// The units of progress one set reports ([`Plan::generate_sets`], [`Plan::stack`]): an
     /// optimizer's iterations, 1 for the other samplers.
     pub fn units(&self) -> u64 {
-        self.sampler.units()
+        self.prepared.units()
     }
 
     /// `m` realizations in parallel; realization k uses `seed.derive(k)`, so the sets are
@@ -246,7 +386,7 @@ impl<'s> Plan<'s> {
     /// [`Error::Memory`] before any work when the sets do not fit, a stop
     /// ([`Error::Interrupted`]), or as [`Plan::fill`] (the first failing realization's).
     pub fn generate_sets(&self, seed: Seed, m: usize, progress: &Progress) -> Result<Vec<PointSet>> {
-        crate::memory::check(|| self.describe(m), 8 * m as u128 * (self.n * self.dims) as u128)?;
+        crate::memory::check(|| self.describe(m), 8 * m as u128 * (self.shape.n * self.shape.dims) as u128)?;
         (0..m as u64)
             .into_par_iter()
             .map(|k| {
@@ -256,26 +396,27 @@ impl<'s> Plan<'s> {
             .collect()
     }
 
+    /// Random access to the points for `seed` (the progressive sequences; `None` for the
+    /// others): coordinate `dim` of point `index`, equal bit for bit to [`Plan::generate`]
+    /// for the indices below n, and on past n as far as the sequence goes.
+    pub fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
+        self.prepared.access(seed)
+    }
+
     /// The set for `seed` made chunk by chunk, equal to [`Plan::generate`]`(seed)`, for the
     /// samplers that can (the sequences, random); `None` for the others.
-    ///
-    /// # Errors
-    /// A sequence's tables that cannot be built.
-    pub fn stream(&self, seed: Seed) -> Result<Option<Box<dyn Stream + 's>>> {
-        match self.sampler.as_sequence() {
-            Some(sequence) => {
-                let access = sequence.access(self.dims, seed)?;
-                Ok(Some(Box::new(Indexed { access, dims: self.dims, index: 0 })))
-            }
-            None => Ok(self.sampler.stream(self.dims, seed)),
+    pub fn stream(&self, seed: Seed) -> Option<Box<dyn Stream + '_>> {
+        match self.prepared.access(seed) {
+            Some(access) => Some(Box::new(Indexed { access, dims: self.shape.dims, index: 0 })),
+            None => self.prepared.stream(seed),
         }
     }
 
     /// `m sets of n dD points` (`n dD points` for one set), for messages.
     fn describe(&self, m: usize) -> String {
         match m {
-            1 => format!("{} {}D points", self.n, self.dims),
-            m => format!("{m} sets of {} {}D points", self.n, self.dims),
+            1 => format!("{} {}D points", self.shape.n, self.shape.dims),
+            m => format!("{m} sets of {} {}D points", self.shape.n, self.shape.dims),
         }
     }
 
@@ -288,12 +429,14 @@ impl<'s> Plan<'s> {
     /// [`Error::Memory`] before any work when the buffer does not fit, a stop
     /// ([`Error::Interrupted`]), or as [`Plan::fill`].
     pub fn stack(&self, seed: Seed, sets: std::ops::Range<u64>, progress: &Progress) -> Result<Vec<f64>> {
-        let (size, m) =
-            (self.n * self.dims, usize::try_from(sets.end.saturating_sub(sets.start)).unwrap_or(usize::MAX));
+        let (size, m) = (
+            self.shape.n * self.shape.dims,
+            usize::try_from(sets.end.saturating_sub(sets.start)).unwrap_or(usize::MAX),
+        );
         let mut out = crate::memory::zeroed(|| self.describe(m), m.saturating_mul(size))?;
         out.par_chunks_mut(size).enumerate().try_for_each(|(j, set)| {
             progress.check()?;
-            self.sampler.fill_reporting(self.n, self.dims, seed.derive(sets.start + j as u64), set, progress)
+            self.fill_reporting(seed.derive(sets.start + j as u64), set, progress)
         })?;
         Ok(out)
     }
@@ -327,17 +470,7 @@ impl Stream for Indexed<'_> {
     }
 }
 
-/// Random access to a progressive sequence (Sobol', Halton): coordinate `dim` of point
-/// `index`, equal bit for bit to the batch.
-pub trait Sequence: Sampler {
-    /// Random access for `dims` dimensions and `seed`, with its tables built once.
-    ///
-    /// # Errors
-    /// An unsupported dimension.
-    fn access(&self, dims: usize, seed: Seed) -> Result<Box<dyn Access + '_>>;
-}
-
-/// A prepared random access to a sequence ([`Sequence::access`]).
+/// Random access to a progressive sequence for one seed ([`Plan::access`]).
 pub trait Access: Send + Sync + Debug {
     /// Coordinate `dim` of point `index`, in [0, 1).
     ///

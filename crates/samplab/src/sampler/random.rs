@@ -3,8 +3,9 @@
 use std::ops::RangeInclusive;
 
 use super::registry::{ANY, SamplerEntry};
-use super::{Fill, Sampler, Stream};
+use super::{Construction, Prepared, Shape, Stream};
 use crate::error::Result;
+use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Rng, Seed, uniform};
 
@@ -12,32 +13,39 @@ use crate::seed::{Rng, Seed, uniform};
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Random;
 
-impl Sampler for Random {
-    fn spec(&self) -> String {
-        "random".into()
-    }
+impl Construction for Random {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=usize::MAX
     }
-    fn stream(&self, _dims: usize, seed: Seed) -> Option<Box<dyn Stream>> {
+    fn prepare(&self, _shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(Box::new(Random))
+    }
+}
+
+impl Random {
+    /// Fill `out` with independent uniform draws for `seed`.
+    pub(crate) fn draw(seed: Seed, out: &mut [f64]) {
+        let mut rng = seed.rng();
+        out.iter_mut().for_each(|x| *x = uniform(&mut rng));
+    }
+}
+
+impl Prepared for Random {
+    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        Random::draw(seed, out);
+        progress.advance(1)
+    }
+    fn stream(&self, seed: Seed) -> Option<Box<dyn Stream + '_>> {
         Some(Box::new(Draws(seed.rng())))
     }
 }
 
-/// The draws of [`Random::fill`], continued chunk after chunk.
+/// The draws of a random set, continued chunk after chunk.
 struct Draws(Rng);
 
 impl Stream for Draws {
     fn next(&mut self, out: &mut [f64]) -> Result<()> {
         out.iter_mut().for_each(|x| *x = uniform(&mut self.0));
-        Ok(())
-    }
-}
-
-impl Fill for Random {
-    fn fill(&self, _n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let mut rng = seed.rng();
-        out.iter_mut().for_each(|x| *x = uniform(&mut rng));
         Ok(())
     }
 }

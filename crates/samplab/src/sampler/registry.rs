@@ -3,10 +3,15 @@
 //! beside its code, and [`SAMPLERS`] lists those files, one line each. `samplab list`,
 //! `--help` and the conformance tests are generated from it.
 
-use super::{SAMPLERS, Sampler};
-use crate::error::Result;
-use crate::registry::{About, Entry};
+use std::ops::RangeInclusive;
+
+use super::{Access, Construction, Prepared, SAMPLERS, Sampler, Shape, Stream};
+use crate::error::{Error, Result};
+use crate::progress::Progress;
+use crate::registry::{About, Entry, canonical};
+use crate::seed::Seed;
 use crate::spec::{Default, Kind, ParamSpec, Params};
+use crate::spectrum::theory::VarianceTheory;
 
 /// One registered sampler.
 #[derive(Debug)]
@@ -17,8 +22,9 @@ pub struct SamplerEntry {
     pub counts: &'static str,
     /// Supported dimensions, in words.
     pub dims: &'static str,
-    /// Builds the sampler from resolved parameters.
-    pub(crate) build: fn(&Params) -> Result<Box<dyn Sampler>>,
+    /// Builds the construction from resolved parameters (recording there what it chose
+    /// for an `auto` one, where its spec names the choice).
+    pub(crate) build: fn(&mut Params) -> Result<Box<dyn Construction>>,
 }
 
 impl Entry for SamplerEntry {
@@ -35,8 +41,99 @@ impl SamplerEntry {
     ///
     /// # Errors
     /// Parameters that are valid one by one but not together.
-    pub fn build(&self, params: &Params) -> Result<Box<dyn Sampler>> {
-        (self.build)(params)
+    pub fn build(&'static self, params: &Params) -> Result<Box<dyn Sampler>> {
+        let mut params = params.clone();
+        let construction = (self.build)(&mut params)?;
+        Ok(Box::new(Registered { entry: self, params, construction, on: None }))
+    }
+}
+
+/// A registered sampler: the construction its entry built, with the entry and the
+/// parameters it was built from, which give it its spec ([`canonical`]).
+#[derive(Debug)]
+pub struct Registered {
+    entry: &'static SamplerEntry,
+    params: Params,
+    construction: Box<dyn Construction>,
+    /// For a stage written after another spec (`kronecker+micro-jitter`): that spec.
+    on: Option<String>,
+}
+
+impl Registered {
+    /// The stage `entry` with `params` (its `construction`) applied to the sampler of spec
+    /// `on`: its spec is `on+stage`.
+    pub(crate) fn stage(
+        entry: &'static SamplerEntry,
+        params: Params,
+        construction: Box<dyn Construction>,
+        on: String,
+    ) -> Self {
+        Registered { entry, params, construction, on: Some(on) }
+    }
+
+    /// The registry entry this sampler was built from.
+    pub fn entry(&self) -> &'static SamplerEntry {
+        self.entry
+    }
+
+    /// The parameters it was built with (an `auto` one resolved where the spec names it).
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+}
+
+/// `e` with the sampler's name filled in where the construction left it empty.
+pub(crate) fn labelled(e: Error, spec: impl FnOnce() -> String) -> Error {
+    match e {
+        Error::InvalidCount { sampler, n, dims, reason } if sampler.is_empty() => {
+            Error::InvalidCount { sampler: spec(), n, dims, reason }
+        }
+        Error::Infeasible { sampler, reason } if sampler.is_empty() => Error::Infeasible { sampler: spec(), reason },
+        other => other,
+    }
+}
+
+impl Sampler for Registered {
+    fn spec(&self) -> String {
+        let own = canonical(&self.entry.about, &self.params);
+        match &self.on {
+            Some(on) => format!("{on}+{own}"),
+            None => own,
+        }
+    }
+    fn dims(&self) -> RangeInclusive<usize> {
+        self.construction.dims()
+    }
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        self.construction.check_count(n, dims).map_err(|e| labelled(e, || self.spec()))
+    }
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        let inner = self.construction.prepare(shape).map_err(|e| labelled(e, || self.spec()))?;
+        Ok(Box::new(Labelled { inner, spec: self.spec() }))
+    }
+    fn spectrum_theory(&self, n: usize, dims: usize) -> Option<VarianceTheory> {
+        self.construction.spectrum_theory(n, dims)
+    }
+}
+
+/// A construction's prepared state whose errors name the sampler.
+struct Labelled<'a> {
+    inner: Box<dyn Prepared + 'a>,
+    spec: String,
+}
+
+impl Prepared for Labelled<'_> {
+    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        self.inner.fill(seed, out, progress).map_err(|e| labelled(e, || self.spec.clone()))
+    }
+    fn units(&self) -> u64 {
+        self.inner.units()
+    }
+    fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
+        self.inner.access(seed)
+    }
+    fn stream(&self, seed: Seed) -> Option<Box<dyn Stream + '_>> {
+        self.inner.stream(seed)
     }
 }
 
@@ -103,8 +200,8 @@ pub(crate) use randomized_entries;
 /// assert!(samplab::sampler::build("jitter.gaussian:sigma=-1").is_err());
 /// ```
 pub fn build(spec: &str) -> Result<Box<dyn Sampler>> {
-    if let Some((inner, post)) = super::micro_jitter::split(spec) {
-        return super::micro_jitter::over(build(inner)?, post);
+    if let Some((inner, post)) = super::randomize::micro_jitter::split(spec) {
+        return super::randomize::micro_jitter::over(build(inner)?, post);
     }
     let (entry, params) = SAMPLERS.resolve(spec)?;
     entry.build(&params)

@@ -19,7 +19,7 @@ use rustfft::num_complex::Complex as C64;
 
 use super::Complex;
 use crate::error::{Error, Result};
-use crate::integrand::quadrature::gauss_legendre;
+use crate::numeric::quadrature::gauss_legendre;
 use crate::points::PointSet;
 
 /// A planned transform for one resolution and tolerance (reusable across sets).

@@ -109,7 +109,7 @@ pub fn pattern_points(pattern: Pattern, pixels: usize, n: usize, seed: Seed) -> 
                 Pattern::UniformJitter => shared,
                 Pattern::Stratified => uniform(&mut rng),
             };
-            data.extend([x, ((k as f64 + offset) / n as f64).min(crate::sampler::grid::BELOW_ONE)]);
+            data.extend([x, ((k as f64 + offset) / n as f64).min(crate::numeric::BELOW_ONE)]);
         }
     }
     PointSet::new(2, data).expect("finite coordinates")

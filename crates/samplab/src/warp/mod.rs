@@ -369,7 +369,7 @@ impl Entry for WarpEntry {
 
 /// Every registered warp.
 pub static WARPS: Registry<WarpEntry> =
-    Registry::new("warp", "WARPS  (forward map, density and inverse)", &[WARP_ENTRIES]);
+    Registry::new("warp", "WARPS  (forward map, density and inverse)", &[&[WARP_ENTRIES]]);
 
 /// The warps this file declares.
 static WARP_ENTRIES: &[WarpEntry] = &[
@@ -380,6 +380,7 @@ static WARP_ENTRIES: &[WarpEntry] = &[
             summary: "square to unit disk, r = sqrt(u), phi = 2 pi v",
             params: &[],
             references: &["shirley1991"],
+            terse: false,
         },
         dims: "2 -> 2",
         warp: &PolarDisk,
@@ -391,6 +392,7 @@ static WARP_ENTRIES: &[WarpEntry] = &[
             summary: "square to unit disk, area-preserving low distortion",
             params: &[],
             references: &["shirley1997"],
+            terse: false,
         },
         dims: "2 -> 2",
         warp: &ConcentricDisk,
@@ -402,6 +404,7 @@ static WARP_ENTRIES: &[WarpEntry] = &[
             summary: "keep the points of [-1,1)^2 inside the unit disk",
             params: &[],
             references: &["shirley1991"],
+            terse: false,
         },
         dims: "2 -> 2",
         warp: &RejectDisk,
@@ -413,6 +416,7 @@ static WARP_ENTRIES: &[WarpEntry] = &[
             summary: "tent filter (1-|x|) on [-1,1] per axis, inverse CDF",
             params: &[],
             references: &["shirley1991"],
+            terse: false,
         },
         dims: "d -> d",
         warp: &Tent,
@@ -424,6 +428,7 @@ static WARP_ENTRIES: &[WarpEntry] = &[
             summary: "standard normal in the plane (Box-Muller)",
             params: &[],
             references: &[],
+            terse: false,
         },
         dims: "2 -> 2",
         warp: &Gaussian,
@@ -435,6 +440,7 @@ static WARP_ENTRIES: &[WarpEntry] = &[
             summary: "uniform directions, z >= 0",
             params: &[],
             references: &[],
+            terse: false,
         },
         dims: "2 -> 3",
         warp: &UniformHemisphere,
@@ -446,6 +452,7 @@ static WARP_ENTRIES: &[WarpEntry] = &[
             summary: "cosine-weighted directions (concentric disk lifted)",
             params: &[],
             references: &["shirley1997", "sbert2006"],
+            terse: false,
         },
         dims: "2 -> 3",
         warp: &CosineHemisphere,

@@ -10,7 +10,7 @@
 use std::f64::consts::TAU;
 use std::sync::LazyLock;
 
-use samplab::integrand::quadrature::gauss_legendre;
+use samplab::numeric::quadrature::gauss_legendre;
 use samplab::sampler;
 use samplab::stats::Summary;
 use samplab_render::scenes::GAUSSIAN_SIGMA;

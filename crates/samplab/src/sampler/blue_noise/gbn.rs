@@ -10,27 +10,15 @@
 //! grid of [`crate::spatial`]; every point's move is a sum in a fixed order, so the result
 //! does not depend on the thread count.
 //!
-//! The same energy drives `kdm`, Fattal's (2011) kernel density model: points whose sum of
-//! Gaussian kernels K (standard deviation sigma_K) should equal the uniform density, with
-//! energy int (sum_i K(x - x_i) - rho)^2 dx. On the torus the cross terms with the uniform rho
-//! are constant, so up to a constant and a factor this is the pair energy above with sigma =
-//! sqrt(2) sigma_K (K * K is a Gaussian of twice the variance). Fattal draws point sets
-//! from the Gibbs distribution exp(-E / T) by Langevin steps at temperature T: each step
-//! moves the points down the gradient, as here, and adds independent normal noise of
-//! variance 2 tau per coordinate, tau = `step` sigma^2 T the step's time (T = 0 is plain
-//! descent; large T, white noise); the last step adds none. Fattal avoids the slow relaxation
-//! of long wavelengths by a multi-scale scheme; samplab starts instead from a sample-elimination
-//! set (Yuksel 2015), whose long wavelengths are already settled. The noise is drawn per step
-//! from the seed in point order, so the result does not depend on the thread count.
+//! The same energy drives [`super::kdm`], Fattal's kernel density model.
 
 use std::ops::RangeInclusive;
 
 use rayon::prelude::*;
 
-use super::elimination::SETTLED;
-use super::random::Random;
-use super::registry::{ANY, SamplerEntry};
-use super::{Fill, Sampler};
+use crate::sampler::random::Random;
+use crate::sampler::registry::{ANY, SamplerEntry};
+use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::Result;
 use crate::progress::Progress;
 use crate::registry::About;
@@ -113,21 +101,24 @@ pub fn langevin(points: &mut [f64], dims: usize, sigma: f64, step: f64, temperat
     }
 }
 
-impl Sampler for Gbn {
-    fn spec(&self) -> String {
-        format!("gbn:iterations={},sigma={},step={}", self.iterations, self.sigma, self.step)
-    }
+impl Construction for Gbn {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=4
     }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill_reporting(self.units(), move |seed, out, progress| {
+            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+        }))
+    }
 }
 
-impl Fill for Gbn {
+impl Gbn {
     fn units(&self) -> u64 {
         self.iterations as u64
     }
     fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
-        Random.fill(n, dims, seed, out)?;
+        Random::draw(seed, out);
         let sigma = self.sigma * (n as f64).powf(-1.0 / dims as f64);
         for _ in 0..self.iterations {
             descend(out, dims, sigma, self.step);
@@ -137,49 +128,8 @@ impl Fill for Gbn {
     }
 }
 
-/// Fattal's kernel density model sampled by Langevin steps (module doc).
-#[derive(Debug, Clone, Copy)]
-pub struct Kdm {
-    iterations: usize,
-    sigma: f64,
-    temperature: f64,
-    step: f64,
-}
-
-impl Sampler for Kdm {
-    fn spec(&self) -> String {
-        format!(
-            "kdm:iterations={},sigma={},temperature={},step={}",
-            self.iterations, self.sigma, self.temperature, self.step
-        )
-    }
-    fn dims(&self) -> RangeInclusive<usize> {
-        1..=4
-    }
-}
-
-impl Fill for Kdm {
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        SETTLED.check_count(n, dims)
-    }
-    fn units(&self) -> u64 {
-        self.iterations as u64
-    }
-    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
-        SETTLED.fill(n, dims, seed, out)?;
-        // the pair energy's width: sqrt(2) times the kernel's
-        let sigma = std::f64::consts::SQRT_2 * self.sigma * (n as f64).powf(-1.0 / dims as f64);
-        let mut rng = seed.derive_str("kdm noise").rng();
-        for it in 0..self.iterations {
-            let t = if it + 1 < self.iterations { self.temperature } else { 0.0 };
-            langevin(out, dims, sigma, self.step, t, &mut rng);
-            progress.advance(1)?;
-        }
-        Ok(())
-    }
-}
-
-const STEP: ParamSpec = ParamSpec {
+/// The step of the descent (and of `kdm`'s Langevin steps).
+pub(crate) const STEP: ParamSpec = ParamSpec {
     name: "step",
     kind: Kind::Real { min: 1e-4, max: 1.0 },
     default: Default::Number(0.5),
@@ -209,40 +159,5 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
     counts: ANY,
     dims: "1..=4",
     build: |p| Ok(Box::new(Gbn { iterations: p.int("iterations") as usize, sigma: p.real("sigma"), step: p.real("step") })),
-},
-SamplerEntry {
-    about: About::new("kdm", "Fattal's kernel density model: Langevin steps on the Gaussian pair energy at a temperature, on the torus")
-        .aliases(&["fattal"])
-        .params(&[
-            ParamSpec {
-                name: "iterations",
-                kind: Kind::Int { min: 1, max: 1_000_000 },
-                default: Default::Int(100),
-                doc: "Langevin steps (the last without noise)",
-            },
-            ParamSpec {
-                name: "sigma",
-                kind: Kind::Real { min: 0.05, max: 4.0 },
-                default: Default::Number(0.35),
-                doc: "the kernels' width, in units of the mean spacing n^(-1/d)",
-            },
-            ParamSpec {
-                name: "temperature",
-                kind: Kind::Real { min: 0.0, max: 100.0 },
-                default: Default::Number(0.02),
-                doc: "the Gibbs distribution's temperature, in units of the pair energy at distance 0",
-            },
-            STEP,
-        ])
-        .cite(&["fattal2011", "yuksel2015"]),
-    counts: ANY,
-    dims: "1..=4",
-    build: |p| {
-        Ok(Box::new(Kdm {
-            iterations: p.int("iterations") as usize,
-            sigma: p.real("sigma"),
-            temperature: p.real("temperature"),
-            step: p.real("step"),
-        }))
-    },
 }];
+

@@ -11,12 +11,12 @@
 
 use std::ops::RangeInclusive;
 
-use super::poisson::{edge_is_torus, edge_word};
-use super::registry::{ANY, EDGE, SamplerEntry};
-use super::{Fill, Sampler};
+use super::poisson::edge_is_torus;
+use crate::sampler::registry::{ANY, EDGE, SamplerEntry};
+use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::registry::About;
-use super::random::Random;
+use crate::sampler::random::Random;
 use crate::seed::Seed;
 use crate::spatial::{Grid, distance2, packing_radius};
 use crate::spec::{Default, Kind, ParamSpec};
@@ -199,20 +199,15 @@ pub fn progressive(points: &[f64], dims: usize, n: usize, torus: bool) -> Result
     Ok(later)
 }
 
-impl Sampler for Elimination {
-    fn spec(&self) -> String {
-        format!("elimination:ratio={},edge={}", self.ratio, edge_word(self.torus))
-    }
+impl Construction for Elimination {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=4
     }
-}
 
-impl Fill for Elimination {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         if n as f64 * self.ratio > u32::MAX as f64 {
             return Err(Error::InvalidCount {
-                sampler: self.spec(),
+                sampler: String::new(),
                 n,
                 dims,
                 reason: format!("{} candidates exceed 2^32", (n as f64 * self.ratio).ceil()),
@@ -221,7 +216,15 @@ impl Fill for Elimination {
         Ok(())
     }
 
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    }
+}
+
+impl Elimination {
+
+
+    pub(crate) fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         if n == 0 {
             return Ok(());
         }
@@ -230,7 +233,7 @@ impl Fill for Elimination {
         // was 0.30 GB for 5 * 10^5 candidates in 2D (measured, 2026-11-26), 600 bytes each
         crate::memory::check(|| format!("elimination from {m} candidates"), m as u128 * (640 + 8 * dims as u128))?;
         let mut candidates = vec![0.0; m * dims];
-        Random.fill(m, dims, seed, &mut candidates)?;
+        Random::draw(seed, &mut candidates);
         for (p, i) in out.chunks_exact_mut(dims).zip(progressive(&candidates, dims, n, self.torus)?) {
             p.copy_from_slice(&candidates[i * dims..(i + 1) * dims]);
         }

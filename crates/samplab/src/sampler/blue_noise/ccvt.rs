@@ -11,9 +11,9 @@
 
 use std::ops::RangeInclusive;
 
-use super::random::Random;
-use super::registry::{ANY, SamplerEntry};
-use super::{Fill, Sampler};
+use crate::sampler::random::Random;
+use crate::sampler::registry::{ANY, SamplerEntry};
+use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
 use crate::registry::About;
@@ -45,10 +45,10 @@ impl State {
     /// None in practice (the random sampler's own checks).
     pub fn new(n: usize, dims: usize, capacity: usize, seed: Seed) -> Result<State> {
         let mut sites = vec![0.0; n * dims];
-        Random.fill(n, dims, seed, &mut sites)?;
+        Random::draw(seed, &mut sites);
         let m = n * capacity;
         let mut points = vec![0.0; m * dims];
-        Random.fill(m, dims, seed.derive(1), &mut points)?;
+        Random::draw(seed.derive(1), &mut points);
         // the points are independent of the sites: owning them in blocks is a random assignment
         let members = (0..n).map(|s| (s * capacity..(s + 1) * capacity).map(|k| k as u32).collect()).collect();
         Ok(State { dims, sites, points, members })
@@ -165,20 +165,15 @@ impl State {
     }
 }
 
-impl Sampler for Ccvt {
-    fn spec(&self) -> String {
-        format!("ccvt:capacity={},iterations={}", self.capacity, self.iterations)
-    }
+impl Construction for Ccvt {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=4
     }
-}
 
-impl Fill for Ccvt {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         if n.saturating_mul(self.capacity) > 1 << 28 {
             return Err(Error::InvalidCount {
-                sampler: self.spec(),
+                sampler: String::new(),
                 n,
                 dims,
                 reason: format!("{n} sites x capacity {} points exceed 2^28", self.capacity),
@@ -186,6 +181,16 @@ impl Fill for Ccvt {
         }
         Ok(())
     }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill_reporting(self.units(), move |seed, out, progress| {
+            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+        }))
+    }
+}
+
+impl Ccvt {
+
 
     fn units(&self) -> u64 {
         self.iterations as u64

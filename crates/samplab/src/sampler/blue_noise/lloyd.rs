@@ -14,13 +14,13 @@ use std::ops::RangeInclusive;
 
 use spade::{DelaunayTriangulation, HasPosition, Point2, Triangulation};
 
-use super::poisson::{edge_is_torus, edge_word};
-use super::registry::{ANY, EDGE, SamplerEntry};
-use super::{Fill, Sampler};
+use super::poisson::edge_is_torus;
+use crate::sampler::registry::{ANY, EDGE, SamplerEntry};
+use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
 use crate::registry::About;
-use super::random::Random;
+use crate::sampler::random::Random;
 use crate::seed::{Seed, wrap01};
 use crate::spec::{Default, Kind, ParamSpec};
 
@@ -129,24 +129,27 @@ fn try_centroids(points: &[f64], torus: bool, margin: f64) -> Result<Option<Vec<
 
 /// x in [0, 1), a centroid on the square's far side kept inside.
 fn clamp01(x: f64) -> f64 {
-    x.clamp(0.0, super::grid::BELOW_ONE)
+    x.clamp(0.0, crate::numeric::BELOW_ONE)
 }
 
-impl Sampler for Lloyd {
-    fn spec(&self) -> String {
-        format!("lloyd:iterations={},edge={}", self.iterations, edge_word(self.torus))
-    }
+impl Construction for Lloyd {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill_reporting(self.units(), move |seed, out, progress| {
+            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+        }))
+    }
 }
 
-impl Fill for Lloyd {
+impl Lloyd {
     fn units(&self) -> u64 {
         self.iterations as u64
     }
-    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
-        Random.fill(n, dims, seed, out)?;
+    fn fill_reporting(&self, _n: usize, _dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        Random::draw(seed, out);
         for _ in 0..self.iterations {
             let next = centroids(out, self.torus)?;
             out.copy_from_slice(&next);

@@ -21,12 +21,12 @@ use std::ops::RangeInclusive;
 
 use rand_core::Rng as _;
 
-use super::registry::{ANY, EDGE, SamplerEntry};
-use super::{Fill, Sampler};
+use crate::sampler::registry::{ANY, EDGE, SamplerEntry};
+use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
 use crate::registry::About;
-use crate::seed::{Rng, Seed, below, uniform, wrap01};
+use crate::seed::{Rng, Seed, below, shuffle, uniform, wrap01};
 use crate::spec::{Default, Kind, ParamSpec};
 
 /// d_max: the largest possible minimum distance of n points in the unit torus, the
@@ -298,13 +298,17 @@ impl DiskGrid {
         let (rows, cols) = (self.around(self.cell(x)), self.around(self.cell(y)));
         NEAREST_FIRST.iter().filter_map(move |&(dx, dy)| {
             let (r, c) = (rows[(dx + 2) as usize], cols[(dy + 2) as usize]);
-            (r != usize::MAX && c != usize::MAX).then_some(r * self.g + c)
+            (r != usize::MAX && c != usize::MAX).then(|| r * self.g + c)
         })
     }
 
     /// Whether the square [x0,x0+s) x [y0,y0+s) lies inside one disk of radius r.
     fn covers_square(&self, x0: f64, y0: f64, s: f64) -> bool {
-        let corners = [(x0, y0), (x0 + s, y0), (x0, y0 + s), (x0 + s, y0 + s)].map(|(x, y)| (wrap01(x), wrap01(y)));
+        // on the torus a corner past the seam is the one across it; on a plain square the
+        // corners on its right and top edges stay there (wrapped to 0 they were never covered,
+        // and the search for a maximal set subdivided the edge cells to its last level)
+        let fold = |v: f64| if self.torus { wrap01(v) } else { v };
+        let corners = [(x0, y0), (x0 + s, y0), (x0, y0 + s), (x0 + s, y0 + s)].map(|(x, y)| (fold(x), fold(y)));
         self.neighbourhood(wrap01(x0 + s / 2.0), wrap01(y0 + s / 2.0)).any(|c| {
             let q = self.slots[c];
             !q[0].is_nan()
@@ -382,10 +386,6 @@ impl Occupancy for DiskGrid {
 /// Whether an `edge` parameter word means toroidal distance.
 pub(crate) fn edge_is_torus(word: &str) -> bool {
     word == "torus"
-}
-
-pub(crate) fn edge_word(torus: bool) -> &'static str {
-    if torus { "torus" } else { "plain" }
 }
 
 /// Keep a uniformly random `n` of the points (partial Fisher–Yates), in random order.
@@ -476,17 +476,11 @@ impl DartThrowing {
     }
 }
 
-impl Sampler for DartThrowing {
-    fn spec(&self) -> String {
-        let r = self.radius.map_or("auto".into(), |r| r.to_string());
-        format!("poisson:radius={r},edge={},attempts={}", edge_word(self.torus), self.attempts)
-    }
+impl Construction for DartThrowing {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=4
     }
-}
 
-impl Fill for DartThrowing {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         let r = self.radius.unwrap_or(AUTO_RELATIVE * packing_distance(n, dims)?);
         // with plain edges the disks may poke out of the square by r/2
@@ -494,7 +488,7 @@ impl Fill for DartThrowing {
         let most = (room * (packing_distance(1, dims)? / r).powi(dims as i32)).floor();
         if n as f64 > most {
             return Err(Error::Infeasible {
-                sampler: self.spec(),
+                sampler: String::new(),
                 reason: format!(
                     "radius {r} cannot fit {n} points in {dims}D: even the densest packing holds at most {most}; use a radius below {:.6}",
                     packing_distance(n, dims)? * room.powf(1.0 / dims as f64)
@@ -503,6 +497,16 @@ impl Fill for DartThrowing {
         }
         Ok(())
     }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill_reporting(1, move |seed, out, progress| {
+            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+        }))
+    }
+}
+
+impl DartThrowing {
+
     fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         let r = self.radius.unwrap_or(AUTO_RELATIVE * packing_distance(n, dims)?);
         // the one-point-per-cell grid has (sqrt 2 / r)^2 cells: for tiny radii the linked
@@ -516,7 +520,7 @@ impl Fill for DartThrowing {
             return progress.advance(1);
         }
         Err(Error::Infeasible {
-            sampler: self.spec(),
+            sampler: String::new(),
             reason: format!(
                 "radius {r} is too large for {n} points: dart throwing placed at most {best} ({TRIES} tries, {} consecutive misses each); use a smaller radius (the packing limit is {:.6}) or more attempts",
                 self.attempts,
@@ -610,23 +614,17 @@ impl Bridson {
     }
 }
 
-impl Sampler for Bridson {
-    fn spec(&self) -> String {
-        let r = self.radius.map_or("auto".into(), |r| r.to_string());
-        format!("poisson.fast:radius={r},edge={},k={}", edge_word(self.torus), self.k)
-    }
+impl Construction for Bridson {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
-}
 
-impl Fill for Bridson {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         // Bridson fills the whole square before keeping n: its grid must fit
         let r = self.radius.unwrap_or(0.72 * packing_distance(n, dims)?);
         if DiskGrid::cells(r) > MAX_GRID_CELLS {
             return Err(Error::Infeasible {
-                sampler: self.spec(),
+                sampler: String::new(),
                 reason: format!(
                     "radius {r} would fill the square with about {:.1e} points before keeping {n}; use a radius of at least {:.2e} (or dart throwing, `poisson`)",
                     (packing_distance(1, dims)? / r).powi(2),
@@ -636,6 +634,14 @@ impl Fill for Bridson {
         }
         Ok(())
     }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    }
+}
+
+impl Bridson {
+
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         let mut r = self.radius.unwrap_or(0.72 * packing_distance(n, dims)?);
         let mut rng = seed.rng();
@@ -649,7 +655,7 @@ impl Fill for Bridson {
         }
         if grid.len() < n {
             return Err(Error::Infeasible {
-                sampler: self.spec(),
+                sampler: String::new(),
                 reason: format!(
                     "radius {r} fills the square with only {} points (Bridson, k = {}), fewer than {n}; use a smaller radius",
                     grid.len(),
@@ -691,9 +697,7 @@ fn maximal_set(r: f64, torus: bool, seed: Seed, capacity: usize) -> DiskGrid {
             break;
         }
         // one dart per uncovered cell, in random order
-        for i in (1..cells.len()).rev() {
-            cells.swap(i, below(&mut rng, i as u64 + 1) as usize);
-        }
+        shuffle(&mut rng, &mut cells);
         for &(x, y) in &cells {
             let p = [x + side * uniform(&mut rng), y + side * uniform(&mut rng)];
             let inside = torus || (p[0] < 1.0 && p[1] < 1.0);
@@ -712,16 +716,19 @@ fn maximal_set(r: f64, torus: bool, seed: Seed, capacity: usize) -> DiskGrid {
     grid
 }
 
-impl Sampler for Maximal {
-    fn spec(&self) -> String {
-        format!("poisson.maximal:edge={}", edge_word(self.torus))
-    }
+impl Construction for Maximal {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill_reporting(1, move |seed, out, progress| {
+            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+        }))
+    }
 }
 
-impl Fill for Maximal {
+impl Maximal {
     fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         let rmax = packing_distance(n, dims)?;
         for t in 0..8 {
@@ -746,7 +753,7 @@ impl Fill for Maximal {
             }
         }
         Err(Error::Infeasible {
-            sampler: self.spec(),
+            sampler: String::new(),
             reason: format!("no radius gave a maximal set of exactly {n} points in 8 tries of 64 bisection steps"),
         })
     }
@@ -851,5 +858,42 @@ mod tests {
             v
         };
         assert!(ks(&naive, &|x| (x * x - r * r) / (3.0 * r * r)) > 10.0 * crit);
+    }
+
+    #[test]
+    fn maximal_sets_cover_the_plain_square_to_its_edges() {
+        // with plain edges, the cells on the right and top edges used to stay uncovered at
+        // every level (their far corners were wrapped to 0): a maximal set took minutes and
+        // the exactly-n search hung. Now a set is maximal: no point of a fine grid of the
+        // square is farther than r from the set (a dart could land there), and it is quick
+        for torus in [false, true] {
+            let r = 0.09;
+            let grid = maximal_set(r, torus, Seed(5), 200);
+            let points = grid.points();
+            let step = 1.0 / 400.0;
+            for i in 0..400 {
+                for j in 0..400 {
+                    let (x, y) = (i as f64 * step, j as f64 * step);
+                    let near = points.chunks_exact(2).any(|p| grid.axis(x, p[0]).powi(2) + grid.axis(y, p[1]).powi(2) < r * r);
+                    assert!(near, "torus {torus}: ({x}, {y}) is farther than r from every point");
+                }
+            }
+            // pairwise at least r apart
+            for (a, p) in points.chunks_exact(2).enumerate() {
+                for q in points.chunks_exact(2).skip(a + 1) {
+                    assert!(grid.axis(p[0], q[0]).powi(2) + grid.axis(p[1], q[1]).powi(2) >= r * r);
+                }
+            }
+        }
+        // the exactly-n search on a plain square finishes (it hung at n = 64): well within
+        // 30 s (0.02 s in a debug build), or the test fails
+        let (done, finished) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let mut out = vec![0.0; 128];
+            let made = Maximal::new(false).fill_reporting(64, 2, Seed(5), &mut out, &Progress::SILENT);
+            done.send(made.map(|()| out)).ok();
+        });
+        let out = finished.recv_timeout(std::time::Duration::from_secs(30)).expect("the search still runs after 30 s");
+        assert!(out.unwrap().iter().all(|x| (0.0..1.0).contains(x)));
     }
 }

@@ -22,19 +22,20 @@
 //!   lower triangular (uniform non-zero diagonal, uniform below it), then a digital shift;
 //! - `.owen`: Owen's (1995) nested scrambling: the permutation of digit r depends on digits
 //!   0..r, hashed (Burley 2020 in base 2; in base b the random affine digit maps of
-//!   [`super::scramble`]'s `OwenDigits`, shared with Halton);
+//!   [`crate::sampler::randomize::scramble`]'s `OwenDigits`, shared with Halton);
 //! - `.shift`: a Cranley-Patterson shift mod 1 (not a net any more).
 //!
 //! The first three keep every (t, m, s)-net property of the construction.
 
 use std::ops::RangeInclusive;
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
-use super::grid::BELOW_ONE;
-use super::registry::SamplerEntry;
-use super::scramble::{OwenDigits, Randomization, hash2, owen_scramble_u32};
-use super::{Access, Fill, Sampler, Sequence};
+use crate::numeric::BELOW_ONE;
+use crate::sampler::registry::SamplerEntry;
+use crate::sampler::randomize::scramble::{OwenDigits, Randomization, hash2, owen_scramble_u32};
+use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
+use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Seed, below, uniform, wrap01};
 use crate::spec::{Default, Kind, ParamSpec};
@@ -338,8 +339,8 @@ fn irreducibles(base: u32) -> impl Iterator<Item = Vec<u64>> {
 enum Source {
     /// The Joe-Kuo Sobol' matrices.
     Sobol,
-    /// Read from a file (kept with its path, for the spec).
-    File(String, Arc<Matrices>),
+    /// Read from a file.
+    File(Arc<Matrices>),
     /// Faure's, for the dimension asked.
     Faure,
     /// Niederreiter's in a base.
@@ -355,94 +356,78 @@ pub struct Net {
 }
 
 impl Net {
-    fn family(&self) -> &'static str {
-        match self.source {
-            Source::Sobol | Source::File(..) => "net",
-            Source::Faure => "faure",
-            Source::Niederreiter(_) => "niederreiter",
-        }
-    }
-
-    /// The matrices for `dims` dimensions; the built-in ones are made once per (family,
-    /// base, dimensions) and remembered, so many small fills pay nothing for them.
+    /// The matrices for `dims` dimensions: a file's, or the construction's, made here.
     fn matrices(&self, dims: usize) -> Result<Arc<Matrices>> {
-        let key = match &self.source {
-            Source::File(_, m) => return Ok(Arc::clone(m)),
-            Source::Sobol => (0, 2, dims),
-            Source::Faure => (1, faure_base(dims), dims),
-            Source::Niederreiter(b) => (2, *b, dims),
-        };
-        let mut made = BUILT.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        if let Some((_, m)) = made.iter().find(|(k, _)| *k == key) {
-            return Ok(Arc::clone(m));
-        }
-        let m = Arc::new(match &self.source {
-            Source::Faure => Matrices::faure(dims),
-            Source::Niederreiter(b) => Matrices::niederreiter(*b, dims)?,
-            _ => Matrices::sobol(dims),
-        });
-        made.push((key, Arc::clone(&m)));
-        Ok(m)
+        Ok(match &self.source {
+            Source::File(m) => Arc::clone(m),
+            Source::Sobol => Arc::new(Matrices::sobol(dims)),
+            Source::Faure => Arc::new(Matrices::faure(dims)),
+            Source::Niederreiter(b) => Arc::new(Matrices::niederreiter(*b, dims)?),
+        })
     }
 
     fn base(&self, dims: usize) -> u32 {
         match &self.source {
             Source::Sobol => 2,
-            Source::File(_, m) => m.base,
+            Source::File(m) => m.base,
             Source::Faure => faure_base(dims),
             Source::Niederreiter(b) => *b,
         }
     }
 
-    /// The engine for `dims` and `seed`; `bound` caps the prefix tables of an Owen scramble
-    /// in base b (the count of points to make; a cache only).
-    fn prepare(&self, dims: usize, seed: Seed, bound: u64) -> Result<Engine> {
-        Ok(Engine::new(&*self.matrices(dims)?, dims, self.randomization, self.lms, seed, bound))
+}
+
+/// A net planned for a count and dimension: its generating matrices, made once.
+#[derive(Debug)]
+struct Planned<'a> {
+    net: &'a Net,
+    matrices: Arc<Matrices>,
+    n: usize,
+    dims: usize,
+}
+
+impl Planned<'_> {
+    /// The engine for `seed`; `bound` caps the prefix tables of an Owen scramble in base b
+    /// (the count of points to make; a cache only).
+    fn engine(&self, seed: Seed, bound: u64) -> Engine {
+        Engine::new(&self.matrices, self.dims, self.net.randomization, self.net.lms, seed, bound)
     }
 }
 
-/// The built-in matrices made so far, by (family, base, dimensions).
-#[allow(clippy::type_complexity)]
-static BUILT: Mutex<Vec<((u8, u32, usize), Arc<Matrices>)>> = Mutex::new(Vec::new());
+impl Prepared for Planned<'_> {
+    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        self.engine(seed, self.n as u64).fill(out);
+        progress.advance(1)
+    }
+
+    fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
+        Some(Box::new(self.engine(seed, u64::MAX)))
+    }
+}
 
 /// Most dimensions of the built-in constructions (Faure's base and Niederreiter's
 /// polynomial degrees grow with it).
 const MAX_DIMS: usize = 1024;
 
-impl Sampler for Net {
-    fn spec(&self) -> String {
-        let suffix = if self.lms { "lms" } else { self.randomization.suffix() };
-        let name = if suffix.is_empty() { self.family().to_string() } else { format!("{}.{suffix}", self.family()) };
-        match &self.source {
-            Source::File(path, _) => format!("{name}:matrices={path}"),
-            Source::Niederreiter(b) if *b != 2 => format!("{name}:base={b}"),
-            _ => name,
-        }
-    }
+impl Construction for Net {
     fn dims(&self) -> RangeInclusive<usize> {
         match &self.source {
             Source::Sobol => 1..=super::sobol::SOBOL_MAX_DIMS,
-            Source::File(_, m) => 1..=m.dims,
+            Source::File(m) => 1..=m.dims,
             Source::Faure => 1..=MAX_BASE as usize,
             Source::Niederreiter(_) => 1..=MAX_DIMS,
         }
     }
-    fn as_sequence(&self) -> Option<&dyn Sequence> {
-        Some(self)
-    }
-}
-
-impl Fill for Net {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         let cols = match &self.source {
             Source::Sobol => 32,
-            Source::File(_, m) => m.cols,
+            Source::File(m) => m.cols,
             _ => columns_for_all_sets(self.base(dims)),
         };
         let most = u128::from(self.base(dims)).pow(cols as u32);
         if n as u128 > most {
             return Err(Error::InvalidCount {
-                sampler: self.spec(),
+                sampler: String::new(),
                 n,
                 dims,
                 reason: format!("the matrices have {cols} columns: at most {} points", most),
@@ -451,16 +436,9 @@ impl Fill for Net {
         Ok(())
     }
 
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        self.prepare(dims, seed, n as u64)?.fill(out);
-        Ok(())
-    }
-}
-
-impl Sequence for Net {
-    fn access(&self, dims: usize, seed: Seed) -> Result<Box<dyn Access + '_>> {
-        (self as &dyn Sampler).plan(1, dims)?;
-        Ok(Box::new(self.prepare(dims, seed, u64::MAX)?))
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        let (n, dims) = (shape.n(), shape.dims());
+        Ok(Box::new(Planned { net: self, matrices: self.matrices(dims)?, n, dims }))
     }
 }
 
@@ -819,7 +797,7 @@ const BASE: ParamSpec = ParamSpec {
 
 fn read_matrices(path: &str) -> Result<Source> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::Io { path: path.into(), reason: e.to_string() })?;
-    Ok(Source::File(path.into(), Arc::new(Matrices::parse(&text, path)?)))
+    Ok(Source::File(Arc::new(Matrices::parse(&text, path)?)))
 }
 
 fn net_source(p: &crate::spec::Params) -> Result<Source> {
@@ -842,13 +820,13 @@ macro_rules! net_entries {
     ($(($family:literal, $summary:literal, $aliases:expr, $params:expr, $source:expr, $counts:literal, $dims:literal, [$($r:literal),*])),+ $(,)?) => {
         &[$(
             SamplerEntry {
-                about: About::new($family, $summary).aliases($aliases).params($params).cite(&[$($r),*]),
+                about: About::new($family, $summary).terse().aliases($aliases).params($params).cite(&[$($r),*]),
                 counts: $counts,
                 dims: $dims,
                 build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::None, lms: false })),
             },
             SamplerEntry {
-                about: About::new(concat!($family, ".xor"), concat!($summary, ", digital shift"))
+                about: About::new(concat!($family, ".xor"), concat!($summary, ", digital shift")).terse()
                     .params($params)
                     .cite(&[$($r,)* "matousek1998"]),
                 counts: $counts,
@@ -856,7 +834,7 @@ macro_rules! net_entries {
                 build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Xor, lms: false })),
             },
             SamplerEntry {
-                about: About::new(concat!($family, ".lms"), concat!($summary, ", linear matrix scrambling and a digital shift"))
+                about: About::new(concat!($family, ".lms"), concat!($summary, ", linear matrix scrambling and a digital shift")).terse()
                     .params($params)
                     .cite(&[$($r,)* "matousek1998"]),
                 counts: $counts,
@@ -864,7 +842,7 @@ macro_rules! net_entries {
                 build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Xor, lms: true })),
             },
             SamplerEntry {
-                about: About::new(concat!($family, ".owen"), concat!($summary, ", Owen's nested uniform scrambling"))
+                about: About::new(concat!($family, ".owen"), concat!($summary, ", Owen's nested uniform scrambling")).terse()
                     .params($params)
                     .cite(&[$($r,)* "owen1995", "owen1997", "matousek1998", "burley2020"]),
                 counts: $counts,
@@ -872,7 +850,7 @@ macro_rules! net_entries {
                 build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Owen, lms: false })),
             },
             SamplerEntry {
-                about: About::new(concat!($family, ".shift"), concat!($summary, ", Cranley-Patterson shift"))
+                about: About::new(concat!($family, ".shift"), concat!($summary, ", Cranley-Patterson shift")).terse()
                     .params($params)
                     .cite(&[$($r,)* "cranley1976"]),
                 counts: $counts,

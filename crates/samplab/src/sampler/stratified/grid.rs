@@ -9,16 +9,14 @@
 use std::f64::consts::TAU;
 use std::ops::RangeInclusive;
 
-use super::registry::{GRID, SamplerEntry};
-use super::{Fill, Sampler, exact_root};
+use crate::sampler::registry::{GRID, SamplerEntry};
+use crate::sampler::{Prepared, Construction, Shape, exact_root};
 use crate::error::{Error, Result};
+use crate::numeric::BELOW_ONE;
 use crate::registry::About;
 use crate::seed::{Rng, Seed, normal, uniform, wrap01};
 use crate::spec::{Default, Kind, ParamSpec};
 use crate::spectrum::theory::{self, VarianceTheory};
-
-/// The largest f64 below one: where a rounding could land a coordinate on 1.0.
-pub(crate) const BELOW_ONE: f64 = 1.0 - f64::EPSILON / 2.0;
 
 /// How each grid point is displaced inside (or around) its cell. Offsets are fractions of
 /// the grid spacing 1/k.
@@ -67,15 +65,19 @@ pub enum Displacement {
 /// A grid sampler: `k^d` points, one per cell, displaced by `displacement`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Grid {
-    name: &'static str,
     displacement: Displacement,
 }
 
 impl Grid {
-    /// A grid sampler registered under `name`.
-    pub(crate) fn new(name: &'static str, displacement: Displacement) -> Self {
-        Grid { name, displacement }
+    /// A grid sampler displaced by `displacement`.
+    pub(crate) fn new(displacement: Displacement) -> Self {
+        Grid { displacement }
     }
+}
+
+/// The side k of a checked grid count n = k^d.
+fn side(n: usize, dims: usize) -> usize {
+    exact_root(n, dims).unwrap_or_else(|_| unreachable!("{n} is a checked count of a {dims}D grid"))
 }
 
 pub(crate) fn check_grid_count(spec: String, n: usize, dims: usize) -> Result<usize> {
@@ -87,22 +89,12 @@ pub(crate) fn check_grid_count(spec: String, n: usize, dims: usize) -> Result<us
     })
 }
 
-impl Sampler for Grid {
-    fn spec(&self) -> String {
-        match self.displacement {
-            Displacement::Box { delta } => format!("{}:delta={delta}", self.name),
-            Displacement::Gaussian { sigma, resample } => {
-                format!("{}:sigma={sigma},edge={}", self.name, if resample { "resample" } else { "wrap" })
-            }
-            Displacement::UniformGaussian { alpha, sigma } => {
-                format!("{}:alpha={alpha},sigma={sigma}", self.name)
-            }
-            Displacement::Uniform { offsets } if offsets > 1 => format!("{}:offsets={offsets}", self.name),
-            _ => self.name.into(),
-        }
-    }
+/// The most dimensions of a grid.
+const MAX_DIMS: usize = 64;
+
+impl Construction for Grid {
     fn dims(&self) -> RangeInclusive<usize> {
-        1..=64
+        1..=MAX_DIMS
     }
     fn spectrum_theory(&self, n: usize, dims: usize) -> Option<VarianceTheory> {
         // displacements are fractions of the spacing 1/k
@@ -123,35 +115,43 @@ impl Sampler for Grid {
             _ => None,
         }
     }
-}
 
-impl Fill for Grid {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         match self.displacement {
             Displacement::Uniform { offsets } if offsets > 1 => self.per_offset(n, offsets, dims).map(|_| ()),
-            _ => check_grid_count(self.spec(), n, dims).map(|_| ()),
+            _ => check_grid_count(String::new(), n, dims).map(|_| ()),
         }
     }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    }
+}
+
+impl Grid {
+
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         if let Displacement::Uniform { offsets } = self.displacement
             && offsets > 1 {
                 let each = self.per_offset(n, offsets, dims)?;
-                let one = Grid::new(self.name, Displacement::Uniform { offsets: 1 });
+                let one = Grid::new(Displacement::Uniform { offsets: 1 });
                 for (j, block) in out.chunks_exact_mut(each * dims).enumerate() {
                     one.fill(each, dims, seed.derive(j as u64), block)?;
                 }
                 return Ok(());
             }
-        let k = check_grid_count(self.spec(), n, dims)?;
+        let k = side(n, dims);
         let mut rng = seed.rng();
         let inv = 1.0 / k as f64;
-        let shared: Vec<f64> = match self.displacement {
-            Displacement::Uniform { .. } => (0..dims).map(|_| uniform(&mut rng)).collect(),
-            Displacement::UniformGaussian { alpha, .. } => {
-                (0..dims).map(|_| 0.5 + alpha * (uniform(&mut rng) - 0.5)).collect()
+        // the shared offset of each axis (grids have at most MAX_DIMS), on the stack
+        let mut shared = [0.5; MAX_DIMS];
+        for s in &mut shared[..dims] {
+            match self.displacement {
+                Displacement::Uniform { .. } => *s = uniform(&mut rng),
+                Displacement::UniformGaussian { alpha, .. } => *s = 0.5 + alpha * (uniform(&mut rng) - 0.5),
+                _ => {}
             }
-            _ => vec![0.5; dims],
-        };
+        }
         for (i, p) in out.chunks_exact_mut(dims).enumerate() {
             let mut rest = i;
             for d in (0..dims).rev() {
@@ -169,13 +169,13 @@ impl Grid {
     fn per_offset(&self, n: usize, offsets: usize, dims: usize) -> Result<usize> {
         if !n.is_multiple_of(offsets) {
             return Err(Error::InvalidCount {
-                sampler: self.spec(),
+                sampler: String::new(),
                 n,
                 dims,
                 reason: format!("n must be a multiple of offsets = {offsets}"),
             });
         }
-        check_grid_count(self.spec(), n / offsets, dims)?;
+        check_grid_count(String::new(), n / offsets, dims)?;
         Ok(n / offsets)
     }
 
@@ -206,21 +206,24 @@ impl Grid {
 #[derive(Debug, Clone, Copy, Default)]
 pub struct RotatedGrid;
 
-impl Sampler for RotatedGrid {
-    fn spec(&self) -> String {
-        "regular.rotated".into()
-    }
+impl Construction for RotatedGrid {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
+
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        check_grid_count(String::new(), n, dims).map(|_| ())
+    }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    }
 }
 
-impl Fill for RotatedGrid {
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        check_grid_count(self.spec(), n, dims).map(|_| ())
-    }
+impl RotatedGrid {
+
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let k = check_grid_count(self.spec(), n, dims)?;
+        let k = side(n, dims);
         let mut rng = seed.rng();
         let (s, c) = (TAU * uniform(&mut rng)).sin_cos();
         let (ox, oy) = (uniform(&mut rng), uniform(&mut rng));
@@ -249,23 +252,26 @@ fn hex_rows(k: usize) -> usize {
 
 /// The counts k r(k) the hexagonal lattice makes, in increasing order.
 fn hex_counts() -> impl Iterator<Item = (usize, usize)> + Clone {
-    (1..).map(|k| (k * hex_rows(k), k)).take_while(|&(n, _)| n <= super::MAX_POINTS)
+    (1..).map(|k| (k * hex_rows(k), k)).take_while(|&(n, _)| n <= crate::sampler::MAX_POINTS)
 }
 
-impl Sampler for Hexagonal {
-    fn spec(&self) -> String {
-        "hexagonal".into()
-    }
+impl Construction for Hexagonal {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
-}
 
-impl Fill for Hexagonal {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         let rule = "n must be k x 2 round(k / sqrt 3), k points per row";
-        super::check_listed(self.spec(), n, dims, rule, hex_counts().map(|(c, _)| c))
+        crate::sampler::check_listed(String::new(), n, dims, rule, hex_counts().map(|(c, _)| c))
     }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    }
+}
+
+impl Hexagonal {
+
 
     fn fill(&self, n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         let (_, k) = hex_counts().find(|&(c, _)| c == n).expect("a checked count");
@@ -283,7 +289,7 @@ impl Fill for Hexagonal {
 }
 
 /// A grid entry: counts k^d, dimensions 1..=64.
-const fn grid_entry(about: About, build: fn(&crate::spec::Params) -> Result<Box<dyn Sampler>>) -> SamplerEntry {
+const fn grid_entry(about: About, build: fn(&mut crate::spec::Params) -> Result<Box<dyn Construction>>) -> SamplerEntry {
     SamplerEntry { about, counts: GRID, dims: "1..=64", build }
 }
 
@@ -298,7 +304,7 @@ const SIGMA: ParamSpec = ParamSpec {
 pub(crate) static ENTRIES: &[SamplerEntry] = &[
     grid_entry(
         About::new("regular", "cell centres of a k^d grid").aliases(&["grid", "uniform"]).cite(&["shirley1991"]),
-        |_| Ok(Box::new(Grid::new("regular", Displacement::Regular))),
+        |_| Ok(Box::new(Grid::new(Displacement::Regular))),
     ),
     SamplerEntry {
         about: About::new("regular.rotated", "regular grid, random rotation and offset, wrapped on the torus")
@@ -320,13 +326,13 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         About::new("jitter", "one uniform point per grid cell")
             .aliases(&["jittered", "stratified"])
             .cite(&["cook1986", "shirley1991"]),
-        |_| Ok(Box::new(Grid::new("jitter", Displacement::Jitter))),
+        |_| Ok(Box::new(Grid::new(Displacement::Jitter))),
     ),
     grid_entry(
         About::new("jitter.half", "uniform in the central half of each cell (per axis)")
             .aliases(&["half-jittered", "halfjittered"])
             .cite(&["shirley1991"]),
-        |_| Ok(Box::new(Grid::new("jitter.half", Displacement::Half))),
+        |_| Ok(Box::new(Grid::new(Displacement::Half))),
     ),
     grid_entry(
         About::new("jitter.box", "uniform in a centred box of half-width delta (cells)")
@@ -338,7 +344,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
                 doc: "half-width of the box, fraction of a cell",
             }])
             .cite(&["subr2013"]),
-        |p| Ok(Box::new(Grid::new("jitter.box", Displacement::Box { delta: p.real("delta") }))),
+        |p| Ok(Box::new(Grid::new(Displacement::Box { delta: p.real("delta") }))),
     ),
     grid_entry(
         About::new("jitter.gaussian", "cell centre plus a normal offset of deviation sigma (cells)")
@@ -355,7 +361,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             .cite(&["subr2013"]),
         |p| {
             let displacement = Displacement::Gaussian { sigma: p.real("sigma"), resample: p.word("edge") == "resample" };
-            Ok(Box::new(Grid::new("jitter.gaussian", displacement)))
+            Ok(Box::new(Grid::new(displacement)))
         },
     ),
     SamplerEntry {
@@ -363,6 +369,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             "jitter.uniform",
             "the regular grid moved by one shared uniform offset (or several grids, one offset each)",
         )
+        .terse()
         .aliases(&["systematic", "uniform-jitter"])
         .params(&[ParamSpec {
             name: "offsets",
@@ -375,7 +382,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         dims: "1..=64",
         build: |p| {
             let offsets = p.int("offsets") as usize;
-            Ok(Box::new(Grid::new("jitter.uniform", Displacement::Uniform { offsets })))
+            Ok(Box::new(Grid::new(Displacement::Uniform { offsets })))
         },
     },
     grid_entry(
@@ -395,7 +402,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         .cite(&["subr2013"]),
         |p| {
             let displacement = Displacement::UniformGaussian { alpha: p.real("alpha"), sigma: p.real("sigma") };
-            Ok(Box::new(Grid::new("jitter.uniform-gaussian", displacement)))
+            Ok(Box::new(Grid::new(displacement)))
         },
     ),
 ];

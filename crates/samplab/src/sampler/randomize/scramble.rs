@@ -325,7 +325,7 @@ impl OwenDigits {
     #[inline(always)]
     fn end<D: Accumulate>(&self, w: &Walk<D>) -> f64 {
         ((w.d.to_f64() + (w.u >> 11) as f64 * (1.0 / (1u64 << 53) as f64)) * self.inv[w.depth])
-            .min(super::grid::BELOW_ONE)
+            .min(crate::numeric::BELOW_ONE)
     }
 }
 

@@ -5,8 +5,8 @@
 
 use std::ops::RangeInclusive;
 
-use super::registry::SamplerEntry;
-use super::{Fill, Sampler};
+use crate::sampler::registry::SamplerEntry;
+use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
 use crate::registry::About;
@@ -37,23 +37,17 @@ impl ForceMatrix {
     }
 }
 
-impl Sampler for ForceMatrix {
-    fn spec(&self) -> String {
-        let g = self.grid.map_or("auto".into(), |g| g.to_string());
-        format!("force-matrix:s={},p={},grid={g}", self.s, self.p)
-    }
+impl Construction for ForceMatrix {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=4
     }
-}
 
-impl Fill for ForceMatrix {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         let g = self.grid_size(n, dims);
         let cells = g.checked_pow(dims as u32).unwrap_or(usize::MAX);
         if cells > MAX_CELLS {
             return Err(Error::InvalidCount {
-                sampler: self.spec(),
+                sampler: String::new(),
                 n,
                 dims,
                 reason: format!("the fine grid would have {g}^{dims} cells, more than {MAX_CELLS}"),
@@ -61,7 +55,7 @@ impl Fill for ForceMatrix {
         }
         if n > cells {
             return Err(Error::InvalidCount {
-                sampler: self.spec(),
+                sampler: String::new(),
                 n,
                 dims,
                 reason: format!(
@@ -72,6 +66,16 @@ impl Fill for ForceMatrix {
         }
         Ok(())
     }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill_reporting(1, move |seed, out, progress| {
+            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+        }))
+    }
+}
+
+impl ForceMatrix {
+
     fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         let g = self.grid_size(n, dims);
         let cells = g.pow(dims as u32);
@@ -129,7 +133,7 @@ impl Fill for ForceMatrix {
         let offset: Vec<f64> = (0..dims).map(|_| uniform(&mut rng)).collect();
         for (p, &c) in out.chunks_exact_mut(dims).zip(&chosen) {
             for (d, x) in coords(c).into_iter().enumerate() {
-                p[d] = ((x as f64 + offset[d]) / g as f64).min(super::grid::BELOW_ONE);
+                p[d] = ((x as f64 + offset[d]) / g as f64).min(crate::numeric::BELOW_ONE);
             }
         }
         progress.advance(1)

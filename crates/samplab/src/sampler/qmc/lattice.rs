@@ -19,12 +19,14 @@
 //! (Hickernell 2002) after the shift: `tent=yes`.
 
 use std::ops::RangeInclusive;
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
-use super::registry::{ANY, SamplerEntry};
+use crate::sampler::registry::{ANY, SamplerEntry};
 use super::cbc::Weights;
-use super::{Access, Fill, Sampler, Sequence, cbc};
+use super::cbc;
+use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
+use crate::progress::Progress;
 use crate::registry::About;
 use crate::spec::{Default, Kind, ParamSpec};
 use crate::seed::{Seed, uniform};
@@ -40,20 +42,21 @@ fn fibonacci() -> impl Iterator<Item = (usize, usize)> + Clone {
     std::iter::successors(Some((1usize, 1usize)), |&(f, g)| Some((f + g, f))).take_while(|&(f, _)| f <= 1 << 32)
 }
 
-impl Sampler for Fibonacci {
-    fn spec(&self) -> String {
-        if self.shift { "lattice.fibonacci.shift" } else { "lattice.fibonacci" }.into()
-    }
+impl Construction for Fibonacci {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
-}
 
-impl Fill for Fibonacci {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        super::check_listed(self.spec(), n, dims, "n must be a Fibonacci number", fibonacci().map(|(f, _)| f))
+        crate::sampler::check_listed(String::new(), n, dims, "n must be a Fibonacci number", fibonacci().map(|(f, _)| f))
     }
 
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    }
+}
+
+impl Fibonacci {
     fn fill(&self, n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         let (_, g) = fibonacci().find(|&(f, _)| f == n).expect("a checked count");
         let mut rng = seed.rng();
@@ -77,10 +80,6 @@ pub struct Korobov {
 /// The largest n whose a is searched.
 const SEARCH_MAX: usize = 1 << 14;
 
-/// Searched generators, per (n, d): the search is deterministic, so remembering it only
-/// saves time.
-static SEARCHED: Mutex<Vec<((usize, usize), u64)>> = Mutex::new(Vec::new());
-
 /// The generating vector (1, a, a^2, ...) mod n.
 fn korobov_vector(a: u64, n: usize, dims: usize) -> Vec<u64> {
     let n = n as u128;
@@ -99,9 +98,6 @@ pub fn p2(z: &[u64], n: usize) -> f64 {
 
 /// The a in 1..=n/2 (all of 1..n for n < 4) with the smallest P_2, the first on ties.
 pub fn korobov_search(n: usize, dims: usize) -> u64 {
-    if let Some(&(_, a)) = SEARCHED.lock().unwrap_or_else(std::sync::PoisonError::into_inner).iter().find(|(key, _)| *key == (n, dims)) {
-        return a;
-    }
     let last = if n < 4 { n.saturating_sub(1).max(1) } else { n / 2 };
     let mut best = (f64::INFINITY, 1u64);
     for a in 1..=last as u64 {
@@ -110,28 +106,18 @@ pub fn korobov_search(n: usize, dims: usize) -> u64 {
             best = (e, a);
         }
     }
-    SEARCHED.lock().unwrap_or_else(std::sync::PoisonError::into_inner).push(((n, dims), best.1));
     best.1
 }
 
-impl Sampler for Korobov {
-    fn spec(&self) -> String {
-        let name = if self.shift { "lattice.korobov.shift" } else { "lattice.korobov" };
-        match self.a {
-            Some(a) => format!("{name}:a={a}"),
-            None => name.into(),
-        }
-    }
+impl Construction for Korobov {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=usize::MAX
     }
-}
 
-impl Fill for Korobov {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         if self.a.is_none() && n > SEARCH_MAX {
             return Err(Error::InvalidCount {
-                sampler: self.spec(),
+                sampler: String::new(),
                 n,
                 dims,
                 reason: format!("searching a costs n^2 d / 2: give a=A for n above {SEARCH_MAX}"),
@@ -140,17 +126,10 @@ impl Fill for Korobov {
         Ok(())
     }
 
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        let (n, dims) = (shape.n(), shape.dims());
         let a = self.a.unwrap_or_else(|| korobov_search(n, dims));
-        let z = korobov_vector(a, n, dims);
-        let mut rng = seed.rng();
-        let shift: Vec<f64> = (0..dims).map(|_| if self.shift { uniform(&mut rng) } else { 0.0 }).collect();
-        for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-            for ((x, &zj), &u) in p.iter_mut().zip(&z).zip(&shift) {
-                *x = wrap((i as u128 * u128::from(zj) % n as u128) as f64 / n as f64 + u);
-            }
-        }
-        Ok(())
+        Ok(Box::new(Rank1 { z: korobov_vector(a, n, dims), order: Order::Float(n), shift: self.shift, tent: false }))
     }
 }
 
@@ -162,96 +141,112 @@ pub struct Cbc {
     tent: bool,
 }
 
-/// Generating vectors made so far, by (n, dims, weights' bits, embedded): the construction
-/// is deterministic, so remembering it only saves time.
-#[allow(clippy::type_complexity)]
-static CONSTRUCTED: Mutex<Vec<((usize, usize, [u64; 2], bool), Arc<Vec<u64>>)>> = Mutex::new(Vec::new());
-
-/// `cbc::construct`, remembered.
-fn constructed(n: usize, dims: usize, weights: Weights, embedded: bool) -> Result<Arc<Vec<u64>>> {
-    let key = (n, dims, [weights.first.to_bits(), weights.decay.to_bits()], embedded);
-    let lock = || CONSTRUCTED.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-    if let Some((_, z)) = lock().iter().find(|(k, _)| *k == key) {
-        return Ok(Arc::clone(z));
-    }
-    let z = Arc::new(cbc::construct(n, dims, weights, embedded)?);
-    lock().push((key, Arc::clone(&z)));
-    Ok(z)
-}
-
-/// The name of a lattice variant with its parameters, for specs.
-fn lattice_spec(name: &str, shift: bool, params: &[String]) -> String {
-    let name = if shift { format!("{name}.shift") } else { name.to_string() };
-    let params: Vec<&String> = params.iter().filter(|p| !p.is_empty()).collect();
-    if params.is_empty() {
-        return name;
-    }
-    format!("{name}:{}", params.iter().map(|p| p.as_str()).collect::<Vec<_>>().join(","))
-}
-
-/// The weights' parameters that differ from their defaults.
-fn weights_text(w: Weights) -> String {
-    let first = if w.first == 1.0 { String::new() } else { format!("gamma={}", w.first) };
-    let decay = if w.decay == 2.0 { String::new() } else { format!("decay={}", w.decay) };
-    [first, decay].into_iter().filter(|t| !t.is_empty()).collect::<Vec<_>>().join(",")
-}
-
-fn tent_text(tent: bool) -> String {
-    if tent { "tent=yes".into() } else { String::new() }
-}
-
-impl Sampler for Cbc {
-    fn spec(&self) -> String {
-        lattice_spec("lattice.cbc", self.shift, &[weights_text(self.weights), tent_text(self.tent)])
-    }
+impl Construction for Cbc {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=usize::MAX
     }
-}
 
-impl Fill for Cbc {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         if cbc::supports(n) {
             return Ok(());
         }
         // the nearest valid counts lie within a prime gap (< 200 below 2^24) of n
         let near = (n.min(cbc::MAX_N + 1).saturating_sub(1000)..=cbc::MAX_N).filter(|&k| cbc::supports(k));
-        super::check_listed(self.spec(), n, dims, "the fast CBC needs n a prime or a power of 2 up to 2^24", near)
+        crate::sampler::check_listed(String::new(), n, dims, "the fast CBC needs n a prime or a power of 2 up to 2^24", near)
     }
 
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let z = constructed(n, dims, self.weights, false)?;
-        let offsets = Offsets::new(dims, self.shift, self.tent, seed);
-        for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-            for (d, (x, &zj)) in p.iter_mut().zip(z.iter()).enumerate() {
-                // (i z mod n) / n as a 64-bit binary fraction, exact to its last bit
-                let frac = ((i as u128 * u128::from(zj) % n as u128) << 64) / n as u128;
-                *x = offsets.value(frac as u64, d);
-            }
-        }
-        Ok(())
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        let (n, dims) = (shape.n(), shape.dims());
+        let z = cbc::construct(n, dims, self.weights, false)?;
+        Ok(Box::new(Rank1 { z, order: Order::Fixed(n), shift: self.shift, tent: self.tent }))
     }
 }
 
-/// A lattice's per-dimension shifts (64-bit fixed point) and its tent option.
+/// Which points a rank-1 lattice's vector z makes, point i of dimension j:
+#[derive(Debug, Clone, Copy)]
+enum Order {
+    /// frac(i z_j / n) in floating point, shifted in floating point (Korobov);
+    Float(usize),
+    /// frac(i z_j / n) as an exact 64-bit binary fraction, shifted in fixed point (CBC);
+    Fixed(usize),
+    /// frac(phi_2(i) z_j), phi_2(i) 2^64 being i's bits reversed, in fixed point (the
+    /// embedded sequence: with n = 2^m and i < n the lattice point k z / n of k = phi_2(i) n).
+    Radical,
+}
+
+/// A rank-1 lattice prepared for a count and dimension: its generating vector.
 #[derive(Debug)]
-struct Offsets {
-    shifts: Vec<u64>,
+struct Rank1 {
+    z: Vec<u64>,
+    order: Order,
+    shift: bool,
     tent: bool,
 }
 
-impl Offsets {
-    fn new(dims: usize, shift: bool, tent: bool, seed: Seed) -> Offsets {
-        let mut rng = seed.rng();
-        Offsets { shifts: (0..dims).map(|_| if shift { rand_core::Rng::next_u64(&mut rng) } else { 0 }).collect(), tent }
+/// The seed's shifts of `dims` dimensions in turn, one 64-bit draw each, from the seed's
+/// one stream (zero when not shifted).
+fn fixed_shifts(seed: Seed, dims: usize, shift: bool) -> impl Iterator<Item = u64> {
+    let mut rng = seed.rng();
+    (0..dims).map(move |_| if shift { rand_core::Rng::next_u64(&mut rng) } else { 0 })
+}
+
+/// The coordinate of the fixed-point fraction `x`: shifted mod 1 by `shift` (exactly, in
+/// fixed point), then tent-transformed.
+#[inline]
+fn finish(x: u64, shift: u64, tent: bool) -> f64 {
+    let x = (x.wrapping_add(shift) >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
+    if tent { (1.0 - (2.0 * x - 1.0).abs()).min(crate::numeric::BELOW_ONE) } else { x }
+}
+
+impl Rank1 {
+    /// Point i's fixed-point fraction in the dimension of z_j (Order::Fixed and Radical).
+    #[inline]
+    fn fixed(&self, i: u64, zj: u64) -> u64 {
+        match self.order {
+            Order::Fixed(n) => (((u128::from(i) * u128::from(zj) % n as u128) << 64) / n as u128) as u64,
+            _ => i.reverse_bits().wrapping_mul(zj),
+        }
+    }
+}
+
+impl Prepared for Rank1 {
+    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        // dimension by dimension, each drawing its shift in turn: no buffer for the shifts
+        let dims = self.z.len();
+        if let Order::Float(n) = self.order {
+            let mut rng = seed.rng();
+            for (d, &zj) in self.z.iter().enumerate() {
+                let u = if self.shift { uniform(&mut rng) } else { 0.0 };
+                for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+                    p[d] = wrap((i as u128 * u128::from(zj) % n as u128) as f64 / n as f64 + u);
+                }
+            }
+        } else {
+            for (d, (&zj, shift)) in self.z.iter().zip(fixed_shifts(seed, dims, self.shift)).enumerate() {
+                for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+                    p[d] = finish(self.fixed(i as u64, zj), shift, self.tent);
+                }
+            }
+        }
+        progress.advance(1)
     }
 
-    /// The coordinate of the fixed-point fraction `x` in dimension `d`: shifted mod 1
-    /// (exactly, in fixed point), then tent-transformed.
-    #[inline]
-    fn value(&self, x: u64, d: usize) -> f64 {
-        let x = (x.wrapping_add(self.shifts[d]) >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
-        if self.tent { (1.0 - (2.0 * x - 1.0).abs()).min(super::grid::BELOW_ONE) } else { x }
+    fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
+        matches!(self.order, Order::Radical)
+            .then(|| Box::new(Sequence { rank1: self, shifts: fixed_shifts(seed, self.z.len(), self.shift).collect() }) as _)
+    }
+}
+
+/// Random access to the embedded lattice sequence for one seed: its shifts.
+#[derive(Debug)]
+struct Sequence<'a> {
+    rank1: &'a Rank1,
+    shifts: Vec<u64>,
+}
+
+impl Access for Sequence<'_> {
+    fn sample(&self, index: u64, dim: usize) -> Result<f64> {
+        Ok(finish(self.rank1.fixed(index, self.rank1.z[dim]), self.shifts[dim], self.rank1.tent))
     }
 }
 
@@ -268,79 +263,26 @@ pub struct Embedded {
 enum Vector {
     /// The embedded fast CBC for 2^20 points with these weights.
     Constructed(Weights),
-    /// Read from a file: its path and the vector.
-    File(String, Arc<Vec<u64>>),
+    /// Read from a file.
+    File(Arc<Vec<u64>>),
 }
 
 /// log2 of the point count the constructed vectors are made for.
 const EMBEDDED_M: u32 = 20;
 
-impl Embedded {
-    fn vector(&self, dims: usize) -> Result<Arc<Vec<u64>>> {
-        match &self.vector {
-            Vector::Constructed(weights) => constructed(1 << EMBEDDED_M, dims, *weights, true),
-            Vector::File(_, z) => Ok(Arc::clone(z)),
-        }
-    }
-
-    fn prepare(&self, dims: usize, seed: Seed) -> Result<Prepared> {
-        let z = self.vector(dims)?;
-        // phi_2(i) z mod 1 with phi_2(i) a 64-bit binary fraction: multiply by the integer z
-        let steps = z.iter().take(dims).copied().collect();
-        Ok(Prepared { steps, offsets: Offsets::new(dims, self.shift, self.tent, seed) })
-    }
-}
-
-/// A prepared embedded sequence: the integers z_j and the offsets.
-#[derive(Debug)]
-struct Prepared {
-    steps: Vec<u64>,
-    offsets: Offsets,
-}
-
-impl Access for Prepared {
-    fn sample(&self, index: u64, dim: usize) -> Result<f64> {
-        // phi_2(i) z mod 1 in 64-bit fixed point (phi_2(i) 2^64 is i's bits reversed): with
-        // n = 2^m and i < n this is the lattice point k z / n of k = phi_2(i) n
-        Ok(self.offsets.value(index.reverse_bits().wrapping_mul(self.steps[dim]), dim))
-    }
-}
-
-impl Sampler for Embedded {
-    fn spec(&self) -> String {
-        let source = match &self.vector {
-            Vector::Constructed(weights) => weights_text(*weights),
-            Vector::File(path, ..) => format!("vector={path}"),
-        };
-        lattice_spec("lattice", self.shift, &[source, tent_text(self.tent)])
-    }
+impl Construction for Embedded {
     fn dims(&self) -> RangeInclusive<usize> {
         match &self.vector {
             Vector::Constructed(_) => 1..=usize::MAX,
-            Vector::File(_, z) => 1..=z.len(),
+            Vector::File(z) => 1..=z.len(),
         }
     }
-    fn as_sequence(&self) -> Option<&dyn Sequence> {
-        Some(self)
-    }
-}
-
-impl Fill for Embedded {
-    fn fill(&self, _n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let prepared = self.prepare(dims, seed)?;
-        for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-            for (d, x) in p.iter_mut().enumerate() {
-                *x = prepared.sample(i as u64, d)?;
-            }
-        }
-        Ok(())
-    }
-}
-
-impl Sequence for Embedded {
-    fn access(&self, dims: usize, seed: Seed) -> Result<Box<dyn Access + '_>> {
-        (self as &dyn Sampler).plan(1, dims)?;
-        Ok(Box::new(self.prepare(dims, seed)?))
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        let z = match &self.vector {
+            Vector::Constructed(weights) => cbc::construct(1 << EMBEDDED_M, shape.dims(), *weights, true)?,
+            Vector::File(z) => z[..shape.dims()].to_vec(),
+        };
+        Ok(Box::new(Rank1 { z, order: Order::Radical, shift: self.shift, tent: self.tent }))
     }
 }
 
@@ -422,15 +364,15 @@ const VECTOR: ParamSpec = ParamSpec {
     doc: "a generating vector in the LDData lattice format (README: Lattices)",
 };
 
-fn cbc_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Sampler>> {
+fn cbc_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Construction>> {
     Ok(Box::new(Cbc { weights: weights(p), shift, tent: p.word("tent") == "yes" }))
 }
 
-fn embedded_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Sampler>> {
+fn embedded_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Construction>> {
     let vector = match p.path_or_auto("vector") {
         Some(path) => {
             let text = std::fs::read_to_string(path).map_err(|e| Error::Io { path: path.into(), reason: e.to_string() })?;
-            Vector::File(path.into(), Arc::new(parse_vector(&text, path)?))
+            Vector::File(Arc::new(parse_vector(&text, path)?))
         }
         None => Vector::Constructed(weights(p)),
     };
@@ -440,7 +382,7 @@ fn embedded_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Samp
 /// The samplers this file registers.
 pub(crate) static ENTRIES: &[SamplerEntry] = &[
     SamplerEntry {
-        about: About::new("lattice", "embedded rank-1 lattice sequence, frac(phi_2(i) z), nets of 2^k points")
+        about: About::new("lattice", "embedded rank-1 lattice sequence, frac(phi_2(i) z), nets of 2^k points").terse()
             .aliases(&["rank1", "lattice-sequence"])
             .params(&[VECTOR, GAMMA, DECAY, TENT])
             .cite(&["hickernell2000", "cools2006", "hickernell2002"]),
@@ -449,7 +391,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         build: |p| embedded_sampler(p, false),
     },
     SamplerEntry {
-        about: About::new("lattice.shift", "the embedded lattice sequence with a random shift mod 1")
+        about: About::new("lattice.shift", "the embedded lattice sequence with a random shift mod 1").terse()
             .aliases(&["lattice-shift"])
             .params(&[VECTOR, GAMMA, DECAY, TENT])
             .cite(&["hickernell2000", "cools2006", "cranley1976"]),
@@ -458,7 +400,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         build: |p| embedded_sampler(p, true),
     },
     SamplerEntry {
-        about: About::new("lattice.cbc", "rank-1 lattice, z by fast component-by-component construction")
+        about: About::new("lattice.cbc", "rank-1 lattice, z by fast component-by-component construction").terse()
             .aliases(&["cbc"])
             .params(&[GAMMA, DECAY, TENT])
             .cite(&["nuyens2006", "sloan1994", "hickernell2002"]),
@@ -467,7 +409,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         build: |p| cbc_sampler(p, false),
     },
     SamplerEntry {
-        about: About::new("lattice.cbc.shift", "the CBC lattice with a random shift mod 1")
+        about: About::new("lattice.cbc.shift", "the CBC lattice with a random shift mod 1").terse()
             .aliases(&["cbc-shift"])
             .params(&[GAMMA, DECAY, TENT])
             .cite(&["nuyens2006", "sloan1994", "cranley1976"]),
@@ -476,7 +418,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         build: |p| cbc_sampler(p, true),
     },
     SamplerEntry {
-        about: About::new("lattice.fibonacci", "Fibonacci lattice (i/n, frac(i F_(m-1)/n)), n = F_m")
+        about: About::new("lattice.fibonacci", "Fibonacci lattice (i/n, frac(i F_(m-1)/n)), n = F_m").terse()
             .aliases(&["fibonacci"])
             .cite(&["sloan1994"]),
         counts: "n a Fibonacci number (1, 2, 3, 5, 8, ...)",
@@ -484,7 +426,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         build: |_| Ok(Box::new(Fibonacci { shift: false })),
     },
     SamplerEntry {
-        about: About::new("lattice.fibonacci.shift", "the Fibonacci lattice with a random shift mod 1")
+        about: About::new("lattice.fibonacci.shift", "the Fibonacci lattice with a random shift mod 1").terse()
             .aliases(&["fibonacci-shift"])
             .cite(&["sloan1994", "cranley1976"]),
         counts: "n a Fibonacci number (1, 2, 3, 5, 8, ...)",
@@ -492,7 +434,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         build: |_| Ok(Box::new(Fibonacci { shift: true })),
     },
     SamplerEntry {
-        about: About::new("lattice.korobov", "Korobov rank-1 lattice, z = (1, a, a^2, ...) mod n")
+        about: About::new("lattice.korobov", "Korobov rank-1 lattice, z = (1, a, a^2, ...) mod n").terse()
             .aliases(&["korobov"])
             .params(&[A])
             .cite(&["korobov1959", "sloan1994"]),
@@ -501,7 +443,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         build: |p| Ok(Box::new(Korobov { a: p.int_or_auto("a"), shift: false })),
     },
     SamplerEntry {
-        about: About::new("lattice.korobov.shift", "the Korobov lattice with a random shift mod 1")
+        about: About::new("lattice.korobov.shift", "the Korobov lattice with a random shift mod 1").terse()
             .aliases(&["korobov-shift"])
             .params(&[A])
             .cite(&["korobov1959", "sloan1994", "cranley1976"]),

@@ -3,11 +3,11 @@
 
 use std::ops::RangeInclusive;
 
-use super::registry::{ANY, SamplerEntry};
-use super::{Fill, Sampler};
+use crate::sampler::registry::{ANY, SamplerEntry};
+use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::Result;
 use crate::registry::About;
-use crate::seed::{Seed, below, uniform};
+use crate::seed::{Seed, shuffle, uniform};
 
 /// Coordinate d of point i is (pi_d(i) + u) / n with pi_d a uniformly random permutation
 /// and u uniform in [0,1): every axis-aligned slab of width 1/n holds exactly one point.
@@ -22,16 +22,17 @@ pub struct NRooks {
     centered: bool,
 }
 
-impl Sampler for NRooks {
-    fn spec(&self) -> String {
-        if self.centered { "lhs.centered" } else { "nrooks" }.into()
-    }
+impl Construction for NRooks {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=usize::MAX
     }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    }
 }
 
-impl Fill for NRooks {
+impl NRooks {
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         let mut rng = seed.rng();
         let inv = 1.0 / n as f64;
@@ -41,13 +42,11 @@ impl Fill for NRooks {
             perm.extend(0..n as u32);
             // the centered variant permutes dimension 0 too: its offsets carry no randomness
             if d > 0 || self.centered {
-                for i in (1..n).rev() {
-                    perm.swap(i, below(&mut rng, i as u64 + 1) as usize);
-                }
+                shuffle(&mut rng, &mut perm);
             }
             for (i, &p) in perm.iter().enumerate() {
                 let offset = if self.centered { 0.5 } else { uniform(&mut rng) };
-                out[i * dims + d] = ((p as f64 + offset) * inv).min(super::grid::BELOW_ONE);
+                out[i * dims + d] = ((p as f64 + offset) * inv).min(crate::numeric::BELOW_ONE);
             }
         }
         Ok(())
@@ -64,12 +63,18 @@ impl Fill for NRooks {
 #[derive(Debug, Clone, Copy)]
 pub struct OaLhs;
 
-impl Sampler for OaLhs {
-    fn spec(&self) -> String {
-        "lhs.oa".into()
-    }
+impl Construction for OaLhs {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=usize::MAX
+    }
+
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        let squares = (2..).filter(move |&p| is_prime(p) && dims <= p + 1).map(|p| p * p);
+        crate::sampler::check_listed(String::new(), n, dims, "n must be p^2 for a prime p >= d - 1", squares)
+    }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
 
@@ -77,28 +82,20 @@ fn is_prime(p: usize) -> bool {
     p >= 2 && (2..).take_while(|k| k * k <= p).all(|k| !p.is_multiple_of(k))
 }
 
-impl Fill for OaLhs {
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        let squares = (2..).filter(move |&p| is_prime(p) && dims <= p + 1).map(|p| p * p);
-        super::check_listed(self.spec(), n, dims, "n must be p^2 for a prime p >= d - 1", squares)
-    }
+impl OaLhs {
+
 
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         let p = (n as f64).sqrt().round() as usize;
         let mut rng = seed.rng();
-        let shuffle = |v: &mut Vec<usize>, rng: &mut crate::seed::Rng| {
-            for i in (1..v.len()).rev() {
-                v.swap(i, below(rng, i as u64 + 1) as usize);
-            }
-        };
         for d in 0..dims {
             let mut relabel: Vec<usize> = (0..p).collect();
-            shuffle(&mut relabel, &mut rng);
+            shuffle(&mut rng, &mut relabel);
             // slabs v p .. v p + p - 1, in a random order per symbol
             let mut slabs: Vec<Vec<usize>> = (0..p)
                 .map(|v| {
                     let mut s: Vec<usize> = (v * p..(v + 1) * p).collect();
-                    shuffle(&mut s, &mut rng);
+                    shuffle(&mut rng, &mut s);
                     s
                 })
                 .collect();
@@ -110,7 +107,7 @@ impl Fill for OaLhs {
                     d => (a + (d - 1) * b) % p,
                 };
                 let slab = slabs[relabel[symbol]].pop().expect("each symbol occurs p times");
-                out[i * dims + d] = ((slab as f64 + uniform(&mut rng)) / n as f64).min(super::grid::BELOW_ONE);
+                out[i * dims + d] = ((slab as f64 + uniform(&mut rng)) / n as f64).min(crate::numeric::BELOW_ONE);
             }
         }
         Ok(())

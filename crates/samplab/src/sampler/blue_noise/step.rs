@@ -53,15 +53,16 @@ use std::ops::RangeInclusive;
 
 
 use super::elimination::SETTLED;
-use super::registry::{ANY, SamplerEntry};
-use super::{Fill, Sampler};
+use crate::sampler::registry::{ANY, SamplerEntry};
+use crate::sampler::{Prepared, Construction};
 use crate::error::{Error, Result};
-use crate::integrand::quadrature::gauss_legendre;
+use crate::numeric::quadrature::gauss_legendre;
 use crate::progress::Progress;
+use crate::numeric::normal_cdf;
 use crate::registry::About;
 use crate::seed::{Seed, wrap01};
 use crate::spatial::{self, Grid, torus_gap};
-use crate::spec::{Default, Kind, ParamSpec, Params};
+use crate::spec::{Default, Kind, ParamSpec, Params, Value};
 
 /// A target radial power spectrum (frequencies in units of sqrt(n)).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -92,10 +93,6 @@ pub fn hankel(f: impl Fn(f64) -> f64, from: f64, to: f64, rho: f64) -> f64 {
 pub fn disk(a: f64, rho: f64) -> f64 {
     let z = TAU * a * rho;
     if z < 1e-8 { PI * a * a } else { a * libm::j1(z) / rho }
-}
-
-fn normal_cdf(x: f64) -> f64 {
-    0.5 * libm::erfc(-x / std::f64::consts::SQRT_2)
 }
 
 fn normal_pdf(x: f64, width: f64) -> f64 {
@@ -150,8 +147,7 @@ impl Shape {
 
 /// Points matched to a target PCF by gradient descent.
 #[derive(Debug, Clone, Copy)]
-pub struct Heck {
-    name: &'static str,
+pub struct Matched {
     shape: Shape,
     iterations: usize,
     sigma: f64,
@@ -328,7 +324,7 @@ impl Matching {
     }
 }
 
-impl Heck {
+impl Matched {
     /// The descent from `points` for `iterations` steps, advancing `progress` by one per
     /// step; returns E before and after.
     fn descend(&self, points: &mut [f64], n: usize, progress: &Progress) -> Result<(f64, f64)> {
@@ -365,23 +361,24 @@ impl Heck {
     }
 }
 
-impl Sampler for Heck {
-    fn spec(&self) -> String {
-        let shape = match self.shape {
-            Shape::Step { nu } => format!("nu={nu}"),
-            Shape::Peak { nu, width, power } => format!("nu={nu},width={width},power={power}"),
-        };
-        format!("{}:{shape},iterations={},sigma={},reach={}", self.name, self.iterations, self.sigma, self.reach)
-    }
+impl Construction for Matched {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
-}
 
-impl Fill for Heck {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         SETTLED.check_count(n, dims)
     }
+
+    fn prepare(&self, shape: crate::sampler::Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill_reporting(self.units(), move |seed, out, progress| {
+            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+        }))
+    }
+}
+
+impl Matched {
+
     fn units(&self) -> u64 {
         self.iterations as u64
     }
@@ -417,16 +414,15 @@ const REACH: ParamSpec = ParamSpec {
     doc: "the largest distance matched, in units of 1/sqrt(n) (at most 1/2 - 5 sigma in absolute terms)",
 };
 
-fn build(name: &'static str, shape: Shape, p: &Params) -> Result<Box<dyn Sampler>> {
+fn build(owner: &str, shape: Shape, p: &Params) -> Result<Box<dyn Construction>> {
     if let Some(rho) = shape.negative_at() {
         return Err(Error::Param {
-            owner: name.into(),
+            owner: owner.into(),
             param: "nu".into(),
             reason: format!("the target is not realizable: its PCF is negative at {rho} / sqrt(n)"),
         });
     }
-    Ok(Box::new(Heck {
-        name,
+    Ok(Box::new(Matched {
         shape,
         iterations: p.int("iterations") as usize,
         sigma: p.real("sigma"),
@@ -434,7 +430,7 @@ fn build(name: &'static str, shape: Shape, p: &Params) -> Result<Box<dyn Sampler
     }))
 }
 
-fn build_peak(p: &Params) -> Result<Box<dyn Sampler>> {
+fn build_peak(p: &mut Params) -> Result<Box<dyn Construction>> {
     let (nu, width) = (p.real("nu"), p.real("width"));
     let power = match p.real_or_auto("power") {
         Some(power) => power,
@@ -444,6 +440,8 @@ fn build_peak(p: &Params) -> Result<Box<dyn Sampler>> {
             reason: format!("no peak power makes the PCF of a step at {nu} of width {width} non-negative"),
         })?,
     };
+    // the spec names the power chosen
+    p.set("power", Value::Number(power));
     build("single-peak", Shape::Peak { nu, width, power }, p)
 }
 
@@ -536,7 +534,7 @@ mod tests {
     fn the_gradient_is_the_energy_s_derivative() {
         let n = 64;
         let mut points = vec![0.0; 2 * n];
-        Random.fill(n, 2, Seed(5), &mut points).unwrap();
+        Random::draw(Seed(5), &mut points);
         let m = Matching::new(Shape::Step { nu: 0.5 }, n, 0.1, 3.0);
         let energy = |p: &[f64]| m.energy(&m.measure(p).estimate);
         let measured = m.measure(&points);
@@ -556,8 +554,8 @@ mod tests {
     fn the_descent_lowers_the_mismatch() {
         let n = 256;
         let mut points = vec![0.0; 2 * n];
-        Random.fill(n, 2, Seed(9), &mut points).unwrap();
-        let heck = Heck { name: "step", shape: Shape::Step { nu: 0.55 }, iterations: 100, sigma: 0.1, reach: 6.0 };
+        Random::draw(Seed(9), &mut points);
+        let heck = Matched { shape: Shape::Step { nu: 0.55 }, iterations: 100, sigma: 0.1, reach: 6.0 };
         let (first, last) = heck.descend(&mut points, n, &Progress::SILENT).unwrap();
         assert!(last < 0.05 * first, "{first} -> {last}");
     }

@@ -17,12 +17,12 @@ use std::ops::RangeInclusive;
 
 use rayon::prelude::*;
 
-use super::registry::{ANY, SamplerEntry};
-use super::{Fill, Sampler};
+use crate::sampler::registry::{ANY, SamplerEntry};
+use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::Result;
 use crate::progress::Progress;
 use crate::registry::About;
-use super::random::Random;
+use crate::sampler::random::Random;
 use crate::seed::{Seed, normal};
 use crate::spec::{Default, Kind, ParamSpec};
 
@@ -200,25 +200,28 @@ pub fn sliced_distance2(points: &[f64], dims: usize, k: usize, seed: Seed) -> f6
     (0..k).map(per_direction).sum::<f64>() / k as f64
 }
 
-impl Sampler for Sot {
-    fn spec(&self) -> String {
-        format!("sot:iterations={},directions={}", self.iterations, self.directions)
-    }
+impl Construction for Sot {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=8
     }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill_reporting(self.units(), move |seed, out, progress| {
+            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+        }))
+    }
 }
 
-impl Fill for Sot {
+impl Sot {
     fn units(&self) -> u64 {
         self.iterations as u64
     }
-    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
-        Random.fill(n, dims, seed, out)?;
+    fn fill_reporting(&self, _n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        Random::draw(seed, out);
         for it in 0..self.iterations {
             let delta = batch(out, dims, self.directions, seed.derive(1 + it as u64));
             for (x, d) in out.iter_mut().zip(delta) {
-                *x = (*x + d).clamp(0.0, super::grid::BELOW_ONE);
+                *x = (*x + d).clamp(0.0, crate::numeric::BELOW_ONE);
             }
             progress.advance(1)?;
         }

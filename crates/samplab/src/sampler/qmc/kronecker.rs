@@ -10,9 +10,10 @@
 
 use std::ops::RangeInclusive;
 
-use super::registry::{ANY, SamplerEntry};
-use super::{Access, Fill, Sampler, Sequence};
+use crate::sampler::registry::{ANY, SamplerEntry};
+use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
+use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::Seed;
 use crate::spec::{Default, Kind, ParamSpec};
@@ -40,71 +41,71 @@ pub fn alphas(dims: usize) -> Vec<f64> {
     (1..=dims).map(|j| x.powi(-(j as i32))).collect()
 }
 
-/// The fixed-point increments and shifts of a prepared sequence.
+/// A Kronecker sequence prepared for a dimension: the fixed-point increments.
 #[derive(Debug)]
-struct Prepared {
+struct Steps<'a> {
+    kronecker: &'a Kronecker,
     steps: Vec<u64>,
+}
+
+/// Random access for one seed: the increments and the seed's shifts.
+#[derive(Debug)]
+struct Shifted<'a> {
+    steps: &'a [u64],
     shifts: Vec<u64>,
 }
 
-impl Prepared {
-    fn new(k: &Kronecker, dims: usize, seed: Seed) -> Prepared {
-        let fixed = |a: f64| (a * 18_446_744_073_709_551_616.0) as u64;
-        let steps = match &k.alphas {
-            Some(given) => given[..dims].iter().map(|&a| fixed(a)).collect(),
-            None => alphas(dims).into_iter().map(fixed).collect(),
-        };
-        let mut rng = seed.rng();
-        let shifts = (0..dims).map(|_| if k.shift { rand_core::Rng::next_u64(&mut rng) } else { 0 }).collect();
-        Prepared { steps, shifts }
-    }
+/// Coordinate `index` of the dimension with increment `step` and shift `shift`: the 53
+/// leading bits of index x step + shift mod 2^64.
+#[inline]
+fn coordinate(index: u64, step: u64, shift: u64) -> f64 {
+    let x = index.wrapping_mul(step).wrapping_add(shift);
+    (x >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
 
-    #[inline]
-    fn coordinate(&self, index: u64, dim: usize) -> f64 {
-        let x = index.wrapping_mul(self.steps[dim]).wrapping_add(self.shifts[dim]);
-        (x >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+impl Steps<'_> {
+    /// The shift of each dimension in turn, drawn from the seed's one stream.
+    fn shifts(&self, seed: Seed) -> impl Iterator<Item = u64> {
+        let (mut rng, shift) = (seed.rng(), self.kronecker.shift);
+        (0..self.steps.len()).map(move |_| if shift { rand_core::Rng::next_u64(&mut rng) } else { 0 })
     }
 }
 
-impl Sampler for Kronecker {
-    fn spec(&self) -> String {
-        let name = if self.shift { "kronecker.shift" } else { "kronecker" };
-        match &self.alphas {
-            Some(a) => format!("{name}:alpha={}", a.iter().map(f64::to_string).collect::<Vec<_>>().join("/")),
-            None => name.into(),
+impl Prepared for Steps<'_> {
+    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        // dimension by dimension, so the shifts need no buffer
+        let dims = self.steps.len();
+        for (d, (&step, shift)) in self.steps.iter().zip(self.shifts(seed)).enumerate() {
+            for (i, point) in out.chunks_exact_mut(dims).enumerate() {
+                point[d] = coordinate(i as u64, step, shift);
+            }
         }
+        progress.advance(1)
     }
+
+    fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
+        Some(Box::new(Shifted { steps: &self.steps, shifts: self.shifts(seed).collect() }))
+    }
+}
+
+impl Access for Shifted<'_> {
+    fn sample(&self, index: u64, dim: usize) -> Result<f64> {
+        Ok(coordinate(index, self.steps[dim], self.shifts[dim]))
+    }
+}
+
+impl Construction for Kronecker {
     fn dims(&self) -> RangeInclusive<usize> {
         // given alphas fix the dimension: one per axis, none left unused
         self.alphas.as_ref().map_or(1..=usize::MAX, |a| a.len()..=a.len())
     }
-    fn as_sequence(&self) -> Option<&dyn Sequence> {
-        Some(self)
-    }
-}
-
-impl Fill for Kronecker {
-    fn fill(&self, _n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let p = Prepared::new(self, dims, seed);
-        for (i, point) in out.chunks_exact_mut(dims).enumerate() {
-            for (d, x) in point.iter_mut().enumerate() {
-                *x = p.coordinate(i as u64, d);
-            }
-        }
-        Ok(())
-    }
-}
-
-impl Sequence for Kronecker {
-    fn access(&self, dims: usize, seed: Seed) -> Result<Box<dyn Access + '_>> {
-        (self as &dyn Sampler).plan(1, dims)?;
-        Ok(Box::new(Prepared::new(self, dims, seed)))
-    }
-}
-
-impl Access for Prepared {
-    fn sample(&self, index: u64, dim: usize) -> Result<f64> {
-        Ok(self.coordinate(index, dim))
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        let fixed = |a: f64| (a * 18_446_744_073_709_551_616.0) as u64;
+        let steps = match &self.alphas {
+            Some(given) => given[..shape.dims()].iter().map(|&a| fixed(a)).collect(),
+            None => alphas(shape.dims()).into_iter().map(fixed).collect(),
+        };
+        Ok(Box::new(Steps { kronecker: self, steps }))
     }
 }
 
@@ -115,7 +116,7 @@ const ALPHA: ParamSpec = ParamSpec {
     doc: "the increment of each dimension (irrational in theory; 53 bits here), one per dimension",
 };
 
-fn build(p: &crate::spec::Params, shift: bool, owner: &str) -> Result<Box<dyn Sampler>> {
+fn build(p: &crate::spec::Params, shift: bool, owner: &str) -> Result<Box<dyn Construction>> {
     let alphas = p.reals_or_auto("alpha").map(<[f64]>::to_vec);
     if let Some(a) = alphas.as_ref().and_then(|a| a.iter().find(|&&a| a == 0.0 || a == 1.0)) {
         return Err(Error::Param {
@@ -130,7 +131,7 @@ fn build(p: &crate::spec::Params, shift: bool, owner: &str) -> Result<Box<dyn Sa
 /// The samplers this file registers.
 pub(crate) static ENTRIES: &[SamplerEntry] = &[
     SamplerEntry {
-        about: About::new("kronecker", "Kronecker sequence frac(i alpha), alpha from the generalized golden ratio (R_d) or given")
+        about: About::new("kronecker", "Kronecker sequence frac(i alpha), alpha from the generalized golden ratio (R_d) or given").terse()
             .aliases(&["weyl", "rd", "r2"])
             .params(&[ALPHA])
             .cite(&["weyl1916", "roberts2018"]),
@@ -139,7 +140,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         build: |p| build(p, false, "kronecker"),
     },
     SamplerEntry {
-        about: About::new("kronecker.shift", "the Kronecker sequence (R_d or given alphas) with a random shift mod 1")
+        about: About::new("kronecker.shift", "the Kronecker sequence (R_d or given alphas) with a random shift mod 1").terse()
             .aliases(&["kronecker-shift"])
             .params(&[ALPHA])
             .cite(&["weyl1916", "roberts2018", "cranley1976"]),

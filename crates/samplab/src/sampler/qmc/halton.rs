@@ -1,7 +1,7 @@
 //! Radical-inverse constructions: the Halton sequence (Halton 1960, bases = the first d
 //! primes) and the Hammersley set (Hammersley & Handscomb 1964: i/n, then Halton), with
 //! the randomizations of [`Randomization`]; Owen scrambling in base b is the nested affine
-//! scramble of [`super::scramble`]'s `OwenDigits` (one hash per non-zero digit beyond a
+//! scramble of [`crate::sampler::randomize::scramble`]'s `OwenDigits` (one hash per non-zero digit beyond a
 //! table of the first digits, the endless zero digits after the index's end in one step).
 //!
 //! A coordinate in base b is sum_j pi_j(a_j) b^-(j+1) over the base-b digits a_j of the
@@ -12,31 +12,39 @@
 //! digits that change) and the random-access path give identical bits.
 
 use std::ops::RangeInclusive;
-use std::sync::LazyLock;
+use std::borrow::Cow;
 
-use super::grid::BELOW_ONE;
-use super::registry::{ANY, SamplerEntry, randomized_entries};
-use super::scramble::{OwenDigits, Randomization, hash_unit, owen_scramble_u32};
-use super::{Access, Fill, Sampler, Sequence};
+use crate::numeric::BELOW_ONE;
+use crate::sampler::registry::{ANY, SamplerEntry, randomized_entries};
+use crate::sampler::randomize::scramble::{OwenDigits, Randomization, hash_unit, owen_scramble_u32};
+use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::Result;
+use crate::progress::Progress;
 use crate::registry::About;
-use crate::seed::{Seed, below, wrap01};
+use crate::seed::{Seed, shuffle, wrap01};
 
 /// How many dimensions (primes) the Halton sequence supports.
 pub const HALTON_MAX_DIMS: usize = 1024;
 
-/// The first [`HALTON_MAX_DIMS`] primes.
-pub static PRIMES: LazyLock<Vec<u32>> = LazyLock::new(|| {
-    let mut primes = Vec::with_capacity(HALTON_MAX_DIMS);
-    let mut c = 2u32;
-    while primes.len() < HALTON_MAX_DIMS {
-        if primes.iter().take_while(|&&p| p * p <= c).all(|&p| !c.is_multiple_of(p)) {
-            primes.push(c);
+/// The first [`HALTON_MAX_DIMS`] primes (by trial division, at compile time).
+pub static PRIMES: [u32; HALTON_MAX_DIMS] = first_primes();
+
+const fn first_primes() -> [u32; HALTON_MAX_DIMS] {
+    let mut primes = [0u32; HALTON_MAX_DIMS];
+    let (mut found, mut c) = (0, 2u32);
+    while found < HALTON_MAX_DIMS {
+        let mut k = 0;
+        while k < found && primes[k] * primes[k] <= c && c % primes[k] != 0 {
+            k += 1;
+        }
+        if k == found || primes[k] * primes[k] > c {
+            primes[found] = c;
+            found += 1;
         }
         c += 1;
     }
     primes
-});
+}
 
 /// The unscrambled radical inverse of `index` in `base` (van der Corput for base 2).
 pub fn radical_inverse(index: u64, base: u32) -> f64 {
@@ -67,9 +75,7 @@ impl DigitTable {
         let mut perm: Vec<u32> = (0..base).collect();
         for _ in 0..p {
             if let Some(rng) = rng.as_mut() {
-                for i in (1..b).rev() {
-                    perm.swap(i, below(rng, i as u64 + 1) as usize);
-                }
+                shuffle(rng, &mut perm);
             }
             scaled.extend(perm.iter().map(|&a| f64::from(a) * weight));
             weight /= f64::from(base);
@@ -98,31 +104,37 @@ impl DigitTable {
     }
 }
 
+/// The most base-b digits of an index (base 2, 64-bit indices).
+const MAX_DIGITS: usize = 64;
+
 /// An odometer over the digits of consecutive indices, keeping the partial sums from the
-/// most significant digit down, so that stepping to the next index costs O(1) amortized.
+/// most significant digit down, so that stepping to the next index costs O(1) amortized
+/// (its state on the stack).
 struct Odometer<'a> {
     table: &'a DigitTable,
-    digits: Vec<u32>,
-    partial: Vec<f64>, // partial[j] = tail[m] + sum over positions m-1..=j
+    /// The index's digits, least significant first; `len` of them.
+    digits: [u32; MAX_DIGITS],
+    len: usize,
+    /// partial[j] = tail[len] + the digits' terms at positions len-1 down to j.
+    partial: [f64; MAX_DIGITS + 1],
 }
 
 impl<'a> Odometer<'a> {
     fn new(table: &'a DigitTable, start: u64) -> Self {
-        let mut digits = Vec::new();
+        let mut od = Odometer { table, digits: [0; MAX_DIGITS], len: 0, partial: [0.0; MAX_DIGITS + 1] };
         let mut i = start;
         while i != 0 {
-            digits.push((i % u64::from(table.base)) as u32);
+            od.digits[od.len] = (i % u64::from(table.base)) as u32;
             i /= u64::from(table.base);
+            od.len += 1;
         }
-        let mut od = Odometer { table, partial: vec![0.0; digits.len() + 1], digits };
-        od.refresh(od.digits.len());
+        od.refresh(od.len);
         od
     }
 
     /// Recompute partial sums for positions below `top` (inclusive of top-1 .. 0).
     fn refresh(&mut self, top: usize) {
-        let m = self.digits.len();
-        self.partial.resize(m + 1, 0.0);
+        let m = self.len;
         self.partial[m] = self.table.tail[m];
         let b = self.table.base as usize;
         for j in (0..top.min(m)).rev() {
@@ -137,8 +149,9 @@ impl<'a> Odometer<'a> {
     fn step(&mut self) {
         let mut j = 0;
         loop {
-            if j == self.digits.len() {
-                self.digits.push(1);
+            if j == self.len {
+                self.digits[j] = 1;
+                self.len += 1;
                 self.refresh(j + 1);
                 return;
             }
@@ -153,25 +166,29 @@ impl<'a> Odometer<'a> {
     }
 }
 
-/// One randomized radical-inverse coordinate in a given base.
+/// One randomized radical-inverse coordinate in a given base: the plan's identity digit
+/// table, or (`.xor`) the seed's permuted one.
 #[derive(Debug, Clone)]
-struct Coordinate {
+struct Coordinate<'a> {
     randomization: Randomization,
-    table: DigitTable,
+    table: Cow<'a, DigitTable>,
     owen: Option<OwenDigits>,
     shift: f64,
 }
 
-impl Coordinate {
-    /// Coordinate `dim` in `base` for `seed`; an Owen scramble tabulates at most `bound`
-    /// prefixes (the count of points to make: tables are a cache, the bits do not depend
-    /// on it).
-    fn new(base: u32, randomization: Randomization, seed: Seed, dim: usize, bound: u64) -> Self {
+impl<'a> Coordinate<'a> {
+    /// Coordinate `dim` over the identity table `plain` (its base) for `seed`; an Owen
+    /// scramble tabulates at most `bound` prefixes (the count of points to make: tables are
+    /// a cache, the bits do not depend on it).
+    fn new(plain: &'a DigitTable, randomization: Randomization, seed: Seed, dim: usize, bound: u64) -> Self {
         let s = seed.derive(dim as u64);
-        let perms = (randomization == Randomization::Xor).then_some(s);
+        let base = plain.base;
         Coordinate {
             randomization,
-            table: DigitTable::new(base, perms),
+            table: match randomization {
+                Randomization::Xor => Cow::Owned(DigitTable::new(base, Some(s))),
+                _ => Cow::Borrowed(plain),
+            },
             owen: (randomization == Randomization::Owen).then(|| OwenDigits::new(base, s.0, bound)),
             shift: hash_unit(dim as u64, s.0),
         }
@@ -202,6 +219,11 @@ impl Coordinate {
     }
 }
 
+/// The identity digit tables of the first `count` prime bases, built by a plan.
+fn plain_tables(count: usize) -> Vec<DigitTable> {
+    PRIMES[..count].iter().map(|&b| DigitTable::new(b, None)).collect()
+}
+
 /// The Halton sequence: coordinate j of point i is the (randomized) radical inverse of i
 /// in the j-th prime base. Any n; 1..=1024 dimensions.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -216,54 +238,60 @@ impl Halton {
     }
 }
 
-fn variant_name(family: &str, r: Randomization) -> String {
-    match r {
-        Randomization::None => family.into(),
-        r => format!("{family}.{}", r.suffix()),
-    }
-}
-
-impl Sampler for Halton {
-    fn spec(&self) -> String {
-        variant_name("halton", self.randomization)
-    }
+impl Construction for Halton {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=HALTON_MAX_DIMS
     }
-    fn as_sequence(&self) -> Option<&dyn Sequence> {
-        Some(self)
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(Box::new(Radical { randomization: self.randomization, n: shape.n(), tables: plain_tables(shape.dims()) }))
     }
 }
 
-impl Fill for Halton {
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        for d in 0..dims {
-            Coordinate::new(PRIMES[d], self.randomization, seed, d, n as u64).fill_strided(0, out, dims, d);
+/// Radical-inverse coordinates planned for a count: the identity digit table of each base.
+#[derive(Debug)]
+struct Radical {
+    randomization: Randomization,
+    n: usize,
+    tables: Vec<DigitTable>,
+}
+
+impl Radical {
+    /// Coordinate `dim` (base `PRIMES[dim]`) for `seed`, Owen tables bounded by `bound`.
+    fn coordinate(&self, seed: Seed, dim: usize, bound: u64) -> Coordinate<'_> {
+        Coordinate::new(&self.tables[dim], self.randomization, seed, dim, bound)
+    }
+
+    /// The Halton coordinates of points 0..n into dimensions `first..` of `out`.
+    fn fill_from(&self, seed: Seed, out: &mut [f64], dims: usize, first: usize) {
+        for d in 0..self.tables.len() {
+            self.coordinate(seed, d, self.n as u64).fill_strided(0, out, dims, first + d);
         }
-        Ok(())
     }
 }
 
-impl Sequence for Halton {
-    fn access(&self, dims: usize, seed: Seed) -> Result<Box<dyn Access + '_>> {
-        (self as &dyn Sampler).plan(1, dims)?;
-        let coordinates =
-            (0..dims).map(|d| Coordinate::new(PRIMES[d], self.randomization, seed, d, u64::MAX)).collect();
-        Ok(Box::new(HaltonAccess { coordinates }))
+impl Prepared for Radical {
+    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        self.fill_from(seed, out, self.tables.len(), 0);
+        progress.advance(1)
+    }
+
+    fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
+        let coordinates = (0..self.tables.len()).map(|d| self.coordinate(seed, d, u64::MAX)).collect();
+        Some(Box::new(HaltonAccess { coordinates }))
     }
 }
 
 /// Random access to a randomized Halton sequence: each dimension's digit tables, built once.
 #[derive(Debug)]
-struct HaltonAccess {
-    coordinates: Vec<Coordinate>,
+struct HaltonAccess<'a> {
+    coordinates: Vec<Coordinate<'a>>,
 }
 
 /// The first index past the digit tables: every base's tables hold at least 53 bits of
 /// digits (see [`positions`]), and a double holds no more.
 const HALTON_INDICES: u64 = 1 << 53;
 
-impl Access for HaltonAccess {
+impl Access for HaltonAccess<'_> {
     fn sample(&self, index: u64, dim: usize) -> Result<f64> {
         if index >= HALTON_INDICES {
             return Err(crate::error::Error::Setting {
@@ -291,20 +319,14 @@ impl Hammersley {
     }
 }
 
-impl Sampler for Hammersley {
-    fn spec(&self) -> String {
-        variant_name("hammersley", self.randomization)
-    }
+impl Construction for Hammersley {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=HALTON_MAX_DIMS + 1
     }
-}
-
-impl Fill for Hammersley {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         if n as u64 > 1 << 32 {
             return Err(crate::error::Error::InvalidCount {
-                sampler: self.spec(),
+                sampler: String::new(),
                 n,
                 dims,
                 reason: "the first coordinate has 32-bit resolution: at most 2^32 points".into(),
@@ -312,22 +334,34 @@ impl Fill for Hammersley {
         }
         Ok(())
     }
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        let halton = Radical { randomization: self.randomization, n: shape.n(), tables: plain_tables(shape.dims() - 1) };
+        Ok(Box::new(Planned { halton }))
+    }
+}
+
+/// A Hammersley set planned for a count: i/n, then the Halton coordinates' tables.
+#[derive(Debug)]
+struct Planned {
+    halton: Radical,
+}
+
+impl Prepared for Planned {
+    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        let (n, dims) = (self.halton.n, self.halton.tables.len() + 1);
         let s = seed.derive(u64::MAX);
         let (bits, shift) = (s.bits32(), hash_unit(u64::MAX, s.0));
         for (i, p) in out.chunks_exact_mut(dims).enumerate() {
             let fixed = ((i as u128) << 32).div_euclid(n as u128) as u32;
-            p[0] = match self.randomization {
+            p[0] = match self.halton.randomization {
                 Randomization::None => i as f64 / n as f64,
                 Randomization::Xor => f64::from(fixed ^ bits) / 4_294_967_296.0,
                 Randomization::Owen => f64::from(owen_scramble_u32(fixed, bits)) / 4_294_967_296.0,
                 Randomization::Shift => wrap01(i as f64 / n as f64 + shift),
             };
         }
-        for d in 1..dims {
-            Coordinate::new(PRIMES[d - 1], self.randomization, seed, d - 1, n as u64).fill_strided(0, out, dims, d);
-        }
-        Ok(())
+        self.halton.fill_from(seed, out, dims, 1);
+        progress.advance(1)
     }
 }
 
@@ -351,7 +385,8 @@ mod tests {
     fn odometer_equals_random_access_bit_for_bit() {
         for base in [2u32, 3, 7, 8161] {
             for r in [Randomization::None, Randomization::Xor, Randomization::Shift] {
-                let c = Coordinate::new(base, r, Seed(11), 3, 3000);
+                let plain = DigitTable::new(base, None);
+                let c = Coordinate::new(&plain, r, Seed(11), 3, 3000);
                 let mut out = vec![0.0; 3000];
                 c.fill_strided(17, &mut out, 1, 0);
                 for (i, v) in out.iter().enumerate() {
@@ -365,7 +400,8 @@ mod tests {
     fn owen_prefix_tables_are_a_cache_only() {
         // no table, a small one and the largest give the same bits, far indices included
         for base in [2u32, 3, 5, 61, 8161] {
-            let make = |bound| Coordinate::new(base, Randomization::Owen, Seed(5), 1, bound);
+            let plain = DigitTable::new(base, None);
+            let make = |bound| Coordinate::new(&plain, Randomization::Owen, Seed(5), 1, bound);
             let (none, some, most) = (make(1), make(40), make(u64::MAX));
             for i in (0..5000u64).chain([1 << 40, (1 << 40) + 7, (1 << 53) - 1, 3u64.pow(33) + 1]) {
                 let v = none.value(i);
@@ -387,9 +423,10 @@ mod tests {
             let (i, j) = (4 + b.pow(k) * da + 2 * b.pow(k + 1), 4 + b.pow(k) * db + b.pow(k + 2)); // equal mod b^k
             let cell = |v: f64, depth: u32| (v * (b.pow(depth)) as f64) as u64;
             let seeds = 4000 * base as usize;
+            let plain = DigitTable::new(base, None);
             let mut counts = vec![0u32; (b * b) as usize];
             for s in 0..seeds {
-                let c = Coordinate::new(base, Randomization::Owen, Seed(s as u64), 0, 64);
+                let c = Coordinate::new(&plain, Randomization::Owen, Seed(s as u64), 0, 64);
                 let (x, y) = (c.value(i), c.value(j));
                 assert_eq!(cell(x, k), cell(y, k), "base {base}: the first {k} digits must agree");
                 let (dx, dy) = (cell(x, k + 1) % b, cell(y, k + 1) % b);

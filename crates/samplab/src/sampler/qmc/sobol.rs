@@ -4,10 +4,11 @@
 
 use std::ops::RangeInclusive;
 
-use super::registry::{SamplerEntry, randomized_entries};
-use super::scramble::{Randomization, hash_unit, owen_scramble_reversed};
-use super::{Access, Fill, Sampler, Sequence};
+use crate::sampler::registry::{SamplerEntry, randomized_entries};
+use crate::sampler::randomize::scramble::{Randomization, hash_unit, owen_scramble_reversed};
+use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
+use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Seed, wrap01};
 use crate::simd::wide;
@@ -92,28 +93,25 @@ impl Sobol {
     }
 }
 
-/// The direction numbers bit-reversed, for Owen scrambling's reversed domain (computed once,
-/// so that many small fills, as a renderer's per-pixel patterns, pay nothing per call).
-static REVERSED_DIRECTIONS: std::sync::LazyLock<Vec<[u32; 32]>> =
-    std::sync::LazyLock::new(|| SOBOL_DIRECTIONS.iter().map(|v| v.map(u32::reverse_bits)).collect());
-
 /// Walk the first `out.len() / dims` points in Gray-code order (Antonov & Saleev 1979), as
 /// Joe & Kuo's and scipy's generators do: point i+1 is point i XOR v_c with c =
-/// trailing_zeros(i+1). `reversed` keeps the state bit-reversed. `finish` maps a state
-/// word of dimension d to the coordinate.
+/// trailing_zeros(i+1). Only dimensions `first..first + count` of each point are written.
+/// `reversed` keeps the state bit-reversed. `finish` maps a state word of dimension
+/// `first + j` to the coordinate, given j.
 #[inline(always)]
-fn gray_walk(out: &mut [f64], dims: usize, reversed: bool, finish: impl Fn(u32, usize) -> f64) {
-    let directions: &[[u32; 32]] = if reversed { &REVERSED_DIRECTIONS[..dims] } else { &SOBOL_DIRECTIONS[..dims] };
-    match dims {
+fn gray_walk(out: &mut [f64], dims: usize, first: usize, count: usize, reversed: bool, finish: impl Fn(u32, usize) -> f64) {
+    let table: &[[u32; 32]] = if reversed { &REVERSED_DIRECTIONS } else { &SOBOL_DIRECTIONS };
+    let directions = &table[first..first + count];
+    match (dims, count) {
         // fixed sizes let the compiler interleave the coordinates' work
-        1 => walk_fixed::<1>(out, directions, &finish),
-        2 => walk_fixed::<2>(out, directions, &finish),
-        3 => walk_fixed::<3>(out, directions, &finish),
+        (1, 1) => walk_fixed::<1>(out, directions, &finish),
+        (2, 2) => walk_fixed::<2>(out, directions, &finish),
+        (3, 3) => walk_fixed::<3>(out, directions, &finish),
         _ => {
-            let mut state = vec![0u32; dims];
+            let mut state = [0u32; CHUNK];
             for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-                for (d, x) in p.iter_mut().enumerate() {
-                    *x = finish(state[d], d);
+                for (j, x) in p[first..first + count].iter_mut().enumerate() {
+                    *x = finish(state[j], j);
                 }
                 let c = (i as u64 + 1).trailing_zeros().min(31) as usize;
                 for (s, v) in state.iter_mut().zip(directions) {
@@ -123,6 +121,10 @@ fn gray_walk(out: &mut [f64], dims: usize, reversed: bool, finish: impl Fn(u32, 
         }
     }
 }
+
+/// Dimensions walked at once beyond three: their state and keys live on the stack, so a
+/// fill allocates nothing whatever its dimension.
+const CHUNK: usize = 64;
 
 /// Points walked per block: state(8j + k) = state(8j) ^ state(k) for k < 8, because
 /// gray(8j + k) = gray(8j) ^ gray(k) and the digits are linear in the Gray code.
@@ -172,26 +174,14 @@ fn walk_fixed<const D: usize>(out: &mut [f64], directions: &[[u32; 32]], finish:
     }
 }
 
-impl Sampler for Sobol {
-    fn spec(&self) -> String {
-        match self.randomization {
-            Randomization::None => "sobol".into(),
-            r => format!("sobol.{}", r.suffix()),
-        }
-    }
+impl Construction for Sobol {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=SOBOL_MAX_DIMS
     }
-    fn as_sequence(&self) -> Option<&dyn Sequence> {
-        Some(self)
-    }
-}
-
-impl Fill for Sobol {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         if n as u64 > 1 << 32 {
             return Err(Error::InvalidCount {
-                sampler: self.spec(),
+                sampler: String::new(),
                 n,
                 dims,
                 reason: "32-bit Sobol' points stop at 2^32".into(),
@@ -199,35 +189,45 @@ impl Fill for Sobol {
         }
         Ok(())
     }
-    fn fill(&self, _n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        // keys on the stack for the usual few dimensions: small fills stay allocation-free
-        let mut few = [DimKey { bits: 0, shift: 0.0 }; 4];
-        let many: Vec<DimKey>;
-        let keys: &[DimKey] = if dims <= few.len() {
-            for (d, k) in few.iter_mut().enumerate().take(dims) {
-                *k = DimKey::new(seed, d);
-            }
-            &few[..dims]
-        } else {
-            many = (0..dims).map(|d| DimKey::new(seed, d)).collect();
-            &many
-        };
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        // the tables are the baked-in direction numbers: nothing to build
+        Ok(Box::new(Planned { sobol: *self, dims: shape.dims() }))
+    }
+}
+
+/// Sobol' points of a dimension.
+#[derive(Debug)]
+struct Planned {
+    sobol: Sobol,
+    dims: usize,
+}
+
+impl Planned {
+    /// Dimensions `first..first + count` of every point, with `keys` the keys of those
+    /// dimensions.
+    #[inline(always)]
+    fn walk(&self, out: &mut [f64], first: usize, keys: &[DimKey]) {
+        let (dims, count) = (self.dims, keys.len());
         // compiled wide: a block's coordinates are computed in vector lanes
         wide(
             #[inline(always)]
-            || match self.randomization {
+            || match self.sobol.randomization {
                 // Owen works in the bit-reversed domain: keep the state reversed, so each
                 // coordinate costs one hash and one reversal
                 Randomization::Owen => gray_walk(
                     out,
                     dims,
+                    first,
+                    count,
                     true,
                     #[inline(always)]
-                    |x, d| f64::from(owen_scramble_reversed(x, keys[d].bits).reverse_bits()) * TO_UNIT,
+                    |x, j| f64::from(owen_scramble_reversed(x, keys[j].bits).reverse_bits()) * TO_UNIT,
                 ),
                 Randomization::None => gray_walk(
                     out,
                     dims,
+                    first,
+                    count,
                     false,
                     #[inline(always)]
                     |x, _| f64::from(x) * TO_UNIT,
@@ -235,38 +235,54 @@ impl Fill for Sobol {
                 Randomization::Xor => gray_walk(
                     out,
                     dims,
+                    first,
+                    count,
                     false,
                     #[inline(always)]
-                    |x, d| f64::from(x ^ keys[d].bits) * TO_UNIT,
+                    |x, j| f64::from(x ^ keys[j].bits) * TO_UNIT,
                 ),
                 Randomization::Shift => gray_walk(
                     out,
                     dims,
+                    first,
+                    count,
                     false,
                     #[inline(always)]
-                    |x, d| wrap01(f64::from(x) * TO_UNIT + keys[d].shift),
+                    |x, j| wrap01(f64::from(x) * TO_UNIT + keys[j].shift),
                 ),
             },
         );
-        Ok(())
     }
 }
 
-impl Sequence for Sobol {
-    fn access(&self, dims: usize, seed: Seed) -> Result<Box<dyn Access + '_>> {
-        (self as &dyn Sampler).plan(1, dims)?;
-        Ok(Box::new(SobolAccess { sobol: self, keys: (0..dims).map(|d| DimKey::new(seed, d)).collect() }))
+impl Prepared for Planned {
+    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        // the keys of up to CHUNK dimensions at a time, on the stack
+        let mut keys = [DimKey { bits: 0, shift: 0.0 }; CHUNK];
+        let count = if self.dims <= 3 { self.dims } else { CHUNK };
+        for first in (0..self.dims).step_by(count) {
+            let keys = &mut keys[..count.min(self.dims - first)];
+            for (j, k) in keys.iter_mut().enumerate() {
+                *k = DimKey::new(seed, first + j);
+            }
+            self.walk(out, first, keys);
+        }
+        progress.advance(1)
+    }
+
+    fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
+        Some(Box::new(SobolAccess { sobol: self.sobol, keys: (0..self.dims).map(|d| DimKey::new(seed, d)).collect() }))
     }
 }
 
 /// Random access to a randomized Sobol' sequence: the per-dimension keys, drawn once.
 #[derive(Debug)]
-struct SobolAccess<'a> {
-    sobol: &'a Sobol,
+struct SobolAccess {
+    sobol: Sobol,
     keys: Vec<DimKey>,
 }
 
-impl Access for SobolAccess<'_> {
+impl Access for SobolAccess {
     fn sample(&self, index: u64, dim: usize) -> Result<f64> {
         let index = u32::try_from(index).map_err(|_| Error::Setting {
             name: "index",

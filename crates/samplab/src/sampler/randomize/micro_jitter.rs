@@ -11,8 +11,9 @@
 
 use std::ops::RangeInclusive;
 
-use super::registry::{GRID, SamplerEntry};
-use super::{Fill, Sampler};
+use crate::sampler::registry::{GRID, SamplerEntry};
+use crate::sampler::registry::Registered;
+use crate::sampler::{Construction, Prepared, Sampler, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
 use crate::registry::About;
@@ -24,8 +25,6 @@ use crate::spec::{Default, Kind, ParamSpec, Params, Spec};
 pub struct MicroJitter {
     inner: Box<dyn Sampler>,
     fraction: f64,
-    /// Whether the inner sampler is the implicit regular grid (`micro-jitter` alone).
-    alone: bool,
 }
 
 /// The spec split into the sampler's and the micro-jitter's, when it ends in
@@ -47,7 +46,9 @@ pub(crate) fn split(spec: &str) -> Option<(&str, &str)> {
 pub(crate) fn over(inner: Box<dyn Sampler>, post: &str) -> Result<Box<dyn Sampler>> {
     let spec = Spec::parse(post)?;
     let params = Params::resolve(ENTRIES[0].about.name, ENTRIES[0].about.params, &spec.args)?;
-    Ok(Box::new(MicroJitter { inner, fraction: params.real("fraction"), alone: false }))
+    let on = inner.spec();
+    let construction = Box::new(MicroJitter { inner, fraction: params.real("fraction") });
+    Ok(Box::new(Registered::stage(&ENTRIES[0], params, construction, on)))
 }
 
 /// The mean spacing of n points in d dimensions: 1/k when n = k^d, else n^(-1/d).
@@ -60,38 +61,45 @@ fn spacing(n: usize, dims: usize) -> f64 {
     }
 }
 
-impl Sampler for MicroJitter {
-    fn spec(&self) -> String {
-        let own = format!("micro-jitter:fraction={}", self.fraction);
-        if self.alone { own } else { format!("{}+{own}", self.inner.spec()) }
-    }
+impl Construction for MicroJitter {
     fn dims(&self) -> RangeInclusive<usize> {
         self.inner.dims()
     }
-}
-
-impl Fill for MicroJitter {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         self.inner.check_count(n, dims).map_err(|e| match e {
-            // the error names what the user wrote, not the implicit grid
-            Error::InvalidCount { n, dims, reason, .. } => Error::InvalidCount { sampler: self.spec(), n, dims, reason },
+            // the error names what the user wrote (left to the registered sampler), not the
+            // sampler jittered
+            Error::InvalidCount { n, dims, reason, .. } => Error::InvalidCount { sampler: String::new(), n, dims, reason },
             other => other,
         })
     }
-    fn units(&self) -> u64 {
-        self.inner.units()
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        // the inner sampler's checks passed with this shape's (the dimension range is its)
+        let width = self.fraction * spacing(shape.n(), shape.dims());
+        Ok(Box::new(Jittered { inner: self.inner.prepare(shape)?, width }))
     }
-    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
-        self.inner.fill_reporting(n, dims, seed, out, progress)?;
-        if self.fraction == 0.0 {
+}
+
+/// A planned sampler whose points are then micro-jittered by up to `width` / 2 per axis.
+struct Jittered<'a> {
+    inner: Box<dyn Prepared + 'a>,
+    width: f64,
+}
+
+impl Prepared for Jittered<'_> {
+    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        self.inner.fill(seed, out, progress)?;
+        if self.width == 0.0 {
             return Ok(());
         }
-        let width = self.fraction * spacing(n, dims);
         let mut rng = seed.derive_str("micro-jitter").rng();
         for x in out.iter_mut() {
-            *x = wrap01(*x + width * (uniform(&mut rng) - 0.5));
+            *x = wrap01(*x + self.width * (uniform(&mut rng) - 0.5));
         }
         Ok(())
+    }
+    fn units(&self) -> u64 {
+        self.inner.units()
     }
 }
 
@@ -115,6 +123,6 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
     counts: GRID,
     dims: "1..=64 (after a spec: the sampler's)",
     build: |p| {
-        Ok(Box::new(MicroJitter { inner: super::build("regular")?, fraction: p.real("fraction"), alone: true }))
+        Ok(Box::new(MicroJitter { inner: crate::sampler::build("regular")?, fraction: p.real("fraction") }))
     },
 }];

@@ -6,10 +6,10 @@ use std::ops::RangeInclusive;
 
 use rand_core::Rng as _;
 
-use super::registry::{ANY, SamplerEntry};
-use super::scramble::{hash_unit, permute};
-use super::sobol::SOBOL_DIRECTIONS;
-use super::{Fill, Sampler};
+use crate::sampler::registry::{ANY, SamplerEntry};
+use crate::sampler::randomize::scramble::{hash_unit, permute};
+use crate::sampler::qmc::sobol::SOBOL_DIRECTIONS;
+use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::Result;
 use crate::registry::About;
 use crate::seed::Seed;
@@ -48,19 +48,22 @@ fn partner_masks() -> [u32; 32] {
     })
 }
 
-impl Sampler for Pmj02 {
-    fn spec(&self) -> String {
-        "pmj02".into()
-    }
+impl Construction for Pmj02 {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
+
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        crate::sampler::qmc::sobol::Sobol::new(crate::sampler::Randomization::None).check_count(n, dims)
+    }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    }
 }
 
-impl Fill for Pmj02 {
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        super::sobol::Sobol::new(super::Randomization::None).check_count(n, dims)
-    }
+impl Pmj02 {
+
     fn fill(&self, n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         let t = partner_masks();
         let mut rng = seed.rng();
@@ -92,20 +95,15 @@ impl Fill for Pmj02 {
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Cmj;
 
-impl Sampler for Cmj {
-    fn spec(&self) -> String {
-        "cmj".into()
-    }
+impl Construction for Cmj {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
     }
-}
 
-impl Fill for Cmj {
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         if n > u32::MAX as usize {
             return Err(crate::error::Error::InvalidCount {
-                sampler: self.spec(),
+                sampler: String::new(),
                 n,
                 dims,
                 reason: "at most 2^32 - 1 points".into(),
@@ -113,6 +111,14 @@ impl Fill for Cmj {
         }
         Ok(())
     }
+
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    }
+}
+
+impl Cmj {
+
     fn fill(&self, n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         let m = (n as f64).sqrt().floor().max(1.0) as u32;
         let k = (n as u32).div_ceil(m);
@@ -125,8 +131,8 @@ impl Fill for Cmj {
             let sx = permute(col, m, kx);
             let sy = permute(row, k, ky);
             let (ux, uy) = (hash_unit(u64::from(s), jx), hash_unit(u64::from(s), jy));
-            p[0] = ((f64::from(col) + (f64::from(sy) + ux) / f64::from(k)) / f64::from(m)).min(super::grid::BELOW_ONE);
-            p[1] = ((f64::from(row) + (f64::from(sx) + uy) / f64::from(m)) / f64::from(k)).min(super::grid::BELOW_ONE);
+            p[0] = ((f64::from(col) + (f64::from(sy) + ux) / f64::from(k)) / f64::from(m)).min(crate::numeric::BELOW_ONE);
+            p[1] = ((f64::from(row) + (f64::from(sx) + uy) / f64::from(m)) / f64::from(k)).min(crate::numeric::BELOW_ONE);
         }
         Ok(())
     }
