@@ -54,7 +54,7 @@ pub static SAMPLERS: crate::registry::Registry<SamplerEntry> = crate::registry::
 );
 
 pub use randomize::scramble::Randomization;
-pub use registry::{SamplerEntry, build};
+pub use registry::{Counts, SamplerEntry, build};
 
 /// The largest point count samplab will allocate for one set (2^32 points).
 pub const MAX_POINTS: usize = 1 << 32;
@@ -488,28 +488,6 @@ pub trait Access: Send + Sync + Debug {
 /// As `plan` (on `dyn Sampler`) and [`Plan::fill`].
 pub fn generate_sets(sampler: &dyn Sampler, n: usize, dims: usize, seed: Seed, m: usize) -> Result<Vec<PointSet>> {
     sampler.plan(n, dims)?.generate_sets(seed, m, &Progress::SILENT)
-}
-
-/// Ok when `n` is one of `counts` (increasing), else the error naming the rule and the
-/// nearest counts below and above n.
-pub(crate) fn check_listed(
-    sampler: String,
-    n: usize,
-    dims: usize,
-    rule: &str,
-    counts: impl Iterator<Item = usize> + Clone,
-) -> Result<()> {
-    if counts.clone().take_while(|&c| c <= n).any(|c| c == n) {
-        return Ok(());
-    }
-    let below = counts.clone().take_while(|&c| c < n).last();
-    let above = counts.take_while(|&c| c <= MAX_POINTS).find(|&c| c > n);
-    let near = match (below, above) {
-        (Some(b), Some(a)) => format!("try {b} and {a}"),
-        (Some(c), None) | (None, Some(c)) => format!("try {c}"),
-        (None, None) => "no count fits".into(),
-    };
-    Err(Error::InvalidCount { sampler, n, dims, reason: format!("{rule}: {near}") })
 }
 
 /// The integer k with k^d == n, if there is one; otherwise the two nearest valid counts.

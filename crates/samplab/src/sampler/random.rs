@@ -56,6 +56,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
         .aliases(&["uniform-random", "poisson-sampling"])
         .cite(&["shirley1991"]),
     counts: ANY,
+    randomized: true,
     dims: "any d",
     build: |_| Ok(Box::new(Random)),
 }];

@@ -5,7 +5,7 @@
 
 use std::ops::RangeInclusive;
 
-use super::{Access, Construction, Prepared, SAMPLERS, Sampler, Shape, Stream};
+use super::{Access, Construction, MAX_POINTS, Prepared, SAMPLERS, Sampler, Shape, Stream, exact_root};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
 use crate::registry::{About, Entry, canonical};
@@ -18,8 +18,10 @@ use crate::spectrum::theory::VarianceTheory;
 pub struct SamplerEntry {
     /// Name, aliases, summary, parameters, references.
     pub about: About,
-    /// Which counts n it can make, in words.
-    pub counts: &'static str,
+    /// Which counts n it can make.
+    pub counts: Counts,
+    /// Whether its points depend on the seed (false for the deterministic constructions).
+    pub randomized: bool,
     /// Supported dimensions, in words.
     pub dims: &'static str,
     /// Builds the construction from resolved parameters (recording there what it chose
@@ -32,7 +34,7 @@ impl Entry for SamplerEntry {
         &self.about
     }
     fn details(&self) -> Vec<String> {
-        vec![format!("counts: {}; dimensions: {}", self.counts, self.dims)]
+        vec![format!("counts: {}; dimensions: {}", self.counts.describe(), self.dims)]
     }
 }
 
@@ -105,7 +107,9 @@ impl Sampler for Registered {
         self.construction.dims()
     }
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        self.construction.check_count(n, dims).map_err(|e| labelled(e, || self.spec()))
+        // a stage on another sampler makes that sampler's counts (its construction checks them)
+        let declared = if self.on.is_none() { self.entry.counts.check(n, dims) } else { Ok(()) };
+        declared.and_then(|()| self.construction.check_count(n, dims)).map_err(|e| labelled(e, || self.spec()))
     }
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
         let inner = self.construction.prepare(shape).map_err(|e| labelled(e, || self.spec()))?;
@@ -137,10 +141,93 @@ impl Prepared for Labelled<'_> {
     }
 }
 
-/// Counts of the grid family.
-pub(crate) const GRID: &str = "n = k^d";
 /// Any count.
-pub(crate) const ANY: &str = "any n";
+pub(crate) const ANY: Counts = Counts::Any("");
+
+/// Which counts n a sampler makes, declared in its entry: a typed rule that checks a count
+/// (naming the nearest valid ones), finds valid counts and prints the listing line.
+#[derive(Debug, Clone, Copy)]
+pub enum Counts {
+    /// Any n (up to [`MAX_POINTS`]); the note says where the structure is best ("nets at
+    /// powers of two"), or is empty.
+    Any(&'static str),
+    /// n at most `most`; `why` says what limits it.
+    AtMost {
+        /// The largest count.
+        most: u64,
+        /// The limit's reason, in words.
+        why: &'static str,
+    },
+    /// n = k^d: a grid.
+    Grid,
+    /// The counts `list(dims, near)` yields, increasing (from the first valid count or from
+    /// some way below `near`); `rule` in words.
+    Listed {
+        /// The rule, in words.
+        rule: &'static str,
+        /// The valid counts in `dims` dimensions around `near`, increasing.
+        list: fn(usize, usize) -> Box<dyn Iterator<Item = usize>>,
+    },
+    /// A rule that depends on the parameters, in words; the construction checks it.
+    Rule(&'static str),
+}
+
+impl Counts {
+    /// Whether the rule admits `n` points in `dims` dimensions.
+    ///
+    /// # Errors
+    /// [`Error::InvalidCount`] naming the rule and the nearest valid counts (the sampler's
+    /// name left for the caller).
+    pub fn check(&self, n: usize, dims: usize) -> Result<()> {
+        let invalid = |reason: String| Err(Error::InvalidCount { sampler: String::new(), n, dims, reason });
+        match *self {
+            Counts::Any(_) | Counts::Rule(_) => Ok(()),
+            Counts::AtMost { most, why } if n as u64 > most => invalid(why.into()),
+            Counts::AtMost { .. } => Ok(()),
+            Counts::Grid => exact_root(n, dims).map(|_| ()).or_else(|(lo, hi)| {
+                invalid(format!("a {dims}D grid needs n = k^{dims}; the nearest valid counts are {lo} and {hi}"))
+            }),
+            Counts::Listed { rule, list } => {
+                if list(dims, n).take_while(|&c| c <= n).any(|c| c == n) {
+                    return Ok(());
+                }
+                let below = list(dims, n).take_while(|&c| c < n).last();
+                let above = list(dims, n).take_while(|&c| c <= MAX_POINTS).find(|&c| c > n);
+                let near = match (below, above) {
+                    (Some(b), Some(a)) => format!("try {b} and {a}"),
+                    (Some(c), None) | (None, Some(c)) => format!("try {c}"),
+                    (None, None) => "no count fits".into(),
+                };
+                invalid(format!("{rule}: {near}"))
+            }
+        }
+    }
+
+    /// The first count from `n` on that the rule admits in `dims` dimensions (`None` for a
+    /// rule of the parameters, or past [`MAX_POINTS`]).
+    pub fn first_from(&self, n: usize, dims: usize) -> Option<usize> {
+        match *self {
+            Counts::Rule(_) => None,
+            Counts::Listed { list, .. } => list(dims, n).find(|&c| c >= n),
+            _ => (n..=MAX_POINTS).find(|&c| self.check(c, dims).is_ok()),
+        }
+    }
+
+    /// The listing line: the rule in words.
+    pub fn describe(&self) -> String {
+        match *self {
+            Counts::Any("") => "any n".into(),
+            Counts::Any(note) => format!("any n ({note})"),
+            Counts::AtMost { why, .. } => format!("any n up to the limit: {why}"),
+            Counts::Grid => "n = k^d".into(),
+            Counts::Listed { rule, list } => {
+                let first: Vec<String> = list(2, 1).take(8).map(|c| c.to_string()).collect();
+                format!("{rule} (in 2D: {}, ...)", first.join(", "))
+            }
+            Counts::Rule(words) => words.into(),
+        }
+    }
+}
 
 /// The distance rule of the Poisson-disk samplers.
 pub(crate) const EDGE: ParamSpec = ParamSpec {
@@ -159,6 +246,7 @@ macro_rules! randomized_entries {
             SamplerEntry {
                 about: About::new($family, $summary).cite(&[$($r),*]),
                 counts: $counts,
+                randomized: false,
                 dims: $dims,
                 build: |_| Ok(Box::new(<$ty>::new(Randomization::None))),
             },
@@ -166,6 +254,7 @@ macro_rules! randomized_entries {
                 about: About::new(concat!($family, ".xor"), concat!($summary, ", random digit scrambling"))
                     .cite(&[$($r,)* "matousek1998"]),
                 counts: $counts,
+                randomized: true,
                 dims: $dims,
                 build: |_| Ok(Box::new(<$ty>::new(Randomization::Xor))),
             },
@@ -174,6 +263,7 @@ macro_rules! randomized_entries {
                     .aliases(&[concat!($family, "-owen")])
                     .cite(&[$($r,)* "owen1995", "burley2020"]),
                 counts: $counts,
+                randomized: true,
                 dims: $dims,
                 build: |_| Ok(Box::new(<$ty>::new(Randomization::Owen))),
             },
@@ -181,6 +271,7 @@ macro_rules! randomized_entries {
                 about: About::new(concat!($family, ".shift"), concat!($summary, ", Cranley-Patterson shift"))
                     .cite(&[$($r,)* "cranley1976"]),
                 counts: $counts,
+                randomized: true,
                 dims: $dims,
                 build: |_| Ok(Box::new(<$ty>::new(Randomization::Shift))),
             },
@@ -205,4 +296,46 @@ pub fn build(spec: &str) -> Result<Box<dyn Sampler>> {
     }
     let (entry, params) = SAMPLERS.resolve(spec)?;
     entry.build(&params)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The two numbers a count error names ("... 9 and 16", "try 8 and 13").
+    fn named(e: &Error) -> Vec<usize> {
+        let words: Vec<usize> =
+            e.to_string().split(|c: char| !c.is_ascii_digit()).filter_map(|w| w.parse().ok()).collect();
+        words[words.len() - 2..].to_vec()
+    }
+
+    #[test]
+    fn counts_check_name_the_nearest_and_find_the_first_by_brute_force() {
+        let squares = |n: usize, d: u32| (1..=n).any(|k| k.pow(d) == n);
+        for d in 1..=3u32 {
+            for n in 1..=300 {
+                let got = Counts::Grid.check(n, d as usize);
+                assert_eq!(got.is_ok(), squares(n, d), "grid {n} {d}D");
+                if let Err(e) = got {
+                    let [lo, hi] = named(&e)[..] else { panic!("{e}") };
+                    assert!(lo < n && n < hi && squares(lo, d) && squares(hi, d), "{e}");
+                    assert!((lo + 1..hi).all(|m| !squares(m, d)), "{e}: a nearer count");
+                }
+                let first = (n..).find(|&m| squares(m, d)).unwrap();
+                assert_eq!(Counts::Grid.first_from(n, d as usize), Some(first));
+            }
+        }
+        let fib = Counts::Listed { rule: "fib", list: |_, _| Box::new([1, 2, 3, 5, 8, 13, 21].into_iter()) };
+        assert!(fib.check(8, 2).is_ok());
+        let e = fib.check(9, 2).unwrap_err();
+        assert!(e.to_string().ends_with("fib: try 8 and 13"), "{e}");
+        assert!(fib.check(30, 2).unwrap_err().to_string().ends_with("fib: try 21"));
+        assert_eq!(fib.first_from(9, 2), Some(13));
+        assert_eq!(fib.first_from(22, 2), None);
+        let most = Counts::AtMost { most: 10, why: "ten" };
+        assert!(most.check(10, 1).is_ok() && most.check(11, 1).unwrap_err().to_string().ends_with("ten"));
+        assert_eq!(most.first_from(3, 1), Some(3));
+        assert_eq!(Counts::Rule("words").first_from(3, 1), None);
+        assert_eq!(fib.describe(), "fib (in 2D: 1, 2, 3, 5, 8, 13, 21, ...)");
+    }
 }

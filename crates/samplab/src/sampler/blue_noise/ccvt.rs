@@ -230,6 +230,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
         ])
         .cite(&["balzer2009"]),
     counts: ANY,
+    randomized: true,
     dims: "1..=4",
     build: |p| Ok(Box::new(Ccvt { capacity: p.int("capacity") as usize, iterations: p.int("iterations") as usize })),
 }];

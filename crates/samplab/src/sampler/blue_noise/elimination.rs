@@ -256,6 +256,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
         ])
         .cite(&["yuksel2015"]),
     counts: ANY,
+    randomized: true,
     dims: "1..=4",
     build: |p| Ok(Box::new(Elimination { ratio: p.real("ratio"), torus: edge_is_torus(p.word("edge")) })),
 }];

@@ -5,7 +5,7 @@
 
 use std::ops::RangeInclusive;
 
-use crate::sampler::registry::SamplerEntry;
+use crate::sampler::registry::{Counts, SamplerEntry};
 use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
@@ -165,7 +165,8 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
             },
         ])
         .cite(&["sbert2006", "purgathofer1994"]),
-    counts: "n <= G^d",
+    counts: Counts::Rule("n <= G^d"),
+    randomized: true,
     dims: "1..=4",
     build: |p| Ok(Box::new(ForceMatrix::new(p.real("s"), p.real("p"), p.int_or_auto("grid").map(|g| g as usize)))),
 }];

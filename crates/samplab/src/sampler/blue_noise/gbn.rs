@@ -157,6 +157,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
         ])
         .cite(&["ahmed2022"]),
     counts: ANY,
+    randomized: true,
     dims: "1..=4",
     build: |p| Ok(Box::new(Gbn { iterations: p.int("iterations") as usize, sigma: p.real("sigma"), step: p.real("step") })),
 }];

@@ -95,6 +95,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
         ])
         .cite(&["fattal2011", "yuksel2015"]),
     counts: ANY,
+    randomized: true,
     dims: "1..=4",
     build: |p| {
         Ok(Box::new(Kdm {

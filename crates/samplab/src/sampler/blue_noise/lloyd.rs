@@ -174,6 +174,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
         ])
         .cite(&["lloyd1982", "du1999"]),
     counts: ANY,
+    randomized: true,
     dims: "2",
     build: |p| Ok(Box::new(Lloyd { iterations: p.int("iterations") as usize, torus: edge_is_torus(p.word("edge")) })),
 }];

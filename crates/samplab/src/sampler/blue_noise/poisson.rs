@@ -781,6 +781,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             ])
             .cite(&["cook1986", "shirley1991"]),
         counts: ANY,
+        randomized: true,
         dims: "1..=4",
         build: |p| {
             let torus = edge_is_torus(p.word("edge"));
@@ -807,6 +808,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             ])
             .cite(&["bridson2007"]),
         counts: ANY,
+        randomized: true,
         dims: "2",
         build: |p| {
             let torus = edge_is_torus(p.word("edge"));
@@ -822,6 +824,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         .params(&[EDGE])
         .cite(&["ebeida2012", "bridson2007"]),
         counts: ANY,
+        randomized: true,
         dims: "2",
         build: |p| Ok(Box::new(Maximal::new(edge_is_torus(p.word("edge"))))),
     },

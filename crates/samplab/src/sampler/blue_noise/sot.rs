@@ -249,6 +249,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
         ])
         .cite(&["paulin2020"]),
     counts: ANY,
+    randomized: true,
     dims: "2..=8",
     build: |p| Ok(Box::new(Sot { iterations: p.int("iterations") as usize, directions: p.int("directions") as usize })),
 }];

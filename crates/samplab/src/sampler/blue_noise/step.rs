@@ -462,6 +462,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             ])
             .cite(&["heck2013"]),
         counts: ANY,
+        randomized: true,
         dims: "2",
         build: |p| build("step", Shape::Step { nu: p.real("nu") }, p),
     },
@@ -493,6 +494,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             ])
             .cite(&["heck2013"]),
         counts: ANY,
+        randomized: true,
         dims: "2",
         build: build_peak,
     },

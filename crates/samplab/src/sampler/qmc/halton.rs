@@ -15,7 +15,7 @@ use std::ops::RangeInclusive;
 use std::borrow::Cow;
 
 use crate::numeric::BELOW_ONE;
-use crate::sampler::registry::{ANY, SamplerEntry, randomized_entries};
+use crate::sampler::registry::{ANY, Counts, SamplerEntry, randomized_entries};
 use crate::sampler::randomize::scramble::{OwenDigits, Randomization, hash_unit, owen_scramble_u32};
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::Result;
@@ -323,17 +323,6 @@ impl Construction for Hammersley {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=HALTON_MAX_DIMS + 1
     }
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        if n as u64 > 1 << 32 {
-            return Err(crate::error::Error::InvalidCount {
-                sampler: String::new(),
-                n,
-                dims,
-                reason: "the first coordinate has 32-bit resolution: at most 2^32 points".into(),
-            });
-        }
-        Ok(())
-    }
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
         let halton = Radical { randomization: self.randomization, n: shape.n(), tables: plain_tables(shape.dims() - 1) };
         Ok(Box::new(Planned { halton }))
@@ -368,7 +357,7 @@ impl Prepared for Planned {
 /// The samplers this file registers: Halton and Hammersley with their randomizations.
 pub(crate) static ENTRIES: &[SamplerEntry] = randomized_entries!(
     (Halton, "halton", "Halton sequence, prime bases", ANY, "1..=1024", ["halton1960"]),
-    (Hammersley, "hammersley", "Hammersley set: i/n, then Halton", "n <= 2^32", "1..=1025", ["hammersley1964"]),
+    (Hammersley, "hammersley", "Hammersley set: i/n, then Halton", Counts::AtMost { most: 1 << 32, why: "the first coordinate has 32-bit resolution: at most 2^32 points" }, "1..=1025", ["hammersley1964"]),
 );
 
 #[cfg(test)]

@@ -136,6 +136,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             .params(&[ALPHA])
             .cite(&["weyl1916", "roberts2018"]),
         counts: ANY,
+        randomized: false,
         dims: "any d (d <= the alphas given)",
         build: |p| build(p, false, "kronecker"),
     },
@@ -145,6 +146,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             .params(&[ALPHA])
             .cite(&["weyl1916", "roberts2018", "cranley1976"]),
         counts: ANY,
+        randomized: true,
         dims: "any d (d <= the alphas given)",
         build: |p| build(p, true, "kronecker.shift"),
     },

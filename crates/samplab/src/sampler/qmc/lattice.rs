@@ -21,7 +21,7 @@
 use std::ops::RangeInclusive;
 use std::sync::Arc;
 
-use crate::sampler::registry::{ANY, SamplerEntry};
+use crate::sampler::registry::{Counts, SamplerEntry};
 use super::cbc::Weights;
 use super::cbc;
 use crate::sampler::{Access, Prepared, Construction, Shape};
@@ -45,10 +45,6 @@ fn fibonacci() -> impl Iterator<Item = (usize, usize)> + Clone {
 impl Construction for Fibonacci {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
-    }
-
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        crate::sampler::check_listed(String::new(), n, dims, "n must be a Fibonacci number", fibonacci().map(|(f, _)| f))
     }
 
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
@@ -144,15 +140,6 @@ pub struct Cbc {
 impl Construction for Cbc {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=usize::MAX
-    }
-
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        if cbc::supports(n) {
-            return Ok(());
-        }
-        // the nearest valid counts lie within a prime gap (< 200 below 2^24) of n
-        let near = (n.min(cbc::MAX_N + 1).saturating_sub(1000)..=cbc::MAX_N).filter(|&k| cbc::supports(k));
-        crate::sampler::check_listed(String::new(), n, dims, "the fast CBC needs n a prime or a power of 2 up to 2^24", near)
     }
 
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
@@ -379,6 +366,14 @@ fn embedded_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Cons
     Ok(Box::new(Embedded { vector, shift, tent: p.word("tent") == "yes" }))
 }
 
+/// The counts of the fast CBC construction: n a prime or a power of 2 up to 2^24 (the
+/// nearest ones to n lie within a prime gap, under 200 below 2^24, so the list starts 1000
+/// below n).
+const CBC_COUNTS: Counts = Counts::Listed {
+    rule: "the fast CBC needs n a prime or a power of 2 up to 2^24",
+    list: |_, near| Box::new((near.min(cbc::MAX_N + 1).saturating_sub(1000)..=cbc::MAX_N).filter(|&k| cbc::supports(k))),
+};
+
 /// The samplers this file registers.
 pub(crate) static ENTRIES: &[SamplerEntry] = &[
     SamplerEntry {
@@ -386,7 +381,8 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             .aliases(&["rank1", "lattice-sequence"])
             .params(&[VECTOR, GAMMA, DECAY, TENT])
             .cite(&["hickernell2000", "cools2006", "hickernell2002"]),
-        counts: "any n (lattices at powers of 2)",
+        counts: Counts::Any("lattices at powers of 2"),
+        randomized: false,
         dims: "any d (a file's: its dimensions)",
         build: |p| embedded_sampler(p, false),
     },
@@ -395,7 +391,8 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             .aliases(&["lattice-shift"])
             .params(&[VECTOR, GAMMA, DECAY, TENT])
             .cite(&["hickernell2000", "cools2006", "cranley1976"]),
-        counts: "any n (lattices at powers of 2)",
+        counts: Counts::Any("lattices at powers of 2"),
+        randomized: true,
         dims: "any d (a file's: its dimensions)",
         build: |p| embedded_sampler(p, true),
     },
@@ -404,7 +401,8 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             .aliases(&["cbc"])
             .params(&[GAMMA, DECAY, TENT])
             .cite(&["nuyens2006", "sloan1994", "hickernell2002"]),
-        counts: "n a prime or a power of 2, up to 2^24",
+        counts: CBC_COUNTS,
+        randomized: false,
         dims: "any d",
         build: |p| cbc_sampler(p, false),
     },
@@ -413,7 +411,8 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             .aliases(&["cbc-shift"])
             .params(&[GAMMA, DECAY, TENT])
             .cite(&["nuyens2006", "sloan1994", "cranley1976"]),
-        counts: "n a prime or a power of 2, up to 2^24",
+        counts: CBC_COUNTS,
+        randomized: true,
         dims: "any d",
         build: |p| cbc_sampler(p, true),
     },
@@ -421,7 +420,8 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         about: About::new("lattice.fibonacci", "Fibonacci lattice (i/n, frac(i F_(m-1)/n)), n = F_m").terse()
             .aliases(&["fibonacci"])
             .cite(&["sloan1994"]),
-        counts: "n a Fibonacci number (1, 2, 3, 5, 8, ...)",
+        counts: Counts::Listed { rule: "n must be a Fibonacci number", list: |_, _| Box::new(fibonacci().map(|(f, _)| f)) },
+        randomized: false,
         dims: "2",
         build: |_| Ok(Box::new(Fibonacci { shift: false })),
     },
@@ -429,7 +429,8 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         about: About::new("lattice.fibonacci.shift", "the Fibonacci lattice with a random shift mod 1").terse()
             .aliases(&["fibonacci-shift"])
             .cite(&["sloan1994", "cranley1976"]),
-        counts: "n a Fibonacci number (1, 2, 3, 5, 8, ...)",
+        counts: Counts::Listed { rule: "n must be a Fibonacci number", list: |_, _| Box::new(fibonacci().map(|(f, _)| f)) },
+        randomized: true,
         dims: "2",
         build: |_| Ok(Box::new(Fibonacci { shift: true })),
     },
@@ -438,7 +439,8 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             .aliases(&["korobov"])
             .params(&[A])
             .cite(&["korobov1959", "sloan1994"]),
-        counts: ANY,
+        counts: Counts::Rule("any n (searching a, with a = auto: n <= 2^14)"),
+        randomized: false,
         dims: "any d",
         build: |p| Ok(Box::new(Korobov { a: p.int_or_auto("a"), shift: false })),
     },
@@ -447,7 +449,8 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             .aliases(&["korobov-shift"])
             .params(&[A])
             .cite(&["korobov1959", "sloan1994", "cranley1976"]),
-        counts: ANY,
+        counts: Counts::Rule("any n (searching a, with a = auto: n <= 2^14)"),
+        randomized: true,
         dims: "any d",
         build: |p| Ok(Box::new(Korobov { a: p.int_or_auto("a"), shift: true })),
     },

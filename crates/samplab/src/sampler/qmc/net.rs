@@ -31,7 +31,7 @@ use std::ops::RangeInclusive;
 use std::sync::Arc;
 
 use crate::numeric::BELOW_ONE;
-use crate::sampler::registry::SamplerEntry;
+use crate::sampler::registry::{Counts, SamplerEntry};
 use crate::sampler::randomize::scramble::{OwenDigits, Randomization, hash2, owen_scramble_u32};
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
@@ -817,11 +817,12 @@ fn niederreiter_source(p: &crate::spec::Params) -> Result<Source> {
 
 /// The five entries of a net family: plain, `.xor`, `.lms`, `.owen`, `.shift`.
 macro_rules! net_entries {
-    ($(($family:literal, $summary:literal, $aliases:expr, $params:expr, $source:expr, $counts:literal, $dims:literal, [$($r:literal),*])),+ $(,)?) => {
+    ($(($family:literal, $summary:literal, $aliases:expr, $params:expr, $source:expr, $counts:expr, $dims:literal, [$($r:literal),*])),+ $(,)?) => {
         &[$(
             SamplerEntry {
                 about: About::new($family, $summary).terse().aliases($aliases).params($params).cite(&[$($r),*]),
                 counts: $counts,
+                randomized: false,
                 dims: $dims,
                 build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::None, lms: false })),
             },
@@ -830,6 +831,7 @@ macro_rules! net_entries {
                     .params($params)
                     .cite(&[$($r,)* "matousek1998"]),
                 counts: $counts,
+                randomized: true,
                 dims: $dims,
                 build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Xor, lms: false })),
             },
@@ -838,6 +840,7 @@ macro_rules! net_entries {
                     .params($params)
                     .cite(&[$($r,)* "matousek1998"]),
                 counts: $counts,
+                randomized: true,
                 dims: $dims,
                 build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Xor, lms: true })),
             },
@@ -846,6 +849,7 @@ macro_rules! net_entries {
                     .params($params)
                     .cite(&[$($r,)* "owen1995", "owen1997", "matousek1998", "burley2020"]),
                 counts: $counts,
+                randomized: true,
                 dims: $dims,
                 build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Owen, lms: false })),
             },
@@ -854,6 +858,7 @@ macro_rules! net_entries {
                     .params($params)
                     .cite(&[$($r,)* "cranley1976"]),
                 counts: $counts,
+                randomized: true,
                 dims: $dims,
                 build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Shift, lms: false })),
             },
@@ -869,7 +874,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = net_entries!(
         &["digitalnet", "digitalnetb2"],
         &[MATRICES],
         net_source,
-        "n <= b^m (m columns; nets at powers of b)",
+        Counts::Rule("n <= b^m (m columns; nets at powers of b)"),
         "up to the file's",
         ["niederreiter1992", "joe2008"]
     ),
@@ -879,7 +884,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = net_entries!(
         &[],
         &[],
         |_: &crate::spec::Params| Ok::<_, Error>(Source::Faure),
-        "n <= 2^32 (nets at powers of the base)",
+        Counts::Any("nets at powers of the base"),
         "1..=251",
         ["faure1982"]
     ),
@@ -889,7 +894,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = net_entries!(
         &[],
         &[BASE],
         niederreiter_source,
-        "n <= 2^32 (nets at powers of the base)",
+        Counts::Any("nets at powers of the base"),
         "1..=1024",
         ["niederreiter1988", "bratley1992"]
     ),

@@ -4,7 +4,7 @@
 
 use std::ops::RangeInclusive;
 
-use crate::sampler::registry::{SamplerEntry, randomized_entries};
+use crate::sampler::registry::{Counts, SamplerEntry, randomized_entries};
 use crate::sampler::randomize::scramble::{Randomization, hash_unit, owen_scramble_reversed};
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
@@ -178,17 +178,6 @@ impl Construction for Sobol {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=SOBOL_MAX_DIMS
     }
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        if n as u64 > 1 << 32 {
-            return Err(Error::InvalidCount {
-                sampler: String::new(),
-                n,
-                dims,
-                reason: "32-bit Sobol' points stop at 2^32".into(),
-            });
-        }
-        Ok(())
-    }
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
         // the tables are the baked-in direction numbers: nothing to build
         Ok(Box::new(Planned { sobol: *self, dims: shape.dims() }))
@@ -298,7 +287,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = randomized_entries!((
     Sobol,
     "sobol",
     "Sobol' sequence, Joe-Kuo directions",
-    "n <= 2^32 (nets at powers of two)",
+    Counts::AtMost { most: 1 << 32, why: "32-bit Sobol' points stop at 2^32" },
     "1..=1024",
     ["sobol1967", "joe2008"]
 ));

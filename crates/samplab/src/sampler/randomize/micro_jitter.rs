@@ -11,7 +11,7 @@
 
 use std::ops::RangeInclusive;
 
-use crate::sampler::registry::{GRID, SamplerEntry};
+use crate::sampler::registry::{Counts, SamplerEntry};
 use crate::sampler::registry::Registered;
 use crate::sampler::{Construction, Prepared, Sampler, Shape};
 use crate::error::{Error, Result};
@@ -120,7 +120,8 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
     .aliases(&["microjitter"])
     .params(&[FRACTION])
     .cite(&["cook1986", "roberts2018jitter"]),
-    counts: GRID,
+    counts: Counts::Grid,
+    randomized: true,
     dims: "1..=64 (after a spec: the sampler's)",
     build: |p| {
         Ok(Box::new(MicroJitter { inner: crate::sampler::build("regular")?, fraction: p.real("fraction") }))

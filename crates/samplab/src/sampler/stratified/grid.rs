@@ -9,7 +9,7 @@
 use std::f64::consts::TAU;
 use std::ops::RangeInclusive;
 
-use crate::sampler::registry::{GRID, SamplerEntry};
+use crate::sampler::registry::{Counts, SamplerEntry};
 use crate::sampler::{Prepared, Construction, Shape, exact_root};
 use crate::error::{Error, Result};
 use crate::numeric::BELOW_ONE;
@@ -80,14 +80,6 @@ fn side(n: usize, dims: usize) -> usize {
     exact_root(n, dims).unwrap_or_else(|_| unreachable!("{n} is a checked count of a {dims}D grid"))
 }
 
-pub(crate) fn check_grid_count(spec: String, n: usize, dims: usize) -> Result<usize> {
-    exact_root(n, dims).map_err(|(lo, hi)| Error::InvalidCount {
-        sampler: spec,
-        n,
-        dims,
-        reason: format!("a {dims}D grid needs n = k^{dims}; the nearest valid counts are {lo} and {hi}"),
-    })
-}
 
 /// The most dimensions of a grid.
 const MAX_DIMS: usize = 64;
@@ -117,9 +109,10 @@ impl Construction for Grid {
     }
 
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        // the other grids' counts are their entries' (n = k^d)
         match self.displacement {
-            Displacement::Uniform { offsets } if offsets > 1 => self.per_offset(n, offsets, dims).map(|_| ()),
-            _ => check_grid_count(String::new(), n, dims).map(|_| ()),
+            Displacement::Uniform { offsets } => self.per_offset(n, offsets, dims).map(|_| ()),
+            _ => Ok(()),
         }
     }
 
@@ -175,7 +168,7 @@ impl Grid {
                 reason: format!("n must be a multiple of offsets = {offsets}"),
             });
         }
-        check_grid_count(String::new(), n / offsets, dims)?;
+        Counts::Grid.check(n / offsets, dims)?;
         Ok(n / offsets)
     }
 
@@ -209,10 +202,6 @@ pub struct RotatedGrid;
 impl Construction for RotatedGrid {
     fn dims(&self) -> RangeInclusive<usize> {
         2..=2
-    }
-
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        check_grid_count(String::new(), n, dims).map(|_| ())
     }
 
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
@@ -260,11 +249,6 @@ impl Construction for Hexagonal {
         2..=2
     }
 
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        let rule = "n must be k x 2 round(k / sqrt 3), k points per row";
-        crate::sampler::check_listed(String::new(), n, dims, rule, hex_counts().map(|(c, _)| c))
-    }
-
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
         Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
     }
@@ -290,7 +274,7 @@ impl Hexagonal {
 
 /// A grid entry: counts k^d, dimensions 1..=64.
 const fn grid_entry(about: About, build: fn(&mut crate::spec::Params) -> Result<Box<dyn Construction>>) -> SamplerEntry {
-    SamplerEntry { about, counts: GRID, dims: "1..=64", build }
+    SamplerEntry { about, counts: Counts::Grid, randomized: true, dims: "1..=64", build }
 }
 
 const SIGMA: ParamSpec = ParamSpec {
@@ -302,15 +286,19 @@ const SIGMA: ParamSpec = ParamSpec {
 
 /// The samplers this file registers.
 pub(crate) static ENTRIES: &[SamplerEntry] = &[
-    grid_entry(
-        About::new("regular", "cell centres of a k^d grid").aliases(&["grid", "uniform"]).cite(&["shirley1991"]),
-        |_| Ok(Box::new(Grid::new(Displacement::Regular))),
-    ),
+    SamplerEntry {
+        about: About::new("regular", "cell centres of a k^d grid").aliases(&["grid", "uniform"]).cite(&["shirley1991"]),
+        counts: Counts::Grid,
+        randomized: false,
+        dims: "1..=64",
+        build: |_| Ok(Box::new(Grid::new(Displacement::Regular))),
+    },
     SamplerEntry {
         about: About::new("regular.rotated", "regular grid, random rotation and offset, wrapped on the torus")
             .aliases(&["rotated-grid"])
             .cite(&["subr2013"]),
-        counts: GRID,
+        counts: Counts::Grid,
+        randomized: true,
         dims: "2",
         build: |_| Ok(Box::new(RotatedGrid)),
     },
@@ -318,7 +306,11 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         about: About::new("hexagonal", "hexagonal lattice on the torus, random offset")
             .aliases(&["hex", "triangular"])
             .cite(&["petersen1962"]),
-        counts: "n = k x 2 round(k / sqrt 3): 2, 4, 12, 16, 30, 36, 56, 80, ...",
+        counts: Counts::Listed {
+            rule: "n must be k x 2 round(k / sqrt 3), k points per row",
+            list: |_, _| Box::new(hex_counts().map(|(c, _)| c)),
+        },
+        randomized: true,
         dims: "2",
         build: |_| Ok(Box::new(Hexagonal)),
     },
@@ -378,7 +370,8 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             doc: "independent systematic grids of n / offsets points each (Sbert et al. 2006's secondary estimator, Table 1)",
         }])
         .cite(&["sbert2006", "ramamoorthi2012"]),
-        counts: "n = offsets x k^d",
+        counts: Counts::Rule("n = offsets x k^d"),
+        randomized: true,
         dims: "1..=64",
         build: |p| {
             let offsets = p.int("offsets") as usize;

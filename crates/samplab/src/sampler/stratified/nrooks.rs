@@ -3,7 +3,7 @@
 
 use std::ops::RangeInclusive;
 
-use crate::sampler::registry::{ANY, SamplerEntry};
+use crate::sampler::registry::{ANY, Counts, SamplerEntry};
 use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::Result;
 use crate::registry::About;
@@ -68,11 +68,6 @@ impl Construction for OaLhs {
         1..=usize::MAX
     }
 
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        let squares = (2..).filter(move |&p| is_prime(p) && dims <= p + 1).map(|p| p * p);
-        crate::sampler::check_listed(String::new(), n, dims, "n must be p^2 for a prime p >= d - 1", squares)
-    }
-
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
         Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
     }
@@ -121,6 +116,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             .aliases(&["n-rooks", "separate", "lhcube", "latin-hypercube", "lhs", "lhs.scrambled"])
             .cite(&["mckay1979", "shirley1991"]),
         counts: ANY,
+        randomized: true,
         dims: "any d",
         build: |_| Ok(Box::new(NRooks { centered: false })),
     },
@@ -129,6 +125,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
             .aliases(&["centered-lhs"])
             .cite(&["mckay1979"]),
         counts: ANY,
+        randomized: true,
         dims: "any d",
         build: |_| Ok(Box::new(NRooks { centered: true })),
     },
@@ -136,7 +133,11 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         about: About::new("lhs.oa", "Latin hypercube of strength 2 from Bose's orthogonal array")
             .aliases(&["oa-lhs"])
             .cite(&["owen1992", "tang1993"]),
-        counts: "n = p^2, p a prime >= d - 1",
+        counts: Counts::Listed {
+            rule: "n must be p^2 for a prime p >= d - 1",
+            list: |dims, _| Box::new((2..).filter(move |&p| is_prime(p) && dims <= p + 1).map(|p| p * p)),
+        },
+        randomized: true,
         dims: "d <= p + 1",
         build: |_| Ok(Box::new(OaLhs)),
     },

@@ -6,7 +6,7 @@ use std::ops::RangeInclusive;
 
 use rand_core::Rng as _;
 
-use crate::sampler::registry::{ANY, SamplerEntry};
+use crate::sampler::registry::{Counts, SamplerEntry};
 use crate::sampler::randomize::scramble::{hash_unit, permute};
 use crate::sampler::qmc::sobol::SOBOL_DIRECTIONS;
 use crate::sampler::{Prepared, Construction, Shape};
@@ -53,10 +53,6 @@ impl Construction for Pmj02 {
         2..=2
     }
 
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        crate::sampler::qmc::sobol::Sobol::new(crate::sampler::Randomization::None).check_count(n, dims)
-    }
-
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
         Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
     }
@@ -100,18 +96,6 @@ impl Construction for Cmj {
         2..=2
     }
 
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        if n > u32::MAX as usize {
-            return Err(crate::error::Error::InvalidCount {
-                sampler: String::new(),
-                n,
-                dims,
-                reason: "at most 2^32 - 1 points".into(),
-            });
-        }
-        Ok(())
-    }
-
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
         Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
     }
@@ -144,7 +128,8 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         about: About::new("pmj02", "progressive multi-jittered (0,2) sequence, stochastic construction")
             .aliases(&["pmj"])
             .cite(&["christensen2018", "helmer2021"]),
-        counts: "any n (nets at powers of two)",
+        counts: Counts::AtMost { most: 1 << 32, why: "32-bit Sobol' points stop at 2^32" },
+        randomized: true,
         dims: "2",
         build: |_| Ok(Box::new(Pmj02)),
     },
@@ -152,7 +137,8 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         about: About::new("cmj", "correlated multi-jittered sampling")
             .aliases(&["correlated-multi-jittered"])
             .cite(&["kensler2013"]),
-        counts: ANY,
+        counts: Counts::AtMost { most: u32::MAX as u64, why: "at most 2^32 - 1 points" },
+        randomized: true,
         dims: "2",
         build: |_| Ok(Box::new(Cmj)),
     },
