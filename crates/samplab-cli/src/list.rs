@@ -7,8 +7,9 @@ use samplab::bibliography;
 /// What to list.
 #[derive(clap::Args)]
 pub struct Args {
-    /// samplers, warps, metrics, integrands, formats, scenes or references (all when omitted)
-    #[arg(value_parser = ["samplers", "warps", "metrics", "integrands", "formats", "scenes", "references"])]
+    /// samplers, stages, warps, metrics, integrands, formats, scenes or references (all when
+    /// omitted)
+    #[arg(value_parser = ["samplers", "stages", "warps", "metrics", "integrands", "formats", "scenes", "references"])]
     what: Option<String>,
 }
 
@@ -17,6 +18,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     let mut out = String::new();
     for (what, listing) in [
         ("samplers", samplab::sampler::SAMPLERS.listing()),
+        ("stages", samplab::sampler::randomize::STAGES.listing()),
         ("warps", samplab::warp::WARPS.listing()),
         ("metrics", samplab::discrepancy::METRICS.listing()),
         ("integrands", samplab::integrand::INTEGRANDS.listing()),

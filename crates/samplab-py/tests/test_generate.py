@@ -1,6 +1,7 @@
 """Generation: against scipy's unscrambled sequences, the CLI's bytes, and the registry."""
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -52,16 +53,21 @@ def _count_for(name, d):
     return {"poisson.maximal": 40, "lhs.oa": 49, "hexagonal": 56}.get(name, 64)
 
 
+SAVED = Path(__file__).resolve().parents[2] / "samplab" / "tests" / "fixtures" / "saved16.txt"
+
+
 def test_every_registered_sampler_generates():
     for entry in samplab.samplers():
         name = entry["name"]
+        # a saved set needs its file, and makes its own count
+        args = f":path={SAVED}" if name == "file" else ""
         d = 2
-        n = _count_for(name, d)
-        p = samplab.generate(name, n=n, d=d, seed=3)
+        n = 16 if name == "file" else _count_for(name, d)
+        p = samplab.generate(name + args, n=n, d=d, seed=3)
         assert p.shape == (n, d), name
         assert ((p >= 0) & (p < 1)).all(), name
         for alias in entry["aliases"]:
-            assert samplab.generate(alias, n=n, d=d, seed=3).tobytes() == p.tobytes(), alias
+            assert samplab.generate(alias + args, n=n, d=d, seed=3).tobytes() == p.tobytes(), alias
 
 
 def test_registry_entries_are_complete():

@@ -93,14 +93,19 @@ fn fills_allocate_nothing_once_planned() {
         if SEARCHING.contains(&name) {
             continue;
         }
-        let s = sampler::build(name).unwrap();
+        // a saved set's file is a parameter it requires
+        let spec = match name {
+            "file" => concat!("file:path=", env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/saved16.txt").into(),
+            name => name.to_string(),
+        };
+        let s = sampler::build(&spec).unwrap();
         // two and five dimensions (the few-dimension paths and the general one), at the
-        // first count from 32 on that each makes
+        // first count from 16 on that each makes
         for dims in [2, 5] {
             if !s.dims().contains(&dims) {
                 continue;
             }
-            let Some(plan) = (32..=4096).find_map(|n| s.plan(n, dims).ok()) else {
+            let Some(plan) = (16..=4096).find_map(|n| s.plan(n, dims).ok()) else {
                 panic!("{name}: no count plans in {dims}D");
             };
             let mut out = vec![0.0; plan.n() * dims];

@@ -395,3 +395,46 @@ fn rotated_grid_is_a_rigid_motion_of_the_grid() {
     }
     assert!(exact >= 32, "{exact} points at exact grid spacing");
 }
+
+/// A stage after any spec: `+shift` moves every point of a set by one offset per axis, mod
+/// 1 (a translate: the differences to the unshifted set are one number per axis), keeps
+/// random access and streaming equal to the batch, and randomizes a saved set per seed.
+#[test]
+fn a_shift_stage_translates_any_set_and_keeps_random_access() {
+    let saved = concat!("file:path=", env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/saved16.txt");
+    for (base, n) in [("sobol", 64), ("halton.owen", 50), ("jitter", 64), ("random", 30), (saved, 16)] {
+        let plain = sampler::build(base).unwrap();
+        let shifted = sampler::build(&format!("{base}+shift")).unwrap();
+        assert_eq!(shifted.spec(), format!("{}+shift", plain.spec()));
+        let (p, s) = (plain.plan(n, 2).unwrap(), shifted.plan(n, 2).unwrap());
+        for seed in [Seed(1), Seed(2)] {
+            let (a, b) = (p.generate(seed).unwrap(), s.generate(seed).unwrap());
+            for d in 0..2 {
+                let offset = (b.point(0)[d] - a.point(0)[d]).rem_euclid(1.0);
+                for i in 0..n {
+                    let o = (b.point(i)[d] - a.point(i)[d]).rem_euclid(1.0);
+                    let gap = (o - offset).abs();
+                    assert!(gap.min(1.0 - gap) < 1e-15, "{base}+shift point {i}: offset {o} against {offset}");
+                }
+            }
+            // random access and streaming, where the sampler has them, equal the batch
+            if let Some(access) = s.access(seed) {
+                for i in [0, 1, n - 1] {
+                    assert_eq!(access.sample(i as u64, 1).unwrap(), b.point(i)[1], "{base}+shift");
+                }
+            }
+            if let Some(mut stream) = s.stream(seed) {
+                let mut chunk = vec![0.0; 2 * n];
+                stream.next(&mut chunk).unwrap();
+                assert_eq!(chunk, b.as_slice(), "{base}+shift streamed");
+            }
+        }
+        // a new shift per seed
+        assert_ne!(s.generate(Seed(1)).unwrap(), s.generate(Seed(2)).unwrap(), "{base}+shift");
+    }
+    // stages follow one another; a '+' inside a number is not a stage
+    let chained = sampler::build("kronecker+shift+micro-jitter:0.2").unwrap();
+    assert_eq!(chained.spec(), "kronecker+shift+micro-jitter:fraction=0.2");
+    assert!(sampler::build("jitter.gaussian:sigma=1e+0+shift").is_ok());
+    assert!(sampler::build("sobol+shift:x=1").unwrap_err().to_string().contains("'x'"));
+}

@@ -38,19 +38,20 @@ use crate::progress::Progress;
 use crate::seed::Seed;
 
 pub mod blue_noise;
+pub mod file;
 pub mod qmc;
 pub mod random;
 pub mod randomize;
 pub mod registry;
 pub mod stratified;
 
-/// Every sampler, in listing order: random, then the families' files in their folders'
-/// order.
+/// Every sampler, in listing order: random and a saved set, then the families' files in
+/// their folders' order.
 pub static SAMPLERS: crate::registry::Registry<SamplerEntry> = crate::registry::Registry::new(
     "sampler",
     "SAMPLERS  (spec: name[:key=value,...] or name[:value,...] in the order listed; \
-     +micro-jitter[:fraction=F] after any spec micro-jitters its points)",
-    &[&[random::ENTRIES], stratified::FILES, blue_noise::FILES, qmc::FILES, randomize::FILES],
+     after any spec, stages: +shift, +micro-jitter[:fraction=F])",
+    &[&[random::ENTRIES, file::ENTRIES], stratified::FILES, blue_noise::FILES, qmc::FILES, randomize::FILES],
 );
 
 pub use randomize::scramble::Randomization;

@@ -46,7 +46,7 @@ impl SamplerEntry {
     pub fn build(&'static self, params: &Params) -> Result<Box<dyn Sampler>> {
         let mut params = params.clone();
         let construction = (self.build)(&mut params)?;
-        Ok(Box::new(Registered { entry: self, params, construction, on: None }))
+        Ok(Box::new(Registered { about: &self.about, counts: Some(self.counts), params, construction, on: None }))
     }
 }
 
@@ -54,7 +54,9 @@ impl SamplerEntry {
 /// parameters it was built from, which give it its spec ([`canonical`]).
 #[derive(Debug)]
 pub struct Registered {
-    entry: &'static SamplerEntry,
+    about: &'static About,
+    /// The entry's counts (none for a stage: it makes the counts of the sampler before it).
+    counts: Option<Counts>,
     params: Params,
     construction: Box<dyn Construction>,
     /// For a stage written after another spec (`kronecker+micro-jitter`): that spec.
@@ -62,25 +64,15 @@ pub struct Registered {
 }
 
 impl Registered {
-    /// The stage `entry` with `params` (its `construction`) applied to the sampler of spec
+    /// The stage `about` with `params` (its `construction`) applied to the sampler of spec
     /// `on`: its spec is `on+stage`.
     pub(crate) fn stage(
-        entry: &'static SamplerEntry,
+        about: &'static About,
         params: Params,
         construction: Box<dyn Construction>,
         on: String,
     ) -> Self {
-        Registered { entry, params, construction, on: Some(on) }
-    }
-
-    /// The registry entry this sampler was built from.
-    pub fn entry(&self) -> &'static SamplerEntry {
-        self.entry
-    }
-
-    /// The parameters it was built with (an `auto` one resolved where the spec names it).
-    pub fn params(&self) -> &Params {
-        &self.params
+        Registered { about, counts: None, params, construction, on: Some(on) }
     }
 }
 
@@ -97,7 +89,7 @@ pub(crate) fn labelled(e: Error, spec: impl FnOnce() -> String) -> Error {
 
 impl Sampler for Registered {
     fn spec(&self) -> String {
-        let own = canonical(&self.entry.about, &self.params);
+        let own = canonical(self.about, &self.params);
         match &self.on {
             Some(on) => format!("{on}+{own}"),
             None => own,
@@ -108,7 +100,7 @@ impl Sampler for Registered {
     }
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
         // a stage on another sampler makes that sampler's counts (its construction checks them)
-        let declared = if self.on.is_none() { self.entry.counts.check(n, dims) } else { Ok(()) };
+        let declared = self.counts.map_or(Ok(()), |c| c.check(n, dims));
         declared.and_then(|()| self.construction.check_count(n, dims)).map_err(|e| labelled(e, || self.spec()))
     }
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
@@ -237,50 +229,9 @@ pub(crate) const EDGE: ParamSpec = ParamSpec {
     doc: "distance measured on the torus (wraps around) or inside the square",
 };
 
-/// The entries of progressive sequences `$ty` (built by `<$ty>::new(Randomization)`), four
-/// per family: plain, random digit scrambling (`.xor`), Owen scrambling (`.owen`, alias
-/// `family-owen`) and a Cranley-Patterson shift (`.shift`), each citing its randomization.
-macro_rules! randomized_entries {
-    ($(($ty:ty, $family:literal, $summary:literal, $counts:expr, $dims:expr, [$($r:literal),*])),+ $(,)?) => {
-        &[$(
-            SamplerEntry {
-                about: About::new($family, $summary).cite(&[$($r),*]),
-                counts: $counts,
-                randomized: false,
-                dims: $dims,
-                build: |_| Ok(Box::new(<$ty>::new(Randomization::None))),
-            },
-            SamplerEntry {
-                about: About::new(concat!($family, ".xor"), concat!($summary, ", random digit scrambling"))
-                    .cite(&[$($r,)* "matousek1998"]),
-                counts: $counts,
-                randomized: true,
-                dims: $dims,
-                build: |_| Ok(Box::new(<$ty>::new(Randomization::Xor))),
-            },
-            SamplerEntry {
-                about: About::new(concat!($family, ".owen"), concat!($summary, ", Owen scrambling (hash-based)"))
-                    .aliases(&[concat!($family, "-owen")])
-                    .cite(&[$($r,)* "owen1995", "burley2020"]),
-                counts: $counts,
-                randomized: true,
-                dims: $dims,
-                build: |_| Ok(Box::new(<$ty>::new(Randomization::Owen))),
-            },
-            SamplerEntry {
-                about: About::new(concat!($family, ".shift"), concat!($summary, ", Cranley-Patterson shift"))
-                    .cite(&[$($r,)* "cranley1976"]),
-                counts: $counts,
-                randomized: true,
-                dims: $dims,
-                build: |_| Ok(Box::new(<$ty>::new(Randomization::Shift))),
-            },
-        )+]
-    };
-}
-pub(crate) use randomized_entries;
-
-/// Build a sampler from a spec such as `jitter.gaussian:sigma=0.25` or `GJittered:0.25`.
+/// Build a sampler from a spec such as `jitter.gaussian:sigma=0.25` or `GJittered:0.25`,
+/// followed by any stages (`sobol+shift`, `kronecker+micro-jitter:0.2`,
+/// `file:path=best.npy+shift`: [`super::randomize::STAGES`]).
 ///
 /// # Errors
 /// A malformed spec, an unknown name (with suggestions), or bad parameters.
@@ -291,8 +242,11 @@ pub(crate) use randomized_entries;
 /// assert!(samplab::sampler::build("jitter.gaussian:sigma=-1").is_err());
 /// ```
 pub fn build(spec: &str) -> Result<Box<dyn Sampler>> {
-    if let Some((inner, post)) = super::randomize::micro_jitter::split(spec) {
-        return super::randomize::micro_jitter::over(build(inner)?, post);
+    if let Some((before, stage, params)) = super::randomize::split(spec)? {
+        let inner = build(before)?;
+        let on = inner.spec();
+        let construction = (stage.build)(inner, &params)?;
+        return Ok(Box::new(Registered::stage(&stage.about, params, construction, on)));
     }
     let (entry, params) = SAMPLERS.resolve(spec)?;
     entry.build(&params)

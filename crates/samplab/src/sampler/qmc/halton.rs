@@ -15,13 +15,14 @@ use std::ops::RangeInclusive;
 use std::borrow::Cow;
 
 use crate::numeric::BELOW_ONE;
-use crate::sampler::registry::{ANY, Counts, SamplerEntry, randomized_entries};
-use crate::sampler::randomize::scramble::{OwenDigits, Randomization, hash_unit, owen_scramble_u32};
+use crate::sampler::randomize::randomized_families;
+use crate::sampler::registry::{ANY, Counts, SamplerEntry};
+use crate::sampler::randomize::scramble::{Divisor, OwenDigits, Randomization, hash_unit, owen_scramble_u32};
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::Result;
 use crate::progress::Progress;
-use crate::registry::About;
 use crate::seed::{Seed, shuffle, wrap01};
+use crate::spec::Params;
 
 /// How many dimensions (primes) the Halton sequence supports.
 pub const HALTON_MAX_DIMS: usize = 1024;
@@ -51,11 +52,23 @@ pub fn radical_inverse(index: u64, base: u32) -> f64 {
     DigitTable::new(base, None).value(index)
 }
 
-/// Tables for one coordinate: `scaled[j*b + a] = pi_j(a) b^-(j+1)` and `tail[m]`, the
-/// contribution of positions m..P when those digits are zero.
+/// The digit weights of one coordinate, b^-(j+1) for positions j < P, and (random digit
+/// scrambling) the permuted digits' terms `scaled[j*b + a] = pi_j(a) b^-(j+1)` with
+/// `tail[m]`, the contribution of positions m..P when those digits are zero. The identity's
+/// terms a b^-(j+1) are computed as they are needed (the same products, so the same bits):
+/// a plan holds only the weights, a few dozen numbers per base.
 #[derive(Debug, Clone)]
 struct DigitTable {
     base: u32,
+    /// The base, prepared for division by multiplication (random access's digits).
+    by_base: Divisor,
+    weights: Vec<f64>,
+    permuted: Option<Permuted>,
+}
+
+/// The terms of randomly permuted digits ([`DigitTable`]).
+#[derive(Debug, Clone)]
+struct Permuted {
     scaled: Vec<f64>,
     tail: Vec<f64>,
 }
@@ -67,39 +80,62 @@ fn positions(base: u32) -> usize {
 impl DigitTable {
     /// Identity digits (`perms = None`) or one random permutation per position.
     fn new(base: u32, perm_seed: Option<Seed>) -> Self {
-        let b = base as usize;
-        let p = positions(base);
-        let mut rng = perm_seed.map(Seed::rng);
-        let mut scaled = Vec::with_capacity(p * b);
+        let (b, p) = (base as usize, positions(base));
+        let mut weights = Vec::with_capacity(p);
         let mut weight = 1.0 / f64::from(base);
-        let mut perm: Vec<u32> = (0..base).collect();
         for _ in 0..p {
-            if let Some(rng) = rng.as_mut() {
-                shuffle(rng, &mut perm);
-            }
-            scaled.extend(perm.iter().map(|&a| f64::from(a) * weight));
+            weights.push(weight);
             weight /= f64::from(base);
         }
-        let mut tail = vec![0.0; p + 1];
-        for m in (0..p).rev() {
-            tail[m] = tail[m + 1] + scaled[m * b];
+        let permuted = perm_seed.map(|seed| {
+            let mut rng = seed.rng();
+            let mut perm: Vec<u32> = (0..base).collect();
+            let mut scaled = Vec::with_capacity(p * b);
+            for &weight in &weights {
+                shuffle(&mut rng, &mut perm);
+                scaled.extend(perm.iter().map(|&a| f64::from(a) * weight));
+            }
+            let mut tail = vec![0.0; p + 1];
+            for m in (0..p).rev() {
+                tail[m] = tail[m + 1] + scaled[m * b];
+            }
+            Permuted { scaled, tail }
+        });
+        DigitTable { base, by_base: Divisor::new(u64::from(base)), weights, permuted }
+    }
+
+    /// The term of digit `a` at position `j`.
+    #[inline]
+    fn term(&self, j: usize, a: u32) -> f64 {
+        match &self.permuted {
+            Some(t) => t.scaled[j * self.base as usize + a as usize],
+            None => f64::from(a) * self.weights[j],
         }
-        DigitTable { base, scaled, tail }
+    }
+
+    /// The contribution of positions m..P when their digits are zero.
+    #[inline]
+    fn tail(&self, m: usize) -> f64 {
+        self.permuted.as_ref().map_or(0.0, |t| t.tail[m])
     }
 
     fn value(&self, mut index: u64) -> f64 {
-        let b = u64::from(self.base);
         let mut digits = [0u32; 64];
         let mut m = 0;
         while index != 0 {
-            digits[m] = (index % b) as u32;
-            index /= b;
+            let (q, r) = self.by_base.divide(index);
+            digits[m] = r as u32;
+            index = q;
             m += 1;
         }
-        let mut v = self.tail[m];
-        for j in (0..m).rev() {
-            v += self.scaled[j * self.base as usize + digits[j] as usize];
-        }
+        // from the last digit up (as the odometer sums), each table's loop on its own
+        let v = match &self.permuted {
+            None => (0..m).rev().fold(0.0, |v, j| v + f64::from(digits[j]) * self.weights[j]),
+            Some(t) => {
+                let b = self.base as usize;
+                (0..m).rev().fold(t.tail[m], |v, j| v + t.scaled[j * b + digits[j] as usize])
+            }
+        };
         v.min(BELOW_ONE)
     }
 }
@@ -135,10 +171,9 @@ impl<'a> Odometer<'a> {
     /// Recompute partial sums for positions below `top` (inclusive of top-1 .. 0).
     fn refresh(&mut self, top: usize) {
         let m = self.len;
-        self.partial[m] = self.table.tail[m];
-        let b = self.table.base as usize;
+        self.partial[m] = self.table.tail(m);
         for j in (0..top.min(m)).rev() {
-            self.partial[j] = self.partial[j + 1] + self.table.scaled[j * b + self.digits[j] as usize];
+            self.partial[j] = self.partial[j + 1] + self.table.term(j, self.digits[j]);
         }
     }
 
@@ -202,19 +237,32 @@ impl<'a> Coordinate<'a> {
         }
     }
 
-    /// Values for indices start..start+count, written with stride `dims` into `out`.
-    fn fill_strided(&self, start: u64, out: &mut [f64], dims: usize, offset: usize) {
-        if let Some(owen) = &self.owen {
-            for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-                p[offset] = owen.value(start + i as u64);
-            }
-            return;
-        }
-        let mut od = Odometer::new(&self.table, start);
-        for p in out.chunks_exact_mut(dims) {
-            let v = od.value();
-            p[offset] = if self.randomization == Randomization::Shift { wrap01(v + self.shift) } else { v };
-            od.step();
+}
+
+/// Coordinates filled together: a point's row gets a block's values in one pass, so that a
+/// high-dimensional set is written row by row rather than column by column (every row's
+/// cache line once per block instead of once per coordinate).
+const BLOCK: usize = 8;
+
+/// The values of `coords` (the first `None` ends them) for indices start.., written into
+/// columns `first..` of the rows of `dims` of `out`.
+fn fill_columns(coords: &[Option<Coordinate<'_>>; BLOCK], start: u64, out: &mut [f64], dims: usize, first: usize) {
+    let count = coords.iter().take_while(|c| c.is_some()).count();
+    let mut odometers: [Option<Odometer<'_>>; BLOCK] = std::array::from_fn(|j| {
+        coords[j].as_ref().filter(|c| c.owen.is_none()).map(|c| Odometer::new(&c.table, start))
+    });
+    for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+        for (j, (c, od)) in coords[..count].iter().zip(&mut odometers).enumerate() {
+            let c = c.as_ref().expect("the first count coordinates are there");
+            p[first + j] = match (&c.owen, od) {
+                (Some(owen), _) => owen.value(start + i as u64),
+                (None, Some(od)) => {
+                    let v = od.value();
+                    od.step();
+                    if c.randomization == Randomization::Shift { wrap01(v + c.shift) } else { v }
+                }
+                (None, None) => unreachable!("an odometer for every coordinate without Owen scrambling"),
+            };
         }
     }
 }
@@ -261,10 +309,13 @@ impl Radical {
         Coordinate::new(&self.tables[dim], self.randomization, seed, dim, bound)
     }
 
-    /// The Halton coordinates of points 0..n into dimensions `first..` of `out`.
+    /// The Halton coordinates of points 0..n into dimensions `first..` of `out`, a block
+    /// of coordinates at a time (on the stack: nothing allocated but a scramble's tables).
     fn fill_from(&self, seed: Seed, out: &mut [f64], dims: usize, first: usize) {
-        for d in 0..self.tables.len() {
-            self.coordinate(seed, d, self.n as u64).fill_strided(0, out, dims, first + d);
+        let count = self.tables.len();
+        for d0 in (0..count).step_by(BLOCK) {
+            let coords = std::array::from_fn(|j| (d0 + j < count).then(|| self.coordinate(seed, d0 + j, self.n as u64)));
+            fill_columns(&coords, 0, out, dims, first + d0);
         }
     }
 }
@@ -347,6 +398,7 @@ impl Prepared for Planned {
                 Randomization::Xor => f64::from(fixed ^ bits) / 4_294_967_296.0,
                 Randomization::Owen => f64::from(owen_scramble_u32(fixed, bits)) / 4_294_967_296.0,
                 Randomization::Shift => wrap01(i as f64 / n as f64 + shift),
+                Randomization::Lms => unreachable!("Hammersley declares no linear matrix scrambling"),
             };
         }
         self.halton.fill_from(seed, out, dims, 1);
@@ -354,10 +406,40 @@ impl Prepared for Planned {
     }
 }
 
+/// The construction of each Halton entry.
+fn build_halton(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
+    Ok(Box::new(Halton::new(randomization)))
+}
+
+/// The construction of each Hammersley entry.
+fn build_hammersley(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
+    Ok(Box::new(Hammersley::new(randomization)))
+}
+
 /// The samplers this file registers: Halton and Hammersley with their randomizations.
-pub(crate) static ENTRIES: &[SamplerEntry] = randomized_entries!(
-    (Halton, "halton", "Halton sequence, prime bases", ANY, "1..=1024", ["halton1960"]),
-    (Hammersley, "hammersley", "Hammersley set: i/n, then Halton", Counts::AtMost { most: 1 << 32, why: "the first coordinate has 32-bit resolution: at most 2^32 points" }, "1..=1025", ["hammersley1964"]),
+pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
+    {
+        family: "halton",
+        summary: "Halton sequence, prime bases",
+        aliases: &[],
+        params: &[],
+        counts: ANY,
+        dims: "1..=1024",
+        cite: ["halton1960"],
+        build: build_halton,
+        randomizations: [xor, owen, shift],
+    },
+    {
+        family: "hammersley",
+        summary: "Hammersley set: i/n, then Halton",
+        aliases: &[],
+        params: &[],
+        counts: Counts::AtMost { most: 1 << 32, why: "the first coordinate has 32-bit resolution: at most 2^32 points" },
+        dims: "1..=1025",
+        cite: ["hammersley1964"],
+        build: build_hammersley,
+        randomizations: [xor, owen, shift],
+    },
 );
 
 #[cfg(test)]
@@ -377,7 +459,9 @@ mod tests {
                 let plain = DigitTable::new(base, None);
                 let c = Coordinate::new(&plain, r, Seed(11), 3, 3000);
                 let mut out = vec![0.0; 3000];
-                c.fill_strided(17, &mut out, 1, 0);
+                let mut block: [Option<Coordinate>; BLOCK] = std::array::from_fn(|_| None);
+                block[0] = Some(c.clone());
+                fill_columns(&block, 17, &mut out, 1, 0);
                 for (i, v) in out.iter().enumerate() {
                     assert_eq!(v.to_bits(), c.value(17 + i as u64).to_bits(), "base {base} {r:?} index {i}");
                 }

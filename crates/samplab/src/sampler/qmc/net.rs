@@ -31,14 +31,14 @@ use std::ops::RangeInclusive;
 use std::sync::Arc;
 
 use crate::numeric::BELOW_ONE;
+use crate::sampler::randomize::randomized_families;
 use crate::sampler::registry::{Counts, SamplerEntry};
 use crate::sampler::randomize::scramble::{OwenDigits, Randomization, hash2, owen_scramble_u32};
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
-use crate::registry::About;
 use crate::seed::{Seed, below, uniform, wrap01};
-use crate::spec::{Default, Kind, ParamSpec};
+use crate::spec::{Default, Kind, ParamSpec, Params};
 
 /// Generating matrices of a digital net in a prime base: `cols` columns (input digits, so
 /// b^cols points) and `rows` rows (output digits) per dimension.
@@ -352,7 +352,6 @@ enum Source {
 pub struct Net {
     source: Source,
     randomization: Randomization,
-    lms: bool,
 }
 
 impl Net {
@@ -390,7 +389,7 @@ impl Planned<'_> {
     /// The engine for `seed`; `bound` caps the prefix tables of an Owen scramble in base b
     /// (the count of points to make; a cache only).
     fn engine(&self, seed: Seed, bound: u64) -> Engine {
-        Engine::new(&self.matrices, self.dims, self.net.randomization, self.net.lms, seed, bound)
+        Engine::new(&self.matrices, self.dims, self.net.randomization, seed, bound)
     }
 }
 
@@ -451,11 +450,11 @@ enum Engine {
 }
 
 impl Engine {
-    fn new(m: &Matrices, dims: usize, randomization: Randomization, lms: bool, seed: Seed, bound: u64) -> Engine {
+    fn new(m: &Matrices, dims: usize, randomization: Randomization, seed: Seed, bound: u64) -> Engine {
         if m.base == 2 {
-            Engine::Binary(Binary::new(m, dims, randomization, lms, seed))
+            Engine::Binary(Binary::new(m, dims, randomization, seed))
         } else {
-            Engine::Prime(Prime::new(m, dims, randomization, lms, seed, bound))
+            Engine::Prime(Prime::new(m, dims, randomization, seed, bound))
         }
     }
 
@@ -517,7 +516,9 @@ struct Binary {
 }
 
 impl Binary {
-    fn new(m: &Matrices, dims: usize, randomization: Randomization, lms: bool, seed: Seed) -> Binary {
+    fn new(m: &Matrices, dims: usize, randomization: Randomization, seed: Seed) -> Binary {
+        // linear matrix scrambling, then the digital shift
+        let lms = randomization == Randomization::Lms;
         let cols = m.cols;
         let mut columns = vec![0u64; dims * cols];
         let (mut shift, mut owen, mut offset) = (vec![0u64; dims], Vec::new(), Vec::new());
@@ -538,7 +539,7 @@ impl Binary {
                 };
             }
             match randomization {
-                Randomization::Xor => shift[d] = draws.bits(),
+                Randomization::Xor | Randomization::Lms => shift[d] = draws.bits(),
                 Randomization::Owen => owen.push(draws.bits() as u32),
                 Randomization::Shift => offset.push(uniform(&mut draws.0)),
                 Randomization::None => {}
@@ -648,7 +649,9 @@ struct Prime {
 }
 
 impl Prime {
-    fn new(m: &Matrices, dims: usize, randomization: Randomization, lms: bool, seed: Seed, bound: u64) -> Prime {
+    fn new(m: &Matrices, dims: usize, randomization: Randomization, seed: Seed, bound: u64) -> Prime {
+        // linear matrix scrambling, then the digital shift
+        let lms = randomization == Randomization::Lms;
         let (base, cols, p) = (m.base, m.cols, precision(m.base));
         let b = base as usize;
         let mut columns = vec![0u8; dims * cols * p];
@@ -676,7 +679,7 @@ impl Prime {
                 }
             }
             match randomization {
-                Randomization::Xor => {
+                Randomization::Xor | Randomization::Lms => {
                     for e in &mut shift[d * p..(d + 1) * p] {
                         *e = draws.below(base) as u8;
                     }
@@ -800,14 +803,14 @@ fn read_matrices(path: &str) -> Result<Source> {
     Ok(Source::File(Arc::new(Matrices::parse(&text, path)?)))
 }
 
-fn net_source(p: &crate::spec::Params) -> Result<Source> {
+fn net_source(p: &Params) -> Result<Source> {
     match p.path_or_auto("matrices") {
         Some(path) => read_matrices(path),
         None => Ok(Source::Sobol),
     }
 }
 
-fn niederreiter_source(p: &crate::spec::Params) -> Result<Source> {
+fn niederreiter_source(p: &Params) -> Result<Source> {
     let base = p.int("base") as u32;
     if !is_prime(base) {
         return Err(Error::Param { owner: "niederreiter".into(), param: "base".into(), reason: format!("{base} is not a prime") });
@@ -815,87 +818,54 @@ fn niederreiter_source(p: &crate::spec::Params) -> Result<Source> {
     Ok(Source::Niederreiter(base))
 }
 
-/// The five entries of a net family: plain, `.xor`, `.lms`, `.owen`, `.shift`.
-macro_rules! net_entries {
-    ($(($family:literal, $summary:literal, $aliases:expr, $params:expr, $source:expr, $counts:expr, $dims:literal, [$($r:literal),*])),+ $(,)?) => {
-        &[$(
-            SamplerEntry {
-                about: About::new($family, $summary).terse().aliases($aliases).params($params).cite(&[$($r),*]),
-                counts: $counts,
-                randomized: false,
-                dims: $dims,
-                build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::None, lms: false })),
-            },
-            SamplerEntry {
-                about: About::new(concat!($family, ".xor"), concat!($summary, ", digital shift")).terse()
-                    .params($params)
-                    .cite(&[$($r,)* "matousek1998"]),
-                counts: $counts,
-                randomized: true,
-                dims: $dims,
-                build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Xor, lms: false })),
-            },
-            SamplerEntry {
-                about: About::new(concat!($family, ".lms"), concat!($summary, ", linear matrix scrambling and a digital shift")).terse()
-                    .params($params)
-                    .cite(&[$($r,)* "matousek1998"]),
-                counts: $counts,
-                randomized: true,
-                dims: $dims,
-                build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Xor, lms: true })),
-            },
-            SamplerEntry {
-                about: About::new(concat!($family, ".owen"), concat!($summary, ", Owen's nested uniform scrambling")).terse()
-                    .params($params)
-                    .cite(&[$($r,)* "owen1995", "owen1997", "matousek1998", "burley2020"]),
-                counts: $counts,
-                randomized: true,
-                dims: $dims,
-                build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Owen, lms: false })),
-            },
-            SamplerEntry {
-                about: About::new(concat!($family, ".shift"), concat!($summary, ", Cranley-Patterson shift")).terse()
-                    .params($params)
-                    .cite(&[$($r,)* "cranley1976"]),
-                counts: $counts,
-                randomized: true,
-                dims: $dims,
-                build: |p| Ok(Box::new(Net { source: $source(p)?, randomization: Randomization::Shift, lms: false })),
-            },
-        )+]
-    };
+/// The construction of each `net` entry.
+fn build_net(p: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
+    Ok(Box::new(Net { source: net_source(p)?, randomization }))
 }
 
-/// The samplers this file registers.
-pub(crate) static ENTRIES: &[SamplerEntry] = net_entries!(
-    (
-        "net",
-        "digital net in base b from generating matrices, natural order",
-        &["digitalnet", "digitalnetb2"],
-        &[MATRICES],
-        net_source,
-        Counts::Rule("n <= b^m (m columns; nets at powers of b)"),
-        "up to the file's",
-        ["niederreiter1992", "joe2008"]
-    ),
-    (
-        "faure",
-        "Faure (0,s)-sequence, base the smallest prime >= d",
-        &[],
-        &[],
-        |_: &crate::spec::Params| Ok::<_, Error>(Source::Faure),
-        Counts::Any("nets at powers of the base"),
-        "1..=251",
-        ["faure1982"]
-    ),
-    (
-        "niederreiter",
-        "Niederreiter (t,s)-sequence from irreducible polynomials",
-        &[],
-        &[BASE],
-        niederreiter_source,
-        Counts::Any("nets at powers of the base"),
-        "1..=1024",
-        ["niederreiter1988", "bratley1992"]
-    ),
+/// The construction of each `faure` entry.
+fn build_faure(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
+    Ok(Box::new(Net { source: Source::Faure, randomization }))
+}
+
+/// The construction of each `niederreiter` entry.
+fn build_niederreiter(p: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
+    Ok(Box::new(Net { source: niederreiter_source(p)?, randomization }))
+}
+
+/// The samplers this file registers: each family plain and with its four randomizations.
+pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
+    {
+        family: "net",
+        summary: "digital net in base b from generating matrices, natural order",
+        aliases: &["digitalnet", "digitalnetb2"],
+        params: &[MATRICES],
+        counts: Counts::Rule("n <= b^m (m columns; nets at powers of b)"),
+        dims: "up to the file's",
+        cite: ["niederreiter1992", "joe2008"],
+        build: build_net,
+        randomizations: [xor, lms, owen, shift],
+    },
+    {
+        family: "faure",
+        summary: "Faure (0,s)-sequence, base the smallest prime >= d",
+        aliases: &[],
+        params: &[],
+        counts: Counts::Any("nets at powers of the base"),
+        dims: "1..=251",
+        cite: ["faure1982"],
+        build: build_faure,
+        randomizations: [xor, lms, owen, shift],
+    },
+    {
+        family: "niederreiter",
+        summary: "Niederreiter (t,s)-sequence from irreducible polynomials",
+        aliases: &[],
+        params: &[BASE],
+        counts: Counts::Any("nets at powers of the base"),
+        dims: "1..=1024",
+        cite: ["niederreiter1988", "bratley1992"],
+        build: build_niederreiter,
+        randomizations: [xor, lms, owen, shift],
+    },
 );

@@ -4,13 +4,14 @@
 
 use std::ops::RangeInclusive;
 
-use crate::sampler::registry::{Counts, SamplerEntry, randomized_entries};
+use crate::sampler::randomize::randomized_families;
+use crate::sampler::registry::{Counts, SamplerEntry};
 use crate::sampler::randomize::scramble::{Randomization, hash_unit, owen_scramble_reversed};
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
-use crate::registry::About;
 use crate::seed::{Seed, wrap01};
+use crate::spec::Params;
 use crate::simd::wide;
 
 include!(concat!(env!("OUT_DIR"), "/sobol_directions.rs"));
@@ -89,6 +90,7 @@ impl Sobol {
                 f64::from(owen_scramble_reversed(x.reverse_bits(), key.bits).reverse_bits()) * TO_UNIT
             }
             Randomization::Shift => wrap01(f64::from(x) * TO_UNIT + key.shift),
+            Randomization::Lms => unreachable!("Sobol' declares no linear matrix scrambling"),
         }
     }
 }
@@ -239,6 +241,7 @@ impl Planned {
                     #[inline(always)]
                     |x, j| wrap01(f64::from(x) * TO_UNIT + keys[j].shift),
                 ),
+                Randomization::Lms => unreachable!("Sobol' declares no linear matrix scrambling"),
             },
         );
     }
@@ -282,12 +285,20 @@ impl Access for SobolAccess {
     }
 }
 
+/// The construction of each entry.
+fn build(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
+    Ok(Box::new(Sobol::new(randomization)))
+}
+
 /// The samplers this file registers: Sobol' and its three randomizations.
-pub(crate) static ENTRIES: &[SamplerEntry] = randomized_entries!((
-    Sobol,
-    "sobol",
-    "Sobol' sequence, Joe-Kuo directions",
-    Counts::AtMost { most: 1 << 32, why: "32-bit Sobol' points stop at 2^32" },
-    "1..=1024",
-    ["sobol1967", "joe2008"]
-));
+pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!({
+    family: "sobol",
+    summary: "Sobol' sequence, Joe-Kuo directions",
+    aliases: &[],
+    params: &[],
+    counts: Counts::AtMost { most: 1 << 32, why: "32-bit Sobol' points stop at 2^32" },
+    dims: "1..=1024",
+    cite: ["sobol1967", "joe2008"],
+    build: build,
+    randomizations: [xor, owen, shift],
+});

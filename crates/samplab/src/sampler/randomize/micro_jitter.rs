@@ -12,43 +12,19 @@
 use std::ops::RangeInclusive;
 
 use crate::sampler::registry::{Counts, SamplerEntry};
-use crate::sampler::registry::Registered;
+use super::StageEntry;
 use crate::sampler::{Construction, Prepared, Sampler, Shape};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Seed, uniform, wrap01};
-use crate::spec::{Default, Kind, ParamSpec, Params, Spec};
+use crate::spec::{Default, Kind, ParamSpec};
 
 /// A sampler whose points are micro-jittered.
 #[derive(Debug)]
 pub struct MicroJitter {
     inner: Box<dyn Sampler>,
     fraction: f64,
-}
-
-/// The spec split into the sampler's and the micro-jitter's, when it ends in
-/// `+micro-jitter[:...]` (at the first '+' whose remainder names this entry: a '+' inside a
-/// number, 1e+3, does not).
-pub(crate) fn split(spec: &str) -> Option<(&str, &str)> {
-    let about = &ENTRIES[0].about;
-    spec.match_indices('+').find_map(|(i, _)| {
-        let post = &spec[i + 1..];
-        let name = Spec::parse(post).ok()?.name.to_ascii_lowercase();
-        (about.name == name || about.aliases.contains(&name.as_str())).then_some((&spec[..i], post))
-    })
-}
-
-/// `inner` micro-jittered with the parameters of `post` (`micro-jitter[:fraction=F]`).
-///
-/// # Errors
-/// A malformed or out-of-range fraction.
-pub(crate) fn over(inner: Box<dyn Sampler>, post: &str) -> Result<Box<dyn Sampler>> {
-    let spec = Spec::parse(post)?;
-    let params = Params::resolve(ENTRIES[0].about.name, ENTRIES[0].about.params, &spec.args)?;
-    let on = inner.spec();
-    let construction = Box::new(MicroJitter { inner, fraction: params.real("fraction") });
-    Ok(Box::new(Registered::stage(&ENTRIES[0], params, construction, on)))
 }
 
 /// The mean spacing of n points in d dimensions: 1/k when n = k^d, else n^(-1/d).
@@ -66,12 +42,7 @@ impl Construction for MicroJitter {
         self.inner.dims()
     }
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        self.inner.check_count(n, dims).map_err(|e| match e {
-            // the error names what the user wrote (left to the registered sampler), not the
-            // sampler jittered
-            Error::InvalidCount { n, dims, reason, .. } => Error::InvalidCount { sampler: String::new(), n, dims, reason },
-            other => other,
-        })
+        super::counts_of(self.inner.as_ref(), n, dims)
     }
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
         // the inner sampler's checks passed with this shape's (the dimension range is its)
@@ -110,16 +81,19 @@ const FRACTION: ParamSpec = ParamSpec {
     doc: "side of the offset cube, a fraction of the mean spacing n^(-1/d)",
 };
 
-/// The entry this file registers.
+/// What the entry and the stage say about themselves.
+const ABOUT: About = About::new(
+    "micro-jitter",
+    "micro-jittering: each point moved uniformly within a fraction of the spacing; written after any spec \
+     (sobol+micro-jitter:0.2), alone on the regular grid",
+)
+.aliases(&["microjitter"])
+.params(&[FRACTION])
+.cite(&["cook1986", "roberts2018jitter"]);
+
+/// The entry this file registers: micro-jitter alone, on the regular grid.
 pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
-    about: About::new(
-        "micro-jitter",
-        "micro-jittering: each point moved uniformly within a fraction of the spacing; written after any spec \
-         (sobol+micro-jitter:0.2), alone on the regular grid",
-    )
-    .aliases(&["microjitter"])
-    .params(&[FRACTION])
-    .cite(&["cook1986", "roberts2018jitter"]),
+    about: ABOUT,
     counts: Counts::Grid,
     randomized: true,
     dims: "1..=64 (after a spec: the sampler's)",
@@ -127,3 +101,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
         Ok(Box::new(MicroJitter { inner: crate::sampler::build("regular")?, fraction: p.real("fraction") }))
     },
 }];
+
+/// The stage this file registers: micro-jitter after any spec.
+pub(crate) static STAGES: &[StageEntry] =
+    &[StageEntry { about: ABOUT, build: |inner, p| Ok(Box::new(MicroJitter { inner, fraction: p.real("fraction") })) }];

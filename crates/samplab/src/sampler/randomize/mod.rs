@@ -6,8 +6,136 @@
 //!   the Cranley & Patterson 1976 shift) and the hash-based permutations they use.
 //! - [`micro_jitter`]: `+micro-jitter` after any spec: every point moved by a small uniform
 //!   offset (after Roberts 2018).
+//! - [`shift`]: `+shift` after any spec: a Cranley–Patterson shift in 64-bit fixed point.
+//!
+//! The last two are stages ([`STAGES`]): written after any sampler's spec, a saved set's
+//! included (`file:path=best.npy+shift`), they randomize the points of the sampler before
+//! them, and several may follow one another (`sobol+shift+micro-jitter`).
+
+use crate::error::Result;
+use crate::registry::{About, Entry, Registry};
+use crate::sampler::{Construction, Sampler};
+use crate::spec::{Params, Spec};
 
 pub mod scramble;
+pub mod shift;
+
+/// How a stage builds its construction over the sampler before it, from resolved
+/// parameters.
+pub(crate) type StageBuild = fn(Box<dyn Sampler>, &Params) -> Result<Box<dyn Construction>>;
+
+/// A stage: a randomization written after any spec, applied to the points of the sampler
+/// before it.
+#[derive(Debug)]
+pub struct StageEntry {
+    /// Name, aliases, summary, parameters, references.
+    pub about: About,
+    /// The construction over the sampler before it, from resolved parameters.
+    pub(crate) build: StageBuild,
+}
+
+impl Entry for StageEntry {
+    fn about(&self) -> &About {
+        &self.about
+    }
+}
+
+/// The count check of the sampler a stage follows, its error left to name the whole spec
+/// (the registered stage fills it in): a stage makes the counts of the sampler before it.
+pub(crate) fn counts_of(inner: &dyn Sampler, n: usize, dims: usize) -> Result<()> {
+    inner.check_count(n, dims).map_err(|e| match e {
+        crate::error::Error::InvalidCount { n, dims, reason, .. } => {
+            crate::error::Error::InvalidCount { sampler: String::new(), n, dims, reason }
+        }
+        other => other,
+    })
+}
+
+/// Every stage.
+pub static STAGES: Registry<StageEntry> = Registry::new(
+    "stage",
+    "STAGES  (after any sampler spec, a saved set's too: SPEC+STAGE[:key=value,...], one after another)",
+    &[&[micro_jitter::STAGES, shift::STAGES]],
+);
+
+/// `spec` split at its last stage (`sobol+shift+micro-jitter:0.2` into `sobol+shift` and
+/// the micro-jitter with its parameters); `None` when it ends in no stage. A '+' whose
+/// remainder names no stage (as in 1e+3) does not split.
+///
+/// # Errors
+/// The stage's parameters, malformed or out of range.
+pub(crate) fn split(spec: &str) -> Result<Option<(&str, &'static StageEntry, Params)>> {
+    for (i, _) in spec.rmatch_indices('+') {
+        let Ok(stage) = Spec::parse(&spec[i + 1..]) else { continue };
+        if let Ok(entry) = STAGES.lookup(&stage.name) {
+            let params = Params::resolve(entry.about.name, entry.about.params, &stage.args)?;
+            return Ok(Some((&spec[..i], entry, params)));
+        }
+    }
+    Ok(None)
+}
+
+/// The entries of families of digital constructions, declared once per family: the plain
+/// construction (with the family's aliases) and one entry per randomization the family
+/// lists, named and cited here for every family alike:
+/// - `xor`: `family.xor`, random digit scrambling (Matoušek 1998);
+/// - `lms`: `family.lms`, linear matrix scrambling and a digital shift (Matoušek 1998);
+/// - `owen`: `family.owen` (also `family-owen`), Owen's nested uniform scrambling (Owen
+///   1995, 1997), hash-based (Burley 2020);
+/// - `shift`: `family.shift`, a Cranley–Patterson shift (Cranley & Patterson 1976).
+///
+/// `build(params, randomization)` makes the construction. Adding a randomized family is its
+/// file (the construction, a `build`, and one invocation) plus its name in its folder's list.
+macro_rules! randomized_families {
+    ($({
+        family: $family:literal,
+        summary: $summary:literal,
+        aliases: $aliases:expr,
+        params: $params:expr,
+        counts: $counts:expr,
+        dims: $dims:literal,
+        cite: $cite:tt,
+        build: $build:expr,
+        randomizations: [$($v:ident),+] $(,)?
+    }),+ $(,)?) => {
+        &[$(
+            $crate::sampler::randomize::randomized_families!(@entry none, $family, $summary, $aliases, $params, $counts, $dims, $cite, $build),
+            $($crate::sampler::randomize::randomized_families!(@entry $v, $family, $summary, $aliases, $params, $counts, $dims, $cite, $build),)+
+        )+]
+    };
+    (@entry $v:ident, $family:literal, $summary:literal, $aliases:expr, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
+        $crate::sampler::randomize::randomized_families!(@variant $v, $family, $summary, $aliases, $params, $counts, $dims, [$($r),*], $build)
+    };
+    (@variant none, $family:literal, $summary:literal, $aliases:expr, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
+        $crate::sampler::randomize::randomized_families!(@make $family, $summary, $aliases, $params, $counts, $dims, [$($r),*], $build, None, false)
+    };
+    (@variant xor, $family:literal, $summary:literal, $aliases:expr, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
+        $crate::sampler::randomize::randomized_families!(@make concat!($family, ".xor"), concat!($summary, ", random digit scrambling"),
+            &[], $params, $counts, $dims, [$($r,)* "matousek1998"], $build, Xor, true)
+    };
+    (@variant lms, $family:literal, $summary:literal, $aliases:expr, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
+        $crate::sampler::randomize::randomized_families!(@make concat!($family, ".lms"), concat!($summary, ", linear matrix scrambling and a digital shift"),
+            &[], $params, $counts, $dims, [$($r,)* "matousek1998"], $build, Lms, true)
+    };
+    (@variant owen, $family:literal, $summary:literal, $aliases:expr, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
+        $crate::sampler::randomize::randomized_families!(@make concat!($family, ".owen"), concat!($summary, ", Owen's nested uniform scrambling (hash-based)"),
+            &[concat!($family, "-owen")], $params, $counts, $dims, [$($r,)* "owen1995", "owen1997", "burley2020"], $build, Owen, true)
+    };
+    (@variant shift, $family:literal, $summary:literal, $aliases:expr, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
+        $crate::sampler::randomize::randomized_families!(@make concat!($family, ".shift"), concat!($summary, ", Cranley-Patterson shift"),
+            &[], $params, $counts, $dims, [$($r,)* "cranley1976"], $build, Shift, true)
+    };
+    (@make $name:expr, $summary:expr, $aliases:expr, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr, $randomization:ident, $randomized:literal) => {
+        $crate::sampler::SamplerEntry {
+            about: $crate::registry::About::new($name, $summary).terse().aliases($aliases).params($params).cite(&[$($r),*]),
+            counts: $counts,
+            randomized: $randomized,
+            dims: $dims,
+            build: |p| $build(p, $crate::sampler::Randomization::$randomization),
+        }
+    };
+}
+pub(crate) use randomized_families;
 
 crate::registry::registry_files! {
     /// The files of this family, in listing order.

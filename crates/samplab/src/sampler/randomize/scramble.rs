@@ -14,22 +14,14 @@ pub enum Randomization {
     /// permutation of each digit depends on all the digits before it. Preserves
     /// (t,m,s)-net properties.
     Owen,
+    /// Linear matrix scrambling (Matousek 1998), then a digital shift: each generating
+    /// matrix C_j replaced by L_j C_j, L_j lower triangular with a non-zero diagonal (the
+    /// digital nets, which have matrices).
+    Lms,
     /// Cranley–Patterson rotation (Cranley & Patterson 1976): one uniform offset per
     /// dimension, added modulo 1. Keeps the set a toroidal translate of the original; it
     /// does not preserve elementary-interval stratification.
     Shift,
-}
-
-impl Randomization {
-    /// The variant suffix used in sampler names ("", "xor", "owen", "shift").
-    pub fn suffix(self) -> &'static str {
-        match self {
-            Randomization::None => "",
-            Randomization::Xor => "xor",
-            Randomization::Owen => "owen",
-            Randomization::Shift => "shift",
-        }
-    }
 }
 
 /// A nested uniform scramble of a 32-bit fixed-point value, whose bits are read most
@@ -162,19 +154,19 @@ struct Walk<D> {
 /// 2019): for x < 2^32, x / d = floor(ceil(2^64 / d) x / 2^64); a hardware division costs
 /// several times the latency, and the digit loop's quotients depend on each other.
 #[derive(Debug, Clone, Copy)]
-struct Divisor {
+pub(crate) struct Divisor {
     d: u64,
     magic: u64,
 }
 
 impl Divisor {
-    fn new(d: u64) -> Divisor {
+    pub(crate) fn new(d: u64) -> Divisor {
         Divisor { d, magic: if d.is_power_of_two() { 0 } else { u64::MAX / d + 1 } }
     }
 
     /// (x / d, x mod d).
     #[inline(always)]
-    fn divide(self, x: u64) -> (u64, u64) {
+    pub(crate) fn divide(self, x: u64) -> (u64, u64) {
         if self.magic == 0 {
             (x >> self.d.trailing_zeros(), x & (self.d - 1))
         } else if x >> 32 == 0 {
