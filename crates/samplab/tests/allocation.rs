@@ -35,32 +35,17 @@ fn allocations() -> u64 {
     ALLOCATIONS.with(Cell::get)
 }
 
-/// The entries whose fill still builds per-seed tables on the heap, and why. The test
-/// also fails when one of them stops allocating, so this list only shrinks.
-const PER_SEED_TABLES: &[&str] = &[
-    // a permuted digit table per base and seed (the permutations are the randomization)
-    "halton.xor",
-    "hammersley.xor",
-    // Owen's nested scramble tabulates the first digits' permutations per seed
-    "halton.owen",
-    "hammersley.owen",
-    // the digital nets scramble their columns per seed (engine per seed)
-    "net",
-    "net.xor",
-    "net.lms",
-    "net.owen",
-    "net.shift",
-    "faure",
-    "faure.xor",
-    "faure.lms",
-    "faure.owen",
-    "faure.shift",
-    "niederreiter",
-    "niederreiter.xor",
-    "niederreiter.lms",
-    "niederreiter.owen",
-    "niederreiter.shift",
-];
+/// Whether the entry's fill in `dims` dimensions still builds per-seed tables on the heap
+/// (and why). The test also fails when one of them stops allocating, so this only shrinks.
+fn per_seed_tables(name: &str, dims: usize) -> bool {
+    // a permuted digit table per base and seed (the permutations are the randomization);
+    // Owen's nested scramble in a prime base tabulates its first digits per seed
+    let radical = matches!(name, "halton.xor" | "hammersley.xor" | "halton.owen" | "hammersley.owen");
+    // the digital nets in an odd prime base (Faure's base is the least prime >= d) build
+    // their columns and digit states per seed; base 2 walks them on the stack
+    let prime_net = name.starts_with("faure") && dims > 2;
+    radical || prime_net
+}
 
 /// The samplers that make their sets by search or optimization (dart throwing, elimination,
 /// relaxation, permutation searches): their working memory is the algorithm's.
@@ -112,7 +97,7 @@ fn fills_allocate_nothing_once_planned() {
             let before = allocations();
             plan.fill(Seed(3), &mut out).unwrap();
             let made = allocations() - before;
-            let expected_free = !PER_SEED_TABLES.contains(&name);
+            let expected_free = !per_seed_tables(name, dims);
             if (made == 0) != expected_free {
                 wrong.push(format!("{name} in {dims}D: {made} allocations in one fill"));
             }

@@ -383,19 +383,68 @@ struct Planned<'a> {
     matrices: Arc<Matrices>,
     n: usize,
     dims: usize,
+    /// Base 2: each dimension's columns as 64-bit words, row 0 the most significant bit
+    /// (`words[d * cols + k]`), made once.
+    words: Option<Vec<u64>>,
 }
 
 impl Planned<'_> {
     /// The engine for `seed`; `bound` caps the prefix tables of an Owen scramble in base b
     /// (the count of points to make; a cache only).
     fn engine(&self, seed: Seed, bound: u64) -> Engine {
-        Engine::new(&self.matrices, self.dims, self.net.randomization, seed, bound)
+        match &self.words {
+            Some(words) => Engine::Binary(Binary::new(words, self.matrices.cols, self.dims, self.net.randomization, seed)),
+            None => Engine::Prime(Prime::new(&self.matrices, self.dims, self.net.randomization, seed, bound)),
+        }
+    }
+
+    /// A base-2 net's points for `seed`, `CHUNK` dimensions at a time: each dimension's
+    /// (scrambled) columns' running XORs, its key and its state on the stack, so that the
+    /// fill allocates nothing. Point i + 1 is point i with the running XOR of the columns
+    /// up to its lowest zero bit flipped in (natural order).
+    fn fill_binary(&self, words: &[u64], seed: Seed, out: &mut [f64]) {
+        const CHUNK: usize = 64;
+        let (dims, cols) = (self.dims, self.matrices.cols);
+        // indices stay below 2^32, so no walk reaches past column 32
+        let used = cols.min(MAX_WORDS);
+        for d0 in (0..dims).step_by(CHUNK) {
+            let count = CHUNK.min(dims - d0);
+            // steps[k][j]: the running XOR of dimension d0 + j's columns up to k (by column,
+            // then dimension: a point's step is one contiguous row)
+            let mut steps = [[0u64; CHUNK]; MAX_WORDS];
+            let mut keys = [BinaryKey::default(); CHUNK];
+            let mut columns = [0u64; MAX_WORDS];
+            for (j, key) in keys.iter_mut().take(count).enumerate() {
+                let d = d0 + j;
+                *key = binary_dimension(&words[d * cols..][..used], self.net.randomization, seed, d, &mut columns[..used]);
+                let mut running = 0;
+                for (step, &column) in steps.iter_mut().zip(&columns[..used]) {
+                    running ^= column;
+                    step[j] = running;
+                }
+            }
+            let mut state = [0u64; CHUNK];
+            for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+                let c = ((i as u64).trailing_ones() as usize).min(used - 1);
+                let step = &steps[c][..count];
+                for ((x, s), (key, &t)) in p[d0..d0 + count].iter_mut().zip(&mut state).zip(keys.iter().zip(step)) {
+                    *x = key.value(*s);
+                    *s ^= t;
+                }
+            }
+        }
     }
 }
 
+/// The most columns a base-2 fill walks (a word per column on the stack).
+const MAX_WORDS: usize = 64;
+
 impl Prepared for Planned<'_> {
     fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
-        self.engine(seed, self.n as u64).fill(out);
+        match &self.words {
+            Some(words) => self.fill_binary(words, seed, out),
+            None => Prime::new(&self.matrices, self.dims, self.net.randomization, seed, self.n as u64).fill(out),
+        }
         progress.advance(1)
     }
 
@@ -437,33 +486,23 @@ impl Construction for Net {
 
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
         let (n, dims) = (shape.n(), shape.dims());
-        Ok(Box::new(Planned { net: self, matrices: self.matrices(dims)?, n, dims }))
+        let matrices = self.matrices(dims)?;
+        let words = (matrices.base == 2).then(|| {
+            (0..dims)
+                .flat_map(|d| (0..matrices.cols).map(move |k| (d, k)))
+                .map(|(d, k)| (0..matrices.rows).fold(0u64, |c, r| c | (u64::from(matrices.digit(d, r, k)) << (63 - r))))
+                .collect()
+        });
+        Ok(Box::new(Planned { net: self, matrices, n, dims, words }))
     }
 }
 
-/// A prepared net: the (scrambled) columns, prefix sums for the natural-order walk, and the
-/// per-dimension randomization.
+/// A net for one seed's random access (and the prime bases' fill): the (scrambled) columns
+/// and the per-dimension randomization.
 #[derive(Debug)]
 enum Engine {
     Binary(Binary),
     Prime(Prime),
-}
-
-impl Engine {
-    fn new(m: &Matrices, dims: usize, randomization: Randomization, seed: Seed, bound: u64) -> Engine {
-        if m.base == 2 {
-            Engine::Binary(Binary::new(m, dims, randomization, seed))
-        } else {
-            Engine::Prime(Prime::new(m, dims, randomization, seed, bound))
-        }
-    }
-
-    fn fill(&self, out: &mut [f64]) {
-        match self {
-            Engine::Binary(e) => e.fill(out),
-            Engine::Prime(e) => e.fill(out),
-        }
-    }
 }
 
 impl Access for Engine {
@@ -501,60 +540,76 @@ impl Draws {
     }
 }
 
-/// Base 2: columns as 64-bit words, row 0 the most significant bit.
+/// One base-2 dimension's randomization for a seed: a digital shift, an Owen key, or a
+/// Cranley-Patterson offset.
+#[derive(Debug, Clone, Copy, Default)]
+struct BinaryKey {
+    shift: u64,
+    owen: Option<u32>,
+    offset: Option<f64>,
+}
+
+impl BinaryKey {
+    /// The coordinate of the digits `x` (row 0 the most significant bit), randomized.
+    #[inline]
+    fn value(self, x: u64) -> f64 {
+        let x = match self.owen {
+            Some(key) => {
+                // nested on 64 bits: the low half's scramble is keyed by the whole high half
+                let high = (x >> 32) as u32;
+                let low = owen_scramble_u32(x as u32, hash2(key, high));
+                (u64::from(owen_scramble_u32(high, key)) << 32) | u64::from(low)
+            }
+            None => x ^ self.shift,
+        };
+        let v = (x >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
+        match self.offset {
+            Some(u) => wrap01(v + u),
+            None => v,
+        }
+    }
+}
+
+/// Dimension `d` of a base-2 net for `seed`: its columns `words` into `columns`, linearly
+/// scrambled when asked (`.lms`: C replaced by L C, L lower triangular with a unit
+/// diagonal), and its key, the draws taken in one order from the dimension's own stream
+/// (so a fill and a random access agree).
+fn binary_dimension(words: &[u64], randomization: Randomization, seed: Seed, d: usize, columns: &mut [u64]) -> BinaryKey {
+    let mut draws = Draws::new(seed, d);
+    if randomization == Randomization::Lms {
+        // row j of L: its diagonal bit and uniform bits for the rows above it
+        let lower: [u64; 64] = std::array::from_fn(|j| (draws.bits() & (u64::MAX << (63 - j))) | (1u64 << (63 - j)));
+        for (column, &c) in columns.iter_mut().zip(words) {
+            *column = lower.iter().enumerate().fold(0, |acc, (j, l)| acc | (u64::from((l & c).count_ones() & 1) << (63 - j)));
+        }
+    } else {
+        columns.copy_from_slice(words);
+    }
+    match randomization {
+        // linear matrix scrambling is followed by a digital shift
+        Randomization::Xor | Randomization::Lms => BinaryKey { shift: draws.bits(), ..BinaryKey::default() },
+        Randomization::Owen => BinaryKey { owen: Some(draws.bits() as u32), ..BinaryKey::default() },
+        Randomization::Shift => BinaryKey { offset: Some(uniform(&mut draws.0)), ..BinaryKey::default() },
+        Randomization::None => BinaryKey::default(),
+    }
+}
+
+/// Base 2 for one seed: the (scrambled) columns as 64-bit words, row 0 the most significant
+/// bit, and each dimension's key.
 #[derive(Debug)]
 struct Binary {
-    dims: usize,
     cols: usize,
-    /// `prefix[d * cols + k]` = C_0 ^ ... ^ C_k of dimension d (the step from index i to
-    /// i + 1 flips the trailing ones of i and the zero above them).
-    prefix: Vec<u64>,
     columns: Vec<u64>,
-    shift: Vec<u64>,
-    owen: Option<Vec<u32>>,
-    offset: Option<Vec<f64>>,
+    keys: Vec<BinaryKey>,
 }
 
 impl Binary {
-    fn new(m: &Matrices, dims: usize, randomization: Randomization, seed: Seed) -> Binary {
-        // linear matrix scrambling, then the digital shift
-        let lms = randomization == Randomization::Lms;
-        let cols = m.cols;
+    fn new(words: &[u64], cols: usize, dims: usize, randomization: Randomization, seed: Seed) -> Binary {
         let mut columns = vec![0u64; dims * cols];
-        let (mut shift, mut owen, mut offset) = (vec![0u64; dims], Vec::new(), Vec::new());
-        for d in 0..dims {
-            let mut draws = Draws::new(seed, d);
-            let lower: Vec<u64> = if lms {
-                // row j of L: its diagonal bit and uniform bits for the rows above it
-                (0..64).map(|j| (draws.bits() & (u64::MAX << (63 - j))) | (1u64 << (63 - j))).collect()
-            } else {
-                Vec::new()
-            };
-            for k in 0..cols {
-                let c = (0..m.rows).fold(0u64, |c, r| c | (u64::from(m.digit(d, r, k)) << (63 - r)));
-                columns[d * cols + k] = if lms {
-                    lower.iter().enumerate().fold(0, |acc, (j, l)| acc | (u64::from((l & c).count_ones() & 1) << (63 - j)))
-                } else {
-                    c
-                };
-            }
-            match randomization {
-                Randomization::Xor | Randomization::Lms => shift[d] = draws.bits(),
-                Randomization::Owen => owen.push(draws.bits() as u32),
-                Randomization::Shift => offset.push(uniform(&mut draws.0)),
-                Randomization::None => {}
-            }
-        }
-        let prefix = prefix_xor(&columns, cols);
-        Binary {
-            dims,
-            cols,
-            prefix,
-            columns,
-            shift,
-            owen: (randomization == Randomization::Owen).then_some(owen),
-            offset: (randomization == Randomization::Shift).then_some(offset),
-        }
+        let keys = (0..dims)
+            .map(|d| binary_dimension(&words[d * cols..][..cols], randomization, seed, d, &mut columns[d * cols..][..cols]))
+            .collect();
+        Binary { cols, columns, keys }
     }
 
     fn digits(&self, index: u64, dim: usize) -> u64 {
@@ -573,60 +628,8 @@ impl Binary {
 
     #[inline]
     fn value(&self, x: u64, dim: usize) -> f64 {
-        let x = match &self.owen {
-            Some(keys) => {
-                // nested on 64 bits: the low half's scramble is keyed by the whole high half
-                let key = keys[dim];
-                let high = (x >> 32) as u32;
-                let low = owen_scramble_u32(x as u32, hash2(key, high));
-                (u64::from(owen_scramble_u32(high, key)) << 32) | u64::from(low)
-            }
-            None => x ^ self.shift[dim],
-        };
-        let v = (x >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
-        match &self.offset {
-            Some(u) => wrap01(v + u[dim]),
-            None => v,
-        }
+        self.keys[dim].value(x)
     }
-
-    fn fill(&self, out: &mut [f64]) {
-        let dims = self.dims;
-        let mut state = vec![0u64; dims];
-        // the running XORs by column, then dimension: a step is one contiguous XOR
-        let steps: Vec<u64> =
-            (0..self.cols).flat_map(|c| (0..dims).map(move |d| self.prefix[d * self.cols + c])).collect();
-        let plain = self.owen.is_none() && self.offset.is_none();
-        for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-            let c = ((i as u64).trailing_ones() as usize).min(self.cols - 1);
-            let step = &steps[c * dims..][..dims];
-            // each coordinate read and stepped in one pass (a separate pass over the state
-            // stalled on store forwarding)
-            if plain {
-                // value() without its branches: the digital shift and the 53 leading bits
-                for (((x, s), &e), &t) in p.iter_mut().zip(state.iter_mut()).zip(&self.shift).zip(step) {
-                    *x = ((*s ^ e) >> 11) as i64 as f64 * (1.0 / (1u64 << 53) as f64);
-                    *s ^= t;
-                }
-            } else {
-                for (d, ((x, s), &t)) in p.iter_mut().zip(state.iter_mut()).zip(step).enumerate() {
-                    *x = self.value(*s, d);
-                    *s ^= t;
-                }
-            }
-        }
-    }
-}
-
-/// Running XORs of each dimension's columns.
-fn prefix_xor(columns: &[u64], cols: usize) -> Vec<u64> {
-    let mut prefix = columns.to_vec();
-    for dim in prefix.chunks_exact_mut(cols) {
-        for k in 1..cols {
-            dim[k] ^= dim[k - 1];
-        }
-    }
-    prefix
 }
 
 /// An odd prime base: columns as digit vectors of the kept precision P.
