@@ -26,6 +26,20 @@
 //!
 //! Build samplers by spec through [`build`]; [`SAMPLERS`] (and `samplab list samplers`) is the
 //! table with every name, alias, parameter and reference.
+//!
+//! The map of the folder, one family per folder, each opening with what it holds and the
+//! papers it follows:
+//! - [`random`]: independent uniform points; [`file`](mod@file): a saved set, replayed;
+//! - [`stratified`]: grids and their jitters, N-rooks and Latin hypercubes, multi-jittered;
+//! - [`blue_noise`]: Poisson disks, elimination, relaxation and optimization;
+//! - [`qmc`]: Sobol', Halton and Hammersley, digital nets, Kronecker sequences, lattices;
+//! - [`randomize`]: the scrambles of the digital constructions, declared once per family
+//!   ([`randomize::scramble`]), and the stages written after any spec (`+shift`,
+//!   `+micro-jitter`);
+//! - [`registry`]: the entries' shape, typed counts ([`Counts`]) and [`build`].
+//!
+//! A sampler outside samplab implements [`Sampler`] (its documentation has one); a built-in
+//! construction implements the crate's `Construction` and is named by its entry.
 
 use std::fmt::Debug;
 use std::ops::RangeInclusive;
