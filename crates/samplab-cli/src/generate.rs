@@ -13,9 +13,12 @@ fn after_help() -> String {
     format!(
         "Examples:\n  samplab generate jitter.gaussian:sigma=0.25 -n 256 -d 2 --seed 7\n  \
          samplab generate sobol.owen -n 1024 --sets 100 -o sobol.npy\n  \
-         samplab generate jitter -n 64 --warp disk.concentric\n\nSamplers: {}.\nWarps: {}.\n\
-         `samplab list samplers` lists every sampler with its parameters and references.",
+         samplab generate jitter -n 64 --warp disk.concentric\n  \
+         samplab generate file:path=best.npy+shift -n 256 --sets 100    # a saved set, shifted per set\n\n\
+         Samplers: {}.\nStages (after any spec, one after another): {}.\nWarps: {}.\n\
+         `samplab list samplers` (and `list stages`) lists each with its parameters and references.",
         samplab::sampler::SAMPLERS.names(),
+        samplab::sampler::randomize::STAGES.names(),
         samplab::warp::WARPS.names()
     )
 }

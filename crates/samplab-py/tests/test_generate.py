@@ -10,6 +10,9 @@ from scipy.stats import qmc
 import samplab
 from conftest import load_npy
 
+# a saved set (two sets of 16 jittered 2D points), as the Rust tests read it
+SAVED = Path(__file__).resolve().parents[2] / "samplab" / "tests" / "fixtures" / "saved16.txt"
+
 
 @pytest.mark.parametrize("d", [1, 2, 5])
 def test_unscrambled_sobol_equals_scipy(d):
@@ -27,7 +30,16 @@ def test_unscrambled_halton_equals_scipy(d):
 
 @pytest.mark.parametrize(
     "spec,n,d,sets",
-    [("jitter", 64, 2, 3), ("sobol.owen", 100, 3, 2), ("poisson.fast", 50, 2, 1), ("GJittered:0.25", 16, 2, 1), ("nrooks", 33, 4, 5)],
+    [
+        ("jitter", 64, 2, 3),
+        ("sobol.owen", 100, 3, 2),
+        ("poisson.fast", 50, 2, 1),
+        ("GJittered:0.25", 16, 2, 1),
+        ("nrooks", 33, 4, 5),
+        ("sobol+shift", 64, 3, 2),
+        ("kronecker+shift+micro-jitter:0.2", 50, 2, 2),
+        (f"file:path={SAVED}+shift", 16, 2, 3),
+    ],
 )
 def test_bytes_equal_the_cli(cli, tmp_path, spec, n, d, sets):
     out = tmp_path / "p.npy"
@@ -51,9 +63,6 @@ def _count_for(name, d):
     if name.startswith("lattice.fibonacci"):
         return 55
     return {"poisson.maximal": 40, "lhs.oa": 49, "hexagonal": 56}.get(name, 64)
-
-
-SAVED = Path(__file__).resolve().parents[2] / "samplab" / "tests" / "fixtures" / "saved16.txt"
 
 
 def test_every_registered_sampler_generates():
