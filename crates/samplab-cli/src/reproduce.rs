@@ -47,15 +47,16 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     };
     let start = Instant::now();
     let claims = samplab_report::reproduce(&chosen, &options, &crate::bar::STOP)?;
-    let count = |v: Verdict| claims.iter().filter(|(_, c)| c.verdict() == v).count();
+    let count = |name: &str| claims.iter().filter(|(_, c)| c.verdict_name() == name).count();
     let explained =
         claims.iter().filter(|(_, c)| c.verdict() == Verdict::NotReproduced && c.explanation.is_some()).count();
     crate::say!(
-        "{} claims: {} reproduced, {} not reproduced ({explained} of them explained), {} undecided; {:.1} s. Report: {}",
+        "{} claims: {} reproduced, {} checked (identities), {} not reproduced ({explained} of them explained), {} undecided; {:.1} s. Report: {}",
         claims.len(),
-        count(Verdict::Reproduced),
-        count(Verdict::NotReproduced),
-        count(Verdict::Undecided),
+        count("reproduced"),
+        count("checked"),
+        count("not reproduced"),
+        count("undecided"),
         start.elapsed().as_secs_f64(),
         a.out.join("index.html").display()
     );

@@ -22,6 +22,9 @@ pub struct Item {
     /// The claims (ids) that test it.
     #[serde(default)]
     pub claims: Vec<String>,
+    /// The figures and tables (ids) of the report that show it.
+    #[serde(default)]
+    pub shows: Vec<String>,
     /// Why it is not attempted (then there is no experiment).
     #[serde(default)]
     pub not_attempted: Option<String>,
@@ -38,6 +41,9 @@ pub enum Status {
     NotReproduced,
     /// No claim contradicted, some undecided.
     Undecided,
+    /// Every claim an identity or closed-form check, and each holds: checked, not a
+    /// reproduction of a result.
+    Checked,
     /// Drawn or computed in the report; the paper states nothing about it to test.
     Shown,
     /// Not in the report; the item says why.
@@ -46,11 +52,12 @@ pub enum Status {
 
 impl Status {
     /// Every status, in the order the tables list them.
-    pub const ALL: [Status; 6] = [
+    pub const ALL: [Status; 7] = [
         Status::Reproduced,
         Status::Differs,
         Status::NotReproduced,
         Status::Undecided,
+        Status::Checked,
         Status::Shown,
         Status::NotAttempted,
     ];
@@ -62,6 +69,7 @@ impl Status {
             Status::Differs => "differs",
             Status::NotReproduced => "not reproduced",
             Status::Undecided => "undecided",
+            Status::Checked => "checked",
             Status::Shown => "shown",
             Status::NotAttempted => "not attempted",
         }
@@ -91,7 +99,40 @@ pub fn status(item: &Item, claims: &[&Claim]) -> Status {
     if !failed.is_empty() {
         return if failed.iter().all(|c| c.explanation.is_some()) { Status::Differs } else { Status::NotReproduced };
     }
-    if mine.iter().any(|c| c.verdict() == Verdict::Undecided) { Status::Undecided } else { Status::Reproduced }
+    if mine.iter().any(|c| c.verdict() == Verdict::Undecided) {
+        Status::Undecided
+    } else if mine.iter().all(|c| c.identity) {
+        Status::Checked
+    } else {
+        Status::Reproduced
+    }
+}
+
+/// The coverage audit: what a row's status promises, checked against the report. Every
+/// attempted row links to at least one figure or table that the run made (`made`: their
+/// ids), and a row that is reproduced or differs rests on at least one claim that is not an
+/// identity. Returns every breach, naming the row.
+pub fn audit(items: &[Item], claims: &[&Claim], made: &[&str]) -> Vec<String> {
+    let mut breaches = Vec::new();
+    for it in items {
+        let status = status(it, claims);
+        if status == Status::NotAttempted {
+            continue;
+        }
+        if it.shows.is_empty() {
+            breaches.push(format!("{}: {} but shows no figure or table", it.item, status.name()));
+        }
+        for id in &it.shows {
+            if !made.contains(&id.as_str()) {
+                breaches.push(format!("{}: shows {id}, which the run did not make", it.item));
+            }
+        }
+        let tested = claims.iter().any(|c| it.claims.contains(&c.id) && !c.identity);
+        if matches!(status, Status::Reproduced | Status::Differs) && !tested {
+            breaches.push(format!("{}: {} on identities alone", it.item, status.name()));
+        }
+    }
+    breaches
 }
 
 /// Check that the coverage list of a paper and its claims fit: each item either names an
@@ -141,6 +182,7 @@ mod tests {
             what: "x".into(),
             experiment: Some("e".into()),
             claims: claims.iter().map(|s| s.to_string()).collect(),
+            shows: vec!["fig".into()],
             not_attempted: None,
         }
     }
@@ -159,6 +201,26 @@ mod tests {
         assert_eq!(status(&item(&["a", "d"]), &all), Status::Undecided);
         assert_eq!(status(&item(&["c", "d"]), &all), Status::Differs);
         assert_eq!(status(&item(&[]), &all), Status::Shown);
+        let identity = Claim { identity: true, ..claim("i", exactly(true, ""), false) };
+        let all = [&ok, &identity];
+        assert_eq!(status(&item(&["i"]), &all), Status::Checked);
+        assert_eq!(status(&item(&["a", "i"]), &all), Status::Reproduced);
+    }
+
+    #[test]
+    fn the_audit_refuses_a_status_without_a_figure_or_on_identities() {
+        let ok = claim("a", exactly(true, ""), false);
+        let identity = Claim { identity: true, ..claim("i", exactly(true, ""), false) };
+        let failed = Claim { identity: true, ..claim("f", exactly(false, ""), true) };
+        let all = [&ok, &identity, &failed];
+        assert!(audit(&[item(&["a"])], &all, &["fig"]).is_empty());
+        // a figure the run did not make, and no figure at all
+        assert!(audit(&[item(&["a"])], &all, &["other"])[0].contains("did not make"));
+        let bare = Item { shows: Vec::new(), ..item(&[]) };
+        assert!(audit(&[bare], &all, &["fig"])[0].contains("shown but shows no figure"));
+        // an identity that fails with an explanation "differs", on nothing but an identity
+        assert!(audit(&[item(&["f"])], &all, &["fig"])[0].contains("differs on identities alone"));
+        assert!(audit(&[item(&["i"])], &all, &["fig"]).is_empty(), "checked on an identity is what it says");
     }
 
     #[test]

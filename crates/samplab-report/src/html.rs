@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use crate::coverage::{self, Status};
-use crate::{Claim, Done, Error, Options, Paper, Scale, Table, Verdict};
+use crate::{Claim, Done, Error, Options, Paper, Scale, Table};
 
 /// Escape text for HTML.
 pub fn escape(s: &str) -> String {
@@ -23,24 +23,21 @@ th,td{border:1px solid #ccc;padding:.3em .6em;text-align:right}th{background:#f3
 td:first-child,th:first-child,table.claims td,table.claims th{text-align:left}figure{margin:1.2em 0}figure img{max-width:100%;border:1px solid #ddd}
 figcaption,.caption{color:#555;font-size:.9em}.reproduced{color:#17692b;font-weight:600}
 .not-reproduced{color:#b3261e;font-weight:600}.differs{color:#8a5a00;font-weight:600}
-.undecided{color:#5a4b8a;font-weight:600}.shown{color:#555;font-weight:600}.not-attempted{color:#888;font-weight:600}
+.undecided{color:#5a4b8a;font-weight:600}.checked{color:#2f5f5f;font-weight:600}.shown{color:#555;font-weight:600}.not-attempted{color:#888;font-weight:600}
 .criterion{color:#666;font-size:.85em}.addition{color:#0b5f86;font-weight:600}
 .note{background:#f8f8f2;border-left:3px solid #bbb;padding:.4em .8em;margin:.5em 0}
 .pending{color:#666}code{background:#f3f3f3;padding:0 .2em}nav a{margin-right:1em}
 ";
 
 fn verdict_html(c: &Claim) -> String {
-    let (class, name) = match c.verdict() {
-        Verdict::Reproduced => ("reproduced", "reproduced"),
-        Verdict::NotReproduced => ("not-reproduced", "not reproduced"),
-        Verdict::Undecided => ("undecided", "undecided"),
-    };
+    let name = c.verdict_name();
     let mut h = format!(
-        "<span class=\"{class}\">{name}</span><br><span class=\"criterion\">criterion: {}</span>",
+        "<span class=\"{}\">{name}</span><br><span class=\"criterion\">criterion: {}</span>",
+        name.replace(' ', "-"),
         escape(&c.decision.criterion)
     );
-    if let (Some(why), false) = (&c.explanation, c.verdict() == Verdict::Reproduced) {
-        let _ = write!(h, "<br><span class=\"differs\">differs because</span> {}", escape(why));
+    if let Some(why) = c.explained() {
+        let _ = write!(h, "<br><span class=\"differs\">explanation:</span> {}", escape(why));
     }
     h
 }
@@ -72,8 +69,8 @@ fn claims_table(claims: &[&Claim]) -> String {
 }
 
 /// The coverage table of one paper, and its count per status.
-fn coverage_table(items: &[coverage::Item], claims: &[&Claim]) -> (String, [usize; 6]) {
-    let mut counts = [0; 6];
+fn coverage_table(items: &[coverage::Item], claims: &[&Claim]) -> (String, [usize; 7]) {
+    let mut counts = [0; 7];
     let mut h =
         String::from("<table class=\"claims\"><tr><th>item</th><th>what</th><th>status</th><th>where</th></tr>\n");
     for it in items {
@@ -82,6 +79,9 @@ fn coverage_table(items: &[coverage::Item], claims: &[&Claim]) -> (String, [usiz
         let place = match (&it.experiment, &it.not_attempted) {
             (Some(e), _) => {
                 let mut p = format!("<a href=\"#{e}\">experiment {e}</a>");
+                for f in &it.shows {
+                    let _ = write!(p, ", <a href=\"#{f}\">{f}</a>");
+                }
                 for c in &it.claims {
                     let _ = write!(p, ", <a href=\"#claim-{c}\">{c}</a>");
                 }
@@ -153,9 +153,26 @@ fn page(title: &str, nav: &str, body: &str) -> String {
     )
 }
 
-fn counts(claims: &[&Claim]) -> [usize; 3] {
-    let of = |v: Verdict| claims.iter().filter(|c| c.verdict() == v).count();
-    [of(Verdict::Reproduced), of(Verdict::NotReproduced), of(Verdict::Undecided)]
+/// The figure lint's findings on the index (`lint.json` lists them too).
+fn lint_html(lint: &[String]) -> String {
+    if lint.is_empty() {
+        return format!(
+            "<p>Every figure passes the lint (<code>samplab_report::lint</code>): no two labels overlapping, no legend over data, no two series drawn alike, legend swatches in their series' dash style, no axis over {} decades, every render shown at {} px or wider. <a href=\"lint.json\">lint.json</a></p>\n",
+            crate::plot::MAX_DECADES,
+            crate::lint::MIN_PICTURE_WIDTH
+        );
+    }
+    let mut h = format!("<p class=\"not-reproduced\">{} findings of the figure lint:</p>\n<ul>\n", lint.len());
+    for l in lint {
+        let _ = writeln!(h, "<li>{}</li>", escape(l));
+    }
+    h + "</ul>\n"
+}
+
+/// Claims reproduced, checked (identities that hold), not reproduced, undecided.
+fn counts(claims: &[&Claim]) -> [usize; 4] {
+    let of = |name: &str| claims.iter().filter(|c| c.verdict_name() == name).count();
+    ["reproduced", "checked", "not reproduced", "undecided"].map(of)
 }
 
 /// Write every file of the report into `dir`; returns the claims with their paper keys.
@@ -172,14 +189,25 @@ pub(crate) fn write_report(
     let mut all_claims: Vec<(String, Claim)> = Vec::new();
     let mut index_rows = String::new();
     let mut total_seconds = 0.0;
+    let mut lint: Vec<String> = Vec::new();
     for (paper, done) in results {
         let cite = samplab::bibliography::lookup(paper.key).map_or(String::new(), |r| r.citation.to_string());
         let claims: Vec<&Claim> = done.iter().flat_map(|d| &d.output.claims).collect();
         let items = coverage::items(paper.key);
         coverage::check(paper.key, &items, &paper.experiments.iter().map(|e| e.id).collect::<Vec<_>>(), &claims)?;
+        let made: Vec<&str> = done
+            .iter()
+            .flat_map(|d| {
+                d.output.figures.iter().map(|f| f.id.as_str()).chain(d.output.tables.iter().map(|t| t.id.as_str()))
+            })
+            .collect();
+        let breaches = coverage::audit(&items, &claims, &made);
+        if !breaches.is_empty() {
+            return Err(Error::Invalid(format!("{} coverage audit: {}", paper.key, breaches.join("; "))));
+        }
         let (cov, status_counts) = coverage_table(&items, &claims);
         let mut body = format!(
-            "<p>{}</p>\n<h2>Coverage</h2>\n<p>Every numbered table and figure of the paper (and the equations it states as results), with the status its claims' verdicts give: reproduced (every claim), differs (a claim not reproduced, with a written explanation), not reproduced, undecided (an interval that cannot decide), shown (drawn or computed, with no statement of the paper to test), or not attempted (and why).</p>\n{cov}<h2>Claims</h2>\n{}",
+            "<p>{}</p>\n<h2>Coverage</h2>\n<p>Every numbered table and figure of the paper (and the equations it states as results), with the status its claims' verdicts give: reproduced (every claim), differs (a claim not reproduced, with a written explanation), not reproduced, undecided (an interval that cannot decide), checked (every claim an identity or a closed form checked against itself: the code agrees with the equation, which reproduces no result), shown (drawn or computed, with no statement of the paper to test), or not attempted (and why). Each row links the figures and tables that show it.</p>\n{cov}<h2>Claims</h2>\n{}",
             escape(&cite),
             claims_table(&claims)
         );
@@ -210,18 +238,22 @@ pub(crate) fn write_report(
                     }
                     None => String::new(),
                 };
+                let size = f
+                    .display_width()
+                    .map_or(String::new(), |w| format!(" width=\"{w}\" style=\"image-rendering:pixelated\""));
                 let _ = writeln!(
                     body,
-                    "<figure><img src=\"figures/{id}.png\" alt=\"{cap}\"><figcaption>{cap}{svg_link}</figcaption></figure>",
+                    "<figure id=\"{id}\"><img src=\"figures/{id}.png\"{size} alt=\"{cap}\"><figcaption>{cap}{svg_link}</figcaption></figure>",
                     cap = escape(&f.caption)
                 );
+                lint.extend(f.lint.iter().map(|l| format!("{}: {l}", f.id)));
             }
         }
         write(&dir.join(format!("{}.html", paper.key)), page(paper.title, &nav, &body).as_bytes())?;
-        let [r, n, u] = counts(&claims);
+        let [r, k, n, u] = counts(&claims);
         let _ = write!(
             index_rows,
-            "<tr><td><a href=\"{key}.html\">{title}</a></td><td>{}</td><td>{r}</td><td>{n}</td><td>{u}</td>",
+            "<tr><td><a href=\"{key}.html\">{title}</a></td><td>{}</td><td>{r}</td><td>{k}</td><td>{n}</td><td>{u}</td>",
             done.len(),
             key = paper.key,
             title = escape(paper.title)
@@ -236,19 +268,25 @@ pub(crate) fn write_report(
     let scale = if options.scale == Scale::Fast { "fast (default)" } else { "full (the papers' own scales)" };
     let body = format!(
         "<p>samplab {} reproduction, scale {scale}, seed {}; experiments took {:.1} s in all. Every number in a table comes from this run, except the published values, which are read from one data file with their sources.</p>\n\
-         <table><tr><th rowspan=\"2\">paper</th><th rowspan=\"2\">experiments</th><th colspan=\"3\">claims</th><th colspan=\"6\">numbered tables, figures and result equations</th></tr>\n\
-         <tr><th>reproduced</th><th>not reproduced</th><th>undecided</th><th>reproduced</th><th>differs</th><th>not reproduced</th><th>undecided</th><th>shown</th><th>pending (not attempted)</th></tr>\n{index_rows}</table>\n\
-         <h2>All claims</h2>\n{}<p><a href=\"claims.json\">claims.json</a></p>\n",
+         <table><tr><th rowspan=\"2\">paper</th><th rowspan=\"2\">experiments</th><th colspan=\"4\">claims</th><th colspan=\"7\">numbered tables, figures and result equations</th></tr>\n\
+         <tr><th>reproduced</th><th>checked</th><th>not reproduced</th><th>undecided</th><th>reproduced</th><th>differs</th><th>not reproduced</th><th>undecided</th><th>checked</th><th>shown</th><th>pending (not attempted)</th></tr>\n{index_rows}</table>\n\
+         <h2>Figure lint</h2>\n{}<h2>All claims</h2>\n{}<p><a href=\"claims.json\">claims.json</a></p>\n",
         env!("CARGO_PKG_VERSION"),
         options.seed.0,
         total_seconds,
+        lint_html(&lint),
         claims_table(&refs)
     );
+    write(&dir.join("lint.json"), serde_json::to_string_pretty(&lint).expect("plain data").as_bytes())?;
     let claims_json: Vec<serde_json::Value> = all_claims
         .iter()
         .map(|(paper, c)| {
             let mut v = serde_json::to_value(c).expect("claims are plain data");
             v["paper"] = paper.clone().into();
+            v["verdict_shown"] = c.verdict_name().into();
+            if let Some(why) = c.explained() {
+                v["explanation"] = why.into();
+            }
             v
         })
         .collect();

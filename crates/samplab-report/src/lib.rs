@@ -22,6 +22,7 @@ use serde::Serialize;
 pub mod coverage;
 pub mod criteria;
 pub mod html;
+pub mod lint;
 pub mod paper;
 pub mod plot;
 pub mod published;
@@ -153,6 +154,8 @@ pub struct Figure {
     pub png: Vec<u8>,
     /// SVG text (None for a rendered image, which is only a PNG).
     pub svg: Option<String>,
+    /// What the figure lint found ([`lint`]); empty for a clean figure.
+    pub lint: Vec<String>,
 }
 
 impl Figure {
@@ -161,17 +164,24 @@ impl Figure {
     /// # Errors
     /// A drawing failure.
     pub fn render(id: &str, caption: &str, chart: &impl plot::Drawable, size: (u32, u32)) -> Result<Figure, Error> {
-        Ok(Figure {
-            id: id.into(),
-            caption: caption.into(),
-            png: plot::png(chart, size)?,
-            svg: Some(plot::svg(chart, size)?),
-        })
+        let svg = plot::svg(chart, size)?;
+        let mut lint = chart.lint();
+        lint.extend(lint::svg(&svg));
+        Ok(Figure { id: id.into(), caption: caption.into(), png: plot::png(chart, size)?, svg: Some(svg), lint })
     }
 
-    /// A rendered image (already PNG-encoded), shown as it is.
+    /// A rendered image (already PNG-encoded), shown as it is: enlarged on the page by an
+    /// integer factor, nearest neighbour, when narrower than [`lint::MIN_PICTURE_WIDTH`].
     pub fn picture(id: &str, caption: &str, png: Vec<u8>) -> Figure {
-        Figure { id: id.into(), caption: caption.into(), png, svg: None }
+        Figure { id: id.into(), caption: caption.into(), png, svg: None, lint: Vec::new() }
+    }
+
+    /// The width the page displays the figure at, in CSS pixels: a picture's width times
+    /// its enlargement (read from the PNG header); None for a chart, shown as drawn.
+    pub fn display_width(&self) -> Option<u32> {
+        let header = self.png.get(16..20)?;
+        let width = u32::from_be_bytes(header.try_into().ok()?);
+        self.svg.is_none().then(|| width * lint::picture_scale(width))
     }
 }
 
@@ -200,6 +210,10 @@ pub struct Claim {
     /// For samplab's own additions (not statements of the paper): their source.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub addition: Option<String>,
+    /// An identity or a closed form checked against itself (a warp inverting its CDF, a
+    /// limit computed both ways): reported as "checked", never as a reproduction.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub identity: bool,
 }
 
 impl Claim {
@@ -207,7 +221,29 @@ impl Claim {
     pub fn verdict(&self) -> Verdict {
         self.decision.verdict
     }
+
+    /// The verdict as the report names it: "checked" for an identity that holds.
+    pub fn verdict_name(&self) -> &'static str {
+        match self.verdict() {
+            Verdict::Reproduced if self.identity => "checked",
+            Verdict::Reproduced => "reproduced",
+            Verdict::NotReproduced => "not reproduced",
+            Verdict::Undecided => "undecided",
+        }
+    }
+
+    /// The explanation shown beside a verdict other than reproduced: the written one, or
+    /// the words "no explanation found".
+    pub fn explained(&self) -> Option<&str> {
+        match self.verdict() {
+            Verdict::Reproduced => None,
+            _ => Some(self.explanation.as_deref().unwrap_or(NO_EXPLANATION)),
+        }
+    }
 }
+
+/// What a claim that is not reproduced says when nobody found why.
+pub const NO_EXPLANATION: &str = "no explanation found";
 
 /// What an experiment produces.
 #[derive(Default)]

@@ -17,6 +17,13 @@ pub trait Drawable {
     /// # Errors
     /// A backend failure, as text.
     fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String>;
+
+    /// What the figure lint finds wrong in the chart as specified (two series drawn alike,
+    /// an axis too wide to read); what can only be seen in the drawing is checked on its
+    /// SVG by [`crate::lint`].
+    fn lint(&self) -> Vec<String> {
+        Vec::new()
+    }
 }
 
 fn register_fonts() -> Result<(), Error> {
@@ -167,6 +174,12 @@ fn histogram(v: &[f64], (lo, hi): (f64, f64), bins: usize) -> Vec<f64> {
     h
 }
 
+/// A marginal histogram's density label, left out at zero (where it would meet the
+/// scatter's own axis labels).
+fn nonzero(v: &f64) -> String {
+    if *v == 0.0 { String::new() } else { tick(*v, false) }
+}
+
 /// A marginal histogram: bars along the data axis (`range`), heights up to `hmax`;
 /// `sideways` draws it on the right of the scatter, bars growing to the right.
 fn marginal<DB: DrawingBackend>(
@@ -192,6 +205,8 @@ fn marginal<DB: DrawingBackend>(
             .disable_mesh()
             .disable_y_axis()
             .x_desc("density")
+            .x_labels(3)
+            .x_label_formatter(&nonzero)
             .label_style(("sans-serif", 12))
             .draw()
             .map_err(err)?;
@@ -207,6 +222,8 @@ fn marginal<DB: DrawingBackend>(
             .disable_mesh()
             .disable_x_axis()
             .y_desc("density")
+            .y_labels(3)
+            .y_label_formatter(&nonzero)
             .label_style(("sans-serif", 12))
             .draw()
             .map_err(err)?;
@@ -332,6 +349,12 @@ impl Drawable for Strata<'_> {
 /// log-axis values below 1e-4 or from 1e5 up), at most six significant digits (no
 /// floating-point noise such as 0.30000000000000004).
 fn tick(v: f64, log: bool) -> String {
+    // a log axis labels 1, 2 and 5 times a power of ten; plotters' ticks in between (3, 4,
+    // 6, ...) crowd the decade's end
+    let mantissa = if v > 0.0 { v / 10f64.powf(v.log10().floor()) } else { 1.0 };
+    if log && ![1.0, 2.0, 5.0].iter().any(|m| (mantissa - m).abs() < 1e-6 * m) {
+        return String::new();
+    }
     if log && !(1e-4..1e5).contains(&v.abs()) {
         format!("{v:.0e}")
     } else if v == 0.0 {
@@ -386,80 +409,167 @@ pub struct LineChart {
     pub polar: bool,
 }
 
-impl Drawable for LineChart {
-    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
-        root.fill(&WHITE).map_err(err)?;
+/// How a series looks, in the plot and in its legend swatch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Look {
+    /// A solid line.
+    Line,
+    /// A dashed line.
+    Dashed,
+    /// Markers on a thin line (filled or open).
+    Marker(bool),
+}
+
+/// Font size of legend labels and tick labels.
+const LABEL_FONT: u32 = 13;
+
+/// A legend in its own strip right of the plot, so that it can never cover data: a
+/// translucent white box with a black border, one swatch per entry in the entry's own
+/// style (a dashed series has a dashed swatch), and its label.
+fn legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    entries: &[(String, RGBColor, Look)],
+) -> Result<(), String> {
+    if entries.is_empty() {
+        return Ok(());
+    }
+    let (w, _) = area.dim_in_pixel();
+    let (x0, y0, row) = (6i32, 40i32, 18i32);
+    let (x1, y1) = (w as i32 - 4, y0 + 8 + row * entries.len() as i32);
+    area.draw(&Rectangle::new([(x0, y0), (x1, y1)], WHITE.mix(0.85).filled())).map_err(err)?;
+    area.draw(&Rectangle::new([(x0, y0), (x1, y1)], BLACK)).map_err(err)?;
+    for (i, (label, c, look)) in entries.iter().enumerate() {
+        let y = y0 + 4 + row * i as i32 + row / 2;
+        let (a, b) = (x0 + 8, x0 + 32);
+        match look {
+            Look::Line => area.draw(&PathElement::new([(a, y), (b, y)], c.stroke_width(2))).map_err(err)?,
+            Look::Dashed => {
+                for (p, q) in [(a, a + 7), (a + 11, a + 18), (a + 22, b)] {
+                    area.draw(&PathElement::new([(p, y), (q, y)], c.stroke_width(2))).map_err(err)?;
+                }
+            }
+            Look::Marker(filled) => {
+                area.draw(&PathElement::new([(a, y), (b, y)], c.stroke_width(1))).map_err(err)?;
+                let style = if *filled { c.filled() } else { c.stroke_width(2) };
+                area.draw(&Circle::new(((a + b) / 2, y), 4, style)).map_err(err)?;
+            }
+        }
+        area.draw(&Text::new(label.clone(), (b + 6, y - 7), ("sans-serif", LABEL_FONT).into_font())).map_err(err)?;
+    }
+    Ok(())
+}
+
+/// The width of a legend strip for these labels (0 without labels).
+fn legend_width(labels: impl Iterator<Item = usize>) -> u32 {
+    labels.max().map_or(0, |chars| (chars as f64 * LABEL_FONT as f64 * 0.806 * 0.64) as u32 + 56)
+}
+
+/// Decades an axis spans: log10(hi / lo) for a log axis; for a linear one, how far its end
+/// lies above the median magnitude of the non-zero values on it (a single value at 1e275
+/// beside values near 1 spans 275 decades, however the ticks read).
+fn decades((lo, hi): (f64, f64), log: bool, values: &[f64]) -> f64 {
+    if log {
+        return (hi / lo).log10();
+    }
+    let mut mags: Vec<f64> = values.iter().map(|v| v.abs()).filter(|&v| v > 0.0 && v.is_finite()).collect();
+    if mags.is_empty() {
+        return 0.0;
+    }
+    mags.sort_by(f64::total_cmp);
+    (lo.abs().max(hi.abs()) / mags[mags.len() / 2]).log10()
+}
+
+/// The most decades an axis may span before its figure fails the lint.
+pub const MAX_DECADES: f64 = 12.0;
+
+impl LineChart {
+    fn look(s: &Series) -> Look {
+        if s.markers {
+            Look::Marker(true)
+        } else if s.dashed {
+            Look::Dashed
+        } else {
+            Look::Line
+        }
+    }
+
+    /// The plotted x and y ranges.
+    fn ranges(&self) -> ((f64, f64), (f64, f64)) {
         let ends = self
             .series
             .iter()
             .flat_map(|s| s.points.iter().zip(&s.intervals).flat_map(|(p, i)| [(p.0, i.0), (p.0, i.1)]));
         let all =
             self.series.iter().flat_map(|s| s.points.iter().copied()).chain(ends.filter(|p| !self.log_y || p.1 > 0.0));
-        let (mut x0, mut x1, mut y0, mut y1) = all
+        let (x0, x1, y0, y1) = all
             .fold((f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY), |(a, b, c, d), (x, y)| {
                 (a.min(x), b.max(x), c.min(y), d.max(y))
             });
-        (x0, x1) = span(x0, x1);
-        (y0, y1) = span(y0, y1);
+        let ((x0, x1), (y0, y1)) = (span(x0, x1), span(y0, y1));
+        let ylo = self
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.1))
+            .filter(|&y| y > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        let pad = 0.05 * (y1 - y0);
+        let x = if self.log_x { log_span(x0 * 0.8, x1 * 1.25) } else { (x0, x1) };
+        let y = if self.log_y { log_span(ylo * 0.8, y1 * 1.25) } else { ((y0 - pad).min(0.0), y1 + pad) };
+        (x, y)
+    }
+
+    fn draw_polar<DB: DrawingBackend>(&self, main: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let (_, (_, y1)) = self.ranges();
+        let r = y1.max(1e-12) * 1.05;
+        let mut chart = ChartBuilder::on(main)
+            .margin(12)
+            .x_label_area_size(36)
+            .y_label_area_size(56)
+            .build_cartesian_2d(-r..r, -r..r)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(self.y_label.as_str())
+            .y_desc(self.y_label.as_str())
+            .label_style(("sans-serif", 12))
+            .draw()
+            .map_err(err)?;
+        let grey = RGBColor(215, 215, 215);
+        for k in 1..=4 {
+            let rr = r * k as f64 / 4.0;
+            let circle = (0..=180).map(|t| (t as f64 * 2.0).to_radians()).map(|t| (rr * t.cos(), rr * t.sin()));
+            chart.draw_series(LineSeries::new(circle, grey)).map_err(err)?;
+        }
+        for s in &self.series {
+            let c = colour(s.colour_key.as_deref().unwrap_or(&s.name));
+            // the projection at angle + 180 degrees is the same: draw both halves
+            let half = |turn: f64| s.points.iter().map(move |&(a, v)| ((a + turn).to_radians(), v));
+            let pts: Vec<(f64, f64)> = half(0.0).chain(half(180.0)).map(|(a, v)| (v * a.cos(), v * a.sin())).collect();
+            chart.draw_series(LineSeries::new(pts, c.stroke_width(2))).map_err(err)?;
+        }
+        Ok(())
+    }
+}
+
+impl Drawable for LineChart {
+    fn draw<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> Result<(), String> {
+        root.fill(&WHITE).map_err(err)?;
+        let root = root.titled(&self.title, ("sans-serif", 20)).map_err(err)?;
+        let (w, _) = root.dim_in_pixel();
+        let (main, strip) =
+            root.split_horizontally(w - legend_width(self.series.iter().map(|s| s.name.chars().count())));
+        let entries: Vec<(String, RGBColor, Look)> = self
+            .series
+            .iter()
+            .map(|s| (s.name.clone(), colour(s.colour_key.as_deref().unwrap_or(&s.name)), LineChart::look(s)))
+            .collect();
         if self.polar {
-            let r = y1.max(1e-12) * 1.05;
-            let mut chart = ChartBuilder::on(&root)
-                .caption(&self.title, ("sans-serif", 20))
-                .margin(12)
-                .x_label_area_size(36)
-                .y_label_area_size(56)
-                .build_cartesian_2d(-r..r, -r..r)
-                .map_err(err)?;
-            chart
-                .configure_mesh()
-                .disable_mesh()
-                .x_desc(self.y_label.as_str())
-                .y_desc(self.y_label.as_str())
-                .label_style(("sans-serif", 12))
-                .draw()
-                .map_err(err)?;
-            let grey = RGBColor(215, 215, 215);
-            for k in 1..=4 {
-                let rr = r * k as f64 / 4.0;
-                chart
-                    .draw_series(LineSeries::new(
-                        (0..=180).map(|t| {
-                            (rr * (t as f64 * 2.0).to_radians().cos(), rr * (t as f64 * 2.0).to_radians().sin())
-                        }),
-                        grey,
-                    ))
-                    .map_err(err)?;
-            }
-            for s in &self.series {
-                let c = colour(s.colour_key.as_deref().unwrap_or(&s.name));
-                // the projection at angle + 180 degrees is the same: draw both halves
-                let pts: Vec<(f64, f64)> = s
-                    .points
-                    .iter()
-                    .chain(s.points.iter())
-                    .enumerate()
-                    .map(|(i, &(a, v))| {
-                        let a = if i >= s.points.len() { a + 180.0 } else { a };
-                        (v * a.to_radians().cos(), v * a.to_radians().sin())
-                    })
-                    .collect();
-                chart
-                    .draw_series(LineSeries::new(pts, c.stroke_width(2)))
-                    .map_err(err)?
-                    .label(s.name.as_str())
-                    .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], c.stroke_width(2)));
-            }
-            chart
-                .configure_series_labels()
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 13))
-                .position(SeriesLabelPosition::UpperRight)
-                .draw()
-                .map_err(err)?;
+            self.draw_polar(&main)?;
+            legend(&strip, &entries)?;
             return root.present().map_err(err);
         }
-        let pad = 0.05 * (y1 - y0);
+        let ((x0, x1), (y0, y1)) = self.ranges();
         macro_rules! finish {
             ($chart:expr) => {{
                 let mut chart = $chart;
@@ -467,68 +577,68 @@ impl Drawable for LineChart {
                     .configure_mesh()
                     .x_desc(self.x_label.as_str())
                     .y_desc(self.y_label.as_str())
+                    .x_labels((main.dim_in_pixel().0 as usize / 80).max(3))
                     .x_label_formatter(&|v| tick(*v, self.log_x))
                     .y_label_formatter(&|v| tick(*v, self.log_y))
-                    .label_style(("sans-serif", 13))
+                    .label_style(("sans-serif", LABEL_FONT))
                     .light_line_style(RGBColor(235, 235, 235))
                     .draw()
                     .map_err(err)?;
-                for s in &self.series {
-                    let c = colour(s.colour_key.as_deref().unwrap_or(&s.name));
+                for (s, (_, c, look)) in self.series.iter().zip(&entries) {
+                    let c = *c;
                     let style = c.stroke_width(2);
                     for (&(x, _), &(lo, hi)) in s.points.iter().zip(&s.intervals) {
                         let lo = if self.log_y && lo <= 0.0 { y0 } else { lo };
                         chart.draw_series(LineSeries::new([(x, lo), (x, hi)], c.stroke_width(1))).map_err(err)?;
                     }
-                    if s.markers {
-                        chart.draw_series(LineSeries::new(s.points.iter().copied(), c.stroke_width(1))).map_err(err)?;
-                        chart
-                            .draw_series(s.points.iter().map(|&p| Circle::new(p, 4, c.filled())))
-                            .map_err(err)?
-                            .label(s.name.as_str())
-                            .legend(move |(x, y)| Circle::new((x + 9, y), 4, c.filled()));
-                    } else if s.dashed {
-                        chart
-                            .draw_series(DashedLineSeries::new(s.points.iter().copied(), 6, 4, style))
-                            .map_err(err)?
-                            .label(s.name.as_str())
-                            .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], style));
-                    } else {
-                        chart
-                            .draw_series(LineSeries::new(s.points.iter().copied(), style))
-                            .map_err(err)?
-                            .label(s.name.as_str())
-                            .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], style));
+                    let points = s.points.iter().copied();
+                    match look {
+                        Look::Marker(_) => {
+                            chart.draw_series(LineSeries::new(points, c.stroke_width(1))).map_err(err)?;
+                            chart.draw_series(s.points.iter().map(|&p| Circle::new(p, 4, c.filled()))).map_err(err)?;
+                        }
+                        Look::Dashed => {
+                            chart.draw_series(DashedLineSeries::new(points, 6, 4, style)).map_err(err)?;
+                        }
+                        Look::Line => {
+                            chart.draw_series(LineSeries::new(points, style)).map_err(err)?;
+                        }
                     }
                 }
-                chart
-                    .configure_series_labels()
-                    .background_style(WHITE.mix(0.85))
-                    .border_style(BLACK)
-                    .label_font(("sans-serif", 13))
-                    .position(SeriesLabelPosition::UpperRight)
-                    .draw()
-                    .map_err(err)?;
             }};
         }
-        let mut builder = ChartBuilder::on(&root);
-        builder.caption(&self.title, ("sans-serif", 20)).margin(12).x_label_area_size(40).y_label_area_size(64);
-        let ylo = self
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().map(|p| p.1))
-            .filter(|&y| y > 0.0)
-            .fold(f64::INFINITY, f64::min);
-        let ((ya, yb), (xa, xb)) = (log_span(ylo * 0.8, y1 * 1.25), log_span(x0 * 0.8, x1 * 1.25));
-        let (ylog, xlog) = (ya..yb, xa..xb);
-        let ylin = (y0 - pad).min(0.0)..y1 + pad;
+        let mut builder = ChartBuilder::on(&main);
+        builder.margin(12).x_label_area_size(40).y_label_area_size(64);
         match (self.log_x, self.log_y) {
-            (true, true) => finish!(builder.build_cartesian_2d(xlog.log_scale(), ylog.log_scale()).map_err(err)?),
-            (false, true) => finish!(builder.build_cartesian_2d(x0..x1, ylog.log_scale()).map_err(err)?),
-            (true, false) => finish!(builder.build_cartesian_2d(xlog.log_scale(), ylin).map_err(err)?),
-            (false, false) => finish!(builder.build_cartesian_2d(x0..x1, ylin).map_err(err)?),
+            (true, true) => {
+                finish!(builder.build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale()).map_err(err)?)
+            }
+            (false, true) => finish!(builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale()).map_err(err)?),
+            (true, false) => finish!(builder.build_cartesian_2d((x0..x1).log_scale(), y0..y1).map_err(err)?),
+            (false, false) => finish!(builder.build_cartesian_2d(x0..x1, y0..y1).map_err(err)?),
         }
+        legend(&strip, &entries)?;
         root.present().map_err(err)
+    }
+
+    fn lint(&self) -> Vec<String> {
+        let mut found = Vec::new();
+        for (i, a) in self.series.iter().enumerate() {
+            let key = |s: &Series| (colour(s.colour_key.as_deref().unwrap_or(&s.name)), LineChart::look(s));
+            if let Some(b) = self.series[..i].iter().find(|b| key(b) == key(a)) {
+                found.push(format!("series '{}' and '{}' are drawn in the same colour and style", b.name, a.name));
+            }
+        }
+        let ((x0, x1), (y0, y1)) = self.ranges();
+        let xs: Vec<f64> = self.series.iter().flat_map(|s| s.points.iter().map(|p| p.0)).collect();
+        let ys: Vec<f64> = self.series.iter().flat_map(|s| s.points.iter().map(|p| p.1)).collect();
+        for (axis, range, log, values) in [("x", (x0, x1), self.log_x, &xs), ("y", (y0, y1), self.log_y, &ys)] {
+            let d = decades(range, log, values);
+            if d > MAX_DECADES {
+                found.push(format!("the {axis} axis spans {d:.0} decades ([{:.3e}, {:.3e}])", range.0, range.1));
+            }
+        }
+        found
     }
 }
 
@@ -555,8 +665,10 @@ impl Drawable for DotChart {
         let (lo, hi) = vals.fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &(v, e)| (l.min(v - e), h.max(v + e)));
         let (lo, hi) = if lo.is_finite() { span(0f64.min(lo), hi * 1.1) } else { (0.0, 1.0) };
         let k = self.categories.len();
-        let mut chart = ChartBuilder::on(&root)
-            .caption(&self.title, ("sans-serif", 20))
+        let root = root.titled(&self.title, ("sans-serif", 20)).map_err(err)?;
+        let (w, _) = root.dim_in_pixel();
+        let (main, strip) = root.split_horizontally(w - legend_width(self.series.iter().map(|s| s.0.chars().count())));
+        let mut chart = ChartBuilder::on(&main)
             .margin(12)
             .x_label_area_size(60)
             .y_label_area_size(64)
@@ -580,6 +692,7 @@ impl Drawable for DotChart {
             .draw()
             .map_err(err)?;
         let m = self.series.len() as f64;
+        let mut entries = Vec::new();
         for (si, (name, key, values)) in self.series.iter().enumerate() {
             let c = colour(key);
             let dx = (si as f64 - (m - 1.0) / 2.0) * 0.18;
@@ -594,18 +707,10 @@ impl Drawable for DotChart {
                     pts.iter()
                         .map(|&(x, y, _)| Circle::new((x, y), 5, if filled { c.filled() } else { c.stroke_width(2) })),
                 )
-                .map_err(err)?
-                .label(name.as_str())
-                .legend(move |(x, y)| Circle::new((x + 9, y), 5, if filled { c.filled() } else { c.stroke_width(2) }));
+                .map_err(err)?;
+            entries.push((name.clone(), c, Look::Marker(filled)));
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 13))
-            .position(SeriesLabelPosition::UpperLeft)
-            .draw()
-            .map_err(err)?;
+        legend(&strip, &entries)?;
         root.present().map_err(err)
     }
 }
@@ -767,6 +872,30 @@ mod tests {
         assert_eq!(tick(0.01, true), "0.01");
         assert_eq!(tick(1e-7, true), "1e-7");
         assert_eq!(tick(0.30000000000000004, false), "0.3");
+    }
+
+    #[test]
+    fn the_lint_refuses_an_axis_to_1e275_and_two_series_drawn_alike() {
+        let chart = |points: Vec<(f64, f64)>, log_y: bool| LineChart {
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            series: vec![Series::line("a", points)],
+            log_y,
+            log_x: false,
+            polar: false,
+        };
+        let broken = vec![(1.0, 0.5), (2.0, 1.0), (3.0, 2.0), (4.0, 1e275)];
+        for log in [false, true] {
+            let found = chart(broken.clone(), log).lint();
+            assert!(found.iter().any(|f| f.contains("the y axis spans")), "log {log}: {found:?}");
+        }
+        assert!(chart(vec![(1.0, 1e-6), (2.0, 1e5)], true).lint().is_empty(), "11 decades are allowed");
+        let mut twins = chart(vec![(1.0, 1.0), (2.0, 2.0)], false);
+        twins.series.push(Series { colour_key: Some("a".into()), ..Series::line("b", vec![(1.0, 2.0)]) });
+        assert!(twins.lint()[0].contains("same colour and style"));
+        twins.series[1].dashed = true;
+        assert!(twins.lint().is_empty(), "a dashed twin is told apart by its style");
     }
 
     #[test]

@@ -118,6 +118,26 @@ fn every_link_and_image_resolves() {
 }
 
 #[test]
+fn every_figure_passes_the_lint_and_every_failure_says_why() {
+    // the coverage audit runs inside the report (a breach refuses the report), so the run
+    // itself is its test on the real report; its failing inputs are coverage.rs's unit tests
+    let (out, _) = &*FULL_RUN;
+    let lint: Vec<String> = serde_json::from_slice(&std::fs::read(out.join("lint.json")).unwrap()).unwrap();
+    assert!(lint.is_empty(), "figure lint: {lint:#?}");
+    let claims: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("claims.json")).unwrap()).unwrap();
+    for c in claims.as_array().unwrap() {
+        if c["verdict"] != "reproduced" {
+            assert!(c["explanation"].as_str().is_some_and(|e| !e.is_empty()), "no explanation field: {c}");
+        }
+    }
+    // renders narrower than the minimum are enlarged on the page
+    let page = std::fs::read_to_string(out.join("subr2013.html")).unwrap();
+    for w in attributes(&page, "width") {
+        assert!(w.parse::<u32>().unwrap() >= samplab_report::lint::MIN_PICTURE_WIDTH, "a render shown {w} px wide");
+    }
+}
+
+#[test]
 fn deterministic_whatever_the_thread_count() {
     // three of the four papers (Subr & Kautz's renders take most of the fast run's time and
     // are left to the slow tier) on one thread, against the shared two-thread run: each

@@ -30,6 +30,16 @@ pub fn systematic_break_even(n: usize, k_prime: f64) -> (f64, f64) {
     (kk * kk / n as f64, 1.0 - kk / (n as f64).sqrt())
 }
 
+/// Exact efficiency of systematic against independent sampling for a region of area `p`
+/// narrower than the grid spacing n^-1/2 (a disk of diameter below it, say): the region
+/// then holds at most one grid point, and holds one with probability N p, so the estimate
+/// (points inside)/N has variance p (1 - N p)/N, and the efficiency p (1 - p)/N over that is
+/// (1 - p)/(1 - N p) >= 1. Below eq. 17's lower bound (k k')^2/N, where eq. 16 predicts an
+/// efficiency under 1 (Sbert et al. 2006), every disk is that narrow.
+pub fn systematic_efficiency_small(p: f64, n: usize) -> f64 {
+    (1.0 - p) / (1.0 - n as f64 * p)
+}
+
 /// Ramamoorthi et al. 2012: the expected N^2 x squared error of 1D visibility with
 /// `discontinuities` discontinuities in distinct strata, over uniform random positions,
 /// for a sampler family (`regular` = their "uniform", `jitter` = "stratified",
@@ -61,6 +71,36 @@ pub fn visibility_worst_case(sampler: &str, discontinuities: usize) -> Option<f6
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn small_region_efficiency_by_brute_force_over_offsets() {
+        // a disk of radius 0.03 (diameter 0.06) on the 4 x 4 grid (spacing 0.25): every
+        // offset of the grid on a 500 x 500 lattice over one cell, points in the disk counted
+        let (r, n, side) = (0.03f64, 16usize, 500usize);
+        let (cx, cy, h) = (0.41, 0.67, 0.25);
+        let (mut sum, mut sum2) = (0.0, 0.0);
+        for i in 0..side * side {
+            let (ox, oy) = (((i % side) as f64 + 0.5) / side as f64 * h, ((i / side) as f64 + 0.5) / side as f64 * h);
+            let inside = (0..n)
+                .filter(|k| {
+                    let (x, y) = (ox + (k % 4) as f64 * h, oy + (k / 4) as f64 * h);
+                    (x - cx).hypot(y - cy) < r
+                })
+                .count() as f64
+                / n as f64;
+            sum += inside;
+            sum2 += inside * inside;
+        }
+        let mean = sum / (side * side) as f64;
+        let variance = sum2 / (side * side) as f64 - mean * mean;
+        let p = std::f64::consts::PI * r * r;
+        let efficiency = random_indicator_variance(p, n) / variance;
+        assert!((mean - p).abs() < 0.01 * p, "{mean} against {p}");
+        assert!((efficiency / systematic_efficiency_small(p, n) - 1.0).abs() < 0.01, "{efficiency}");
+        // eq. 16's small-p efficiency says the opposite there
+        assert!(systematic_efficiency(p, n, 2.0 * std::f64::consts::PI.sqrt()) < 1.0);
+        assert!(systematic_efficiency_small(p, n) > 1.0);
+    }
 
     #[test]
     fn sbert_eq_20_for_a_square() {

@@ -129,22 +129,48 @@ pub struct Analysis {
 }
 
 impl Analysis {
-    /// Mean error energy at the banding frequencies `bands` over the mean at the other
-    /// non-zero frequencies of the scanline: large when the error bands, about 1 for noise.
-    pub fn banding_ratio(&self, bands: &[f64]) -> f64 {
+    /// The error's banding: (share, fraction) where `share` is the part of the error energy
+    /// at non-zero frequencies that lies at the banding frequencies `bands`, and `fraction`
+    /// the part of those frequencies that are banding frequencies. Noise spread evenly has
+    /// share near fraction; pure banding has share 1. Both are in [0, 1], so neither is a
+    /// ratio of two values near zero (uniform sampling's error off the bands is about
+    /// zero).
+    pub fn banding_share(&self, bands: &[f64]) -> (f64, f64) {
         let is_band = |w: usize| bands.iter().any(|&f| f as usize == w);
-        let (mut band, mut nb, mut rest, mut nr) = (0.0, 0.0, 0.0, 0.0);
+        let (mut band, mut all, mut nb, mut n) = (0.0, 0.0, 0.0, 0.0);
         for (w, e) in self.error_spectrum.iter().enumerate().skip(1) {
+            all += e * e;
+            n += 1.0;
             if is_band(w) {
                 band += e * e;
                 nb += 1.0;
-            } else {
-                rest += e * e;
-                nr += 1.0;
             }
         }
-        (band / nb) / (rest / nr)
+        (if all > 0.0 { band / all } else { 0.0 }, nb / n)
     }
+}
+
+/// |spectrum| of the visibility alone over (pixel, light) frequencies, `res` x `res`, from
+/// V sampled at the centres of a `grid` x `grid` lattice and weighted by a separable Hann
+/// window sin^2(pi x) sin^2(pi y): the square's edges then leak no energy along the axes,
+/// so what is left is the sheared line of eq. 23 (Ramamoorthi et al. 2012, Fig. 10(a)).
+///
+/// # Errors
+/// An odd resolution or an empty grid.
+///
+/// # Panics
+/// Never: the lattice's coordinates are finite.
+pub fn visibility_spectrum(scene: &Scene, grid: usize, res: usize) -> Result<Vec<f64>> {
+    if grid == 0 {
+        return Err(Error::Invalid("visibility spectrum: an empty grid".into()));
+    }
+    let centre = |i: usize| (i as f64 + 0.5) / grid as f64;
+    let data: Vec<f64> = (0..grid * grid).flat_map(|k| [centre(k / grid), centre(k % grid)]).collect();
+    let pts = PointSet::new(2, data).expect("finite coordinates");
+    let hann = |t: f64| (std::f64::consts::PI * t).sin().powi(2);
+    let weights: Vec<f64> = pts.iter().map(|p| scene.visibility(p[0], p[1]) * hann(p[0]) * hann(p[1])).collect();
+    let spectrum = Nufft::new(res, 2, 1e-9)?.transform_weighted(&pts, Some(&weights))?;
+    Ok(spectrum.into_iter().map(|c| c[0].hypot(c[1])).collect())
 }
 
 /// Analyse `pattern` on `scene` with `pixels` pixels and `n` samples each; 2D spectra at

@@ -430,6 +430,7 @@ pub(super) fn projected(ctx: &Ctx) -> Result<Output, Error> {
         ours: format!("lowest mean of the 0 and 90 degree projections: {best} {best_v:.4}"),
         theory: "N-rooks puts one point in each of the 16 slabs of each axis".into(),
         decision: criteria::all(&versus),
+        identity: true,
         ..Claim::default()
     }];
     let series = curves

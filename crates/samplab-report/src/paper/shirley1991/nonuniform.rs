@@ -31,6 +31,7 @@ pub(super) fn nonuniform(ctx: &Ctx) -> Result<Output, Error> {
         ours: format!("largest deviation of samplab's tent warp from the printed transformation, and of F(warp(u)) from u, over 1001 u in [0, 1]: {worst:.1e}"),
         theory: "F(F^-1(u)) = u".into(),
         decision: criteria::within(worst, 0.0, 1e-12),
+        identity: true,
         ..Claim::default()
     });
     ctx.advance(1)?;
@@ -94,6 +95,7 @@ pub(super) fn nonuniform(ctx: &Ctx) -> Result<Output, Error> {
         ours: format!("largest difference over 700 sets: {largest:.1e}"),
         theory: "rectangles map to rectangles and keep their points; their mass is the original area".into(),
         decision: criteria::within(largest, 0.0, 1e-12),
+        identity: true,
         ..Claim::default()
     });
     ctx.advance(1)?;

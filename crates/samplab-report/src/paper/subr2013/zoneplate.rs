@@ -61,6 +61,8 @@ impl Combined {
             if bias { self.bias.iter().flatten().map(|e| e.value).collect() } else { self.variance.concat() };
         let floor = 0.1 * measured.iter().copied().filter(|v| *v > 0.0).fold(f64::INFINITY, f64::min).min(1.0);
         let mut series: Vec<Series> = Vec::new();
+        // five distinct colours of the palette, none of them Poisson disk's
+        let shade = |k: usize| ["jitter", "jitter.half", "nrooks", "halton", "sobol"][k % 5].to_string();
         for (k, s) in self.sigmas.iter().enumerate() {
             let values: Vec<(f64, f64)> = if bias {
                 self.bias[k].iter().map(|e| (e.value, e.se)).collect()
@@ -69,7 +71,7 @@ impl Combined {
             };
             series.push(Series {
                 markers: true,
-                colour_key: Some(format!("sigma{k}")),
+                colour_key: Some(shade(k)),
                 intervals: if bias {
                     values.iter().map(|(v, se)| ((v - se).max(floor), (v + se).max(floor))).collect()
                 } else {
@@ -83,7 +85,7 @@ impl Combined {
             if let Some(t) = theory {
                 series.push(Series {
                     dashed: true,
-                    colour_key: Some(format!("sigma{k}")),
+                    colour_key: Some(shade(k)),
                     ..Series::line(
                         format!("sigma = {s}, theory"),
                         (0..=40).map(|i| i as f64 / 40.0).map(|a| (a, t(*s, a).max(floor))).collect(),
