@@ -12,8 +12,9 @@ use crate::plot::{LineChart, Series};
 use crate::published;
 use crate::{Cell, Claim, Ctx, Error, Figure, Output, Table};
 
-/// The two grid geometries: the paper's is not published, so every grids experiment runs
-/// on both (the first one chosen, `grids-aligned`, and the one it was replaced by).
+/// The two grid geometries: the paper's is not published, so the area-light grids
+/// experiments (Figs. 17, 19 and 20) run on both (the first one chosen, `grids-aligned`,
+/// and the one it was replaced by); Fig. 8's linear light runs on `grids` alone.
 const GRIDS: [&str; 2] = ["grids", "grids-aligned"];
 
 const GRIDS_NOTE: &str = "The paper's grids geometry is not published. samplab's first one (grids-aligned) has bars at 0, 90 and 45 degrees to the light's edges; it was replaced by bars at 20, 80 and 140 degrees (grids) after uniform jitter lost to stratified sampling there. Both are reported: bars parallel to the light's sample rows correlate the rows, the square-light mechanism of the paper's section 6.";

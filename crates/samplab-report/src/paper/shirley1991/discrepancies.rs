@@ -374,8 +374,27 @@ pub(super) fn tables(ctx: &Ctx) -> Result<Output, Error> {
         notes: vec![
             "Exact algorithms: D by a sweep over x with a kinetic segment tree, T by a slab sweep, S by Warnock's closed form (see samplab's discrepancy module); all are checked against brute force over critical boxes.".into(),
             "Poisson disks: dart throwing with the minimum distance measured inside the unit square (no wrap-around), as a 1991 implementation would.".into(),
+            table6_jittered_sd(&measured, &p6),
         ],
     })
+}
+
+/// Table 6 prints jittered sampling's SD of S as 0.00192, below half-jittered's 0.0029; a
+/// note weighs it against ours with the standard error of a sample SD.
+fn table6_jittered_sd(measured: &[Measured], printed: &PublishedTable) -> String {
+    let sd = |name: &str| {
+        let m = measured.iter().find(|m| m.name == name).expect("measured");
+        // the SD of n normal values has standard error about SD / sqrt(2 (n - 1))
+        (m.s.sd, m.s.sd / (2.0 * (m.s.count as f64 - 1.0)).sqrt())
+    };
+    let ((jit, jit_se), (half, _)) = (sd("jittered"), sd("half-jittered"));
+    let published = |name: &str| printed.row(name).expect("published")[1];
+    format!(
+        "Table 6's SD of S for jittered sampling is printed as {}; ours is {jit:.4} +- {jit_se:.4} ({:.0} standard errors away), while half-jittered's printed SD ({}) matches ours ({half:.4}). Jittered points move over whole cells and half-jittered ones over half of each, so jittered sampling's S cannot vary less than half-jittered's; the printed value, below half-jittered's, is most likely a misprint.",
+        published("jittered"),
+        (jit - published("jittered")) / jit_se,
+        published("half-jittered"),
+    )
 }
 
 pub(super) fn projected(ctx: &Ctx) -> Result<Output, Error> {

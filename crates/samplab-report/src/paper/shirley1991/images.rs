@@ -92,18 +92,38 @@ pub(super) fn pixel_errors(ctx: &Ctx) -> Result<Output, Error> {
             published: format!("{}: ranking by ave|E| {}", published.source, published_order.join(" < ")),
             ours: format!("ranking by mean ave|E| over {seeds} seeds: {ours_order}"),
             decision: criteria::all(&behind),
+            explanation: (scene_name == "ball").then(|| "on our ball the regular grid and half-jittered sampling beat separate sampling, each by many standard errors (the table): the ball's error comes from its round silhouette and the soft shadows of two square lights, edges at every angle, where N-rooks' one point per row and column gives no advantage and the grid's even spacing does; the paper's ball (geometry and lights not published) may have had more axis-aligned edges. The same ordering shows in Table 4's all scene, which contains the ball".to_string()),
             ..Claim::default()
         });
         let ours_means: Vec<f64> = per.iter().map(|p| p.mean).collect();
         let theirs: Vec<f64> = STRATEGIES.iter().map(|s| mean_of(s.0)).collect();
+        let places = published_order.iter().zip(&order).filter(|(p, o)| **p != o.0).count();
         out.claims.push(Claim {
             id: format!("{scene_name}-order"),
             statement: format!(
-                "{scene_name}: our ranking of the seven strategies by ave|E| agrees with the published one"
+                "{scene_name}: our ranking of the seven strategies by ave|E| goes with the published one beyond chance (a rank correlation, not the same order)"
             ),
             published: published_order.join(" < "),
-            ours: ours_order,
+            ours: format!("{ours_order} ({places} of 7 places differ)"),
             decision: criteria::rank_agreement(&ours_means, &theirs, 0.05),
+            ..Claim::default()
+        });
+        // the values themselves: the published ave|E| is a mean over the paper's pixels
+        // with no stated error; ours are means over seeds with their standard errors
+        let values: Vec<Decision> = STRATEGIES
+            .iter()
+            .zip(&per)
+            .map(|(s, p)| criteria::agrees(Estimate::mean_of(p), Estimate::exact(mean_of(s.0)), 0.5 * 10f64.powi(-4)))
+            .collect();
+        let ratios: Vec<f64> = STRATEGIES.iter().zip(&per).map(|(s, p)| p.mean / mean_of(s.0)).collect();
+        let (lo, hi) = ratios.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &r| (a.min(r), b.max(r)));
+        out.claims.push(Claim {
+            id: format!("{scene_name}-values"),
+            statement: format!("{scene_name}: our ave|E| per strategy equals the published one"),
+            published: format!("{} (ave|E| column)", published.source),
+            ours: format!("ours / published from {lo:.2} to {hi:.2} over the seven strategies"),
+            decision: criteria::all(&values),
+            explanation: Some(format!("the scene is our re-creation: the paper publishes neither its geometry, nor its image size, nor its luminance scale, and the mean error per pixel scales with the share of pixels an edge crosses, so the values differ (ours / published {lo:.2}-{hi:.2} here) and only the rankings are compared (the -order and -separate-rank claims); max|E| depends on the sharpest edge and the image size likewise and is not compared")),
             ..Claim::default()
         });
         out.tables.push(Table {
@@ -127,7 +147,7 @@ pub(super) fn pixel_errors(ctx: &Ctx) -> Result<Output, Error> {
     }
     out.claims.push(thesis(ctx, &errors)?);
     ctx.advance(1)?;
-    out.notes.push("The checkerboards are self-luminous (black 0, white 1) so the error is the antialiasing error alone; the ball is lit by two square lights (direct lighting); \"all\" adds a perfect mirror, a glossy mirror (Phong exponent 60) and a thin lens focused on the ball, every dimension sampled by the strategy (the lens and gloss samples dealt to the pixel samples in random orders). Errors are of the displayed images (every channel clamped to [0, 1]), as the paper's luminance errors of 8-bit images are, so that max|E| is comparable.".into());
+    out.notes.push("The checkerboards are self-luminous (black 0, white 1) so the error is the antialiasing error alone; the ball is lit by two square lights (direct lighting); \"all\" adds a perfect mirror, a glossy mirror (Phong exponent 60) and a thin lens focused on the ball, every dimension sampled by the strategy (the lens and gloss samples dealt to the pixel samples in random orders). Errors are of the displayed images (every channel clamped to [0, 1]), as the paper's luminance errors of 8-bit images are; even so ave|E| and max|E| are not comparable with the published ones in value (the scenes are re-creations whose size and geometry the paper does not give: the -values claims), only in ranking.".into());
     Ok(out)
 }
 

@@ -158,10 +158,12 @@ pub(super) fn convergence(ctx: &Ctx) -> Result<Output, Error> {
         },
         Claim {
             id: "exponents-table".into(),
-            statement: "Our convergence exponents agree with Figure 6's (each published exponent inside our 95% interval)".into(),
+            statement: "Our convergence exponents agree with Figure 6's (the published exponents inside our 95% intervals as often as chance allows)".into(),
             published: "Figure 6 (36 exponents)".into(),
-            ours: format!("{close} of 36 inside our intervals"),
-            decision: criteria::all(&cells),
+            ours: format!("{close} of {} inside our intervals (the table gives each)", cells.len()),
+            // each 95% interval misses a true exponent with probability 0.05: a perfect
+            // reproduction has 5 misses or fewer of 36 with probability 0.992 (binomial)
+            decision: criteria::at_least(close, cells.len(), (cells.len() - 5) as f64 / cells.len() as f64),
             explanation: Some("see the table: the paper's Poisson disk (Gamito & Maddock) and Matlab scrambles differ from ours, and its Gaussian jitter exponents are steeper than the N^-1.5 that edges allow (the gaussian-jitter-faster claim)".into()),
             ..Claim::default()
         },

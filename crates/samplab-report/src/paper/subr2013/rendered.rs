@@ -253,6 +253,11 @@ pub(super) fn motion(ctx: &Ctx) -> Result<Output, Error> {
     let (grid, sobol) = (strategy("regular"), strategy("sobol.owen"));
     let largest = stats[0].iter().enumerate().all(|(i, s)| i == grid || s.0 < stats[0][grid].0);
     let ratio = mse(&stats[1][grid]) / mse(&stats[1][sobol]);
+    // "comparable" read as: at 64 the grid stands out neither way, its MSE within the range
+    // of the six other strategies' (at 4 its bias alone is the largest of all)
+    let others: Vec<f64> = stats[1].iter().enumerate().filter(|&(i, _)| i != grid).map(|(_, s)| mse(s)).collect();
+    let (least, most) = others.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    let within = (least..=most).contains(&mse(&stats[1][grid]));
     Ok(Output {
         tables: vec![table(
             "subr2013-fig9",
@@ -287,9 +292,9 @@ pub(super) fn motion(ctx: &Ctx) -> Result<Output, Error> {
                 id: "motion-grid-64".into(),
                 statement: "At 64 spp the regular grid is qualitatively comparable to low-discrepancy sampling (Figure 9)".into(),
                 published: "images only".into(),
-                ours: format!("64 estimates per pixel: grid MSE / low-discrepancy MSE = {ratio:.2} (read as comparable within a factor of 3)"),
+                ours: format!("64 estimates per pixel: grid MSE {:.3e}, the other six strategies' from {least:.3e} to {most:.3e}; grid / low-discrepancy (Sobol', Owen) = {ratio:.2}", mse(&stats[1][grid])),
                 theory: "the grid's bias falls as its spectral peaks move out past the integrand's bandwidth".into(),
-                decision: criteria::exactly((1.0 / 3.0..=3.0).contains(&ratio), "grid MSE / low-discrepancy MSE within [1/3, 3]"),
+                decision: criteria::exactly(within, "the grid's MSE at 64 within the range of the six other strategies' (neither the worst nor the best)"),
                 ..Claim::default()
             },
         ],

@@ -150,7 +150,10 @@ impl Combined {
 const GRID_WAVE: &str = "cosine:u=16,v=0,phase=1";
 
 pub(super) fn zoneplate(ctx: &Ctx) -> Result<Output, Error> {
-    let runs = ctx.pick(200, 1000);
+    // at the grid frequency the grid's bias exceeds Gaussian jitter's (sigma = 0.05) by 5%
+    // of itself (exp(-2 pi^2 sigma^2) = 0.95): 1000 realizations resolve that at about 4
+    // standard errors
+    let runs = ctx.pick(1000, 4000);
     ctx.progress.set_length(2 * 26);
     let zone = combined(ctx, "zoneplate", runs, ctx.seed)?;
     let wave = combined(ctx, GRID_WAVE, runs, ctx.seed.derive_str("wave"))?;
