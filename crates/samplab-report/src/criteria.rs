@@ -176,6 +176,39 @@ pub fn all(parts: &[Decision]) -> Decision {
     Decision::new(verdict, format!("all of: {criterion}"))
 }
 
+/// The claim "a beats b in most cases" from `wins` of `total` paired cases (ties counted
+/// against): the exact binomial sign test at p = 1/2. Reproduced when `wins` or more would
+/// happen by chance with probability below `alpha`, not reproduced when `wins` or fewer
+/// would, undecided in between.
+pub fn sign_test(wins: usize, total: usize, alpha: f64) -> Decision {
+    let tail = |range: std::ops::RangeInclusive<usize>| -> f64 {
+        // binomial(total, 1/2) probabilities by the recurrence C(n, k+1) = C(n, k) (n-k)/(k+1)
+        let mut p = 0.5f64.powi(total as i32);
+        let mut sum = 0.0;
+        for k in 0..=total {
+            if range.contains(&k) {
+                sum += p;
+            }
+            p *= (total - k) as f64 / (k + 1) as f64;
+        }
+        sum
+    };
+    let (above, below) = (tail(wins..=total), tail(0..=wins));
+    let verdict = if total > 0 && above < alpha {
+        Verdict::Reproduced
+    } else if total > 0 && below < alpha {
+        Verdict::NotReproduced
+    } else {
+        Verdict::Undecided
+    };
+    Decision::new(
+        verdict,
+        format!(
+            "sign test: {wins} of {total} cases, exact one-sided p = {above:.3} (for) / {below:.3} (against), alpha {alpha}"
+        ),
+    )
+}
+
 /// Kendall's tau between two rankings of the same items (values, lower is better).
 ///
 /// # Panics
@@ -299,6 +332,17 @@ mod tests {
         assert_eq!(all(&[r.clone(), r.clone()]).verdict, Verdict::Reproduced);
         assert_eq!(all(&[r.clone(), u.clone()]).verdict, Verdict::Undecided);
         assert_eq!(all(&[u, n, r]).verdict, Verdict::NotReproduced);
+    }
+
+    #[test]
+    fn sign_test_by_hand() {
+        // 10 of 10: p = 1/1024 for; 0 of 10: p = 1/1024 against; 5 of 10 decides nothing
+        assert_eq!(sign_test(10, 10, 0.01).verdict, Verdict::Reproduced);
+        assert_eq!(sign_test(0, 10, 0.01).verdict, Verdict::NotReproduced);
+        assert_eq!(sign_test(5, 10, 0.01).verdict, Verdict::Undecided);
+        // 9 of 10: P(X >= 9) = 11/1024 = 0.0107, not below 0.01
+        assert_eq!(sign_test(9, 10, 0.01).verdict, Verdict::Undecided);
+        assert_eq!(sign_test(9, 10, 0.05).verdict, Verdict::Reproduced);
     }
 
     #[test]

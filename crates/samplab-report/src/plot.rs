@@ -4,6 +4,7 @@
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use samplab::PointSet;
 
 use crate::Error;
@@ -349,12 +350,6 @@ impl Drawable for Strata<'_> {
 /// log-axis values below 1e-4 or from 1e5 up), at most six significant digits (no
 /// floating-point noise such as 0.30000000000000004).
 fn tick(v: f64, log: bool) -> String {
-    // a log axis labels 1, 2 and 5 times a power of ten; plotters' ticks in between (3, 4,
-    // 6, ...) crowd the decade's end
-    let mantissa = if v > 0.0 { v / 10f64.powf(v.log10().floor()) } else { 1.0 };
-    if log && ![1.0, 2.0, 5.0].iter().any(|m| (mantissa - m).abs() < 1e-6 * m) {
-        return String::new();
-    }
     if log && !(1e-4..1e5).contains(&v.abs()) {
         format!("{v:.0e}")
     } else if v == 0.0 {
@@ -364,6 +359,21 @@ fn tick(v: f64, log: bool) -> String {
         let s = format!("{v:.digits$}");
         if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s }
     }
+}
+
+/// The labelled values of a log axis over [lo, hi]: 1, 2 and 5 times each power of ten,
+/// every mantissa 1 to 9 when that leaves fewer than two, and only the powers of ten when
+/// the axis spans more than six decades.
+fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
+    let pick = |mantissas: &[f64]| -> Vec<f64> {
+        (lo.log10().floor() as i32..=hi.log10().ceil() as i32)
+            .flat_map(|k| mantissas.iter().map(move |m| m * 10f64.powi(k)))
+            .filter(|v| (lo..=hi).contains(v))
+            .collect()
+    };
+    let decades = (hi / lo).log10();
+    let ticks = pick(if decades > 6.0 { &[1.0] } else { &[1.0, 2.0, 5.0] });
+    if ticks.len() >= 2 { ticks } else { pick(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]) }
 }
 
 /// One named curve.
@@ -577,9 +587,11 @@ impl Drawable for LineChart {
                     .configure_mesh()
                     .x_desc(self.x_label.as_str())
                     .y_desc(self.y_label.as_str())
+                    // a log axis's labels are drawn below at log_ticks; a linear one has a
+                    // label per 80 px
                     .x_labels((main.dim_in_pixel().0 as usize / 80).max(3))
-                    .x_label_formatter(&|v| tick(*v, self.log_x))
-                    .y_label_formatter(&|v| tick(*v, self.log_y))
+                    .x_label_formatter(&|v| if self.log_x { String::new() } else { tick(*v, false) })
+                    .y_label_formatter(&|v| if self.log_y { String::new() } else { tick(*v, false) })
                     .label_style(("sans-serif", LABEL_FONT))
                     .light_line_style(RGBColor(235, 235, 235))
                     .draw()
@@ -603,6 +615,28 @@ impl Drawable for LineChart {
                         Look::Line => {
                             chart.draw_series(LineSeries::new(points, style)).map_err(err)?;
                         }
+                    }
+                }
+                let base = main.get_base_pixel();
+                let at = |x: f64, y: f64| {
+                    let (px, py) = chart.backend_coord(&(x, y));
+                    (px - base.0, py - base.1)
+                };
+                let font = TextStyle::from(("sans-serif", LABEL_FONT).into_font());
+                if self.log_y {
+                    for v in log_ticks(y0, y1) {
+                        let (px, py) = at(x0, v);
+                        main.draw(&PathElement::new([(px - 5, py), (px, py)], BLACK)).map_err(err)?;
+                        let style = font.clone().pos(Pos::new(HPos::Right, VPos::Center));
+                        main.draw(&Text::new(tick(v, true), (px - 8, py), style)).map_err(err)?;
+                    }
+                }
+                if self.log_x {
+                    for v in log_ticks(x0, x1) {
+                        let (px, py) = at(v, y0);
+                        main.draw(&PathElement::new([(px, py), (px, py + 5)], BLACK)).map_err(err)?;
+                        let style = font.clone().pos(Pos::new(HPos::Center, VPos::Top));
+                        main.draw(&Text::new(tick(v, true), (px, py + 8), style)).map_err(err)?;
                     }
                 }
             }};
@@ -872,6 +906,10 @@ mod tests {
         assert_eq!(tick(0.01, true), "0.01");
         assert_eq!(tick(1e-7, true), "1e-7");
         assert_eq!(tick(0.30000000000000004, false), "0.3");
+        assert_eq!(log_ticks(4.0, 64.0), [5.0, 10.0, 20.0, 50.0]);
+        let fine = log_ticks(0.03, 0.045);
+        assert_eq!(fine.len(), 2, "{fine:?}");
+        assert_eq!(log_ticks(1e-9, 1.0).len(), 10, "powers of ten only over nine decades");
     }
 
     #[test]

@@ -153,6 +153,20 @@ pub(crate) fn picture(id: &str, caption: &str, img: &Image) -> Result<Figure, Er
     Ok(Figure::picture(id, caption, png(&img.to_srgb())?))
 }
 
+/// A rendered image as a figure, its values stretched linearly from `[lo, hi]` to black
+/// and white before the sRGB curve: for quantities such as obscurances that fill only the
+/// top of [0, 1] and would show nearly white.
+pub(crate) fn picture_stretched(id: &str, caption: &str, img: &Image, (lo, hi): (f32, f32)) -> Result<Figure, Error> {
+    let span = (hi - lo).max(f32::EPSILON);
+    let rgb = img.rgb.iter().map(|&v| ((v - lo) / span).clamp(0.0, 1.0)).collect();
+    picture(id, caption, &Image { rgb, visibility: None, ..*img })
+}
+
+/// The least and greatest value of an image's channels.
+pub(crate) fn value_range(img: &Image) -> (f32, f32) {
+    img.rgb.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)))
+}
+
 /// A signed error image (red: too bright, green: too dark, times `scale`) as a figure.
 pub(crate) fn error_picture(
     id: &str,

@@ -14,10 +14,10 @@ pub(super) fn error_vs_position(ctx: &Ctx) -> Result<Output, Error> {
     let n = 8;
     let positions = 400;
     let reps = ctx.pick(400, 4000);
-    ctx.progress.set_length(3);
+    ctx.progress.set_length(4);
     let mut series = Vec::new();
     let mut worst = Vec::new();
-    for (name, spec) in [STRATEGIES[0], STRATEGIES[1], STRATEGIES[3]] {
+    for (name, spec) in [STRATEGIES[0], STRATEGIES[1], STRATEGIES[3], ("random", "random")] {
         let s = sampler::build(spec)?;
         // the same realizations for every position: N x RMS error as a function of y0
         let sets = sampler::generate_sets(s.as_ref(), n, 1, ctx.seed.derive_str(spec), reps)?;
@@ -68,6 +68,18 @@ pub(super) fn error_vs_position(ctx: &Ctx) -> Result<Output, Error> {
         colour_key: Some("jitter".into()),
         ..Series::line("stratified, theory", theory(|t| (t * (1.0 - t)).sqrt()))
     });
+    // independent points: N x sqrt(y0 (1 - y0) / N)
+    series.push(Series {
+        dashed: true,
+        colour_key: Some("random".into()),
+        ..Series::line(
+            "random, theory",
+            (0..positions)
+                .map(|i| (i as f64 + 0.5) / positions as f64)
+                .map(|y| (y, (n as f64 * y * (1.0 - y)).sqrt()))
+                .collect(),
+        )
+    });
     let chart = LineChart {
         title: "N x RMS error against the discontinuity's position (N = 8)".into(),
         x_label: "position y0 of the discontinuity".into(),
@@ -99,7 +111,7 @@ pub(super) fn error_vs_position(ctx: &Ctx) -> Result<Output, Error> {
         tables: vec![table],
         figures: vec![Figure::render(
             "ramamoorthi2012-fig3",
-            "N x RMS error against the position of one visibility discontinuity, N = 8 (Fig. 3); dashed: theory",
+            "N x RMS error against the position of one visibility discontinuity, N = 8 (Fig. 3): uniform, stratified, Halton and random sampling; dashed: theory",
             &chart,
             (900, 520),
         )?],
