@@ -153,6 +153,47 @@ fn page(title: &str, nav: &str, body: &str) -> String {
     )
 }
 
+/// On a fast report's index: the claims whose verdict differs in the last recorded
+/// full-scale run ([`crate::published::full_scale`]), and those it did not have.
+fn full_scale_html(claims: &[(String, Claim)]) -> String {
+    let full = crate::published::full_scale();
+    let mut changed = String::new();
+    let (mut n, mut missing) = (0, Vec::new());
+    for (paper, c) in claims {
+        match full.verdicts.get(&format!("{paper}/{}", c.id)) {
+            Some(v) if v != c.verdict_name() => {
+                n += 1;
+                let _ = writeln!(
+                    changed,
+                    "<tr><td>{paper}</td><td><a href=\"{paper}.html#claim-{id}\">{id}</a></td><td>{}</td><td>{}</td></tr>",
+                    c.verdict_name(),
+                    escape(v),
+                    id = escape(&c.id)
+                );
+            }
+            Some(_) => {}
+            None => missing.push(format!("{paper}/{}", c.id)),
+        }
+    }
+    let mut h = format!(
+        "<h2>Verdicts at full scale</h2>\n<p>The last full-scale run (<code>samplab reproduce --full</code>, seed {}, {} on {}, {:.0} s) gave {n} of these claims another verdict:</p>\n",
+        full.seed,
+        escape(&full.date),
+        escape(&full.machine),
+        full.seconds
+    );
+    if n > 0 {
+        let _ = write!(
+            h,
+            "<table class=\"claims\"><tr><th>paper</th><th>claim</th><th>fast</th><th>full</th></tr>\n{changed}</table>\n"
+        );
+    }
+    if !missing.is_empty() {
+        let _ = writeln!(h, "<p>Not in that run (added since): {}.</p>", escape(&missing.join(", ")));
+    }
+    h
+}
+
 /// The figure lint's findings on the index (`lint.json` lists them too).
 fn lint_html(lint: &[String]) -> String {
     if lint.is_empty() {
@@ -270,10 +311,11 @@ pub(crate) fn write_report(
         "<p>samplab {} reproduction, scale {scale}, seed {}; experiments took {:.1} s in all. Every number in a table comes from this run, except the published values, which are read from one data file with their sources.</p>\n\
          <table><tr><th rowspan=\"2\">paper</th><th rowspan=\"2\">experiments</th><th colspan=\"4\">claims</th><th colspan=\"7\">numbered tables, figures and result equations</th></tr>\n\
          <tr><th>reproduced</th><th>checked</th><th>not reproduced</th><th>undecided</th><th>reproduced</th><th>differs</th><th>not reproduced</th><th>undecided</th><th>checked</th><th>shown</th><th>pending (not attempted)</th></tr>\n{index_rows}</table>\n\
-         <h2>Figure lint</h2>\n{}<h2>All claims</h2>\n{}<p><a href=\"claims.json\">claims.json</a></p>\n",
+         {}<h2>Figure lint</h2>\n{}<h2>All claims</h2>\n{}<p><a href=\"claims.json\">claims.json</a></p>\n",
         env!("CARGO_PKG_VERSION"),
         options.seed.0,
         total_seconds,
+        if options.scale == Scale::Fast { full_scale_html(&all_claims) } else { String::new() },
         lint_html(&lint),
         claims_table(&refs)
     );

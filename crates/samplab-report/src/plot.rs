@@ -67,7 +67,7 @@ pub fn png(d: &impl Drawable, (w, h): (u32, u32)) -> Result<Vec<u8>, Error> {
 /// # Panics
 /// Never: the table of shades it picks from is not empty.
 pub fn colour(strategy: &str) -> RGBColor {
-    const TABLE: [(&str, RGBColor); 16] = [
+    const TABLE: [(&str, RGBColor); 17] = [
         ("random", RGBColor(31, 119, 180)),
         ("regular", RGBColor(255, 127, 14)),
         ("jitter", RGBColor(44, 160, 44)),
@@ -84,6 +84,8 @@ pub fn colour(strategy: &str) -> RGBColor {
         ("jitter.box", RGBColor(152, 223, 138)),
         ("force-matrix", RGBColor(197, 176, 213)),
         ("regular.rotated", RGBColor(255, 187, 120)),
+        // noise floors and other reference levels
+        ("floor", RGBColor(96, 96, 96)),
     ];
     let spec = strategy.split(':').next().unwrap_or(strategy);
     // Gaussian jitter: the paper's browns, one clearly distinct shade per sigma it uses

@@ -47,3 +47,29 @@ impl PublishedTable {
         self.rows.iter().find(|(k, _)| k == name).map(|(_, v)| v.as_slice())
     }
 }
+
+/// The verdicts of the last full-scale run (`samplab reproduce --full`), recorded by
+/// `scripts/record_full_scale.py` into `data/full_scale.json`, so that the fast report can
+/// say which of its verdicts change at the papers' own scales.
+#[derive(Debug, Clone, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FullScale {
+    /// When the full run was made (YYYY-MM-DD).
+    pub date: String,
+    /// Its seed.
+    pub seed: u64,
+    /// Its wall-clock time in seconds, on the machine named in `machine`.
+    pub seconds: f64,
+    /// The machine.
+    pub machine: String,
+    /// "paper/claim id" -> the verdict as the report names it.
+    pub verdicts: std::collections::BTreeMap<String, String>,
+}
+
+/// The recorded full-scale verdicts.
+///
+/// # Panics
+/// The data file is malformed: a programming error, caught by the report tests.
+pub fn full_scale() -> FullScale {
+    serde_json::from_str(include_str!("../data/full_scale.json")).expect("data/full_scale.json is well formed")
+}

@@ -130,6 +130,10 @@ fn every_figure_passes_the_lint_and_every_failure_says_why() {
             assert!(c["explanation"].as_str().is_some_and(|e| !e.is_empty()), "no explanation field: {c}");
         }
     }
+    // the index says which verdicts the recorded full-scale run gives otherwise
+    let index = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(index.contains("<h2>Verdicts at full scale</h2>"));
+    assert!(!samplab_report::published::full_scale().verdicts.is_empty(), "data/full_scale.json records no run");
     // renders narrower than the minimum are enlarged on the page
     let page = std::fs::read_to_string(out.join("subr2013.html")).unwrap();
     for w in attributes(&page, "width") {

@@ -52,6 +52,15 @@ pub(super) fn grids_linear(ctx: &Ctx) -> Result<Output, Error> {
             published.row(name).map_or(Cell::Empty, |v| Cell::num(v[0], 2)),
         ]);
         let img = setup.render(spec, 16, 1, ctx.seed)?;
+        // the paper's top row: the image itself, where uniform sampling's banding shows
+        figures.push(shadows::picture(
+            &format!("ramamoorthi2012-fig8-{}-image", spec.replace('.', "-")),
+            &format!(
+                "Fig. 8 (top row): {name}, 16 samples, the rendered image{}",
+                if spec == "regular" { " (banding in the penumbrae)" } else { "" }
+            ),
+            &img,
+        )?);
         figures.push(shadows::error_picture(
             &format!("ramamoorthi2012-fig8-{}", spec.replace('.', "-")),
             &format!("Fig. 8: {name}, 16 samples; signed error x 10 (red: too bright, green: too dark)"),

@@ -410,6 +410,7 @@ fn offsets(ctx: &Ctx) -> Result<Output, Error> {
         ours: format!("lowest mean MSE: {ours} (over {seeds} seeds of the whole image)"),
         theory: "a tie: over a smooth integrand (the lit light's geometric term) one offset errs by O(u), so an estimate of N points has variance ~ 1/N and M of them ~ 1/(M N)".into(),
         decision: criteria::all(&decisions),
+        explanation: Some("on the light integral the configurations nearly tie (the ratio column: within 7%): the integrand is smooth but for the penumbrae, and over the smooth geometric term one offset already errs by O(u) (the note), so splitting the points over more offsets gains little and can lose; Table 1's advantage for N offsets of N points is a statement about the pixel (pixel-n-offsets-of-n-points)".into()),
         addition: Some("samplab: Table 1 samples the pixel (the pixel-n-offsets-of-n-points claim); this tests the same configurations on the square light's integral".into()),
         ..Claim::default()
     }];

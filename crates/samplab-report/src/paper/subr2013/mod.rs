@@ -65,7 +65,7 @@ pub fn paper() -> Paper {
                 id: "defocus",
                 title: "Defocus: bias and variance of the strategies over the pixel and lens",
                 source: "Figure 7",
-                parameters: "16 estimates per pixel; 7 strategies; emissive beads out of focus; 80 x 60 pixels, 12 seeds (fast) or 160 x 120, 32 seeds (full)",
+                parameters: "16 estimates per pixel; 7 strategies; emissive beads out of focus; 128 x 96 pixels, 12 seeds (fast) or 320 x 240, 32 seeds (full)",
                 run: defocus,
             },
             Experiment {

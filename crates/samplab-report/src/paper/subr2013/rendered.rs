@@ -195,7 +195,7 @@ pub(super) fn shadows(ctx: &Ctx) -> Result<Output, Error> {
 const FIXED_LIGHT: &str = "regular";
 
 pub(super) fn defocus(ctx: &Ctx) -> Result<Output, Error> {
-    let (size, seeds, reference_spp) = (ctx.pick((160, 120), (320, 240)), ctx.pick(12, 32), ctx.pick(1024, 4096));
+    let (size, seeds, reference_spp) = (ctx.pick((128, 96), (320, 240)), ctx.pick(12, 32), ctx.pick(1024, 4096));
     let s = scene("defocus", Some(LightKind::Disk))?;
     let r = Rendered {
         figure: "fig7",
@@ -295,6 +295,7 @@ pub(super) fn motion(ctx: &Ctx) -> Result<Output, Error> {
                 ours: format!("64 estimates per pixel: grid MSE {:.3e}, the other six strategies' from {least:.3e} to {most:.3e}; grid / low-discrepancy (Sobol', Owen) = {ratio:.2}", mse(&stats[1][grid])),
                 theory: "the grid's bias falls as its spectral peaks move out past the integrand's bandwidth".into(),
                 decision: criteria::exactly(within, "the grid's MSE at 64 within the range of the six other strategies' (neither the worst nor the best)"),
+                explanation: (mse(&stats[1][grid]) < least).then(|| format!("the grid is better than comparable: at 64 estimates its MSE (all bias) is the lowest of the seven, {ratio:.2} times Owen-scrambled Sobol's. Over most pixels the motion's integrand is smooth in time, and a 64-point grid's spectral peaks (multiples of 64 cycles per shutter interval) lie past its bandwidth, so the grid integrates it almost exactly; the criterion, fixed as two-sided, counts that as a difference from the paper's 'comparable'")),
                 ..Claim::default()
             },
         ],

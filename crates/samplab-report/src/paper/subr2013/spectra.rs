@@ -40,13 +40,15 @@ pub(super) fn spectra(ctx: &Ctx) -> Result<Output, Error> {
         stats.push(st);
         ctx.advance(1)?;
     }
-    // |<S>| of 20 realizations cannot fall below the mean of 20 independent spectra of
-    // unit-variance noise: sqrt(1 / (20 N)), where E|S|^2 = 1/N off DC
-    let floor = (1.0 / (20.0 * 256.0f64)).sqrt();
+    // |<S>| of 20 realizations cannot fall below the amplitude of the mean of 20
+    // independent spectra of noise (E|S|^2 = 1/N off DC): that mean is complex normal with
+    // E|.|^2 = 1/(20 N), so its amplitude is Rayleigh with mean sqrt(pi / (80 N)) (the
+    // curves are radial averages of amplitudes, so the floor is the mean, not the RMS)
+    let floor = (std::f64::consts::PI / (80.0 * 256.0f64)).sqrt();
     curves[1].push(Series {
         dashed: true,
-        colour_key: Some("noise-floor".into()),
-        ..Series::line("noise floor of 20 realizations, 1/sqrt(20 N)", vec![(1.0, floor), ((res / 2) as f64, floor)])
+        colour_key: Some("floor".into()),
+        ..Series::line("noise floor of 20 realizations, sqrt(pi/(80 N))", vec![(1.0, floor), ((res / 2) as f64, floor)])
     });
     let titles = [
         "(a) radially averaged periodogram <|S|^2>",

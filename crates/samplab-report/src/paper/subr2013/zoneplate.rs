@@ -186,7 +186,7 @@ pub(super) fn zoneplate(ctx: &Ctx) -> Result<Output, Error> {
             ),
             decision: zone_grid,
             explanation: Some(format!(
-                "this zone plate aliases weakly at N = 256: the regular grid's bias ({:.1e}) is below the Monte Carlo error of the jittered estimates' means (up to {zone_se:.1e} at {runs} realizations), so the bias ordering is not resolved there; on the plane wave at the grid's frequency it is (the next claim)",
+                "this zone plate aliases weakly at N = 256 (the regular grid's bias is {:.1e}, of the order of the jittered estimates' standard errors, up to {zone_se:.1e} at {runs} realizations). The grid's bias is a sum over the zone plate's aliased frequencies (multiples of 16) whose terms have mixed signs and partly cancel; a shared uniform offset of alpha cells multiplies each term by its own complex factor (eqs. 4 and 8), which can undo the cancellation, so a partly jittered grid can be the more biased, as measured here. On the plane wave at the grid's frequency, a single aliased term, the grid is the most biased (the next claim), and combined-bias-theory checks the factors",
                 zone.bias[0][0].value
             )),
             ..Claim::default()
