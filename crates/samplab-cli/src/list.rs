@@ -7,9 +7,9 @@ use samplab::bibliography;
 /// What to list.
 #[derive(clap::Args)]
 pub struct Args {
-    /// samplers, stages, warps, metrics, integrands, formats, scenes or references (all when
-    /// omitted)
-    #[arg(value_parser = ["samplers", "stages", "warps", "metrics", "integrands", "formats", "scenes", "references"])]
+    /// samplers, stages, pixels (pixel samplers), warps, metrics, integrands, formats, scenes or
+    /// references (all when omitted)
+    #[arg(value_parser = ["samplers", "stages", "pixels", "warps", "metrics", "integrands", "formats", "scenes", "references"])]
     what: Option<String>,
 }
 
@@ -19,6 +19,7 @@ pub fn run(args: &Args) -> anyhow::Result<()> {
     for (what, listing) in [
         ("samplers", samplab::sampler::SAMPLERS.listing()),
         ("stages", samplab::sampler::randomize::STAGES.listing()),
+        ("pixels", samplab::pixel::PIXEL_SAMPLERS.listing()),
         ("warps", samplab::warp::WARPS.listing()),
         ("metrics", samplab::discrepancy::METRICS.listing()),
         ("integrands", samplab::integrand::INTEGRANDS.listing()),

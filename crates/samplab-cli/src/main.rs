@@ -23,6 +23,7 @@ mod discrepancy;
 mod generate;
 mod integrate;
 mod list;
+mod pixels;
 mod plot;
 mod render;
 mod reproduce;
@@ -75,6 +76,9 @@ enum Command {
     Spectrum(spectrum::Args),
     /// Render soft shadows with any strategy per pixel, against a reference (EXR/PNG).
     Render(Box<render::Args>),
+    /// Every value a pixel sampler (ZSobol, padded Sobol', PMJ02, blue-noise dithering,
+    /// OpenQMC, ...) gives a film, keyed by pixel, frame, sample and dimension (.npy).
+    Pixels(pixels::Args),
 }
 
 /// The exit code of a bug (a panic): 70, EX_SOFTWARE of sysexits.h.
@@ -176,6 +180,7 @@ fn run(cli: Cli) -> ExitCode {
         Command::Integrate(a) => integrate::run(&a),
         Command::Spectrum(a) => spectrum::run(&a),
         Command::Render(a) => render::run(&a),
+        Command::Pixels(a) => pixels::run(&a),
     })
 }
 

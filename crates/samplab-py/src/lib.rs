@@ -146,7 +146,10 @@ fn registry<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyList>> {
         "integrands" => entries(py, &samplab::integrand::INTEGRANDS),
         "formats" => entries(py, &samplab::io::FORMATS),
         "scenes" => entries(py, &samplab_render::scenes::SCENES),
-        _ => Err(err(format!("unknown registry '{kind}' (samplers, metrics, warps, integrands, formats, scenes)"))),
+        "pixels" => entries(py, &samplab::pixel::PIXEL_SAMPLERS),
+        _ => Err(err(format!(
+            "unknown registry '{kind}' (samplers, metrics, warps, integrands, formats, scenes, pixels)"
+        ))),
     }
 }
 
@@ -179,6 +182,27 @@ fn generate<'py>(
         plan.stack(Seed(seed), first..end, &Progress::until(stop))
     })?;
     shaped(py, data, &[sets, n, d])
+}
+
+/// Every value of `frames` frames of a film (width, height, spp, dims) from the pixel
+/// sampler `spec`, as an array (frames, height, width, spp, dims): the bytes of `samplab
+/// pixels`.
+#[pyfunction]
+fn pixels<'py>(
+    py: Python<'py>,
+    spec: &str,
+    film: (u32, u32, u32, u32),
+    frames: u32,
+    seed: u64,
+) -> PyResult<Bound<'py, PyAny>> {
+    if frames == 0 {
+        return Err(err("frames = 0: at least one frame"));
+    }
+    let (width, height, spp, dims) = film;
+    let p =
+        samplab::pixel::prepare(spec, samplab::pixel::Film { width, height, spp, dims }, Seed(seed)).map_err(err)?;
+    let data = py.detach(|| p.fill(frames)).map_err(err)?;
+    shaped(py, data, &[frames, height, width, spp, dims].map(|k| k as usize))
 }
 
 /// Whether `spec` names a progressive sequence (random access, extensible).
@@ -744,6 +768,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(registry, m)?)?;
     m.add_function(wrap_pyfunction!(generate, m)?)?;
     m.add_function(wrap_pyfunction!(is_sequence, m)?)?;
+    m.add_function(wrap_pyfunction!(pixels, m)?)?;
     m.add_function(wrap_pyfunction!(sequence_points, m)?)?;
     m.add_function(wrap_pyfunction!(warp, m)?)?;
     m.add_function(wrap_pyfunction!(save, m)?)?;

@@ -17,6 +17,7 @@ macro_rules! bib {
 }
 
 bib! {
+    ahmed2020 => "A. G. M. Ahmed, P. Wonka. Screen-space blue-noise diffusion of Monte Carlo sampling error via hierarchical ordering of pixels. ACM TOG 39(6), SIGGRAPH Asia 2020.",
     ahmed2022 => "A. G. M. Ahmed, J. Ren, P. Wonka. Gaussian blue noise. ACM TOG 41(6), SIGGRAPH Asia 2022.",
     balzer2009 => "M. Balzer, T. Schlömer, O. Deussen. Capacity-constrained point distributions: a variant of Lloyd's method. ACM TOG 28(3), SIGGRAPH 2009.",
     bratley1992 => "P. Bratley, B. L. Fox, H. Niederreiter. Implementation and tests of low-discrepancy sequences. ACM TOMACS 2(3), 1992.",
@@ -30,6 +31,7 @@ bib! {
     ebeida2012 => "M. Ebeida, S. Mitchell, A. Patney, A. Davidson, J. Owens. A simple algorithm for maximal Poisson-disk sampling in high dimensions. Eurographics 2012.",
     fattal2011 => "R. Fattal. Blue-noise point sampling using kernel density model. ACM TOG 30(4), SIGGRAPH 2011.",
     faure1982 => "H. Faure. Discrepance de suites associees a un systeme de numeration (en dimension s). Acta Arith. 41, 1982.",
+    georgiev2016 => "I. Georgiev, M. Fajardo. Blue-noise dithered sampling. ACM SIGGRAPH 2016 Talks.",
     halton1960 => "J. H. Halton. On the efficiency of certain quasi-random sequences of points in evaluating multi-dimensional integrals. Numer. Math. 2, 1960.",
     hammersley1964 => "J. M. Hammersley, D. C. Handscomb. Monte Carlo Methods. Methuen, 1964.",
     heck2013 => "D. Heck, T. Schlömer, O. Deussen. Blue noise sampling with controlled aliasing. ACM TOG 32(3), 2013 (the PCF by a Gaussian kernel, the effective Nyquist frequency and oscillation, step and single-peak blue noise).",
@@ -47,11 +49,13 @@ bib! {
     niederreiter1988 => "H. Niederreiter. Low-discrepancy and low-dispersion sequences. J. Number Theory 30, 1988.",
     niederreiter1992 => "H. Niederreiter. Random Number Generation and Quasi-Monte Carlo Methods. SIAM, 1992.",
     nuyens2006 => "D. Nuyens, R. Cools. Fast algorithms for component-by-component construction of rank-1 lattice rules in shift-invariant reproducing kernel Hilbert spaces. Math. Comp. 75, 2006.",
+    openqmc => "OpenQMC: quasi-Monte Carlo sampling for production rendering. Academy Software Foundation, github.com/AcademySoftwareFoundation/openqmc; used through its Rust port openqmc-rs 0.2.4 (crates.io), which reproduces its values bit for bit.",
     owen1992 => "A. B. Owen. Orthogonal arrays for computer experiments, integration and visualization. Statistica Sinica 2, 1992.",
     owen1995 => "A. B. Owen. Randomly permuted (t,m,s)-nets and (t,s)-sequences. Monte Carlo and Quasi-Monte Carlo Methods, 1995.",
     owen1997 => "A. B. Owen. Monte Carlo variance of scrambled net quadrature. SIAM J. Numer. Anal. 34(5), 1997.",
     paulin2020 => "L. Paulin, N. Bonneel, D. Coeurjolly, J.-C. Iehl, A. Webanck, M. Desbrun, V. Ostromoukhov. Sliced optimal transport sampling. ACM TOG 39(4), 2020.",
     petersen1962 => "D. P. Petersen, D. Middleton. Sampling and reconstruction of wave-number-limited functions in N-dimensional Euclidean spaces. Information and Control 5, 1962.",
+    pharr2023 => "M. Pharr, W. Jakob, G. Humphreys. Physically Based Rendering: From Theory to Implementation, 4th edition (pbrt-v4). MIT Press, 2023.",
     psa2012 => "T. Schlömer, D. Heck. psa: point set analysis, software, University of Konstanz, 2012 (thresholds and normalization of the effective Nyquist frequency and oscillation).",
     purgathofer1994 => "W. Purgathofer, R. Tobler, M. Geiler. Forced random dithering: improved threshold matrices for ordered dithering. ICIP 1994.",
     ramamoorthi2012 => "R. Ramamoorthi, J. Anderson, M. Meyer, D. Nowrouzezahrai. A theory of Monte Carlo visibility sampling. ACM TOG 31(5), 2012.",
@@ -64,6 +68,7 @@ bib! {
     sobol1967 => "I. M. Sobol'. On the distribution of points in a cube and the approximate evaluation of integrals. USSR Comput. Math. Math. Phys. 7(4), 1967.",
     subr2013 => "K. Subr, J. Kautz. Fourier analysis of stochastic sampling strategies for assessing bias and variance in integration. ACM TOG 32(4), 2013.",
     tang1993 => "B. Tang. Orthogonal array-based Latin hypercubes. J. Amer. Statist. Assoc. 88(424), 1993.",
+    ulichney1993 => "R. Ulichney. The void-and-cluster method for dither array generation. Proc. SPIE 1913, Human Vision, Visual Processing, and Digital Display IV, 1993.",
     vegdahl2021 => "N. Vegdahl. Building a better LK hash. psychopath.io blog, 2021 (constants of the Owen hash).",
     weyl1916 => "H. Weyl. Über die Gleichverteilung von Zahlen mod. Eins. Math. Ann. 77, 1916.",
     yuksel2015 => "C. Yuksel. Sample elimination for generating Poisson disk sample sets. Computer Graphics Forum 34(2), Eurographics 2015.",

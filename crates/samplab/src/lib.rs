@@ -35,6 +35,7 @@ pub mod integrand;
 pub mod io;
 pub mod memory;
 pub mod numeric;
+pub mod pixel;
 pub mod points;
 pub mod progress;
 pub mod registry;

@@ -35,6 +35,8 @@ __all__ = [
     "formats",
     "scenes",
     "generate",
+    "pixel_samplers",
+    "pixels",
     "is_sequence",
     "sequence_points",
     "warp",
@@ -146,6 +148,37 @@ def generate(spec: str, n: int, d: int = 2, seed: Optional[int] = None, sets: Op
     m = 1 if sets is None else _count("sets", sets)
     out = _samplab.generate(spec, _count("n", n), _count("d", d), _seed(seed), m)
     return out[0] if sets is None else out
+
+
+def pixel_samplers() -> List[Dict[str, Any]]:
+    """Every pixel sampler family (``"zsobol"``, ``"sobol.padded"``, ``"pmj02.bn"``,
+    ``"dither"``, ``"openqmc.sobolbn"``, ...): name, aliases, summary, params, references,
+    and details (sample counts, dimensions, and how the family becomes a pixel sampler)."""
+    return _registry("pixels")
+
+
+def pixels(
+    spec: str, res: Sequence[int], spp: int, dims: int = 2, frames: int = 1, seed: Optional[int] = None
+) -> np.ndarray:
+    """Every value the pixel sampler ``spec`` gives a film of ``res = (width, height)``
+    pixels: a float64 array of shape (frames, height, width, spp, dims), whose entry
+    [f, y, x, i, d] is dimension d of sample i of pixel (x, y) in frame f. A pure function
+    of (seed, pixel, frame, index, dimension): the bytes equal ``samplab pixels`` with the
+    same arguments. A sample count the family does not take (ZSobol asked for 3 spp)
+    raises ``samplab.Error`` naming the nearest that work.
+    """
+    try:
+        if isinstance(res, (str, bytes)):
+            raise TypeError
+        width, height = res
+    except (TypeError, ValueError):
+        raise Error(f"res must be (width, height), got {res!r}") from None
+    keys = {"width": width, "height": height, "spp": spp, "dims": dims, "frames": frames}
+    for name, value in keys.items():
+        if _count(name, value) >= 2**32:
+            raise Error(f"{name} = {value}: out of range [0, 2^32)")
+    film = (int(width), int(height), int(spp), int(dims))
+    return _samplab.pixels(spec, film, int(frames), _seed(seed))
 
 
 def is_sequence(spec: str) -> bool:

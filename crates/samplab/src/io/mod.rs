@@ -133,20 +133,27 @@ fn prologue(format: Format, header: &[String], sets: usize, n: usize, dims: usiz
             let cols: Vec<String> = (0..dims).map(|d| format!("x{d}")).collect();
             writeln!(out, "{}{}", if sets > 1 { "set," } else { "" }, cols.join(",")).unwrap();
         }
-        Format::Npy => {
-            let shape = if sets == 1 { format!("({n}, {dims})") } else { format!("({sets}, {n}, {dims})") };
-            let mut dict = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}");
-            // magic(6) + version(2) + len(2) + dict + '\n' is a multiple of 64
-            while (10 + dict.len() + 1) % 64 != 0 {
-                dict.push(' ');
-            }
-            dict.push('\n');
-            out.extend_from_slice(b"\x93NUMPY\x01\x00");
-            out.extend_from_slice(&(dict.len() as u16).to_le_bytes());
-            out.extend_from_slice(dict.as_bytes());
-        }
+        Format::Npy if sets == 1 => out = npy_header(&[n, dims]),
+        Format::Npy => out = npy_header(&[sets, n, dims]),
         Format::Json => {}
     }
+    out
+}
+
+/// The header of a version-1 `.npy` file of little-endian f64 in C order with this shape
+/// (the values follow it, 8 bytes each).
+pub fn npy_header(shape: &[usize]) -> Vec<u8> {
+    let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
+    let shape = if dims.len() == 1 { format!("({},)", dims[0]) } else { format!("({})", dims.join(", ")) };
+    let mut dict = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}");
+    // magic(6) + version(2) + len(2) + dict + '\n' is a multiple of 64
+    while (10 + dict.len() + 1) % 64 != 0 {
+        dict.push(' ');
+    }
+    dict.push('\n');
+    let mut out = b"\x93NUMPY\x01\x00".to_vec();
+    out.extend_from_slice(&(dict.len() as u16).to_le_bytes());
+    out.extend_from_slice(dict.as_bytes());
     out
 }
 

@@ -59,29 +59,34 @@ impl Construction for Pmj02 {
 }
 
 impl Pmj02 {
-
     fn fill(&self, n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
-        let t = partner_masks();
-        let mut rng = seed.rng();
-        let mut xy: Vec<[u32; 2]> = Vec::with_capacity(n);
-        xy.push([rng.next_u32(), rng.next_u32()]);
-        for i in 1..n {
-            let m = i.ilog2() as usize;
-            let px = i ^ (1 << m);
-            let py = px ^ t[m] as usize;
-            let keep = if m == 0 { 0 } else { !0u32 << (32 - m) };
-            let flip = 1u32 << (31 - m);
-            let fresh = flip - 1;
-            let child = |parent: u32, r: u32| (parent & keep) | (!parent & flip) | (r & fresh);
-            let r = rng.next_u64();
-            xy.push([child(xy[px][0], r as u32), child(xy[py][1], (r >> 32) as u32)]);
-        }
-        for (p, q) in out.chunks_exact_mut(2).zip(&xy) {
+        for (p, q) in out.chunks_exact_mut(2).zip(&pmj02_digits(n, seed)) {
             p[0] = f64::from(q[0]) / 4_294_967_296.0;
             p[1] = f64::from(q[1]) / 4_294_967_296.0;
         }
         Ok(())
     }
+}
+
+/// The first `n` points of the pmj02 sequence of `seed`, as 32-bit fixed-point digits.
+pub(crate) fn pmj02_digits(n: usize, seed: Seed) -> Vec<[u32; 2]> {
+    let t = partner_masks();
+    let mut rng = seed.rng();
+    let mut xy: Vec<[u32; 2]> = Vec::with_capacity(n);
+    xy.push([rng.next_u32(), rng.next_u32()]);
+    for i in 1..n {
+        let m = i.ilog2() as usize;
+        let px = i ^ (1 << m);
+        let py = px ^ t[m] as usize;
+        let keep = if m == 0 { 0 } else { !0u32 << (32 - m) };
+        let flip = 1u32 << (31 - m);
+        let fresh = flip - 1;
+        let child = |parent: u32, r: u32| (parent & keep) | (!parent & flip) | (r & fresh);
+        let r = rng.next_u64();
+        xy.push([child(xy[px][0], r as u32), child(xy[py][1], (r >> 32) as u32)]);
+    }
+    xy.truncate(n);
+    xy
 }
 
 /// Correlated multi-jittered sampling (Kensler 2013, section 4): an m x k arrangement of

@@ -1,0 +1,48 @@
+"""Pixel samplers from Python: the CLI's bytes, the shape and the errors."""
+
+import numpy as np
+import pytest
+
+import samplab
+
+from conftest import load_npy
+
+
+@pytest.mark.parametrize(
+    "spec, res, spp, dims, frames",
+    [("zsobol", (7, 5), 8, 6, 2), ("sobol.padded:randomize=owen", (4, 4), 3, 3, 1), ("openqmc.pmjbn", (3, 2), 4, 5, 1)],
+)
+def test_pixels_equal_the_cli_bytes(cli, tmp_path, spec, res, spp, dims, frames):
+    out = tmp_path / "p.npy"
+    cli("pixels", spec, "--res", f"{res[0]}x{res[1]}", "--spp", spp, "--dims", dims, "--frames", frames,
+        "--seed", 5, "-o", out)
+    a = samplab.pixels(spec, res, spp=spp, dims=dims, frames=frames, seed=5)
+    assert a.shape == (frames, res[1], res[0], spp, dims)
+    assert a.tobytes() == load_npy(out).tobytes()
+
+
+def test_every_pixel_sampler_is_listed_and_draws_in_the_unit_interval():
+    names = [e["name"] for e in samplab.pixel_samplers()]
+    assert {"zsobol", "sobol", "sobol.padded", "pmj02", "dither", "openqmc.sobolbn"} <= set(names)
+    for name in names:
+        a = samplab.pixels(name, (3, 2), spp=4, dims=4)
+        assert ((0 <= a) & (a < 1)).all(), name
+    assert any("mapping:" in d for d in samplab.pixel_samplers()[0]["details"])
+
+
+@pytest.mark.parametrize(
+    "call, message",
+    [
+        (lambda: samplab.pixels("zsobol", (4, 4), spp=3), "spp a power of two: try 2 and 4"),
+        (lambda: samplab.pixels("zsobl", (4, 4), spp=4), "did you mean zsobol"),
+        (lambda: samplab.pixels("zsobol", (0, 4), spp=4), "a film side is 1 to"),
+        (lambda: samplab.pixels("zsobol", (4, 4), spp=4.0), "spp must be a whole number"),
+        (lambda: samplab.pixels("zsobol", 4, spp=4), "res must be (width, height)"),
+        (lambda: samplab.pixels("sobol", (4, 4), spp=4, dims=2000), "2000D is not supported"),
+        (lambda: samplab.pixels("sobol", (4, 4), spp=2**40), "spp = 1099511627776: out of range"),
+    ],
+)
+def test_bad_arguments_raise_samplab_error(call, message):
+    with pytest.raises(samplab.Error, match=None) as e:
+        call()
+    assert message in str(e.value)

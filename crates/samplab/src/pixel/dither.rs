@@ -1,0 +1,86 @@
+//! Blue-noise dithered sampling (Georgiev & Fajardo 2016): every pixel draws the same
+//! Owen-scrambled Sobol' samples, each pixel toroidally shifted by its value in a
+//! blue-noise mask (void-and-cluster, [`super::mask`]), so that neighbouring pixels' errors
+//! are negatively correlated and the error spreads as blue noise over the screen.
+
+use super::mask::Mask;
+use super::sobol::{ByteTables, byte_tables, digits};
+use super::{Film, PixelEntry, PixelSampler, rekey, unit};
+use crate::error::Result;
+use crate::registry::About;
+use crate::sampler::qmc::sobol::SOBOL_MAX_DIMS;
+use crate::sampler::randomize::scramble::owen_scramble_u32;
+use crate::seed::Seed;
+use crate::spec::{Default, Kind, ParamSpec, Params};
+
+/// The mask side parameter of the mask-shifted families.
+pub(super) const MASK: ParamSpec = ParamSpec {
+    name: "mask",
+    kind: Kind::Int { min: 4, max: super::mask::MAX_SIZE as u64 },
+    default: Default::Int(64),
+    doc: "side of the void-and-cluster blue-noise mask, in pixels (it tiles the screen)",
+};
+
+pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
+    about: About::new(
+        "dither",
+        "blue-noise dithered sampling: one Owen-scrambled Sobol' set for every pixel, each pair of \
+         dimensions toroidally shifted by a two-channel void-and-cluster mask",
+    )
+    .aliases(&["dithered", "georgiev-fajardo"])
+    .params(&[MASK])
+    .cite(&["georgiev2016", "ulichney1993", "burley2020"]),
+    spp: super::Counts::Any("the shared set a net at powers of two; shifts keep it a toroidal translate"),
+    dims: "1 to 1024 (the Joe-Kuo table)",
+    max_dims: SOBOL_MAX_DIMS as u32,
+    mapping: "one toroidal shift per pixel and pair of dimensions: the mask value at the pixel, the \
+              mask itself shifted by a hash of (seed, frame, pair), so pairs and frames see unrelated \
+              parts of the same blue noise; the set is the same in every pixel of a frame",
+    build,
+}];
+
+/// Per-pixel toroidal shifts read from a two-channel blue-noise mask.
+#[derive(Debug)]
+pub(super) struct Shifts {
+    mask: Mask,
+    seed: Seed,
+}
+
+impl Shifts {
+    /// A mask of side `size` for `seed`.
+    pub(super) fn new(size: usize, seed: Seed) -> Result<Shifts> {
+        Ok(Shifts { mask: Mask::void_and_cluster(size, 2, seed.derive_str("dither mask"))?, seed })
+    }
+
+    /// The shift of `pixel` for the dimension pair `pair` in `frame`, as 32-bit fixed point.
+    #[inline]
+    pub(super) fn shift(&self, pixel: [u32; 2], frame: u32, pair: u32) -> [u32; 2] {
+        let h = rekey(self.seed.derive(u64::from(frame)).0, u64::from(pair));
+        let (x, y) = (pixel[0].wrapping_add(h as u32), pixel[1].wrapping_add((h >> 32) as u32));
+        let fixed = |c| (self.mask.value(x, y, c) * 4_294_967_296.0) as u32;
+        [fixed(0), fixed(1)]
+    }
+}
+
+#[derive(Debug)]
+struct Dither {
+    seed: Seed,
+    tables: Vec<ByteTables>,
+    shifts: Shifts,
+}
+
+fn build(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
+    Ok(Box::new(Dither {
+        seed,
+        tables: (0..film.dims as usize).map(byte_tables).collect(),
+        shifts: Shifts::new(p.int("mask") as usize, seed)?,
+    }))
+}
+
+impl PixelSampler for Dither {
+    fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
+        let key = rekey(self.seed.derive(u64::from(frame)).0, u64::from(dim) | 1 << 40);
+        let x = owen_scramble_u32(digits(&self.tables[dim as usize], index), key as u32);
+        unit(x.wrapping_add(self.shifts.shift(pixel, frame, dim / 2)[(dim & 1) as usize]))
+    }
+}

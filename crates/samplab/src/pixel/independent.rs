@@ -1,0 +1,32 @@
+//! Independent uniform values: the baseline every pixel sampler is measured against.
+
+use super::{ANY_SPP, Film, PixelEntry, PixelSampler, pixel_key, rekey};
+use crate::error::Result;
+use crate::registry::About;
+use crate::seed::Seed;
+use crate::spec::Params;
+
+pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
+    about: About::new("independent", "independent uniform values, 53 random bits each, hashed from every key")
+        .aliases(&["random", "uniform"])
+        .cite(&["cook1986"]),
+    spp: ANY_SPP,
+    dims: "any",
+    max_dims: super::MAX_DIMS,
+    mapping: "none needed: every value is a hash of (seed, pixel, frame, index, dimension)",
+    build,
+}];
+
+#[derive(Debug)]
+struct Independent(Seed);
+
+fn build(_: &Params, _: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
+    Ok(Box::new(Independent(seed)))
+}
+
+impl PixelSampler for Independent {
+    fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
+        let h = rekey(pixel_key(self.0, pixel, frame), (u64::from(index) << 32) | u64::from(dim));
+        (h >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+}

@@ -1,0 +1,352 @@
+//! Pixel samplers: samples as renderers draw them, one number at a time, keyed by
+//! (seed, pixel, frame, index, dimension).
+//!
+//! A renderer asks, for pixel p, sample i of that pixel and dimension d (film position,
+//! lens, time, light, each bounce), for one value in [0, 1), in any order and from many
+//! threads. A [`Pixels`] answers [`Pixels::sample`] as a pure function of those keys: random
+//! access, O(1) or O(log) per value, no allocation, shared across threads by reference.
+//! It is prepared once for a [`Film`] (resolution, samples per pixel, dimensions), which is
+//! where tables are built (a PMJ02 pool, a blue-noise mask).
+//!
+//! How a point-set family becomes a pixel sampler is part of its entry ([`PixelEntry::mapping`]):
+//! - one set per pixel, decorrelated by a hashed per-pixel seed (`sobol`, `stratified`,
+//!   `pmj02`);
+//! - dimension padding: each pair of dimensions from its own randomization of a 2D pattern
+//!   (`sobol.padded`, `stratified`, `pmj02`, as pbrt-v4's padded samplers) against a true
+//!   high-dimensional sequence (`sobol`: dimension d is Sobol' dimension d);
+//! - screen-space orderings and masks: `zsobol` (Morton-ordered pixels, Ahmed & Wonka
+//!   2020), `dither` and `pmj02.bn` (one toroidal shift per pixel from a blue-noise mask,
+//!   Georgiev & Fajardo 2016), OpenQMC's `*bn` tables.
+//!
+//! ```
+//! use samplab::{Seed, pixel};
+//! let film = pixel::Film { width: 64, height: 32, spp: 16, dims: 8 };
+//! let zsobol = pixel::prepare("zsobol", film, Seed(7))?;
+//! let u = zsobol.sample([3, 5], 0, 2, 4);
+//! assert!((0.0..1.0).contains(&u));
+//! // the same keys give the same value, whatever thread asks
+//! assert_eq!(u, std::thread::scope(|s| s.spawn(|| zsobol.sample([3, 5], 0, 2, 4)).join().unwrap()));
+//! # Ok::<(), samplab::Error>(())
+//! ```
+//!
+//! [`PIXEL_SAMPLERS`] (and `samplab list pixels`) is the table of families.
+
+use std::fmt::Debug;
+
+use rayon::prelude::*;
+
+use crate::error::{Error, Result};
+use crate::registry::{About, Entry, canonical};
+use crate::sampler::Counts;
+use crate::seed::Seed;
+use crate::spec::Params;
+
+pub mod mask;
+pub mod pbrt;
+
+crate::registry::registry_files! {
+    /// Every pixel sampler family, in listing order.
+    pub static PIXEL_SAMPLERS: Registry<PixelEntry> = ("pixel sampler",
+        "PIXEL SAMPLERS  (spec: name[:key=value,...]; values keyed by seed, pixel, frame, index, dimension)")
+        from [independent, stratified, sobol, zsobol, pmj, dither, openqmc];
+}
+
+/// The most dimensions a pixel sampler is prepared for.
+pub const MAX_DIMS: u32 = 1 << 16;
+
+/// The largest side of a film, in pixels.
+pub const MAX_SIDE: u32 = 1 << 16;
+
+/// What a pixel sampler is prepared for: the film's resolution, the samples per pixel and
+/// the dimensions drawn per sample.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Film {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Dimensions per sample.
+    pub dims: u32,
+}
+
+impl Film {
+    /// Whether the film is valid on its own: sides in 1..=[`MAX_SIDE`] (the setting `res`),
+    /// spp at least 1, dimensions in 1..=[`MAX_DIMS`].
+    ///
+    /// # Errors
+    /// [`Error::Setting`] naming the setting out of range.
+    pub fn check(&self) -> Result<()> {
+        let bad = |name, value: u32, reason: &str| {
+            Err(Error::Setting { name, value: value.to_string(), reason: reason.into() })
+        };
+        if [self.width, self.height].iter().any(|&side| side == 0 || side > MAX_SIDE) {
+            return Err(Error::Setting {
+                name: "res",
+                value: format!("{}x{}", self.width, self.height),
+                reason: format!("a film side is 1 to {MAX_SIDE} pixels"),
+            });
+        }
+        if self.spp == 0 {
+            return bad("spp", 0, "at least one sample per pixel");
+        }
+        if self.dims == 0 || self.dims > MAX_DIMS {
+            return bad("dims", self.dims, &format!("1 to {MAX_DIMS} dimensions"));
+        }
+        Ok(())
+    }
+}
+
+/// A prepared family: the value of every (pixel, frame, index, dimension) for one seed.
+///
+/// Implementations are pure: no interior state changes, so one value may be shared by
+/// every render thread. Keys outside the film (`index >= spp`, `dim >= dims`, a pixel
+/// off the film) are the caller's to avoid; [`Pixels::try_sample`] checks them.
+pub trait PixelSampler: Send + Sync + Debug {
+    /// Dimension `dim` of sample `index` of `pixel` (x, y) in `frame`, in [0, 1).
+    fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64;
+
+    /// Dimensions `dim .. dim + 4` at once (the families that compute a pair or a block
+    /// together override it).
+    fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
+        std::array::from_fn(|k| self.sample(pixel, frame, index, dim + k as u32))
+    }
+}
+
+/// A family that computes its dimensions in pairs (2k, 2k + 1), one 2D pattern each: it is
+/// a [`PixelSampler`] through this.
+pub(crate) trait Pairs: Send + Sync + Debug {
+    /// Dimensions `first` and `first + 1` of a sample (`first` even).
+    fn pair(&self, pixel: [u32; 2], frame: u32, index: u32, first: u32) -> [f64; 2];
+}
+
+impl<T: Pairs> PixelSampler for T {
+    fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
+        self.pair(pixel, frame, index, dim & !1)[(dim & 1) as usize]
+    }
+
+    fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
+        if dim & 1 == 1 {
+            return std::array::from_fn(|k| self.sample(pixel, frame, index, dim + k as u32));
+        }
+        let [a, b] = self.pair(pixel, frame, index, dim);
+        let [c, d] = self.pair(pixel, frame, index, dim + 2);
+        [a, b, c, d]
+    }
+}
+
+/// A registered pixel sampler family.
+#[derive(Debug)]
+pub struct PixelEntry {
+    /// Name, aliases, summary, parameters, references.
+    pub about: About,
+    /// Which sample counts per pixel it takes, and where it stratifies.
+    pub spp: Counts,
+    /// How many dimensions it draws (at most [`MAX_DIMS`]), in words; `max_dims` is the number.
+    pub dims: &'static str,
+    /// The most dimensions.
+    pub max_dims: u32,
+    /// How the point-set family becomes a pixel sampler, in words.
+    pub mapping: &'static str,
+    /// Builds the prepared sampler for a film and a seed (the film already checked).
+    pub(crate) build: fn(&Params, Film, Seed) -> Result<Box<dyn PixelSampler>>,
+}
+
+impl Entry for PixelEntry {
+    fn about(&self) -> &About {
+        &self.about
+    }
+    fn details(&self) -> Vec<String> {
+        vec![format!("spp: {}; dimensions: {}", self.spp.describe(), self.dims), format!("mapping: {}", self.mapping)]
+    }
+}
+
+/// A pixel sampler prepared for a film and a seed, with its spec.
+#[derive(Debug)]
+pub struct Pixels {
+    spec: String,
+    film: Film,
+    seed: Seed,
+    inner: Box<dyn PixelSampler>,
+}
+
+/// Prepare the pixel sampler `spec` (e.g. `zsobol`, `sobol.padded:randomize=owen`) for a
+/// film and a seed.
+///
+/// # Errors
+/// An unknown name or bad parameters, a film out of range, a sample count the family does
+/// not take, or more dimensions than it draws.
+pub fn prepare(spec: &str, film: Film, seed: Seed) -> Result<Pixels> {
+    let (entry, params) = PIXEL_SAMPLERS.resolve(spec)?;
+    let spec = canonical(&entry.about, &params);
+    film.check()?;
+    entry.spp.check(film.spp as usize, 2).map_err(|e| match e {
+        Error::InvalidCount { reason, .. } => {
+            Error::Setting { name: "spp", value: film.spp.to_string(), reason: format!("{spec}: {reason}") }
+        }
+        other => other,
+    })?;
+    if film.dims > entry.max_dims {
+        return Err(Error::InvalidDims { sampler: spec, dims: film.dims as usize, supported: entry.dims.into() });
+    }
+    let inner = (entry.build)(&params, film, seed)?;
+    Ok(Pixels { spec, film, seed, inner })
+}
+
+impl Pixels {
+    /// The canonical spec.
+    pub fn spec(&self) -> &str {
+        &self.spec
+    }
+
+    /// The film it was prepared for.
+    pub fn film(&self) -> Film {
+        self.film
+    }
+
+    /// The seed it was prepared with.
+    pub fn seed(&self) -> Seed {
+        self.seed
+    }
+
+    /// Dimension `dim` of sample `index` of `pixel` (x, y) in `frame`, in [0, 1): the hot
+    /// path, unchecked (keys outside the film give some value, never a panic in release).
+    #[inline]
+    pub fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
+        self.inner.sample(pixel, frame, index, dim)
+    }
+
+    /// Dimensions `dim .. dim + 4` of one sample.
+    #[inline]
+    pub fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
+        self.inner.sample4(pixel, frame, index, dim)
+    }
+
+    /// [`Pixels::sample`] with every key checked against the film.
+    ///
+    /// # Errors
+    /// [`Error::Setting`] naming the key out of range.
+    pub fn try_sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> Result<f64> {
+        let f = self.film;
+        for (name, value, end) in
+            [("x", pixel[0], f.width), ("y", pixel[1], f.height), ("index", index, f.spp), ("dim", dim, f.dims)]
+        {
+            if value >= end {
+                return Err(Error::Setting { name, value: value.to_string(), reason: format!("must be below {end}") });
+            }
+        }
+        Ok(self.sample(pixel, frame, index, dim))
+    }
+
+    /// How many values `frames` frames of the whole film hold.
+    ///
+    /// # Errors
+    /// [`Error::Setting`] when the count overflows memory's address space.
+    pub fn values(&self, frames: u32) -> Result<usize> {
+        let f = self.film;
+        [f.width, f.height, f.spp, f.dims]
+            .iter()
+            .try_fold(frames as usize, |acc, &k| acc.checked_mul(k as usize))
+            .filter(|&n| n <= isize::MAX as usize / 8)
+            .ok_or_else(|| Error::Setting {
+                name: "frames",
+                value: frames.to_string(),
+                reason: "frames x width x height x spp x dims values do not fit in memory".into(),
+            })
+    }
+
+    /// Every value of `frames` frames, in the order (frame, y, x, index, dim): an array of
+    /// shape (frames, height, width, spp, dims). Rows are filled in parallel; the values do
+    /// not depend on the thread count.
+    ///
+    /// # Errors
+    /// As [`Pixels::values`], or a refused allocation ([`crate::memory`]).
+    pub fn fill(&self, frames: u32) -> Result<Vec<f64>> {
+        let total = self.values(frames)?;
+        let mut out = crate::memory::zeroed::<f64>(|| format!("{total} pixel sampler values"), total)?;
+        let f = self.film;
+        let row = f.width as usize * f.spp as usize * f.dims as usize;
+        if row == 0 {
+            return Ok(out);
+        }
+        out.par_chunks_mut(row).enumerate().for_each(|(r, values)| {
+            let (frame, y) = ((r / f.height as usize) as u32, (r % f.height as usize) as u32);
+            let mut k = 0;
+            for x in 0..f.width {
+                for i in 0..f.spp {
+                    let mut d = 0;
+                    while d + 4 <= f.dims {
+                        values[k..k + 4].copy_from_slice(&self.sample4([x, y], frame, i, d));
+                        k += 4;
+                        d += 4;
+                    }
+                    for d in d..f.dims {
+                        values[k] = self.sample([x, y], frame, i, d);
+                        k += 1;
+                    }
+                }
+            }
+        });
+        Ok(out)
+    }
+}
+
+/// A hash of the keys of one pixel sample: (seed, pixel, frame), the start of every
+/// family's per-pixel randomization.
+#[inline]
+pub(crate) fn pixel_key(seed: Seed, pixel: [u32; 2], frame: u32) -> u64 {
+    let p = (u64::from(pixel[1]) << 32) | u64::from(pixel[0]);
+    crate::seed::mix64(crate::seed::mix64(seed.0 ^ 0x51_7CC1_B727_220A).wrapping_add(p) ^ u64::from(frame))
+}
+
+/// A further hash of a key with a word (a dimension, a sample index).
+#[inline]
+pub(crate) fn rekey(key: u64, word: u64) -> u64 {
+    crate::seed::mix64(key.wrapping_add(word.wrapping_mul(0x9E37_79B9_7F4A_7C15)))
+}
+
+/// 32 bits of fixed point to [0, 1), exactly.
+#[inline(always)]
+pub(crate) fn unit(bits: u32) -> f64 {
+    f64::from(bits) * (1.0 / 4_294_967_296.0)
+}
+
+/// The rule "any spp".
+pub(crate) const ANY_SPP: Counts = Counts::Any("");
+
+/// spp a power of two.
+pub(crate) const POWER_OF_TWO_SPP: Counts =
+    Counts::Listed { rule: "spp a power of two", list: |_, _| Box::new((0..32).map(|k| 1usize << k)) };
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_registry_is_consistent_and_every_family_prepares() {
+        assert_eq!(PIXEL_SAMPLERS.problems(), Vec::<String>::new());
+        let film = Film { width: 5, height: 3, spp: 4, dims: 6 };
+        for e in PIXEL_SAMPLERS.iter() {
+            let p = prepare(e.about.name, film, Seed(1)).unwrap();
+            assert_eq!(prepare(p.spec(), film, Seed(1)).unwrap().spec(), p.spec(), "spec round trip");
+            let v = p.fill(2).unwrap();
+            assert_eq!(v.len(), 2 * 5 * 3 * 4 * 6);
+            assert!(v.iter().all(|x| (0.0..1.0).contains(x)), "{}", e.about.name);
+        }
+    }
+
+    #[test]
+    fn bad_films_and_keys_are_named() {
+        let film = Film { width: 4, height: 4, spp: 3, dims: 2 };
+        let e = prepare("zsobol", film, Seed(1)).unwrap_err().to_string();
+        assert_eq!(e, "spp = 3: zsobol: spp a power of two: try 2 and 4");
+        let e = prepare("sobol", Film { dims: 5000, ..film }, Seed(1)).unwrap_err().to_string();
+        assert!(e.contains("5000D is not supported"), "{e}");
+        let e = prepare("zsobol", Film { width: 0, ..film }, Seed(1)).unwrap_err().to_string();
+        assert!(e.starts_with("res = 0x4: a film side"), "{e}");
+        let p = prepare("independent", film, Seed(1)).unwrap();
+        assert_eq!(p.try_sample([0, 4], 0, 0, 0).unwrap_err().to_string(), "y = 4: must be below 4");
+        assert_eq!(p.try_sample([0, 0], 0, 0, 1).unwrap(), p.sample([0, 0], 0, 0, 1));
+    }
+}

@@ -1,0 +1,101 @@
+//! Progressive multi-jittered (0,2) sequences per pixel (Christensen, Kensler & Kilpatrick
+//! 2018, made by Helmer, Christensen & Kensler 2021's stochastic construction), padded by
+//! pairs of dimensions from a pool of independent sequences, as pbrt-v4's `PMJ02BNSampler`
+//! pads; `pmj02.bn` adds a blue-noise shift per pixel.
+
+use super::dither::{MASK, Shifts};
+use super::{Film, Pairs, PixelEntry, PixelSampler, pixel_key, rekey, unit};
+use crate::error::Result;
+use crate::registry::About;
+use crate::sampler::randomize::scramble::permute;
+use crate::sampler::stratified::pmj::pmj02_digits;
+use crate::seed::Seed;
+use crate::spec::Params;
+
+/// Sequences in the pool.
+const POOL: usize = 16;
+
+/// The largest spp: the pool holds [`POOL`] sequences of at most this many points.
+const MOST: u64 = 1 << 16;
+
+pub(crate) static ENTRIES: &[PixelEntry] = &[
+    PixelEntry {
+        about: About::new(
+            "pmj02",
+            "pmj02 per pixel: each pair of dimensions one of 16 pmj02 sequences, its samples permuted \
+             and digitally shifted by a hash of (seed, pixel, frame, pair)",
+        )
+        .aliases(&["pmj"])
+        .cite(&["christensen2018", "helmer2021", "pharr2023"]),
+        spp: super::Counts::AtMost { most: MOST, why: "the pool holds 16 sequences of at most 2^16 points" },
+        dims: "any (pairs of 2D pmj02)",
+        max_dims: super::MAX_DIMS,
+        mapping: "dimension padding: dimensions 2k, 2k+1 take sequence h mod 16 of the pool, sample \
+                  pi(i) of its first spp, XOR-ed with hashed digits (a digital shift, which keeps \
+                  every (0,m,2)-net a net), h a hash of (seed, pixel, frame, k)",
+        build: build_plain,
+    },
+    PixelEntry {
+        about: About::new(
+            "pmj02.bn",
+            "pmj02 with blue-noise pixel shifts: pair k of every pixel is pool sequence k mod 16, its \
+             samples permuted per pixel and toroidally shifted by a void-and-cluster mask",
+        )
+        .aliases(&["pmj02bn"])
+        .params(&[MASK])
+        .cite(&["christensen2018", "helmer2021", "georgiev2016", "ulichney1993", "pharr2023"]),
+        spp: super::Counts::AtMost { most: MOST, why: "the pool holds 16 sequences of at most 2^16 points" },
+        dims: "any (pairs of 2D pmj02)",
+        max_dims: super::MAX_DIMS,
+        mapping: "screen-space mask: as pbrt-v4's PMJ02BNSampler, the pair's sequence is shared by all \
+                  pixels, its samples permuted per pixel, then shifted modulo 1 by the pixel's \
+                  blue-noise value (the mask shifted by a hash of frame and pair)",
+        build: build_bn,
+    },
+];
+
+#[derive(Debug)]
+struct Pmj {
+    seed: Seed,
+    spp: u32,
+    pool: Vec<Vec<[u32; 2]>>,
+    /// The blue-noise shifts (`pmj02.bn`); none for `pmj02`, which shifts digits by hashes.
+    shifts: Option<Shifts>,
+}
+
+fn pool(film: Film, seed: Seed) -> Vec<Vec<[u32; 2]>> {
+    let base = seed.derive_str("pmj02 pool");
+    (0..POOL).map(|k| pmj02_digits(film.spp as usize, base.derive(k as u64))).collect()
+}
+
+fn build_plain(_: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
+    Ok(Box::new(Pmj { seed, spp: film.spp, pool: pool(film, seed), shifts: None }))
+}
+
+fn build_bn(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
+    let shifts = Some(Shifts::new(p.int("mask") as usize, seed)?);
+    Ok(Box::new(Pmj { seed, spp: film.spp, pool: pool(film, seed), shifts }))
+}
+
+impl Pairs for Pmj {
+    #[inline(always)]
+    fn pair(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 2] {
+        let pair = dim / 2;
+        let key = rekey(pixel_key(self.seed, pixel, frame), u64::from(pair));
+        let i = permute(index % self.spp, self.spp, key as u32) as usize;
+        let [x, y] = match &self.shifts {
+            None => {
+                let [x, y] = self.pool[(key >> 40) as usize % POOL][i];
+                let bits = rekey(key, 1);
+                [x ^ bits as u32, y ^ (bits >> 32) as u32]
+            }
+            Some(shifts) => {
+                let [x, y] = self.pool[pair as usize % POOL][i];
+                let [sx, sy] = shifts.shift(pixel, frame, pair);
+                [x.wrapping_add(sx), y.wrapping_add(sy)]
+            }
+        };
+        [unit(x), unit(y)]
+    }
+}
+

@@ -1,0 +1,142 @@
+//! Owen-scrambled Sobol' per pixel: the true high-dimensional sequence shuffled per pixel
+//! (Burley 2020), and pbrt-v4's padded 2D Sobol' (Pharr, Jakob & Humphreys 2023).
+
+use super::pbrt::{RANDOMIZE, Scramble, Sobol2, frame_seed, hash_words, permutation_element};
+use super::{ANY_SPP, Film, Pairs, PixelEntry, PixelSampler, pixel_key, rekey, unit};
+use crate::error::Result;
+use crate::registry::About;
+use crate::sampler::qmc::sobol::{SOBOL_MAX_DIMS, direction_numbers};
+use crate::sampler::randomize::scramble::owen_scramble_u32;
+use crate::seed::Seed;
+use crate::spec::Params;
+
+pub(crate) static ENTRIES: &[PixelEntry] = &[
+    PixelEntry {
+        about: About::new(
+            "sobol",
+            "Owen-scrambled Sobol' per pixel: dimension d is Sobol' dimension d (Joe-Kuo), the index \
+             shuffled and every dimension Owen-scrambled by hashes of (seed, pixel, frame)",
+        )
+        .aliases(&["sobol.owen", "burley"])
+        .cite(&["burley2020", "joe2008", "sobol1967"]),
+        spp: super::Counts::Any("each pixel's first 2^m samples a (t,m,s)-net"),
+        dims: "1 to 1024 (the Joe-Kuo table)",
+        max_dims: SOBOL_MAX_DIMS as u32,
+        mapping: "one sequence per pixel: the index is nested-uniform scrambled by the pixel's hash \
+                  (Burley 2020, section 4), which maps samples 0..2^m to an aligned block of 2^m \
+                  Sobol' points, itself a net; each dimension then Owen-scrambled by its own hash",
+        build: build_sobol,
+    },
+    PixelEntry {
+        about: About::new(
+            "sobol.padded",
+            "pbrt-v4's PaddedSobolSampler: each pair of dimensions a 2D Sobol' pattern with its own \
+             index permutation and scramble per pixel",
+        )
+        .aliases(&["paddedsobol"])
+        .params(&[RANDOMIZE])
+        .terse()
+        .cite(&["pharr2023", "burley2020", "kensler2013"]),
+        spp: ANY_SPP,
+        dims: "any (pairs of 2D Sobol')",
+        max_dims: super::MAX_DIMS,
+        mapping: "dimension padding: dimensions 2k, 2k+1 are Sobol' dimensions 0, 1 at a per-pixel \
+                  permutation of the sample index, scrambled by Hash(pixel, 2k, seed), as pbrt-v4 \
+                  (bit for bit; frame 0 uses the seed's low 32 bits as pbrt's seed)",
+        build: build_padded,
+    },
+];
+
+/// The byte tables of one dimension's generator: entry [b][v] is the XOR of the columns
+/// that byte b of the index selects when it equals v.
+pub(super) type ByteTables = [[u32; 256]; 4];
+
+pub(super) fn byte_tables(dim: usize) -> ByteTables {
+    let c = direction_numbers(dim);
+    std::array::from_fn(|b| {
+        std::array::from_fn(|v| (0..8).filter(|k| v >> k & 1 == 1).fold(0, |x, k| x ^ c[8 * b + k]))
+    })
+}
+
+/// The unscrambled 32 digits of point `index` from its dimension's byte tables.
+#[inline(always)]
+pub(super) fn digits(t: &ByteTables, index: u32) -> u32 {
+    t[0][(index & 0xFF) as usize]
+        ^ t[1][(index >> 8 & 0xFF) as usize]
+        ^ t[2][(index >> 16 & 0xFF) as usize]
+        ^ t[3][(index >> 24) as usize]
+}
+
+#[derive(Debug)]
+struct Burley {
+    seed: Seed,
+    tables: Vec<ByteTables>,
+}
+
+fn build_sobol(_: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
+    Ok(Box::new(Burley { seed, tables: (0..film.dims as usize).map(byte_tables).collect() }))
+}
+
+impl Burley {
+    #[inline(always)]
+    fn value(&self, key: u64, index: u32, dim: u32) -> f64 {
+        unit(owen_scramble_u32(digits(&self.tables[dim as usize], index), rekey(key, u64::from(dim)) as u32))
+    }
+
+    #[inline(always)]
+    fn shuffled(&self, pixel: [u32; 2], frame: u32, index: u32) -> (u64, u32) {
+        let key = pixel_key(self.seed, pixel, frame);
+        (key, owen_scramble_u32(index, (key >> 32) as u32))
+    }
+}
+
+impl PixelSampler for Burley {
+    fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
+        let (key, i) = self.shuffled(pixel, frame, index);
+        self.value(key, i, dim)
+    }
+
+    fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
+        let (key, i) = self.shuffled(pixel, frame, index);
+        std::array::from_fn(|k| self.value(key, i, dim + k as u32))
+    }
+}
+
+#[derive(Debug)]
+struct Padded {
+    seed: u64,
+    spp: u32,
+    scramble: Scramble,
+    sobol: Sobol2,
+}
+
+fn build_padded(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
+    let scramble = Scramble::from_word(p.word("randomize"));
+    Ok(Box::new(Padded { seed: seed.0, spp: film.spp, scramble, sobol: Sobol2::default() }))
+}
+
+impl Pairs for Padded {
+    #[inline(always)]
+    fn pair(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 2] {
+        let hash = hash_words(&[pixel[0], pixel[1], dim, frame_seed(self.seed, frame)]);
+        let i = u64::from(permutation_element(index, self.spp, hash as u32));
+        [
+            unit(self.scramble.apply(self.sobol.digits(i, 0), hash as u32)),
+            unit(self.scramble.apply(self.sobol.digits(i, 1), (hash >> 32) as u32)),
+        ]
+    }
+}
+
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn byte_tables_equal_the_column_walk() {
+        let t = byte_tables(5);
+        for index in [0u32, 1, 255, 256, 0x1234_5678, u32::MAX] {
+            assert_eq!(digits(&t, index), crate::sampler::qmc::sobol::sobol_u32(index, 5));
+        }
+    }
+}

@@ -1,0 +1,57 @@
+//! Jittered strata per pixel with dimension padding (Cook 1986; as pbrt's
+//! `StratifiedSampler`, with hashed permutations instead of its stream of draws).
+
+use super::{ANY_SPP, Film, Pairs, PixelEntry, PixelSampler, pixel_key, rekey};
+use crate::error::Result;
+use crate::numeric::BELOW_ONE;
+use crate::registry::About;
+use crate::sampler::randomize::scramble::permute;
+use crate::seed::Seed;
+use crate::spec::Params;
+
+pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
+    about: About::new(
+        "stratified",
+        "jittered a x b strata per pixel for each pair of dimensions, a the largest divisor of spp \
+         not above its square root",
+    )
+    .aliases(&["jittered", "stratified.padded"])
+    .cite(&["cook1986", "pharr2023", "kensler2013"]),
+    spp: ANY_SPP,
+    dims: "any (pairs of 2D strata)",
+    max_dims: super::MAX_DIMS,
+    mapping: "dimension padding: dimensions 2k, 2k+1 put sample i in stratum pi(i) of an a x b grid, \
+              jittered, pi a hashed permutation of (seed, pixel, frame, k); every pair of a pixel's \
+              samples is stratified, different pairs are independent",
+    build,
+}];
+
+#[derive(Debug)]
+struct Stratified {
+    seed: Seed,
+    spp: u32,
+    /// Columns (x strata) and rows (y strata), columns >= rows.
+    columns: u32,
+    rows: u32,
+}
+
+fn build(_: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
+    let rows = (1..=film.spp.isqrt()).rev().find(|a| film.spp.is_multiple_of(*a)).unwrap_or(1);
+    Ok(Box::new(Stratified { seed, spp: film.spp, columns: film.spp / rows, rows }))
+}
+
+impl Pairs for Stratified {
+    #[inline(always)]
+    fn pair(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 2] {
+        let key = rekey(pixel_key(self.seed, pixel, frame), u64::from(dim / 2));
+        let stratum = permute(index % self.spp, self.spp, key as u32);
+        let jitter = rekey(key, u64::from(index) + 1);
+        let (cx, cy) = (stratum % self.columns, stratum / self.columns);
+        // the quotient can round up to 1 when a side has more than 2^22 cells
+        let u = |cell: u32, bits: u64, cells: u32| {
+            ((f64::from(cell) + super::unit(bits as u32)) / f64::from(cells)).min(BELOW_ONE)
+        };
+        [u(cx, jitter, self.columns), u(cy, jitter >> 32, self.rows)]
+    }
+}
+

@@ -1,0 +1,187 @@
+//! The pixel samplers against independent references: pbrt-v4's own values (a fixture
+//! made by `scripts/pbrt/pixel_samplers.sh` from pbrt's headers), `openqmc-rs` called
+//! directly, and the stratification each family promises, counted on elementary intervals.
+
+use samplab::Seed;
+use samplab::pixel::{Film, PIXEL_SAMPLERS, Pixels, prepare};
+
+/// pbrt's `FloatOneMinusEpsilon`.
+const ONE_MINUS_EPSILON: f32 = 0.999_999_94;
+
+#[test]
+fn zsobol_and_padded_sobol_equal_pbrt_v4_bit_for_bit() {
+    let text = include_str!("fixtures/pbrt_pixel_samplers.txt");
+    let mut checked = 0;
+    let mut prepared: Option<(String, Pixels)> = None;
+    for line in text.lines().filter(|l| !l.starts_with('#')) {
+        let f: Vec<&str> = line.split(' ').collect();
+        let num = |k: usize| f[k].parse::<u32>().unwrap();
+        let randomize = match f[1] {
+            "permutedigits" => "xor",
+            other => other,
+        };
+        let name = if f[0] == "zsobol" { "zsobol" } else { "sobol.padded" };
+        let key = format!("{name}:randomize={randomize} {} {} {} {}", num(2), num(3), num(4), num(5));
+        if prepared.as_ref().is_none_or(|(k, _)| *k != key) {
+            let film = Film { width: num(3), height: num(4), spp: num(2), dims: 8 };
+            let p = prepare(&format!("{name}:randomize={randomize}"), film, Seed(u64::from(num(5)))).unwrap();
+            prepared = Some((key.clone(), p));
+        }
+        let p = &prepared.as_ref().unwrap().1;
+        let ours = (p.sample([num(6), num(7)], 0, num(8), num(9)) as f32).min(ONE_MINUS_EPSILON);
+        let theirs = f32::from_bits(u32::from_str_radix(f[10], 16).unwrap());
+        assert_eq!(ours.to_bits(), theirs.to_bits(), "{line}: samplab {ours}, pbrt {theirs}");
+        checked += 1;
+    }
+    // 4 randomizations x 2 samplers x 2 films x 5 pixels x (16 or 8) samples x 8 dimensions
+    assert_eq!(checked, 7680);
+}
+
+#[test]
+fn openqmc_families_equal_openqmc_rs_called_directly() {
+    use openqmc::{
+        LatticeBnSampler, LatticeSampler, PmjBnSampler, PmjSampler, Sampler, SamplerImpl, SobolBnSampler, SobolSampler,
+    };
+    fn direct<T: SamplerImpl>(key: i32, x: i32, y: i32, frame: i32, index: i32, dim: u32) -> u32 {
+        Sampler::<T>::new(x, y, frame, index).new_domain(key).new_domain((dim / 4) as i32).draw_sample::<4>()
+            [(dim % 4) as usize]
+    }
+    type Direct = fn(i32, i32, i32, i32, i32, u32) -> u32;
+    let families: [(&str, Direct); 6] = [
+        ("openqmc.sobol", |k, x, y, f, i, d| direct::<<SobolSampler as Imp>::T>(k, x, y, f, i, d)),
+        ("openqmc.sobolbn", |k, x, y, f, i, d| direct::<<SobolBnSampler as Imp>::T>(k, x, y, f, i, d)),
+        ("openqmc.pmj", |k, x, y, f, i, d| direct::<<PmjSampler as Imp>::T>(k, x, y, f, i, d)),
+        ("openqmc.pmjbn", |k, x, y, f, i, d| direct::<<PmjBnSampler as Imp>::T>(k, x, y, f, i, d)),
+        ("openqmc.lattice", |k, x, y, f, i, d| direct::<<LatticeSampler as Imp>::T>(k, x, y, f, i, d)),
+        ("openqmc.latticebn", |k, x, y, f, i, d| direct::<<LatticeBnSampler as Imp>::T>(k, x, y, f, i, d)),
+    ];
+    let film = Film { width: 9, height: 7, spp: 8, dims: 10 };
+    let seed = Seed(0x1_2345_6789);
+    for (name, direct) in families {
+        let p = prepare(name, film, seed).unwrap();
+        for (x, y, frame) in [(0, 0, 0), (8, 6, 3), (4, 1, 1)] {
+            for i in 0..8 {
+                for d in 0..10 {
+                    let theirs = direct(0x2345_6789, x, y, frame, i, d);
+                    let ours = p.sample([x as u32, y as u32], frame as u32, i as u32, d);
+                    assert_eq!(ours, f64::from(theirs) / 4_294_967_296.0, "{name} ({x},{y}) f{frame} i{i} d{d}");
+                }
+            }
+        }
+    }
+}
+
+/// The implementation type of an OpenQMC sampler alias.
+trait Imp {
+    type T: openqmc::SamplerImpl;
+}
+impl<T: openqmc::SamplerImpl> Imp for openqmc::Sampler<T> {
+    type T = T;
+}
+
+/// Whether the points `xy` (2^m of them) have one point in every elementary interval
+/// 2^-a x 2^-b, a + b = m: a (0,m,2)-net in base 2.
+fn is_02_net(xy: &[[f64; 2]]) -> bool {
+    let m = xy.len().trailing_zeros();
+    (0..=m).all(|a| {
+        let (cx, cy) = (1usize << a, 1usize << (m - a));
+        let mut seen = vec![false; xy.len()];
+        xy.iter().all(|p| {
+            let cell = (p[1] * cy as f64) as usize * cx + (p[0] * cx as f64) as usize;
+            !std::mem::replace(&mut seen[cell], true)
+        })
+    })
+}
+
+/// Whether the values hit every one of their count's equal intervals once.
+fn is_stratified_1d(v: &[f64]) -> bool {
+    let mut seen = vec![false; v.len()];
+    v.iter().all(|&x| !std::mem::replace(&mut seen[(x * v.len() as f64) as usize], true))
+}
+
+#[test]
+fn each_pixels_samples_keep_their_stratification_on_elementary_intervals() {
+    // padded families: every pair (2k, 2k+1) a (0,m,2)-net and every dimension stratified,
+    // in every pixel, frame and at every power-of-two spp tried
+    for (name, pairs) in [("sobol.padded", 4u32), ("zsobol", 4), ("pmj02", 4), ("sobol", 1)] {
+        for spp in [16u32, 32, 256] {
+            let film = Film { width: 6, height: 5, spp, dims: 8 };
+            let p = prepare(name, film, Seed(11)).unwrap();
+            for (x, y, frame) in [(0, 0, 0), (5, 4, 0), (2, 3, 7)] {
+                for k in 0..pairs {
+                    let xy: Vec<[f64; 2]> =
+                        (0..spp).map(|i| [0, 1].map(|j| p.sample([x, y], frame, i, 2 * k + j))).collect();
+                    assert!(is_02_net(&xy), "{name} spp {spp} pixel ({x},{y}) frame {frame} pair {k}");
+                }
+                for d in 0..8 {
+                    let v: Vec<f64> = (0..spp).map(|i| p.sample([x, y], frame, i, d)).collect();
+                    assert!(is_stratified_1d(&v), "{name} spp {spp} ({x},{y}) dim {d}");
+                }
+            }
+        }
+    }
+    // the test can fail: independent values are not nets
+    let p = prepare("independent", Film { width: 1, height: 1, spp: 16, dims: 2 }, Seed(11)).unwrap();
+    let xy: Vec<[f64; 2]> = (0..16).map(|i| [p.sample([0, 0], 0, i, 0), p.sample([0, 0], 0, i, 1)]).collect();
+    assert!(!is_02_net(&xy));
+}
+
+#[test]
+fn stratified_puts_one_sample_in_every_cell_of_each_pair() {
+    for (spp, columns, rows) in [(16u32, 4u32, 4u32), (12, 4, 3), (7, 7, 1)] {
+        let p = prepare("stratified", Film { width: 3, height: 3, spp, dims: 6 }, Seed(5)).unwrap();
+        for k in 0..3 {
+            let mut seen = vec![false; spp as usize];
+            for i in 0..spp {
+                let (u, v) = (p.sample([1, 2], 0, i, 2 * k), p.sample([1, 2], 0, i, 2 * k + 1));
+                let cell = (v * f64::from(rows)) as usize * columns as usize + (u * f64::from(columns)) as usize;
+                assert!(!std::mem::replace(&mut seen[cell], true), "spp {spp} pair {k}: cell {cell} twice");
+            }
+        }
+    }
+}
+
+#[test]
+fn the_same_bytes_on_one_two_and_all_threads_and_in_any_order() {
+    let film = Film { width: 7, height: 5, spp: 4, dims: 9 };
+    for e in PIXEL_SAMPLERS.iter() {
+        let p = prepare(e.about.name, film, Seed(3)).unwrap();
+        let fill = |threads: usize| {
+            rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| p.fill(2).unwrap())
+        };
+        let one = fill(1);
+        assert_eq!(one, fill(2), "{}", e.about.name);
+        assert_eq!(one, p.fill(2).unwrap(), "{}", e.about.name);
+        // random access, backwards, equals the fill
+        let mut k = one.len();
+        for frame in (0..2).rev() {
+            for y in (0..5).rev() {
+                for x in (0..7).rev() {
+                    for i in (0..4).rev() {
+                        for d in (0..9).rev() {
+                            k -= 1;
+                            let want = one[(((frame * 5 + y) * 7 + x) * 4 + i) * 9 + d];
+                            assert_eq!(p.sample([x as u32, y as u32], frame as u32, i as u32, d as u32), want);
+                        }
+                    }
+                }
+            }
+        }
+        assert_eq!(k, 0);
+    }
+}
+
+#[test]
+fn frames_and_seeds_change_the_values_pixels_are_decorrelated() {
+    let film = Film { width: 4, height: 4, spp: 4, dims: 4 };
+    for e in PIXEL_SAMPLERS.iter() {
+        let a = prepare(e.about.name, film, Seed(1)).unwrap().fill(2).unwrap();
+        let b = prepare(e.about.name, film, Seed(2)).unwrap().fill(1).unwrap();
+        let (frame0, frame1) = a.split_at(a.len() / 2);
+        assert_ne!(frame0, frame1, "{}: frames", e.about.name);
+        assert_ne!(frame0, &b[..], "{}: seeds", e.about.name);
+        // two pixels never draw the same sample values
+        let per_pixel = 4 * 4;
+        assert_ne!(&frame0[..per_pixel], &frame0[per_pixel..2 * per_pixel], "{}: pixels", e.about.name);
+    }
+}
