@@ -103,7 +103,7 @@ fn is_stratified_1d(v: &[f64]) -> bool {
 fn each_pixels_samples_keep_their_stratification_on_elementary_intervals() {
     // padded families: every pair (2k, 2k+1) a (0,m,2)-net and every dimension stratified,
     // in every pixel, frame and at every power-of-two spp tried
-    for (name, pairs) in [("sobol.padded", 4u32), ("zsobol", 4), ("pmj02", 4), ("sobol", 1)] {
+    for (name, pairs) in [("sobol.padded", 4u32), ("zsobol", 4), ("pmj02", 4), ("sobol", 1), ("lattice", 0)] {
         for spp in [16u32, 32, 256] {
             let film = Film { width: 6, height: 5, spp, dims: 8 };
             let p = prepare(name, film, Seed(11)).unwrap();

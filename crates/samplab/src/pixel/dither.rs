@@ -4,12 +4,11 @@
 //! are negatively correlated and the error spreads as blue noise over the screen.
 
 use super::mask::Mask;
-use super::sobol::{ByteTables, byte_tables, digits};
-use super::{Film, PixelEntry, PixelSampler, rekey, unit};
+use super::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
+use super::{Film, Keys, PixelEntry, PixelSampler, unit};
 use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::qmc::sobol::SOBOL_MAX_DIMS;
-use crate::sampler::randomize::scramble::owen_scramble_u32;
 use crate::seed::Seed;
 use crate::spec::{Default, Kind, ParamSpec, Params};
 
@@ -43,20 +42,23 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
 #[derive(Debug)]
 pub(super) struct Shifts {
     mask: Mask,
-    seed: Seed,
+    keys: Keys,
 }
 
 impl Shifts {
-    /// A mask of side `size` for `seed`.
-    pub(super) fn new(size: usize, seed: Seed) -> Result<Shifts> {
-        Ok(Shifts { mask: Mask::void_and_cluster(size, 2, seed.derive_str("dither mask"))?, seed })
+    /// A mask of side `size` for `seed`, and the keys of `pairs` pairs of dimensions.
+    pub(super) fn new(size: usize, seed: Seed, pairs: u32) -> Result<Shifts> {
+        let mask = Mask::void_and_cluster(size, 2, seed.derive_str("dither mask"))?;
+        Ok(Shifts { mask, keys: Keys::new(seed.derive_str("dither offsets"), pairs) })
     }
 
-    /// The shift of `pixel` for the dimension pair `pair` in `frame`, as 32-bit fixed point.
+    /// The shift of `pixel` for the dimension pair `pair` in `frame`, as 32-bit fixed point:
+    /// the mask read at the pixel plus an offset keyed by (frame, pair).
     #[inline]
     pub(super) fn shift(&self, pixel: [u32; 2], frame: u32, pair: u32) -> [u32; 2] {
-        let h = rekey(self.seed.derive(u64::from(frame)).0, u64::from(pair));
-        let (x, y) = (pixel[0].wrapping_add(h as u32), pixel[1].wrapping_add((h >> 32) as u32));
+        let f = self.keys.frame(frame);
+        let (ox, oy) = (self.keys.dim(f as u32, pair), self.keys.dim((f >> 32) as u32, pair));
+        let (x, y) = (pixel[0].wrapping_add(ox), pixel[1].wrapping_add(oy));
         let fixed = |c| (self.mask.value(x, y, c) * 4_294_967_296.0) as u32;
         [fixed(0), fixed(1)]
     }
@@ -64,23 +66,24 @@ impl Shifts {
 
 #[derive(Debug)]
 struct Dither {
-    seed: Seed,
+    keys: Keys,
     tables: Vec<ByteTables>,
     shifts: Shifts,
 }
 
 fn build(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
     Ok(Box::new(Dither {
-        seed,
+        keys: Keys::new(seed, film.dims),
         tables: (0..film.dims as usize).map(byte_tables).collect(),
-        shifts: Shifts::new(p.int("mask") as usize, seed)?,
+        shifts: Shifts::new(p.int("mask") as usize, seed, film.dims.div_ceil(2))?,
     }))
 }
 
 impl PixelSampler for Dither {
     fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
-        let key = rekey(self.seed.derive(u64::from(frame)).0, u64::from(dim) | 1 << 40);
-        let x = owen_scramble_u32(digits(&self.tables[dim as usize], index), key as u32);
+        // the frame's scramble, shared by every pixel
+        let key = self.keys.dim(self.keys.frame(frame) as u32, dim);
+        let x = owen_digits(reversed_digits(&self.tables[dim as usize], index), key);
         unit(x.wrapping_add(self.shifts.shift(pixel, frame, dim / 2)[(dim & 1) as usize]))
     }
 }

@@ -48,7 +48,7 @@ crate::registry::registry_files! {
     /// Every pixel sampler family, in listing order.
     pub static PIXEL_SAMPLERS: Registry<PixelEntry> = ("pixel sampler",
         "PIXEL SAMPLERS  (spec: name[:key=value,...]; values keyed by seed, pixel, frame, index, dimension)")
-        from [independent, stratified, sobol, zsobol, pmj, dither, openqmc];
+        from [independent, stratified, sobol, zsobol, pmj, lattice, dither, openqmc];
 }
 
 /// The most dimensions a pixel sampler is prepared for.
@@ -117,22 +117,35 @@ pub trait PixelSampler: Send + Sync + Debug {
 /// A family that computes its dimensions in pairs (2k, 2k + 1), one 2D pattern each: it is
 /// a [`PixelSampler`] through this.
 pub(crate) trait Pairs: Send + Sync + Debug {
-    /// Dimensions `first` and `first + 1` of a sample (`first` even).
-    fn pair(&self, pixel: [u32; 2], frame: u32, index: u32, first: u32) -> [f64; 2];
+    /// What one sample's pairs share (a pixel's key, a Morton index), computed once per draw.
+    type Key: Copy;
+
+    /// The key of sample `index` of `pixel` in `frame`.
+    fn key(&self, pixel: [u32; 2], frame: u32, index: u32) -> Self::Key;
+
+    /// Dimensions `first` and `first + 1` of that sample (`first` even).
+    fn pair(&self, key: Self::Key, pixel: [u32; 2], frame: u32, index: u32, first: u32) -> [f64; 2];
+
+    /// Dimensions `first .. first + 4` (a family that computes two pairs faster together
+    /// overrides it).
+    fn two_pairs(&self, key: Self::Key, pixel: [u32; 2], frame: u32, index: u32, first: u32) -> [f64; 4] {
+        let [a, b] = self.pair(key, pixel, frame, index, first);
+        let [c, d] = self.pair(key, pixel, frame, index, first + 2);
+        [a, b, c, d]
+    }
 }
 
 impl<T: Pairs> PixelSampler for T {
     fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
-        self.pair(pixel, frame, index, dim & !1)[(dim & 1) as usize]
+        let key = self.key(pixel, frame, index);
+        self.pair(key, pixel, frame, index, dim & !1)[(dim & 1) as usize]
     }
 
     fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
         if dim & 1 == 1 {
             return std::array::from_fn(|k| self.sample(pixel, frame, index, dim + k as u32));
         }
-        let [a, b] = self.pair(pixel, frame, index, dim);
-        let [c, d] = self.pair(pixel, frame, index, dim + 2);
-        [a, b, c, d]
+        self.two_pairs(self.key(pixel, frame, index), pixel, frame, index, dim)
     }
 }
 
@@ -292,12 +305,44 @@ impl Pixels {
     }
 }
 
-/// A hash of the keys of one pixel sample: (seed, pixel, frame), the start of every
-/// family's per-pixel randomization.
-#[inline]
-pub(crate) fn pixel_key(seed: Seed, pixel: [u32; 2], frame: u32) -> u64 {
-    let p = (u64::from(pixel[1]) << 32) | u64::from(pixel[0]);
-    crate::seed::mix64(crate::seed::mix64(seed.0 ^ 0x51_7CC1_B727_220A).wrapping_add(p) ^ u64::from(frame))
+/// The keys a family's randomization starts from, prepared from the seed: one 64-bit hash
+/// per (pixel, frame), and one word per dimension that [`Keys::dim`] combines with a
+/// pixel's key in a few operations (as Burley 2020 combines seeds), so a draw costs one
+/// 64-bit hash however many dimensions it takes.
+#[derive(Debug, Clone)]
+pub(crate) struct Keys {
+    base: u64,
+    dims: Vec<u32>,
+}
+
+impl Keys {
+    /// Keys for `seed` and `dims` dimensions.
+    pub(crate) fn new(seed: Seed, dims: u32) -> Keys {
+        let base = crate::seed::mix64(seed.0 ^ 0x51_7CC1_B727_220A);
+        Keys { base, dims: (0..dims).map(|d| (rekey(base, u64::from(d) + 1) >> 32) as u32).collect() }
+    }
+
+    /// The key of (pixel, frame).
+    #[inline(always)]
+    pub(crate) fn pixel(&self, pixel: [u32; 2], frame: u32) -> u64 {
+        let p = (u64::from(pixel[1]) << 32) | u64::from(pixel[0]);
+        crate::seed::mix64(
+            self.base ^ p.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ u64::from(frame).wrapping_mul(0xC2B2_AE3D_27D4_EB4F),
+        )
+    }
+
+    /// The key of a whole frame (for the families whose pattern is shared by every pixel).
+    #[inline(always)]
+    pub(crate) fn frame(&self, frame: u32) -> u64 {
+        crate::seed::mix64(self.base ^ 0xA076_1D64_78BD_642F ^ u64::from(frame).wrapping_mul(0xC2B2_AE3D_27D4_EB4F))
+    }
+
+    /// A 32-bit key for dimension `dim` of the pixel whose key's low word is `key`.
+    #[inline(always)]
+    pub(crate) fn dim(&self, key: u32, dim: u32) -> u32 {
+        let h = self.dims[dim as usize];
+        key ^ h.wrapping_add(0x9E37_79B9).wrapping_add(key << 6).wrapping_add(key >> 2)
+    }
 }
 
 /// A further hash of a key with a word (a dimension, a sample index).

@@ -3,7 +3,8 @@
 //! definitions so that `zsobol` and `sobol.padded` give pbrt's values bit for bit (the
 //! fixture `tests/fixtures/pbrt_pixel_samplers.txt` and `scripts/pbrt/`).
 
-use crate::sampler::qmc::sobol::direction_numbers;
+use super::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
+use super::unit;
 use crate::sampler::randomize::scramble::owen_scramble_u32;
 use crate::spec::{Default, Kind, ParamSpec};
 
@@ -143,32 +144,32 @@ impl Scramble {
 
 /// The first two dimensions of Sobol' (van der Corput and its partner), whose 32-bit
 /// generator columns are all pbrt's 2D Sobol' samplers use (columns past 32 vanish at
-/// 32-bit precision, so only the index's low 32 bits count).
-#[derive(Debug, Clone, Copy)]
+/// 32-bit precision, so only the index's low 32 bits count), as byte tables.
+#[derive(Debug, Clone)]
 pub struct Sobol2 {
-    columns: [[u32; 32]; 2],
+    tables: [ByteTables; 2],
 }
 
 impl std::default::Default for Sobol2 {
     fn default() -> Sobol2 {
-        Sobol2 { columns: [direction_numbers(0), direction_numbers(1)] }
+        Sobol2 { tables: [byte_tables(0), byte_tables(1)] }
     }
 }
 
 impl Sobol2 {
-    /// The unscrambled digits of dimension `dim` (0 or 1) of point `index`.
-    #[inline]
-    pub fn digits(&self, index: u64, dim: usize) -> u32 {
-        let c = &self.columns[dim];
-        let mut a = index as u32;
-        let mut v = 0;
-        let mut k = 0;
-        while a != 0 {
-            v ^= c[k] & 0u32.wrapping_sub(a & 1);
-            a >>= 1;
-            k += 1;
-        }
-        v
+    /// Point `index` scrambled by `scramble`, dimension 0 with the low word of `hash` and
+    /// dimension 1 with its high word (as pbrt's 2D Sobol' samplers split their hashes).
+    #[inline(always)]
+    pub fn pair(&self, scramble: Scramble, index: u64, hash: u64) -> [f64; 2] {
+        let seeds = [hash as u32, (hash >> 32) as u32];
+        std::array::from_fn(|d| {
+            let reversed = reversed_digits(&self.tables[d], index as u32);
+            unit(match scramble {
+                // the fast scramble works on reversed digits: one reversal in all
+                Scramble::FastOwen => owen_digits(reversed, seeds[d]),
+                other => other.apply(reversed.reverse_bits(), seeds[d]),
+            })
+        })
     }
 }
 

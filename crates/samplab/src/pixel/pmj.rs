@@ -4,7 +4,7 @@
 //! pads; `pmj02.bn` adds a blue-noise shift per pixel.
 
 use super::dither::{MASK, Shifts};
-use super::{Film, Pairs, PixelEntry, PixelSampler, pixel_key, rekey, unit};
+use super::{Film, Pairs, PixelEntry, PixelSampler, Keys, rekey, unit};
 use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::randomize::scramble::permute;
@@ -56,7 +56,7 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
 
 #[derive(Debug)]
 struct Pmj {
-    seed: Seed,
+    keys: Keys,
     spp: u32,
     pool: Vec<Vec<[u32; 2]>>,
     /// The blue-noise shifts (`pmj02.bn`); none for `pmj02`, which shifts digits by hashes.
@@ -69,20 +69,33 @@ fn pool(film: Film, seed: Seed) -> Vec<Vec<[u32; 2]>> {
 }
 
 fn build_plain(_: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
-    Ok(Box::new(Pmj { seed, spp: film.spp, pool: pool(film, seed), shifts: None }))
+    Ok(Box::new(Pmj { keys: Keys::new(seed, 0), spp: film.spp, pool: pool(film, seed), shifts: None }))
 }
 
 fn build_bn(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
-    let shifts = Some(Shifts::new(p.int("mask") as usize, seed)?);
-    Ok(Box::new(Pmj { seed, spp: film.spp, pool: pool(film, seed), shifts }))
+    let shifts = Some(Shifts::new(p.int("mask") as usize, seed, film.dims.div_ceil(2))?);
+    Ok(Box::new(Pmj { keys: Keys::new(seed, 0), spp: film.spp, pool: pool(film, seed), shifts }))
 }
 
 impl Pairs for Pmj {
+    /// The pixel's key.
+    type Key = u64;
+
+    fn key(&self, pixel: [u32; 2], frame: u32, _: u32) -> u64 {
+        self.keys.pixel(pixel, frame)
+    }
+
     #[inline(always)]
-    fn pair(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 2] {
+    fn pair(&self, key: u64, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 2] {
         let pair = dim / 2;
-        let key = rekey(pixel_key(self.seed, pixel, frame), u64::from(pair));
-        let i = permute(index % self.spp, self.spp, key as u32) as usize;
+        let key = rekey(key, u64::from(pair));
+        let i = if self.spp.is_power_of_two() {
+            // XOR with fewer digits than spp's: every aligned block of the sequence stays a
+            // block, so each prefix of 2^k of the pixel's samples is still a (0,k,2)-net
+            (index ^ key as u32) & (self.spp - 1)
+        } else {
+            permute(index % self.spp, self.spp, key as u32)
+        } as usize;
         let [x, y] = match &self.shifts {
             None => {
                 let [x, y] = self.pool[(key >> 40) as usize % POOL][i];

@@ -2,11 +2,11 @@
 //! (Burley 2020), and pbrt-v4's padded 2D Sobol' (Pharr, Jakob & Humphreys 2023).
 
 use super::pbrt::{RANDOMIZE, Scramble, Sobol2, frame_seed, hash_words, permutation_element};
-use super::{ANY_SPP, Film, Pairs, PixelEntry, PixelSampler, pixel_key, rekey, unit};
+use super::{ANY_SPP, Film, Keys, Pairs, PixelEntry, PixelSampler, unit};
 use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::qmc::sobol::{SOBOL_MAX_DIMS, direction_numbers};
-use crate::sampler::randomize::scramble::owen_scramble_u32;
+use crate::sampler::randomize::scramble::{owen_scramble_reversed, owen_scramble_u32};
 use crate::seed::Seed;
 use crate::spec::Params;
 
@@ -22,9 +22,10 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
         spp: super::Counts::Any("each pixel's first 2^m samples a (t,m,s)-net"),
         dims: "1 to 1024 (the Joe-Kuo table)",
         max_dims: SOBOL_MAX_DIMS as u32,
-        mapping: "one sequence per pixel: the index is nested-uniform scrambled by the pixel's hash \
-                  (Burley 2020, section 4), which maps samples 0..2^m to an aligned block of 2^m \
-                  Sobol' points, itself a net; each dimension then Owen-scrambled by its own hash",
+        mapping: "one sequence per pixel: the index's low 16 digits are nested-uniform scrambled by the \
+                  pixel's hash (Burley 2020, section 4), which maps samples 0..2^m to an aligned block \
+                  of 2^m Sobol' points, itself a net; each dimension then Owen-scrambled by its own \
+                  hash of (pixel, dimension)",
         build: build_sobol,
     },
     PixelEntry {
@@ -47,46 +48,61 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
     },
 ];
 
-/// The byte tables of one dimension's generator: entry [b][v] is the XOR of the columns
-/// that byte b of the index selects when it equals v.
+/// The byte tables of one dimension's generator, bit-reversed: entry [b][v] is the XOR of
+/// the reversed columns that byte b of the index selects when it equals v. Reversed digits
+/// are what the Owen scramble of Burley 2020 works on, so a value costs one reversal.
 pub(super) type ByteTables = [[u32; 256]; 4];
 
 pub(super) fn byte_tables(dim: usize) -> ByteTables {
-    let c = direction_numbers(dim);
+    let c = direction_numbers(dim).map(u32::reverse_bits);
     std::array::from_fn(|b| {
         std::array::from_fn(|v| (0..8).filter(|k| v >> k & 1 == 1).fold(0, |x, k| x ^ c[8 * b + k]))
     })
 }
 
-/// The unscrambled 32 digits of point `index` from its dimension's byte tables.
+/// The unscrambled 32 digits of point `index`, bit-reversed, from its dimension's byte
+/// tables (the index's high half looked up only when it is not zero: pixels draw from the
+/// first 2^16 points unless their sample count is larger).
 #[inline(always)]
-pub(super) fn digits(t: &ByteTables, index: u32) -> u32 {
-    t[0][(index & 0xFF) as usize]
-        ^ t[1][(index >> 8 & 0xFF) as usize]
-        ^ t[2][(index >> 16 & 0xFF) as usize]
-        ^ t[3][(index >> 24) as usize]
+pub(super) fn reversed_digits(t: &ByteTables, index: u32) -> u32 {
+    let low = t[0][(index & 0xFF) as usize] ^ t[1][(index >> 8 & 0xFF) as usize];
+    if index >> 16 == 0 { low } else { low ^ t[2][(index >> 16 & 0xFF) as usize] ^ t[3][(index >> 24) as usize] }
+}
+
+/// The Owen-scrambled digits (Burley 2020) of reversed digits, in their natural order.
+#[inline(always)]
+pub(super) fn owen_digits(reversed: u32, seed: u32) -> u32 {
+    owen_scramble_reversed(reversed, seed).reverse_bits()
+}
+
+/// Sample `index`'s place in a pixel's shuffled sequence: its low 16 digits nested-uniform
+/// scrambled by `key` (so samples 0..2^m, m <= 16, map to an aligned block of 2^m points,
+/// a net), the digits above kept.
+#[inline(always)]
+fn shuffle(index: u32, key: u32) -> u32 {
+    (index & !0xFFFF) | owen_scramble_u32(index << 16, key) >> 16
 }
 
 #[derive(Debug)]
 struct Burley {
-    seed: Seed,
+    keys: Keys,
     tables: Vec<ByteTables>,
 }
 
 fn build_sobol(_: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
-    Ok(Box::new(Burley { seed, tables: (0..film.dims as usize).map(byte_tables).collect() }))
+    Ok(Box::new(Burley { keys: Keys::new(seed, film.dims), tables: (0..film.dims as usize).map(byte_tables).collect() }))
 }
 
 impl Burley {
     #[inline(always)]
-    fn value(&self, key: u64, index: u32, dim: u32) -> f64 {
-        unit(owen_scramble_u32(digits(&self.tables[dim as usize], index), rekey(key, u64::from(dim)) as u32))
+    fn value(&self, key: u32, index: u32, dim: u32) -> f64 {
+        unit(owen_digits(reversed_digits(&self.tables[dim as usize], index), self.keys.dim(key, dim)))
     }
 
     #[inline(always)]
-    fn shuffled(&self, pixel: [u32; 2], frame: u32, index: u32) -> (u64, u32) {
-        let key = pixel_key(self.seed, pixel, frame);
-        (key, owen_scramble_u32(index, (key >> 32) as u32))
+    fn shuffled(&self, pixel: [u32; 2], frame: u32, index: u32) -> (u32, u32) {
+        let key = self.keys.pixel(pixel, frame);
+        (key as u32, shuffle(index, (key >> 32) as u32))
     }
 }
 
@@ -116,14 +132,18 @@ fn build_padded(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampl
 }
 
 impl Pairs for Padded {
+    /// pbrt's seed for the frame.
+    type Key = u32;
+
+    fn key(&self, _: [u32; 2], frame: u32, _: u32) -> u32 {
+        frame_seed(self.seed, frame)
+    }
+
     #[inline(always)]
-    fn pair(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 2] {
-        let hash = hash_words(&[pixel[0], pixel[1], dim, frame_seed(self.seed, frame)]);
-        let i = u64::from(permutation_element(index, self.spp, hash as u32));
-        [
-            unit(self.scramble.apply(self.sobol.digits(i, 0), hash as u32)),
-            unit(self.scramble.apply(self.sobol.digits(i, 1), (hash >> 32) as u32)),
-        ]
+    fn pair(&self, seed: u32, pixel: [u32; 2], _: u32, index: u32, dim: u32) -> [f64; 2] {
+        let hash = hash_words(&[pixel[0], pixel[1], dim, seed]);
+        let i = permutation_element(index, self.spp, hash as u32);
+        self.sobol.pair(self.scramble, i.into(), hash)
     }
 }
 
@@ -136,7 +156,7 @@ mod tests {
     fn byte_tables_equal_the_column_walk() {
         let t = byte_tables(5);
         for index in [0u32, 1, 255, 256, 0x1234_5678, u32::MAX] {
-            assert_eq!(digits(&t, index), crate::sampler::qmc::sobol::sobol_u32(index, 5));
+            assert_eq!(reversed_digits(&t, index), crate::sampler::qmc::sobol::sobol_u32(index, 5).reverse_bits());
         }
     }
 }

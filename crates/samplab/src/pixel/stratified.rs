@@ -1,7 +1,7 @@
 //! Jittered strata per pixel with dimension padding (Cook 1986; as pbrt's
 //! `StratifiedSampler`, with hashed permutations instead of its stream of draws).
 
-use super::{ANY_SPP, Film, Pairs, PixelEntry, PixelSampler, pixel_key, rekey};
+use super::{ANY_SPP, Film, Pairs, PixelEntry, PixelSampler, Keys, rekey};
 use crate::error::Result;
 use crate::numeric::BELOW_ONE;
 use crate::registry::About;
@@ -28,7 +28,7 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
 
 #[derive(Debug)]
 struct Stratified {
-    seed: Seed,
+    keys: Keys,
     spp: u32,
     /// Columns (x strata) and rows (y strata), columns >= rows.
     columns: u32,
@@ -37,13 +37,20 @@ struct Stratified {
 
 fn build(_: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
     let rows = (1..=film.spp.isqrt()).rev().find(|a| film.spp.is_multiple_of(*a)).unwrap_or(1);
-    Ok(Box::new(Stratified { seed, spp: film.spp, columns: film.spp / rows, rows }))
+    Ok(Box::new(Stratified { keys: Keys::new(seed, 0), spp: film.spp, columns: film.spp / rows, rows }))
 }
 
 impl Pairs for Stratified {
+    /// The pixel's key.
+    type Key = u64;
+
+    fn key(&self, pixel: [u32; 2], frame: u32, _: u32) -> u64 {
+        self.keys.pixel(pixel, frame)
+    }
+
     #[inline(always)]
-    fn pair(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 2] {
-        let key = rekey(pixel_key(self.seed, pixel, frame), u64::from(dim / 2));
+    fn pair(&self, key: u64, _: [u32; 2], _: u32, index: u32, dim: u32) -> [f64; 2] {
+        let key = rekey(key, u64::from(dim / 2));
         let stratum = permute(index % self.spp, self.spp, key as u32);
         let jitter = rekey(key, u64::from(index) + 1);
         let (cx, cy) = (stratum % self.columns, stratum / self.columns);

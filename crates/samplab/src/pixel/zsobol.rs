@@ -5,7 +5,7 @@
 //! error is spread over the screen as blue noise.
 
 use super::pbrt::{RANDOMIZE, Scramble, Sobol2, frame_seed, hash_words, mix_bits, morton2};
-use super::{Film, POWER_OF_TWO_SPP, Pairs, PixelEntry, PixelSampler, unit};
+use super::{Film, POWER_OF_TWO_SPP, Pairs, PixelEntry, PixelSampler};
 use crate::error::Result;
 use crate::registry::About;
 use crate::seed::Seed;
@@ -59,6 +59,21 @@ const PERMUTATIONS: [[u8; 4]; 24] = [
     [3, 0, 1, 2],
 ];
 
+/// Each permutation in one byte: digit d goes to bits 2d, 2d + 1.
+const PACKED: [u8; 24] = {
+    let mut packed = [0u8; 24];
+    let mut p = 0;
+    while p < 24 {
+        let mut d = 0;
+        while d < 4 {
+            packed[p] |= PERMUTATIONS[p][d] << (2 * d);
+            d += 1;
+        }
+        p += 1;
+    }
+    packed
+};
+
 #[derive(Debug)]
 struct ZSobol {
     seed: u64,
@@ -66,6 +81,8 @@ struct ZSobol {
     log2_spp: u32,
     base4_digits: u32,
     sobol: Sobol2,
+    /// Frame 0's scramble hash of every pair of the film's dimensions.
+    hashes: Vec<u64>,
 }
 
 fn build(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
@@ -77,43 +94,66 @@ fn build(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
         log2_spp,
         base4_digits: side.ilog2() + log2_spp.div_ceil(2),
         sobol: Sobol2::default(),
+        hashes: (0..film.dims.div_ceil(2)).map(|k| hash_words(&[2 * k + 2, frame_seed(seed.0, 0)])).collect(),
     }))
 }
 
 impl ZSobol {
-    /// The permuted sequence index of the sample whose Morton index is `morton`, for the
-    /// dimension pair starting at `dim` (pbrt's `GetSampleIndex`).
-    #[inline]
-    fn sequence_index(&self, morton: u64, dim: u32) -> u64 {
+    /// The permuted sequence indices of the sample whose Morton index is `morton`, for the
+    /// dimension pairs starting at each of `dims` (pbrt's `GetSampleIndex`; several at once,
+    /// so that their independent hashes overlap).
+    #[inline(always)]
+    fn sequence_indices<const N: usize>(&self, morton: u64, dims: [u32; N]) -> [u64; N] {
         let odd = self.log2_spp & 1;
         // pbrt multiplies in 32 bits (`0x55555555u * dimension`)
-        let salt = u64::from(0x5555_5555u32.wrapping_mul(dim));
-        let mut index = 0;
+        let salts = dims.map(|d| u64::from(0x5555_5555u32.wrapping_mul(d)));
+        let mut index = [0; N];
         for i in (odd..self.base4_digits).rev() {
             let shift = 2 * i - odd;
-            let digit = (morton >> shift) & 3;
+            let digit = ((morton >> shift) & 3) as usize;
             let higher = morton >> (shift + 2);
-            let p = ((mix_bits(higher ^ salt) >> 24) % 24) as usize;
-            index |= u64::from(PERMUTATIONS[p][digit as usize]) << shift;
+            for k in 0..N {
+                let p = ((mix_bits(higher ^ salts[k]) >> 24) % 24) as usize;
+                index[k] |= u64::from(PACKED[p] >> (2 * digit) & 3) << shift;
+            }
         }
         if odd == 1 {
-            index |= (morton & 1) ^ (mix_bits((morton >> 1) ^ salt) & 1);
+            for k in 0..N {
+                index[k] |= (morton & 1) ^ (mix_bits((morton >> 1) ^ salts[k]) & 1);
+            }
         }
         index
     }
 
+    /// pbrt's `Hash(dim + 2, seed)` for the pair starting at `dim`, tabulated for frame 0.
+    #[inline(always)]
+    fn hash(&self, frame: u32, seed: u32, dim: u32) -> u64 {
+        match self.hashes.get((dim / 2) as usize) {
+            Some(&h) if frame == 0 => h,
+            _ => hash_words(&[dim + 2, seed]),
+        }
+    }
 }
 
 impl Pairs for ZSobol {
+    /// The sample's Morton index and pbrt's seed for the frame.
+    type Key = (u64, u32);
+
+    fn key(&self, pixel: [u32; 2], frame: u32, index: u32) -> (u64, u32) {
+        ((morton2(pixel[0], pixel[1]) << self.log2_spp) | u64::from(index), frame_seed(self.seed, frame))
+    }
+
     #[inline(always)]
-    fn pair(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 2] {
-        let morton = (morton2(pixel[0], pixel[1]) << self.log2_spp) | u64::from(index);
-        let i = self.sequence_index(morton, dim);
-        let bits = hash_words(&[dim + 2, frame_seed(self.seed, frame)]);
-        [
-            unit(self.scramble.apply(self.sobol.digits(i, 0), bits as u32)),
-            unit(self.scramble.apply(self.sobol.digits(i, 1), (bits >> 32) as u32)),
-        ]
+    fn pair(&self, (morton, seed): (u64, u32), _: [u32; 2], frame: u32, _: u32, dim: u32) -> [f64; 2] {
+        let [i] = self.sequence_indices(morton, [dim]);
+        self.sobol.pair(self.scramble, i, self.hash(frame, seed, dim))
+    }
+
+    fn two_pairs(&self, (morton, seed): (u64, u32), _: [u32; 2], frame: u32, _: u32, dim: u32) -> [f64; 4] {
+        let [i, j] = self.sequence_indices(morton, [dim, dim + 2]);
+        let [a, b] = self.sobol.pair(self.scramble, i, self.hash(frame, seed, dim));
+        let [c, d] = self.sobol.pair(self.scramble, j, self.hash(frame, seed, dim + 2));
+        [a, b, c, d]
     }
 }
 
