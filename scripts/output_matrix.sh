@@ -8,7 +8,8 @@
 #
 # Covers every registered sampler (2D and 3D where it supports them, and warped), every
 # metric, spectra (fast and direct), integration studies, renders in each mode, and the
-# fast reproduction's claims and tables (its pages carry timings, so they are left out).
+# fast reproduction's claims and tables (its pages carry timings, so they are left out),
+# and every pixel sampler.
 set -euo pipefail
 bin=$(realpath "$1")
 work=$(mktemp -d)
@@ -83,6 +84,14 @@ render d sphere-box --mode obscurance --range 0.5 --sampler jitter -n 4
 render e checker --pixel area --spp 4 --interleave 2x2 --pixel-sampler jitter
 render f defocus --spp 4 -n 4
 render g motion --spp 4 -n 4
+render h all --pixel area --spp 4 -n 4 --mode direct --pixel-sampler zsobol
+
+# every pixel sampler (the values of two frames)
+for p in $("$bin" list pixels 2>/dev/null | grep -E '^[a-z]' | cut -d' ' -f1); do
+  "$bin" pixels "$p" --res 9x7 --spp 4 --dims 6 --frames 2 --seed 22 -o "px.npy" >/dev/null 2>&1 || true
+  row "pixels $p" "$(hash < px.npy 2>/dev/null || echo missing)"
+  rm -f px.npy
+done
 
 "$bin" reproduce --seed 21 --out rep >/dev/null 2>&1
 for f in rep/claims.json rep/tables/*.csv; do

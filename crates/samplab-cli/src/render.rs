@@ -60,7 +60,11 @@ pub struct Args {
     /// Camera rays through the pixel centre or over its area
     #[arg(long, default_value = "center")]
     pixel: String,
-    /// Strategy over the pixel area (spp points)
+    /// Strategy over the pixel area (spp points), or a pixel sampler (`samplab list pixels`:
+    /// zsobol, sobol.padded, pmj02.bn, dither, openqmc.sobolbn, ...) that then draws every
+    /// dimension of every estimate (film, lens, time, gloss, light samples) in place of
+    /// --sampler and the other strategies; where both lists have a name (sobol, pmj02,
+    /// lattice) it is the point-set sampler, and pixel.NAME the pixel sampler
     #[arg(long, default_value = settings::SECONDARY)]
     pixel_sampler: String,
     /// Interleaved sampling: one pixel-sampler pattern of spp x W x H points over a tile of
@@ -191,8 +195,10 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     }
     rendered.image.stage(&mut outputs, &a.output)?;
     let rays = rendered.camera_rays + rendered.shadow_rays;
+    // a pixel sampler draws every dimension, the light samples too
+    let sampler = options.pixels.as_ref().map_or_else(|| options.light.spec(), |p| p.spec().to_string());
     let summary = serde_json::json!({
-        "scene": a.scene, "sampler": options.light.spec(), "n": a.n, "spp": a.spp, "mode": a.mode,
+        "scene": a.scene, "sampler": sampler, "n": a.n, "spp": a.spp, "mode": a.mode,
         "pixel": a.pixel, "width": width, "height": height, "seed": a.seed, "seconds": seconds,
         "camera_rays": rendered.camera_rays, "shadow_rays": rendered.shadow_rays,
         "rays_per_second": rays as f64 / seconds, "errors": errors,
@@ -215,7 +221,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     crate::say!(
         "{} {width}x{height}, {} x{} x{} spp, seed {}: {seconds:.2} s, {:.1} M rays/s{error_text} -> {}",
         a.scene,
-        options.light.spec(),
+        sampler,
         a.n,
         a.spp,
         a.seed,

@@ -82,6 +82,36 @@ fn bad_input_exit_2_with_one_line() {
     assert_bad_input(&["generate", "random", "-n", "16", "--format", "xml"], &["unknown format 'xml'"]);
     assert_bad_input(&["generate", "random", "-n", "16", "--warp", "hemisphere.cosine", "-d", "3"], &["needs 2D"]);
     assert_bad_input(&["generate", "random", "-n", "0"], &["n must be"]);
+    let px = |args: &[&str], expect: &[&str]| {
+        let mut all = vec!["pixels"];
+        all.extend_from_slice(args);
+        all.extend_from_slice(&["-o", "/nonexistent-samplab-dir/p.npy"]);
+        assert_bad_input(&all, expect);
+    };
+    px(&["zsobol", "--res", "4x4", "--spp", "3"], &["--spp 3: zsobol: spp a power of two: try 2 and 4"]);
+    px(&["zsobl", "--res", "4x4", "--spp", "4"], &["unknown pixel sampler 'zsobl'", "zsobol"]);
+    px(&["zsobol", "--res", "4by4", "--spp", "4"], &["'4by4': expected WIDTHxHEIGHT"]);
+    px(&["zsobol", "--res", "0x4", "--spp", "4"], &["--res 0x4: a film side is 1 to 65536 pixels"]);
+    px(&["sobol", "--res", "4x4", "--spp", "4", "--dims", "2000"], &["2000D is not supported"]);
+    px(&["dither:mask=3", "--res", "4x4", "--spp", "4"], &["'mask'", "[4, 256]"]);
+    assert_bad_input(&["pixels", "zsobol", "--res", "4x4", "--spp", "4", "-o", "p.txt"], &["written as .npy"]);
+    assert_bad_input(
+        &[
+            "render",
+            "defocus",
+            "--spp",
+            "4",
+            "--pixel-sampler",
+            "zsobol",
+            "--interleave",
+            "2x2",
+            "--pixel",
+            "area",
+            "-o",
+            "r.png",
+        ],
+        &["takes patterns per estimate and no interleaving"],
+    );
 }
 
 #[test]

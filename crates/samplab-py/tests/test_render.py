@@ -15,6 +15,9 @@ import samplab
         ("sphere-box", ["--mode", "obscurance", "--range", 0.5, "-n", 4], {"mode": "obscurance", "range": 0.5, "n": 4}),
         ("checker", ["--pixel", "area", "--spp", 4, "--interleave", "2x2", "--pixel-sampler", "jitter"], {"pixel": "area", "spp": 4, "interleave": (2, 2), "pixel_sampler": "jitter"}),
         ("defocus", ["--spp", 4, "-n", 4], {"spp": 4, "n": 4}),
+        # a pixel sampler: every dimension of every estimate from it
+        ("defocus", ["--spp", 4, "-n", 4, "--pixel", "area", "--pixel-sampler", "zsobol"], {"spp": 4, "n": 4, "pixel": "area", "pixel_sampler": "zsobol"}),
+        ("sphere-box", ["--mode", "obscurance", "-n", 4, "--pixel-sampler", "pixel.sobol"], {"mode": "obscurance", "n": 4, "pixel_sampler": "pixel.sobol"}),
     ],
 )
 def test_render_equals_the_cli(cli, tmp_path, scene, args, settings):

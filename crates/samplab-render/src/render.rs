@@ -29,6 +29,10 @@
 //! Pixel samples come from a pattern per pixel, or, interleaved (Keller & Heidrich 2001;
 //! Sbert et al. 2006 Fig. 4), from one pattern of spp x w x h points over a tile of w x h
 //! pixels repeated over the image: each pixel takes the spp points in its cell of the tile.
+//!
+//! Or every dimension of every estimate comes from one pixel sampler
+//! ([`samplab::pixel`], [`Options::pixels`]), as a production renderer draws them: estimate
+//! e of pixel (x, y) is sample e, and its dimensions are laid out as [`pixel_dims`] says.
 
 use std::f64::consts::PI;
 
@@ -117,7 +121,25 @@ pub struct Options {
     pub height: usize,
     /// Seed of every random choice.
     pub seed: Seed,
+    /// A pixel sampler that draws every dimension instead of the strategies above
+    /// (`light`, `pixel`, `lens`, `time`, `gloss`), prepared for this image, `spp` and at
+    /// least [`pixel_dims`] dimensions; it takes patterns per estimate and no interleaving.
+    pub pixels: Option<samplab::pixel::Pixels>,
 }
+
+/// The dimensions of an estimate drawn from a pixel sampler ([`Options::pixels`]): 0-1 the
+/// film position in the pixel, 2-3 the lens, 4 the shutter time, 5 unused, 6-7 the first
+/// glossy bounce, then 2 per light sample from [`FIRST_LIGHT_DIM`] on (light l's sample j
+/// at 8 + 2 (l n + j), its first `dims` used), or per obscurance direction. Returns how
+/// many dimensions that makes for `n` samples of each of `lights` lights (one set of
+/// directions for obscurance).
+pub fn pixel_dims(n: usize, lights: usize, mode: Mode) -> usize {
+    let sets = if mode == Mode::Obscurance { 1 } else { lights };
+    FIRST_LIGHT_DIM as usize + 2 * n * sets
+}
+
+/// The first light dimension of a pixel sampler's estimate ([`pixel_dims`]).
+pub const FIRST_LIGHT_DIM: u32 = 8;
 
 /// Largest image side accepted.
 pub const MAX_SIDE: usize = 1 << 14;
@@ -163,6 +185,7 @@ impl Options {
             width,
             height,
             seed: Seed::DEFAULT,
+            pixels: None,
         })
     }
 
@@ -235,6 +258,9 @@ impl Options {
                 return Err(Error::Invalid("obscurance takes a pattern per estimate, not per pixel".into()));
             }
         }
+        if let Some(p) = &self.pixels {
+            return self.pixel_sampler_plans(p, scene);
+        }
         let light = if self.mode == Mode::Obscurance {
             vec![self.light.plan(self.n, 2)?]
         } else {
@@ -258,6 +284,39 @@ impl Options {
             time: plan_if(scene.moving(), self.time.as_ref(), self.spp, 1)?,
             gloss: plan_if(scene.glossy(), self.gloss.as_ref(), self.spp, 2)?,
         })
+    }
+}
+
+impl Options {
+    /// The checks of a render whose every dimension comes from the pixel sampler `p`; no
+    /// strategy is planned.
+    fn pixel_sampler_plans(&self, p: &samplab::pixel::Pixels, scene: &Scene) -> Result<Plans<'_>> {
+        if self.pattern == Pattern::PerPixel || self.interleave.is_some() {
+            return Err(Error::Invalid(format!(
+                "the pixel sampler {} draws each estimate's samples from its own dimensions: it takes \
+                 patterns per estimate and no interleaving",
+                p.spec()
+            )));
+        }
+        let film = p.film();
+        let need = pixel_dims(self.n, scene.lights.len(), self.mode);
+        if (film.width as usize, film.height as usize, film.spp as usize) != (self.width, self.height, self.spp)
+            || (film.dims as usize) < need
+        {
+            return Err(Error::Invalid(format!(
+                "the pixel sampler {} is prepared for {}x{} pixels, {} spp, {} dimensions; this render needs \
+                 {}x{}, {} spp, {need} dimensions",
+                p.spec(),
+                film.width,
+                film.height,
+                film.spp,
+                film.dims,
+                self.width,
+                self.height,
+                self.spp
+            )));
+        }
+        Ok(Plans { light: Vec::new(), pixel: None, tile: None, lens: None, time: None, gloss: None })
     }
 }
 
@@ -410,6 +469,17 @@ impl Dealt {
     /// Where estimate e's block starts, in blocks of `len`.
     fn start(&self, e: usize, len: usize) -> usize {
         self.order[e] as usize * len
+    }
+
+    /// Fill with dimensions `first .. first + len` of the pixel's `spp` samples from the
+    /// pixel sampler `p`, in their own order.
+    fn keyed(&mut self, p: &samplab::pixel::Pixels, px: Pixel, spp: usize, first: u32, len: u32) {
+        self.points.clear();
+        for e in 0..spp as u32 {
+            self.points.extend((first..first + len).map(|d| p.sample(px.at(), 0, e, d)));
+        }
+        self.order.clear();
+        self.order.extend(0..spp as u32);
     }
 
     /// Estimate e's block of `len` values.
@@ -579,6 +649,13 @@ struct Pixel {
     index: u64,
     col: usize,
     row: usize,
+}
+
+impl Pixel {
+    /// Its (x, y) key for a pixel sampler.
+    fn at(self) -> [u32; 2] {
+        [self.col as u32, self.row as u32]
+    }
 }
 
 /// A path of an estimate being followed: its estimate and the product of the specular
@@ -813,6 +890,23 @@ fn deal(setup: &Setup, px: Pixel, s: &mut Scratch) {
 fn try_deal(setup: &Setup, px: Pixel, s: &mut Scratch) -> samplab::Result<()> {
     let Setup { options: o, lights, keys, plans, .. } = *setup;
     let spp = o.spp;
+    if let Some(p) = &o.pixels {
+        if o.footprint == Footprint::Area {
+            s.pixel.clear();
+            s.pixel.extend((0..spp as u32).flat_map(|e| [0, 1].map(|d| p.sample(px.at(), 0, e, d))));
+        }
+        let scene = setup.scene;
+        for (on, dealt, first, len) in [
+            (scene.camera.aperture > 0.0, &mut s.lens, 2, 2),
+            (setup.moving, &mut s.time, 4, 1),
+            (setup.glossy, &mut s.gloss, 6, 2),
+        ] {
+            if on {
+                dealt.keyed(p, px, spp, first, len);
+            }
+        }
+        return Ok(());
+    }
     if o.footprint == Footprint::Area {
         s.pixel.resize(spp * 2, 0.0);
         match (&plans.tile, &plans.pixel) {
@@ -1021,9 +1115,14 @@ fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
                 let (points, range) = match o.pattern {
                     Pattern::PerEstimate => {
                         let (dims, key) = (p.light.dims(), keys.light.derive(px.index).derive(l as u64));
-                        s.light.resize(o.n * dims, 0.0);
-                        if let Err(e) = plans.light[l].fill(key.derive(e as u64), &mut s.light) {
-                            s.failed.get_or_insert(e);
+                        match &o.pixels {
+                            Some(pixels) => light_samples(pixels, px, e, l, o.n, dims, &mut s.light),
+                            None => {
+                                s.light.resize(o.n * dims, 0.0);
+                                if let Err(e) = plans.light[l].fill(key.derive(e as u64), &mut s.light) {
+                                    s.failed.get_or_insert(e);
+                                }
+                            }
                         }
                         s.light_points.fill(&p.light, &s.light);
                         (&s.light_points, 0..o.n)
@@ -1079,9 +1178,14 @@ fn obscure_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
     for k in 0..m {
         let e = s.ends.estimate[k] as usize;
         let (x, normal) = (lane(&s.ends.position, k), lane(&s.ends.normal, k));
-        s.light.resize(o.n * 2, 0.0);
-        if let Err(e) = plans.light[0].fill(keys.light.derive(px.index).derive(e as u64), &mut s.light) {
-            s.failed.get_or_insert(e);
+        match &o.pixels {
+            Some(pixels) => light_samples(pixels, px, e, 0, o.n, 2, &mut s.light),
+            None => {
+                s.light.resize(o.n * 2, 0.0);
+                if let Err(e) = plans.light[0].fill(keys.light.derive(px.index).derive(e as u64), &mut s.light) {
+                    s.failed.get_or_insert(e);
+                }
+            }
         }
         let origin = Scene::offset(x, normal);
         s.probes.clear();
@@ -1101,6 +1205,16 @@ fn obscure_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
     }
     s.ends.len = 0;
     (m * o.n) as u64
+}
+
+/// Estimate `e`'s `n` samples (`dims` values each) of light `l` from a pixel sampler, laid
+/// out as [`pixel_dims`] says, into `out`.
+fn light_samples(p: &samplab::pixel::Pixels, px: Pixel, e: usize, l: usize, n: usize, dims: usize, out: &mut Vec<f64>) {
+    out.clear();
+    for j in 0..n {
+        let first = FIRST_LIGHT_DIM + 2 * (l * n + j) as u32;
+        out.extend((first..first + dims as u32).map(|d| p.sample(px.at(), 0, e as u32, d)));
+    }
 }
 
 /// A direction about the unit `axis` from the normalized Phong lobe (n + 1) / (2 pi)

@@ -105,6 +105,31 @@ fn sampler(name: &'static str, spec: &str) -> samplab::Result<Box<dyn samplab::S
 }
 
 impl Settings {
+    /// The pixel sampler `pixel_sampler` names, prepared for the render, when it names one
+    /// and no point-set sampler (point-set samplers keep their meaning: the pixel area only;
+    /// `pixel.NAME` names the pixel sampler where both lists have NAME).
+    fn pixels(&self, scene: &Scene, width: usize, height: usize) -> Result<Option<samplab::pixel::Pixels>> {
+        // a stage (`sobol+shift`) makes a point-set spec
+        let name = self.pixel_sampler.split([':', '+']).next().unwrap_or_default();
+        let point_set = samplab::sampler::SAMPLERS.lookup(name).is_ok() || self.pixel_sampler.contains('+');
+        if point_set || samplab::pixel::PIXEL_SAMPLERS.lookup(name).is_err() {
+            return Ok(None);
+        }
+        let side = |v: usize| u32::try_from(v).unwrap_or(u32::MAX);
+        let film = samplab::pixel::Film {
+            width: side(width),
+            height: side(height),
+            spp: side(self.spp),
+            dims: side(crate::render::pixel_dims(self.n, scene.lights.len(), choose("mode", &self.mode, &MODES)?)),
+        };
+        let prepared = samplab::pixel::prepare(&self.pixel_sampler, film, Seed(self.seed));
+        Ok(Some(prepared.map_err(|e| samplab::Error::Setting {
+            name: "pixel_sampler",
+            value: self.pixel_sampler.clone(),
+            reason: e.to_string(),
+        })?))
+    }
+
     /// The options for rendering `scene` with these settings, every count checked.
     ///
     /// # Errors
@@ -112,13 +137,17 @@ impl Settings {
     /// [`Options::check`] refuses.
     pub fn options(&self, scene: &Scene) -> Result<Options> {
         let (width, height) = self.res.unwrap_or(scene.resolution);
+        let pixels = self.pixels(scene, width, height)?;
         let options = Options {
             light: sampler("sampler", &self.sampler)?,
             n: self.n,
             spp: self.spp,
             mode: choose("mode", &self.mode, &MODES)?,
             footprint: choose("pixel", &self.pixel, &FOOTPRINTS)?,
-            pixel: sampler("pixel_sampler", &self.pixel_sampler)?,
+            pixel: match pixels {
+                Some(_) => sampler("pixel_sampler", SECONDARY)?,
+                None => sampler("pixel_sampler", &self.pixel_sampler)?,
+            },
             lens: sampler("lens_sampler", &self.lens_sampler)?,
             time: sampler("time_sampler", &self.time_sampler)?,
             gloss: sampler("gloss_sampler", &self.gloss_sampler)?,
@@ -129,6 +158,7 @@ impl Settings {
             width,
             height,
             seed: Seed(self.seed),
+            pixels,
         };
         options.check(scene)?;
         Ok(options)

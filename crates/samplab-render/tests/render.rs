@@ -268,3 +268,49 @@ fn a_raised_stop_flag_stops_the_render_at_its_next_pixel() {
     let finished = rows.load(Ordering::Relaxed);
     assert!((3..64).contains(&finished), "{finished} rows finished");
 }
+
+#[test]
+fn a_pixel_sampler_draws_every_dimension_and_converges_to_the_reference() {
+    use samplab::pixel::{Film, prepare};
+    let (w, h, n) = (32, 24, 4);
+    let options = |spp: usize| {
+        let mut o = Options::new("sobol.owen", n, w, h).unwrap();
+        o.footprint = samplab_render::Footprint::Area;
+        o.mode = Mode::Direct;
+        o.spp = spp;
+        o
+    };
+    let with = |scene: &Scene, spec: &str, spp: usize, seed: u64| {
+        let dims = samplab_render::render::pixel_dims(n, scene.lights.len(), Mode::Direct) as u32;
+        let film = Film { width: w as u32, height: h as u32, spp: spp as u32, dims };
+        Options { pixels: Some(prepare(spec, film, Seed(seed)).unwrap()), ..options(spp) }
+    };
+    // the film and light dimensions everywhere; the lens (defocus), the shutter (motion),
+    // two lights (ball)
+    for name in ["defocus", "motion", "ball"] {
+        let scene = builtin(name, None).unwrap();
+        let converged = options(1).converged("sobol.owen", 64, 1024).unwrap();
+        let reference = render(&scene, &converged, &Progress::SILENT).unwrap().image;
+        for spec in ["zsobol", "pixel.sobol", "openqmc.pmjbn", "independent"] {
+            let rmse = |spp| {
+                let image = render(&scene, &with(&scene, spec, spp, 3), &Progress::SILENT).unwrap().image;
+                image.errors(&reference, false).unwrap().rmse
+            };
+            let (coarse, fine) = (rmse(4), rmse(64));
+            // 16 times the samples: Monte Carlo's error falls 4 times; the criterion asks half that
+            assert!(fine < coarse / 2.0, "{name}, {spec}: RMSE {coarse} at 4 spp, {fine} at 64");
+        }
+    }
+    // the same bytes on one thread (the glossy mirror and the lens of "all" too), and the
+    // seed matters
+    let all = builtin("all", None).unwrap();
+    let o = with(&all, "zsobol", 4, 3);
+    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let a = one.install(|| render(&all, &o, &Progress::SILENT).unwrap().image);
+    assert_eq!(a, render(&all, &o, &Progress::SILENT).unwrap().image);
+    assert_ne!(a, render(&all, &with(&all, "zsobol", 4, 4), &Progress::SILENT).unwrap().image);
+    // a sampler prepared for another film is refused before any work
+    let wrong = Options { spp: 8, ..with(&all, "zsobol", 4, 3) };
+    let e = render(&all, &wrong, &Progress::new(&|_| panic!("no row may start"))).unwrap_err().to_string();
+    assert!(e.contains("prepared for 32x24 pixels, 4 spp"), "{e}");
+}

@@ -8,7 +8,7 @@ use crate::spec::Params;
 
 pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
     about: About::new("independent", "independent uniform values, 53 random bits each, hashed from every key")
-        .aliases(&["random", "uniform"])
+        .aliases(&["pixel.independent"])
         .cite(&["cook1986"]),
     spp: ANY_SPP,
     dims: "any",

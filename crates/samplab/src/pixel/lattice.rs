@@ -21,7 +21,7 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
         "a rank-1 lattice sequence per pixel: the embedded fast-CBC lattice for 2^16 points in radical-inverse \
          order, the index shuffled and every dimension shifted by hashes of (seed, pixel, frame)",
     )
-    .aliases(&["lattice.shift"])
+    .aliases(&["pixel.lattice"])
     .cite(&["cools2006", "nuyens2006", "burley2020", "cranley1976"]),
     spp: super::Counts::Any("each pixel's first 2^m samples a shifted lattice, m up to 16"),
     dims: "1 to 1024 (a CBC vector made when prepared: about 0.2 s for 64 dimensions)",

@@ -25,7 +25,7 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
             "pmj02 per pixel: each pair of dimensions one of 16 pmj02 sequences, its samples permuted \
              and digitally shifted by a hash of (seed, pixel, frame, pair)",
         )
-        .aliases(&["pmj"])
+        .aliases(&["pixel.pmj02"])
         .cite(&["christensen2018", "helmer2021", "pharr2023"]),
         spp: super::Counts::AtMost { most: MOST, why: "the pool holds 16 sequences of at most 2^16 points" },
         dims: "any (pairs of 2D pmj02)",

@@ -17,7 +17,7 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
             "Owen-scrambled Sobol' per pixel: dimension d is Sobol' dimension d (Joe-Kuo), the index \
              shuffled and every dimension Owen-scrambled by hashes of (seed, pixel, frame)",
         )
-        .aliases(&["sobol.owen", "burley"])
+        .aliases(&["pixel.sobol", "burley"])
         .cite(&["burley2020", "joe2008", "sobol1967"]),
         spp: super::Counts::Any("each pixel's first 2^m samples a (t,m,s)-net"),
         dims: "1 to 1024 (the Joe-Kuo table)",

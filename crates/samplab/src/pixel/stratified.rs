@@ -15,7 +15,7 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
         "jittered a x b strata per pixel for each pair of dimensions, a the largest divisor of spp \
          not above its square root",
     )
-    .aliases(&["jittered", "stratified.padded"])
+    .aliases(&["pixel.stratified", "stratified.padded"])
     .cite(&["cook1986", "pharr2023", "kensler2013"]),
     spp: ANY_SPP,
     dims: "any (pairs of 2D strata)",
