@@ -23,6 +23,7 @@ mod discrepancy;
 mod generate;
 mod integrate;
 mod list;
+mod mask;
 mod pixels;
 mod plot;
 mod render;
@@ -79,6 +80,9 @@ enum Command {
     /// Every value a pixel sampler (ZSobol, padded Sobol', PMJ02, blue-noise dithering,
     /// OpenQMC, ...) gives a film, keyed by pixel, frame, sample and dimension (.npy).
     Pixels(pixels::Args),
+    /// A tileable blue-noise mask by void-and-cluster (Ulichney 1993), 1-4 values per pixel,
+    /// as .npy or .png (the masks of the dither and pmj02.bn pixel samplers).
+    Mask(mask::Args),
 }
 
 /// The exit code of a bug (a panic): 70, EX_SOFTWARE of sysexits.h.
@@ -181,6 +185,7 @@ fn run(cli: Cli) -> ExitCode {
         Command::Spectrum(a) => spectrum::run(&a),
         Command::Render(a) => render::run(&a),
         Command::Pixels(a) => pixels::run(&a),
+        Command::Mask(a) => mask::run(&a),
     })
 }
 

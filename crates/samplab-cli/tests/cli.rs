@@ -95,6 +95,8 @@ fn bad_input_exit_2_with_one_line() {
     px(&["sobol", "--res", "4x4", "--spp", "4", "--dims", "2000"], &["2000D is not supported"]);
     px(&["dither:mask=3", "--res", "4x4", "--spp", "4"], &["'mask'", "[4, 256]"]);
     assert_bad_input(&["pixels", "zsobol", "--res", "4x4", "--spp", "4", "-o", "p.txt"], &["written as .npy"]);
+    assert_bad_input(&["mask", "--size", "3", "-o", "m.npy"], &["--size 3: a mask side is 4 to 256 pixels"]);
+    assert_bad_input(&["mask", "--channels", "4", "-o", "m.png"], &["at most 3 channels"]);
     assert_bad_input(
         &[
             "render",

@@ -205,6 +205,14 @@ fn pixels<'py>(
     shaped(py, data, &[frames, height, width, spp, dims].map(|k| k as usize))
 }
 
+/// A tileable blue-noise mask by void-and-cluster, (size, size, channels): the bytes of
+/// `samplab mask -o FILE.npy`.
+#[pyfunction]
+fn blue_noise_mask<'py>(py: Python<'py>, size: usize, channels: usize, seed: u64) -> PyResult<Bound<'py, PyAny>> {
+    let mask = py.detach(|| samplab::pixel::mask::Mask::void_and_cluster(size, channels, Seed(seed))).map_err(err)?;
+    shaped(py, mask.values().to_vec(), &[size, size, channels])
+}
+
 /// Whether `spec` names a progressive sequence (random access, extensible).
 #[pyfunction]
 fn is_sequence(spec: &str) -> PyResult<bool> {
@@ -769,6 +777,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(generate, m)?)?;
     m.add_function(wrap_pyfunction!(is_sequence, m)?)?;
     m.add_function(wrap_pyfunction!(pixels, m)?)?;
+    m.add_function(wrap_pyfunction!(blue_noise_mask, m)?)?;
     m.add_function(wrap_pyfunction!(sequence_points, m)?)?;
     m.add_function(wrap_pyfunction!(warp, m)?)?;
     m.add_function(wrap_pyfunction!(save, m)?)?;

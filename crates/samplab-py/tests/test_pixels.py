@@ -46,3 +46,21 @@ def test_bad_arguments_raise_samplab_error(call, message):
     with pytest.raises(samplab.Error, match=None) as e:
         call()
     assert message in str(e.value)
+
+
+def test_the_blue_noise_mask_equals_the_cli_and_is_blue(cli, tmp_path):
+    out = tmp_path / "m.npy"
+    cli("mask", "--size", 32, "--channels", 2, "--seed", 3, "-o", out)
+    m = samplab.blue_noise_mask(32, channels=2, seed=3)
+    assert m.shape == (32, 32, 2)
+    assert m.tobytes() == load_npy(out).tobytes()
+    # every channel ranks every pixel once
+    for c in range(2):
+        assert sorted((m[:, :, c] * 1024 - 0.5).round().astype(int).ravel()) == list(range(1024))
+    # blue: the lowest frequencies nearly empty (numpy's FFT, independent of samplab's test)
+    p = np.abs(np.fft.fft2(m[:, :, 0] - m[:, :, 0].mean())) ** 2 / m[:, :, 0].size
+    f = np.hypot(*np.meshgrid(np.fft.fftfreq(32), np.fft.fftfreq(32)))
+    low = p[(f > 0) & (f <= 0.15)].mean() * 12
+    assert low < 0.02, low
+    with pytest.raises(samplab.Error, match="size = 3: a mask side is 4 to 256"):
+        samplab.blue_noise_mask(3)

@@ -37,6 +37,7 @@ __all__ = [
     "generate",
     "pixel_samplers",
     "pixels",
+    "blue_noise_mask",
     "is_sequence",
     "sequence_points",
     "warp",
@@ -179,6 +180,14 @@ def pixels(
             raise Error(f"{name} = {value}: out of range [0, 2^32)")
     film = (int(width), int(height), int(spp), int(dims))
     return _samplab.pixels(spec, film, int(frames), _seed(seed))
+
+
+def blue_noise_mask(size: int = 64, channels: int = 1, seed: Optional[int] = None) -> np.ndarray:
+    """A tileable blue-noise mask by void-and-cluster (Ulichney 1993): a float64 array of
+    shape (size, size, channels), each channel an independent ranking of the pixels as
+    (rank + 1/2) / size^2; the masks of the ``dither`` and ``pmj02.bn`` pixel samplers, and
+    the bytes of ``samplab mask -o FILE.npy``. ``size`` is 4 to 256, ``channels`` 1 to 4."""
+    return _samplab.blue_noise_mask(_count("size", size), _count("channels", channels), _seed(seed))
 
 
 def is_sequence(spec: str) -> bool:

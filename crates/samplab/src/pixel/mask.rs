@@ -44,7 +44,7 @@ impl Mask {
     pub fn void_and_cluster(size: usize, channels: usize, seed: Seed) -> Result<Mask> {
         if !(4..=MAX_SIZE).contains(&size) {
             return Err(Error::Setting {
-                name: "mask",
+                name: "size",
                 value: size.to_string(),
                 reason: format!("a mask side is 4 to {MAX_SIZE} pixels"),
             });
@@ -246,7 +246,7 @@ mod tests {
 
     #[test]
     fn sizes_and_channels_out_of_range_are_refused() {
-        assert!(Mask::void_and_cluster(3, 1, Seed(1)).unwrap_err().to_string().starts_with("mask = 3"));
+        assert!(Mask::void_and_cluster(3, 1, Seed(1)).unwrap_err().to_string().starts_with("size = 3"));
         assert!(Mask::void_and_cluster(8, 5, Seed(1)).unwrap_err().to_string().starts_with("channels = 5"));
     }
 }
