@@ -51,13 +51,21 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
 /// The byte tables of one dimension's generator, bit-reversed: entry [b][v] is the XOR of
 /// the reversed columns that byte b of the index selects when it equals v. Reversed digits
 /// are what the Owen scramble of Burley 2020 works on, so a value costs one reversal.
-pub(super) type ByteTables = [[u32; 256]; 4];
+/// Column k has k + 1 significant digits, so the low index bytes' entries fit 16 bits:
+/// they are kept so, halving the tables that every draw below 2^16 reads.
+#[derive(Debug, Clone)]
+pub(super) struct ByteTables {
+    low: [[u16; 256]; 2],
+    high: [[u32; 256]; 2],
+}
 
 pub(super) fn byte_tables(dim: usize) -> ByteTables {
     let c = direction_numbers(dim).map(u32::reverse_bits);
-    std::array::from_fn(|b| {
+    let table = |b: usize| -> [u32; 256] {
         std::array::from_fn(|v| (0..8).filter(|k| v >> k & 1 == 1).fold(0, |x, k| x ^ c[8 * b + k]))
-    })
+    };
+    // the reversed columns 0..16 lie in the low 16 bits: the cast drops only zeros
+    ByteTables { low: [table(0).map(|x| x as u16), table(1).map(|x| x as u16)], high: [table(2), table(3)] }
 }
 
 /// The unscrambled 32 digits of point `index`, bit-reversed, from its dimension's byte
@@ -65,8 +73,8 @@ pub(super) fn byte_tables(dim: usize) -> ByteTables {
 /// first 2^16 points unless their sample count is larger).
 #[inline(always)]
 pub(super) fn reversed_digits(t: &ByteTables, index: u32) -> u32 {
-    let low = t[0][(index & 0xFF) as usize] ^ t[1][(index >> 8 & 0xFF) as usize];
-    if index >> 16 == 0 { low } else { low ^ t[2][(index >> 16 & 0xFF) as usize] ^ t[3][(index >> 24) as usize] }
+    let low = u32::from(t.low[0][(index & 0xFF) as usize] ^ t.low[1][(index >> 8 & 0xFF) as usize]);
+    if index >> 16 == 0 { low } else { low ^ t.high[0][(index >> 16 & 0xFF) as usize] ^ t.high[1][(index >> 24) as usize] }
 }
 
 /// The Owen-scrambled digits (Burley 2020) of reversed digits, in their natural order.
@@ -155,7 +163,7 @@ mod tests {
     #[test]
     fn byte_tables_equal_the_column_walk() {
         let t = byte_tables(5);
-        for index in [0u32, 1, 255, 256, 0x1234_5678, u32::MAX] {
+        for index in [0u32, 1, 255, 256, 0xFFFF, 0x1_0000, 0x1234_5678, u32::MAX] {
             assert_eq!(reversed_digits(&t, index), crate::sampler::qmc::sobol::sobol_u32(index, 5).reverse_bits());
         }
     }
