@@ -9,14 +9,16 @@
 //! where tables are built (a PMJ02 pool, a blue-noise mask).
 //!
 //! How a point-set family becomes a pixel sampler is part of its entry ([`PixelEntry::mapping`]):
-//! - one set per pixel, decorrelated by a hashed per-pixel seed (`sobol`, `stratified`,
-//!   `pmj02`);
+//! - one sequence per pixel, decorrelated by hashes of (seed, pixel, frame): `sobol` and
+//!   `lattice` shuffle the index per pixel (Burley 2020), so each pixel's first 2^m
+//!   samples are an aligned block of the sequence, still a net or a shifted lattice;
 //! - dimension padding: each pair of dimensions from its own randomization of a 2D pattern
-//!   (`sobol.padded`, `stratified`, `pmj02`, as pbrt-v4's padded samplers) against a true
+//!   (`sobol.padded`, `stratified`, `pmj02`, as pbrt-v4's padded samplers), against a true
 //!   high-dimensional sequence (`sobol`: dimension d is Sobol' dimension d);
 //! - screen-space orderings and masks: `zsobol` (Morton-ordered pixels, Ahmed & Wonka
-//!   2020), `dither` and `pmj02.bn` (one toroidal shift per pixel from a blue-noise mask,
-//!   Georgiev & Fajardo 2016), OpenQMC's `*bn` tables.
+//!   2020, pbrt-v4's values bit for bit), `dither` and `pmj02.bn` (one toroidal shift per
+//!   pixel from a blue-noise [`mask`], Georgiev & Fajardo 2016), OpenQMC's `*bn` tables;
+//! - OpenQMC's six samplers as OpenQMC defines them (`openqmc.*`, through `openqmc-rs`).
 //!
 //! ```
 //! use samplab::{Seed, pixel};
