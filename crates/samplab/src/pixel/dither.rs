@@ -79,11 +79,32 @@ fn build(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
     }))
 }
 
+impl Dither {
+    /// Dimension `dim` of sample `index`: the frame's scramble (`frame_key`, shared by every
+    /// pixel), shifted by `shift`, the pixel's shift of the dimension's pair.
+    #[inline(always)]
+    fn value(&self, frame_key: u64, index: u32, dim: u32, shift: [u32; 2]) -> f64 {
+        let key = self.keys.dim(frame_key as u32, dim);
+        let x = owen_digits(reversed_digits(&self.tables[dim as usize], index), key);
+        unit(x.wrapping_add(shift[(dim & 1) as usize]))
+    }
+}
+
 impl PixelSampler for Dither {
     fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
-        // the frame's scramble, shared by every pixel
-        let key = self.keys.dim(self.keys.frame(frame) as u32, dim);
-        let x = owen_digits(reversed_digits(&self.tables[dim as usize], index), key);
-        unit(x.wrapping_add(self.shifts.shift(pixel, frame, dim / 2)[(dim & 1) as usize]))
+        self.value(self.keys.frame(frame), index, dim, self.shifts.shift(pixel, frame, dim / 2))
+    }
+
+    fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
+        // one frame key and one shift per pair, not per value
+        let frame_key = self.keys.frame(frame);
+        let mut shift = self.shifts.shift(pixel, frame, dim / 2);
+        std::array::from_fn(|k| {
+            let d = dim + k as u32;
+            if k > 0 && d & 1 == 0 {
+                shift = self.shifts.shift(pixel, frame, d / 2);
+            }
+            self.value(frame_key, index, d, shift)
+        })
     }
 }
