@@ -9,22 +9,24 @@ use samplab::pixel::{Film, PIXEL_SAMPLERS, Pixels, prepare};
 const ONE_MINUS_EPSILON: f32 = 0.999_999_94;
 
 #[test]
-fn zsobol_and_padded_sobol_equal_pbrt_v4_bit_for_bit() {
+fn zsobol_padded_sobol_and_halton_equal_pbrt_v4_bit_for_bit() {
     let text = include_str!("fixtures/pbrt_pixel_samplers.txt");
     let mut checked = 0;
     let mut prepared: Option<(String, Pixels)> = None;
     for line in text.lines().filter(|l| !l.starts_with('#')) {
         let f: Vec<&str> = line.split(' ').collect();
         let num = |k: usize| f[k].parse::<u32>().unwrap();
-        let randomize = match f[1] {
-            "permutedigits" => "xor",
-            other => other,
+        let (name, randomize) = match (f[0], f[1]) {
+            ("halton", r) => ("halton", r),
+            (sobol, "permutedigits") => (if sobol == "zsobol" { "zsobol" } else { "sobol.padded" }, "xor"),
+            (sobol, r) => (if sobol == "zsobol" { "zsobol" } else { "sobol.padded" }, r),
         };
-        let name = if f[0] == "zsobol" { "zsobol" } else { "sobol.padded" };
-        let key = format!("{name}:randomize={randomize} {} {} {} {}", num(2), num(3), num(4), num(5));
+        // pbrt's Owen-scrambled Halton ignores its seed; samplab's is pbrt's at seed 0
+        let seed = if (name, randomize) == ("halton", "owen") { 0 } else { num(5) };
+        let key = format!("{name}:randomize={randomize} {} {} {} {seed}", num(2), num(3), num(4));
         if prepared.as_ref().is_none_or(|(k, _)| *k != key) {
             let film = Film { width: num(3), height: num(4), spp: num(2), dims: 8 };
-            let p = prepare(&format!("{name}:randomize={randomize}"), film, Seed(u64::from(num(5)))).unwrap();
+            let p = prepare(&format!("{name}:randomize={randomize}"), film, Seed(u64::from(seed))).unwrap();
             prepared = Some((key.clone(), p));
         }
         let p = &prepared.as_ref().unwrap().1;
@@ -33,8 +35,9 @@ fn zsobol_and_padded_sobol_equal_pbrt_v4_bit_for_bit() {
         assert_eq!(ours.to_bits(), theirs.to_bits(), "{line}: samplab {ours}, pbrt {theirs}");
         checked += 1;
     }
-    // 4 randomizations x 2 samplers x 2 films x 5 pixels x (16 or 8) samples x 8 dimensions
-    assert_eq!(checked, 7680);
+    // 4 randomizations x 2 samplers x 2 films x 5 pixels x (16 or 8) samples x 8 dimensions,
+    // and Halton's 3 randomizations x 5 pixels x (16 + 8 + 4) samples x 8 dimensions
+    assert_eq!(checked, 7680 + 3 * 5 * 28 * 8);
 }
 
 #[test]
