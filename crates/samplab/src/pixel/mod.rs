@@ -50,7 +50,7 @@ crate::registry::registry_files! {
     /// Every pixel sampler family, in listing order.
     pub static PIXEL_SAMPLERS: Registry<PixelEntry> = ("pixel sampler",
         "PIXEL SAMPLERS  (spec: name[:key=value,...]; values keyed by seed, pixel, frame, index, dimension)")
-        from [independent, stratified, sobol, zsobol, halton, pmj, lattice, dither, openqmc];
+        from [independent, stratified, sobol, zsobol, halton, pmj, lattice, dither, heitz, openqmc];
 }
 
 /// The most dimensions a pixel sampler is prepared for.
