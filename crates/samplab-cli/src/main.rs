@@ -21,6 +21,7 @@ mod alloc;
 mod bar;
 mod discrepancy;
 mod generate;
+mod image_metrics;
 mod integrate;
 mod list;
 mod mask;
@@ -80,6 +81,9 @@ enum Command {
     /// Every value a pixel sampler (ZSobol, padded Sobol', PMJ02, blue-noise dithering,
     /// OpenQMC, ...) gives a film, keyed by pixel, frame, sample and dimension (.npy).
     Pixels(pixels::Args),
+    /// How a render's error is spread over the screen: RMSE, blurred RMSE beside white
+    /// noise's, low-frequency energy, radial error spectrum, flicker over frames.
+    ImageMetrics(image_metrics::Args),
     /// A tileable blue-noise mask by void-and-cluster (Ulichney 1993), 1-4 values per pixel,
     /// as .npy or .png (the masks of the dither and pmj02.bn pixel samplers).
     Mask(mask::Args),
@@ -185,6 +189,7 @@ fn run(cli: Cli) -> ExitCode {
         Command::Spectrum(a) => spectrum::run(&a),
         Command::Render(a) => render::run(&a),
         Command::Pixels(a) => pixels::run(&a),
+        Command::ImageMetrics(a) => image_metrics::run(&a),
         Command::Mask(a) => mask::run(&a),
     })
 }

@@ -526,3 +526,53 @@ fn every_subcommand_gives_the_same_bytes_on_1_2_and_the_default_threads() {
         assert!(outputs.windows(2).all(|w| w[0] == w[1]), "{args:?}: the bytes depend on the thread count");
     }
 }
+
+#[test]
+fn image_metrics_and_mask_spectra_equal_the_library() {
+    use samplab::screen::Plane;
+    use samplab_render::Image;
+    let dir = temp("image-metrics");
+    let (w, h) = (40usize, 30usize);
+    let image = |f: &dyn Fn(usize) -> f32| Image {
+        width: w,
+        height: h,
+        rgb: (0..3 * w * h).map(|k| f(k / 3)).collect(),
+        visibility: None,
+    };
+    let noise = image(&|p| (samplab::seed::mix64(p as u64) >> 40) as f32 / (1u32 << 24) as f32);
+    let reference = image(&|_| 0.5);
+    noise.write(&dir.join("a.exr")).unwrap();
+    reference.write(&dir.join("r.exr")).unwrap();
+    let (a, r) = (dir.join("a.exr"), dir.join("r.exr"));
+    let out = samplab(&[
+        "image-metrics",
+        a.to_str().unwrap(),
+        a.to_str().unwrap(),
+        "--reference",
+        r.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let lines: Vec<serde_json::Value> =
+        String::from_utf8(out.stdout).unwrap().lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    let error: Vec<f64> = noise.luminance().iter().zip(reference.luminance()).map(|(a, b)| a - b).collect();
+    let want = Plane::new(w, h, error).unwrap().metrics(&[0.0, 1.0, 2.0, 4.0]).unwrap();
+    let mut got = lines[0].clone();
+    got.as_object_mut().unwrap().remove("image");
+    assert_eq!(got, serde_json::to_value(&want).unwrap());
+    assert_eq!(lines[2]["flicker"], 0.0, "two equal frames do not flicker");
+    // the masks of a pixel sampler
+    let out =
+        samplab(&["pixels", "zsobol", "--res", "32x32", "--spp", "1", "--dims", "2", "--mask-spectrum", "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let first: serde_json::Value =
+        serde_json::from_str(String::from_utf8(out.stdout).unwrap().lines().next().unwrap()).unwrap();
+    let film = samplab::pixel::Film { width: 32, height: 32, spp: 1, dims: 2 };
+    let p = samplab::pixel::prepare("zsobol", film, Seed::DEFAULT).unwrap();
+    let low = p.mask(0, 0, 0).unwrap().low_frequency(samplab::screen::LOW_FREQUENCY_CUTOFF).unwrap();
+    assert_eq!(first["low_frequency"].as_f64().unwrap(), low);
+    assert_bad_input(
+        &["image-metrics", a.to_str().unwrap(), "--reference", r.to_str().unwrap(), "--sigma", "-1"],
+        &["--sigma -1: a blur width is 0 to 64 pixels"],
+    );
+}

@@ -723,6 +723,32 @@ fn image_errors(
     serde_json::to_string(&image.errors(&reference, penumbra).map_err(err)?).map_err(err)
 }
 
+/// The screen measures of error images (frames, height, width) (`samplab image-metrics
+/// --json`'s objects, one per frame), with the flicker over the frames when there are two or
+/// more.
+#[pyfunction]
+fn image_metrics(py: Python<'_>, errors: PyReadonlyArray3<f64>, sigmas: Vec<f64>) -> PyResult<String> {
+    let [frames, h, w] = [0, 1, 2].map(|k| errors.shape()[k]);
+    let values = errors.as_slice().map_err(|_| err("the array must be C-contiguous"))?;
+    let planes = values
+        .chunks(w * h.max(1))
+        .take(frames)
+        .map(|f| samplab::screen::Plane::new(w, h, f.to_vec()))
+        .collect::<samplab::Result<Vec<_>>>()
+        .map_err(err)?;
+    if planes.is_empty() {
+        return Err(err("no image: the array has 0 frames"));
+    }
+    let (metrics, flicker) = py
+        .detach(|| {
+            let m = planes.iter().map(|p| p.metrics(&sigmas)).collect::<samplab::Result<Vec<_>>>()?;
+            let f = if planes.len() > 1 { Some(samplab::screen::flicker(&planes)?) } else { None };
+            Ok::<_, samplab::Error>((m, f))
+        })
+        .map_err(err)?;
+    serde_json::to_string(&serde_json::json!({ "frames": metrics, "flicker": flicker })).map_err(err)
+}
+
 /// Read an OpenEXR image (as `samplab render` writes them).
 #[pyfunction]
 fn read_exr<'py>(py: Python<'py>, path: &str) -> PyResult<Bound<'py, PyDict>> {
@@ -778,6 +804,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(is_sequence, m)?)?;
     m.add_function(wrap_pyfunction!(pixels, m)?)?;
     m.add_function(wrap_pyfunction!(blue_noise_mask, m)?)?;
+    m.add_function(wrap_pyfunction!(image_metrics, m)?)?;
     m.add_function(wrap_pyfunction!(sequence_points, m)?)?;
     m.add_function(wrap_pyfunction!(warp, m)?)?;
     m.add_function(wrap_pyfunction!(save, m)?)?;

@@ -64,3 +64,42 @@ def test_the_blue_noise_mask_equals_the_cli_and_is_blue(cli, tmp_path):
     assert low < 0.02, low
     with pytest.raises(samplab.Error, match="size = 3: a mask side is 4 to 256"):
         samplab.blue_noise_mask(3)
+
+
+def _wrapped_gaussian_blur(image, sigma):
+    """A Gaussian blur of sigma pixels (truncated at 3 sigma, normalized) that wraps around,
+    by numpy's FFT: the independent reference for samplab's direct convolution."""
+    if sigma == 0:
+        return image
+    r = int(np.ceil(3 * sigma))
+    g = np.exp(-np.arange(-r, r + 1) ** 2 / (2 * sigma * sigma))
+    g /= g.sum()
+    h, w = image.shape
+    kernel = np.zeros((h, w))
+    for i, a in enumerate(g):
+        for j, b in enumerate(g):
+            kernel[(i - r) % h, (j - r) % w] += a * b
+    return np.real(np.fft.ifft2(np.fft.fft2(image) * np.fft.fft2(kernel)))
+
+
+def test_image_metrics_equal_numpy_references():
+    rng = np.random.default_rng(3)
+    image = rng.random((48, 64, 3))
+    reference = np.full((48, 64, 3), 0.5)
+    m = samplab.image_metrics(image, reference, sigma=(0, 1, 2))
+    error = (image - reference) @ np.array([0.2126, 0.7152, 0.0722])
+    assert m["rmse"] == pytest.approx(np.sqrt(np.mean(error**2)), rel=1e-12)
+    for b in m["blurred"]:
+        want = np.sqrt(np.mean(_wrapped_gaussian_blur(error, b["sigma"]) ** 2))
+        assert b["rmse"] == pytest.approx(want, rel=1e-9)
+    # low-frequency energy: the periodogram's mean below 1/16 cycle per pixel over the variance
+    power = np.abs(np.fft.fft2(error - error.mean())) ** 2 / error.size
+    fy, fx = np.meshgrid(np.fft.fftfreq(48), np.fft.fftfreq(64), indexing="ij")
+    f = np.hypot(fx, fy)
+    low = power[(f > 0) & (f < 1 / 16)].mean() / error.var(ddof=1)
+    assert m["low_frequency"] == pytest.approx(low, rel=1e-9)
+    # frames: a static error does not flicker
+    stack = samplab.image_metrics(np.stack([error, error, error]))
+    assert stack["flicker"] == 0 and len(stack["frames"]) == 3
+    with pytest.raises(samplab.Error, match="expected"):
+        samplab.image_metrics(np.zeros(5))

@@ -40,6 +40,7 @@ pub mod points;
 pub mod progress;
 pub mod registry;
 pub mod sampler;
+pub mod screen;
 pub mod seed;
 pub mod simd;
 pub mod spatial;

@@ -300,3 +300,21 @@ fn half_plane_areas_are_exact() {
     // x + y > 0.5: all but the corner triangle of area 1/8
     assert!((half_plane_area([d, d], -0.5 * d) - 0.875).abs() < 1e-15);
 }
+
+#[test]
+fn dimension_0_masks_of_the_screen_space_families_are_blue_and_independent_is_white() {
+    // issue 38's criterion: sample 0 of dimension 0 on a 256 x 256 film at 1 spp; the mean
+    // power below 1/16 cycle per pixel (1/8 of Nyquist), over the variance, under 0.3 for
+    // ZSobol, dithered sampling and Heitz et al.; within 20% of 1 for independent values
+    let film = Film { width: 256, height: 256, spp: 1, dims: 2 };
+    let low =
+        |spec: &str| prepare(spec, film, Seed(4)).unwrap().mask(0, 0, 0).unwrap().low_frequency(1.0 / 16.0).unwrap();
+    for spec in ["zsobol", "dither", "heitz2019"] {
+        let l = low(spec);
+        eprintln!("{spec}: low-frequency energy {l:.4} of white noise's");
+        assert!(l < 0.3, "{spec}: {l}");
+    }
+    let l = low("independent");
+    eprintln!("independent: {l:.4}");
+    assert!((l - 1.0).abs() < 0.2, "independent: {l}");
+}

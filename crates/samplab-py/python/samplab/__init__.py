@@ -38,6 +38,7 @@ __all__ = [
     "pixel_samplers",
     "pixels",
     "blue_noise_mask",
+    "image_metrics",
     "is_sequence",
     "sequence_points",
     "warp",
@@ -188,6 +189,39 @@ def blue_noise_mask(size: int = 64, channels: int = 1, seed: Optional[int] = Non
     (rank + 1/2) / size^2; the masks of the ``dither`` and ``pmj02.bn`` pixel samplers, and
     the bytes of ``samplab mask -o FILE.npy``. ``size`` is 4 to 256, ``channels`` 1 to 4."""
     return _samplab.blue_noise_mask(_count("size", size), _count("channels", channels), _seed(seed))
+
+
+def image_metrics(image: Any, reference: Any = None, sigma: Sequence[float] = (0, 1, 2, 4)) -> dict:
+    """How an image's error is spread over the screen, as ``samplab image-metrics --json``
+    reports it: RMSE, the RMSE after Gaussian blurs of ``sigma`` pixels beside white noise's
+    of the same standard deviation, the low-frequency energy (power below 1/16 cycle per
+    pixel over the variance: 1 for white noise), and the radial power spectrum.
+
+    ``image`` is (height, width) values, (height, width, 3) linear RGB (taken as Rec. 709
+    luminance), or a stack of frames of either; ``reference`` (same shape, or one frame for
+    every frame) is subtracted first (without it, ``image`` is the error). One frame gives
+    one dict; several give ``{"frames": [dict, ...], "flicker": f}``, f the RMS of the
+    frame-to-frame change of the error over its RMS (independent frames: sqrt(2), static: 0).
+    """
+
+    def luminance(a: np.ndarray, name: str) -> np.ndarray:
+        a = np.asarray(a, dtype=np.float64)
+        if a.ndim >= 3 and a.shape[-1] == 3:
+            a = a @ np.array([0.2126, 0.7152, 0.0722])
+        if a.ndim not in (2, 3):
+            raise Error(f"{name}: expected (height, width), (height, width, 3) or a stack of frames, got shape {a.shape}")
+        return a
+
+    error = luminance(image, "image")
+    if reference is not None:
+        ref = luminance(reference, "reference")
+        if ref.shape != error.shape and ref.shape != error.shape[-2:]:
+            raise Error(f"reference: shape {ref.shape} does not match the image's {error.shape}")
+        error = error - ref
+    single = error.ndim == 2
+    frames = np.ascontiguousarray(error[None] if single else error)
+    result = json.loads(_samplab.image_metrics(frames, [float(s) for s in sigma]))
+    return result["frames"][0] if single else result
 
 
 def is_sequence(spec: str) -> bool:

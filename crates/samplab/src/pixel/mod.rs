@@ -254,6 +254,19 @@ impl Pixels {
         Ok(self.sample(pixel, frame, index, dim))
     }
 
+    /// The image of dimension `dim` of sample `index` in `frame`, one value per pixel of
+    /// the film: the sampler's mask for that dimension ([`crate::screen`] measures it).
+    ///
+    /// # Errors
+    /// [`Error::Setting`] naming `index` or `dim` when it lies outside the film.
+    pub fn mask(&self, frame: u32, index: u32, dim: u32) -> Result<crate::screen::Plane> {
+        let f = self.film;
+        self.try_sample([0, 0], frame, index, dim)?;
+        let values =
+            (0..f.height).flat_map(|y| (0..f.width).map(move |x| self.sample([x, y], frame, index, dim))).collect();
+        crate::screen::Plane::new(f.width as usize, f.height as usize, values)
+    }
+
     /// How many values `frames` frames of the whole film hold.
     ///
     /// # Errors
