@@ -41,9 +41,9 @@ pub struct Args {
     /// Output .npy file (float64, C order), written atomically
     #[arg(short, long, required_unless_present = "mask_spectrum")]
     output: Option<PathBuf>,
-    /// Measure each dimension's mask (sample 0 of frame 0 over the film): its low-frequency
-    /// energy (|f| < 1/16 cycle per pixel, 1/8 of Nyquist) against white noise's, and its
-    /// RMS after Gaussian blurs of 1 and 2 pixels against white noise's; printed per dimension
+    /// Measure each dimension's mask (sample 0 over the film): frame 0's low-frequency
+    /// energy (|f| < 1/16 cycle per pixel, 1/8 of Nyquist) and RMS after Gaussian blurs of 1
+    /// and 2 pixels, against white noise's; the flicker over --frames; printed per dimension
     #[arg(long)]
     mask_spectrum: bool,
     /// With --mask-spectrum: one JSON object per dimension, with the radial power spectrum
@@ -68,7 +68,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     let film = Film { width: a.res.0, height: a.res.1, spp: a.spp, dims: a.dims };
     let p = pixel::prepare(&a.spec, film, Seed(a.seed))?;
     if a.mask_spectrum {
-        masks(&p, a.json)?;
+        masks(&p, a.frames, a.json)?;
     }
     let Some(output) = &a.output else { return Ok(()) };
     let values = p.fill(a.frames)?;
@@ -79,37 +79,34 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     crate::emit(Some(output), &bytes).with_context(|| "writing the values")
 }
 
-/// Print the measures of every dimension's mask.
-fn masks(p: &pixel::Pixels, json: bool) -> anyhow::Result<()> {
-    // values uniform in [0, 1): white noise of variance 1/12
-    let white = |sigma| samplab::screen::white_blurred_rms((1.0f64 / 12.0).sqrt(), sigma);
+/// Print the measures of every dimension's masks.
+fn masks(p: &pixel::Pixels, frames: u32, json: bool) -> anyhow::Result<()> {
     let mut out = String::new();
     if !json {
+        let f = p.film();
         out.push_str(&format!(
-            "{}: masks of sample 0, frame 0, {}x{} pixels; white noise = 1\n{:>5} {:>14} {:>14} {:>14}\n",
+            "{}: masks of sample 0, {}x{} pixels, {frames} frame(s); white noise = 1 (flicker: independent \
+             frames 1.41, static 0)\n{:>5} {:>14} {:>14} {:>14} {:>9}\n",
             p.spec(),
-            p.film().width,
-            p.film().height,
+            f.width,
+            f.height,
             "dim",
             "low-frequency",
             "blurred 1 px",
-            "blurred 2 px"
+            "blurred 2 px",
+            "flicker"
         ));
     }
     for d in 0..p.film().dims {
-        let mask = p.mask(0, 0, d)?;
-        let centred =
-            samplab::screen::Plane::new(mask.width(), mask.height(), mask.values().iter().map(|v| v - 0.5).collect())?;
-        let low = mask.low_frequency(samplab::screen::LOW_FREQUENCY_CUTOFF)?;
-        let [b1, b2] = [1.0, 2.0].map(|s| centred.blurred_rms(s) / white(s));
+        let m = samplab::screen::mask_measures(p, d, frames)?;
         if json {
-            let line = serde_json::json!({
-                "spec": p.spec(), "dim": d, "low_frequency": low, "cutoff": samplab::screen::LOW_FREQUENCY_CUTOFF,
-                "blurred_rms_over_white": {"1": b1, "2": b2}, "radial": mask.radial(),
-            });
+            let mut line = serde_json::to_value(&m)?;
+            line["spec"] = p.spec().into();
             out.push_str(&format!("{line}\n"));
         } else {
-            out.push_str(&format!("{d:>5} {low:>14.4} {b1:>14.4} {b2:>14.4}\n"));
+            let flicker = m.flicker.map_or("-".to_string(), |f| format!("{f:.4}"));
+            let [(_, b1), (_, b2)] = m.blurred_over_white;
+            out.push_str(&format!("{d:>5} {:>14.4} {b1:>14.4} {b2:>14.4} {flicker:>9}\n", m.low_frequency));
         }
     }
     crate::emit(None, out.as_bytes()).with_context(|| "printing the mask measures")

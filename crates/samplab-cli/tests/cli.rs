@@ -575,4 +575,16 @@ fn image_metrics_and_mask_spectra_equal_the_library() {
         &["image-metrics", a.to_str().unwrap(), "--reference", r.to_str().unwrap(), "--sigma", "-1"],
         &["--sigma -1: a blur width is 0 to 64 pixels"],
     );
+    assert_bad_input(
+        &[
+            "image-metrics",
+            a.to_str().unwrap(),
+            a.to_str().unwrap(),
+            "--reference",
+            r.to_str().unwrap(),
+            "--spp",
+            "4,16",
+        ],
+        &["a convergence fit needs 3 or more images"],
+    );
 }

@@ -725,9 +725,15 @@ fn image_errors(
 
 /// The screen measures of error images (frames, height, width) (`samplab image-metrics
 /// --json`'s objects, one per frame), with the flicker over the frames when there are two or
-/// more.
+/// more, or with `spp` (one count per image) their convergence.
 #[pyfunction]
-fn image_metrics(py: Python<'_>, errors: PyReadonlyArray3<f64>, sigmas: Vec<f64>) -> PyResult<String> {
+#[pyo3(signature = (errors, sigmas, spp=None))]
+fn image_metrics(
+    py: Python<'_>,
+    errors: PyReadonlyArray3<f64>,
+    sigmas: Vec<f64>,
+    spp: Option<Vec<f64>>,
+) -> PyResult<String> {
     let [frames, h, w] = [0, 1, 2].map(|k| errors.shape()[k]);
     let values = errors.as_slice().map_err(|_| err("the array must be C-contiguous"))?;
     let planes = values
@@ -739,14 +745,21 @@ fn image_metrics(py: Python<'_>, errors: PyReadonlyArray3<f64>, sigmas: Vec<f64>
     if planes.is_empty() {
         return Err(err("no image: the array has 0 frames"));
     }
-    let (metrics, flicker) = py
+    let result = py
         .detach(|| {
             let m = planes.iter().map(|p| p.metrics(&sigmas)).collect::<samplab::Result<Vec<_>>>()?;
-            let f = if planes.len() > 1 { Some(samplab::screen::flicker(&planes)?) } else { None };
-            Ok::<_, samplab::Error>((m, f))
+            Ok::<_, samplab::Error>(match &spp {
+                Some(spp) => serde_json::json!({
+                    "frames": m, "convergence": samplab::screen::convergence(&planes, spp, &sigmas)?,
+                }),
+                None if planes.len() > 1 => {
+                    serde_json::json!({ "frames": m, "flicker": samplab::screen::flicker(&planes)? })
+                }
+                None => serde_json::json!({ "frames": m }),
+            })
         })
         .map_err(err)?;
-    serde_json::to_string(&serde_json::json!({ "frames": metrics, "flicker": flicker })).map_err(err)
+    serde_json::to_string(&result).map_err(err)
 }
 
 /// Read an OpenEXR image (as `samplab render` writes them).

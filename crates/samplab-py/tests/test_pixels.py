@@ -103,3 +103,15 @@ def test_image_metrics_equal_numpy_references():
     assert stack["flicker"] == 0 and len(stack["frames"]) == 3
     with pytest.raises(samplab.Error, match="expected"):
         samplab.image_metrics(np.zeros(5))
+
+
+def test_image_metrics_fit_the_convergence_of_a_series():
+    rng = np.random.default_rng(5)
+    base = rng.random((32, 32)) - 0.5
+    spp = [4, 16, 64]
+    stack = np.stack([base * n**-0.5 for n in spp])
+    c = samplab.image_metrics(stack, spp=spp)["convergence"]
+    assert c["rmse"][0] == pytest.approx(-0.5, abs=1e-9)
+    assert all(q == pytest.approx(-0.5, abs=1e-9) for q in c["per_pixel"])
+    with pytest.raises(samplab.Error, match="increasing"):
+        samplab.image_metrics(stack, spp=[4, 4, 16])

@@ -284,6 +284,106 @@ fn gaussian(sigma: f64) -> Vec<f64> {
     g.iter().map(|v| v / total).collect()
 }
 
+/// How the error of a series of renders falls with the sample count ([`convergence`]):
+/// least-squares slopes of ln(error) against ln(spp), with 95% intervals.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Convergence {
+    /// The slope of the RMSE and its interval (-0.5 for Monte Carlo).
+    pub rmse: (f64, (f64, f64)),
+    /// The slope of the RMSE after each blur, by sigma.
+    pub blurred: Vec<(f64, f64)>,
+    /// Quartiles (25%, 50%, 75%) of the per-pixel slopes of |error|, over the pixels whose
+    /// error is never 0.
+    pub per_pixel: [f64; 3],
+    /// Pixels with a slope.
+    pub pixels: usize,
+}
+
+/// The convergence of the error images `errors`, rendered at `spp` samples per pixel
+/// (at least 3, each image its own count), blurred by each of `sigmas` too.
+///
+/// # Errors
+/// [`Error::Setting`] for fewer than 3 images, counts that do not match them or are not
+/// all different, images of different sizes, or blur widths out of range.
+pub fn convergence(errors: &[Plane], spp: &[f64], sigmas: &[f64]) -> Result<Convergence> {
+    let bad = |reason: String| Error::Setting { name: "spp", value: format!("{spp:?}"), reason };
+    if errors.len() < 3 || spp.len() != errors.len() {
+        return Err(bad(format!("a convergence fit needs 3 or more images, one count each ({} images)", errors.len())));
+    }
+    if spp.iter().any(|&n| !(n.is_finite() && n >= 1.0)) || spp.windows(2).any(|w| w[0] >= w[1]) {
+        return Err(bad("sample counts from 1 up, increasing".into()));
+    }
+    if errors.iter().any(|e| (e.width, e.height) != (errors[0].width, errors[0].height)) {
+        return Err(bad("images of different sizes".into()));
+    }
+    let fit = |ys: &[f64]| -> Result<(f64, (f64, f64))> {
+        let points: Vec<(f64, f64)> = spp.iter().copied().zip(ys.iter().copied()).collect();
+        crate::experiment::loglog_fit(&points).ok_or_else(|| bad("an error of 0 leaves fewer than 3 points".into()))
+    };
+    let rmse = fit(&errors.iter().map(Plane::rms).collect::<Vec<_>>())?;
+    let mut blurred = Vec::with_capacity(sigmas.len());
+    for &sigma in sigmas {
+        let m = errors.iter().map(|e| e.metrics(&[sigma]).map(|m| m.blurred[0].rmse)).collect::<Result<Vec<_>>>()?;
+        blurred.push((sigma, fit(&m)?.0));
+    }
+    let mut slopes: Vec<f64> = (0..errors[0].values.len())
+        .filter_map(|p| {
+            let ys: Vec<f64> = errors.iter().map(|e| e.values[p].abs()).collect();
+            if ys.contains(&0.0) { None } else { fit(&ys).ok().map(|f| f.0) }
+        })
+        .collect();
+    if slopes.is_empty() {
+        return Err(bad("no pixel has an error at every count".into()));
+    }
+    slopes.sort_by(f64::total_cmp);
+    let quantile = |q: f64| slopes[((slopes.len() - 1) as f64 * q).round() as usize];
+    Ok(Convergence { rmse, blurred, per_pixel: [0.25, 0.5, 0.75].map(quantile), pixels: slopes.len() })
+}
+
+/// The measures of one dimension's masks ([`mask_measures`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct MaskMeasures {
+    /// The dimension.
+    pub dim: u32,
+    /// [`Plane::low_frequency`] of frame 0's mask at [`LOW_FREQUENCY_CUTOFF`].
+    pub low_frequency: f64,
+    /// The cutoff, in cycles per pixel.
+    pub cutoff: f64,
+    /// The RMS of frame 0's mask less 1/2 after blurs of 1 and 2 pixels, over white
+    /// noise's (uniform values: standard deviation 1/sqrt(12)).
+    pub blurred_over_white: [(f64, f64); 2],
+    /// The radial power spectrum of frame 0's mask.
+    pub radial: Radial,
+    /// [`flicker`] of the masks (less 1/2) over the frames, when there are two or more:
+    /// sqrt(2) when frames are drawn independently, 0 for a static pattern.
+    pub flicker: Option<f64>,
+}
+
+/// The measures of the masks of dimension `dim` (sample 0 of each pixel) over `frames`
+/// frames of a pixel sampler: the 1-spp image a renderer would show.
+///
+/// # Errors
+/// `dim` outside the film, `frames` 0, or a constant mask.
+pub fn mask_measures(p: &crate::pixel::Pixels, dim: u32, frames: u32) -> Result<MaskMeasures> {
+    if frames == 0 {
+        return Err(Error::Setting { name: "frames", value: "0".into(), reason: "at least one frame".into() });
+    }
+    let centred = |frame| -> Result<Plane> {
+        let m = p.mask(frame, 0, dim)?;
+        Plane::new(m.width, m.height, m.values.iter().map(|v| v - 0.5).collect())
+    };
+    let masks = (0..frames).map(centred).collect::<Result<Vec<_>>>()?;
+    let white = |sigma| white_blurred_rms((1.0f64 / 12.0).sqrt(), sigma);
+    Ok(MaskMeasures {
+        dim,
+        low_frequency: masks[0].low_frequency(LOW_FREQUENCY_CUTOFF)?,
+        cutoff: LOW_FREQUENCY_CUTOFF,
+        blurred_over_white: [1.0, 2.0].map(|s| (s, masks[0].blurred_rms(s) / white(s))),
+        radial: masks[0].radial(),
+        flicker: if frames > 1 { Some(flicker(&masks)?) } else { None },
+    })
+}
+
 /// The expected [`Plane::blurred_rms`] of white noise of standard deviation `sd`: sd times
 /// the sum of the squared 1D kernel weights (exactly, for the discrete truncated kernel).
 pub fn white_blurred_rms(sd: f64, sigma: f64) -> f64 {
@@ -373,6 +473,25 @@ mod tests {
         let f = flicker(&frames).unwrap();
         assert!((f - 2f64.sqrt()).abs() < 0.1, "{f}");
         assert!(flicker(std::slice::from_ref(&a)).is_err());
+    }
+
+    #[test]
+    fn white_noise_falling_as_one_over_sqrt_n_converges_at_minus_one_half() {
+        // error images: the same white noise scaled by spp^-1/2 and spp^-1
+        let base = noise(64, 64, 5);
+        let spp = [4.0, 16.0, 64.0, 256.0];
+        let scaled = |k: f64| -> Vec<Plane> {
+            spp.iter()
+                .map(|n| Plane::new(64, 64, base.values.iter().map(|v| v * f64::powf(*n, -k)).collect()).unwrap())
+                .collect()
+        };
+        for k in [0.5, 1.0] {
+            let c = convergence(&scaled(k), &spp, &[1.0]).unwrap();
+            assert!((c.rmse.0 + k).abs() < 1e-9 && (c.blurred[0].1 + k).abs() < 1e-9, "{c:?}");
+            assert!(c.per_pixel.iter().all(|s| (s + k).abs() < 1e-9));
+        }
+        assert!(convergence(&scaled(0.5)[..2], &spp[..2], &[]).is_err());
+        assert!(convergence(&scaled(0.5), &[4.0, 4.0, 16.0, 64.0], &[]).is_err());
     }
 
     #[test]

@@ -191,7 +191,9 @@ def blue_noise_mask(size: int = 64, channels: int = 1, seed: Optional[int] = Non
     return _samplab.blue_noise_mask(_count("size", size), _count("channels", channels), _seed(seed))
 
 
-def image_metrics(image: Any, reference: Any = None, sigma: Sequence[float] = (0, 1, 2, 4)) -> dict:
+def image_metrics(
+    image: Any, reference: Any = None, sigma: Sequence[float] = (0, 1, 2, 4), spp: Optional[Sequence[float]] = None
+) -> dict:
     """How an image's error is spread over the screen, as ``samplab image-metrics --json``
     reports it: RMSE, the RMSE after Gaussian blurs of ``sigma`` pixels beside white noise's
     of the same standard deviation, the low-frequency energy (power below 1/16 cycle per
@@ -201,7 +203,10 @@ def image_metrics(image: Any, reference: Any = None, sigma: Sequence[float] = (0
     luminance), or a stack of frames of either; ``reference`` (same shape, or one frame for
     every frame) is subtracted first (without it, ``image`` is the error). One frame gives
     one dict; several give ``{"frames": [dict, ...], "flicker": f}``, f the RMS of the
-    frame-to-frame change of the error over its RMS (independent frames: sqrt(2), static: 0).
+    frame-to-frame change of the error over its RMS (independent frames: sqrt(2), static: 0);
+    with ``spp`` (one count per image, increasing) the images are a convergence series and
+    ``"convergence"`` replaces the flicker: slopes of ln(error) against ln(spp) for the RMSE
+    (with its 95% interval), each blurred RMSE, and the per-pixel quartiles.
     """
 
     def luminance(a: np.ndarray, name: str) -> np.ndarray:
@@ -220,8 +225,9 @@ def image_metrics(image: Any, reference: Any = None, sigma: Sequence[float] = (0
         error = error - ref
     single = error.ndim == 2
     frames = np.ascontiguousarray(error[None] if single else error)
-    result = json.loads(_samplab.image_metrics(frames, [float(s) for s in sigma]))
-    return result["frames"][0] if single else result
+    counts = None if spp is None else [float(n) for n in spp]
+    result = json.loads(_samplab.image_metrics(frames, [float(s) for s in sigma], counts))
+    return result["frames"][0] if single and spp is None else result
 
 
 def is_sequence(spec: str) -> bool:
