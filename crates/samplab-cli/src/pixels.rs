@@ -86,7 +86,7 @@ fn masks(p: &pixel::Pixels, frames: u32, json: bool) -> anyhow::Result<()> {
         let f = p.film();
         out.push_str(&format!(
             "{}: masks of sample 0, {}x{} pixels, {frames} frame(s); white noise = 1 (flicker: independent \
-             frames 1.41, static 0)\n{:>5} {:>14} {:>14} {:>14} {:>9}\n",
+             frames 1.41, static 0; pair: steps in dimensions d, d+1)\n{:>5} {:>14} {:>14} {:>14} {:>9} {:>9}\n",
             p.spec(),
             f.width,
             f.height,
@@ -94,7 +94,8 @@ fn masks(p: &pixel::Pixels, frames: u32, json: bool) -> anyhow::Result<()> {
             "low-frequency",
             "blurred 1 px",
             "blurred 2 px",
-            "flicker"
+            "flicker",
+            "pair"
         ));
     }
     for d in 0..p.film().dims {
@@ -104,9 +105,10 @@ fn masks(p: &pixel::Pixels, frames: u32, json: bool) -> anyhow::Result<()> {
             line["spec"] = p.spec().into();
             out.push_str(&format!("{line}\n"));
         } else {
-            let flicker = m.flicker.map_or("-".to_string(), |f| format!("{f:.4}"));
+            let or_dash = |v: Option<f64>| v.map_or("-".to_string(), |f| format!("{f:.4}"));
+            let (flicker, pair) = (or_dash(m.flicker), or_dash(m.pair_low_frequency));
             let [(_, b1), (_, b2)] = m.blurred_over_white;
-            out.push_str(&format!("{d:>5} {:>14.4} {b1:>14.4} {b2:>14.4} {flicker:>9}\n", m.low_frequency));
+            out.push_str(&format!("{d:>5} {:>14.4} {b1:>14.4} {b2:>14.4} {flicker:>9} {pair:>9}\n", m.low_frequency));
         }
     }
     crate::emit(None, out.as_bytes()).with_context(|| "printing the mask measures")

@@ -357,6 +357,35 @@ pub struct MaskMeasures {
     /// [`flicker`] of the masks (less 1/2) over the frames, when there are two or more:
     /// sqrt(2) when frames are drawn independently, 0 for a static pattern.
     pub flicker: Option<f64>,
+    /// For an even dimension d with d + 1 on the film, the pair (d, d + 1) as a renderer
+    /// uses it: the low-frequency energy of the 1-spp image of a Heaviside step in the
+    /// pair's square (a random line through the square), the mean over [`PAIR_STEPS`] steps
+    /// (fixed, the same for every sampler).
+    pub pair_low_frequency: Option<f64>,
+}
+
+/// How many Heaviside steps [`MaskMeasures::pair_low_frequency`] averages over.
+pub const PAIR_STEPS: u64 = 8;
+
+/// The mean low-frequency energy of the 1-spp images of [`PAIR_STEPS`] Heaviside steps in
+/// dimensions (d, d + 1), frame 0.
+fn pair_steps(p: &crate::pixel::Pixels, d: u32) -> Result<f64> {
+    let (u, v) = (p.mask(0, 0, d)?, p.mask(0, 0, d + 1)?);
+    let mut total = 0.0;
+    for k in 0..PAIR_STEPS {
+        let word = crate::seed::mix64(0x5EED_57E9 ^ k);
+        let angle = std::f64::consts::TAU * (word >> 40) as f64 / (1u64 << 24) as f64;
+        let (x, y) = (((word >> 20) & 0xFFFFF) as f64 / (1 << 20) as f64, (word & 0xFFFFF) as f64 / (1 << 20) as f64);
+        let (nx, ny) = (angle.cos(), angle.sin());
+        let values = u
+            .values
+            .iter()
+            .zip(&v.values)
+            .map(|(a, b)| f64::from(u8::from(nx * (a - x) + ny * (b - y) > 0.0)))
+            .collect();
+        total += Plane::new(u.width, u.height, values)?.low_frequency(LOW_FREQUENCY_CUTOFF)?;
+    }
+    Ok(total / PAIR_STEPS as f64)
 }
 
 /// The measures of the masks of dimension `dim` (sample 0 of each pixel) over `frames`
@@ -381,6 +410,7 @@ pub fn mask_measures(p: &crate::pixel::Pixels, dim: u32, frames: u32) -> Result<
         blurred_over_white: [1.0, 2.0].map(|s| (s, masks[0].blurred_rms(s) / white(s))),
         radial: masks[0].radial(),
         flicker: if frames > 1 { Some(flicker(&masks)?) } else { None },
+        pair_low_frequency: if dim.is_multiple_of(2) && dim + 1 < p.film().dims { Some(pair_steps(p, dim)?) } else { None },
     })
 }
 

@@ -317,4 +317,8 @@ fn dimension_0_masks_of_the_screen_space_families_are_blue_and_independent_is_wh
     let l = low("independent");
     eprintln!("independent: {l:.4}");
     assert!((l - 1.0).abs() < 0.2, "independent: {l}");
+    // the pair measure: independent values make white step images, whatever the step
+    let p = prepare("independent", film, Seed(4)).unwrap();
+    let pair = samplab::screen::mask_measures(&p, 0, 1).unwrap().pair_low_frequency.unwrap();
+    assert!((pair - 1.0).abs() < 0.2, "independent pair: {pair}");
 }
