@@ -410,7 +410,11 @@ pub fn mask_measures(p: &crate::pixel::Pixels, dim: u32, frames: u32) -> Result<
         blurred_over_white: [1.0, 2.0].map(|s| (s, masks[0].blurred_rms(s) / white(s))),
         radial: masks[0].radial(),
         flicker: if frames > 1 { Some(flicker(&masks)?) } else { None },
-        pair_low_frequency: if dim.is_multiple_of(2) && dim + 1 < p.film().dims { Some(pair_steps(p, dim)?) } else { None },
+        pair_low_frequency: if dim.is_multiple_of(2) && dim + 1 < p.film().dims {
+            Some(pair_steps(p, dim)?)
+        } else {
+            None
+        },
     })
 }
 

@@ -94,7 +94,7 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
     max_dims: SOBOL_MAX_DIMS as u32,
     mapping: "screen-space keys from a tile: sample i of pixel p, dimension d, is Owen-Sobol' point \
               i XOR rank(p, d/2), its digits XOR scramble(p, d); the keys of the first `optimized` \
-              dimensions optimized for the film's spp by samplab (swaps of scrambling keys, then a \
+              dimensions optimized for the film's spp by samplab (swaps of scrambling keys, trades for fresh ones, then a \
               choice of ranking keys, against Heaviside test integrands), the tile offset per frame",
     build,
 }];
