@@ -43,7 +43,8 @@ pub struct Args {
     output: Option<PathBuf>,
     /// Measure each dimension's mask (sample 0 over the film): frame 0's low-frequency
     /// energy (|f| < 1/16 cycle per pixel, 1/8 of Nyquist) and RMS after Gaussian blurs of 1
-    /// and 2 pixels, against white noise's; the flicker over --frames; printed per dimension
+    /// and 2 pixels, against white noise's; the flicker over --frames and, with 16 frames or
+    /// more, the x-t slice's low-frequency energy; printed per dimension
     #[arg(long)]
     mask_spectrum: bool,
     /// With --mask-spectrum: one JSON object per dimension, with the radial power spectrum
@@ -86,7 +87,8 @@ fn masks(p: &pixel::Pixels, frames: u32, json: bool) -> anyhow::Result<()> {
         let f = p.film();
         out.push_str(&format!(
             "{}: masks of sample 0, {}x{} pixels, {frames} frame(s); white noise = 1 (flicker: independent \
-             frames 1.41, static 0; pair: steps in dimensions d, d+1)\n{:>5} {:>14} {:>14} {:>14} {:>9} {:>9}\n",
+             frames 1.41, static 0; x-t: row 0 over 16 frames or more; pair: steps in dimensions d, \
+             d+1)\n{:>5} {:>14} {:>14} {:>14} {:>9} {:>9} {:>9}\n",
             p.spec(),
             f.width,
             f.height,
@@ -95,6 +97,7 @@ fn masks(p: &pixel::Pixels, frames: u32, json: bool) -> anyhow::Result<()> {
             "blurred 1 px",
             "blurred 2 px",
             "flicker",
+            "x-t",
             "pair"
         ));
     }
@@ -106,9 +109,12 @@ fn masks(p: &pixel::Pixels, frames: u32, json: bool) -> anyhow::Result<()> {
             out.push_str(&format!("{line}\n"));
         } else {
             let or_dash = |v: Option<f64>| v.map_or("-".to_string(), |f| format!("{f:.4}"));
-            let (flicker, pair) = (or_dash(m.flicker), or_dash(m.pair_low_frequency));
+            let [flicker, xt, pair] = [m.flicker, m.xt_low_frequency, m.pair_low_frequency].map(or_dash);
             let [(_, b1), (_, b2)] = m.blurred_over_white;
-            out.push_str(&format!("{d:>5} {:>14.4} {b1:>14.4} {b2:>14.4} {flicker:>9} {pair:>9}\n", m.low_frequency));
+            out.push_str(&format!(
+                "{d:>5} {:>14.4} {b1:>14.4} {b2:>14.4} {flicker:>9} {xt:>9} {pair:>9}\n",
+                m.low_frequency
+            ));
         }
     }
     crate::emit(None, out.as_bytes()).with_context(|| "printing the mask measures")

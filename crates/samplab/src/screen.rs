@@ -357,6 +357,10 @@ pub struct MaskMeasures {
     /// [`flicker`] of the masks (less 1/2) over the frames, when there are two or more:
     /// sqrt(2) when frames are drawn independently, 0 for a static pattern.
     pub flicker: Option<f64>,
+    /// With 16 frames or more, [`Plane::low_frequency`] of the x-t slice: row 0 of the
+    /// masks over the frames, an image of width x frames (white along t when frames are
+    /// independent, all power at zero temporal frequency when the pattern is static).
+    pub xt_low_frequency: Option<f64>,
     /// For an even dimension d with d + 1 on the film, the pair (d, d + 1) as a renderer
     /// uses it: the low-frequency energy of the 1-spp image of a Heaviside step in the
     /// pair's square (a random line through the square), the mean over [`PAIR_STEPS`] steps
@@ -410,6 +414,13 @@ pub fn mask_measures(p: &crate::pixel::Pixels, dim: u32, frames: u32) -> Result<
         blurred_over_white: [1.0, 2.0].map(|s| (s, masks[0].blurred_rms(s) / white(s))),
         radial: masks[0].radial(),
         flicker: if frames > 1 { Some(flicker(&masks)?) } else { None },
+        xt_low_frequency: if frames >= 16 {
+            let width = masks[0].width;
+            let slice = masks.iter().flat_map(|m| m.values[..width].iter().copied()).collect();
+            Plane::new(width, masks.len(), slice)?.low_frequency(LOW_FREQUENCY_CUTOFF).ok()
+        } else {
+            None
+        },
         pair_low_frequency: if dim.is_multiple_of(2) && dim + 1 < p.film().dims {
             Some(pair_steps(p, dim)?)
         } else {

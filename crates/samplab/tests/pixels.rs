@@ -321,4 +321,7 @@ fn dimension_0_masks_of_the_screen_space_families_are_blue_and_independent_is_wh
     let p = prepare("independent", film, Seed(4)).unwrap();
     let pair = samplab::screen::mask_measures(&p, 0, 1).unwrap().pair_low_frequency.unwrap();
     assert!((pair - 1.0).abs() < 0.2, "independent pair: {pair}");
+    // and over 64 independent frames, the x-t slice is white too
+    let xt = samplab::screen::mask_measures(&p, 0, 64).unwrap().xt_low_frequency.unwrap();
+    assert!((xt - 1.0).abs() < 0.2, "independent x-t: {xt}");
 }
