@@ -50,10 +50,16 @@ pub struct Args {
     /// Secondary estimates per pixel (each one camera ray and n shadow rays per light)
     #[arg(long, default_value_t = 1)]
     spp: usize,
-    /// visibility (Monte Carlo for visibility only), direct (full light sampling) or
-    /// obscurance (no lights: the sampler's n points are cosine-weighted directions)
+    /// visibility (Monte Carlo for visibility only), direct (full light sampling),
+    /// obscurance (no lights: the sampler's n points are cosine-weighted directions) or path
+    /// (path tracing with next-event estimation and MIS, as Mitsuba 3's `path`; every
+    /// dimension from the pixel sampler --pixel-sampler, `sobol` by default; --sampler, -n
+    /// and the other strategies do not apply)
     #[arg(long, default_value = "visibility")]
     mode: String,
+    /// Path mode: the most segments of a path (Mitsuba's max_depth: 2 is direct lighting)
+    #[arg(long, default_value_t = settings::MAX_DEPTH)]
+    max_depth: usize,
     /// Obscurance mode: the distance beyond which a surface no longer obscures
     #[arg(long, default_value_t = 1.0)]
     range: f64,
@@ -156,6 +162,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         n: a.n,
         spp: a.spp,
         mode: a.mode.clone(),
+        max_depth: a.max_depth,
         pixel: a.pixel.clone(),
         pixel_sampler: a.pixel_sampler.clone(),
         lens_sampler: a.lens_sampler.clone(),

@@ -621,6 +621,7 @@ fn settings(given: Option<&Bound<'_, PyDict>>) -> PyResult<samplab_render::Setti
             "n" => s.n = value.extract().map_err(bad)?,
             "spp" => s.spp = value.extract().map_err(bad)?,
             "mode" => s.mode = value.extract().map_err(bad)?,
+            "max_depth" => s.max_depth = value.extract().map_err(bad)?,
             "pixel" => s.pixel = value.extract().map_err(bad)?,
             "pixel_sampler" => s.pixel_sampler = value.extract().map_err(bad)?,
             "lens_sampler" => s.lens_sampler = value.extract().map_err(bad)?,
@@ -634,7 +635,7 @@ fn settings(given: Option<&Bound<'_, PyDict>>) -> PyResult<samplab_render::Setti
             "seed" => s.seed = value.extract().map_err(bad)?,
             _ => {
                 return Err(err(format!(
-                    "unknown render setting '{key}' (sampler, n, spp, mode, pixel, pixel_sampler, lens_sampler, \
+                    "unknown render setting '{key}' (sampler, n, spp, mode, max_depth, pixel, pixel_sampler, lens_sampler, \
                      time_sampler, gloss_sampler, pattern, disk_map, range, interleave, res, seed)"
                 )));
             }

@@ -18,6 +18,9 @@ import samplab
         # a pixel sampler: every dimension of every estimate from it
         ("defocus", ["--spp", 4, "-n", 4, "--pixel", "area", "--pixel-sampler", "zsobol"], {"spp": 4, "n": 4, "pixel": "area", "pixel_sampler": "zsobol"}),
         ("sphere-box", ["--mode", "obscurance", "-n", 4, "--pixel-sampler", "pixel.sobol"], {"mode": "obscurance", "n": 4, "pixel_sampler": "pixel.sobol"}),
+        # path tracing: the default pixel sampler, and another at depth 3
+        ("glossy-box", ["--mode", "path", "--spp", 4, "--pixel", "area"], {"mode": "path", "spp": 4, "pixel": "area"}),
+        ("glossy-box", ["--mode", "path", "--spp", 4, "--max-depth", 3, "--pixel-sampler", "zsobol"], {"mode": "path", "spp": 4, "max_depth": 3, "pixel_sampler": "zsobol"}),
     ],
 )
 def test_render_equals_the_cli(cli, tmp_path, scene, args, settings):
@@ -51,6 +54,8 @@ def test_reference_and_errors_equal_the_cli(cli, tmp_path):
         (lambda: samplab.render("nosuch"), "unknown scene"),
         (lambda: samplab.render("spheres", colour="red"), "unknown render setting 'colour'"),
         (lambda: samplab.render("spheres", res=(0, 10)), "width 0"),
+        (lambda: samplab.render("glossy-box", mode="path", max_depth=0), "max_depth = 0: the most segments"),
+        (lambda: samplab.render("glossy-box", mode="path", pixel_sampler="jitter"), "draws every dimension from a pixel sampler"),
         (lambda: samplab.image_errors(np.zeros((2, 2, 3)), np.zeros((3, 2, 3))), "but the reference is"),
     ],
 )

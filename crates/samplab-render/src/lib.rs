@@ -8,6 +8,7 @@
 //! (offsets x points per pixel).
 #![deny(missing_docs)]
 
+pub mod bsdf;
 pub mod bvh;
 pub mod camera;
 pub mod error;
@@ -17,6 +18,7 @@ pub mod light;
 pub mod mitsuba;
 pub mod obj;
 mod packet;
+pub mod path;
 pub mod render;
 pub mod scene;
 pub mod scenes;

@@ -1,12 +1,17 @@
 //! The subset of the Mitsuba 3 XML scene format these experiments need: a `perspective`
 //! or `thinlens` sensor (`lookat` or matrix `to_world`, `fov`, `fov_axis`, film size),
-//! `diffuse`, `conductor` (a perfect mirror) and `roughconductor` (Beckmann alpha as a
-//! Phong gloss) BSDFs (also inside `twosided`, by `id` and `ref`), shapes `rectangle`, `disk`,
+//! `diffuse`, `conductor` (a perfect mirror) and `roughconductor` (Beckmann or GGX microfacets,
+//! reflecting fully) BSDFs (also inside `twosided`, by `id` and `ref`), shapes `rectangle`, `disk`,
 //! `sphere`, `cube` and `obj` with `to_world` transforms (`translate`, `scale`, `rotate`,
 //! `matrix`, `lookat`), `area` emitters with a radiance on rectangles and disks, and
 //! `<default>` parameters with `$name` substitution. Anything else is refused with its
 //! element and line, never skipped silently (integrators and samplers are read past: the
 //! testbed has its own).
+//!
+//! Two differences from Mitsuba remain, so that a file meant to render the same in both
+//! wraps open surfaces in `twosided` and gives each emitter shape a black BSDF: samplab's
+//! surfaces reflect on both sides, and its lights reflect nothing and block nothing
+//! (Mitsuba gives an emitter shape a grey diffuse BSDF unless told otherwise).
 
 use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};
@@ -19,7 +24,7 @@ use crate::camera::Camera;
 use crate::error::{Error, Result};
 use crate::geometry::Shape;
 use crate::light::{DiskMap, Light, LightShape};
-use crate::scene::{Finish, Material, Scene, Texture};
+use crate::scene::{Distribution, Finish, Material, Scene, Texture};
 use crate::scenes::cuboid;
 
 /// Where the files a scene names (OBJ meshes) may be.
@@ -328,23 +333,28 @@ impl Reader<'_, '_> {
                 }
                 Ok(m)
             }
-            // a perfect mirror (Mitsuba's default material "none"), and a rough one whose
-            // Beckmann roughness alpha maps to the Phong exponent 2 / alpha^2 - 2 (Walter et
-            // al. 2007, eq. 32)
+            // a perfect mirror (Mitsuba's default material "none"), and a rough one: Walter et
+            // al. 2007's microfacet model, Beckmann (Mitsuba's default) or GGX
             kind @ ("conductor" | "roughconductor") => {
-                let (mut reflectance, mut alpha) = (DVec3::ONE, 0.1);
+                let (mut reflectance, mut alpha, mut distribution) = (DVec3::ONE, 0.1, Distribution::Beckmann);
                 for c in node.children().filter(Node::is_element) {
                     match (kind, c.attribute("name").unwrap_or("")) {
                         (_, "specular_reflectance") => reflectance = self.colour(c)?,
                         ("roughconductor", "alpha") => alpha = self.number(c, "value")?,
-                        ("roughconductor", "distribution") if c.attribute("value") == Some("beckmann") => {}
+                        ("roughconductor", "distribution") => {
+                            distribution = match c.attribute("value") {
+                                Some("beckmann") => Distribution::Beckmann,
+                                Some("ggx") => Distribution::Ggx,
+                                _ => return Err(self.unsupported(c, "distributions: beckmann, ggx")),
+                            }
+                        }
                         _ => return Err(self.unsupported(c, &format!("not supported in a {kind} BSDF"))),
                     }
                 }
                 let finish = if kind == "conductor" {
                     Finish::Mirror
                 } else if alpha > 0.0 && alpha < 1.0 {
-                    Finish::Glossy { exponent: 2.0 / (alpha * alpha) - 2.0 }
+                    Finish::Rough { alpha, distribution }
                 } else {
                     return Err(self.fail(node, format!("alpha {alpha} is outside (0, 1)")));
                 };

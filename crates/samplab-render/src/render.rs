@@ -42,6 +42,7 @@ use samplab::progress::Progress;
 use samplab::sampler::{Plan, Sampler};
 use samplab::seed::{Rng, Seed, shuffle, uniform};
 
+use crate::bsdf::phong_lobe;
 use crate::error::{Error, Result};
 use crate::geometry::Ray;
 use crate::image::Image;
@@ -59,6 +60,12 @@ pub enum Mode {
     Direct,
     /// Obscurance: no lights; the strategy's pattern gives cosine-weighted directions.
     Obscurance,
+    /// Path tracing with next-event estimation ([`crate::path`]), every dimension from a
+    /// pixel sampler ([`Options::pixels`]).
+    Path {
+        /// Most segments of a path (Mitsuba's `max_depth`: 2 is direct lighting).
+        max_depth: u32,
+    },
 }
 
 /// Where in the pixel the camera rays go.
@@ -125,6 +132,9 @@ pub struct Options {
     /// (`light`, `pixel`, `lens`, `time`, `gloss`), prepared for this image, `spp` and at
     /// least [`pixel_dims`] dimensions; it takes patterns per estimate and no interleaving.
     pub pixels: Option<samplab::pixel::Pixels>,
+    /// The frame the pixel sampler draws (an animation's frame number: each frame its own
+    /// samples, as the sampler decorrelates them).
+    pub frame: u32,
 }
 
 /// The dimensions of an estimate drawn from a pixel sampler ([`Options::pixels`]): 0-1 the
@@ -132,8 +142,11 @@ pub struct Options {
 /// glossy bounce, then 2 per light sample from [`FIRST_LIGHT_DIM`] on (light l's sample j
 /// at 8 + 2 (l n + j), its first `dims` used), or per obscurance direction. Returns how
 /// many dimensions that makes for `n` samples of each of `lights` lights (one set of
-/// directions for obscurance).
+/// directions for obscurance). Path mode lays its dimensions out as [`crate::path`] says.
 pub fn pixel_dims(n: usize, lights: usize, mode: Mode) -> usize {
+    if let Mode::Path { max_depth } = mode {
+        return crate::path::dims(max_depth as usize);
+    }
     let sets = if mode == Mode::Obscurance { 1 } else { lights };
     FIRST_LIGHT_DIM as usize + 2 * n * sets
 }
@@ -186,6 +199,7 @@ impl Options {
             height,
             seed: Seed::DEFAULT,
             pixels: None,
+            frame: 0,
         })
     }
 
@@ -210,11 +224,26 @@ impl Options {
     /// The reference `samplab render` measures against when none is given: converged with
     /// Owen-scrambled Sobol' light samples (`light_samples` per estimate), 64 estimates per
     /// pixel (or this render's spp if more) when the estimates sample something (pixel area,
-    /// lens or shutter) and 1 otherwise, seeded from this render's seed.
+    /// lens or shutter) and 1 otherwise, seeded from this render's seed. In path mode:
+    /// `light_samples` estimates per pixel from the pixel sampler `sobol` (Owen-scrambled
+    /// Sobol' per pixel).
     ///
     /// # Errors
     /// As [`Options::converged`].
     pub fn reference(&self, scene: &Scene, light_samples: usize) -> Result<Options> {
+        if let Mode::Path { max_depth } = self.mode {
+            let mut o = self.converged("sobol.owen", 1, light_samples)?;
+            o.seed = self.seed.derive_str("reference");
+            let side = |v: usize| u32::try_from(v).unwrap_or(u32::MAX);
+            let film = samplab::pixel::Film {
+                width: side(self.width),
+                height: side(self.height),
+                spp: side(light_samples),
+                dims: side(crate::path::dims(max_depth as usize)),
+            };
+            o.pixels = Some(samplab::pixel::prepare("sobol", film, o.seed)?);
+            return Ok(o);
+        }
         let needs_estimates = self.footprint == Footprint::Area || scene.camera.aperture > 0.0 || scene.moving();
         let spp = if needs_estimates { self.spp.max(64) } else { 1 };
         let mut o = self.converged("sobol.owen", light_samples, spp)?;
@@ -256,6 +285,14 @@ impl Options {
             }
             if self.pattern == Pattern::PerPixel {
                 return Err(Error::Invalid("obscurance takes a pattern per estimate, not per pixel".into()));
+            }
+        }
+        if let Mode::Path { max_depth } = self.mode {
+            crate::path::check_depth(max_depth as usize)?;
+            if self.pixels.is_none() {
+                return Err(Error::Invalid(
+                    "path mode draws every dimension from a pixel sampler (see `samplab list pixels`)".into(),
+                ));
             }
         }
         if let Some(p) = &self.pixels {
@@ -443,6 +480,8 @@ struct Scratch {
     /// Obscurance rays of one end and their hits.
     probes: Vec<Ray>,
     probe_hits: Vec<Hit>,
+    /// Path mode's buffers.
+    path: crate::path::Scratch,
 }
 
 /// A pixel's pattern of `spp` blocks and the random order they are dealt to its estimates
@@ -476,7 +515,7 @@ impl Dealt {
     fn keyed(&mut self, p: &samplab::pixel::Pixels, px: Pixel, spp: usize, first: u32, len: u32) {
         self.points.clear();
         for e in 0..spp as u32 {
-            self.points.extend((first..first + len).map(|d| p.sample(px.at(), 0, e, d)));
+            self.points.extend((first..first + len).map(|d| p.sample(px.at(), px.frame, e, d)));
         }
         self.order.clear();
         self.order.extend(0..spp as u32);
@@ -507,6 +546,21 @@ pub fn render(scene: &Scene, options: &Options, progress: &Progress) -> Result<R
         })
         .collect();
     let frame = scene.camera.frame(w, h);
+    let emitters = crate::path::Emitter::all(scene, options.disk_map);
+    let path = options.pixels.as_ref().filter(|_| matches!(options.mode, Mode::Path { .. })).map(|pixels| {
+        crate::path::Context {
+            scene,
+            frame: &frame,
+            pixels,
+            emitters: &emitters,
+            width: w,
+            height: h,
+            spp: options.spp,
+            max_depth: crate::path::Context::depth(options.mode),
+            animation_frame: options.frame,
+            footprint: options.footprint,
+        }
+    });
     let keys = Keys::new(options.seed);
     let setup = Setup {
         scene,
@@ -518,6 +572,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &Progress) -> Result<R
         glossy: scene.glossy(),
         plain: scene.plain_albedos(),
         plans: &plans,
+        path: path.as_ref(),
     };
     let image = || format!("a {w}x{h} image");
     samplab::memory::check(image, 16 * w as u128 * h as u128)?;
@@ -541,11 +596,17 @@ pub fn render(scene: &Scene, options: &Options, progress: &Progress) -> Result<R
             let mut rays = (0u64, 0u64);
             for col in 0..w {
                 progress.check()?;
-                let pixel = Pixel { index: (row * w + col) as u64, col, row };
-                let (radiance, visible, r) = wide(
-                    #[inline(always)]
-                    || render_pixel(&setup, pixel, scratch),
-                );
+                let pixel = Pixel { index: (row * w + col) as u64, col, row, frame: options.frame };
+                let (radiance, visible, r) = match setup.path {
+                    Some(c) => wide(
+                        #[inline(always)]
+                        || crate::path::pixel(c, col, row, &mut scratch.path),
+                    ),
+                    None => wide(
+                        #[inline(always)]
+                        || render_pixel(&setup, pixel, scratch),
+                    ),
+                };
                 if let Some(e) = scratch.failed.take() {
                     return Err(e.into());
                 }
@@ -642,6 +703,8 @@ struct Setup<'a> {
     plain: Vec<Option<DVec3>>,
     /// The samplers planned for their counts, and the interleaving tile.
     plans: &'a Plans<'a>,
+    /// In path mode, what its pixels share.
+    path: Option<&'a crate::path::Context<'a>>,
 }
 
 #[derive(Clone, Copy)]
@@ -649,6 +712,8 @@ struct Pixel {
     index: u64,
     col: usize,
     row: usize,
+    /// The pixel sampler's frame.
+    frame: u32,
 }
 
 impl Pixel {
@@ -893,7 +958,7 @@ fn try_deal(setup: &Setup, px: Pixel, s: &mut Scratch) -> samplab::Result<()> {
     if let Some(p) = &o.pixels {
         if o.footprint == Footprint::Area {
             s.pixel.clear();
-            s.pixel.extend((0..spp as u32).flat_map(|e| [0, 1].map(|d| p.sample(px.at(), 0, e, d))));
+            s.pixel.extend((0..spp as u32).flat_map(|e| [0, 1].map(|d| p.sample(px.at(), px.frame, e, d))));
         }
         let scene = setup.scene;
         for (on, dealt, first, len) in [
@@ -1015,26 +1080,33 @@ fn visit(setup: &Setup, px: Pixel, s: &mut Scratch, ray: &Ray, hit: Hit, path: P
             (position, normal, albedo, finish)
         }
     };
-    let dir = match finish {
+    let (dir, weight) = match finish {
         Finish::Diffuse => {
             return end_path(setup, px, s, path.estimate, position, normal, path.throughput * albedo, ray.time);
         }
         _ if bounces == MAX_BOUNCES => return 0,
-        Finish::Mirror => ray.dir.reflect(normal),
-        Finish::Glossy { exponent } => {
+        Finish::Mirror => (ray.dir.reflect(normal), 1.0),
+        Finish::Glossy { .. } | Finish::Rough { .. } => {
             let u = s.gloss_u[e].take().unwrap_or_else(|| {
                 let rng = s.later[e].get_or_insert_with(|| keys.gloss.derive(px.index).derive(e as u64).rng());
                 [uniform(rng), uniform(rng)]
             });
-            let d = phong_lobe(ray.dir.reflect(normal).normalize(), exponent, u);
-            if d.dot(normal) <= 0.0 {
-                return 0;
+            if let Finish::Glossy { exponent } = finish {
+                let d = phong_lobe(ray.dir.reflect(normal).normalize(), exponent, u);
+                if d.dot(normal) <= 0.0 {
+                    return 0;
+                }
+                (d, 1.0)
+            } else {
+                match crate::bsdf::sample(finish, normal, -ray.dir.normalize(), u) {
+                    Some(b) => (b.dir, b.weight),
+                    None => return 0,
+                }
             }
-            d
         }
     };
     s.next.push(Ray { origin: Scene::offset(position, normal), dir, time: ray.time });
-    s.next_paths.push(Path { estimate: path.estimate, throughput: path.throughput * albedo });
+    s.next_paths.push(Path { estimate: path.estimate, throughput: path.throughput * albedo * weight });
     0
 }
 
@@ -1090,7 +1162,7 @@ fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
         for k in 0..m {
             sums.unoccluded[k] = match o.mode {
                 Mode::Visibility => unoccluded(p, lane(&ends.position, k), lane(&ends.normal, k)),
-                Mode::Direct | Mode::Obscurance => 1.0,
+                Mode::Direct | Mode::Obscurance | Mode::Path { .. } => 1.0,
             };
         }
         if o.pattern == Pattern::PerPixel && o.n == 1 {
@@ -1150,7 +1222,7 @@ fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
             *v += if sums.accepted[k] > 0 { fraction } else { 0.0 };
             let integral = match o.mode {
                 Mode::Visibility => sums.unoccluded[k] * fraction,
-                Mode::Direct | Mode::Obscurance => sums.shade[k] / sums.accepted[k] as f64,
+                Mode::Direct | Mode::Obscurance | Mode::Path { .. } => sums.shade[k] / sums.accepted[k] as f64,
             };
             set_lane(&mut share, k, lane(&ends.albedo, k) / PI * p.light.radiance * p.area * integral);
         }
@@ -1213,41 +1285,6 @@ fn light_samples(p: &samplab::pixel::Pixels, px: Pixel, e: usize, l: usize, n: u
     out.clear();
     for j in 0..n {
         let first = FIRST_LIGHT_DIM + 2 * (l * n + j) as u32;
-        out.extend((first..first + dims as u32).map(|d| p.sample(px.at(), 0, e as u32, d)));
-    }
-}
-
-/// A direction about the unit `axis` from the normalized Phong lobe (n + 1) / (2 pi)
-/// cos^n(alpha) by inversion: cos(alpha) = u0^(1 / (n + 1)), azimuth 2 pi u1.
-fn phong_lobe(axis: DVec3, exponent: f64, u: [f64; 2]) -> DVec3 {
-    let cos = u[0].powf(1.0 / (exponent + 1.0));
-    let sin = (1.0 - cos * cos).max(0.0).sqrt();
-    let (a, b) = axis.any_orthonormal_pair();
-    let (s, c) = (2.0 * PI * u[1]).sin_cos();
-    (a * c + b * s) * sin + axis * cos
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_phong_lobe_has_the_mean_cosine_of_its_density() {
-        // for density (n + 1) / (2 pi) cos^n about the axis, E[cos] = (n + 1) / (n + 2)
-        let axis = DVec3::new(0.3, -0.5, 0.8).normalize();
-        for exponent in [0.0, 1.0, 4.0, 10.0] {
-            let k = 400;
-            let mut sum = 0.0;
-            for i in 0..k * k {
-                let u = [((i % k) as f64 + 0.5) / k as f64, ((i / k) as f64 + 0.5) / k as f64];
-                let d = phong_lobe(axis, exponent, u);
-                assert!((d.length() - 1.0).abs() < 1e-12);
-                sum += d.dot(axis);
-            }
-            let mean = sum / (k * k) as f64;
-            let exact = (exponent + 1.0) / (exponent + 2.0);
-            // the midpoint rule errs by about 4e-5 on u^(1/(n+1)); a wrong exponent by 1e-3
-            assert!((mean - exact).abs() < 1e-4, "n = {exponent}: {mean} vs {exact}");
-        }
+        out.extend((first..first + dims as u32).map(|d| p.sample(px.at(), px.frame, e as u32, d)));
     }
 }

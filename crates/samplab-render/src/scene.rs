@@ -64,6 +64,23 @@ pub enum Finish {
         /// The Phong exponent n: larger is sharper.
         exponent: f64,
     },
+    /// A rough mirror (Mitsuba 3's `roughconductor`, reflecting every wavelength fully):
+    /// Walter et al. 2007's microfacet model ([`crate::bsdf`]).
+    Rough {
+        /// Roughness: the microfacets' slope spread.
+        alpha: f64,
+        /// Their distribution.
+        distribution: Distribution,
+    },
+}
+
+/// A microfacet distribution (Walter et al. 2007).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Distribution {
+    /// Beckmann's.
+    Beckmann,
+    /// GGX.
+    Ggx,
 }
 
 /// A material: a finish with its reflectance, plus a self-emission that lights nothing
@@ -195,9 +212,8 @@ impl Scene {
     pub fn seen(&self, ray: &Ray, hit: Hit) -> Seen {
         let position = ray.at(hit.t);
         let Some(material) = self.material_of(hit.what) else {
-            let shapes = self.bvh.objects().len() + self.planes.len();
-            return match (hit.what as usize).checked_sub(shapes).and_then(|i| self.lights.get(i)) {
-                Some(light) => Seen::Light(light.radiance_at(position)),
+            return match self.light_of(hit.what) {
+                Some(i) => Seen::Light(self.lights[i].radiance_at(position)),
                 None => Seen::Nothing,
             };
         };
@@ -230,6 +246,13 @@ impl Scene {
         if normal.dot(ray.dir) > 0.0 { -normal } else { normal }
     }
 
+    /// The light of hit index `what` ([`Hit::what`]), if it names one.
+    #[inline(always)]
+    pub(crate) fn light_of(&self, what: u32) -> Option<usize> {
+        let shapes = self.bvh.objects().len() + self.planes.len();
+        (what as usize).checked_sub(shapes).filter(|&i| i < self.lights.len())
+    }
+
     /// Per hit index of a BVH object or plane: the albedo of a plain surface (diffuse, one
     /// colour, emitting nothing), whose hits need no texture or emission lookup; None for
     /// any other.
@@ -247,9 +270,9 @@ impl Scene {
             .collect()
     }
 
-    /// Whether any material is glossy (and so needs a gloss sample per estimate).
+    /// Whether any material is glossy or rough (and so needs a gloss sample per estimate).
     pub fn glossy(&self) -> bool {
-        self.materials.iter().any(|m| matches!(m.finish, Finish::Glossy { .. }))
+        self.materials.iter().any(|m| matches!(m.finish, Finish::Glossy { .. } | Finish::Rough { .. }))
     }
 
     /// The origin of a ray leaving surface point `x` on the side of `n`, off the surface.

@@ -14,6 +14,7 @@ use samplab::registry::{About, Entry, Registry};
 use crate::error::{Error, Result};
 use crate::geometry::{Plane, Shape};
 use crate::light::{DiskMap, Light, LightShape};
+use crate::mitsuba::Paths;
 use crate::scene::{Finish, Material, Scene, Texture};
 
 /// The kinds of light a built-in scene can be lit by (`--light`).
@@ -157,6 +158,14 @@ static BUILTINS: &[Builtin] = &[
         about: About::new("motion", "a sphere moving across the frame during the shutter (Subr & Kautz 2013, Fig. 9)"),
         default_light: Some(LightKind::Disk),
         build: motion,
+    },
+    Builtin {
+        about: About::new(
+            "glossy-box",
+            "a box with coloured walls, a GGX rough-mirror sphere and a diffuse one, for path tracing (scenes/glossy-box.xml, which Mitsuba 3 reads too)",
+        ),
+        default_light: None,
+        build: |_| glossy_box(),
     },
     Builtin {
         about: About::new(
@@ -366,6 +375,15 @@ fn all() -> Scene {
     s.camera.aperture = 0.05;
     s.camera.focus = (DVec3::new(0.0, 0.5, 0.0) - s.camera.eye).length();
     s
+}
+
+/// The Mitsuba 3 file of the built-in scene `glossy-box`.
+pub const GLOSSY_BOX_XML: &str = include_str!("../scenes/glossy-box.xml");
+
+/// `glossy-box`, read from its Mitsuba 3 file (which names no other file).
+fn glossy_box() -> Scene {
+    let scene = crate::mitsuba::parse(GLOSSY_BOX_XML, "glossy-box.xml", std::path::Path::new("."), Paths::InsideScene);
+    scene.expect("the built-in glossy-box.xml parses (tested)")
 }
 
 fn defocus(kind: LightKind) -> Scene {

@@ -20,9 +20,18 @@ pub const SAMPLER: &str = "jitter";
 pub const SECONDARY: &str = "sobol.owen";
 /// The default light samples per estimate.
 pub const N: usize = 16;
-/// Estimators, by name.
-pub const MODES: [(&str, Mode); 3] =
-    [("visibility", Mode::Visibility), ("direct", Mode::Direct), ("obscurance", Mode::Obscurance)];
+/// The default most segments of a path in path mode (pbrt-v4's default `maxdepth`).
+pub const MAX_DEPTH: usize = 5;
+/// The pixel sampler path mode draws from when `pixel_sampler` is left at its default
+/// [`SECONDARY`] (the per-pixel form of that point-set sampler).
+pub const PATH_SAMPLER: &str = "sobol";
+/// Estimators, by name (path mode's depth is set by `max_depth`).
+pub const MODES: [(&str, Mode); 4] = [
+    ("visibility", Mode::Visibility),
+    ("direct", Mode::Direct),
+    ("obscurance", Mode::Obscurance),
+    ("path", Mode::Path { max_depth: MAX_DEPTH as u32 }),
+];
 /// Pixel footprints, by name.
 pub const FOOTPRINTS: [(&str, Footprint); 3] =
     [("center", Footprint::Centre), ("centre", Footprint::Centre), ("area", Footprint::Area)];
@@ -38,8 +47,10 @@ pub struct Settings {
     pub n: usize,
     /// Secondary estimates per pixel.
     pub spp: usize,
-    /// `visibility`, `direct` or `obscurance`.
+    /// `visibility`, `direct`, `obscurance` or `path`.
     pub mode: String,
+    /// Path mode: the most segments of a path.
+    pub max_depth: usize,
     /// `center` or `area`.
     pub pixel: String,
     /// Strategy over the pixel area.
@@ -71,6 +82,7 @@ impl Default for Settings {
             n: N,
             spp: 1,
             mode: "visibility".into(),
+            max_depth: MAX_DEPTH,
             pixel: "center".into(),
             pixel_sampler: SECONDARY.into(),
             lens_sampler: SECONDARY.into(),
@@ -105,14 +117,39 @@ fn sampler(name: &'static str, spec: &str) -> samplab::Result<Box<dyn samplab::S
 }
 
 impl Settings {
+    /// The estimator, with path mode's depth.
+    fn mode(&self) -> samplab::Result<Mode> {
+        Ok(match choose("mode", &self.mode, &MODES)? {
+            Mode::Path { .. } => {
+                crate::path::check_depth(self.max_depth)?;
+                Mode::Path { max_depth: self.max_depth as u32 }
+            }
+            mode => mode,
+        })
+    }
+
     /// The pixel sampler `pixel_sampler` names, prepared for the render, when it names one
     /// and no point-set sampler (point-set samplers keep their meaning: the pixel area only;
-    /// `pixel.NAME` names the pixel sampler where both lists have NAME).
+    /// `pixel.NAME` names the pixel sampler where both lists have NAME). Path mode always
+    /// has one: [`PATH_SAMPLER`] for the default, a pixel sampler's name wherever both lists
+    /// have it, and a point-set sampler is refused.
     fn pixels(&self, scene: &Scene, width: usize, height: usize) -> Result<Option<samplab::pixel::Pixels>> {
+        let mode = self.mode()?;
+        let path = matches!(mode, Mode::Path { .. });
+        let spec = if path && self.pixel_sampler == SECONDARY { PATH_SAMPLER } else { self.pixel_sampler.as_str() };
         // a stage (`sobol+shift`) makes a point-set spec
-        let name = self.pixel_sampler.split([':', '+']).next().unwrap_or_default();
-        let point_set = samplab::sampler::SAMPLERS.lookup(name).is_ok() || self.pixel_sampler.contains('+');
-        if point_set || samplab::pixel::PIXEL_SAMPLERS.lookup(name).is_err() {
+        let name = spec.split([':', '+']).next().unwrap_or_default();
+        let pixel_sampler = !spec.contains('+') && samplab::pixel::PIXEL_SAMPLERS.lookup(name).is_ok();
+        if path && !pixel_sampler {
+            return Err(samplab::Error::Setting {
+                name: "pixel_sampler",
+                value: spec.to_string(),
+                reason: "path mode draws every dimension from a pixel sampler (see `samplab list pixels`)".into(),
+            }
+            .into());
+        }
+        let point_set = !path && (samplab::sampler::SAMPLERS.lookup(name).is_ok() || spec.contains('+'));
+        if point_set || !pixel_sampler {
             return Ok(None);
         }
         let side = |v: usize| u32::try_from(v).unwrap_or(u32::MAX);
@@ -120,12 +157,12 @@ impl Settings {
             width: side(width),
             height: side(height),
             spp: side(self.spp),
-            dims: side(crate::render::pixel_dims(self.n, scene.lights.len(), choose("mode", &self.mode, &MODES)?)),
+            dims: side(crate::render::pixel_dims(self.n, scene.lights.len(), mode)),
         };
-        let prepared = samplab::pixel::prepare(&self.pixel_sampler, film, Seed(self.seed));
+        let prepared = samplab::pixel::prepare(spec, film, Seed(self.seed));
         Ok(Some(prepared.map_err(|e| samplab::Error::Setting {
             name: "pixel_sampler",
-            value: self.pixel_sampler.clone(),
+            value: spec.to_string(),
             reason: e.to_string(),
         })?))
     }
@@ -142,7 +179,7 @@ impl Settings {
             light: sampler("sampler", &self.sampler)?,
             n: self.n,
             spp: self.spp,
-            mode: choose("mode", &self.mode, &MODES)?,
+            mode: self.mode()?,
             footprint: choose("pixel", &self.pixel, &FOOTPRINTS)?,
             pixel: match pixels {
                 Some(_) => sampler("pixel_sampler", SECONDARY)?,
@@ -159,6 +196,7 @@ impl Settings {
             height,
             seed: Seed(self.seed),
             pixels,
+            frame: 0,
         };
         options.check(scene)?;
         Ok(options)

@@ -336,7 +336,8 @@ def render(scene: str, light: Optional[str] = None, reference_samples: Optional[
 
     Keywords are the CLI's flags, with the CLI's defaults: ``sampler`` (light strategy,
     ``"jitter"``), ``n`` (16), ``spp`` (1), ``mode`` (``"visibility"``, ``"direct"``,
-    ``"obscurance"``), ``pixel`` (``"center"``, ``"area"``), ``pixel_sampler``,
+    ``"obscurance"``, ``"path"``), ``max_depth`` (path mode's most segments, 5), ``pixel``
+    (``"center"``, ``"area"``), ``pixel_sampler``,
     ``lens_sampler``, ``time_sampler``, ``gloss_sampler`` (``"sobol.owen"``), ``pattern``
     (``"estimate"``, ``"pixel"``), ``disk_map``, ``range``, ``interleave`` ((w, h)), ``res``
     ((width, height)), ``seed``. With ``reference_samples``, the converged reference the
