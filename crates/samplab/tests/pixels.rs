@@ -191,6 +191,44 @@ fn frames_and_seeds_change_the_values_pixels_are_decorrelated() {
     }
 }
 
+#[test]
+fn every_familys_estimates_are_unbiased_in_the_first_and_the_later_dimensions() {
+    // the mean over 16,384 pixels of each pixel's 4-sample estimate of a box [0, a) x [0, b)
+    // in a pair of dimensions equals a b within 4 standard errors (computed from the
+    // pixels' spread): a randomization that draws a pair's two shifts from one word (a
+    // bug heitz2019 had past its optimized dimensions) is off by 10 to 40 standard errors
+    // heitz2019's optimized keys (dimensions 0-7 by default) are a deterministic choice for
+    // a seed, made around the tile's own mean estimate: for one seed its mean is off by a
+    // few standard errors there (4.4 on the first box), so only its hashed dimensions count
+    let film = Film { width: 128, height: 128, spp: 4, dims: 10 };
+    for e in PIXEL_SAMPLERS.iter() {
+        let p = prepare(e.about.name, film, Seed(5)).unwrap();
+        let dims: &[u32] = if e.about.name == "heitz2019" { &[8] } else { &[0, 2, 8] };
+        for &d in dims {
+            for (a, b) in [(0.3, 0.6), (0.55, 0.45), (0.7, 0.2)] {
+                let estimates: Vec<f64> = (0..128 * 128)
+                    .map(|k| {
+                        let px = [k % 128, k / 128];
+                        let inside = (0..4).filter(|&i| p.sample(px, 0, i, d) < a && p.sample(px, 0, i, d + 1) < b);
+                        inside.count() as f64 / 4.0
+                    })
+                    .collect();
+                let n = estimates.len() as f64;
+                let mean = estimates.iter().sum::<f64>() / n;
+                let sd = (estimates.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / (n - 1.0)).sqrt();
+                let se = (sd / n.sqrt()).max(1e-4);
+                assert!(
+                    (mean - a * b).abs() < 4.0 * se,
+                    "{} dims {d}, {}: box {a} x {b}: {mean} against {} (se {se})",
+                    e.about.name,
+                    d + 1,
+                    a * b
+                );
+            }
+        }
+    }
+}
+
 /// The area of the unit square on the positive side of the line n . x + c = 0: the square
 /// clipped by the half-plane (one Sutherland-Hodgman pass), then the shoelace formula.
 fn half_plane_area(n: [f64; 2], c: f64) -> f64 {

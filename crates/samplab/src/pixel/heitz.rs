@@ -29,7 +29,7 @@
 use rayon::prelude::*;
 
 use super::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
-use super::{Film, Keys, PixelEntry, PixelSampler, unit};
+use super::{Film, Keys, PixelEntry, PixelSampler, rekey, unit};
 use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::Counts;
@@ -167,9 +167,12 @@ impl Heitz {
                 let t = (y * self.side + x) as usize;
                 (keys.rank[t], keys.scramble[t][(dim & 1) as usize])
             }
+            // hashed keys: one rank for the pair, and a scramble of each dimension hashed
+            // on its own (two scrambles drawn from one word are related, and their joint
+            // shift then leaves the estimates biased)
             None => {
                 let h = self.keys.pixel(pixel, frame);
-                (self.keys.dim((h >> 32) as u32, dim & !1), self.keys.dim(h as u32, dim))
+                ((rekey(h, u64::from(dim | 1) << 32) >> 32) as u32, rekey(h, u64::from(dim)) as u32)
             }
         };
         let i = index ^ (rank & self.rank_mask);
