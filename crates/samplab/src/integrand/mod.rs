@@ -111,6 +111,10 @@ pub struct HalfPlane {
 }
 
 impl HalfPlane {
+    /// The half-plane n.(x - p) > 0.
+    pub(crate) fn new(normal: [f64; 2], point: [f64; 2]) -> HalfPlane {
+        HalfPlane { normal, point }
+    }
     fn side(&self, x: &[f64]) -> f64 {
         self.normal[0] * (x[0] - self.point[0]) + self.normal[1] * (x[1] - self.point[1])
     }

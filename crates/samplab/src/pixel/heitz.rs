@@ -10,17 +10,17 @@
 //! The keys are optimized by samplab for the film's sample count, against test integrands
 //! (256 random Heaviside steps in the pair's square; samplab's choice): the pixels' error
 //! vectors e_p on them should look like blue noise, which samplab states as the power of
-//! the error image after a Gaussian blur g of 1 pixel, sum_p |(g * e)_p|^2 (the perceptual
-//! error of Chizhov et al. 2022; g truncated at 3 pixels and the energy written with its
+//! the error image after a Gaussian blur g of 1.5 pixels, sum_p |(g * e)_p|^2 (the
+//! perceptual error of Chizhov et al. 2022; g truncated at 4 pixels and the energy written with its
 //! exact autocorrelation, so it is a sum of squares). Scrambling keys are first swapped
 //! between pixels within the energy's reach when a swap lowers it (64 sweeps), then each
-//! pixel may trade its key for the best of a few fresh random ones; last, each pixel's
+//! pixel may trade its key for the best of a few fresh random ones (four sweeps); last, each pixel's
 //! ranking key is the one, of all spp, that lowers the summed energies of its prefixes
 //! 1, 2, 4, .. spp/2 (each level's energy divided by its mean error power; two sweeps).
-//! The exact integrals are taken as the tile's mean estimate.
+//! The errors are against the steps' exact integrals (the clipped square's area).
 //!
-//! Preparing costs about 2.4 s for 8 dimensions at 16 spp on a 64 x 64 tile, 18 s at
-//! 256 spp (two cores, 2026-11-26); the tile is no larger than the film needs.
+//! Preparing costs about 3.7 s for 8 dimensions at 16 spp on a 64 x 64 tile, 19 s at
+//! 256 spp (two cores, 2026-11-27); the tile is no larger than the film needs.
 //!
 //! The base scramble is fixed by the seed (the keys are optimized against it); frames move
 //! the tile by a hashed toroidal offset. Dimensions past `optimized` get hashed keys per
@@ -31,6 +31,7 @@ use rayon::prelude::*;
 use super::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
 use super::{Film, Keys, PixelEntry, PixelSampler, rekey, unit};
 use crate::error::Result;
+use crate::integrand::{HalfPlane, Integrand};
 use crate::registry::About;
 use crate::sampler::Counts;
 use crate::sampler::qmc::sobol::SOBOL_MAX_DIMS;
@@ -45,10 +46,10 @@ const INTEGRANDS: usize = 256;
 
 /// The standard deviation of the Gaussian blur whose output's power the keys minimize, in
 /// pixels.
-const SIGMA_BLUR: f32 = 1.0;
+const SIGMA_BLUR: f32 = 1.5;
 
 /// The blur's truncation radius, in pixels (its weight beyond is below 0.012).
-const BLUR_RADIUS: i32 = 3;
+const BLUR_RADIUS: i32 = 4;
 
 /// Sweeps of swap proposals (one per pixel each) for the scrambling keys, and how far a
 /// swap partner may lie (as far as the energy reaches).
@@ -57,7 +58,7 @@ const SWAP_RADIUS: u32 = 2 * BLUR_RADIUS as u32;
 
 /// Sweeps over the pixels trading a key for the best of fresh random candidates, and the
 /// samples all candidates of one visit may take (16 candidates at 16 spp, 1 at 256).
-const REFINE_SWEEPS: usize = 2;
+const REFINE_SWEEPS: usize = 4;
 const REFINE_SAMPLES: usize = 256;
 
 /// Sweeps over the pixels for the ranking keys (each tries every key).
@@ -264,16 +265,21 @@ struct Steps {
     nx: [f32; INTEGRANDS],
     ny: [f32; INTEGRANDS],
     c: [f32; INTEGRANDS],
+    /// Their integrals over the unit square.
+    exact: Vec<f32>,
 }
 
 impl Steps {
     fn new(stream: &mut Stream) -> Steps {
-        let mut s = Steps { nx: [0.0; INTEGRANDS], ny: [0.0; INTEGRANDS], c: [0.0; INTEGRANDS] };
+        let mut s =
+            Steps { nx: [0.0; INTEGRANDS], ny: [0.0; INTEGRANDS], c: [0.0; INTEGRANDS], exact: vec![0.0; INTEGRANDS] };
         for t in 0..INTEGRANDS {
             let angle = std::f32::consts::TAU * stream.unit();
             let (cx, cy) = (stream.unit(), stream.unit());
             (s.nx[t], s.ny[t]) = (angle.cos(), angle.sin());
             s.c[t] = -(s.nx[t] * cx + s.ny[t] * cy);
+            let step = HalfPlane::new([f64::from(s.nx[t]), f64::from(s.ny[t])], [f64::from(cx), f64::from(cy)]);
+            s.exact[t] = step.exact() as f32;
         }
         s
     }
@@ -297,9 +303,8 @@ fn optimize(points: &[[u32; 2]], side: u32, seed: Seed) -> PairKeys {
     let mut rank: Vec<u32> = (0..n).map(|_| stream.below(spp as u32)).collect();
     let near = neighbourhood();
     let shifted = |p: [u32; 2], key: [u32; 2]| [p[0] ^ key[0], p[1] ^ key[1]];
-    // Each pixel's errors are its estimates: the exact integrals, the same for every
-    // pixel, drop out of the energy's changes but not of its self term, which swaps and
-    // the full sample count's set do not change.
+    // Each pixel's errors are its estimates less the exact integrals (the tile's mean
+    // estimate in place of the integrals let key trades bias the tile)
 
     // scrambling keys: swaps that lower the energy of the full sample count. Swapping the
     // error vectors a, b of p and q changes sum_p |(g * e)_p|^2 by
@@ -309,9 +314,9 @@ fn optimize(points: &[[u32; 2]], side: u32, seed: Seed) -> PairKeys {
         points.iter().for_each(|&p| steps.add(shifted(p, *key), row));
         row.iter_mut().for_each(|v| *v /= spp as f32);
     }
-    let mean: Vec<f32> = (0..INTEGRANDS).map(|t| rows.iter().skip(t).step_by(INTEGRANDS).sum::<f32>() / n as f32).collect();
+    let mean = &steps.exact;
     for row in rows.chunks_mut(INTEGRANDS) {
-        row.iter_mut().zip(&mean).for_each(|(v, m)| *v -= m);
+        row.iter_mut().zip(mean).for_each(|(v, m)| *v -= m);
     }
     let mut field = Field::new(rows, side, &near);
     for _ in 0..SWAP_SWEEPS {
@@ -351,7 +356,7 @@ fn optimize(points: &[[u32; 2]], side: u32, seed: Seed) -> PairKeys {
                 let key = [stream.next() as u32, stream.next() as u32];
                 row.fill(0.0);
                 points.iter().for_each(|&point| steps.add(shifted(point, key), &mut row));
-                row.iter_mut().zip(&mean).for_each(|(v, m)| *v = *v / spp as f32 - m);
+                row.iter_mut().zip(mean).for_each(|(v, m)| *v = *v / spp as f32 - m);
                 let c = cost(&row);
                 if c < best.0 {
                     best = (c, Some((key, row.clone())));
@@ -395,10 +400,8 @@ fn optimize(points: &[[u32; 2]], side: u32, seed: Seed) -> PairKeys {
     };
     let mut fields: Vec<(Vec<f32>, f32, Field)> = (0..levels)
         .map(|j| {
-            let raw: Vec<f32> = (0..n).flat_map(|p| prefix(&tree(p), j, rank[p], &[0.0; INTEGRANDS])).collect();
-            let mean: Vec<f32> =
-                (0..INTEGRANDS).map(|t| raw.iter().skip(t).step_by(INTEGRANDS).sum::<f32>() / n as f32).collect();
-            let rows: Vec<f32> = raw.chunks(INTEGRANDS).flat_map(|r| r.iter().zip(&mean).map(|(v, m)| v - m)).collect();
+            let mean = steps.exact.clone();
+            let rows: Vec<f32> = (0..n).flat_map(|p| prefix(&tree(p), j, rank[p], &mean)).collect();
             let field = Field::new(rows, side, &near);
             let scale = 1.0 / field.power().max(f32::MIN_POSITIVE);
             (mean, scale, field)
