@@ -16,7 +16,8 @@ pub struct Args {
     /// Run at the papers' own scales (slower) instead of the fast default
     #[arg(long)]
     full: bool,
-    /// Only these papers (comma-separated keys: shirley1991, subr2013, sbert2006, ramamoorthi2012)
+    /// Only these pages (comma-separated keys: shirley1991, subr2013, sbert2006, ramamoorthi2012,
+    /// renderer)
     #[arg(long, value_delimiter = ',')]
     only: Vec<String>,
     /// Seed of the whole run

@@ -3,6 +3,7 @@
 use crate::Paper;
 
 pub mod ramamoorthi2012;
+pub mod renderer;
 pub mod sbert2006;
 pub(crate) mod shadows;
 pub mod shirley1991;
@@ -10,7 +11,7 @@ pub mod subr2013;
 
 /// Every paper, in report order.
 pub fn all() -> Vec<Paper> {
-    vec![shirley1991::paper(), subr2013::paper(), sbert2006::paper(), ramamoorthi2012::paper()]
+    vec![shirley1991::paper(), subr2013::paper(), sbert2006::paper(), ramamoorthi2012::paper(), renderer::paper()]
 }
 
 /// The keys of every paper, for `--only`.
