@@ -4,6 +4,7 @@
 //! pads; `pmj02.bn` adds a blue-noise shift per pixel.
 
 use super::dither::{MASK, Shifts};
+use super::sobol::shuffle;
 use super::{Film, Pairs, PixelEntry, PixelSampler, Keys, rekey, unit};
 use crate::error::Result;
 use crate::registry::About;
@@ -31,8 +32,10 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
         dims: "any (pairs of 2D pmj02)",
         max_dims: super::MAX_DIMS,
         mapping: "dimension padding: dimensions 2k, 2k+1 take sequence h mod 16 of the pool, sample \
-                  pi(i) of its first spp, XOR-ed with hashed digits (a digital shift, which keeps \
-                  every (0,m,2)-net a net), h a hash of (seed, pixel, frame, k)",
+                  pi(i) of its first spp (pi a nested uniform scramble of the index for a power-of-two spp, \
+                  so that every prefix of 2^j samples is a net; a hashed permutation otherwise), XOR-ed \
+                  with hashed digits (a digital shift, which keeps every (0,m,2)-net a net), h a hash of \
+                  (seed, pixel, frame, k)",
         build: build_plain,
     },
     PixelEntry {
@@ -90,9 +93,12 @@ impl Pairs for Pmj {
         let pair = dim / 2;
         let key = rekey(key, u64::from(pair));
         let i = if self.spp.is_power_of_two() {
-            // XOR with fewer digits than spp's: every aligned block of the sequence stays a
-            // block, so each prefix of 2^k of the pixel's samples is still a (0,k,2)-net
-            (index ^ key as u32) & (self.spp - 1)
+            // a nested uniform scramble of the index (Burley 2020, section 4): every aligned
+            // block of the sequence stays a block, so each prefix of 2^k of the pixel's
+            // samples is still a (0,k,2)-net, and two pairs' orders are independent (an XOR
+            // of the index, used before, tied sample j of one pair to sample j ^ c of
+            // another, and pairs drawn from alike sequences were correlated)
+            shuffle(index & (self.spp - 1), key as u32) & (self.spp - 1)
         } else {
             permute(index % self.spp, self.spp, key as u32)
         } as usize;

@@ -87,7 +87,7 @@ pub(super) fn owen_digits(reversed: u32, seed: u32) -> u32 {
 /// scrambled by `key` (so samples 0..2^m, m <= 16, map to an aligned block of 2^m points,
 /// a net), the digits above kept.
 #[inline(always)]
-fn shuffle(index: u32, key: u32) -> u32 {
+pub(super) fn shuffle(index: u32, key: u32) -> u32 {
     (index & !0xFFFF) | owen_scramble_u32(index << 16, key) >> 16
 }
 
