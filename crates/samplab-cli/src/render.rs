@@ -204,7 +204,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     let rays = rendered.camera_rays + rendered.shadow_rays;
     // a pixel sampler draws every dimension, the light samples too
     let sampler = options.pixels.as_ref().map_or_else(|| options.light.spec(), |p| p.spec().to_string());
-    let summary = serde_json::json!({
+    let mut summary = serde_json::json!({
         "scene": a.scene, "sampler": sampler, "n": a.n, "spp": a.spp, "mode": a.mode,
         "pixel": a.pixel, "width": width, "height": height, "seed": a.seed, "seconds": seconds,
         "camera_rays": rendered.camera_rays, "shadow_rays": rendered.shadow_rays,
@@ -212,10 +212,18 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         "penumbra_only": a.penumbra,
         "reference_rendered": reference.as_ref().map(|r| r.1),
     });
+    if let samplab_render::Mode::Path { max_depth } = options.mode {
+        summary["max_depth"] = max_depth.into();
+    }
     outputs.commit()?;
     if a.json {
         crate::emit(None, format!("{}\n", serde_json::to_string_pretty(&summary)?).as_bytes())?;
     }
+    // light samples per estimate, or a path's most segments
+    let per = match options.mode {
+        samplab_render::Mode::Path { max_depth } => format!("depth {max_depth}"),
+        _ => format!("x{}", a.n),
+    };
     let error_text = errors.map_or(String::new(), |e| {
         format!(
             "; vs reference{}: RMSE {:.4e}, relative {:.2}%, mean |E| {:.4e}",
@@ -226,10 +234,9 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         )
     });
     crate::say!(
-        "{} {width}x{height}, {} x{} x{} spp, seed {}: {seconds:.2} s, {:.1} M rays/s{error_text} -> {}",
+        "{} {width}x{height}, {} {per} x{} spp, seed {}: {seconds:.2} s, {:.1} M rays/s{error_text} -> {}",
         a.scene,
         sampler,
-        a.n,
         a.spp,
         a.seed,
         rays as f64 / seconds / 1e6,
