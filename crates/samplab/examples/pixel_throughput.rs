@@ -2,9 +2,11 @@
 //! `openqmc-rs`'s samplers drawn the same way: 4D draws over 2^16 pixels (256 x 256) x 64
 //! dimensions (16 draws per pixel) at one sample index per run, the index changing from
 //! run to run; every draw starts from its keys (an OpenQMC draw is
-//! `Sampler::new(x, y, frame, index).new_domain(block).draw_sample::<4>()`, a samplab draw
-//! `sample4(pixel, frame, index, dim)`); the medians of at least 7 rounds and 2 s, samplab and OpenQMC run in alternation. Prints one
-//! JSON object per line.
+//! `Sampler::new(x, y, frame, index).new_domain(block).draw_sample::<4>()`, generic code, a
+//! samplab draw `sample4(pixel, frame, index, dim)` in code generic over the family through
+//! `Pixels::visit`, and again through `Pixels::sample4`, "dispatched"); the medians of at
+//! least 7 rounds and 2 s, samplab and OpenQMC run in alternation. Prints one JSON object
+//! per line.
 //! Used by `bench/compare pixels`.
 //!
 //! cargo run --release -p samplab --example pixel_throughput [FAMILY...]
@@ -14,7 +16,7 @@ use std::time::Instant;
 
 use openqmc::{LatticeSampler, PmjSampler, Sampler, SamplerImpl, SobolSampler};
 use samplab::Seed;
-use samplab::pixel::{Film, PIXEL_SAMPLERS, prepare};
+use samplab::pixel::{Film, PIXEL_SAMPLERS, PixelSampler, Visit, prepare};
 
 const SIDE: u32 = 256;
 const DIMS: u32 = 64;
@@ -42,6 +44,29 @@ fn medians(a: impl Fn(u32) -> f64, b: Option<fn(u32) -> f64>) -> (f64, Option<f6
         v[v.len() / 2]
     };
     (median(ta), (!tb.is_empty()).then(|| median(tb)))
+}
+
+/// One run of samplab's draws, compiled for the family it visits ([`Pixels::visit`]): what a
+/// renderer generic over [`PixelSampler`] does.
+struct Draws {
+    index: u32,
+}
+
+impl Visit for Draws {
+    type Output = f64;
+    fn visit<S: PixelSampler>(self, s: &S) -> f64 {
+        let mut sum = 0.0;
+        for y in 0..SIDE {
+            for x in 0..SIDE {
+                for d in (0..DIMS).step_by(4) {
+                    // black_box keeps the pixel's keys from being hoisted out of the loop, as
+                    // for OpenQMC below
+                    sum += s.sample4([black_box(x), y], 0, self.index, d).iter().sum::<f64>();
+                }
+            }
+        }
+        sum
+    }
 }
 
 /// A samplab family, the OpenQMC sampler it is compared with, and that sampler's run.
@@ -74,12 +99,13 @@ fn main() {
     let only: Vec<String> = std::env::args().skip(1).collect();
     for e in PIXEL_SAMPLERS.iter().filter(|e| only.is_empty() || only.iter().any(|o| o == e.about.name)) {
         let p = prepare(e.about.name, film, Seed(1)).unwrap_or_else(|e| panic!("{e}"));
-        let ours = |index| {
+        let ours = |index| p.visit(Draws { index });
+        let dispatched = |index| {
             let mut sum = 0.0;
             for y in 0..SIDE {
                 for x in 0..SIDE {
                     for d in (0..DIMS).step_by(4) {
-                        sum += p.sample4([x, y], 0, index, d).iter().sum::<f64>();
+                        sum += p.sample4([black_box(x), y], 0, index, d).iter().sum::<f64>();
                     }
                 }
             }
@@ -87,6 +113,7 @@ fn main() {
         };
         let peer = peers.iter().find(|(name, ..)| *name == e.about.name);
         let (ours, theirs) = medians(ours, peer.map(|&(_, _, run)| run));
+        let (dispatched, _) = medians(dispatched, None);
         let versus = peer.zip(theirs).map_or(String::new(), |((_, name, _), t)| {
             format!(
                 ", \"openqmc\": \"{name}\", \"openqmc_draws_per_second\": {:.4e}, \"ratio\": {:.3}",
@@ -95,10 +122,11 @@ fn main() {
             )
         });
         println!(
-            "{{\"spec\": \"{}\", \"draws_per_second\": {:.4e}, \"values_per_second\": {:.4e}{versus}}}",
+            "{{\"spec\": \"{}\", \"draws_per_second\": {:.4e}, \"values_per_second\": {:.4e}, \"dispatched_draws_per_second\": {:.4e}{versus}}}",
             p.spec(),
             draws / ours,
-            4.0 * draws / ours
+            4.0 * draws / ours,
+            draws / dispatched
         );
     }
 }

@@ -5,7 +5,7 @@
 
 use super::mask::Mask;
 use super::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
-use super::{Film, Keys, PixelEntry, PixelSampler, unit};
+use super::{four, Family, Film, Keys, PixelEntry, PixelSampler, unit};
 use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::qmc::sobol::SOBOL_MAX_DIMS;
@@ -65,14 +65,14 @@ impl Shifts {
 }
 
 #[derive(Debug)]
-struct Dither {
+pub(crate) struct Dither {
     keys: Keys,
     tables: Vec<ByteTables>,
     shifts: Shifts,
 }
 
-fn build(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
-    Ok(Box::new(Dither {
+fn build(p: &Params, film: Film, seed: Seed) -> Result<Family> {
+    Ok(Family::from(Dither {
         keys: Keys::new(seed, film.dims),
         tables: (0..film.dims as usize).map(byte_tables).collect(),
         shifts: Shifts::new(p.int("mask") as usize, seed, film.dims.div_ceil(2))?,
@@ -99,8 +99,8 @@ impl PixelSampler for Dither {
         // one frame key and one shift per pair, not per value
         let frame_key = self.keys.frame(frame);
         let mut shift = self.shifts.shift(pixel, frame, dim / 2);
-        std::array::from_fn(|k| {
-            let d = dim + k as u32;
+        four(|k| {
+            let d = dim + k;
             if k > 0 && d & 1 == 0 {
                 shift = self.shifts.shift(pixel, frame, d / 2);
             }

@@ -7,7 +7,7 @@
 //! single precision as pbrt computes it, so the values equal pbrt's bit for bit.
 
 use super::pbrt::{frame_seed, hash_words, mix_bits, permutation_element};
-use super::{ANY_SPP, Film, PixelEntry, PixelSampler};
+use super::{four, Family, ANY_SPP, Film, PixelEntry, PixelSampler};
 use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::qmc::halton::PRIMES;
@@ -115,7 +115,7 @@ fn radical_inverse(base: u32, mut a: u64, positions: Option<u32>, mut digit: imp
 }
 
 #[derive(Debug)]
-struct Halton {
+pub(crate) struct Halton {
     randomize: Randomize,
     seed: u64,
     /// Frame 0's permutations of every dimension's base (`permutedigits`).
@@ -138,13 +138,13 @@ fn inverse_mod(x: u64, n: u64) -> u64 {
     s0.rem_euclid(n as i64) as u64
 }
 
-fn build(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
+fn build(p: &Params, film: Film, seed: Seed) -> Result<Family> {
     let randomize = match p.word("randomize") {
         "none" => Randomize::None,
         "owen" => Randomize::Owen,
         _ => Randomize::PermuteDigits,
     };
-    Ok(Box::new(Halton::new(randomize, film, seed)))
+    Ok(Family::from(Halton::new(randomize, film, seed)))
 }
 
 impl Halton {
@@ -221,7 +221,7 @@ impl PixelSampler for Halton {
 
     fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
         let a = self.halton_index(pixel, index);
-        std::array::from_fn(|k| f64::from(self.value(frame, a, dim + k as u32)))
+        four(|k| f64::from(self.value(frame, a, dim + k)))
     }
 }
 

@@ -29,7 +29,7 @@
 use rayon::prelude::*;
 
 use super::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
-use super::{Film, Keys, PixelEntry, PixelSampler, rekey, unit};
+use super::{Family, Film, Keys, PixelEntry, PixelSampler, rekey, unit};
 use crate::error::Result;
 use crate::integrand::{HalfPlane, Integrand};
 use crate::registry::About;
@@ -125,7 +125,7 @@ struct PairKeys {
 }
 
 #[derive(Debug)]
-struct Heitz {
+pub(crate) struct Heitz {
     keys: Keys,
     tables: Vec<ByteTables>,
     /// The base Owen scramble of each dimension.
@@ -135,7 +135,7 @@ struct Heitz {
     pairs: Vec<PairKeys>,
 }
 
-fn build(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
+fn build(p: &Params, film: Film, seed: Seed) -> Result<Family> {
     // a tile no larger than the film needs (and at least 16: the energy's reach)
     let side = (p.int("tile") as u32).min(film.width.max(film.height).max(16));
     let optimized = (p.int("optimized") as u32).min(film.dims).div_ceil(2);
@@ -153,7 +153,7 @@ fn build(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
             optimize(&points, side, seed.derive_str("heitz keys").derive(u64::from(pair)))
         })
         .collect();
-    Ok(Box::new(Heitz { keys: Keys::new(seed, film.dims), tables, owen, side, rank_mask: spp - 1, pairs }))
+    Ok(Family::from(Heitz { keys: Keys::new(seed, film.dims), tables, owen, side, rank_mask: spp - 1, pairs }))
 }
 
 impl Heitz {

@@ -1,6 +1,6 @@
 //! Independent uniform values: the baseline every pixel sampler is measured against.
 
-use super::{ANY_SPP, Film, PixelEntry, PixelSampler, Keys, rekey};
+use super::{Family, ANY_SPP, Film, PixelEntry, PixelSampler, Keys, rekey};
 use crate::error::Result;
 use crate::registry::About;
 use crate::seed::Seed;
@@ -18,13 +18,14 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
 }];
 
 #[derive(Debug)]
-struct Independent(Keys);
+pub(crate) struct Independent(Keys);
 
-fn build(_: &Params, _: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
-    Ok(Box::new(Independent(Keys::new(seed, 0))))
+fn build(_: &Params, _: Film, seed: Seed) -> Result<Family> {
+    Ok(Family::from(Independent(Keys::new(seed, 0))))
 }
 
 impl PixelSampler for Independent {
+    #[inline(always)]
     fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
         let h = rekey(self.0.pixel(pixel, frame), (u64::from(index) << 32) | u64::from(dim));
         (h >> 11) as f64 * (1.0 / (1u64 << 53) as f64)

@@ -3,7 +3,7 @@
 //! as Burley 2020 shuffles Sobol', and a random shift per pixel and dimension (Cranley &
 //! Patterson 1976).
 
-use super::{Film, Keys, PixelEntry, PixelSampler, unit};
+use super::{four, Family, Film, Keys, PixelEntry, PixelSampler, unit};
 use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::qmc::cbc::{self, Weights};
@@ -33,14 +33,14 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
 }];
 
 #[derive(Debug)]
-struct Lattice {
+pub(crate) struct Lattice {
     keys: Keys,
     z: Vec<u32>,
 }
 
-fn build(_: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
+fn build(_: &Params, film: Film, seed: Seed) -> Result<Family> {
     let z = cbc::construct(1 << M, film.dims as usize, Weights::decaying(2.0), true)?;
-    Ok(Box::new(Lattice { keys: Keys::new(seed, film.dims), z: z.into_iter().map(|zj| zj as u32).collect() }))
+    Ok(Family::from(Lattice { keys: Keys::new(seed, film.dims), z: z.into_iter().map(|zj| zj as u32).collect() }))
 }
 
 impl Lattice {
@@ -59,13 +59,15 @@ impl Lattice {
 }
 
 impl PixelSampler for Lattice {
+    #[inline(always)]
     fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
         let (key, r) = self.radical(pixel, frame, index);
         self.value(key, r, dim)
     }
 
+    #[inline(always)]
     fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
         let (key, r) = self.radical(pixel, frame, index);
-        std::array::from_fn(|k| self.value(key, r, dim + k as u32))
+        four(|k| self.value(key, r, dim + k))
     }
 }

@@ -31,6 +31,10 @@
 //! # Ok::<(), samplab::Error>(())
 //! ```
 //!
+//! [`Pixels`] dispatches to its family by a match, so a draw is inlined into the caller's
+//! loop; [`Pixels::visit`] hands the family's own type to code generic over
+//! [`PixelSampler`], compiled once per family (the fastest way to draw many values).
+//!
 //! [`PIXEL_SAMPLERS`] (and `samplab list pixels`) is the table of families.
 
 use std::fmt::Debug;
@@ -111,9 +115,79 @@ pub trait PixelSampler: Send + Sync + Debug {
 
     /// Dimensions `dim .. dim + 4` at once (the families that compute a pair or a block
     /// together override it).
+    #[inline(always)]
     fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
-        std::array::from_fn(|k| self.sample(pixel, frame, index, dim + k as u32))
+        four(|k| self.sample(pixel, frame, index, dim + k))
     }
+}
+
+/// Code generic over the pixel sampler it is given: see [`Pixels::visit`].
+pub trait Visit {
+    /// What the visit returns.
+    type Output;
+    /// Runs with the prepared family as its own type.
+    fn visit<S: PixelSampler>(self, sampler: &S) -> Self::Output;
+}
+
+/// Every prepared family's type, one variant each: [`Pixels`] dispatches on it by a match
+/// (the draws inlined, no virtual call) and [`Pixels::visit`] hands the type to generic code.
+macro_rules! families {
+    ($($variant:ident($ty:ty)),+ $(,)?) => {
+        #[derive(Debug)]
+        pub(crate) enum Family {
+            $($variant($ty)),+
+        }
+
+        $(impl From<$ty> for Family {
+            fn from(s: $ty) -> Family {
+                Family::$variant(s)
+            }
+        })+
+
+        impl Family {
+            #[inline]
+            fn visit<V: Visit>(&self, visitor: V) -> V::Output {
+                match self {
+                    $(Family::$variant(s) => visitor.visit(s)),+
+                }
+            }
+        }
+
+        impl PixelSampler for Family {
+            #[inline]
+            fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
+                match self {
+                    $(Family::$variant(s) => s.sample(pixel, frame, index, dim)),+
+                }
+            }
+
+            #[inline]
+            fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
+                match self {
+                    $(Family::$variant(s) => s.sample4(pixel, frame, index, dim)),+
+                }
+            }
+        }
+    };
+}
+
+families! {
+    Independent(independent::Independent),
+    Stratified(stratified::Stratified),
+    Sobol(sobol::Burley),
+    Padded(sobol::Padded),
+    ZSobol(zsobol::ZSobol),
+    Halton(halton::Halton),
+    Pmj(pmj::Pmj),
+    Lattice(lattice::Lattice),
+    Dither(dither::Dither),
+    Heitz(heitz::Heitz),
+    OpenQmcSobol(openqmc::OpenQmc<::openqmc::SobolSampler>),
+    OpenQmcSobolBn(openqmc::OpenQmc<::openqmc::SobolBnSampler>),
+    OpenQmcPmj(openqmc::OpenQmc<::openqmc::PmjSampler>),
+    OpenQmcPmjBn(openqmc::OpenQmc<::openqmc::PmjBnSampler>),
+    OpenQmcLattice(openqmc::OpenQmc<::openqmc::LatticeSampler>),
+    OpenQmcLatticeBn(openqmc::OpenQmc<::openqmc::LatticeBnSampler>),
 }
 
 /// A family that computes its dimensions in pairs (2k, 2k + 1), one 2D pattern each: it is
@@ -130,6 +204,7 @@ pub(crate) trait Pairs: Send + Sync + Debug {
 
     /// Dimensions `first .. first + 4` (a family that computes two pairs faster together
     /// overrides it).
+    #[inline(always)]
     fn two_pairs(&self, key: Self::Key, pixel: [u32; 2], frame: u32, index: u32, first: u32) -> [f64; 4] {
         let [a, b] = self.pair(key, pixel, frame, index, first);
         let [c, d] = self.pair(key, pixel, frame, index, first + 2);
@@ -138,14 +213,16 @@ pub(crate) trait Pairs: Send + Sync + Debug {
 }
 
 impl<T: Pairs> PixelSampler for T {
+    #[inline(always)]
     fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
         let key = self.key(pixel, frame, index);
         self.pair(key, pixel, frame, index, dim & !1)[(dim & 1) as usize]
     }
 
+    #[inline(always)]
     fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
         if dim & 1 == 1 {
-            return std::array::from_fn(|k| self.sample(pixel, frame, index, dim + k as u32));
+            return one_by_one(self, pixel, frame, index, dim);
         }
         self.two_pairs(self.key(pixel, frame, index), pixel, frame, index, dim)
     }
@@ -165,7 +242,7 @@ pub struct PixelEntry {
     /// How the point-set family becomes a pixel sampler, in words.
     pub mapping: &'static str,
     /// Builds the prepared sampler for a film and a seed (the film already checked).
-    pub(crate) build: fn(&Params, Film, Seed) -> Result<Box<dyn PixelSampler>>,
+    pub(crate) build: fn(&Params, Film, Seed) -> Result<Family>,
 }
 
 impl Entry for PixelEntry {
@@ -183,7 +260,7 @@ pub struct Pixels {
     spec: String,
     film: Film,
     seed: Seed,
-    inner: Box<dyn PixelSampler>,
+    inner: Family,
 }
 
 /// Prepare the pixel sampler `spec` (e.g. `zsobol`, `sobol.padded:randomize=owen`) for a
@@ -236,6 +313,33 @@ impl Pixels {
     #[inline]
     pub fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
         self.inner.sample4(pixel, frame, index, dim)
+    }
+
+    /// Hands the prepared family, as its own type, to `visitor`: code generic over
+    /// [`PixelSampler`] (a renderer's pixel loop) is then compiled once per family, and
+    /// every draw inlined into it, with no dispatch per value.
+    ///
+    /// ```
+    /// use samplab::{Seed, pixel::{self, PixelSampler, Visit}};
+    /// /// The mean of dimension 0 over a film's samples.
+    /// struct Mean(pixel::Film);
+    /// impl Visit for Mean {
+    ///     type Output = f64;
+    ///     fn visit<S: PixelSampler>(self, s: &S) -> f64 {
+    ///         let f = self.0;
+    ///         let mut sum = 0.0;
+    ///         for y in 0..f.height { for x in 0..f.width { for i in 0..f.spp { sum += s.sample([x, y], 0, i, 0); } } }
+    ///         sum / f64::from(f.width * f.height * f.spp)
+    ///     }
+    /// }
+    /// let film = pixel::Film { width: 8, height: 8, spp: 4, dims: 2 };
+    /// let p = pixel::prepare("sobol", film, Seed(3))?;
+    /// assert!((p.visit(Mean(film)) - 0.5).abs() < 0.05);
+    /// # Ok::<(), samplab::Error>(())
+    /// ```
+    #[inline]
+    pub fn visit<V: Visit>(&self, visitor: V) -> V::Output {
+        self.inner.visit(visitor)
     }
 
     /// [`Pixels::sample`] with every key checked against the film.
@@ -327,7 +431,7 @@ impl Pixels {
 #[derive(Debug, Clone)]
 pub(crate) struct Keys {
     base: u64,
-    dims: Vec<u32>,
+    pub(crate) dims: Vec<u32>,
 }
 
 impl Keys {
@@ -355,7 +459,12 @@ impl Keys {
     /// A 32-bit key for dimension `dim` of the pixel whose key's low word is `key`.
     #[inline(always)]
     pub(crate) fn dim(&self, key: u32, dim: u32) -> u32 {
-        let h = self.dims[dim as usize];
+        Keys::combine(key, self.dims[dim as usize])
+    }
+
+    /// [`Keys::dim`] from the dimension's word `h`.
+    #[inline(always)]
+    pub(crate) fn combine(key: u32, h: u32) -> u32 {
         key ^ h.wrapping_add(0x9E37_79B9).wrapping_add(key << 6).wrapping_add(key >> 2)
     }
 }
@@ -364,6 +473,28 @@ impl Keys {
 #[inline]
 pub(crate) fn rekey(key: u64, word: u64) -> u64 {
     crate::seed::mix64(key.wrapping_add(word.wrapping_mul(0x9E37_79B9_7F4A_7C15)))
+}
+
+/// `[f(0), f(1), f(2), f(3)]`, written out: `std::array::from_fn` is not always inlined,
+/// and a call per draw cost the hot path a quarter of its speed (`bench/compare pixels`).
+#[inline(always)]
+pub(crate) fn four<T>(mut f: impl FnMut(u32) -> T) -> [T; 4] {
+    [f(0), f(1), f(2), f(3)]
+}
+
+/// Dimensions `dim .. dim + 4` drawn one at a time: the rare path of the families that draw
+/// aligned blocks (a block that starts mid-pair, past the last dimension), kept out of line
+/// so that it does not weigh on the hot one.
+#[cold]
+#[inline(never)]
+pub(crate) fn one_by_one<S: PixelSampler + ?Sized>(
+    s: &S,
+    pixel: [u32; 2],
+    frame: u32,
+    index: u32,
+    dim: u32,
+) -> [f64; 4] {
+    four(|k| s.sample(pixel, frame, index, dim + k))
 }
 
 /// 32 bits of fixed point to [0, 1), exactly.

@@ -6,7 +6,7 @@ use std::marker::PhantomData;
 
 use openqmc::{Sampler, SamplerImpl};
 
-use super::{ANY_SPP, Film, PixelEntry, PixelSampler, unit};
+use super::{one_by_one, Family, ANY_SPP, Film, PixelEntry, PixelSampler, unit};
 use crate::error::Result;
 use crate::registry::About;
 use crate::seed::Seed;
@@ -24,8 +24,8 @@ macro_rules! entries {
             dims: "any (4D domains)",
             max_dims: super::MAX_DIMS,
             mapping: MAPPING,
-            build: |_: &Params, _: Film, seed: Seed| -> Result<Box<dyn PixelSampler>> {
-                Ok(Box::new(OpenQmc::<openqmc::$sampler>::new(seed)))
+            build: |_: &Params, _: Film, seed: Seed| -> Result<Family> {
+                Ok(Family::from(OpenQmc::<openqmc::$sampler>::new(seed)))
             },
         }),+];
     };
@@ -41,7 +41,7 @@ entries! {
 }
 
 /// One OpenQMC sampler type, keyed by samplab's seed.
-struct OpenQmc<S> {
+pub(crate) struct OpenQmc<S> {
     key: i32,
     kind: PhantomData<fn() -> S>,
 }
@@ -68,13 +68,15 @@ impl<T: SamplerImpl> OpenQmc<Sampler<T>> {
 }
 
 impl<T: SamplerImpl + 'static> PixelSampler for OpenQmc<Sampler<T>> {
+    #[inline(always)]
     fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
         unit(self.block(pixel, frame, index, dim / 4)[(dim % 4) as usize])
     }
 
+    #[inline(always)]
     fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
         if !dim.is_multiple_of(4) {
-            return std::array::from_fn(|k| self.sample(pixel, frame, index, dim + k as u32));
+            return one_by_one(self, pixel, frame, index, dim);
         }
         self.block(pixel, frame, index, dim / 4).map(unit)
     }

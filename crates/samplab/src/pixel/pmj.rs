@@ -5,7 +5,7 @@
 
 use super::dither::{MASK, Shifts};
 use super::sobol::shuffle;
-use super::{Film, Pairs, PixelEntry, PixelSampler, Keys, rekey, unit};
+use super::{Family, Film, Pairs, PixelEntry, Keys, rekey, unit};
 use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::randomize::scramble::permute;
@@ -58,32 +58,41 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
 ];
 
 #[derive(Debug)]
-struct Pmj {
+pub(crate) struct Pmj {
     keys: Keys,
     spp: u32,
-    pool: Vec<Vec<[u32; 2]>>,
+    /// The pool's sequences one after the other, `spp` points each.
+    pool: Vec<[u32; 2]>,
     /// The blue-noise shifts (`pmj02.bn`); none for `pmj02`, which shifts digits by hashes.
     shifts: Option<Shifts>,
 }
 
-fn pool(film: Film, seed: Seed) -> Vec<Vec<[u32; 2]>> {
+fn pool(film: Film, seed: Seed) -> Vec<[u32; 2]> {
     let base = seed.derive_str("pmj02 pool");
-    (0..POOL).map(|k| pmj02_digits(film.spp as usize, base.derive(k as u64))).collect()
+    (0..POOL).flat_map(|k| pmj02_digits(film.spp as usize, base.derive(k as u64))).collect()
 }
 
-fn build_plain(_: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
-    Ok(Box::new(Pmj { keys: Keys::new(seed, 0), spp: film.spp, pool: pool(film, seed), shifts: None }))
+fn build_plain(_: &Params, film: Film, seed: Seed) -> Result<Family> {
+    Ok(Family::from(Pmj { keys: Keys::new(seed, 0), spp: film.spp, pool: pool(film, seed), shifts: None }))
 }
 
-fn build_bn(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
+fn build_bn(p: &Params, film: Film, seed: Seed) -> Result<Family> {
     let shifts = Some(Shifts::new(p.int("mask") as usize, seed, film.dims.div_ceil(2))?);
-    Ok(Box::new(Pmj { keys: Keys::new(seed, 0), spp: film.spp, pool: pool(film, seed), shifts }))
+    Ok(Family::from(Pmj { keys: Keys::new(seed, 0), spp: film.spp, pool: pool(film, seed), shifts }))
+}
+
+/// [`permute`] as a call: its cycle-walking loop, inlined into the power-of-two path's
+/// draws, slowed them.
+#[inline(never)]
+fn permute_out_of_line(i: u32, len: u32, key: u32) -> u32 {
+    permute(i, len, key)
 }
 
 impl Pairs for Pmj {
     /// The pixel's key.
     type Key = u64;
 
+    #[inline(always)]
     fn key(&self, pixel: [u32; 2], frame: u32, _: u32) -> u64 {
         self.keys.pixel(pixel, frame)
     }
@@ -100,16 +109,17 @@ impl Pairs for Pmj {
             // another, and pairs drawn from alike sequences were correlated)
             shuffle(index & (self.spp - 1), key as u32) & (self.spp - 1)
         } else {
-            permute(index % self.spp, self.spp, key as u32)
+            permute_out_of_line(index % self.spp, self.spp, key as u32)
         } as usize;
+        let spp = self.spp as usize;
         let [x, y] = match &self.shifts {
             None => {
-                let [x, y] = self.pool[(key >> 40) as usize % POOL][i];
+                let [x, y] = self.pool[(key >> 40) as usize % POOL * spp + i];
                 let bits = rekey(key, 1);
                 [x ^ bits as u32, y ^ (bits >> 32) as u32]
             }
             Some(shifts) => {
-                let [x, y] = self.pool[pair as usize % POOL][i];
+                let [x, y] = self.pool[pair as usize % POOL * spp + i];
                 let [sx, sy] = shifts.shift(pixel, frame, pair);
                 [x.wrapping_add(sx), y.wrapping_add(sy)]
             }

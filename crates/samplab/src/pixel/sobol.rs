@@ -2,7 +2,7 @@
 //! (Burley 2020), and pbrt-v4's padded 2D Sobol' (Pharr, Jakob & Humphreys 2023).
 
 use super::pbrt::{RANDOMIZE, Scramble, Sobol2, frame_seed, hash_words, permutation_element};
-use super::{ANY_SPP, Film, Keys, Pairs, PixelEntry, PixelSampler, unit};
+use super::{one_by_one, Family, ANY_SPP, Film, Keys, Pairs, PixelEntry, PixelSampler, unit};
 use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::qmc::sobol::{SOBOL_MAX_DIMS, direction_numbers};
@@ -92,13 +92,13 @@ pub(super) fn shuffle(index: u32, key: u32) -> u32 {
 }
 
 #[derive(Debug)]
-struct Burley {
+pub(crate) struct Burley {
     keys: Keys,
     tables: Vec<ByteTables>,
 }
 
-fn build_sobol(_: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
-    Ok(Box::new(Burley { keys: Keys::new(seed, film.dims), tables: (0..film.dims as usize).map(byte_tables).collect() }))
+fn build_sobol(_: &Params, film: Film, seed: Seed) -> Result<Family> {
+    Ok(Family::from(Burley { keys: Keys::new(seed, film.dims), tables: (0..film.dims as usize).map(byte_tables).collect() }))
 }
 
 impl Burley {
@@ -115,34 +115,45 @@ impl Burley {
 }
 
 impl PixelSampler for Burley {
+    #[inline(always)]
     fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
         let (key, i) = self.shuffled(pixel, frame, index);
         self.value(key, i, dim)
     }
 
+    #[inline(always)]
     fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
         let (key, i) = self.shuffled(pixel, frame, index);
-        std::array::from_fn(|k| self.value(key, i, dim + k as u32))
+        let d = dim as usize;
+        match (self.tables.get(d..d + 4), self.keys.dims.get(d..d + 4)) {
+            (Some(t), Some(h)) => {
+                let v = |k: usize| unit(owen_digits(reversed_digits(&t[k], i), Keys::combine(key, h[k])));
+                [v(0), v(1), v(2), v(3)]
+            }
+            // past the last dimension: only a caller's out-of-range key comes here
+            _ => one_by_one(self, pixel, frame, index, dim),
+        }
     }
 }
 
 #[derive(Debug)]
-struct Padded {
+pub(crate) struct Padded {
     seed: u64,
     spp: u32,
     scramble: Scramble,
     sobol: Sobol2,
 }
 
-fn build_padded(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
+fn build_padded(p: &Params, film: Film, seed: Seed) -> Result<Family> {
     let scramble = Scramble::from_word(p.word("randomize"));
-    Ok(Box::new(Padded { seed: seed.0, spp: film.spp, scramble, sobol: Sobol2::default() }))
+    Ok(Family::from(Padded { seed: seed.0, spp: film.spp, scramble, sobol: Sobol2::default() }))
 }
 
 impl Pairs for Padded {
     /// pbrt's seed for the frame.
     type Key = u32;
 
+    #[inline(always)]
     fn key(&self, _: [u32; 2], frame: u32, _: u32) -> u32 {
         frame_seed(self.seed, frame)
     }

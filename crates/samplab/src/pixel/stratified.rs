@@ -1,7 +1,7 @@
 //! Jittered strata per pixel with dimension padding (Cook 1986; as pbrt's
 //! `StratifiedSampler`, with hashed permutations instead of its stream of draws).
 
-use super::{ANY_SPP, Film, Pairs, PixelEntry, PixelSampler, Keys, rekey};
+use super::{Family, ANY_SPP, Film, Pairs, PixelEntry, Keys, rekey};
 use crate::error::Result;
 use crate::numeric::BELOW_ONE;
 use crate::registry::About;
@@ -27,7 +27,7 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
 }];
 
 #[derive(Debug)]
-struct Stratified {
+pub(crate) struct Stratified {
     keys: Keys,
     spp: u32,
     /// Columns (x strata) and rows (y strata), columns >= rows.
@@ -35,9 +35,9 @@ struct Stratified {
     rows: u32,
 }
 
-fn build(_: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
+fn build(_: &Params, film: Film, seed: Seed) -> Result<Family> {
     let rows = (1..=film.spp.isqrt()).rev().find(|a| film.spp.is_multiple_of(*a)).unwrap_or(1);
-    Ok(Box::new(Stratified { keys: Keys::new(seed, 0), spp: film.spp, columns: film.spp / rows, rows }))
+    Ok(Family::from(Stratified { keys: Keys::new(seed, 0), spp: film.spp, columns: film.spp / rows, rows }))
 }
 
 impl Pairs for Stratified {

@@ -5,7 +5,7 @@
 //! error is spread over the screen as blue noise.
 
 use super::pbrt::{RANDOMIZE, Scramble, Sobol2, frame_seed, hash_words, mix_bits, morton2};
-use super::{Film, POWER_OF_TWO_SPP, Pairs, PixelEntry, PixelSampler};
+use super::{Family, Film, POWER_OF_TWO_SPP, Pairs, PixelEntry};
 use crate::error::Result;
 use crate::registry::About;
 use crate::seed::Seed;
@@ -75,7 +75,7 @@ const PACKED: [u8; 24] = {
 };
 
 #[derive(Debug)]
-struct ZSobol {
+pub(crate) struct ZSobol {
     seed: u64,
     scramble: Scramble,
     log2_spp: u32,
@@ -85,10 +85,10 @@ struct ZSobol {
     hashes: Vec<u64>,
 }
 
-fn build(p: &Params, film: Film, seed: Seed) -> Result<Box<dyn PixelSampler>> {
+fn build(p: &Params, film: Film, seed: Seed) -> Result<Family> {
     let log2_spp = film.spp.ilog2();
     let side = film.width.max(film.height).next_power_of_two();
-    Ok(Box::new(ZSobol {
+    Ok(Family::from(ZSobol {
         seed: seed.0,
         scramble: Scramble::from_word(p.word("randomize")),
         log2_spp,
@@ -139,6 +139,7 @@ impl Pairs for ZSobol {
     /// The sample's Morton index and pbrt's seed for the frame.
     type Key = (u64, u32);
 
+    #[inline(always)]
     fn key(&self, pixel: [u32; 2], frame: u32, index: u32) -> (u64, u32) {
         ((morton2(pixel[0], pixel[1]) << self.log2_spp) | u64::from(index), frame_seed(self.seed, frame))
     }
@@ -149,6 +150,7 @@ impl Pairs for ZSobol {
         self.sobol.pair(self.scramble, i, self.hash(frame, seed, dim))
     }
 
+    #[inline(always)]
     fn two_pairs(&self, (morton, seed): (u64, u32), _: [u32; 2], frame: u32, _: u32, dim: u32) -> [f64; 4] {
         let [i, j] = self.sequence_indices(morton, [dim, dim + 2]);
         let [a, b] = self.sobol.pair(self.scramble, i, self.hash(frame, seed, dim));
