@@ -27,6 +27,7 @@ mod list;
 mod mask;
 mod pixels;
 mod plot;
+mod predict;
 mod render;
 mod reproduce;
 mod sets;
@@ -77,6 +78,9 @@ enum Command {
     Integrate(integrate::Args),
     /// Periodogram, expected spectrum and spectrum variance over realizations (Subr & Kautz).
     Spectrum(spectrum::Args),
+    /// Predict samplers' variance on an integrand from their spectra (Pilleboue et al. 2015),
+    /// rank them, and measure beside the prediction.
+    Predict(predict::Args),
     /// Render soft shadows with any strategy per pixel, against a reference (EXR/PNG).
     Render(Box<render::Args>),
     /// Every value a pixel sampler (ZSobol, padded Sobol', PMJ02, blue-noise dithering,
@@ -188,6 +192,7 @@ fn run(cli: Cli) -> ExitCode {
         Command::Discrepancy(a) => discrepancy::run(&a),
         Command::Integrate(a) => integrate::run(&a),
         Command::Spectrum(a) => spectrum::run(&a),
+        Command::Predict(a) => predict::run(&a),
         Command::Render(a) => render::run(&a),
         Command::Pixels(a) => pixels::run(&a),
         Command::ImageMetrics(a) => image_metrics::run(&a),

@@ -588,3 +588,25 @@ fn image_metrics_and_mask_spectra_equal_the_library() {
         &["a convergence fit needs 3 or more images"],
     );
 }
+
+#[test]
+fn predict_ranks_samplers_and_refuses_bad_input() {
+    let args = ["predict", "--integrand", "disk:r=0.3,cx=0.45,cy=0.5", "--sampler", "random", "--sampler", "jitter"];
+    let a = samplab(&[&args[..], &["-n", "64,256,1024", "--res", "32", "--json"]].concat());
+    assert!(a.status.success(), "{}", String::from_utf8_lossy(&a.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&a.stdout).unwrap();
+    // white noise: p (1 - p) / n, p the disk's area, computed here
+    let p = std::f64::consts::PI * 0.09;
+    let random = &v["rows"][2];
+    assert_eq!((random["sampler"].as_str(), random["n"].as_u64()), (Some("random"), Some(1024)));
+    let predicted = random["predicted"]["variance"].as_f64().unwrap();
+    assert!((predicted - p * (1.0 - p) / 1024.0).abs() < 1e-15, "{predicted}");
+    // jitter converges faster, so it ranks first
+    assert_eq!(v["ranking"][0]["sampler"], "jitter");
+    assert!(v["ranking"][0]["predicted_exponent"].as_f64().unwrap() < -1.3);
+    assert_bad_input(&[&args[..], &["--res", "7"]].concat(), &["--res 7: the spectrum grid is an even 4 to 4096"]);
+    assert_bad_input(&[&args[..], &["--sets", "4"]].concat(), &["--sets 4: a measured spectrum needs at least 8"]);
+    assert_bad_input(&[&args[..], &["-n", "0"]].concat(), &["-n = 0: counts must be positive"]);
+    assert_bad_input(&["predict", "--integrand", "disk", "--sampler", "jittr"], &["unknown sampler 'jittr'"]);
+    assert_bad_input(&["predict", "--integrand", "dsk", "--sampler", "jitter"], &["unknown integrand"]);
+}

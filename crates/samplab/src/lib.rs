@@ -37,6 +37,7 @@ pub mod memory;
 pub mod numeric;
 pub mod pixel;
 pub mod points;
+pub mod predict;
 pub mod progress;
 pub mod registry;
 pub mod sampler;

@@ -36,6 +36,50 @@ pub trait Integrand: Send + Sync {
     fn discontinuities(&self) -> Option<usize> {
         None
     }
+    /// The Fourier coefficient F(k) = integral of f(x) exp(-2 pi i k.x) over the domain, as
+    /// (re, im), at integer frequency k (`[k, 0]` in 1D), where a closed form is known
+    /// ([`crate::predict`] uses it; with `exact_square`).
+    fn fourier(&self, _k: [i64; 2]) -> Option<[f64; 2]> {
+        None
+    }
+    /// The integral of f^2 over the domain, where a closed form is known.
+    fn exact_square(&self) -> Option<f64> {
+        None
+    }
+}
+
+/// exp(-2 pi i t) as (re, im).
+fn phase(t: f64) -> [f64; 2] {
+    let (s, c) = (TAU * t).sin_cos();
+    [c, -s]
+}
+
+/// sin(z) / z.
+fn sinc(z: f64) -> f64 {
+    if z.abs() < 1e-8 { 1.0 - z * z / 6.0 } else { z.sin() / z }
+}
+
+/// The Fourier coefficient of a polygon's indicator (vertices counter-clockwise), by the
+/// divergence theorem: for k != 0, F(k) = i / (2 pi |k|^2) sum over edges a -> b of
+/// (k_x dy - k_y dx) exp(-2 pi i k.m) sinc(pi k.(b - a)), m the edge's midpoint; F(0) the
+/// area (shoelace).
+fn polygon_fourier(v: &[[f64; 2]], k: [i64; 2]) -> [f64; 2] {
+    let edges = || (0..v.len()).map(|i| (v[i], v[(i + 1) % v.len()]));
+    if k == [0, 0] {
+        return [edges().map(|(a, b)| a[0] * b[1] - b[0] * a[1]).sum::<f64>() / 2.0, 0.0];
+    }
+    let (kx, ky) = (k[0] as f64, k[1] as f64);
+    let mut sum = [0.0, 0.0];
+    for (a, b) in edges() {
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let weight = (kx * dy - ky * dx) * sinc(PI * (kx * dx + ky * dy));
+        let [c, s] = phase(kx * (a[0] + b[0]) / 2.0 + ky * (a[1] + b[1]) / 2.0);
+        sum[0] += weight * c;
+        sum[1] += weight * s;
+    }
+    // times i / (2 pi |k|^2): (re, im) -> (-im, re)
+    let scale = 1.0 / (TAU * (kx * kx + ky * ky));
+    [-sum[1] * scale, sum[0] * scale]
 }
 
 /// Test case I of Subr & Kautz 2013: 0 inside a quad whose four vertices lie one on each
@@ -73,6 +117,14 @@ impl Integrand for Quad {
     fn exact(&self) -> f64 {
         1.0 - self.area()
     }
+    fn fourier(&self, k: [i64; 2]) -> Option<[f64; 2]> {
+        // 1 less the quad's indicator
+        let [re, im] = polygon_fourier(&self.v, k);
+        Some(if k == [0, 0] { [1.0 - re, 0.0] } else { [-re, -im] })
+    }
+    fn exact_square(&self) -> Option<f64> {
+        Some(self.exact())
+    }
     fn boundary_length(&self) -> Option<f64> {
         Some((0..4).map(|i| (self.v[(i + 1) % 4][0] - self.v[i][0]).hypot(self.v[(i + 1) % 4][1] - self.v[i][1])).sum())
     }
@@ -96,6 +148,19 @@ impl Integrand for Disk {
     }
     fn exact(&self) -> f64 {
         PI * self.radius * self.radius
+    }
+    fn fourier(&self, k: [i64; 2]) -> Option<[f64; 2]> {
+        // the disk lies inside the square: r J1(2 pi r |k|) / |k|, moved to the centre
+        let norm = (k[0] as f64).hypot(k[1] as f64);
+        if norm == 0.0 {
+            return Some([self.exact(), 0.0]);
+        }
+        let amplitude = self.radius * libm::j1(TAU * self.radius * norm) / norm;
+        let [c, s] = phase(k[0] as f64 * self.centre[0] + k[1] as f64 * self.centre[1]);
+        Some([amplitude * c, amplitude * s])
+    }
+    fn exact_square(&self) -> Option<f64> {
+        Some(self.exact())
     }
     fn boundary_length(&self) -> Option<f64> {
         Some(TAU * self.radius)
@@ -145,8 +210,13 @@ impl Integrand for HalfPlane {
         if self.side(x) > 0.0 { 1.0 } else { 0.0 }
     }
     fn exact(&self) -> f64 {
-        let p = self.clipped();
-        (0..p.len()).map(|i| p[i][0] * p[(i + 1) % p.len()][1] - p[(i + 1) % p.len()][0] * p[i][1]).sum::<f64>() / 2.0
+        polygon_fourier(&self.clipped(), [0, 0])[0]
+    }
+    fn fourier(&self, k: [i64; 2]) -> Option<[f64; 2]> {
+        Some(polygon_fourier(&self.clipped(), k))
+    }
+    fn exact_square(&self) -> Option<f64> {
+        Some(self.exact())
     }
     fn boundary_length(&self) -> Option<f64> {
         // the clipped polygon's edges that lie on the line
@@ -201,6 +271,19 @@ impl Integrand for Smooth {
     fn exact(&self) -> f64 {
         (self.a.exp_m1() / self.a) * (self.b.exp_m1() / self.b)
     }
+    fn fourier(&self, k: [i64; 2]) -> Option<[f64; 2]> {
+        // separable: the integral of exp(a x - 2 pi i k x) over [0, 1] is (e^a - 1) / (a - 2 pi i k)
+        let axis = |a: f64, k: i64| {
+            let w = TAU * k as f64;
+            let d = a * a + w * w;
+            [a.exp_m1() * a / d, a.exp_m1() * w / d]
+        };
+        let ([p, q], [r, s]) = (axis(self.a, k[0]), axis(self.b, k[1]));
+        Some([p * r - q * s, p * s + q * r])
+    }
+    fn exact_square(&self) -> Option<f64> {
+        Some(((2.0 * self.a).exp_m1() / (2.0 * self.a)) * ((2.0 * self.b).exp_m1() / (2.0 * self.b)))
+    }
 }
 
 /// The zone plate (1 + cos(a r^2)) / 2, r measured from the square's centre (Subr &
@@ -248,6 +331,22 @@ impl Integrand for Cosine {
         // a whole number of periods along a nonzero frequency integrates to 0
         if self.u == 0.0 && self.v == 0.0 { 0.5 * (1.0 + self.phase.cos()) } else { 0.5 }
     }
+    fn fourier(&self, k: [i64; 2]) -> Option<[f64; 2]> {
+        // 1/2 + e^{i phase}/4 at (u, v) + e^{-i phase}/4 at -(u, v)
+        let (kx, ky) = (k[0] as f64, k[1] as f64);
+        Some(if k == [0, 0] {
+            [self.exact(), 0.0]
+        } else if (kx, ky) == (self.u, self.v) {
+            [self.phase.cos() / 4.0, self.phase.sin() / 4.0]
+        } else if (kx, ky) == (-self.u, -self.v) {
+            [self.phase.cos() / 4.0, -self.phase.sin() / 4.0]
+        } else {
+            [0.0, 0.0]
+        })
+    }
+    fn exact_square(&self) -> Option<f64> {
+        Some(if self.u == 0.0 && self.v == 0.0 { self.exact().powi(2) } else { 0.375 })
+    }
 }
 
 /// 1D visibility over a linear light (Ramamoorthi et al. 2012 section 4): 1 where the
@@ -281,6 +380,28 @@ impl Integrand for Visibility {
     }
     fn discontinuities(&self) -> Option<usize> {
         Some(self.edges.len())
+    }
+    fn fourier(&self, k: [i64; 2]) -> Option<[f64; 2]> {
+        // the integral of exp(-2 pi i k x) over [a, b] is (e(a) - e(b)) / (2 pi i k)
+        if k[0] == 0 {
+            return Some([self.exact(), 0.0]);
+        }
+        let mut bounds = vec![0.0];
+        bounds.extend(&self.edges);
+        bounds.push(1.0);
+        let mut sum = [0.0, 0.0];
+        for (i, w) in bounds.windows(2).enumerate() {
+            let value = if i % 2 == 0 { self.start } else { 1.0 - self.start };
+            let ([ca, sa], [cb, sb]) = (phase(k[0] as f64 * w[0]), phase(k[0] as f64 * w[1]));
+            sum[0] += value * (ca - cb);
+            sum[1] += value * (sa - sb);
+        }
+        // divided by 2 pi i k: (re, im) -> (im, -re) / (2 pi k)
+        let scale = 1.0 / (TAU * k[0] as f64);
+        Some([sum[1] * scale, -sum[0] * scale])
+    }
+    fn exact_square(&self) -> Option<f64> {
+        Some(self.exact())
     }
 }
 

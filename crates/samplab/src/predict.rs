@@ -1,0 +1,484 @@
+//! The error of an estimator predicted from spectra, before it is measured (Pilleboue,
+//! Singh, Coeurjolly, Kazhdan & Ostromoukhov 2015, "Variance analysis for Monte Carlo
+//! integration": variance as the integrand's power spectrum weighted by the sampler's).
+//!
+//! ## What is predicted, and when it is exact
+//!
+//! On the unit torus an integrand is f(x) = sum_k F(k) exp(2 pi i k.x) over integer
+//! frequencies k. A set of n points x_j moved by one uniform random toroidal shift u (a
+//! Cranley-Patterson rotation; Pilleboue et al.'s homogenization) gives the unbiased
+//! estimate (1/n) sum_j f(x_j + u), whose variance over u is, exactly,
+//!
+//! ```text
+//! Var = (1/n) sum_{k != 0} |F(k)|^2 P(k),    P(k) = |sum_j exp(-2 pi i k.x_j)|^2 / n,
+//! ```
+//!
+//! P the set's periodogram per point (1 at every k for white noise), averaged over the
+//! sampler's realizations when the sampler is random. Written from the variance of f,
+//! `Var(f) = sum_{k != 0} |F(k)|^2` (Parseval), and summed over the frequencies of a
+//! window W (|k_i| < R/2, the spectrum grid of [`crate::spectrum`]):
+//!
+//! ```text
+//! Var = (1/n) [ Var(f) + sum_{k in W, k != 0} |F(k)|^2 (P(k) - 1) ]  + (1/n) sum_{k not in W} |F(k)|^2 (P(k) - 1)
+//! ```
+//!
+//! [`predict`] gives the first term. It is **exact** for a shifted set when P = 1 outside
+//! the window (white noise at every n; any set on a trigonometric integrand whose
+//! frequencies lie in the window), and an **approximation** otherwise: the last term is
+//! left out (for jittered sampling P - 1 falls off as |k|^-2 outside the window; a lattice
+//! or a net has P = n at its dual points, which the window must hold), and a sampler used
+//! without the shift (as `integrate` does) has the shifted sampler's variance only on
+//! average over the integrand's translations.
+//!
+//! The integrand's coefficients come in closed form where one exists
+//! ([`Integrand::fourier`]: disks, polygons and half-planes by the divergence theorem,
+//! plane waves, separable exponentials), otherwise from the FFT of f at the midpoints of
+//! a fine grid, with the change between that grid and one of half its side stated as the
+//! error of the estimate. The sampler's P comes in closed form for `random` (1) and
+//! `jitter` (1 - sinc^2(pi k_x/m) sinc^2(pi k_y/m) on an m x m grid), otherwise from the
+//! periodograms of its realizations (the spectrum module's non-uniform FFT at 1e-13), with a
+//! standard error from batch means.
+
+use rayon::prelude::*;
+
+use crate::error::{Error, Result};
+use crate::integrand::Integrand;
+use crate::points::PointSet;
+use crate::progress::Progress;
+use crate::sampler::Sampler;
+use crate::seed::Seed;
+use crate::spectrum::{Method, periodogram};
+
+/// The tolerance of the sampler periodograms: far below any variance predicted.
+const TOLERANCE: f64 = 1e-13;
+
+/// Batches of realizations for the standard error of a measured spectrum's prediction.
+const BATCHES: usize = 8;
+
+/// The integrand's power |F(k)|^2 on the spectrum grid, and its variance.
+#[derive(Debug, Clone)]
+pub struct IntegrandSpectrum {
+    /// Dimensions (1 or 2).
+    pub dims: usize,
+    /// Resolution R per axis (even): index i is frequency i - R/2, the first axis slowest.
+    pub res: usize,
+    /// |F(k)|^2 at every frequency of the grid (0 at DC).
+    pub power: Vec<f64>,
+    /// Var(f) = the integral of f^2 less the integral's square.
+    pub variance: f64,
+    /// Where the coefficients come from, in words.
+    pub source: String,
+    /// The estimated error of `power` and `variance` (0 for closed forms): the largest
+    /// change of a predicted `variance + sum power (P - 1)` between the fine grid and one
+    /// of half its side, for P = 0 and P = 2 at every frequency.
+    pub error: f64,
+}
+
+/// The frequencies of the centred grid, in row-major order (first axis slowest).
+fn frequencies(res: usize, dims: usize) -> impl Iterator<Item = [i64; 2]> {
+    let h = (res / 2) as i64;
+    let count = res.pow(dims as u32);
+    (0..count).map(move |i| if dims == 1 { [i as i64 - h, 0] } else { [(i / res) as i64 - h, (i % res) as i64 - h] })
+}
+
+fn check_res(res: usize) -> Result<()> {
+    if res < 4 || res % 2 == 1 || res > 4096 {
+        return Err(Error::Setting {
+            name: "res",
+            value: res.to_string(),
+            reason: "the spectrum grid is an even 4 to 4096 frequencies per axis".into(),
+        });
+    }
+    Ok(())
+}
+
+/// The power spectrum of `f` on the grid of `res` frequencies per axis.
+///
+/// # Errors
+/// A resolution out of range, or an integrand that is not 1D or 2D.
+pub fn integrand_spectrum(f: &dyn Integrand, res: usize) -> Result<IntegrandSpectrum> {
+    check_res(res)?;
+    let dims = f.dims();
+    if !(1..=2).contains(&dims) {
+        return Err(Error::Invalid(format!("prediction works on 1D and 2D integrands, not {dims}D")));
+    }
+    if let (Some(_), Some(square)) = (f.fourier([0, 0]), f.exact_square()) {
+        let power = frequencies(res, dims)
+            .map(|k| if k == [0, 0] { 0.0 } else { f.fourier(k).map_or(0.0, |[re, im]| re * re + im * im) })
+            .collect();
+        let mean = f.exact();
+        return Ok(IntegrandSpectrum {
+            dims,
+            res,
+            power,
+            variance: square - mean * mean,
+            source: "closed form".into(),
+            error: 0.0,
+        });
+    }
+    // the finest grid that stays cheap: 2^16 values in 1D, 1024^2 or (8R)^2 in 2D
+    let fine = if dims == 1 { (64 * res).max(1 << 16) } else { (8 * res).max(1024) };
+    let (power, variance) = sampled(f, res, fine);
+    let (coarse_power, coarse_variance) = sampled(f, res, fine / 2);
+    let change = |p: f64| {
+        let sum = |v: f64, w: &[f64]| v + w.iter().map(|x| x * (p - 1.0)).sum::<f64>();
+        (sum(variance, &power) - sum(coarse_variance, &coarse_power)).abs()
+    };
+    let error = change(0.0).max(change(2.0));
+    Ok(IntegrandSpectrum {
+        dims,
+        res,
+        power,
+        variance,
+        source: format!("FFT of f at the midpoints of a {fine}^{dims} grid"),
+        error,
+    })
+}
+
+/// |F(k)|^2 on the grid and Var(f), from f at the midpoints of a `side`^d grid.
+fn sampled(f: &dyn Integrand, res: usize, side: usize) -> (Vec<f64>, f64) {
+    let dims = f.dims();
+    let at = |i: usize| (i as f64 + 0.5) / side as f64;
+    let rows = if dims == 1 { 1 } else { side };
+    let values: Vec<f64> = (0..rows)
+        .into_par_iter()
+        .flat_map_iter(|r| (0..side).map(move |c| if dims == 1 { f.eval(&[at(c)]) } else { f.eval(&[at(c), at(r)]) }))
+        .collect();
+    let plane = crate::screen::Plane::new(side, rows, values).expect("a non-empty grid");
+    // |DFT|^2 / cells, of the values less their mean: |F(k)|^2 = that / cells
+    let cells = (side * rows) as f64;
+    let fft = plane.power();
+    let wrap = |k: i64| k.rem_euclid(side as i64) as usize;
+    let power = frequencies(res, dims)
+        .map(|k| {
+            // the plane's rows are y (the second axis), its columns x
+            let index = if dims == 1 { wrap(k[0]) } else { wrap(k[1]) * side + wrap(k[0]) };
+            fft[index] / cells
+        })
+        .collect();
+    (power, plane.variance())
+}
+
+/// A sampler's periodogram per point P(k) = n |S(k)|^2 at one count, averaged over its
+/// realizations, with batch means for the standard error of what it predicts.
+#[derive(Debug, Clone)]
+pub struct SamplerSpectrum {
+    /// The sampler's spec.
+    pub sampler: String,
+    /// Points per set.
+    pub n: usize,
+    /// Dimensions.
+    pub dims: usize,
+    /// Resolution per axis.
+    pub res: usize,
+    /// P(k) averaged over the realizations (or in closed form).
+    pub mean: Vec<f64>,
+    /// P(k) averaged within each of 8 batches of realizations; empty for a
+    /// closed form.
+    batches: Vec<Vec<f64>>,
+    /// Where P comes from, in words.
+    pub source: String,
+}
+
+/// The spectrum of `sampler` at `n` points in `dims` dimensions: in closed form for
+/// `random` and `jitter`, otherwise from `sets` realizations (at least 8, in 8 batches for the standard error);
+/// `progress` advances by one per realization transformed.
+///
+/// # Errors
+/// A count the sampler refuses, a bad resolution, fewer than 8 sets, or a stop.
+pub fn sampler_spectrum(
+    sampler: &dyn Sampler,
+    n: usize,
+    dims: usize,
+    res: usize,
+    sets: usize,
+    seed: Seed,
+    progress: &Progress,
+) -> Result<SamplerSpectrum> {
+    check_res(res)?;
+    if sets < BATCHES {
+        return Err(Error::Setting {
+            name: "sets",
+            value: sets.to_string(),
+            reason: format!("a measured spectrum needs at least {BATCHES} realizations"),
+        });
+    }
+    let spec = sampler.spec();
+    let plan = sampler.plan(n, dims)?;
+    let closed = |mean: Vec<f64>, source: &str| SamplerSpectrum {
+        sampler: spec.clone(),
+        n,
+        dims,
+        res,
+        mean,
+        batches: Vec::new(),
+        source: source.into(),
+    };
+    match spec.as_str() {
+        "random" => return Ok(closed(vec![1.0; res.pow(dims as u32)], "closed form: 1 (white noise)")),
+        "jitter" => {
+            let m = (n as f64).powf(1.0 / dims as f64).round();
+            let sinc2 = |k: i64| {
+                let t = std::f64::consts::PI * k as f64 / m;
+                if k == 0 { 1.0 } else { (t.sin() / t).powi(2) }
+            };
+            let p = frequencies(res, dims)
+                .map(|k| if k == [0, 0] { 0.0 } else { 1.0 - sinc2(k[0]) * if dims == 2 { sinc2(k[1]) } else { 1.0 } })
+                .collect();
+            return Ok(closed(p, "closed form: 1 - prod sinc^2(pi k_i / m), m^d strata"));
+        }
+        _ => {}
+    }
+    let generated = plan.generate_sets(seed, sets, &Progress::SILENT)?;
+    let method = Method::Fast { tol: TOLERANCE };
+    let each: Vec<Vec<f64>> = generated
+        .par_iter()
+        .map(|set| {
+            let p = periodogram(set, res, method)?;
+            progress.advance(1)?;
+            Ok(p.into_iter().map(|s| s * n as f64).collect())
+        })
+        .collect::<Result<_>>()?;
+    let average = |sets: &[Vec<f64>]| -> Vec<f64> {
+        let mut sum = vec![0.0; sets[0].len()];
+        for p in sets {
+            sum.iter_mut().zip(p).for_each(|(s, v)| *s += v);
+        }
+        sum.iter().map(|s| s / sets.len() as f64).collect()
+    };
+    let batches = each.chunks(sets / BATCHES).take(BATCHES).map(average).collect();
+    Ok(SamplerSpectrum {
+        sampler: spec,
+        n,
+        dims,
+        res,
+        mean: average(&each),
+        batches,
+        source: format!("measured: mean of {sets} realizations"),
+    })
+}
+
+/// A predicted variance and its standard error (from the batches of a measured spectrum;
+/// 0 for a closed form or a deterministic set).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Predicted {
+    /// The predicted variance of the shifted estimator.
+    pub variance: f64,
+    /// Its standard error.
+    pub se: f64,
+}
+
+/// The predicted variance of `sampler`'s shifted estimator of `f` (the module's formula).
+///
+/// # Errors
+/// Spectra of different grids or dimensions.
+pub fn predict(f: &IntegrandSpectrum, s: &SamplerSpectrum) -> Result<Predicted> {
+    if f.res != s.res || f.dims != s.dims {
+        return Err(Error::Invalid(format!(
+            "the integrand's spectrum is {}D at {} and the sampler's {}D at {}",
+            f.dims, f.res, s.dims, s.res
+        )));
+    }
+    let one = |p: &[f64]| {
+        let correction: f64 = f.power.iter().zip(p).map(|(w, p)| w * (p - 1.0)).sum();
+        (f.variance + correction) / s.n as f64
+    };
+    let variance = one(&s.mean);
+    let se = if s.batches.len() >= 2 {
+        let values: Vec<f64> = s.batches.iter().map(|b| one(b)).collect();
+        let m = values.iter().sum::<f64>() / values.len() as f64;
+        let var = values.iter().map(|v| (v - m).powi(2)).sum::<f64>() / (values.len() - 1) as f64;
+        (var / values.len() as f64).sqrt()
+    } else {
+        0.0
+    };
+    Ok(Predicted { variance, se })
+}
+
+/// The measured mean squared error of the estimator (1/n) sum f(x_j) over `sets`
+/// realizations (each moved by its own uniform toroidal shift when `shift`), and its
+/// standard error; `progress` advances by one per realization.
+///
+/// # Errors
+/// A count the sampler refuses, dimensions that differ from the integrand's, or a stop.
+pub fn measure(
+    sampler: &dyn Sampler,
+    f: &dyn Integrand,
+    n: usize,
+    sets: usize,
+    seed: Seed,
+    shift: bool,
+    progress: &Progress,
+) -> Result<Predicted> {
+    let dims = f.dims();
+    let generated = sampler.plan(n, dims)?.generate_sets(seed, sets, &Progress::SILENT)?;
+    let exact = f.exact();
+    let errors: Vec<f64> = generated
+        .par_iter()
+        .enumerate()
+        .map(|(m, set)| {
+            let u: Vec<f64> = if shift {
+                let mut rng = seed.derive_str("measure shift").derive(m as u64).rng();
+                (0..dims).map(|_| crate::seed::uniform(&mut rng)).collect()
+            } else {
+                vec![0.0; dims]
+            };
+            progress.advance(1)?;
+            Ok((estimate(f, set, &u) - exact).powi(2))
+        })
+        .collect::<Result<_>>()?;
+    let count = errors.len() as f64;
+    let mse = errors.iter().sum::<f64>() / count;
+    let var = errors.iter().map(|e| (e - mse).powi(2)).sum::<f64>() / (count - 1.0).max(1.0);
+    Ok(Predicted { variance: mse, se: (var / count).sqrt() })
+}
+
+/// (1/n) sum f(x_j + u mod 1).
+pub(crate) fn estimate(f: &dyn Integrand, set: &PointSet, u: &[f64]) -> f64 {
+    let mut x = vec![0.0; u.len()];
+    let sum: f64 = set
+        .iter()
+        .map(|p| {
+            for (xi, (pi, ui)) in x.iter_mut().zip(p.iter().zip(u)) {
+                let s = pi + ui;
+                *xi = if s >= 1.0 { s - 1.0 } else { s };
+            }
+            f.eval(&x)
+        })
+        .sum();
+    sum / set.len() as f64
+}
+
+/// A prediction study: samplers x counts on one integrand, predicted (and measured when
+/// asked), ranked.
+pub struct Study<'a> {
+    /// The samplers.
+    pub samplers: &'a [Box<dyn Sampler>],
+    /// The integrand (one instance) and its spec.
+    pub integrand: (&'a dyn Integrand, String),
+    /// The counts n.
+    pub ns: &'a [usize],
+    /// Frequencies per axis of the spectra.
+    pub res: usize,
+    /// Realizations per measured spectrum.
+    pub sets: usize,
+    /// Realizations per measured variance, and whether each is shifted; none: not measured.
+    pub measure: Option<(usize, bool)>,
+    /// The seed.
+    pub seed: Seed,
+}
+
+/// One (sampler, n) of a study.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Row {
+    /// The sampler's spec.
+    pub sampler: String,
+    /// Points per estimate.
+    pub n: usize,
+    /// The predicted variance.
+    pub predicted: Predicted,
+    /// Where the sampler's spectrum comes from.
+    pub spectrum: String,
+    /// The measured mean squared error, when asked.
+    pub measured: Option<Predicted>,
+}
+
+/// One sampler's summary: exponents and its rank.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Ranked {
+    /// The sampler's spec.
+    pub sampler: String,
+    /// 1 for the smallest predicted variance at the largest n.
+    pub rank: usize,
+    /// The predicted variance at the largest n.
+    pub variance: f64,
+    /// The slope of log predicted variance against log n (three counts or more).
+    pub predicted_exponent: Option<f64>,
+    /// The same of the measured mean squared error.
+    pub measured_exponent: Option<f64>,
+}
+
+/// What a study gives.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Outcome {
+    /// The integrand's spec.
+    pub integrand: String,
+    /// Where its spectrum comes from.
+    pub integrand_spectrum: String,
+    /// The estimated error of the integrand's spectrum (0 for a closed form).
+    pub integrand_error: f64,
+    /// Every (sampler, n), in the order given.
+    pub rows: Vec<Row>,
+    /// The samplers, best first.
+    pub ranking: Vec<Ranked>,
+    /// Samplers left out, with the reason (a count they cannot make).
+    pub skipped: Vec<(String, String)>,
+}
+
+impl Study<'_> {
+    /// The progress units of [`Study::run`]: one per realization transformed or measured.
+    pub fn units(&self) -> u64 {
+        let per = self.sets + self.measure.map_or(0, |(m, _)| m);
+        (self.samplers.len() * self.ns.len() * per) as u64
+    }
+
+    /// Predict (and measure) every sampler at every count; a sampler that refuses one of
+    /// the counts is skipped with its reason.
+    ///
+    /// # Errors
+    /// A bad grid or set count, an integrand of the wrong dimension, or a stop.
+    pub fn run(&self, progress: &Progress) -> Result<Outcome> {
+        let (f, spec) = (self.integrand.0, self.integrand.1.clone());
+        let fs = integrand_spectrum(f, self.res)?;
+        let (mut rows, mut skipped) = (Vec::new(), Vec::new());
+        for (k, s) in self.samplers.iter().enumerate() {
+            if let Some(bad) = self.ns.iter().find_map(|&n| s.plan(n, f.dims()).err()) {
+                skipped.push((s.spec(), bad.to_string()));
+                progress.advance((self.ns.len() * (self.sets + self.measure.map_or(0, |(m, _)| m))) as u64)?;
+                continue;
+            }
+            for &n in self.ns {
+                let seed = self.seed.derive(k as u64).derive(n as u64);
+                let spectrum = sampler_spectrum(s.as_ref(), n, f.dims(), self.res, self.sets, seed, progress)?;
+                let measured = match self.measure {
+                    Some((m, shift)) => Some(measure(s.as_ref(), f, n, m, seed.derive(1), shift, progress)?),
+                    None => None,
+                };
+                rows.push(Row {
+                    sampler: s.spec(),
+                    n,
+                    predicted: predict(&fs, &spectrum)?,
+                    spectrum: spectrum.source,
+                    measured,
+                });
+            }
+        }
+        let largest = self.ns.iter().copied().max().unwrap_or(0);
+        let exponent = |name: &str, value: &dyn Fn(&Row) -> Option<f64>| {
+            let points: Vec<(f64, f64)> =
+                rows.iter().filter(|r| r.sampler == name).filter_map(|r| Some((r.n as f64, value(r)?))).collect();
+            crate::experiment::loglog_fit(&points).map(|(slope, _)| slope)
+        };
+        let mut ranking: Vec<Ranked> = rows
+            .iter()
+            .filter(|r| r.n == largest)
+            .map(|r| Ranked {
+                sampler: r.sampler.clone(),
+                rank: 0,
+                variance: r.predicted.variance,
+                predicted_exponent: exponent(&r.sampler, &|r| Some(r.predicted.variance)),
+                measured_exponent: exponent(&r.sampler, &|r| r.measured.map(|m| m.variance)),
+            })
+            .collect();
+        ranking.sort_by(|a, b| a.variance.total_cmp(&b.variance).then_with(|| a.sampler.cmp(&b.sampler)));
+        ranking.iter_mut().enumerate().for_each(|(i, r)| r.rank = i + 1);
+        Ok(Outcome {
+            integrand: spec,
+            integrand_spectrum: fs.source,
+            integrand_error: fs.error,
+            rows,
+            ranking,
+            skipped,
+        })
+    }
+}
