@@ -1,7 +1,6 @@
 //! `samplab predict`: the variance of samplers on an integrand, predicted from their spectra
 //! before it is measured (`samplab::predict`).
 
-use anyhow::bail;
 use samplab::integrand::Family;
 use samplab::predict::{Outcome, Study};
 use samplab::{Seed, sampler};
@@ -63,18 +62,8 @@ pub struct Args {
 pub fn run(a: &Args) -> anyhow::Result<()> {
     let family = Family::parse(&a.integrand)?;
     let f = family.instance(Seed(a.seed), 0)?;
-    if let Some(&bad) = a.n.iter().find(|&&n| n == 0) {
-        bail!("-n = {bad}: counts must be positive");
-    }
-    if a.measure == Some(0) || a.measure == Some(1) {
-        bail!("--measure = {}: a measured variance needs at least 2 realizations", a.measure.unwrap_or(0));
-    }
     let samplers = if a.all {
-        sampler::SAMPLERS
-            .iter()
-            .filter_map(|e| sampler::build(e.about.name).ok())
-            .filter(|s| s.dims().contains(&f.dims()))
-            .collect()
+        samplab::predict::every_sampler(f.dims())
     } else {
         a.samplers.iter().map(|s| sampler::build(s)).collect::<Result<Vec<_>, _>>()?
     };

@@ -606,7 +606,11 @@ fn predict_ranks_samplers_and_refuses_bad_input() {
     assert!(v["ranking"][0]["predicted_exponent"].as_f64().unwrap() < -1.3);
     assert_bad_input(&[&args[..], &["--res", "7"]].concat(), &["--res 7: the spectrum grid is an even 4 to 4096"]);
     assert_bad_input(&[&args[..], &["--sets", "4"]].concat(), &["--sets 4: a measured spectrum needs at least 8"]);
-    assert_bad_input(&[&args[..], &["-n", "0"]].concat(), &["-n = 0: counts must be positive"]);
+    assert_bad_input(&[&args[..], &["-n", "64,0"]].concat(), &["-n 0: counts must be positive"]);
+    assert_bad_input(
+        &[&args[..], &["--measure", "1"]].concat(),
+        &["--measure 1: a measured variance needs at least 2"],
+    );
     assert_bad_input(&["predict", "--integrand", "disk", "--sampler", "jittr"], &["unknown sampler 'jittr'"]);
     assert_bad_input(&["predict", "--integrand", "dsk", "--sampler", "jitter"], &["unknown integrand"]);
 }

@@ -588,6 +588,40 @@ fn integrate(
     study_json(&rows)
 }
 
+/// A prediction study, as `samplab predict --json` prints it: {"rows", "ranking", ...};
+/// every registered sampler of the integrand's dimension when `samplers` is empty.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)] // the keywords of samplab.predict, checked there
+fn predict(
+    py: Python<'_>,
+    samplers: Vec<String>,
+    integrand: &str,
+    ns: Vec<usize>,
+    res: usize,
+    sets: usize,
+    measure: Option<(usize, bool)>,
+    seed: u64,
+) -> PyResult<String> {
+    let family = samplab::integrand::Family::parse(integrand).map_err(err)?;
+    let f = family.instance(Seed(seed), 0).map_err(err)?;
+    let samplers = if samplers.is_empty() {
+        samplab::predict::every_sampler(f.dims())
+    } else {
+        samplers.iter().map(|s| samplab::sampler::build(s)).collect::<Result<_, _>>().map_err(err)?
+    };
+    let study = samplab::predict::Study {
+        samplers: &samplers,
+        integrand: (f.as_ref(), family.spec()),
+        ns: &ns,
+        res,
+        sets,
+        measure,
+        seed: Seed(seed),
+    };
+    let outcome = interruptible(py, usize::MAX, |stop| study.run(&Progress::until(stop)))?;
+    serde_json::to_string(&outcome).map_err(err)
+}
+
 /// Instance `instance` of the integrand family `spec` for `seed`: its values at the rows of
 /// an (n, d) array, and its exact integral.
 #[pyfunction]
@@ -827,6 +861,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(metric_flags, m)?)?;
     m.add_function(wrap_pyfunction!(spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
+    m.add_function(wrap_pyfunction!(predict, m)?)?;
     m.add_function(wrap_pyfunction!(integrate_units, m)?)?;
     m.add_function(wrap_pyfunction!(integrate_merge, m)?)?;
     m.add_function(wrap_pyfunction!(spectrum_tree, m)?)?;

@@ -143,3 +143,18 @@ def test_blue_noise_samplers_and_spacing_metrics_from_python():
     assert samplab.discrepancy("nyquist", noise) < 0.1
     step = samplab.generate("step:iterations=100", n=512, seed=2)
     assert samplab.discrepancy("nyquist", step) > 0.4
+
+
+def test_predict_equals_the_cli_and_white_noise_is_var_over_n(cli):
+    args = ["--integrand", "disk:r=0.3,cx=0.45,cy=0.5", "--sampler", "random", "--sampler", "sobol.owen"]
+    theirs = json.loads(cli("predict", *args, "-n", "64,256", "--res", 32, "--sets", 8, "--measure", 50, "--seed", 3, "--json"))
+    ours = samplab.predict("disk:r=0.3,cx=0.45,cy=0.5", ["random", "sobol.owen"], [64, 256], res=32, sets=8, measure=50, seed=3)
+    assert ours == theirs
+    p = np.pi * 0.09
+    random = [r for r in ours["rows"] if r["sampler"] == "random"]
+    for row in random:
+        assert abs(row["predicted"]["variance"] - p * (1 - p) / row["n"]) < 1e-15
+    with pytest.raises(samplab.Error, match="measure = 1|--measure 1|measure 1"):
+        samplab.predict("disk", "random", 64, measure=1)
+    with pytest.raises(samplab.Error, match="n must be a whole number"):
+        samplab.predict("disk", "random", 64.0)

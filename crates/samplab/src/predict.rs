@@ -349,6 +349,16 @@ pub(crate) fn estimate(f: &dyn Integrand, set: &PointSet, u: &[f64]) -> f64 {
     sum / set.len() as f64
 }
 
+/// Every registered sampler, at its default parameters, that makes sets of `dims`
+/// dimensions (what `samplab predict --all` ranks).
+pub fn every_sampler(dims: usize) -> Vec<Box<dyn Sampler>> {
+    crate::sampler::SAMPLERS
+        .iter()
+        .filter_map(|e| crate::sampler::build(e.about.name).ok())
+        .filter(|s| s.dims().contains(&dims))
+        .collect()
+}
+
 /// A prediction study: samplers x counts on one integrand, predicted (and measured when
 /// asked), ranked.
 pub struct Study<'a> {
@@ -426,8 +436,21 @@ impl Study<'_> {
     /// the counts is skipped with its reason.
     ///
     /// # Errors
-    /// A bad grid or set count, an integrand of the wrong dimension, or a stop.
+    /// No counts, a count of 0, fewer than 2 measured realizations, a bad grid or set
+    /// count, an integrand of the wrong dimension, or a stop.
     pub fn run(&self, progress: &Progress) -> Result<Outcome> {
+        let setting = |name, value: usize, reason: &str| {
+            Err(Error::Setting { name, value: value.to_string(), reason: reason.into() })
+        };
+        if let Some(&n) = self.ns.iter().find(|&&n| n == 0) {
+            return setting("n", n, "counts must be positive");
+        }
+        if self.ns.is_empty() {
+            return Err(Error::Invalid("a prediction needs at least one count n".into()));
+        }
+        if let Some((m, _)) = self.measure.filter(|&(m, _)| m < 2) {
+            return setting("measure", m, "a measured variance needs at least 2 realizations");
+        }
         let (f, spec) = (self.integrand.0, self.integrand.1.clone());
         let fs = integrand_spectrum(f, self.res)?;
         let (mut rows, mut skipped) = (Vec::new(), Vec::new());

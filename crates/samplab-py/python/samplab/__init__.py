@@ -32,6 +32,7 @@ __all__ = [
     "metrics",
     "warps",
     "integrands",
+    "predict",
     "formats",
     "scenes",
     "generate",
@@ -310,6 +311,39 @@ def integrate(
             [_count("n", c) for c in counts],
             _count("sets", sets),
             _count("instances", instances),
+            _seed(seed),
+        )
+    )
+
+
+def predict(
+    integrand: str,
+    samplers: Union[None, str, Sequence[str]] = None,
+    n: Union[int, Sequence[int]] = (16, 64, 256, 1024),
+    res: int = 128,
+    sets: int = 32,
+    measure: Optional[int] = None,
+    shift: bool = False,
+    seed: Optional[int] = None,
+) -> Dict[str, Any]:
+    """The variance of each sampler on an integrand predicted from spectra, as ``samplab
+    predict --json``: ``{"rows": [...], "ranking": [...], ...}`` (a row per sampler and
+    count: the predicted variance of the estimator over a random toroidal shift of each set
+    and its standard error, where the sampler's spectrum comes from, and the measured mean
+    squared error over ``measure`` realizations when given, shifted when ``shift``; the
+    ranking by predicted variance at the largest count with the fitted exponents).
+    ``samplers=None`` ranks every registered sampler of the integrand's dimension."""
+    names = [] if samplers is None else [samplers] if isinstance(samplers, str) else list(samplers)
+    counts = list(n) if isinstance(n, (list, tuple, range, np.ndarray)) else [n]
+    measured = None if measure is None else (_count("measure", measure), bool(shift))
+    return json.loads(
+        _samplab.predict(
+            names,
+            integrand,
+            [_count("n", c) for c in counts],
+            _count("res", res),
+            _count("sets", sets),
+            measured,
             _seed(seed),
         )
     )
