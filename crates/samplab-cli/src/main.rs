@@ -61,8 +61,8 @@ fn parse_size(text: &str) -> Result<u64, samplab::Error> {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Reproduce the four papers' tables and figures, and the samplers-in-the-renderer page, in an
-    /// HTML report (the main job).
+    /// Reproduce the four papers' tables and figures, the samplers-in-the-renderer page and the
+    /// predicted-against-measured page, in an HTML report (the main job).
     Reproduce(reproduce::Args),
     /// List samplers, warps or file formats, with aliases, parameters and references.
     List(list::Args),

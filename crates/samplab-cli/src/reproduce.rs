@@ -17,7 +17,7 @@ pub struct Args {
     #[arg(long)]
     full: bool,
     /// Only these pages (comma-separated keys: shirley1991, subr2013, sbert2006, ramamoorthi2012,
-    /// renderer)
+    /// renderer, prediction)
     #[arg(long, value_delimiter = ',')]
     only: Vec<String>,
     /// Seed of the whole run

@@ -92,6 +92,17 @@ fn check_res(res: usize) -> Result<()> {
     Ok(())
 }
 
+fn check_sets(sets: usize) -> Result<()> {
+    if sets < BATCHES {
+        return Err(Error::Setting {
+            name: "sets",
+            value: sets.to_string(),
+            reason: format!("a measured spectrum needs at least {BATCHES} realizations"),
+        });
+    }
+    Ok(())
+}
+
 /// The power spectrum of `f` on the grid of `res` frequencies per axis.
 ///
 /// # Errors
@@ -196,13 +207,7 @@ pub fn sampler_spectrum(
     progress: &Progress,
 ) -> Result<SamplerSpectrum> {
     check_res(res)?;
-    if sets < BATCHES {
-        return Err(Error::Setting {
-            name: "sets",
-            value: sets.to_string(),
-            reason: format!("a measured spectrum needs at least {BATCHES} realizations"),
-        });
-    }
+    check_sets(sets)?;
     let spec = sampler.spec();
     let plan = sampler.plan(n, dims)?;
     let closed = |mean: Vec<f64>, source: &str| SamplerSpectrum {
@@ -230,8 +235,24 @@ pub fn sampler_spectrum(
         _ => {}
     }
     let generated = plan.generate_sets(seed, sets, &Progress::SILENT)?;
+    spectrum_of_sets(&spec, &generated, res, progress)
+}
+
+/// The measured spectrum of the sets `sets` of the sampler `spec` (all of one size and
+/// dimension, at least 8): their mean periodogram per point, and 8 batch means;
+/// `progress` advances by one per set.
+///
+/// # Errors
+/// Fewer than 8 sets, sets of different shapes, a bad resolution, or a stop.
+pub fn spectrum_of_sets(spec: &str, sets: &[PointSet], res: usize, progress: &Progress) -> Result<SamplerSpectrum> {
+    check_res(res)?;
+    check_sets(sets.len())?;
+    let (n, dims) = (sets[0].len(), sets[0].dims());
+    if sets.iter().any(|s| s.len() != n || s.dims() != dims) {
+        return Err(Error::Invalid("the sets of a spectrum must all have one size and dimension".into()));
+    }
     let method = Method::Fast { tol: TOLERANCE };
-    let each: Vec<Vec<f64>> = generated
+    let each: Vec<Vec<f64>> = sets
         .par_iter()
         .map(|set| {
             let p = periodogram(set, res, method)?;
@@ -246,15 +267,15 @@ pub fn sampler_spectrum(
         }
         sum.iter().map(|s| s / sets.len() as f64).collect()
     };
-    let batches = each.chunks(sets / BATCHES).take(BATCHES).map(average).collect();
+    let batches = each.chunks(sets.len() / BATCHES).take(BATCHES).map(average).collect();
     Ok(SamplerSpectrum {
-        sampler: spec,
+        sampler: spec.to_string(),
         n,
         dims,
         res,
         mean: average(&each),
         batches,
-        source: format!("measured: mean of {sets} realizations"),
+        source: format!("measured: mean of {} realizations", sets.len()),
     })
 }
 
@@ -310,10 +331,28 @@ pub fn measure(
     shift: bool,
     progress: &Progress,
 ) -> Result<Predicted> {
+    let generated = sampler.plan(n, f.dims())?.generate_sets(seed, sets, &Progress::SILENT)?;
+    measure_sets(f, &generated, seed, shift, progress)
+}
+
+/// [`measure`] on given sets (at least 2), set m shifted by a uniform toroidal shift drawn
+/// from `seed` and m when `shift`; `progress` advances by one per set.
+///
+/// # Errors
+/// Fewer than 2 sets, sets of another dimension than the integrand, or a stop.
+pub fn measure_sets(
+    f: &dyn Integrand,
+    sets: &[PointSet],
+    seed: Seed,
+    shift: bool,
+    progress: &Progress,
+) -> Result<Predicted> {
     let dims = f.dims();
-    let generated = sampler.plan(n, dims)?.generate_sets(seed, sets, &Progress::SILENT)?;
+    if sets.len() < 2 || sets.iter().any(|s| s.dims() != dims) {
+        return Err(Error::Invalid(format!("a measured variance needs at least 2 sets of {dims}D points")));
+    }
     let exact = f.exact();
-    let errors: Vec<f64> = generated
+    let errors: Vec<f64> = sets
         .par_iter()
         .enumerate()
         .map(|(m, set)| {
@@ -329,12 +368,12 @@ pub fn measure(
         .collect::<Result<_>>()?;
     let count = errors.len() as f64;
     let mse = errors.iter().sum::<f64>() / count;
-    let var = errors.iter().map(|e| (e - mse).powi(2)).sum::<f64>() / (count - 1.0).max(1.0);
+    let var = errors.iter().map(|e| (e - mse).powi(2)).sum::<f64>() / (count - 1.0);
     Ok(Predicted { variance: mse, se: (var / count).sqrt() })
 }
 
 /// (1/n) sum f(x_j + u mod 1).
-pub(crate) fn estimate(f: &dyn Integrand, set: &PointSet, u: &[f64]) -> f64 {
+fn estimate(f: &dyn Integrand, set: &PointSet, u: &[f64]) -> f64 {
     let mut x = vec![0.0; u.len()];
     let sum: f64 = set
         .iter()

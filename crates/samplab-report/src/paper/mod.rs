@@ -2,6 +2,7 @@
 
 use crate::Paper;
 
+pub mod prediction;
 pub mod ramamoorthi2012;
 pub mod renderer;
 pub mod sbert2006;
@@ -11,7 +12,14 @@ pub mod subr2013;
 
 /// Every paper, in report order.
 pub fn all() -> Vec<Paper> {
-    vec![shirley1991::paper(), subr2013::paper(), sbert2006::paper(), ramamoorthi2012::paper(), renderer::paper()]
+    vec![
+        shirley1991::paper(),
+        subr2013::paper(),
+        sbert2006::paper(),
+        ramamoorthi2012::paper(),
+        renderer::paper(),
+        prediction::paper(),
+    ]
 }
 
 /// The keys of every paper, for `--only`.
