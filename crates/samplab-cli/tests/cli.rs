@@ -7,12 +7,19 @@ use std::process::{Command, Output};
 use samplab::io::{self, Format};
 use samplab::{Seed, sampler};
 
+/// The binary, with a cache of measured spectra of this test run's (never the user's).
+fn command() -> Command {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_samplab"));
+    cmd.env("SAMPLAB_CACHE", std::env::temp_dir().join(format!("samplab-cli-cache-{}", std::process::id())));
+    cmd
+}
+
 fn samplab(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_samplab")).args(args).output().expect("running samplab")
+    command().args(args).output().expect("running samplab")
 }
 
 fn samplab_env(args: &[&str], key: &str, value: &str) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_samplab")).args(args).env(key, value).output().expect("running samplab")
+    command().args(args).env(key, value).output().expect("running samplab")
 }
 
 fn temp(name: &str) -> PathBuf {
@@ -511,7 +518,7 @@ fn every_subcommand_gives_the_same_bytes_on_1_2_and_the_default_threads() {
         let refs: Vec<&str> = args.iter().map(String::as_str).collect();
         let mut outputs = Vec::new();
         for threads in ["1", "2", ""] {
-            let mut cmd = Command::new(env!("CARGO_BIN_EXE_samplab"));
+            let mut cmd = command();
             cmd.args(&refs);
             if threads.is_empty() {
                 cmd.env_remove("RAYON_NUM_THREADS");
@@ -613,4 +620,41 @@ fn predict_ranks_samplers_and_refuses_bad_input() {
     );
     assert_bad_input(&["predict", "--integrand", "disk", "--sampler", "jittr"], &["unknown sampler 'jittr'"]);
     assert_bad_input(&["predict", "--integrand", "dsk", "--sampler", "jitter"], &["unknown integrand"]);
+    // the small-frequency exponents: white noise's are -1 on both integrand classes
+    let rate = &v["rates"][0];
+    assert_eq!((rate["sampler"].as_str(), rate["small_frequency"]["worst"].as_f64()), (Some("random"), Some(-1.0)));
+}
+
+#[test]
+fn predict_takes_an_image_as_an_integrand() {
+    // a 4 x 2 image, white on its left half: Var = 1/4 in linear luminance (sRGB 255 is 1.0)
+    let dir = temp("predict-image");
+    let path = dir.join("half.png");
+    let img =
+        image::RgbImage::from_fn(4, 2, |x, _| if x < 2 { image::Rgb([255, 255, 255]) } else { image::Rgb([0, 0, 0]) });
+    img.save(&path).unwrap();
+    let out = samplab(&[
+        "predict",
+        "--image",
+        path.to_str().unwrap(),
+        "--sampler",
+        "random",
+        "-n",
+        "64",
+        "--res",
+        "16",
+        "--json",
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["integrands"][0]["spectrum"], "closed form");
+    let predicted = v["rows"][0]["predicted"]["variance"].as_f64().unwrap();
+    assert!((predicted - 0.25 / 64.0).abs() < 1e-15, "{predicted}");
+    let missing = dir.join("missing.png");
+    assert_bad_input(&["predict", "--image", missing.to_str().unwrap(), "--sampler", "random"], &["missing.png"]);
+    std::fs::write(dir.join("broken.png"), b"not a png").unwrap();
+    assert_bad_input(
+        &["predict", "--image", dir.join("broken.png").to_str().unwrap(), "--sampler", "random"],
+        &["broken.png"],
+    );
 }

@@ -24,11 +24,71 @@ use samplab::spec::{Default, Kind};
 use samplab::spectrum::tree::Partial;
 use samplab::{PointSet, Seed};
 
-create_exception!(_samplab, Error, PyValueError, "Every samplab error: its message names what is wrong and where.");
+mod integrand;
 
-/// A library error as `samplab.Error`.
-fn err(e: impl std::fmt::Display) -> PyErr {
-    Error::new_err(e.to_string())
+// named in the package it is raised from, so that it pickles (Dask sends it between processes)
+create_exception!(samplab, Error, PyValueError, "Every samplab error: its message names what is wrong and where.");
+
+/// An error as `samplab.Error`, or as the subclass of it (defined in the package) that also
+/// derives from the matching built-in for the library's unknown names (`LookupError`),
+/// memory refusals (`MemoryError`), file failures (`OSError`) and work limits, with the
+/// failure's fields as attributes.
+fn err<E: std::fmt::Display + 'static>(e: E) -> PyErr {
+    let any = &e as &dyn std::any::Any;
+    let library = any.downcast_ref::<samplab::Error>().or_else(|| match any.downcast_ref::<samplab_render::Error>() {
+        Some(samplab_render::Error::Samplab(e)) => Some(e),
+        _ => match any.downcast_ref::<samplab_report::Error>() {
+            Some(samplab_report::Error::Samplab(e)) => Some(e),
+            _ => None,
+        },
+    });
+    let file = match any.downcast_ref::<samplab_render::Error>() {
+        Some(samplab_render::Error::Image { path, .. }) => Some(path.clone()),
+        _ => None,
+    };
+    typed(library, file, &e.to_string()).unwrap_or_else(|| Error::new_err(e.to_string()))
+}
+
+/// The typed exception for a library failure, when it has one.
+fn typed(library: Option<&samplab::Error>, file: Option<String>, message: &str) -> Option<PyErr> {
+    use samplab::Error as E;
+    let typed = matches!(library, Some(E::UnknownName { .. } | E::Memory { .. } | E::Io { .. } | E::WorkLimit { .. }))
+        || (library.is_none() && file.is_some());
+    if !typed {
+        return None;
+    }
+    Python::attach(|py| -> PyResult<PyErr> {
+        let make = |class: &str| py.import("samplab")?.getattr(class)?.call1((message,));
+        let instance = match (library, file.as_ref()) {
+            (Some(E::UnknownName { kind, name, suggestions }), _) => {
+                let e = make("UnknownNameError")?;
+                e.setattr("kind", *kind)?;
+                e.setattr("name", name)?;
+                e.setattr("suggestions", suggestions.clone())?;
+                e
+            }
+            (Some(E::Memory { need, available, .. }), _) => {
+                let e = make("MemoryLimitError")?;
+                e.setattr("need", *need)?;
+                e.setattr("available", *available)?;
+                e
+            }
+            (Some(E::WorkLimit { work, limit, .. }), _) => {
+                let e = make("WorkLimitError")?;
+                e.setattr("work", *work)?;
+                e.setattr("limit", *limit)?;
+                e
+            }
+            (Some(E::Io { path, .. }), _) | (_, Some(path)) => {
+                let e = make("FileError")?;
+                e.setattr("path", path)?;
+                e
+            }
+            _ => make("Error")?,
+        };
+        Ok(PyErr::from_value(instance))
+    })
+    .ok()
 }
 
 /// Jobs of fewer values than this run without a watcher thread ([`interruptible`]): they
@@ -41,7 +101,7 @@ const SMALL: usize = 1 << 16;
 /// Python run its signal handlers. When one raises (`KeyboardInterrupt` on Ctrl-C), the
 /// flag is raised, the work stops at its next check, and the handler's exception is raised
 /// in place of a result: nothing is returned or written.
-fn interruptible<R: Send, E: std::fmt::Display + Send>(
+fn interruptible<R: Send, E: std::fmt::Display + Send + 'static>(
     py: Python<'_>,
     size: usize,
     work: impl FnOnce(&AtomicBool) -> Result<R, E> + Send,
@@ -589,37 +649,59 @@ fn integrate(
 }
 
 /// A prediction study, as `samplab predict --json` prints it: {"rows", "ranking", ...};
-/// every registered sampler of the integrand's dimension when `samplers` is empty.
+/// every registered sampler of the integrands' dimension when `samplers` is empty. Each
+/// integrand is a spec, a 2D array or a callable of `dims` dimensions (its integral in
+/// `exact`, in order, needed to measure).
 #[pyfunction]
 #[allow(clippy::too_many_arguments)] // the keywords of samplab.predict, checked there
 fn predict(
     py: Python<'_>,
     samplers: Vec<String>,
-    integrand: &str,
+    integrands: Vec<Bound<'_, PyAny>>,
     ns: Vec<usize>,
     res: usize,
     sets: usize,
     measure: Option<(usize, bool)>,
     seed: u64,
+    dims: usize,
+    exact: Vec<f64>,
+    cache: bool,
 ) -> PyResult<String> {
-    let family = samplab::integrand::Family::parse(integrand).map_err(err)?;
-    let f = family.instance(Seed(seed), 0).map_err(err)?;
+    let mut exact = exact.into_iter();
+    let mut given = Vec::new();
+    for value in &integrands {
+        let known = if value.is_callable() { exact.next() } else { None };
+        given.push(integrand::Given::from_python(value, seed, dims, known)?);
+    }
+    if measure.is_some()
+        && let Some((_, name)) = given.iter().find(|(g, _)| !g.has_exact())
+    {
+        return Err(err(format!("{name}: measuring needs the callable's integral: pass exact=")));
+    }
+    let borrowed: Vec<(&dyn samplab::integrand::Integrand, String)> =
+        given.iter().map(|(g, name)| (g.integrand(), name.clone())).collect();
+    let dims = borrowed.first().map_or(2, |(f, _)| f.dims());
     let samplers = if samplers.is_empty() {
-        samplab::predict::every_sampler(f.dims())
+        samplab::predict::every_sampler(dims)
     } else {
         samplers.iter().map(|s| samplab::sampler::build(s)).collect::<Result<_, _>>().map_err(err)?
     };
+    let cache = if cache { samplab::predict::Cache::user() } else { None };
     let study = samplab::predict::Study {
         samplers: &samplers,
-        integrand: (f.as_ref(), family.spec()),
+        integrands: &borrowed,
         ns: &ns,
         res,
         sets,
         measure,
         seed: Seed(seed),
+        cache: cache.as_ref(),
     };
-    let outcome = interruptible(py, usize::MAX, |stop| study.run(&Progress::until(stop)))?;
-    serde_json::to_string(&outcome).map_err(err)
+    let outcome = interruptible(py, usize::MAX, |stop| study.run(&Progress::until(stop)));
+    if let Some(e) = given.iter().find_map(|(g, _)| g.failure()) {
+        return Err(e);
+    }
+    serde_json::to_string(&outcome?).map_err(err)
 }
 
 /// Instance `instance` of the integrand family `spec` for `seed`: its values at the rows of

@@ -10,6 +10,13 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[3]
 
 
+@pytest.fixture(scope="session", autouse=True)
+def private_cache(tmp_path_factory):
+    """Measured spectra kept by samplab.predict and the CLI go to a directory of the test
+    session's, never the user's cache."""
+    os.environ["SAMPLAB_CACHE"] = str(tmp_path_factory.mktemp("cache"))
+
+
 @pytest.fixture(scope="session")
 def cli():
     """Run the `samplab` binary (SAMPLAB_CLI, else the workspace's build) and return its
@@ -30,3 +37,8 @@ def cli():
 def load_npy(path):
     with open(path, "rb") as f:
         return np.load(f)
+
+
+def pytest_configure(config):
+    # scipy's engine tests (test_qmc_scipy.py) mark one case for its parallel test runner
+    config.addinivalue_line("markers", "thread_unsafe: not safe to run in parallel threads (scipy's mark)")

@@ -158,3 +158,40 @@ def test_predict_equals_the_cli_and_white_noise_is_var_over_n(cli):
         samplab.predict("disk", "random", 64, measure=1)
     with pytest.raises(samplab.Error, match="n must be a whole number"):
         samplab.predict("disk", "random", 64.0)
+
+
+def test_predict_takes_callables_and_arrays_with_their_errors():
+    # a step in x: Var(f) = 1/4, so white noise predicts 1 / (4 n); the callable's spectrum is
+    # an FFT of sampled values (within its stated error), the array's a closed form (exact)
+    def step(x):
+        return (x[:, 0] < 0.5).astype(float)
+
+    grid = np.zeros((4, 4))
+    grid[:, :2] = 1.0
+    out = samplab.predict([step, grid], "random", [64, 256], res=16, sets=8)
+    by = {(r["integrand"], r["n"]): r["predicted"]["variance"] for r in out["rows"]}
+    info = {i["spec"]: i for i in out["integrands"]}
+    assert info["array 4x4"]["spectrum"] == "closed form"
+    assert info["step"]["spectrum"].startswith("FFT")
+    for n in (64, 256):
+        assert abs(by[("array 4x4", n)] - 0.25 / n) < 1e-15
+        assert abs(by[("step", n)] - 0.25 / n) <= info["step"]["error"] / n + 1e-15
+    # measured with its integral, shifted: the prediction is exact in expectation
+    row = samplab.predict(lambda x: x[:, 0] ** 2, "jitter", 64, res=32, sets=8, measure=400, shift=True, exact=1 / 3)["rows"][0]
+    assert abs(row["predicted"]["variance"] - row["measured"]["variance"]) <= 4 * row["measured"]["se"]
+
+    def broken(x):
+        raise ZeroDivisionError("inside the user's function")
+
+    with pytest.raises(ZeroDivisionError, match="inside the user's function"):
+        samplab.predict(broken, "random", 64, res=16, sets=8)
+    with pytest.raises(samplab.Error, match="one per row"):
+        samplab.predict(lambda x: x, "random", 64, res=16, sets=8)
+    with pytest.raises(samplab.Error, match="NaN at"):
+        samplab.predict(lambda x: np.full(len(x), np.nan), "random", 64, res=16, sets=8)
+    with pytest.raises(samplab.Error, match="pass exact="):
+        samplab.predict(step, "random", 64, res=16, sets=8, measure=10)
+    with pytest.raises(samplab.Error, match="cell"):
+        samplab.predict(np.array([[1.0, np.inf]]), "random", 64, res=16, sets=8)
+    with pytest.raises(samplab.Error, match="expected a spec string"):
+        samplab.predict(3, "random", 64)

@@ -44,3 +44,41 @@ def test_random_bad_calls_raise_only_samplab_errors():
             except BaseException as e:  # a panic or any other exception is a bug
                 pytest.fail(f"{type(e).__module__}.{type(e).__name__}: {e}")
     assert errors > 1000  # most of these calls are bad input
+
+
+def test_failures_are_typed_and_pickle(tmp_path):
+    import pickle
+
+    # an unknown name is a LookupError with the name and the nearest known ones
+    with pytest.raises(LookupError) as unknown:
+        samplab.generate("jittr", n=16)
+    e = unknown.value
+    assert isinstance(e, samplab.UnknownNameError) and isinstance(e, samplab.Error)
+    assert (e.kind, e.name) == ("sampler", "jittr") and "jitter" in e.suggestions
+    # a refusal for memory is a MemoryError with the bytes asked and available
+    with pytest.raises(MemoryError) as memory:
+        samplab.generate("random", n=2**31, d=1000)
+    m = memory.value
+    assert isinstance(m, samplab.MemoryLimitError) and m.need > m.available > 0
+    # a file that cannot be read is an OSError naming it
+    missing = tmp_path / "missing.txt"
+    with pytest.raises(OSError) as io:
+        samplab.load(str(missing))
+    assert isinstance(io.value, samplab.FileError) and io.value.path == str(missing)
+    with pytest.raises(OSError, match="missing.exr"):
+        samplab.read_exr(str(tmp_path / "missing.exr"))
+    # every kind, and the plain one, survives pickling (Dask sends errors between processes),
+    # by the standard reducers and by tblib's, which Dask's workers install
+    from tblib import pickling_support
+
+    plain = samplab.Error("something: wrong")
+    for tblib in (False, True):
+        if tblib:
+            pickling_support.install(e, m, io.value, plain)
+        for original in (e, m, io.value, plain):
+            copy = pickle.loads(pickle.dumps(original))
+            assert type(copy) is type(original) and str(copy) == str(original)
+            assert copy.__dict__ == original.__dict__
+    # and a bad value stays a ValueError
+    with pytest.raises(ValueError):
+        samplab.generate("jitter", n=15)

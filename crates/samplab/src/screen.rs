@@ -24,6 +24,28 @@ use rustfft::num_complex::Complex;
 
 use crate::error::{Error, Result};
 
+/// The 2D discrete Fourier transform sum_xy v(x, y) exp(-2 pi i (kx x / w + ky y / h)) of a
+/// row-major w x h array, in the FFT's order (index ky * w + kx).
+pub(crate) fn dft(w: usize, h: usize, mut data: Vec<Complex<f64>>) -> Vec<Complex<f64>> {
+    let mut planner = FftPlanner::new();
+    let rows = planner.plan_fft_forward(w);
+    for row in data.chunks_mut(w) {
+        rows.process(row);
+    }
+    let columns = planner.plan_fft_forward(h);
+    let mut column = vec![Complex::new(0.0, 0.0); h];
+    for x in 0..w {
+        for y in 0..h {
+            column[y] = data[y * w + x];
+        }
+        columns.process(&mut column);
+        for y in 0..h {
+            data[y * w + x] = column[y];
+        }
+    }
+    data
+}
+
 /// An image of scalar values, row-major from the top left.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Plane {
@@ -129,27 +151,10 @@ impl Plane {
     /// The periodogram of the values less their mean, |DFT|^2 / (width height), row-major
     /// with frequency (kx, ky) at index ky * width + kx (kx, ky from 0: the FFT's order).
     pub fn power(&self) -> Vec<f64> {
-        let (w, h) = (self.width, self.height);
         let m = self.mean();
-        let mut data: Vec<Complex<f64>> = self.values.iter().map(|&v| Complex::new(v - m, 0.0)).collect();
-        let mut planner = FftPlanner::new();
-        let rows = planner.plan_fft_forward(w);
-        for row in data.chunks_mut(w) {
-            rows.process(row);
-        }
-        let columns = planner.plan_fft_forward(h);
-        let mut column = vec![Complex::new(0.0, 0.0); h];
-        for x in 0..w {
-            for y in 0..h {
-                column[y] = data[y * w + x];
-            }
-            columns.process(&mut column);
-            for y in 0..h {
-                data[y * w + x] = column[y];
-            }
-        }
-        let n = (w * h) as f64;
-        data.iter().map(|c| c.norm_sqr() / n).collect()
+        let data = self.values.iter().map(|&v| Complex::new(v - m, 0.0)).collect();
+        let n = (self.width * self.height) as f64;
+        dft(self.width, self.height, data).iter().map(|c| c.norm_sqr() / n).collect()
     }
 
     /// Frequency |f| in cycles per pixel of periodogram index (kx, ky).

@@ -255,3 +255,145 @@ fn bad_grids_and_mismatched_spectra_are_refused() {
     let e = predict::sampler_spectrum(random.as_ref(), 64, 2, 16, 4, Seed(1), SILENT).unwrap_err().to_string();
     assert!(e.starts_with("sets = 4"), "{e}");
 }
+
+fn spectra(spec: &str, ns: &[usize], res: usize, sets: usize) -> Vec<predict::SamplerSpectrum> {
+    let s = sampler::build(spec).unwrap();
+    ns.iter().map(|&n| predict::sampler_spectrum(s.as_ref(), n, 2, res, sets, Seed(7), SILENT).unwrap()).collect()
+}
+
+#[test]
+fn the_small_frequency_exponents_are_those_of_the_closed_forms() {
+    // white noise: P = 1, beta = 0 exactly, both exponents -1
+    let random = spectra("random", &[64, 1024], 128, 8);
+    let fit = predict::small_frequency(&random.iter().collect::<Vec<_>>()).unwrap();
+    assert_eq!(fit.exponent, Some(0.0));
+    assert_eq!((fit.best, fit.worst), (Some(-1.0), -1.0));
+    // jitter: 1 - sinc^2 sinc^2 = (pi^2 / 3) |k|^2 / n + O(|k|^4 / n^2): beta = 2, best -2,
+    // worst -1.5 (criterion: within 0.1). The fitted c is pi^2 / 3 less the quartic term's
+    // share of the fit region (0.88 pi^2 / 3 measured), so it is bounded, not matched.
+    let jitter = spectra("jitter", &[256, 1024, 4096], 128, 8);
+    let fit = predict::small_frequency(&jitter.iter().collect::<Vec<_>>()).unwrap();
+    let beta = fit.exponent.unwrap();
+    assert!((beta - 2.0).abs() <= 0.1, "beta {beta}");
+    let c = fit.constant.unwrap() / (std::f64::consts::PI.powi(2) / 3.0);
+    assert!((0.75..=1.0).contains(&c), "c / (pi^2 / 3) = {c}");
+    assert!((fit.best.unwrap() + 2.0).abs() <= 0.05 && fit.worst == -1.5, "{fit:?}");
+    // a rank-1 lattice: P vanishes below its shortest dual vector, a zero region
+    let lattice = spectra("lattice.shift", &[256, 1024], 128, 8);
+    let fit = predict::small_frequency(&lattice.iter().collect::<Vec<_>>()).unwrap();
+    assert_eq!((fit.exponent, fit.best, fit.worst), (None, None, -1.5));
+}
+
+#[test]
+fn the_best_case_exponent_is_what_jitter_shows_on_a_band_limited_integrand() {
+    // criterion fixed before the run: the measured slope (shifted sets) on the plane wave
+    // cos(2 pi (x + y)) at n = 256..4096 within 0.1 of the predicted best case
+    let ns = [256, 1024, 4096];
+    let jitter = spectra("jitter", &ns, 64, 8);
+    let best = predict::small_frequency(&jitter.iter().collect::<Vec<_>>()).unwrap().best.unwrap();
+    let f = instance("cosine:u=1,v=1");
+    let s = sampler::build("jitter").unwrap();
+    let points: Vec<(f64, f64)> = ns
+        .iter()
+        .map(|&n| {
+            (n as f64, predict::measure(s.as_ref(), f.as_ref(), n, 4000, Seed(2), true, SILENT).unwrap().variance)
+        })
+        .collect();
+    let (slope, _) = samplab::experiment::loglog_fit(&points).unwrap();
+    assert!((slope - best).abs() <= 0.1, "measured {slope}, predicted best {best}");
+}
+
+#[test]
+fn the_radial_form_is_the_torus_sum_for_isotropic_spectra() {
+    let f = instance("disk:r=0.3,cx=0.45,cy=0.5");
+    let spectrum = predict::integrand_spectrum(f.as_ref(), 64).unwrap();
+    // white noise is constant on rings: the two forms agree to rounding
+    for s in spectra("random", &[64, 1024], 64, 8) {
+        let (a, b) = (predict::predict(&spectrum, &s).unwrap(), predict::predict_radial(&spectrum, &s).unwrap());
+        assert!((a.variance - b.variance).abs() <= 1e-12 * a.variance, "{a:?} {b:?}");
+    }
+    // Poisson disk (isotropic in expectation): the radial form within 3 standard errors
+    // of the torus sum, and within 20% of the measured variance of shifted sets
+    let poisson = sampler::build("poisson.fast").unwrap();
+    for n in [256, 1024] {
+        let s = predict::sampler_spectrum(poisson.as_ref(), n, 2, 64, 64, Seed(4), SILENT).unwrap();
+        let (a, b) = (predict::predict(&spectrum, &s).unwrap(), predict::predict_radial(&spectrum, &s).unwrap());
+        assert!((a.variance - b.variance).abs() <= 3.0 * a.se.hypot(b.se), "n={n}: {a:?} {b:?}");
+        let m = predict::measure(poisson.as_ref(), f.as_ref(), n, 2000, Seed(8), true, SILENT).unwrap();
+        assert!((b.variance / m.variance - 1.0).abs() <= 0.2, "n={n}: radial {b:?}, measured {m:?}");
+    }
+}
+
+#[test]
+fn a_grid_integrand_has_the_fourier_coefficients_of_its_cells() {
+    use samplab::integrand::Grid;
+    let (w, h) = (3, 2);
+    let values = vec![0.5, -1.0, 2.0, 0.25, 3.0, -0.75];
+    let g = Grid::new(w, h, values.clone()).unwrap();
+    // box lookups, the first row at y = 0
+    assert_eq!(g.eval(&[0.1, 0.1]), 0.5);
+    assert_eq!(g.eval(&[0.9, 0.9]), -0.75);
+    assert_eq!(g.eval(&[0.5, 0.99]), 3.0);
+    assert!((g.exact() - values.iter().sum::<f64>() / 6.0).abs() < 1e-15);
+    // each cell's integral of exp(-2 pi i k x), per axis: (e(b) - e(a)) / (-2 pi i k)
+    let axis = |k: i64, a: f64, b: f64| -> (f64, f64) {
+        if k == 0 {
+            return (b - a, 0.0);
+        }
+        let t = std::f64::consts::TAU * k as f64;
+        // (cos tb - i sin tb - cos ta + i sin ta) / (-i t) = ((sin ta - sin tb) + i (cos tb - cos ta)) / t ... times i / i
+        ((t * b).sin() / t - (t * a).sin() / t, ((t * b).cos() - (t * a).cos()) / t)
+    };
+    for k in [[0, 0], [1, 0], [0, 1], [2, -1], [-3, 5], [7, 4]] {
+        let mut sum = (0.0, 0.0);
+        for j in 0..h {
+            for i in 0..w {
+                let x = axis(k[0], i as f64 / w as f64, (i + 1) as f64 / w as f64);
+                let y = axis(k[1], j as f64 / h as f64, (j + 1) as f64 / h as f64);
+                let v = values[j * w + i];
+                sum.0 += v * (x.0 * y.0 - x.1 * y.1);
+                sum.1 += v * (x.0 * y.1 + x.1 * y.0);
+            }
+        }
+        let [re, im] = g.fourier(k).unwrap();
+        assert!((re - sum.0).abs() < 1e-12 && (im - sum.1).abs() < 1e-12, "k={k:?}: {re} {im} against {sum:?}");
+    }
+    assert!(Grid::new(2, 2, vec![1.0, f64::NAN, 0.0, 0.0]).unwrap_err().to_string().contains("cell (1, 0)"));
+    assert!(Grid::new(0, 2, vec![]).is_err());
+    assert!(Grid::new(2, 2, vec![1.0]).is_err());
+}
+
+#[test]
+fn kept_spectra_are_read_back_bit_for_bit() {
+    let dir = std::env::temp_dir().join(format!("samplab-predict-cache-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let cache = predict::Cache::new(&dir);
+    let f = instance("disk:r=0.3,cx=0.45,cy=0.5");
+    let samplers = vec![sampler::build("sobol.owen").unwrap(), sampler::build("jitter").unwrap()];
+    let integrands = [(f.as_ref(), "disk".to_string())];
+    let run = |cache: Option<&predict::Cache>| {
+        let study = predict::Study {
+            samplers: &samplers,
+            integrands: &integrands,
+            ns: &[16, 64],
+            res: 16,
+            sets: 8,
+            measure: None,
+            seed: Seed(1),
+            cache,
+        };
+        serde_json::to_string(&study.run(SILENT).unwrap()).unwrap()
+    };
+    let fresh = run(None);
+    assert_eq!(run(Some(&cache)), fresh);
+    // sobol.owen's two spectra are kept (jitter's is a closed form), and read back
+    let files: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
+    assert_eq!(files.len(), 2, "{files:?}");
+    assert_eq!(run(Some(&cache)), fresh);
+    // a damaged file is measured again, not believed
+    std::fs::write(&files[0], b"samplab spectrum cache 1\nsomething else").unwrap();
+    let bytes = std::fs::read(&files[1]).unwrap();
+    std::fs::write(&files[1], &bytes[..bytes.len() - 8]).unwrap();
+    assert_eq!(run(Some(&cache)), fresh);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -22,8 +22,37 @@ import numpy as np
 from . import _samplab
 from ._samplab import Error, __version__
 
+
+class UnknownNameError(Error, LookupError):
+    """An unknown sampler, integrand, metric, warp or other registered name: ``kind``,
+    ``name`` and the nearest known ``suggestions``."""
+
+
+class MemoryLimitError(Error, MemoryError):
+    """A computation refused before it started for the memory it needs: ``need`` and
+    ``available``, in bytes."""
+
+
+class FileError(Error, OSError):
+    """A file that cannot be read or written (``path``; the message has the reason)."""
+
+    def __new__(cls, *args: Any, **kwargs: Any) -> "FileError":
+        # OSError's layout is the one instances have: unpicklers that call cls.__new__
+        # (tblib's, which Dask installs) must reach OSError's, not ValueError's
+        return OSError.__new__(cls, *args)
+
+
+class WorkLimitError(Error):
+    """An exact computation refused before it started: its estimated ``work`` (steps) is
+    over the ``limit``."""
+
+
 __all__ = [
     "Error",
+    "FileError",
+    "MemoryLimitError",
+    "UnknownNameError",
+    "WorkLimitError",
     "Study",
     "StudyResult",
     "__version__",
@@ -317,34 +346,54 @@ def integrate(
 
 
 def predict(
-    integrand: str,
+    integrand: Any,
     samplers: Union[None, str, Sequence[str]] = None,
     n: Union[int, Sequence[int]] = (16, 64, 256, 1024),
     res: int = 128,
-    sets: int = 32,
+    sets: int = 16,
     measure: Optional[int] = None,
     shift: bool = False,
     seed: Optional[int] = None,
+    d: int = 2,
+    exact: Union[None, float, Sequence[float]] = None,
+    cache: bool = True,
 ) -> Dict[str, Any]:
-    """The variance of each sampler on an integrand predicted from spectra, as ``samplab
-    predict --json``: ``{"rows": [...], "ranking": [...], ...}`` (a row per sampler and
-    count: the predicted variance of the estimator over a random toroidal shift of each set
-    and its standard error, where the sampler's spectrum comes from, and the measured mean
-    squared error over ``measure`` realizations when given, shifted when ``shift``; the
-    ranking by predicted variance at the largest count with the fitted exponents).
-    ``samplers=None`` ranks every registered sampler of the integrand's dimension."""
+    """The variance of each sampler on one or more integrands predicted from spectra, as
+    ``samplab predict --json``: ``{"integrands", "rows", "ranking", "rates", "skipped"}``
+    (a row per integrand, sampler and count: the predicted variance of the estimator over a
+    random toroidal shift of each set and its standard error, the radial form of the same,
+    where the sampler's spectrum comes from, and the measured mean squared error over
+    ``measure`` realizations when given, shifted when ``shift``; the ranking per integrand
+    by predicted variance at the largest count with the fitted exponents; per sampler the
+    small-frequency exponent of its spectrum with the best- and worst-case convergence
+    exponents it implies).
+
+    ``integrand`` is a spec (``"disk:r=0.3"``), a 2D float array (values on a grid over the
+    unit square, row 0 at y = 0, box lookups: an image), a vectorized callable ``f(x)``
+    taking an (m, d) array and returning m values (``d`` 1 or 2; its spectrum is the FFT of
+    its values at the midpoints of a fine grid, the error of that estimate stated), or a
+    list of these. ``exact``: the integral of each callable, in order, needed to measure.
+    ``samplers=None`` ranks every registered sampler of the integrands' dimension.
+    ``cache``: read and keep measured sampler spectra in the user's cache (``$SAMPLAB_CACHE``,
+    else ``$XDG_CACHE_HOME/samplab``, else ``~/.cache/samplab``)."""
     names = [] if samplers is None else [samplers] if isinstance(samplers, str) else list(samplers)
     counts = list(n) if isinstance(n, (list, tuple, range, np.ndarray)) else [n]
+    given = list(integrand) if isinstance(integrand, (list, tuple)) else [integrand]
+    given = [np.ascontiguousarray(g, dtype=np.float64) if isinstance(g, np.ndarray) else g for g in given]
+    integrals = [] if exact is None else [exact] if isinstance(exact, (int, float)) else list(exact)
     measured = None if measure is None else (_count("measure", measure), bool(shift))
     return json.loads(
         _samplab.predict(
             names,
-            integrand,
+            given,
             [_count("n", c) for c in counts],
             _count("res", res),
             _count("sets", sets),
             measured,
             _seed(seed),
+            _count("d", d),
+            [float(v) for v in integrals],
+            bool(cache),
         )
     )
 

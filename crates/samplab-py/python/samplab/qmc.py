@@ -8,10 +8,14 @@ sampler makes whole sets (a grid of n = k^2 points, a Poisson disk): its first `
 is a set of n points and a second call raises ``samplab.Error`` instead of returning points
 that do not belong together; ``reset()`` starts again.
 
-Seeds: an integer is samplab's seed (the CLI's ``--seed``); a ``numpy.random.Generator``
-(as ``qmc_quad`` passes) is mapped to one deterministically by drawing one 64-bit integer
-from it; None is samplab's default seed, so an engine is reproducible unless given a
-Generator.
+Seeds, as scipy's engines take them: an integer in [0, 2^64) is samplab's seed (the CLI's
+``--seed``); a larger non-negative integer or a ``numpy.random.SeedSequence`` is mapped to
+one by the SeedSequence's first 64-bit word; a ``numpy.random.Generator`` (as ``qmc_quad``
+passes) by drawing one 64-bit integer from it, so engines made from one Generator differ;
+None is samplab's default seed, so an engine is reproducible unless given a Generator.
+
+``d = 0`` and ``random(0)`` give empty arrays, and ``optimization="random-cd"`` or
+``"lloyd"`` applies scipy's optimizers to every draw, as scipy's own engines do.
 """
 
 from __future__ import annotations
@@ -29,6 +33,10 @@ def _samplab_seed(seed: Any) -> int:
         return DEFAULT_SEED
     if isinstance(seed, np.random.Generator):
         return int(seed.integers(0, 2**63, dtype=np.int64))
+    if isinstance(seed, np.random.SeedSequence):
+        return int(seed.generate_state(1, np.uint64)[0])
+    if isinstance(seed, (int, np.integer)) and not isinstance(seed, bool) and int(seed) >= 2**64:
+        return int(np.random.SeedSequence(int(seed)).generate_state(1, np.uint64)[0])
     return _seed(seed)
 
 
@@ -41,22 +49,28 @@ class Engine(_qmc.QMCEngine):
         A sampler spec, e.g. ``"sobol.owen"``, ``"halton.xor"``, ``"jitter"``, ``"nrooks"``.
     d : int
         Dimensions.
-    seed : int, numpy.random.Generator or None
-        samplab's seed, or a Generator mapped to one (see the module's documentation).
+    seed : int, numpy.random.SeedSequence, numpy.random.Generator or None
+        samplab's seed, or what is mapped to one (see the module's documentation).
+    optimization : {None, "random-cd", "lloyd"}
+        scipy's optimization of every draw, as its engines take it.
     """
 
-    def __init__(self, spec: str = "sobol.owen", d: int = 2, *, seed: Any = None) -> None:
-        if isinstance(d, bool) or not isinstance(d, (int, np.integer)) or d < 1:
-            raise Error(f"d must be a positive whole number, got {d!r}")
+    def __init__(
+        self, spec: str = "sobol.owen", d: int = 2, *, seed: Any = None, optimization: Optional[str] = None
+    ) -> None:
+        if isinstance(d, bool) or not isinstance(d, (int, np.integer)) or d < 0:
+            raise Error(f"d must be a non-negative whole number, got {d!r}")
         self.spec = spec
         self.sequence = _samplab.is_sequence(spec)
         self.samplab_seed = _samplab_seed(seed)
-        # scipy's own state (qmc_quad spawns Generators from self.rng)
+        # scipy's own state (qmc_quad spawns Generators from self.rng; the optimizers draw from it)
         rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(self.samplab_seed)
-        self._initialize(int(d), rng=rng)
-        self._init_quad = {"spec": spec, "d": int(d)}
+        self._initialize(int(d), rng=rng, optimization=optimization)
+        self._init_quad = {"spec": spec, "d": int(d), "optimization": optimization}
 
     def _random(self, n: int = 1, *, workers: int = 1) -> np.ndarray:
+        if n == 0 or self.d == 0:
+            return np.empty((int(n), self.d))
         if self.sequence and self.num_generated:
             return _samplab.sequence_points(self.spec, self.num_generated, int(n), self.d, self.samplab_seed)
         if self.num_generated and not self.sequence:

@@ -3,7 +3,7 @@
 //! counts, with criteria fixed in this file before any run.
 
 use samplab::integrand::{Family, Integrand};
-use samplab::predict::{self, IntegrandSpectrum, Predicted};
+use samplab::predict::{self, IntegrandSpectrum, Predicted, SmallFrequency};
 use samplab::progress::Progress;
 use samplab::sampler::Sampler;
 
@@ -20,7 +20,7 @@ pub fn paper() -> Paper {
             id: "variance",
             title: "Variance from the spectra, and measured",
             source: "Pilleboue et al. 2015 (variance of a shifted estimator from the spectra); the integrands of Subr & Kautz 2013 (case I, the quad) and Sbert et al. 2006 (the disk, the half-plane)",
-            parameters: "integrands quad, disk, halfplane and the plane wave cosine:u=3,v=5 (instance 0 of each family for the experiment's seed); counts 16, 64, 256, 1024; 128 frequencies per axis; each sampler's spectrum from the first 16 of its sets, the variance measured over 256 sets, each moved by a uniform toroidal shift, and again unshifted; 15 samplers (fast) or every registered 2D sampler (full)",
+            parameters: "integrands quad, disk, halfplane and the plane wave cosine:u=3,v=5 (instance 0 of each family for the experiment's seed); counts 16, 64, 256, 1024; 128 frequencies per axis; each sampler's spectrum from the first 16 of its sets, the variance measured over 256 sets, each moved by a uniform toroidal shift, and again unshifted; its small-frequency exponent fitted to its radial spectra at the four counts over |k| / sqrt n <= 0.25; 15 samplers (fast) or every registered 2D sampler (full)",
             run: variance,
         }],
     }
@@ -90,13 +90,14 @@ fn variance(ctx: &Ctx) -> Result<Output, Error> {
     let spectra: Vec<IntegrandSpectrum> =
         integrands.iter().map(|(_, f)| predict::integrand_spectrum(f.as_ref(), RES)).collect::<Result<_, _>>()?;
     ctx.progress.set_length((samplers.len() * COUNTS.len()) as u64);
-    let (mut rows, mut skipped) = (Vec::new(), Vec::new());
+    let (mut rows, mut skipped, mut rates) = (Vec::new(), Vec::new(), Vec::new());
     for (k, s) in samplers.iter().enumerate() {
         if let Some(e) = COUNTS.iter().find_map(|&n| s.plan(n, 2).err()) {
             skipped.push(format!("{}: {e}", s.spec()));
             ctx.advance(COUNTS.len() as u64)?;
             continue;
         }
+        let mut spectra_of_s = Vec::new();
         for n in COUNTS {
             let seed = ctx.seed.derive(k as u64).derive(n as u64);
             let stop = Progress::until(ctx.stop);
@@ -112,8 +113,10 @@ fn variance(ctx: &Ctx) -> Result<Output, Error> {
                     unshifted: predict::measure_sets(f.as_ref(), &sets, seed, false, &stop)?,
                 });
             }
+            spectra_of_s.push(spectrum);
             ctx.advance(1)?;
         }
+        rates.push((s.spec(), predict::small_frequency(&spectra_of_s.iter().collect::<Vec<_>>())));
     }
     let names: Vec<&str> = integrands.iter().map(|(name, _)| name.as_str()).collect();
     let mut claims = vec![exact_claim(&rows, INTEGRANDS.len() - 1, &names)];
@@ -126,7 +129,7 @@ fn variance(ctx: &Ctx) -> Result<Output, Error> {
         notes.push(format!("Left out (a count they cannot make): {}.", skipped.join("; ")));
     }
     Ok(Output {
-        tables: vec![table(&rows, &names), exponents(&rows, &names)],
+        tables: vec![table(&rows, &names), exponents(&rows, &names), rate_table(&rows, &rates)],
         figures: vec![scatter(&rows, &names)?],
         claims,
         notes,
@@ -269,6 +272,64 @@ fn exponents(rows: &[Row], names: &[&str]) -> Table {
                     row.push(slope(i, s, &|r| r.shifted.variance));
                 }
                 row
+            })
+            .collect(),
+    }
+}
+
+/// A measured variance below this is rounding (the integrands are of order 1).
+const ROUNDING: f64 = 1e-24;
+
+/// Each sampler's small-frequency exponent, the best- and worst-case exponents it implies,
+/// and the slopes measured (shifted sets) on the plane wave (band-limited: the best case)
+/// and the disk (a jump along a curve: the worst case) between the two largest counts.
+fn rate_table(rows: &[Row], rates: &[(String, Option<SmallFrequency>)]) -> Table {
+    let (periodic, disk) = (INTEGRANDS.len() - 1, 1);
+    let [.., below, top] = COUNTS;
+    let measured = |i: usize, s: &str| {
+        let at =
+            |n: usize| rows.iter().find(|r| r.integrand == i && r.sampler == s && r.n == n).map(|r| r.shifted.variance);
+        match (at(below), at(top)) {
+            // a set that integrates the plane wave exactly leaves only rounding
+            (Some(a), Some(b)) if a.max(b) < ROUNDING => Cell::Text("exact".into()),
+            (Some(a), Some(b)) if a > 0.0 && b > 0.0 => Cell::num((b / a).ln() / (top as f64 / below as f64).ln(), 3),
+            _ => Cell::Text("-".into()),
+        }
+    };
+    let optional = |v: Option<f64>, none: &str| v.map_or(Cell::Text(none.into()), |v| Cell::num(v, 3));
+    Table {
+        id: "prediction-rates".into(),
+        caption: format!(
+            "Convergence rates from the spectrum (Pilleboue et al. 2015's analysis): beta and c of P(k) ~ c (|k| / sqrt n)^beta fitted over |k| / sqrt n <= {} at every count, the variance exponents they imply, -1 - beta/2 on a band-limited integrand (best) and -1 - min(beta, 1)/2 with a jump along a smooth curve (worst; 'zero': P vanishes there, a zero region, best faster than any power; 'exact': the measured variances are rounding), beside the slopes measured on shifted sets between n = {below} and {top} on {} (band-limited) and the disk",
+            predict::SMALL_FREQUENCY_REACH,
+            INTEGRANDS[periodic]
+        ),
+        columns: [
+            "sampler",
+            "beta",
+            "c",
+            "best, predicted",
+            "plane wave, measured",
+            "worst, predicted",
+            "disk, measured",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: rates
+            .iter()
+            .map(|(s, fit)| {
+                let (beta, c, best, worst) = match fit {
+                    Some(f) => (
+                        optional(f.exponent, "zero"),
+                        optional(f.constant, "-"),
+                        optional(f.best, "-inf"),
+                        Cell::num(f.worst, 3),
+                    ),
+                    None => {
+                        (Cell::Text("-".into()), Cell::Text("-".into()), Cell::Text("-".into()), Cell::Text("-".into()))
+                    }
+                };
+                vec![Cell::Text(s.clone()), beta, c, best, measured(periodic, s), worst, measured(disk, s)]
             })
             .collect(),
     }

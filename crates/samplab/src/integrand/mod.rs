@@ -15,9 +15,11 @@ use crate::seed::{Rng, Seed, uniform};
 use crate::spec::{Default, Kind, ParamSpec, Params};
 
 mod delaunay;
+mod grid;
 use crate::numeric::quadrature;
 
 pub use delaunay::Delaunay;
+pub use grid::Grid;
 
 /// A function on \[0,1\]^d with a known integral.
 pub trait Integrand: Send + Sync {
@@ -25,6 +27,14 @@ pub trait Integrand: Send + Sync {
     fn dims(&self) -> usize;
     /// The value at `x`.
     fn eval(&self, x: &[f64]) -> f64;
+    /// The values at many points, `dims()` coordinates each in `points`, into `out` (one
+    /// per point); the default calls [`Integrand::eval`] on each. An integrand that is
+    /// cheaper in batches (a vectorized Python function) overrides it.
+    fn eval_many(&self, points: &[f64], out: &mut [f64]) {
+        for (x, o) in points.chunks_exact(self.dims()).zip(out) {
+            *o = self.eval(x);
+        }
+    }
     /// The exact integral over \[0,1\]^d.
     fn exact(&self) -> f64;
     /// For an indicator function: the length of its region's boundary inside the domain

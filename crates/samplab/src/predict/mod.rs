@@ -37,7 +37,12 @@
 //! error of the estimate. The sampler's P comes in closed form for `random` (1) and
 //! `jitter` (1 - sinc^2(pi k_x/m) sinc^2(pi k_y/m) on an m x m grid), otherwise from the
 //! periodograms of its realizations (the spectrum module's non-uniform FFT at 1e-13), with a
-//! standard error from batch means.
+//! standard error from batch means; a [`Cache`] keeps measured ones between runs.
+//!
+//! [`predict_radial`] is the same sum with P averaged over rings of equal |k| (the form for
+//! isotropic samplers), and [`small_frequency`] fits the radial spectrum near zero frequency
+//! across counts, P ~ c (|k| / sqrt n)^beta, for the best- and worst-case convergence
+//! exponents of Pilleboue et al.'s analysis. [`Study`] runs samplers x counts x integrands.
 
 use rayon::prelude::*;
 
@@ -48,6 +53,12 @@ use crate::progress::Progress;
 use crate::sampler::Sampler;
 use crate::seed::Seed;
 use crate::spectrum::{Method, periodogram};
+
+mod cache;
+mod study;
+
+pub use cache::Cache;
+pub use study::{Outcome, Ranked, Rate, Row, Study, every_sampler};
 
 /// The tolerance of the sampler periodograms: far below any variance predicted.
 const TOLERANCE: f64 = 1e-13;
@@ -129,8 +140,8 @@ pub fn integrand_spectrum(f: &dyn Integrand, res: usize) -> Result<IntegrandSpec
     }
     // the finest grid that stays cheap: 2^16 values in 1D, 1024^2 or (8R)^2 in 2D
     let fine = if dims == 1 { (64 * res).max(1 << 16) } else { (8 * res).max(1024) };
-    let (power, variance) = sampled(f, res, fine);
-    let (coarse_power, coarse_variance) = sampled(f, res, fine / 2);
+    let (power, variance) = sampled(f, res, fine)?;
+    let (coarse_power, coarse_variance) = sampled(f, res, fine / 2)?;
     let change = |p: f64| {
         let sum = |v: f64, w: &[f64]| v + w.iter().map(|x| x * (p - 1.0)).sum::<f64>();
         (sum(variance, &power) - sum(coarse_variance, &coarse_power)).abs()
@@ -147,15 +158,31 @@ pub fn integrand_spectrum(f: &dyn Integrand, res: usize) -> Result<IntegrandSpec
 }
 
 /// |F(k)|^2 on the grid and Var(f), from f at the midpoints of a `side`^d grid.
-fn sampled(f: &dyn Integrand, res: usize, side: usize) -> (Vec<f64>, f64) {
+fn sampled(f: &dyn Integrand, res: usize, side: usize) -> Result<(Vec<f64>, f64)> {
     let dims = f.dims();
     let at = |i: usize| (i as f64 + 0.5) / side as f64;
     let rows = if dims == 1 { 1 } else { side };
     let values: Vec<f64> = (0..rows)
         .into_par_iter()
-        .flat_map_iter(|r| (0..side).map(move |c| if dims == 1 { f.eval(&[at(c)]) } else { f.eval(&[at(c), at(r)]) }))
+        .flat_map_iter(|r| {
+            let mut points = Vec::with_capacity(side * dims);
+            for c in 0..side {
+                points.push(at(c));
+                if dims == 2 {
+                    points.push(at(r));
+                }
+            }
+            let mut row = vec![0.0; side];
+            f.eval_many(&points, &mut row);
+            row
+        })
         .collect();
-    let plane = crate::screen::Plane::new(side, rows, values).expect("a non-empty grid");
+    if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+        let (c, r) = (i % side, i / side);
+        let point = if dims == 1 { format!("{}", at(c)) } else { format!("({}, {})", at(c), at(r)) };
+        return Err(Error::Invalid(format!("the integrand is {} at {point}", values[i])));
+    }
+    let plane = crate::screen::Plane::new(side, rows, values)?;
     // |DFT|^2 / cells, of the values less their mean: |F(k)|^2 = that / cells
     let cells = (side * rows) as f64;
     let fft = plane.power();
@@ -167,7 +194,7 @@ fn sampled(f: &dyn Integrand, res: usize, side: usize) -> (Vec<f64>, f64) {
             fft[index] / cells
         })
         .collect();
-    (power, plane.variance())
+    Ok((power, plane.variance()))
 }
 
 /// A sampler's periodogram per point P(k) = n |S(k)|^2 at one count, averaged over its
@@ -206,12 +233,26 @@ pub fn sampler_spectrum(
     seed: Seed,
     progress: &Progress,
 ) -> Result<SamplerSpectrum> {
+    spectrum_of_plan(&sampler.spec(), &sampler.plan(n, dims)?, res, sets, seed, None, progress)
+}
+
+/// [`sampler_spectrum`] of a plan, through `cache` when given (a measured spectrum found
+/// there is not measured again; one measured is kept there); `progress` advances by
+/// `sets` in all.
+fn spectrum_of_plan(
+    spec: &str,
+    plan: &crate::sampler::Plan<'_>,
+    res: usize,
+    sets: usize,
+    seed: Seed,
+    cache: Option<&Cache>,
+    progress: &Progress,
+) -> Result<SamplerSpectrum> {
     check_res(res)?;
     check_sets(sets)?;
-    let spec = sampler.spec();
-    let plan = sampler.plan(n, dims)?;
+    let (n, dims) = (plan.n(), plan.dims());
     let closed = |mean: Vec<f64>, source: &str| SamplerSpectrum {
-        sampler: spec.clone(),
+        sampler: spec.to_string(),
         n,
         dims,
         res,
@@ -219,8 +260,8 @@ pub fn sampler_spectrum(
         batches: Vec::new(),
         source: source.into(),
     };
-    match spec.as_str() {
-        "random" => return Ok(closed(vec![1.0; res.pow(dims as u32)], "closed form: 1 (white noise)")),
+    let formula = match spec {
+        "random" => Some(closed(vec![1.0; res.pow(dims as u32)], "closed form: 1 (white noise)")),
         "jitter" => {
             let m = (n as f64).powf(1.0 / dims as f64).round();
             let sinc2 = |k: i64| {
@@ -230,12 +271,25 @@ pub fn sampler_spectrum(
             let p = frequencies(res, dims)
                 .map(|k| if k == [0, 0] { 0.0 } else { 1.0 - sinc2(k[0]) * if dims == 2 { sinc2(k[1]) } else { 1.0 } })
                 .collect();
-            return Ok(closed(p, "closed form: 1 - prod sinc^2(pi k_i / m), m^d strata"));
+            Some(closed(p, "closed form: 1 - prod sinc^2(pi k_i / m), m^d strata"))
         }
-        _ => {}
+        _ => None,
+    };
+    if let Some(s) = formula {
+        progress.advance(sets as u64)?;
+        return Ok(s);
+    }
+    let key = cache::Key { spec, n, dims, res, sets, seed };
+    if let Some(found) = cache.and_then(|c| c.load(&key)) {
+        progress.advance(sets as u64)?;
+        return Ok(found);
     }
     let generated = plan.generate_sets(seed, sets, &Progress::SILENT)?;
-    spectrum_of_sets(&spec, &generated, res, progress)
+    let measured = spectrum_of_sets(spec, &generated, res, progress)?;
+    if let Some(c) = cache {
+        c.store(&key, &measured);
+    }
+    Ok(measured)
 }
 
 /// The measured spectrum of the sets `sets` of the sampler `spec` (all of one size and
@@ -289,11 +343,35 @@ pub struct Predicted {
     pub se: f64,
 }
 
-/// The predicted variance of `sampler`'s shifted estimator of `f` (the module's formula).
+/// The predicted variance of `sampler`'s shifted estimator of `f` (the module's formula,
+/// summed over the integer frequencies of the window).
 ///
 /// # Errors
 /// Spectra of different grids or dimensions.
 pub fn predict(f: &IntegrandSpectrum, s: &SamplerSpectrum) -> Result<Predicted> {
+    weighted(f, s, |p| p.to_vec())
+}
+
+/// The radial form of [`predict`], for isotropic samplers (Pilleboue et al. 2015's
+/// radially averaged spectra): P replaced at each frequency by its mean over the ring of
+/// frequencies of the same rounded radius round(|k|), so that only the sampler's radial
+/// spectrum enters, weighted by the integrand's power summed over each ring. It equals the
+/// torus sum when P is constant on rings (an isotropic expected spectrum), and differs from
+/// it by the sampler's anisotropy otherwise (a grid, a lattice).
+///
+/// # Errors
+/// Spectra of different grids or dimensions.
+pub fn predict_radial(f: &IntegrandSpectrum, s: &SamplerSpectrum) -> Result<Predicted> {
+    let rings = Rings::new(s.res, s.dims);
+    weighted(f, s, |p| {
+        let means = rings.means(p);
+        rings.of.iter().map(|&r| means[r]).collect()
+    })
+}
+
+/// (1/n) [Var(f) + sum |F|^2 (P - 1)] for P = `view` of the sampler's mean periodogram, with
+/// the standard error from the same of its batches.
+fn weighted(f: &IntegrandSpectrum, s: &SamplerSpectrum, view: impl Fn(&[f64]) -> Vec<f64>) -> Result<Predicted> {
     if f.res != s.res || f.dims != s.dims {
         return Err(Error::Invalid(format!(
             "the integrand's spectrum is {}D at {} and the sampler's {}D at {}",
@@ -301,7 +379,7 @@ pub fn predict(f: &IntegrandSpectrum, s: &SamplerSpectrum) -> Result<Predicted> 
         )));
     }
     let one = |p: &[f64]| {
-        let correction: f64 = f.power.iter().zip(p).map(|(w, p)| w * (p - 1.0)).sum();
+        let correction: f64 = f.power.iter().zip(view(p)).map(|(w, p)| w * (p - 1.0)).sum();
         (f.variance + correction) / s.n as f64
     };
     let variance = one(&s.mean);
@@ -314,6 +392,100 @@ pub fn predict(f: &IntegrandSpectrum, s: &SamplerSpectrum) -> Result<Predicted> 
         0.0
     };
     Ok(Predicted { variance, se })
+}
+
+/// The rings round(|k|) = r of the frequency grid.
+struct Rings {
+    /// The ring of each frequency, in grid order.
+    of: Vec<usize>,
+    /// Frequencies per ring.
+    count: Vec<usize>,
+}
+
+impl Rings {
+    fn new(res: usize, dims: usize) -> Rings {
+        let of: Vec<usize> =
+            frequencies(res, dims).map(|k| (k[0] as f64).hypot(k[1] as f64).round() as usize).collect();
+        let mut count = vec![0; of.iter().max().map_or(0, |m| m + 1)];
+        of.iter().for_each(|&r| count[r] += 1);
+        Rings { of, count }
+    }
+
+    /// The mean of `p` over each ring.
+    fn means(&self, p: &[f64]) -> Vec<f64> {
+        let mut sum = vec![0.0; self.count.len()];
+        self.of.iter().zip(p).for_each(|(&r, v)| sum[r] += v);
+        sum.iter().zip(&self.count).map(|(s, &c)| s / c as f64).collect()
+    }
+}
+
+/// How far (in |k| / sqrt(n)) the small-frequency fit reaches: well inside the region where
+/// a stratified pattern's spectrum still rises as a power.
+pub const SMALL_FREQUENCY_REACH: f64 = 0.25;
+
+/// A radial mean below this counts as zero (a zero region, as a lattice's).
+const ZERO: f64 = 1e-10;
+
+/// The small-frequency behaviour of a sampler's expected spectrum, P(k) ~ c (|k| /
+/// sqrt(n))^beta for |k| / sqrt(n) <= [`SMALL_FREQUENCY_REACH`] (a spectrum whose shape
+/// scales with sqrt(n), as a stationary pattern's does), and the convergence exponents it
+/// implies (the analysis of Pilleboue et al. 2015).
+///
+/// With |F(k)|^2 ~ |k|^-a, the variance (1/n) sum |F|^2 P falls as n^(-1 - beta/2) while the
+/// small frequencies dominate (beta < a - d) and as n^(-1 - (a - d)/2) once the integrand's
+/// tail does. A band-limited integrand (a trigonometric polynomial) is the best case,
+/// n^(-1 - beta/2); an integrand with a jump along a smooth curve (a = d + 1: the disk, the
+/// half-plane) the worst case of the piecewise-smooth ones, n^(-1 - min(beta, 1)/2).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct SmallFrequency {
+    /// beta; `None` when P vanishes on every ring of the fit region (a zero region).
+    pub exponent: Option<f64>,
+    /// c; `None` with a zero region.
+    pub constant: Option<f64>,
+    /// The (count, ring) points fitted, zeros included.
+    pub points: usize,
+    /// The predicted exponent of the variance on a band-limited integrand; `None`: faster
+    /// than any power of n (a zero region), until it reaches the integrand's band.
+    pub best: Option<f64>,
+    /// The predicted exponent on an integrand with a jump along a smooth curve.
+    pub worst: f64,
+}
+
+/// The small-frequency fit over the spectra of one sampler at several counts: the log of
+/// the radial spectrum (P averaged over each ring round(|k|) = r >= 1, so over every
+/// direction) against the log of the ring's root mean square |k| / sqrt(n), by least
+/// squares over the rings within reach; `None` when fewer than 3 rings are nonzero in a
+/// region that is not all zero.
+pub fn small_frequency(spectra: &[&SamplerSpectrum]) -> Option<SmallFrequency> {
+    let mut points = Vec::new();
+    let mut zeros = 0;
+    for s in spectra {
+        let rings = Rings::new(s.res, s.dims);
+        let root = (s.n as f64).sqrt();
+        let squares =
+            rings.means(&frequencies(s.res, s.dims).map(|k| (k[0] * k[0] + k[1] * k[1]) as f64).collect::<Vec<_>>());
+        for (r, (&p, &square)) in rings.means(&s.mean).iter().zip(&squares).enumerate().skip(1) {
+            let t = square.sqrt() / root;
+            // only whole rings: those inside the window's inscribed circle
+            if t > SMALL_FREQUENCY_REACH || 2 * r >= s.res {
+                continue;
+            }
+            if p <= ZERO { zeros += 1 } else { points.push((t, p)) }
+        }
+    }
+    if points.is_empty() && zeros >= 3 {
+        return Some(SmallFrequency { exponent: None, constant: None, points: zeros, best: None, worst: -1.5 });
+    }
+    let (beta, _) = crate::experiment::loglog_fit(&points)?;
+    let logs: Vec<f64> = points.iter().map(|(t, p)| p.ln() - beta * t.ln()).collect();
+    let constant = (logs.iter().sum::<f64>() / logs.len() as f64).exp();
+    Some(SmallFrequency {
+        exponent: Some(beta),
+        constant: Some(constant),
+        points: points.len() + zeros,
+        best: Some(-1.0 - beta / 2.0),
+        worst: -1.0 - beta.clamp(0.0, 1.0) / 2.0,
+    })
 }
 
 /// The measured mean squared error of the estimator (1/n) sum f(x_j) over `sets`
@@ -374,173 +546,16 @@ pub fn measure_sets(
 
 /// (1/n) sum f(x_j + u mod 1).
 fn estimate(f: &dyn Integrand, set: &PointSet, u: &[f64]) -> f64 {
-    let mut x = vec![0.0; u.len()];
-    let sum: f64 = set
+    let points: Vec<f64> = set
         .iter()
-        .map(|p| {
-            for (xi, (pi, ui)) in x.iter_mut().zip(p.iter().zip(u)) {
+        .flat_map(|p| {
+            p.iter().zip(u).map(|(pi, ui)| {
                 let s = pi + ui;
-                *xi = if s >= 1.0 { s - 1.0 } else { s };
-            }
-            f.eval(&x)
-        })
-        .sum();
-    sum / set.len() as f64
-}
-
-/// Every registered sampler, at its default parameters, that makes sets of `dims`
-/// dimensions (what `samplab predict --all` ranks).
-pub fn every_sampler(dims: usize) -> Vec<Box<dyn Sampler>> {
-    crate::sampler::SAMPLERS
-        .iter()
-        .filter_map(|e| crate::sampler::build(e.about.name).ok())
-        .filter(|s| s.dims().contains(&dims))
-        .collect()
-}
-
-/// A prediction study: samplers x counts on one integrand, predicted (and measured when
-/// asked), ranked.
-pub struct Study<'a> {
-    /// The samplers.
-    pub samplers: &'a [Box<dyn Sampler>],
-    /// The integrand (one instance) and its spec.
-    pub integrand: (&'a dyn Integrand, String),
-    /// The counts n.
-    pub ns: &'a [usize],
-    /// Frequencies per axis of the spectra.
-    pub res: usize,
-    /// Realizations per measured spectrum.
-    pub sets: usize,
-    /// Realizations per measured variance, and whether each is shifted; none: not measured.
-    pub measure: Option<(usize, bool)>,
-    /// The seed.
-    pub seed: Seed,
-}
-
-/// One (sampler, n) of a study.
-#[derive(Debug, Clone, serde::Serialize)]
-pub struct Row {
-    /// The sampler's spec.
-    pub sampler: String,
-    /// Points per estimate.
-    pub n: usize,
-    /// The predicted variance.
-    pub predicted: Predicted,
-    /// Where the sampler's spectrum comes from.
-    pub spectrum: String,
-    /// The measured mean squared error, when asked.
-    pub measured: Option<Predicted>,
-}
-
-/// One sampler's summary: exponents and its rank.
-#[derive(Debug, Clone, serde::Serialize)]
-pub struct Ranked {
-    /// The sampler's spec.
-    pub sampler: String,
-    /// 1 for the smallest predicted variance at the largest n.
-    pub rank: usize,
-    /// The predicted variance at the largest n.
-    pub variance: f64,
-    /// The slope of log predicted variance against log n (three counts or more).
-    pub predicted_exponent: Option<f64>,
-    /// The same of the measured mean squared error.
-    pub measured_exponent: Option<f64>,
-}
-
-/// What a study gives.
-#[derive(Debug, Clone, serde::Serialize)]
-pub struct Outcome {
-    /// The integrand's spec.
-    pub integrand: String,
-    /// Where its spectrum comes from.
-    pub integrand_spectrum: String,
-    /// The estimated error of the integrand's spectrum (0 for a closed form).
-    pub integrand_error: f64,
-    /// Every (sampler, n), in the order given.
-    pub rows: Vec<Row>,
-    /// The samplers, best first.
-    pub ranking: Vec<Ranked>,
-    /// Samplers left out, with the reason (a count they cannot make).
-    pub skipped: Vec<(String, String)>,
-}
-
-impl Study<'_> {
-    /// The progress units of [`Study::run`]: one per realization transformed or measured.
-    pub fn units(&self) -> u64 {
-        let per = self.sets + self.measure.map_or(0, |(m, _)| m);
-        (self.samplers.len() * self.ns.len() * per) as u64
-    }
-
-    /// Predict (and measure) every sampler at every count; a sampler that refuses one of
-    /// the counts is skipped with its reason.
-    ///
-    /// # Errors
-    /// No counts, a count of 0, fewer than 2 measured realizations, a bad grid or set
-    /// count, an integrand of the wrong dimension, or a stop.
-    pub fn run(&self, progress: &Progress) -> Result<Outcome> {
-        let setting = |name, value: usize, reason: &str| {
-            Err(Error::Setting { name, value: value.to_string(), reason: reason.into() })
-        };
-        if let Some(&n) = self.ns.iter().find(|&&n| n == 0) {
-            return setting("n", n, "counts must be positive");
-        }
-        if self.ns.is_empty() {
-            return Err(Error::Invalid("a prediction needs at least one count n".into()));
-        }
-        if let Some((m, _)) = self.measure.filter(|&(m, _)| m < 2) {
-            return setting("measure", m, "a measured variance needs at least 2 realizations");
-        }
-        let (f, spec) = (self.integrand.0, self.integrand.1.clone());
-        let fs = integrand_spectrum(f, self.res)?;
-        let (mut rows, mut skipped) = (Vec::new(), Vec::new());
-        for (k, s) in self.samplers.iter().enumerate() {
-            if let Some(bad) = self.ns.iter().find_map(|&n| s.plan(n, f.dims()).err()) {
-                skipped.push((s.spec(), bad.to_string()));
-                progress.advance((self.ns.len() * (self.sets + self.measure.map_or(0, |(m, _)| m))) as u64)?;
-                continue;
-            }
-            for &n in self.ns {
-                let seed = self.seed.derive(k as u64).derive(n as u64);
-                let spectrum = sampler_spectrum(s.as_ref(), n, f.dims(), self.res, self.sets, seed, progress)?;
-                let measured = match self.measure {
-                    Some((m, shift)) => Some(measure(s.as_ref(), f, n, m, seed.derive(1), shift, progress)?),
-                    None => None,
-                };
-                rows.push(Row {
-                    sampler: s.spec(),
-                    n,
-                    predicted: predict(&fs, &spectrum)?,
-                    spectrum: spectrum.source,
-                    measured,
-                });
-            }
-        }
-        let largest = self.ns.iter().copied().max().unwrap_or(0);
-        let exponent = |name: &str, value: &dyn Fn(&Row) -> Option<f64>| {
-            let points: Vec<(f64, f64)> =
-                rows.iter().filter(|r| r.sampler == name).filter_map(|r| Some((r.n as f64, value(r)?))).collect();
-            crate::experiment::loglog_fit(&points).map(|(slope, _)| slope)
-        };
-        let mut ranking: Vec<Ranked> = rows
-            .iter()
-            .filter(|r| r.n == largest)
-            .map(|r| Ranked {
-                sampler: r.sampler.clone(),
-                rank: 0,
-                variance: r.predicted.variance,
-                predicted_exponent: exponent(&r.sampler, &|r| Some(r.predicted.variance)),
-                measured_exponent: exponent(&r.sampler, &|r| r.measured.map(|m| m.variance)),
+                if s >= 1.0 { s - 1.0 } else { s }
             })
-            .collect();
-        ranking.sort_by(|a, b| a.variance.total_cmp(&b.variance).then_with(|| a.sampler.cmp(&b.sampler)));
-        ranking.iter_mut().enumerate().for_each(|(i, r)| r.rank = i + 1);
-        Ok(Outcome {
-            integrand: spec,
-            integrand_spectrum: fs.source,
-            integrand_error: fs.error,
-            rows,
-            ranking,
-            skipped,
         })
-    }
+        .collect();
+    let mut values = vec![0.0; set.len()];
+    f.eval_many(&points, &mut values);
+    values.iter().sum::<f64>() / set.len() as f64
 }

@@ -1,0 +1,141 @@
+//! Integrands from Python: a family spec, a 2D array of values (a [`Grid`]), or a vectorized
+//! callable, evaluated in batches with the GIL taken for each batch.
+
+use std::sync::Mutex;
+
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use samplab::Seed;
+use samplab::integrand::{Family, Grid, Integrand};
+
+use crate::err;
+
+/// A Python function f(x) of an (n, d) array returning n values, with its integral when
+/// known. The first exception it raises (or a wrong shape, or a value that is not finite)
+/// is kept and re-raised by [`Callable::failure`]; later batches are not evaluated.
+pub struct Callable {
+    f: Py<PyAny>,
+    dims: usize,
+    exact: Option<f64>,
+    failed: Mutex<Option<PyErr>>,
+}
+
+impl Callable {
+    /// The error kept from the evaluations, if any.
+    pub fn failure(&self) -> Option<PyErr> {
+        self.failed.lock().map_or(None, |mut e| e.take())
+    }
+
+    fn batch(&self, py: Python<'_>, points: &[f64]) -> PyResult<Vec<f64>> {
+        let n = points.len() / self.dims;
+        let x = PyArray1::from_slice(py, points).reshape([n, self.dims])?;
+        let result = self.f.call1(py, (x,))?;
+        let numpy = py.import("numpy")?;
+        let flat = numpy.call_method1("asarray", (result, "float64"))?.call_method0("ravel")?;
+        let values: Vec<f64> = flat.extract()?;
+        if values.len() != n {
+            return Err(err(format!(
+                "the integrand returned {} values for {n} points; it must return one per row",
+                values.len()
+            )));
+        }
+        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+            let at = &points[i * self.dims..(i + 1) * self.dims];
+            return Err(err(format!("the integrand returned {} at {at:?}", values[i])));
+        }
+        Ok(values)
+    }
+}
+
+impl Integrand for Callable {
+    fn dims(&self) -> usize {
+        self.dims
+    }
+    fn eval(&self, x: &[f64]) -> f64 {
+        let mut out = [0.0];
+        self.eval_many(x, &mut out);
+        out[0]
+    }
+    fn exact(&self) -> f64 {
+        self.exact.unwrap_or(f64::NAN)
+    }
+    fn eval_many(&self, points: &[f64], out: &mut [f64]) {
+        let failed = self.failed.lock().map_or(true, |e| e.is_some());
+        let values = if failed { Err(None) } else { Python::attach(|py| self.batch(py, points)).map_err(Some) };
+        match values {
+            Ok(v) => out.copy_from_slice(&v),
+            Err(e) => {
+                out.fill(f64::NAN);
+                if let (Some(e), Ok(mut kept)) = (e, self.failed.lock()) {
+                    kept.get_or_insert(e);
+                }
+            }
+        }
+    }
+}
+
+/// One integrand as given from Python, with its name.
+pub enum Given {
+    /// A family's instance 0 for the seed.
+    Family(Box<dyn Integrand>),
+    /// Values on a grid.
+    Grid(Grid),
+    /// A callable.
+    Callable(Callable),
+}
+
+impl Given {
+    /// `value`: a spec string, a 2D float array (rows from y = 0) or a callable of `dims`
+    /// dimensions with integral `exact` when known.
+    pub fn from_python(
+        value: &Bound<'_, PyAny>,
+        seed: u64,
+        dims: usize,
+        exact: Option<f64>,
+    ) -> PyResult<(Given, String)> {
+        if let Ok(spec) = value.extract::<String>() {
+            let family = Family::parse(&spec).map_err(err)?;
+            return Ok((Given::Family(family.instance(Seed(seed), 0).map_err(err)?), family.spec()));
+        }
+        if let Ok(array) = value.extract::<PyReadonlyArray2<f64>>() {
+            let (h, w) = (array.shape()[0], array.shape()[1]);
+            let values = array.as_array().iter().copied().collect();
+            return Ok((Given::Grid(Grid::new(w, h, values).map_err(err)?), format!("array {w}x{h}")));
+        }
+        if value.is_callable() {
+            if !(1..=2).contains(&dims) {
+                return Err(err(format!("d {dims}: a callable integrand is 1D or 2D here")));
+            }
+            let name =
+                value.getattr("__name__").and_then(|n| n.extract::<String>()).unwrap_or_else(|_| "callable".into());
+            let f = Callable { f: value.clone().unbind(), dims, exact, failed: Mutex::new(None) };
+            return Ok((Given::Callable(f), name));
+        }
+        Err(err(format!(
+            "integrand: expected a spec string, a 2D float array or a callable, not {}",
+            value.get_type().name()?
+        )))
+    }
+
+    /// The integrand.
+    pub fn integrand(&self) -> &dyn Integrand {
+        match self {
+            Given::Family(f) => f.as_ref(),
+            Given::Grid(g) => g,
+            Given::Callable(c) => c,
+        }
+    }
+
+    /// The error a callable kept, if any.
+    pub fn failure(&self) -> Option<PyErr> {
+        match self {
+            Given::Callable(c) => c.failure(),
+            _ => None,
+        }
+    }
+
+    /// Whether the integral is known (a callable's only when given).
+    pub fn has_exact(&self) -> bool {
+        !matches!(self, Given::Callable(Callable { exact: None, .. }))
+    }
+}
