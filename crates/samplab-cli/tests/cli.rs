@@ -1,7 +1,9 @@
 //! The real `samplab` binary: acceptance commands, determinism across thread counts,
 //! bad input (exit 2, one line, no output), CLI == library.
 
-use std::path::PathBuf;
+mod common;
+use common::Temp;
+
 use std::process::{Command, Output};
 
 use samplab::io::{self, Format};
@@ -22,11 +24,8 @@ fn samplab_env(args: &[&str], key: &str, value: &str) -> Output {
     command().args(args).env(key, value).output().expect("running samplab")
 }
 
-fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("samplab-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn temp(name: &str) -> Temp {
+    Temp::new("cli", name)
 }
 
 #[test]

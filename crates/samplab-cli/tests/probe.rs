@@ -5,17 +5,17 @@
 //! and one-line messages. Each case failed before the fixes of this file's commit.
 #![cfg(unix)]
 
-use std::path::{Path, PathBuf};
+mod common;
+use common::Temp;
+
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 const BIN: &str = env!("CARGO_BIN_EXE_samplab");
 
-fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("samplab-probe-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn temp(name: &str) -> Temp {
+    Temp::new("probe", name)
 }
 
 /// `script` run by sh in `dir`, `$S` the samplab binary, with a time limit (past it the

@@ -4,15 +4,15 @@
 //! refused in one line before any allocation, under the address-space limit `ulimit -v`.
 #![cfg(unix)]
 
-use std::path::{Path, PathBuf};
+mod common;
+use common::Temp;
+
+use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("samplab-signals-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+fn temp(name: &str) -> Temp {
+    Temp::new("signals", name)
 }
 
 /// Start `args` in `dir`, send `signal` after `after`, and check the stop: exit 130 within
