@@ -273,6 +273,15 @@ fn blue_noise_mask<'py>(py: Python<'py>, size: usize, channels: usize, seed: u64
     shaped(py, mask.values().to_vec(), &[size, size, channels])
 }
 
+/// The canonical spec of the sampler `spec` (as the CLI writes it), after every check for
+/// `n` points in `d` dimensions; nothing is generated.
+#[pyfunction]
+fn sampler_check(spec: &str, n: usize, d: usize) -> PyResult<String> {
+    let sampler = samplab::sampler::build(spec).map_err(err)?;
+    sampler.plan(n, d).map_err(err)?;
+    Ok(sampler.spec())
+}
+
 /// Whether `spec` names a progressive sequence (random access, extensible).
 #[pyfunction]
 fn is_sequence(spec: &str) -> PyResult<bool> {
@@ -944,6 +953,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(predict, m)?)?;
+    m.add_function(wrap_pyfunction!(sampler_check, m)?)?;
     m.add_function(wrap_pyfunction!(integrate_units, m)?)?;
     m.add_function(wrap_pyfunction!(integrate_merge, m)?)?;
     m.add_function(wrap_pyfunction!(spectrum_tree, m)?)?;

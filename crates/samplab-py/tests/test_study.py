@@ -74,6 +74,12 @@ def test_discrepancy_study_local_dask_and_cli_agree(client, cli):
                             "--sets", 250, "--seed", 3, "--json"))
     assert local.data == theirs
     assert on_dask.to_json() == local.to_json()
+    # a sampler named by an alias is written as the CLI writes it (its canonical spec)
+    alias = Study.discrepancy("star", "LHCube", 16, sets=20, seed=3).run(progress=False)
+    theirs = json.loads(cli("discrepancy", "star", "--sampler", "LHCube", "-n", 16, "--sets", 20, "--seed", 3, "--json"))
+    assert alias.data == theirs and alias.data["source"].startswith("nrooks ")
+    # and checking the arguments generates nothing: a CCVT of 10^6 points is not optimized here
+    Study.discrepancy("star", "ccvt", 10**6, sets=1)
 
 
 def test_render_study_local_dask_and_cli_agree(client, cli, tmp_path):

@@ -159,7 +159,8 @@ class Study:
         _chunks("sets", sets, sets_per_chunk)
         params = {
             "metrics": _some("metrics", [metrics] if isinstance(metrics, str) else list(metrics)),
-            "sampler": sampler,
+            # the canonical spec, as the CLI writes it; checked without generating a set
+            "sampler": _samplab.sampler_check(sampler, _count("n", n), _count("d", d)),
             "n": _count("n", n),
             "d": _count("d", d),
             "sets": sets,
@@ -168,7 +169,6 @@ class Study:
         }
         for m in params["metrics"]:
             _samplab.metric_flags(m)
-        _samplab.generate(sampler, params["n"], params["d"], params["seed"], 1)
         chunks = [[a, min(a + sets_per_chunk, sets)] for a in range(0, sets, sets_per_chunk)]
         return cls("discrepancy", params, chunks)
 
