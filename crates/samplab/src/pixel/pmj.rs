@@ -4,11 +4,10 @@
 //! pads; `pmj02.bn` adds a blue-noise shift per pixel.
 
 use super::dither::{MASK, Shifts};
-use super::sobol::shuffle;
 use super::{Family, Film, Pairs, PixelEntry, Keys, rekey, unit};
 use crate::error::Result;
 use crate::registry::About;
-use crate::sampler::randomize::scramble::permute;
+use crate::sampler::randomize::scramble::{owen_scramble_reversed, permute};
 use crate::sampler::stratified::pmj::pmj02_digits;
 use crate::seed::Seed;
 use crate::spec::Params;
@@ -61,7 +60,8 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
 pub(crate) struct Pmj {
     keys: Keys,
     spp: u32,
-    /// The pool's sequences one after the other, `spp` points each.
+    /// The pool's sequences one after the other, `spp` points each; for a power-of-two
+    /// spp each sequence is stored in bit-reversed order of its index (see [`Pmj::pair`]).
     pool: Vec<[u32; 2]>,
     /// The blue-noise shifts (`pmj02.bn`); none for `pmj02`, which shifts digits by hashes.
     shifts: Option<Shifts>,
@@ -69,7 +69,20 @@ pub(crate) struct Pmj {
 
 fn pool(film: Film, seed: Seed) -> Vec<[u32; 2]> {
     let base = seed.derive_str("pmj02 pool");
-    (0..POOL).flat_map(|k| pmj02_digits(film.spp as usize, base.derive(k as u64))).collect()
+    let spp = film.spp as usize;
+    (0..POOL)
+        .flat_map(|k| {
+            let points = pmj02_digits(spp, base.derive(k as u64));
+            if spp.is_power_of_two() {
+                let bits = spp.ilog2();
+                // position v holds sample reverse(v) (on log2 spp bits): the draws then read
+                // the scrambled index in the reversed domain, where it is computed
+                (0..spp).map(|v| points[v.reverse_bits().checked_shr(usize::BITS - bits).unwrap_or(0)]).collect()
+            } else {
+                points
+            }
+        })
+        .collect()
 }
 
 fn build_plain(_: &Params, film: Film, seed: Seed) -> Result<Family> {
@@ -89,16 +102,16 @@ fn permute_out_of_line(i: u32, len: u32, key: u32) -> u32 {
 }
 
 impl Pairs for Pmj {
-    /// The pixel's key.
-    type Key = u64;
+    /// The pixel's key, and the sample index's 16 bits reversed (shared by the pairs).
+    type Key = (u64, u32);
 
     #[inline(always)]
-    fn key(&self, pixel: [u32; 2], frame: u32, _: u32) -> u64 {
-        self.keys.pixel(pixel, frame)
+    fn key(&self, pixel: [u32; 2], frame: u32, index: u32) -> (u64, u32) {
+        (self.keys.pixel(pixel, frame), (index & (self.spp - 1)).reverse_bits() >> 16)
     }
 
     #[inline(always)]
-    fn pair(&self, key: u64, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 2] {
+    fn pair(&self, (key, reversed): (u64, u32), pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 2] {
         let pair = dim / 2;
         let key = rekey(key, u64::from(pair));
         let i = if self.spp.is_power_of_two() {
@@ -106,8 +119,11 @@ impl Pairs for Pmj {
             // block of the sequence stays a block, so each prefix of 2^k of the pixel's
             // samples is still a (0,k,2)-net, and two pairs' orders are independent (an XOR
             // of the index, used before, tied sample j of one pair to sample j ^ c of
-            // another, and pairs drawn from alike sequences were correlated)
-            shuffle(index & (self.spp - 1), key as u32) & (self.spp - 1)
+            // another, and pairs drawn from alike sequences were correlated). It is
+            // `shuffle(index, key) & (spp - 1)` computed in the reversed domain: the
+            // scramble's bits 16 - log2 spp .. 16 read as a position of the reversed pool
+            let bits = self.spp.trailing_zeros();
+            (owen_scramble_reversed(reversed, key as u32) >> (16 - bits)) & (self.spp - 1)
         } else {
             permute_out_of_line(index % self.spp, self.spp, key as u32)
         } as usize;

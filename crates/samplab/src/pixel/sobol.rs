@@ -6,7 +6,7 @@ use super::{one_by_one, Family, ANY_SPP, Film, Keys, Pairs, PixelEntry, PixelSam
 use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::qmc::sobol::{SOBOL_MAX_DIMS, direction_numbers};
-use crate::sampler::randomize::scramble::{owen_scramble_reversed, owen_scramble_u32};
+use crate::sampler::randomize::scramble::owen_scramble_reversed;
 use crate::seed::Seed;
 use crate::spec::Params;
 
@@ -83,34 +83,54 @@ pub(super) fn owen_digits(reversed: u32, seed: u32) -> u32 {
     owen_scramble_reversed(reversed, seed).reverse_bits()
 }
 
-/// Sample `index`'s place in a pixel's shuffled sequence: its low 16 digits nested-uniform
-/// scrambled by `key` (so samples 0..2^m, m <= 16, map to an aligned block of 2^m points,
-/// a net), the digits above kept.
-#[inline(always)]
-pub(super) fn shuffle(index: u32, key: u32) -> u32 {
-    (index & !0xFFFF) | owen_scramble_u32(index << 16, key) >> 16
+/// One dimension's [`ByteTables`] for an index whose low 16 digits come bit-reversed: the
+/// low tables re-indexed by reversed bytes (entry [0][v] is `low[1][reverse(v)]`, entry
+/// [1][v] is `low[0][reverse(v)]`), the high ones unchanged. The per-pixel shuffle
+/// (below) computes the index reversed, so a draw looks its digits up without reversing it back.
+#[derive(Debug, Clone)]
+pub(crate) struct ReversedLow(ByteTables);
+
+impl ReversedLow {
+    fn new(dim: usize) -> ReversedLow {
+        let t = byte_tables(dim);
+        let by_reversed = |b: usize| std::array::from_fn(|v: usize| t.low[b][(v as u8).reverse_bits() as usize]);
+        ReversedLow(ByteTables { low: [by_reversed(1), by_reversed(0)], high: t.high })
+    }
+
+    /// The reversed digits of the point `high | reverse16(low)` (`low` below 2^16).
+    #[inline(always)]
+    fn digits(&self, high: u32, low: u32) -> u32 {
+        let t = &self.0;
+        let digits = u32::from(t.low[0][(low & 0xFF) as usize] ^ t.low[1][(low >> 8 & 0xFF) as usize]);
+        if high == 0 { digits } else { digits ^ t.high[0][(high >> 16 & 0xFF) as usize] ^ t.high[1][(high >> 24) as usize] }
+    }
 }
 
 #[derive(Debug)]
 pub(crate) struct Burley {
     keys: Keys,
-    tables: Vec<ByteTables>,
+    tables: Vec<ReversedLow>,
 }
 
 fn build_sobol(_: &Params, film: Film, seed: Seed) -> Result<Family> {
-    Ok(Family::from(Burley { keys: Keys::new(seed, film.dims), tables: (0..film.dims as usize).map(byte_tables).collect() }))
+    Ok(Family::from(Burley { keys: Keys::new(seed, film.dims), tables: (0..film.dims as usize).map(ReversedLow::new).collect() }))
 }
 
 impl Burley {
     #[inline(always)]
-    fn value(&self, key: u32, index: u32, dim: u32) -> f64 {
-        unit(owen_digits(reversed_digits(&self.tables[dim as usize], index), self.keys.dim(key, dim)))
+    fn value(&self, key: u32, (high, low): (u32, u32), dim: u32) -> f64 {
+        unit(owen_digits(self.tables[dim as usize].digits(high, low), self.keys.dim(key, dim)))
     }
 
+    /// The pixel's key, and sample `index`'s place in the pixel's shuffled sequence: its
+    /// low 16 digits nested-uniform scrambled by the key (so samples 0..2^m, m <= 16, map
+    /// to an aligned block of 2^m points, a net), the digits above kept; the place as
+    /// (high digits, low 16 digits bit-reversed), the form [`ReversedLow`] reads.
     #[inline(always)]
-    fn shuffled(&self, pixel: [u32; 2], frame: u32, index: u32) -> (u32, u32) {
+    fn shuffled(&self, pixel: [u32; 2], frame: u32, index: u32) -> (u32, (u32, u32)) {
         let key = self.keys.pixel(pixel, frame);
-        (key as u32, shuffle(index, (key >> 32) as u32))
+        let low = owen_scramble_reversed(index.reverse_bits() >> 16, (key >> 32) as u32) & 0xFFFF;
+        (key as u32, (index & !0xFFFF, low))
     }
 }
 
@@ -127,7 +147,7 @@ impl PixelSampler for Burley {
         let d = dim as usize;
         match (self.tables.get(d..d + 4), self.keys.dims.get(d..d + 4)) {
             (Some(t), Some(h)) => {
-                let v = |k: usize| unit(owen_digits(reversed_digits(&t[k], i), Keys::combine(key, h[k])));
+                let v = |k: usize| unit(owen_digits(t[k].digits(i.0, i.1), Keys::combine(key, h[k])));
                 [v(0), v(1), v(2), v(3)]
             }
             // past the last dimension: only a caller's out-of-range key comes here

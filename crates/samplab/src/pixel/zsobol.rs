@@ -60,19 +60,6 @@ const PERMUTATIONS: [[u8; 4]; 24] = [
 ];
 
 /// Each permutation in one byte: digit d goes to bits 2d, 2d + 1.
-const PACKED: [u8; 24] = {
-    let mut packed = [0u8; 24];
-    let mut p = 0;
-    while p < 24 {
-        let mut d = 0;
-        while d < 4 {
-            packed[p] |= PERMUTATIONS[p][d] << (2 * d);
-            d += 1;
-        }
-        p += 1;
-    }
-    packed
-};
 
 #[derive(Debug)]
 pub(crate) struct ZSobol {
@@ -107,16 +94,20 @@ impl ZSobol {
         let odd = self.log2_spp & 1;
         // pbrt multiplies in 32 bits (`0x55555555u * dimension`)
         let salts = dims.map(|d| u64::from(0x5555_5555u32.wrapping_mul(d)));
-        let mut index = [0; N];
-        for i in (odd..self.base4_digits).rev() {
-            let shift = 2 * i - odd;
-            let digit = ((morton >> shift) & 3) as usize;
-            let higher = morton >> (shift + 2);
+        // the base-4 digits from the lowest up, so that every shift is by a constant: each
+        // permuted digit enters at the top of `acc`, which moves down two bits per digit
+        let digits = self.base4_digits - odd;
+        let mut rest = morton >> odd;
+        let mut acc = [0u64; N];
+        for _ in 0..digits {
+            let digit = (rest & 3) as usize;
+            rest >>= 2;
             for k in 0..N {
-                let p = ((mix_bits(higher ^ salts[k]) >> 24) % 24) as usize;
-                index[k] |= u64::from(PACKED[p] >> (2 * digit) & 3) << shift;
+                let p = ((mix_bits(rest ^ salts[k]) >> 24) % 24) as usize;
+                acc[k] = (acc[k] >> 2) | u64::from(PERMUTATIONS[p][digit]) << 62;
             }
         }
+        let mut index = acc.map(|a| a.checked_shr(64 - 2 * digits).unwrap_or(0) << odd);
         if odd == 1 {
             for k in 0..N {
                 index[k] |= (morton & 1) ^ (mix_bits((morton >> 1) ^ salts[k]) & 1);
@@ -125,7 +116,6 @@ impl ZSobol {
         index
     }
 
-    /// pbrt's `Hash(dim + 2, seed)` for the pair starting at `dim`, tabulated for frame 0.
     #[inline(always)]
     fn hash(&self, frame: u32, seed: u32, dim: u32) -> u64 {
         match self.hashes.get((dim / 2) as usize) {
