@@ -73,7 +73,11 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         })
         .collect::<anyhow::Result<_>>()?;
     drop(bar);
-    let out = if a.json { json(&metrics, &values, &sets, &source) } else { table(&metrics, &values, &source) };
+    let out = if a.json {
+        discrepancy::json(&metrics, &values, &sets.iter().map(PointSet::len).collect::<Vec<_>>(), &source)
+    } else {
+        table(&metrics, &values, &source)
+    };
     crate::emit(None, out.as_bytes())
 }
 
@@ -101,24 +105,4 @@ fn table(metrics: &[Metric], values: &[Vec<f64>], source: &str) -> String {
         }
     }
     out
-}
-
-fn json(metrics: &[Metric], values: &[Vec<f64>], sets: &[PointSet], source: &str) -> String {
-    let rows: Vec<serde_json::Value> = metrics
-        .iter()
-        .zip(values)
-        .map(|(m, v)| {
-            let (mean, sd, max) = summary(v);
-            let mut row = serde_json::to_value(m.flags()).expect("JSON of plain fields");
-            let fields = row.as_object_mut().expect("a struct is an object");
-            for (key, value) in
-                [("values", serde_json::json!(v)), ("mean", mean.into()), ("sd", sd.into()), ("max", max.into())]
-            {
-                fields.insert(key.into(), value);
-            }
-            row
-        })
-        .collect();
-    let v = serde_json::json!({ "source": source, "sets": sets.len(), "n": sets.iter().map(PointSet::len).collect::<Vec<_>>(), "metrics": rows });
-    format!("{}\n", serde_json::to_string_pretty(&v).expect("JSON of plain numbers"))
 }

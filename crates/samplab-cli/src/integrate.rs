@@ -83,11 +83,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         };
         samplab::io::write_atomic(path, &bytes)?;
     }
-    let out = if a.json {
-        format!("{}\n", serde_json::to_string_pretty(&serde_json::json!({ "rows": rows, "fits": fits }))?)
-    } else {
-        table(&rows, &fits)
-    };
+    let out = if a.json { samplab::experiment::json(&rows) } else { table(&rows, &fits) };
     crate::emit(None, out.as_bytes())
 }
 

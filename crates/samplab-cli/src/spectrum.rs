@@ -54,7 +54,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     let replace = if a.force { samplab::io::Replace::Force } else { samplab::io::Replace::IfOurs };
     samplab::io::check_folder(&a.output, replace)?;
     let crate::sets::Loaded { sets, source, spec } = a.source.load(a.file.as_deref(), 20, &samplab::io::ANY)?;
-    let method = if a.direct { spectrum::Method::Direct } else { spectrum::Method::Fast { tol: a.tolerance } };
+    let method = spectrum::Method::of(a.direct, a.tolerance);
     let bar = Bar::new(sets.len() as u64, "spectra");
     let st = spectrum::statistics_with_progress(&sets, a.res, method, &bar.progress())?;
     drop(bar);
@@ -71,14 +71,6 @@ fn theory_for(spec: &str, set: &PointSet) -> Option<(String, Vec<f64>)> {
     Some((theory.label, curve))
 }
 
-fn values<'a>(st: &'a Statistics, name: &str) -> &'a [f64] {
-    match name {
-        "periodogram" => &st.periodogram,
-        "expected" => &st.expected,
-        _ => &st.variance,
-    }
-}
-
 fn write(
     dir: &std::path::Path,
     st: &Statistics,
@@ -86,13 +78,11 @@ fn write(
     source: &str,
     theory: Option<&(String, Vec<f64>)>,
 ) -> anyhow::Result<()> {
-    let mut json_stats = serde_json::Map::new();
-    let mut radial_rows: Vec<Vec<f64>> = Vec::new();
+    let names: Vec<&str> = a.stat.iter().map(String::as_str).collect();
     let mut series = Vec::new();
     for name in &a.stat {
-        let v = values(st, name);
-        let (radial, aniso) = spectrum::radial(v, st.res, st.dims);
-        json_stats.insert(name.clone(), serde_json::json!({ "grid": v, "radial": radial, "anisotropy_db": aniso }));
+        let v = st.values(name);
+        let (radial, _) = spectrum::radial(v, st.res, st.dims);
         let mut csv = String::new();
         for row in v.chunks(if st.dims == 2 { st.res } else { v.len() }) {
             csv += &row.iter().map(|x| format!("{x:?}")).collect::<Vec<_>>().join(",");
@@ -112,8 +102,6 @@ fn write(
             colour_key: Some(name.clone()),
             ..Series::line(name.clone(), radial.iter().enumerate().map(|(i, &y)| ((i + 1) as f64, y)).collect())
         });
-        radial_rows.push(radial);
-        radial_rows.push(aniso);
     }
     if let Some((label, curve)) = theory {
         let bins = st.res / 2 - 1;
@@ -126,18 +114,7 @@ fn write(
             )
         });
     }
-    let mut header: Vec<String> = vec!["frequency".into()];
-    for name in &a.stat {
-        header.push(name.clone());
-        header.push(format!("{name}_anisotropy_db"));
-    }
-    let mut csv = header.join(",") + "\n";
-    for b in 0..st.res / 2 - 1 {
-        let row: Vec<String> =
-            std::iter::once(format!("{}", b + 1)).chain(radial_rows.iter().map(|r| format!("{:?}", r[b]))).collect();
-        csv += &(row.join(",") + "\n");
-    }
-    std::fs::write(dir.join("radial.csv"), csv)?;
+    std::fs::write(dir.join("radial.csv"), spectrum::radial_csv(st, &names))?;
     let chart = LineChart {
         title: format!("Radial averages — {source}"),
         x_label: "radial frequency (cycles per unit)".into(),
@@ -153,7 +130,7 @@ fn write(
         "source": source, "res": st.res, "dims": st.dims, "n": st.n, "sets": st.sets,
         "layout": "row-major; index (R/2, R/2) is DC; frequency = index - R/2 on each axis",
         "normalization": "S(w) = (1/N) sum exp(-2 pi i w.x); variance divides by M - 1; radial bins r = 1..R/2-1 by rounded |w|, DC excluded",
-        "statistics": json_stats,
+        "statistics": spectrum::json(st, &names),
     });
     std::fs::write(dir.join("spectrum.json"), serde_json::to_string(&json)?)?;
     Ok(())

@@ -21,7 +21,6 @@ use samplab::discrepancy::{Limits, Metric};
 use samplab::progress::Progress;
 use samplab::registry::{Entry, Registry};
 use samplab::spec::{Default, Kind};
-use samplab::spectrum::tree::Partial;
 use samplab::{PointSet, Seed};
 
 mod integrand;
@@ -273,15 +272,6 @@ fn blue_noise_mask<'py>(py: Python<'py>, size: usize, channels: usize, seed: u64
     shaped(py, mask.values().to_vec(), &[size, size, channels])
 }
 
-/// The canonical spec of the sampler `spec` (as the CLI writes it), after every check for
-/// `n` points in `d` dimensions; nothing is generated.
-#[pyfunction]
-fn sampler_check(spec: &str, n: usize, d: usize) -> PyResult<String> {
-    let sampler = samplab::sampler::build(spec).map_err(err)?;
-    sampler.plan(n, d).map_err(err)?;
-    Ok(sampler.spec())
-}
-
 /// Whether `spec` names a progressive sequence (random access, extensible).
 #[pyfunction]
 fn is_sequence(spec: &str) -> PyResult<bool> {
@@ -449,7 +439,7 @@ fn spectrum<'py>(
     tolerance: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let sets = point_sets(&points)?;
-    let method = method(direct, tolerance);
+    let method = samplab::spectrum::Method::of(direct, tolerance);
     let st = interruptible(py, usize::MAX, |stop| {
         samplab::spectrum::statistics_with_progress(&sets, res, method, &Progress::until(stop))
     })?;
@@ -469,164 +459,39 @@ fn statistics_dict<'py>(py: Python<'py>, st: &samplab::spectrum::Statistics) -> 
     Ok(out)
 }
 
-/// The shape of a spectrum study's merge tree for `sets` realizations: (the root's level,
-/// the number of nodes at each level from 0 to the root).
+/// A study's chunk list: the description (JSON, `{"kind": ..., parameters}`) checked
+/// before any work and cut into chunks of `per_chunk` units or sets; returns the
+/// description as the CLI writes it and the chunks ([`samplab::study::Description::plan`]).
 #[pyfunction]
-fn spectrum_tree(sets: usize) -> (u32, Vec<usize>) {
-    let root = samplab::spectrum::tree::root_level(sets);
-    (root, (0..=root).map(|l| samplab::spectrum::tree::nodes_at(sets, l)).collect())
+fn study_plan(description: &str, per_chunk: usize) -> PyResult<(String, Vec<Vec<u64>>)> {
+    let (d, chunks) = describe(description)?.plan(per_chunk).map_err(err)?;
+    Ok((serde_json::to_string(&d).map_err(err)?, chunks))
 }
 
-/// The direct DFT, or the fast path at `tolerance`.
-fn method(direct: bool, tolerance: f64) -> samplab::spectrum::Method {
-    if direct { samplab::spectrum::Method::Direct } else { samplab::spectrum::Method::Fast { tol: tolerance } }
+/// One chunk of a study, as bytes (what a worker returns and a checkpoint keeps).
+#[pyfunction]
+fn study_chunk<'py>(py: Python<'py>, description: &str, chunk: Vec<u64>) -> PyResult<Bound<'py, PyBytes>> {
+    let d = describe(description)?;
+    let data = interruptible(py, usize::MAX, |stop| d.compute(&chunk, &Progress::until(stop)))?;
+    Ok(PyBytes::new(py, &data))
 }
 
-/// Check a spectrum study's sampler (at `n` points in `d` dimensions), resolution and
-/// tolerance before any work.
+/// Every chunk's bytes, in chunk order, merged: (JSON, CSV, the spectrum statistics as
+/// `spectrum` returns them or None).
 #[pyfunction]
-fn spectrum_check(spec: &str, n: usize, d: usize, res: usize, direct: bool, tolerance: f64) -> PyResult<()> {
-    samplab::sampler::build(spec).and_then(|s| s.plan(n, d).map(|_| ())).map_err(err)?;
-    let method = method(direct, tolerance);
-    samplab::spectrum::Spectra::new(res, d, method).map(|_| ()).map_err(err)
-}
-
-/// The partial statistics (bytes) of node (`level`, `index`) of the merge tree over `sets`
-/// realizations of `spec` (set k seeded `seed.derive(k)`): one chunk of a spectrum study.
-#[pyfunction]
-#[allow(clippy::too_many_arguments)]
-fn spectrum_node<'py>(
+fn study_merge<'py>(
     py: Python<'py>,
-    spec: &str,
-    n: usize,
-    d: usize,
-    sets: usize,
-    seed: u64,
-    res: usize,
-    direct: bool,
-    tolerance: f64,
-    level: u32,
-    index: usize,
-) -> PyResult<Bound<'py, PyBytes>> {
-    let sampler = samplab::sampler::build(spec).map_err(err)?;
-    let plan = sampler.plan(n, d).map_err(err)?;
-    let method = method(direct, tolerance);
-    let spectra = samplab::spectrum::Spectra::new(res, d, method).map_err(err)?;
-    let source = samplab::spectrum::Sets::Generated { plan: &plan, seed: Seed(seed), m: sets };
-    let partial = interruptible(py, usize::MAX, |stop| {
-        spectra.node(&source, level, index, &Progress::until(stop)).map(|p| p.to_bytes())
-    })?;
-    Ok(PyBytes::new(py, &partial))
-}
-
-/// The statistics (as `spectrum` returns them) from the partials of every node of one
-/// level of the merge tree, in index order.
-#[pyfunction]
-fn spectrum_merge<'py>(
-    py: Python<'py>,
+    description: &str,
     parts: Vec<Vec<u8>>,
-    res: usize,
-    d: usize,
-    n: usize,
-) -> PyResult<Bound<'py, PyDict>> {
-    let st = py
-        .detach(|| {
-            let partials = parts.iter().map(|b| Partial::from_bytes(b)).collect::<samplab::Result<Vec<_>>>()?;
-            samplab::spectrum::tree::merge_up(partials)?.finish(res, d, n)
-        })
-        .map_err(err)?;
-    statistics_dict(py, &st)
+) -> PyResult<(String, String, Option<Bound<'py, PyDict>>)> {
+    let d = describe(description)?;
+    let merged = py.detach(|| d.merge(&parts)).map_err(err)?;
+    let statistics = merged.statistics.as_ref().map(|st| statistics_dict(py, st)).transpose()?;
+    Ok((merged.json, merged.csv, statistics))
 }
 
-/// An integration study from its Python arguments (built samplers, parsed family).
-struct StudyArgs {
-    samplers: Vec<Box<dyn samplab::Sampler>>,
-    family: samplab::integrand::Family,
-}
-
-impl StudyArgs {
-    fn new(samplers: &[String], integrand: &str, ns: &[usize]) -> PyResult<StudyArgs> {
-        let samplers =
-            samplers.iter().map(|s| samplab::sampler::build(s)).collect::<samplab::Result<Vec<_>>>().map_err(err)?;
-        let family = samplab::integrand::Family::parse(integrand).map_err(err)?;
-        if ns.contains(&0) {
-            return Err(err("counts must be positive"));
-        }
-        Ok(StudyArgs { samplers, family })
-    }
-
-    fn study<'a>(
-        &'a self,
-        ns: &'a [usize],
-        sets: usize,
-        instances: usize,
-        seed: u64,
-    ) -> samplab::experiment::Study<'a> {
-        samplab::experiment::Study {
-            samplers: &self.samplers,
-            family: &self.family,
-            ns,
-            sets,
-            instances,
-            seed: Seed(seed),
-        }
-    }
-}
-
-/// The statistics (40 bytes each) of units `units` of an integration study: one chunk of
-/// a distributed study. Unit u is sampler u / (counts x instances), count u / instances %
-/// counts, instance u % instances.
-#[pyfunction]
-#[allow(clippy::too_many_arguments)]
-fn integrate_units<'py>(
-    py: Python<'py>,
-    samplers: Vec<String>,
-    integrand: &str,
-    ns: Vec<usize>,
-    sets: usize,
-    instances: usize,
-    seed: u64,
-    units: Vec<usize>,
-) -> PyResult<Vec<Bound<'py, PyBytes>>> {
-    let args = StudyArgs::new(&samplers, integrand, &ns)?;
-    let study = args.study(&ns, sets, instances, seed);
-    let prepared = study.prepare().map_err(err)?;
-    let stats = interruptible(py, usize::MAX, |stop| {
-        let progress = Progress::until(stop);
-        units
-            .par_iter()
-            .map(|&u| prepared.unit(u, &progress).map(|s| s.to_bytes()))
-            .collect::<samplab::Result<Vec<_>>>()
-    })?;
-    Ok(stats.iter().map(|b| PyBytes::new(py, b)).collect())
-}
-
-/// The study's JSON (as `integrate` returns it) from every unit's statistics, in unit order.
-#[pyfunction]
-fn integrate_merge(
-    samplers: Vec<String>,
-    integrand: &str,
-    ns: Vec<usize>,
-    sets: usize,
-    instances: usize,
-    seed: u64,
-    units: Vec<Vec<u8>>,
-) -> PyResult<String> {
-    let args = StudyArgs::new(&samplers, integrand, &ns)?;
-    let study = args.study(&ns, sets, instances, seed);
-    let prepared = study.prepare().map_err(err)?;
-    let stats = units
-        .iter()
-        .map(|b| samplab::experiment::UnitStats::from_bytes(b))
-        .collect::<samplab::Result<Vec<_>>>()
-        .map_err(err)?;
-    study_json(&prepared.rows(&stats).map_err(err)?)
-}
-
-/// `{"rows": [...], "fits": [...]}`, as `samplab integrate --json` prints it.
-fn study_json(rows: &[samplab::experiment::Row]) -> PyResult<String> {
-    let fits = samplab::experiment::fits(rows);
-    serde_json::to_string(&serde_json::json!({ "rows": rows, "fits": fits })).map_err(err)
+fn describe(description: &str) -> PyResult<samplab::study::Description> {
+    serde_json::from_str(description).map_err(|e| err(format!("not a study description: {e}")))
 }
 
 /// The summary (count, mean, sample sd, min, max; compensated sums) the CLI prints of a
@@ -651,10 +516,9 @@ fn integrate(
     instances: usize,
     seed: u64,
 ) -> PyResult<String> {
-    let args = StudyArgs::new(&samplers, integrand, &ns)?;
-    let study = args.study(&ns, sets, instances, seed);
-    let rows = interruptible(py, usize::MAX, |stop| samplab::experiment::run(&study, &Progress::until(stop)))?;
-    study_json(&rows)
+    let d =
+        samplab::study::Description::Integrate { samplers, integrand: integrand.into(), n: ns, sets, instances, seed };
+    Ok(interruptible(py, usize::MAX, |stop| d.run(&Progress::until(stop)))?.json)
 }
 
 /// A prediction study, as `samplab predict --json` prints it: {"rows", "ranking", ...};
@@ -953,14 +817,10 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(predict, m)?)?;
-    m.add_function(wrap_pyfunction!(sampler_check, m)?)?;
-    m.add_function(wrap_pyfunction!(integrate_units, m)?)?;
-    m.add_function(wrap_pyfunction!(integrate_merge, m)?)?;
-    m.add_function(wrap_pyfunction!(spectrum_tree, m)?)?;
-    m.add_function(wrap_pyfunction!(spectrum_check, m)?)?;
-    m.add_function(wrap_pyfunction!(spectrum_node, m)?)?;
-    m.add_function(wrap_pyfunction!(spectrum_merge, m)?)?;
     m.add_function(wrap_pyfunction!(summary, m)?)?;
+    m.add_function(wrap_pyfunction!(study_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(study_chunk, m)?)?;
+    m.add_function(wrap_pyfunction!(study_merge, m)?)?;
     m.add_function(wrap_pyfunction!(integrand_eval, m)?)?;
     m.add_function(wrap_pyfunction!(reproduce, m)?)?;
     m.add_function(wrap_pyfunction!(render, m)?)?;

@@ -124,22 +124,14 @@ fn table_html(t: &Table) -> String {
     h
 }
 
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n']) { format!("\"{}\"", s.replace('"', "\"\"")) } else { s.to_string() }
-}
-
 fn table_files(dir: &Path, t: &Table) -> Result<(), Error> {
-    let mut csv = t.columns.iter().map(|c| csv_field(c)).collect::<Vec<_>>().join(",") + "\n";
+    let mut csv = samplab::io::csv_line(&t.columns);
     for row in &t.rows {
         // CSV keeps full precision
-        let cells: Vec<String> = row
-            .iter()
-            .map(|c| match c {
-                crate::Cell::Num { value, .. } => format!("{value:?}"),
-                other => csv_field(&other.text()),
-            })
-            .collect();
-        csv += &(cells.join(",") + "\n");
+        csv += &samplab::io::csv_line(row.iter().map(|c| match c {
+            crate::Cell::Num { value, .. } => format!("{value:?}"),
+            other => other.text(),
+        }));
     }
     write(&dir.join(format!("tables/{}.csv", t.id)), csv.as_bytes())?;
     let json = serde_json::to_string_pretty(t).expect("tables are plain data");

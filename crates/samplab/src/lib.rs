@@ -48,6 +48,7 @@ pub mod spatial;
 pub mod spec;
 pub mod spectrum;
 pub mod stats;
+pub mod study;
 pub mod theory;
 pub mod warp;
 

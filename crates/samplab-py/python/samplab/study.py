@@ -2,19 +2,13 @@
 statistics and rendered error, split into chunks that run here or on a Dask cluster and
 merge to the same bits.
 
-A study is a fixed list of chunks, decided by its description alone (never by the cluster):
-
-- integration: units (sampler, count, instance), each with all its M realizations,
-  ``units_per_chunk`` consecutive units per chunk; the units are merged in unit order by the
-  same code that ``samplab integrate`` runs;
-- spectrum: the sets are cut into blocks of 16, and the statistics are merged by a fixed
-  binary tree over the blocks (Welford within a block, Chan et al.'s pairwise update above);
-  a chunk is one node of the tree (``sets_per_chunk`` sets, a power of two times 16), and
-  the client merges the nodes upward exactly as a local run does;
-- discrepancy: ``sets_per_chunk`` consecutive realizations, their values concatenated in
-  set order and summarized with the CLI's compensated sums;
-- rendered error: a reference chunk, then ``seeds_per_chunk`` seeds per chunk, each seed's
-  errors against the reference, in seed order.
+A study is a fixed list of chunks, decided by its description alone (never by the cluster).
+The library (``samplab::study`` in Rust) describes the integration, spectrum and
+discrepancy kinds: their checks, their chunks, the computation of one chunk and the merge
+in chunk order into the JSON and CSV the CLI writes; this module schedules the chunks here
+or on Dask, keeps checkpoints and plots. Rendered error (a reference chunk, then
+``seeds_per_chunk`` seeds per chunk, each seed's errors against the reference) is the one
+kind still merged here.
 
 Every number of a chunk is a function of the study and the chunk alone (realization k is
 seeded by ``seed.derive(k)``), and partial results are merged in chunk order whatever order
@@ -49,7 +43,6 @@ __all__ = ["Study", "StudyResult"]
 
 FORMAT = 1
 MAGIC = b"samplab-chunk 1\n"
-BLOCK = 16
 
 
 def _canonical(value: Any) -> str:
@@ -68,6 +61,14 @@ class Study:
     # ----- constructors -------------------------------------------------------------------
 
     @classmethod
+    def _planned(cls, kind: str, params: Dict[str, Any], per_chunk: int) -> "Study":
+        """Checked and cut into chunks by the library, before any work."""
+        described, chunks = _samplab.study_plan(_canonical({"kind": kind, **params}), _count("per chunk", per_chunk))
+        params = json.loads(described)
+        del params["kind"]
+        return cls(kind, params, [list(c) for c in chunks])
+
+    @classmethod
     def integrate(
         cls,
         samplers: Sequence[str],
@@ -83,21 +84,10 @@ class Study:
         integrand family, ``sets`` realizations each (``samplab integrate``). A unit is one
         (sampler, count, instance) with all its realizations; a chunk is
         ``units_per_chunk`` consecutive units."""
-        params = {
-            "samplers": _some("samplers", [samplers] if isinstance(samplers, str) else list(samplers)),
-            "integrand": integrand,
-            "n": _some("n", [_count("n", x) for x in ([n] if isinstance(n, int) else n)]),
-            "sets": _count("sets", sets),
-            "instances": _count("instances", instances),
-            "seed": _seed(seed),
-        }
-        _positive("units_per_chunk", units_per_chunk)
-        _chunks("units", len(params["samplers"]) * len(params["n"]) * params["instances"], units_per_chunk)
-        # checks every sampler at every count and the settings before anything is planned
-        _samplab.integrate_units(*_integrate_args(params), [])
-        units = len(params["samplers"]) * len(params["n"]) * params["instances"]
-        chunks = [list(range(a, min(a + units_per_chunk, units))) for a in range(0, units, units_per_chunk)]
-        return cls("integrate", params, chunks)
+        samplers = [samplers] if isinstance(samplers, str) else list(samplers)
+        n = [_count("n", x) for x in ([n] if isinstance(n, int) else n)]
+        params = dict(samplers=samplers, integrand=integrand, n=n, sets=_count("sets", sets), instances=_count("instances", instances), seed=_seed(seed))
+        return cls._planned("integrate", params, units_per_chunk)
 
     @classmethod
     def spectrum(
@@ -116,28 +106,8 @@ class Study:
         """Periodogram, expected spectrum and spectrum variance of ``sets`` realizations of
         ``sampler`` (``samplab spectrum``). ``sets_per_chunk`` must be 16 times a power of
         two: a chunk is one node of the merge tree."""
-        _positive("sets_per_chunk", sets_per_chunk)
-        blocks = sets_per_chunk // BLOCK
-        if sets_per_chunk % BLOCK or blocks & (blocks - 1):
-            raise Error(f"sets_per_chunk = {sets_per_chunk}: must be 16 times a power of two (16, 32, 64, ...)")
-        if _count("sets", sets) < 2:
-            raise Error(f"sets = {sets}: the variance of the spectrum needs at least 2 sets")
-        _chunks("sets", sets, sets_per_chunk)
-        params = {
-            "sampler": sampler,
-            "n": _count("n", n),
-            "d": _count("d", d),
-            "sets": _count("sets", sets),
-            "res": _count("res", res),
-            "direct": bool(direct),
-            "tolerance": float(tolerance),
-            "seed": _seed(seed),
-        }
-        # the sampler at this count, the resolution and the tolerance, before any work
-        _samplab.spectrum_check(params["sampler"], params["n"], params["d"], params["res"], params["direct"], params["tolerance"])
-        root, counts = _samplab.spectrum_tree(params["sets"])
-        level = min(blocks.bit_length() - 1, root)
-        return cls("spectrum", params, [[level, i] for i in range(counts[level])])
+        params = dict(sampler=sampler, n=_count("n", n), d=_count("d", d), sets=_count("sets", sets), res=_count("res", res), direct=bool(direct), tolerance=float(tolerance), seed=_seed(seed))
+        return cls._planned("spectrum", params, sets_per_chunk)
 
     @classmethod
     def discrepancy(
@@ -154,23 +124,10 @@ class Study:
     ) -> "Study":
         """Discrepancies ``metrics`` of ``sets`` realizations of ``sampler`` (``samplab
         discrepancy --sampler``), ``sets_per_chunk`` realizations per chunk."""
-        _positive("sets", _count("sets", sets))
-        _positive("sets_per_chunk", sets_per_chunk)
-        _chunks("sets", sets, sets_per_chunk)
-        params = {
-            "metrics": _some("metrics", [metrics] if isinstance(metrics, str) else list(metrics)),
-            # the canonical spec, as the CLI writes it; checked without generating a set
-            "sampler": _samplab.sampler_check(sampler, _count("n", n), _count("d", d)),
-            "n": _count("n", n),
-            "d": _count("d", d),
-            "sets": sets,
-            "seed": _seed(seed),
-            "max_work": max_work,
-        }
-        for m in params["metrics"]:
-            _samplab.metric_flags(m)
-        chunks = [[a, min(a + sets_per_chunk, sets)] for a in range(0, sets, sets_per_chunk)]
-        return cls("discrepancy", params, chunks)
+        metrics = [metrics] if isinstance(metrics, str) else list(metrics)
+        max_work = None if max_work is None else float(max_work)
+        params = dict(metrics=metrics, sampler=sampler, n=_count("n", n), d=_count("d", d), sets=_count("sets", sets), seed=_seed(seed), max_work=max_work)
+        return cls._planned("discrepancy", params, sets_per_chunk)
 
     @classmethod
     def render(
@@ -259,8 +216,8 @@ class Study:
                 self._run_dask(client, todo, results, done, retries)
         finally:
             bar.close()
-        data = _merge(self.kind, self.params, [results[i] for i in range(len(self.chunks))])
-        return StudyResult(self.kind, self.params, data, computed, reused, time.monotonic() - start)
+        data, text, table = _merge(self.kind, self.params, [results[i] for i in range(len(self.chunks))])
+        return StudyResult(self.kind, self.params, data, computed, reused, time.monotonic() - start, text, table)
 
     def _run_here(self, todo: List[int], results: Dict[int, bytes], done: Any) -> None:
         dependency = self._dependency(results, lambda i: _compute(self.kind, self.params, self.chunks[i]), done)
@@ -306,55 +263,19 @@ def _positive(name: str, value: int) -> None:
         raise Error(f"{name} = {value}: must be at least 1")
 
 
-def _some(name: str, values: List[Any]) -> List[Any]:
-    if not values:
-        raise Error(f"{name}: empty; give at least one")
-    return values
-
-
-#: The most chunks a study is cut into: each is a Python object and a task.
-MAX_CHUNKS = 10**7
-
-
-def _chunks(name: str, items: int, per_chunk: int) -> None:
-    count = -(-_count(name, items) // max(1, _count("per chunk", per_chunk)))
-    if count > MAX_CHUNKS:
-        raise Error(f"{name} = {items} at {per_chunk} per chunk make {count} chunks, more than {MAX_CHUNKS}; put more in each chunk")
-
-
-def _integrate_args(p: Dict[str, Any]) -> tuple:
-    return (p["samplers"], p["integrand"], p["n"], p["sets"], p["instances"], p["seed"])
-
-
-def _spectrum_args(p: Dict[str, Any]) -> tuple:
-    return (p["sampler"], p["n"], p["d"], p["sets"], p["seed"], p["res"], p["direct"], p["tolerance"])
-
-
 def _compute(kind: str, params: Dict[str, Any], chunk: Any, dependency: Optional[bytes] = None) -> bytes:
     """One chunk's partial result, as bytes (what workers run and checkpoints keep)."""
-    if kind == "integrate":
-        return b"".join(_samplab.integrate_units(*_integrate_args(params), list(chunk)))
-    if kind == "spectrum":
-        level, index = chunk
-        return bytes(_samplab.spectrum_node(*_spectrum_args(params), level, index))
-    if kind == "discrepancy":
-        first, end = chunk
-        stack = _samplab.generate(params["sampler"], params["n"], params["d"], params["seed"], end - first, first)
-        values = [_samplab.discrepancy(m, stack, params["max_work"]) for m in params["metrics"]]
-        return np.asarray(values, dtype="<f8").tobytes()
-    if kind == "render":
-        if chunk == "reference":
-            image = _samplab.render(
-                params["scene"], params["light"], _settings(params, None), params["reference_samples"]
-            )
-            return _arrays_bytes(image["rgb"], image["visibility"])
-        rgb, visibility = _bytes_arrays(dependency)
-        errors = []
-        for seed in chunk:
-            image = _samplab.render(params["scene"], params["light"], _settings(params, seed), None)
-            errors.append(json.loads(_samplab.image_errors(image["rgb"], rgb, visibility, params["penumbra"])))
-        return _canonical(errors).encode()
-    raise Error(f"unknown study kind '{kind}'")
+    if kind != "render":
+        return bytes(_samplab.study_chunk(_canonical({"kind": kind, **params}), list(chunk)))
+    if chunk == "reference":
+        image = _samplab.render(params["scene"], params["light"], _settings(params, None), params["reference_samples"])
+        return _arrays_bytes(image["rgb"], image["visibility"])
+    rgb, visibility = _bytes_arrays(dependency)
+    errors = []
+    for seed in chunk:
+        image = _samplab.render(params["scene"], params["light"], _settings(params, seed), None)
+        errors.append(json.loads(_samplab.image_errors(image["rgb"], rgb, visibility, params["penumbra"])))
+    return _canonical(errors).encode()
 
 
 def _settings(params: Dict[str, Any], seed: Optional[int]) -> Dict[str, Any]:
@@ -382,32 +303,23 @@ def _bytes_arrays(data: Optional[bytes]) -> tuple:
     return np.load(f, allow_pickle=False), np.load(f, allow_pickle=False)
 
 
-def _merge(kind: str, params: Dict[str, Any], parts: List[bytes]) -> Dict[str, Any]:
-    """Every chunk's result, in chunk order, into the study's result."""
-    if kind == "integrate":
-        units = [part[i : i + 40] for part in parts for i in range(0, len(part), 40)]
-        return json.loads(_samplab.integrate_merge(*_integrate_args(params), units))
-    if kind == "spectrum":
-        return dict(_samplab.spectrum_merge(parts, params["res"], params["d"], params["n"]))
-    if kind == "discrepancy":
-        k = len(params["metrics"])
-        values = np.concatenate([np.frombuffer(p, dtype="<f8").reshape(k, -1) for p in parts], axis=1)
-        rows = []
-        for m, v in zip(params["metrics"], values):
-            row = json.loads(_samplab.metric_flags(m))
-            _, mean, sd, _, largest = _samplab.summary(v.tolist())
-            row.update(values=v.tolist(), mean=mean, sd=sd, max=largest)
-            rows.append(row)
-        source = f"{params['sampler']} n={params['n']} d={params['d']} sets={params['sets']} seed={params['seed']}"
-        return {"source": source, "sets": params["sets"], "n": [params["n"]] * params["sets"], "metrics": rows}
-    if kind == "render":
-        errors = [e for part in parts[1:] for e in json.loads(part)]
-        summary = {}
-        for name in errors[0]:
-            count, mean, sd, low, high = _samplab.summary([float(e[name]) for e in errors])
-            summary[name] = {"mean": mean, "sd": sd, "min": low, "max": high}
-        return {"seeds": params["seeds"], "errors": errors, "summary": summary}
-    raise Error(f"unknown study kind '{kind}'")
+def _merge(kind: str, params: Dict[str, Any], parts: List[bytes]) -> tuple:
+    """Every chunk's result, in chunk order, into the study's result: (data, JSON, CSV)."""
+    if kind != "render":
+        text, table, statistics = _samplab.study_merge(_canonical({"kind": kind, **params}), parts)
+        return (json.loads(text) if statistics is None else statistics), text, table
+    errors = [e for part in parts[1:] for e in json.loads(part)]
+    summary = {}
+    for name in errors[0]:
+        count, mean, sd, low, high = _samplab.summary([float(e[name]) for e in errors])
+        summary[name] = {"mean": mean, "sd": sd, "min": low, "max": high}
+    data = {"seeds": params["seeds"], "errors": errors, "summary": summary}
+    out = io.StringIO()
+    w = csv.writer(out, lineterminator="\n")
+    w.writerow(["seed"] + list(errors[0]))
+    for seed, e in zip(params["seeds"], errors):
+        w.writerow([seed] + list(e.values()))
+    return data, json.dumps(data, allow_nan=True), out.getvalue()
 
 
 @dataclass
@@ -421,56 +333,23 @@ class StudyResult:
     computed: int
     reused: int
     seconds: float
+    text: str = field(repr=False, default="")
+    table: str = field(repr=False, default="")
 
     def to_json(self, path: Optional[str] = None) -> str:
-        """The result as JSON (``samplab integrate --json``'s and ``samplab discrepancy
-        --json``'s structure; spectra as ``spectrum.json``'s grids and radial averages)."""
-        data = self.data
-        if self.kind == "spectrum":
-            data = {
-                name: {
-                    "grid": np.asarray(self.data[name]).ravel().tolist(),
-                    "radial": np.asarray(self.data[f"{name}_radial"]).tolist(),
-                    "anisotropy_db": np.asarray(self.data[f"{name}_anisotropy_db"]).tolist(),
-                }
-                for name in ("periodogram", "expected", "variance")
-            }
-        text = json.dumps(data, allow_nan=True)
+        """The result as the CLI writes it: ``samplab integrate --json``, ``samplab
+        discrepancy --json``, the ``statistics`` of ``spectrum.json``; per-seed errors and
+        their summary for renders."""
         if path:
-            _write_atomic(path, text.encode())
-        return text
+            _write_atomic(path, self.text.encode())
+        return self.text
 
     def to_csv(self, path: Optional[str] = None) -> str:
         """One row per result line: integration rows, per-metric summaries, per-seed
-        errors, or the radial averages of the spectra."""
-        out = io.StringIO()
-        w = csv.writer(out, lineterminator="\n")
-        if self.kind == "integrate":
-            keys = ["sampler", "integrand", "n", "relative_mean", "relative_variance", "rmse", "normalized_mse"]
-            w.writerow(keys + ["theory_statistic", "theory_value"])
-            for r in self.data["rows"]:
-                t = r.get("theory") or {}
-                w.writerow([r[k] for k in keys] + [t.get("statistic", ""), t.get("value", "")])
-        elif self.kind == "discrepancy":
-            w.writerow(["metric", "mean", "sd", "max"])
-            for r in self.data["metrics"]:
-                w.writerow([r["metric"], r["mean"], r["sd"], r["max"]])
-        elif self.kind == "render":
-            names = list(self.data["errors"][0])
-            w.writerow(["seed"] + names)
-            for seed, e in zip(self.data["seeds"], self.data["errors"]):
-                w.writerow([seed] + [e[k] for k in names])
-        else:
-            # radial.csv of `samplab spectrum`, byte for byte (numbers as Rust prints them)
-            names = ("periodogram", "expected", "variance")
-            w.writerow(["frequency"] + [x for n in names for x in (n, f"{n}_anisotropy_db")])
-            for b in range(len(self.data["periodogram_radial"])):
-                values = [float(self.data[x][b]) for n in names for x in (f"{n}_radial", f"{n}_anisotropy_db")]
-                w.writerow([b + 1] + [_rust_float(v) for v in values])
-        text = out.getvalue()
+        errors, or ``radial.csv`` of the spectra (numbers as the CLI prints them)."""
         if path:
-            _write_atomic(path, text.encode())
-        return text
+            _write_atomic(path, self.table.encode())
+        return self.table
 
     def plot(self, ax: Any = None) -> Any:
         """A matplotlib plot like the report's: relative variance against N (log-log),
@@ -501,18 +380,6 @@ class StudyResult:
             ax.set(xlabel="seed", ylabel=key, title=self.params["scene"])
         ax.legend()
         return ax
-
-
-def _rust_float(x: float) -> str:
-    """``x`` as Rust's ``{:?}`` prints it: Python's shortest repr, with Rust's spelling of
-    exponents (``1e-5``, not ``1e-05``) and of NaN."""
-    if x != x:
-        return "NaN"
-    text = repr(x)
-    if "e" in text:
-        mantissa, exponent = text.split("e")
-        text = f"{mantissa}e{int(exponent)}"
-    return text
 
 
 def _write_atomic(path: str, data: bytes) -> None:

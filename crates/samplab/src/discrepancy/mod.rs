@@ -142,6 +142,41 @@ pub struct Flags {
     pub lower_bound: bool,
 }
 
+/// `samplab discrepancy --json`: the source, the sets and their sizes `ns`, and per metric
+/// its flags, its values on every set (`values[m][k]`), their mean, sd (n - 1) and maximum.
+///
+/// # Panics
+/// Never: plain fields and numbers always make JSON.
+pub fn json(metrics: &[Metric], values: &[Vec<f64>], ns: &[usize], source: &str) -> String {
+    let rows: Vec<serde_json::Value> = metrics
+        .iter()
+        .zip(values)
+        .map(|(m, v)| {
+            let s = crate::stats::Summary::of(v);
+            let mut row = serde_json::to_value(m.flags()).expect("JSON of plain fields");
+            let fields = row.as_object_mut().expect("a struct is an object");
+            for (key, value) in
+                [("values", serde_json::json!(v)), ("mean", s.mean.into()), ("sd", s.sd.into()), ("max", s.max.into())]
+            {
+                fields.insert(key.into(), value);
+            }
+            row
+        })
+        .collect();
+    let v = serde_json::json!({ "source": source, "sets": ns.len(), "n": ns, "metrics": rows });
+    format!("{}\n", serde_json::to_string_pretty(&v).expect("JSON of plain numbers"))
+}
+
+/// Per metric its mean, sd (n - 1) and maximum over the sets, as CSV.
+pub fn csv(metrics: &[Metric], values: &[Vec<f64>]) -> String {
+    let mut out = crate::io::csv_line(["metric", "mean", "sd", "max"]);
+    for (m, v) in metrics.iter().zip(values) {
+        let s = crate::stats::Summary::of(v);
+        out += &crate::io::csv_line([m.spec(), format!("{:?}", s.mean), format!("{:?}", s.sd), format!("{:?}", s.max)]);
+    }
+    out
+}
+
 /// Limits on the exact algorithms whose cost grows fastest.
 #[derive(Debug, Clone, Copy)]
 pub struct Limits {

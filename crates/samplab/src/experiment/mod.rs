@@ -64,6 +64,49 @@ pub struct Prediction {
     pub source: &'static str,
 }
 
+/// `{"rows": [...], "fits": [...]}`, as `samplab integrate --json` prints it.
+///
+/// # Panics
+/// Never: plain fields and numbers always make JSON.
+pub fn json(rows: &[Row]) -> String {
+    let v = serde_json::json!({ "rows": rows, "fits": fits(rows) });
+    format!("{}\n", serde_json::to_string_pretty(&v).expect("JSON of plain numbers"))
+}
+
+/// The rows as CSV: sampler, integrand, n, the four statistics, and the closed-form
+/// prediction's statistic and value where there is one (numbers as Rust prints them).
+pub fn csv(rows: &[Row]) -> String {
+    let mut out = crate::io::csv_line([
+        "sampler",
+        "integrand",
+        "n",
+        "relative_mean",
+        "relative_variance",
+        "rmse",
+        "normalized_mse",
+        "theory_statistic",
+        "theory_value",
+    ]);
+    for r in rows {
+        let (statistic, value) = r
+            .theory
+            .as_ref()
+            .map_or((String::new(), String::new()), |t| (t.statistic.into(), format!("{:?}", t.value)));
+        out += &crate::io::csv_line([
+            r.sampler.clone(),
+            r.integrand.clone(),
+            r.n.to_string(),
+            format!("{:?}", r.relative_mean),
+            format!("{:?}", r.relative_variance),
+            format!("{:?}", r.rmse),
+            format!("{:?}", r.normalized_mse),
+            statistic,
+            value,
+        ]);
+    }
+    out
+}
+
 /// A fitted convergence exponent: relative variance ~ C N^exponent.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct Fit {

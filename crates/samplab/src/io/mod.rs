@@ -27,6 +27,19 @@ mod output;
 use output::write_atomic_with;
 pub use output::{MANIFEST, Replace, Staged, abandon, check_folder, write_atomic, write_folder};
 
+/// One CSV line (RFC 4180): the fields joined by commas, a field holding a comma, a quote
+/// or a line break quoted (its quotes doubled), and a newline.
+pub fn csv_line<S: AsRef<str>>(fields: impl IntoIterator<Item = S>) -> String {
+    let quoted: Vec<String> = fields
+        .into_iter()
+        .map(|f| {
+            let f = f.as_ref();
+            if f.contains([',', '"', '\n', '\r']) { format!("\"{}\"", f.replace('"', "\"\"")) } else { f.to_string() }
+        })
+        .collect();
+    quoted.join(",") + "\n"
+}
+
 /// A point-set file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {

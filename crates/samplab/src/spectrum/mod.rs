@@ -130,6 +130,47 @@ pub struct Statistics {
     pub variance: Vec<f64>,
 }
 
+/// The names of the three statistics, in the order the outputs list them.
+pub const STATISTICS: [&str; 3] = ["periodogram", "expected", "variance"];
+
+impl Statistics {
+    /// The values of statistic `name` (one of [`STATISTICS`]; the variance otherwise).
+    pub fn values(&self, name: &str) -> &[f64] {
+        match name {
+            "periodogram" => &self.periodogram,
+            "expected" => &self.expected,
+            _ => &self.variance,
+        }
+    }
+}
+
+/// `{name: {"grid", "radial", "anisotropy_db"}}` for the statistics `names`: the
+/// `statistics` of `samplab spectrum`'s `spectrum.json`.
+pub fn json(st: &Statistics, names: &[&str]) -> serde_json::Value {
+    let mut out = serde_json::Map::new();
+    for &name in names {
+        let v = st.values(name);
+        let (radial, aniso) = radial(v, st.res, st.dims);
+        out.insert(name.into(), serde_json::json!({ "grid": v, "radial": radial, "anisotropy_db": aniso }));
+    }
+    out.into()
+}
+
+/// `radial.csv` of `samplab spectrum`: per radial bin (1 .. R/2 - 1), each statistic's
+/// radial average and anisotropy in dB (numbers as Rust prints them).
+pub fn radial_csv(st: &Statistics, names: &[&str]) -> String {
+    let columns: Vec<(Vec<f64>, Vec<f64>)> = names.iter().map(|n| radial(st.values(n), st.res, st.dims)).collect();
+    let header = std::iter::once("frequency".to_string())
+        .chain(names.iter().flat_map(|n| [n.to_string(), format!("{n}_anisotropy_db")]));
+    let mut csv = crate::io::csv_line(header);
+    for b in 0..st.res / 2 - 1 {
+        let row = std::iter::once(format!("{}", b + 1))
+            .chain(columns.iter().flat_map(|(r, a)| [format!("{:?}", r[b]), format!("{:?}", a[b])]));
+        csv += &crate::io::csv_line(row);
+    }
+    csv
+}
+
 /// How each set's spectrum is computed.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Method {
@@ -140,6 +181,13 @@ pub enum Method {
         /// Relative tolerance in [1e-14, 0.1].
         tol: f64,
     },
+}
+
+impl Method {
+    /// The direct DFT when `direct`, else the fast path at `tolerance`.
+    pub fn of(direct: bool, tolerance: f64) -> Method {
+        if direct { Method::Direct } else { Method::Fast { tol: tolerance } }
+    }
 }
 
 impl Default for Method {
