@@ -74,3 +74,35 @@ impl Drop for Bar {
         self.bar.finish_and_clear();
     }
 }
+
+/// A bar per experiment of `samplab reproduce`, one under the other (the report's
+/// [`samplab_report::Event`]s drawn on stderr).
+pub(crate) struct Experiments {
+    bars: indicatif::MultiProgress,
+    current: std::sync::Mutex<Option<ProgressBar>>,
+}
+
+impl Experiments {
+    pub(crate) fn new() -> Experiments {
+        Experiments { bars: indicatif::MultiProgress::new(), current: std::sync::Mutex::new(None) }
+    }
+
+    /// Draw `event`.
+    pub(crate) fn show(&self, event: samplab_report::Event<'_>) {
+        use samplab_report::Event;
+        let mut current = self.current.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        match event {
+            Event::Started { paper, experiment } => {
+                let bar = self.bars.add(ProgressBar::new(1));
+                if let Ok(style) = ProgressStyle::with_template("{prefix:40} [{bar:30}] {pos}/{len} {elapsed}") {
+                    bar.set_style(style);
+                }
+                bar.set_prefix(format!("{paper} {experiment}"));
+                *current = Some(bar);
+            }
+            Event::Length(units) => current.iter().for_each(|b| b.set_length(units)),
+            Event::Advanced(units) => current.iter().for_each(|b| b.inc(units)),
+            Event::Finished(_) => current.take().iter().for_each(ProgressBar::finish),
+        }
+    }
+}

@@ -47,7 +47,8 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         replace: if a.force { samplab::io::Replace::Force } else { samplab::io::Replace::IfOurs },
     };
     let start = Instant::now();
-    let claims = samplab_report::reproduce(&chosen, &options, &crate::bar::STOP)?;
+    let bars = crate::bar::Experiments::new();
+    let claims = samplab_report::reproduce(&chosen, &options, &crate::bar::STOP, &|e| bars.show(e))?;
     let count = |name: &str| claims.iter().filter(|(_, c)| c.verdict_name() == name).count();
     let explained =
         claims.iter().filter(|(_, c)| c.verdict() == Verdict::NotReproduced && c.explanation.is_some()).count();

@@ -9,6 +9,7 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::RecvTimeoutError;
+use std::sync::{Mutex, PoisonError};
 use std::time::Duration;
 
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyReadonlyArray3, PyUntypedArrayMethods};
@@ -759,9 +760,12 @@ fn read_exr<'py>(py: Python<'py>, path: &str) -> PyResult<Bound<'py, PyDict>> {
 }
 
 /// Run the reproduction into `out` (replaced when complete, if samplab made it or `force`);
-/// returns the claims as JSON.
+/// returns the claims as JSON. `progress(paper, experiment, done, total)` is called as each
+/// experiment starts, advances (at most once per percent) and finishes; an exception it
+/// raises stops the run and is raised here.
 #[pyfunction]
-#[pyo3(signature = (out, full=false, only=None, seed=None, force=false))]
+#[pyo3(signature = (out, full=false, only=None, seed=None, force=false, progress=None))]
+#[allow(clippy::too_many_arguments)] // the keywords of samplab.reproduce
 fn reproduce(
     py: Python<'_>,
     out: &str,
@@ -769,6 +773,7 @@ fn reproduce(
     only: Option<Vec<String>>,
     seed: Option<u64>,
     force: bool,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<String> {
     let papers = samplab_report::paper::all();
     let chosen: Vec<&samplab_report::Paper> = match &only {
@@ -788,12 +793,63 @@ fn reproduce(
         out: out.into(),
         replace: if force { samplab::io::Replace::Force } else { samplab::io::Replace::IfOurs },
     };
-    let claims = interruptible(py, usize::MAX, |stop| samplab_report::reproduce(&chosen, &options, stop))?;
+    let failed: Mutex<Option<PyErr>> = Mutex::new(None);
+    let result = interruptible(py, usize::MAX, |stop| {
+        let state = Mutex::new(Watched::default());
+        let watch = |event: samplab_report::Event<'_>| {
+            let Some(callback) = &progress else { return };
+            let Some(args) = state.lock().unwrap_or_else(PoisonError::into_inner).hear(event) else { return };
+            Python::attach(|py| {
+                if let Err(e) = callback.call1(py, args) {
+                    stop.store(true, Ordering::Relaxed);
+                    failed.lock().unwrap_or_else(PoisonError::into_inner).get_or_insert(e);
+                }
+            });
+        };
+        samplab_report::reproduce(&chosen, &options, stop, &watch)
+    });
+    if let Some(e) = failed.into_inner().unwrap_or_else(PoisonError::into_inner) {
+        return Err(e);
+    }
+    let claims = result?;
     let list: Vec<serde_json::Value> = claims
         .iter()
         .map(|(paper, c)| serde_json::json!({ "paper": paper, "id": c.id, "verdict": c.verdict() }))
         .collect();
     serde_json::to_string(&list).map_err(err)
+}
+
+/// What a Python progress callback has been told of the running experiment.
+#[derive(Default)]
+struct Watched {
+    paper: String,
+    experiment: String,
+    done: u64,
+    total: u64,
+    percent: u64,
+}
+
+impl Watched {
+    /// The callback's arguments (paper, experiment, done, total) for `event`, or None when
+    /// it need not be called (an advance within the same percent).
+    fn hear(&mut self, event: samplab_report::Event<'_>) -> Option<(String, String, u64, u64)> {
+        match event {
+            samplab_report::Event::Started { paper, experiment } => {
+                *self = Watched { paper: paper.into(), experiment: experiment.into(), ..Watched::default() };
+            }
+            samplab_report::Event::Length(total) => self.total = total,
+            samplab_report::Event::Advanced(units) => {
+                self.done += units;
+                let percent = (self.done * 100).checked_div(self.total).unwrap_or(0);
+                if percent == self.percent {
+                    return None;
+                }
+                self.percent = percent;
+            }
+            samplab_report::Event::Finished(_) => self.done = self.done.max(self.total),
+        }
+        Some((self.paper.clone(), self.experiment.clone(), self.done, self.total))
+    }
 }
 
 /// The native module.

@@ -14,7 +14,6 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 use samplab::Seed;
 use samplab::progress::Progress;
 use serde::Serialize;
@@ -58,25 +57,61 @@ pub enum Scale {
     Full,
 }
 
-/// What an experiment gets: its scale, seed, progress bar and stop flag.
+/// What a run tells whoever watches it (a terminal's bars, a Python callback), in order:
+/// each experiment starts, says how many units of work it has, advances, and finishes.
+#[derive(Debug, Clone, Copy)]
+pub enum Event<'e> {
+    /// Experiment `experiment` of paper `paper` started.
+    Started {
+        /// The paper's key.
+        paper: &'e str,
+        /// The experiment's id.
+        experiment: &'e str,
+    },
+    /// The running experiment has this many units of work in all.
+    Length(u64),
+    /// This many more units of the running experiment are done.
+    Advanced(u64),
+    /// The running experiment finished, after this many seconds.
+    Finished(f64),
+}
+
+/// Whoever watches a run: called with each [`Event`], from any thread.
+pub type Watch<'a> = &'a (dyn Fn(Event<'_>) + Sync);
+
+/// A watcher that ignores every event.
+pub const UNWATCHED: Watch<'static> = &|_| {};
+
+/// What an experiment gets: its scale, seed, the run's watcher and stop flag.
 pub struct Ctx<'a> {
     /// The scale.
     pub scale: Scale,
     /// The experiment's own seed (derived from the run's seed and the experiment id).
     pub seed: Seed,
-    /// Progress of this experiment; set its length and increment it.
-    pub progress: ProgressBar,
+    /// Told of this experiment's length and progress.
+    pub watch: Watch<'a>,
     /// Raised to stop the run (Ctrl-C); long library calls are given it.
     pub stop: &'a AtomicBool,
 }
 
 impl Ctx<'_> {
+    /// This experiment has `units` units of work in all.
+    pub fn set_length(&self, units: u64) {
+        (self.watch)(Event::Length(units));
+    }
+
+    /// `units` more units of this experiment are done, without checking the stop flag
+    /// (what the library's [`Progress`] reports to).
+    pub fn tick(&self, units: u64) {
+        (self.watch)(Event::Advanced(units));
+    }
+
     /// `units` more units of this experiment are done.
     ///
     /// # Errors
     /// [`samplab::Error::Interrupted`] once the run is asked to stop.
     pub fn advance(&self, units: u64) -> Result<(), Error> {
-        self.progress.inc(units);
+        self.tick(units);
         Ok(Progress::until(self.stop).check()?)
     }
 
@@ -314,40 +349,38 @@ fn io_error(p: &Path, e: std::io::Error) -> Error {
     Error::Io { path: p.display().to_string(), reason: e.to_string() }
 }
 
-/// Run `papers` and write the report. Returns the claims. The run stops before the next
-/// experiment (and inside the integration studies) once `stop` is raised.
+/// Run `papers` and write the report, telling `watch` of each experiment's progress.
+/// Returns the claims. The run stops before the next experiment (and inside the long
+/// library calls) once `stop` is raised.
 ///
 /// # Errors
 /// An experiment or a write fails, or the run was stopped ([`samplab::Error::Interrupted`]);
 /// the target folder is then left as it was.
-///
-/// # Panics
-/// Never: the progress bars' template is a constant known to parse.
-pub fn reproduce(papers: &[&Paper], options: &Options, stop: &AtomicBool) -> Result<Vec<(String, Claim)>, Error> {
+pub fn reproduce(
+    papers: &[&Paper],
+    options: &Options,
+    stop: &AtomicBool,
+    watch: Watch<'_>,
+) -> Result<Vec<(String, Claim)>, Error> {
     // refused before the run, not after it
     samplab::io::check_folder(&options.out, options.replace)?;
-    let bars = MultiProgress::new();
     let mut results: Vec<(&Paper, Vec<Done>)> = Vec::new();
     for paper in papers {
         let mut done = Vec::new();
         for e in &paper.experiments {
-            let bar = bars.add(ProgressBar::new(1));
-            bar.set_style(
-                ProgressStyle::with_template("{prefix:40} [{bar:30}] {pos}/{len} {elapsed}").expect("valid template"),
-            );
-            bar.set_prefix(format!("{} {}", paper.key, e.id));
             let ctx = Ctx {
                 scale: options.scale,
                 seed: options.seed.derive_str(&format!("{}/{}", paper.key, e.id)),
-                progress: bar.clone(),
+                watch,
                 stop,
             };
             if stop.load(Ordering::Relaxed) {
                 return Err(samplab::Error::Interrupted.into());
             }
+            watch(Event::Started { paper: paper.key, experiment: e.id });
             let start = Instant::now();
             let output = (e.run)(&ctx)?;
-            bar.finish();
+            watch(Event::Finished(start.elapsed().as_secs_f64()));
             done.push(Done {
                 experiment: e.id,
                 title: format!("{} — {}", e.title, e.source),

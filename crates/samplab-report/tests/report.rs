@@ -22,26 +22,72 @@ fn attributes<'a>(html: &'a str, attr: &str) -> Vec<&'a str> {
     html.match_indices(&key).map(|(i, _)| &html[i + key.len()..]).map(|rest| &rest[..rest.find('"').unwrap()]).collect()
 }
 
-/// Run `papers` at fast scale with seed 7 on `threads` threads into `out`.
-fn run(papers: &[Paper], out: &Path, threads: usize) -> Vec<(String, samplab_report::Claim)> {
+/// The claims of a run, by paper.
+type Claims = Vec<(String, samplab_report::Claim)>;
+
+/// Run `papers` at fast scale with seed 7 on `threads` threads into `out`; the claims, and
+/// the run's events as text ("start paper/experiment", "length n", "finish").
+fn run(papers: &[Paper], out: &Path, threads: usize) -> (Claims, Vec<String>) {
     let refs: Vec<&Paper> = papers.iter().collect();
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-    pool.install(|| {
-        reproduce(
-            &refs,
-            &Options { scale: Scale::Fast, seed: Seed(7), out: out.to_path_buf(), replace: Replace::IfOurs },
-            &AtomicBool::new(false),
-        )
-    })
-    .unwrap()
+    let events = std::sync::Mutex::new(Vec::new());
+    let watch = |e: samplab_report::Event<'_>| {
+        let text = match e {
+            samplab_report::Event::Started { paper, experiment } => format!("start {paper}/{experiment}"),
+            samplab_report::Event::Length(n) => format!("length {n}"),
+            samplab_report::Event::Advanced(_) => return,
+            samplab_report::Event::Finished(_) => "finish".into(),
+        };
+        events.lock().unwrap().push(text);
+    };
+    let claims = pool
+        .install(|| {
+            reproduce(
+                &refs,
+                &Options { scale: Scale::Fast, seed: Seed(7), out: out.to_path_buf(), replace: Replace::IfOurs },
+                &AtomicBool::new(false),
+                &watch,
+            )
+        })
+        .unwrap();
+    (claims, events.into_inner().unwrap())
 }
 
 /// The whole fast reproduction on two threads, run once and shared by the tests.
-static FULL_RUN: LazyLock<(PathBuf, Vec<(String, samplab_report::Claim)>)> = LazyLock::new(|| {
+static FULL_RUN: LazyLock<(PathBuf, Claims, Vec<String>)> = LazyLock::new(|| {
     let out = temp("full").join("report");
-    let claims = run(&paper::all(), &out, 2);
-    (out, claims)
+    let (claims, events) = run(&paper::all(), &out, 2);
+    (out, claims, events)
 });
+
+/// The watcher hears every experiment start, then its length, then its end, in the
+/// papers' order, one experiment at a time.
+#[test]
+fn the_watcher_hears_each_experiment_start_and_finish_in_order() {
+    let events = &FULL_RUN.2;
+    let expected: Vec<String> = paper::all()
+        .iter()
+        .flat_map(|p| p.experiments.iter().map(move |e| format!("start {}/{}", p.key, e.id)))
+        .collect();
+    let started: Vec<&String> = events.iter().filter(|e| e.starts_with("start ")).collect();
+    assert_eq!(started.len(), expected.len());
+    assert!(started.iter().zip(&expected).all(|(a, b)| *a == b));
+    let mut open = false;
+    for e in events {
+        match e.split(' ').next().unwrap() {
+            "start" => {
+                assert!(!open, "{e} before the last experiment finished");
+                open = true;
+            }
+            "finish" => {
+                assert!(open, "a finish without a start");
+                open = false;
+            }
+            _ => assert!(open, "{e} outside an experiment"),
+        }
+    }
+    assert!(!open);
+}
 
 /// Every file of `a`'s figures and tables equals the same file of `b`, and every claim of
 /// `a`'s claims.json equals the claim with the same paper and id in `b`'s; returns how many
@@ -75,7 +121,7 @@ fn assert_same_outputs(a: &Path, b: &Path) -> usize {
 
 #[test]
 fn every_link_and_image_resolves() {
-    let (out, claims) = &*FULL_RUN;
+    let (out, claims, _) = &*FULL_RUN;
     assert!(!claims.is_empty());
     let pages: Vec<PathBuf> = std::fs::read_dir(out)
         .unwrap()
@@ -121,7 +167,7 @@ fn every_link_and_image_resolves() {
 fn every_figure_passes_the_lint_and_every_failure_says_why() {
     // the coverage audit runs inside the report (a breach refuses the report), so the run
     // itself is its test on the real report; its failing inputs are coverage.rs's unit tests
-    let (out, _) = &*FULL_RUN;
+    let (out, _, _) = &*FULL_RUN;
     let lint: Vec<String> = serde_json::from_slice(&std::fs::read(out.join("lint.json")).unwrap()).unwrap();
     assert!(lint.is_empty(), "figure lint: {lint:#?}");
     let claims: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("claims.json")).unwrap()).unwrap();
@@ -159,7 +205,7 @@ fn deterministic_whatever_the_thread_count() {
 fn slow_every_experiment_deterministic_whatever_the_thread_count() {
     let out = temp("det-all").join("one-thread");
     run(&paper::all(), &out, 1);
-    let (two, _) = &*FULL_RUN;
+    let (two, _, _) = &*FULL_RUN;
     // both ways round: the same set of files
     assert_eq!(assert_same_outputs(&out, two), assert_same_outputs(two, &out));
 }
@@ -181,10 +227,10 @@ fn a_failed_run_leaves_the_old_report_alone() {
         experiments: vec![Experiment { id: "fails", title: "fails", source: "none", parameters: "none", run: failing }],
     };
     let options = Options { scale: Scale::Fast, seed: Seed(1), out: out.clone(), replace: Replace::IfOurs };
-    let err = reproduce(&[&bad], &options, &AtomicBool::new(false)).unwrap_err();
+    let err = reproduce(&[&bad], &options, &AtomicBool::new(false), samplab_report::UNWATCHED).unwrap_err();
     assert!(err.to_string().contains("on purpose"));
     // a stopped run: the failing experiment is never started
-    let err = reproduce(&[&bad], &options, &AtomicBool::new(true)).unwrap_err();
+    let err = reproduce(&[&bad], &options, &AtomicBool::new(true), samplab_report::UNWATCHED).unwrap_err();
     assert!(matches!(err, Error::Samplab(samplab::Error::Interrupted)), "{err}");
     assert_eq!(std::fs::read_to_string(out.join("index.html")).unwrap(), "old");
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "a staging folder was left behind");

@@ -15,7 +15,7 @@ The registries (``samplers()``, ``metrics()``, ``warps()``, ``integrands()``, ``
 from __future__ import annotations
 
 import json
-from typing import Any, Dict, List, Optional, Sequence, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Union
 
 import numpy as np
 
@@ -405,12 +405,26 @@ def integrand(spec: str, points: Any, instance: int = 0, seed: Optional[int] = N
     return values, exact
 
 
-def reproduce(out: str = "report", full: bool = False, only: Optional[Sequence[str]] = None, seed: Optional[int] = None, force: bool = False) -> List[Dict[str, str]]:
+def reproduce(
+    out: str = "report",
+    full: bool = False,
+    only: Optional[Sequence[str]] = None,
+    seed: Optional[int] = None,
+    force: bool = False,
+    progress: Optional[Callable[[str, str, int, int], Any]] = None,
+) -> List[Dict[str, str]]:
     """Reproduce the papers into the folder ``out`` (replaced only when the run completes),
     as ``samplab reproduce``; returns each claim's paper, id and verdict. An existing ``out``
-    that holds files samplab did not write is refused unless ``force`` (as ``--force``)."""
+    that holds files samplab did not write is refused unless ``force`` (as ``--force``).
+
+    Nothing is drawn on the terminal: ``progress(paper, experiment, done, total)``, when
+    given, is called as each experiment starts (``done`` 0), learns its length, advances (at
+    most once per percent) and finishes (``done == total``), from any thread; an exception it
+    raises stops the run and is raised here."""
+    if progress is not None and not callable(progress):
+        raise Error(f"progress: {progress!r} is not callable")
     keys = None if only is None else [only] if isinstance(only, str) else list(only)
-    return json.loads(_samplab.reproduce(str(out), bool(full), keys, None if seed is None else _seed(seed), bool(force)))
+    return json.loads(_samplab.reproduce(str(out), bool(full), keys, None if seed is None else _seed(seed), bool(force), progress))
 
 
 def render(scene: str, light: Optional[str] = None, reference_samples: Optional[int] = None, allow_paths_outside_scene: bool = False, **settings: Any) -> Dict[str, Any]:

@@ -46,7 +46,7 @@ pub(crate) fn study(
 ) -> Result<Vec<Row>, Error> {
     let s: Vec<Box<dyn Sampler>> = samplers.iter().map(|x| sampler::build(x)).collect::<Result<_, _>>()?;
     let family = Family::parse(integrand)?;
-    let report = |k| ctx.progress.inc(k);
+    let report = |k| ctx.tick(k);
     let progress = Progress::new(&report).stopped_by(ctx.stop);
     Ok(experiment::run(&Study { samplers: &s, family: &family, ns, sets, instances, seed }, &progress)?)
 }

@@ -89,7 +89,7 @@ fn variance(ctx: &Ctx) -> Result<Output, Error> {
         .collect::<Result<_, samplab::Error>>()?;
     let spectra: Vec<IntegrandSpectrum> =
         integrands.iter().map(|(_, f)| predict::integrand_spectrum(f.as_ref(), RES)).collect::<Result<_, _>>()?;
-    ctx.progress.set_length((samplers.len() * COUNTS.len()) as u64);
+    ctx.set_length((samplers.len() * COUNTS.len()) as u64);
     let (mut rows, mut skipped, mut rates) = (Vec::new(), Vec::new(), Vec::new());
     for (k, s) in samplers.iter().enumerate() {
         if let Some(e) = COUNTS.iter().find_map(|&n| s.plan(n, 2).err()) {

@@ -17,7 +17,7 @@ pub(super) fn pixel_light(ctx: &Ctx) -> Result<Output, Error> {
         ("uniform jitter", "jitter.uniform", Pattern::UniformJitter),
         ("stratified", "jitter", Pattern::Stratified),
     ];
-    ctx.progress.set_length(4);
+    ctx.set_length(4);
     let mut figures = Vec::new();
     let mut series = Vec::new();
     let mut rows = Vec::new();

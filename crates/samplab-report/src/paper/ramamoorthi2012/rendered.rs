@@ -27,7 +27,7 @@ const GRIDS_NOTE: &str = "The paper's grids geometry is not published. samplab's
 pub(super) fn grids_linear(ctx: &Ctx) -> Result<Output, Error> {
     let (size, seeds, reference_n) = (ctx.pick((96, 72), (256, 192)), ctx.pick(4, 8), ctx.pick(2048, 8192));
     let strategies = [("uniform", "regular"), ("uniform jitter", "jitter.uniform"), ("stratified", "jitter")];
-    ctx.progress.set_length((strategies.len() as u64) * seeds + 1);
+    ctx.set_length((strategies.len() as u64) * seeds + 1);
     let grids = scene("grids", Some(LightKind::Linear))?;
     let setup = Setup::visibility(&grids, size, DiskMap::Concentric);
     let reference = setup.reference(reference_n, 1, ctx.seed.derive_str("reference"))?;
@@ -106,7 +106,7 @@ pub(super) fn planar_lights(ctx: &Ctx) -> Result<Output, Error> {
         ("uniform jitter", "jitter.uniform"),
         ("Halton, per-pixel shift, Shirley-Chiu warp", "halton.shift"),
     ];
-    ctx.progress.set_length(2 * 3 * (1 + 3 * seeds));
+    ctx.set_length(2 * 3 * (1 + 3 * seeds));
     let mut rows = Vec::new();
     let mut claims = Vec::new();
     let mut figures = Vec::new();
@@ -215,7 +215,7 @@ pub(super) fn grids_lights(ctx: &Ctx) -> Result<Output, Error> {
         ("square", LightKind::Square, "19(a, b)", 16),
         ("Gaussian", LightKind::Gaussian, "19(c, d)", 16),
     ];
-    ctx.progress.set_length(GRIDS.len() as u64 * (3 + 7 * seeds));
+    ctx.set_length(GRIDS.len() as u64 * (3 + 7 * seeds));
     let (mut rows, mut claims, mut figures) = (Vec::new(), Vec::new(), Vec::new());
     for scene_name in GRIDS {
         for (light_name, kind, figure, n) in lights {
@@ -298,7 +298,7 @@ pub(super) fn error_vs_n(ctx: &Ctx) -> Result<Output, Error> {
     let (size, seeds) = (ctx.pick((64, 48), (160, 120)), ctx.pick(3, 6));
     let ns = [4usize, 9, 16, 25, 36, 49, 64];
     let strategies = [("stratified", "jitter"), ("uniform jitter", "jitter.uniform")];
-    ctx.progress.set_length(4 * (1 + (ns.len() * strategies.len()) as u64 * seeds));
+    ctx.set_length(4 * (1 + (ns.len() * strategies.len()) as u64 * seeds));
     let mut figures = Vec::new();
     let mut claims = Vec::new();
     let mut rows = Vec::new();

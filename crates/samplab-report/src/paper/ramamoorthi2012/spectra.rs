@@ -110,7 +110,7 @@ fn edge_mse(ctx: &Ctx, spec: &str, n: usize, dims: usize, light: Light, trials: 
 pub(super) fn gaussian_light(ctx: &Ctx) -> Result<Output, Error> {
     let (n, trials) = (16usize, ctx.pick(20_000, 200_000));
     let strategies = [("uniform", "regular"), ("uniform jitter", "jitter.uniform"), ("stratified", "jitter")];
-    ctx.progress.set_length(7);
+    ctx.set_length(7);
     let mut series = Vec::new();
     for (name, light) in Light::BOTH {
         let points = (1..=64).map(|w| (w as f64, light.spectrum(Some(EDGE), w as f64))).collect();
@@ -196,7 +196,7 @@ pub(super) fn gaussian_light(ctx: &Ctx) -> Result<Output, Error> {
 /// spectra of the visibility, of the uniform-jitter comb and of the comb under a Gaussian.
 pub(super) fn square_light(ctx: &Ctx) -> Result<Output, Error> {
     let (n, side, res, trials) = (25usize, 5usize, 64usize, ctx.pick(20_000, 200_000));
-    ctx.progress.set_length(5);
+    ctx.set_length(5);
     let half = (res / 2) as f64;
     let freq = |k: usize| k as f64 - half;
     // every map is separable: |F(u)| |G(v)|, u across (index k % res), v up

@@ -14,7 +14,7 @@ pub(super) fn error_vs_position(ctx: &Ctx) -> Result<Output, Error> {
     let n = 8;
     let positions = 400;
     let reps = ctx.pick(400, 4000);
-    ctx.progress.set_length(4);
+    ctx.set_length(4);
     let mut series = Vec::new();
     let mut worst = Vec::new();
     for (name, spec) in [STRATEGIES[0], STRATEGIES[1], STRATEGIES[3], ("random", "random")] {
@@ -146,7 +146,7 @@ pub(super) fn error_vs_position(ctx: &Ctx) -> Result<Output, Error> {
 
 pub(super) fn tables(ctx: &Ctx) -> Result<Output, Error> {
     let trials = ctx.pick(4000, 40000);
-    ctx.progress.set_length(2 * 4 * trials as u64);
+    ctx.set_length(2 * 4 * trials as u64);
     let specs: Vec<&str> = STRATEGIES.iter().map(|s| s.1).collect();
     let one = study(ctx, &specs, "step", &[256], 2, trials, ctx.seed.derive(1))?;
     let two = study(ctx, &specs, "box", &[256], 2, trials, ctx.seed.derive(2))?;
@@ -275,7 +275,7 @@ pub(super) fn discontinuities(ctx: &Ctx) -> Result<Output, Error> {
     let trials = 1000;
     let small: Vec<usize> = (1..=7).collect();
     let large: Vec<usize> = vec![1, 2, 5, 10, 20, 30, 50, 70, 100];
-    ctx.progress.set_length(((small.len() + large.len()) * 4 * trials) as u64);
+    ctx.set_length(((small.len() + large.len()) * 4 * trials) as u64);
     let mut figures = Vec::new();
     let mut claims = Vec::new();
     let mut table_rows = Vec::new();

@@ -36,7 +36,7 @@ const BLUE_CLAIMS: [(&str, &str); 3] = [
 pub(super) fn masks(ctx: &Ctx) -> Result<Output, Error> {
     let side = ctx.pick(128, 256);
     let names = families();
-    ctx.progress.set_length(names.len() as u64);
+    ctx.set_length(names.len() as u64);
     let mut rows = Vec::new();
     let mut measured: Vec<(&str, Vec<MaskMeasures>)> = Vec::new();
     for name in &names {

@@ -124,7 +124,7 @@ pub(super) fn scenes(ctx: &Ctx) -> Result<Output, Error> {
     let spps: Vec<usize> = ctx.pick(vec![1, 4, 16], vec![1, 4, 16, 64, 256, 1024]);
     let cases = cases()?;
     let names = families();
-    ctx.progress.set_length((cases.len() + names.len() * spps.len()) as u64);
+    ctx.set_length((cases.len() + names.len() * spps.len()) as u64);
     let refs = references(ctx, &cases, size, ctx.pick(1024, 8192))?;
     // per case, per family
     let mut measured: Vec<Vec<Errors>> = cases

@@ -10,7 +10,7 @@ use crate::{Claim, Ctx, Error, Figure, Output};
 /// chosen.
 pub(super) fn force_matrix(ctx: &Ctx) -> Result<Output, Error> {
     let grid = 32usize;
-    ctx.progress.set_length(3);
+    ctx.set_length(3);
     let mut figures = Vec::new();
     for (label, n) in [("a", 256usize), ("b", 64)] {
         let spec = format!("force-matrix:grid={grid}");

@@ -87,7 +87,7 @@ fn efficiency(ctx: &Ctx) -> Result<Output, Error> {
     let ns = [16usize, 64, 100, 400];
     let radii: Vec<f64> = (1..=60).map(|i| 0.5 * i as f64 / 60.0).collect();
     let runs = ctx.pick(100, 1000);
-    ctx.progress.set_length((ns.len() * radii.len() * 2) as u64);
+    ctx.set_length((ns.len() * radii.len() * 2) as u64);
     let mut figures = Vec::new();
     let mut rows = Vec::new();
     let (mut inside, mut better) = (0, 0);
@@ -271,7 +271,7 @@ fn law(ctx: &Ctx) -> Result<Output, Error> {
     let instances = ctx.pick(400, 2000);
     let ns = [256usize, 1024, 4096];
     let radii: Vec<f64> = (0..80).map(|i| 0.05 + 0.4 * i as f64 / 79.0).collect();
-    ctx.progress.set_length((ns.len() * instances + radii.len()) as u64);
+    ctx.set_length((ns.len() * instances + radii.len()) as u64);
     // effective k = 0.0724 x measured / predicted (averaged over the instances)
     let k_of = |r: &samplab::experiment::Row| {
         theory::K_SYSTEMATIC * r.relative_variance / r.theory.as_ref().map_or(f64::NAN, |t| t.value)
@@ -370,7 +370,7 @@ fn law(ctx: &Ctx) -> Result<Output, Error> {
 fn offsets(ctx: &Ctx) -> Result<Output, Error> {
     let (size, seeds, reference_n) = (ctx.pick((96, 72), (256, 192)), ctx.pick(4, 8), ctx.pick(2048, 8192));
     let configs: [&[(usize, usize)]; 2] = [&[(1, 16), (4, 4)], &[(1, 256), (4, 64), (16, 16)]];
-    ctx.progress.set_length(1 + 5 * seeds);
+    ctx.set_length(1 + 5 * seeds);
     let s = scene("sphere-box", Some(LightKind::Square))?;
     let setup =
         Setup { mode: Mode::Direct, pattern: Pattern::PerEstimate, ..Setup::visibility(&s, size, DiskMap::Concentric) };

@@ -16,7 +16,7 @@ const SCENES: [&str; 2] = ["grids", "sphere-box"];
 pub(super) fn obscurance(ctx: &Ctx) -> Result<Output, Error> {
     let (size, seeds, reference_n, n) = (ctx.pick((96, 72), (256, 192)), ctx.pick(4, 8), ctx.pick(1024, 4096), 16);
     let strategies = [("random", "random"), ("stratified", "jitter"), ("systematic", "jitter.uniform")];
-    ctx.progress.set_length(SCENES.len() as u64 * (1 + 3 * seeds));
+    ctx.set_length(SCENES.len() as u64 * (1 + 3 * seeds));
     let (mut rows, mut figures, mut claims) = (Vec::new(), Vec::new(), Vec::new());
     for scene_name in SCENES {
         let s = scene(scene_name, None)?;

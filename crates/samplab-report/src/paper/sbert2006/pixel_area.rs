@@ -110,7 +110,7 @@ fn edge_variances(ctx: &Ctx, lines: usize, runs: usize) -> Result<Vec<(f64, Esti
 /// Figs. 4 and 5 and Table 1 over the pixel area.
 pub(super) fn pixel_area(ctx: &Ctx) -> Result<Output, Error> {
     let (size, seeds, reference_spp) = (ctx.pick((96, 72), (256, 192)), ctx.pick(4, 8), ctx.pick(1024, 4096));
-    ctx.progress.set_length(1 + 9 * seeds);
+    ctx.set_length(1 + 9 * seeds);
     let s = scene("checker-45", None)?;
     let base =
         Setup { footprint: Footprint::Area, displayed: true, ..Setup::visibility(&s, size, DiskMap::Concentric) };

@@ -139,7 +139,7 @@ fn lowest<'a>(rows: impl Iterator<Item = (&'a str, f64)>) -> (&'a str, f64) {
 }
 
 pub(super) fn tables(ctx: &Ctx) -> Result<Output, Error> {
-    ctx.progress.set_length(STRATEGIES.len() as u64);
+    ctx.set_length(STRATEGIES.len() as u64);
     let mut measured = Vec::new();
     let mut regular_set = None;
     for (i, (name, spec)) in STRATEGIES.iter().enumerate() {
@@ -402,7 +402,7 @@ pub(super) fn projected(ctx: &Ctx) -> Result<Output, Error> {
     let angles: Vec<f64> = (0..).map(|i| i as f64 * step).take_while(|&a| a < 180.0).collect();
     let mut strategies: Vec<(&str, &str)> = STRATEGIES.to_vec();
     strategies.extend([("sobol (Owen)", "sobol.owen"), ("pmj02", "pmj02")]);
-    ctx.progress.set_length(strategies.len() as u64);
+    ctx.set_length(strategies.len() as u64);
     let mut curves = Vec::new();
     // per strategy: the mean over each set of its x and y projections' discrepancies
     let mut axes = Vec::new();

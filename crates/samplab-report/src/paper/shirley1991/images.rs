@@ -17,7 +17,7 @@ use crate::{Cell, Claim, Ctx, Error, Output, Table};
 pub(super) fn pixel_errors(ctx: &Ctx) -> Result<Output, Error> {
     let scenes = [("checker", "table1", 1), ("checker-45", "table2", 2), ("ball", "table3", 3), ("all", "table4", 4)];
     let seeds = ctx.pick(4, 8);
-    ctx.progress.set_length((scenes.len() * (1 + STRATEGIES.len()) + 1) as u64);
+    ctx.set_length((scenes.len() * (1 + STRATEGIES.len()) + 1) as u64);
     let mut out = Output::default();
     // per scene, per strategy: ave|E| over the seeds
     let mut errors: Vec<Vec<Summary>> = Vec::new();

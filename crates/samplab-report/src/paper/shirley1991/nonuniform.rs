@@ -14,7 +14,7 @@ use crate::{Cell, Claim, Ctx, Error, Figure, Output, Table};
 /// Section 4: the tent filter's warp (eqs. 1-2, Figure 8), the two ways to map a
 /// stratified square to a disk (Figure 7), and the generalized discrepancy.
 pub(super) fn nonuniform(ctx: &Ctx) -> Result<Output, Error> {
-    ctx.progress.set_length(3);
+    ctx.set_length(3);
     let mut out = Output::default();
     // eq. 2, F(x) = 1/2 + x - x|x|/2, and the inverse printed in section 4
     let printed = |u: f64| if u < 0.5 { -1.0 + (2.0 * u).sqrt() } else { 1.0 - (2.0 * (1.0 - u)).sqrt() };

@@ -20,7 +20,7 @@ pub(super) fn asymptotics(ctx: &Ctx) -> Result<Output, Error> {
         ("GJittered:0.25", "jitter.gaussian:sigma=0.25"),
     ];
     let specs: Vec<&str> = strategies.iter().map(|s| s.1).collect();
-    ctx.progress.set_length((strategies.len() * ns.len() * 10) as u64);
+    ctx.set_length((strategies.len() * ns.len() * 10) as u64);
     let rows = study(ctx, &specs, "quad", &ns, 50, 10, ctx.seed.derive_str("asymptotics"))?;
     let fits = experiment::fits(&rows);
     let fit_of = |spec: &str| fits.iter().find(|f| sampler_spec_matches(spec, &f.sampler)).expect("a fit per strategy");

@@ -13,7 +13,7 @@ use crate::{Cell, Claim, Ctx, Error, Figure, Output, Table};
 pub(super) fn convergence(ctx: &Ctx) -> Result<Output, Error> {
     let ns: Vec<usize> = ctx.pick(vec![16, 64, 256, 1024], vec![16, 36, 64, 144, 256, 576, 1024]);
     let specs: Vec<&str> = STRATEGIES.iter().map(|s| s.1).collect();
-    ctx.progress.set_length((CASES.len() * STRATEGIES.len() * ns.len() * 10) as u64);
+    ctx.set_length((CASES.len() * STRATEGIES.len() * ns.len() * 10) as u64);
     let published = published::table("subr2013", "fig6");
     let mut exponents = vec![[f64::NAN; 3]; STRATEGIES.len()];
     let mut intervals = vec![[(f64::NAN, f64::NAN); 3]; STRATEGIES.len()];

@@ -230,7 +230,7 @@ pub(super) fn jitter_theory(ctx: &Ctx) -> Result<Output, Error> {
     ];
     // measured against predicted: the variance of jittered 16 x 16 grids below the grid frequency
     let (m, res) = (ctx.pick(200, 800), 64);
-    ctx.progress.set_length(5);
+    ctx.set_length(5);
     let mut rows_t = Vec::new();
     let mut worst: f64 = 0.0;
     for (i, (spec, exact)) in [

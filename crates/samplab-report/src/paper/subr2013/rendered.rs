@@ -45,7 +45,7 @@ struct Rendered<'a> {
 /// by subtracting variance / seeds, and the variance, per pixel luminance averaged over the
 /// image; the first render of each strategy at the smallest count as a picture.
 fn bias_variance(ctx: &Ctx, r: &Rendered, seeds: u64) -> Result<Measured, Error> {
-    ctx.progress.set_length(1 + (RENDER_STRATEGIES.len() * r.spps.len()) as u64 * seeds);
+    ctx.set_length(1 + (RENDER_STRATEGIES.len() * r.spps.len()) as u64 * seeds);
     // two independent references: their mean is the truth, and half their difference
     // measures its own noise, which (mean - truth)^2 would otherwise count as bias
     let halves = [

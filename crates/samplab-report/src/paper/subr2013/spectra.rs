@@ -18,7 +18,7 @@ pub(super) fn spectra(ctx: &Ctx) -> Result<Output, Error> {
         ("uniform jitter", "jitter.uniform"),
         ("regular", "regular"),
     ];
-    ctx.progress.set_length(strategies.len() as u64);
+    ctx.set_length(strategies.len() as u64);
     let mut curves: [Vec<Series>; 3] = Default::default();
     let mut stats = Vec::new();
     for (i, (name, spec)) in strategies.iter().enumerate() {

@@ -154,7 +154,7 @@ pub(super) fn zoneplate(ctx: &Ctx) -> Result<Output, Error> {
     // of itself (exp(-2 pi^2 sigma^2) = 0.95): 1000 realizations resolve that at about 4
     // standard errors
     let runs = ctx.pick(1000, 4000);
-    ctx.progress.set_length(2 * 26);
+    ctx.set_length(2 * 26);
     let zone = combined(ctx, "zoneplate", runs, ctx.seed)?;
     let wave = combined(ctx, GRID_WAVE, runs, ctx.seed.derive_str("wave"))?;
     // Subr & Kautz eqs. 4 and 8 for the wave at the grid frequency: the grid sees the
