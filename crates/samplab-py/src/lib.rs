@@ -23,6 +23,7 @@ use samplab::progress::Progress;
 use samplab::registry::{Entry, Registry};
 use samplab::spec::{Default, Kind};
 use samplab::{PointSet, Seed};
+use samplab_render::study::Study;
 
 mod integrand;
 
@@ -461,19 +462,27 @@ fn statistics_dict<'py>(py: Python<'py>, st: &samplab::spectrum::Statistics) -> 
 }
 
 /// A study's chunk list: the description (JSON, `{"kind": ..., parameters}`) checked
-/// before any work and cut into chunks of `per_chunk` units or sets; returns the
-/// description as the CLI writes it and the chunks ([`samplab::study::Description::plan`]).
+/// before any work and cut into chunks of `per_chunk` units, sets or seeds; returns the
+/// description as the CLI writes it, the chunks, and whether chunk 0's result feeds the
+/// others ([`samplab_render::study::Study`]).
 #[pyfunction]
-fn study_plan(description: &str, per_chunk: usize) -> PyResult<(String, Vec<Vec<u64>>)> {
-    let (d, chunks) = describe(description)?.plan(per_chunk).map_err(err)?;
-    Ok((serde_json::to_string(&d).map_err(err)?, chunks))
+fn study_plan(description: &str, per_chunk: usize) -> PyResult<(String, Vec<Vec<u64>>, bool)> {
+    let (study, chunks) = Study::from_json(description).and_then(|s| s.plan(per_chunk)).map_err(err)?;
+    Ok((study.to_json(), chunks, study.first_feeds_the_rest()))
 }
 
-/// One chunk of a study, as bytes (what a worker returns and a checkpoint keeps).
+/// One chunk of a study, as bytes (what a worker returns and a checkpoint keeps); `first`
+/// is chunk 0's bytes where they feed the others.
 #[pyfunction]
-fn study_chunk<'py>(py: Python<'py>, description: &str, chunk: Vec<u64>) -> PyResult<Bound<'py, PyBytes>> {
-    let d = describe(description)?;
-    let data = interruptible(py, usize::MAX, |stop| d.compute(&chunk, &Progress::until(stop)))?;
+#[pyo3(signature = (description, chunk, first=None))]
+fn study_chunk<'py>(
+    py: Python<'py>,
+    description: &str,
+    chunk: Vec<u64>,
+    first: Option<Vec<u8>>,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let study = Study::from_json(description).map_err(err)?;
+    let data = interruptible(py, usize::MAX, |stop| study.compute(&chunk, first.as_deref(), &Progress::until(stop)))?;
     Ok(PyBytes::new(py, &data))
 }
 
@@ -485,25 +494,10 @@ fn study_merge<'py>(
     description: &str,
     parts: Vec<Vec<u8>>,
 ) -> PyResult<(String, String, Option<Bound<'py, PyDict>>)> {
-    let d = describe(description)?;
-    let merged = py.detach(|| d.merge(&parts)).map_err(err)?;
+    let study = Study::from_json(description).map_err(err)?;
+    let merged = py.detach(|| study.merge(&parts)).map_err(err)?;
     let statistics = merged.statistics.as_ref().map(|st| statistics_dict(py, st)).transpose()?;
     Ok((merged.json, merged.csv, statistics))
-}
-
-fn describe(description: &str) -> PyResult<samplab::study::Description> {
-    serde_json::from_str(description).map_err(|e| err(format!("not a study description: {e}")))
-}
-
-/// The summary (count, mean, sample sd, min, max; compensated sums) the CLI prints of a
-/// list of values.
-#[pyfunction]
-fn summary(values: Vec<f64>) -> PyResult<(usize, f64, f64, f64, f64)> {
-    if values.is_empty() {
-        return Err(err("a summary of no values"));
-    }
-    let s = samplab::stats::Summary::of(&values);
-    Ok((s.count, s.mean, s.sd, s.min, s.max))
 }
 
 /// An integration study, as `samplab integrate --json` prints it: {"rows": [...], "fits": [...]}.
@@ -873,7 +867,6 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(predict, m)?)?;
-    m.add_function(wrap_pyfunction!(summary, m)?)?;
     m.add_function(wrap_pyfunction!(study_plan, m)?)?;
     m.add_function(wrap_pyfunction!(study_chunk, m)?)?;
     m.add_function(wrap_pyfunction!(study_merge, m)?)?;

@@ -59,6 +59,42 @@ fn srgb8(linear: f64) -> u8 {
 const PENUMBRA: (f32, f32) = (1e-3, 1.0 - 1e-3);
 
 impl Image {
+    /// The image as bytes: width and height (little-endian u64), 1 or 0 for a visibility
+    /// channel, then R, G, B per pixel and the visibility (little-endian f32).
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(17 + 4 * (self.rgb.len() + self.width * self.height));
+        out.extend((self.width as u64).to_le_bytes());
+        out.extend((self.height as u64).to_le_bytes());
+        out.push(u8::from(self.visibility.is_some()));
+        for v in self.rgb.iter().chain(self.visibility.iter().flatten()) {
+            out.extend(v.to_le_bytes());
+        }
+        out
+    }
+
+    /// The inverse of [`Image::to_bytes`].
+    ///
+    /// # Errors
+    /// Bytes of another length or layout.
+    ///
+    /// # Panics
+    /// Never: every slice is of the length read.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Image> {
+        let bad = || Error::Invalid(format!("{} bytes are not an image's", bytes.len()));
+        let word = |k: usize| bytes.get(8 * k..8 * k + 8).map(|b| u64::from_le_bytes(b.try_into().expect("8 bytes")));
+        let (width, height) = (word(0).ok_or_else(bad)? as usize, word(1).ok_or_else(bad)? as usize);
+        let has_visibility = *bytes.get(16).ok_or_else(bad)? == 1;
+        let pixels = width.checked_mul(height).ok_or_else(bad)?;
+        let floats = pixels.checked_mul(3 + usize::from(has_visibility)).ok_or_else(bad)?;
+        if bytes.len() != 17 + 4 * floats {
+            return Err(bad());
+        }
+        let values: Vec<f32> =
+            bytes[17..].chunks_exact(4).map(|b| f32::from_le_bytes(b.try_into().expect("4 bytes"))).collect();
+        let (rgb, visibility) = values.split_at(3 * pixels);
+        Ok(Image { width, height, rgb: rgb.to_vec(), visibility: has_visibility.then(|| visibility.to_vec()) })
+    }
+
     /// Luminance of every pixel.
     pub fn luminance(&self) -> Vec<f64> {
         self.rgb.chunks_exact(3).map(luminance).collect()

@@ -23,6 +23,7 @@ pub mod render;
 pub mod scene;
 pub mod scenes;
 pub mod settings;
+pub mod study;
 
 pub use error::{Error, Result};
 pub use image::{Errors, Image};

@@ -38,8 +38,10 @@ pub const FOOTPRINTS: [(&str, Footprint); 3] =
 /// Light-sample groupings, by name.
 pub const PATTERNS: [(&str, Pattern); 2] = [("estimate", Pattern::PerEstimate), ("pixel", Pattern::PerPixel)];
 
-/// Everything a render takes besides the scene, in words and numbers.
-#[derive(Debug, Clone, PartialEq)]
+/// Everything a render takes besides the scene, in words and numbers (in JSON, every field
+/// optional: a missing one takes its default).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct Settings {
     /// Light sampler spec.
     pub sampler: String,

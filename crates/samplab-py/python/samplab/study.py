@@ -3,12 +3,10 @@ statistics and rendered error, split into chunks that run here or on a Dask clus
 merge to the same bits.
 
 A study is a fixed list of chunks, decided by its description alone (never by the cluster).
-The library (``samplab::study`` in Rust) describes the integration, spectrum and
-discrepancy kinds: their checks, their chunks, the computation of one chunk and the merge
-in chunk order into the JSON and CSV the CLI writes; this module schedules the chunks here
-or on Dask, keeps checkpoints and plots. Rendered error (a reference chunk, then
-``seeds_per_chunk`` seeds per chunk, each seed's errors against the reference) is the one
-kind still merged here.
+The library describes every kind (``samplab::study`` and ``samplab_render::study`` in
+Rust): its checks, its chunks, the computation of one chunk and the merge in chunk order
+into the JSON and CSV the CLI writes; this module schedules the chunks here or on Dask,
+keeps checkpoints and plots. Adding a kind is a constructor here.
 
 Every number of a chunk is a function of the study and the chunk alone (realization k is
 seeded by ``seed.derive(k)``), and partial results are merged in chunk order whatever order
@@ -23,9 +21,7 @@ an error naming it, never used.
 
 from __future__ import annotations
 
-import csv
 import hashlib
-import io
 import json
 import os
 import sys
@@ -57,16 +53,18 @@ class Study:
     kind: str
     params: Dict[str, Any]
     chunks: List[Any] = field(default_factory=list)
+    #: whether chunk 0's result is given to every other chunk (a render study's reference)
+    first_feeds_the_rest: bool = False
 
     # ----- constructors -------------------------------------------------------------------
 
     @classmethod
     def _planned(cls, kind: str, params: Dict[str, Any], per_chunk: int) -> "Study":
         """Checked and cut into chunks by the library, before any work."""
-        described, chunks = _samplab.study_plan(_canonical({"kind": kind, **params}), _count("per chunk", per_chunk))
+        described, chunks, feeds = _samplab.study_plan(_canonical({"kind": kind, **params}), _count("per chunk", per_chunk))
         params = json.loads(described)
         del params["kind"]
-        return cls(kind, params, [list(c) for c in chunks])
+        return cls(kind, params, [list(c) for c in chunks], feeds)
 
     @classmethod
     def integrate(
@@ -144,23 +142,10 @@ class Study:
         """Error of renders of ``scene`` (the CLI's settings as keywords) against its
         converged reference, one render per seed of ``seeds`` (``samplab render --reference
         --json`` per seed). The reference is a chunk of its own, computed first."""
-        _positive("seeds_per_chunk", seeds_per_chunk)
-        seeds = [_count("seed", s) for s in seeds]
-        if not seeds:
-            raise Error("seeds: give at least one seed")
         if "seed" in settings:
             raise Error("seed: give the seeds as `seeds`")
-        params = {
-            "scene": scene,
-            "light": light,
-            "reference_samples": _count("reference_samples", reference_samples),
-            "penumbra": bool(penumbra),
-            "settings": json.loads(_canonical(settings)),
-            "seeds": seeds,
-        }
-        chunks: List[Any] = ["reference"]
-        chunks += [seeds[a : a + seeds_per_chunk] for a in range(0, len(seeds), seeds_per_chunk)]
-        return cls("render", params, chunks)
+        params = dict(scene=scene, light=light, reference_samples=_count("reference_samples", reference_samples), penumbra=bool(penumbra), settings=settings, seeds=[_count("seed", s) for s in seeds])
+        return cls._planned("render", params, seeds_per_chunk)
 
     # ----- identity -----------------------------------------------------------------------
 
@@ -227,8 +212,8 @@ class Study:
             done(i, _compute(self.kind, self.params, self.chunks[i], dependency))
 
     def _dependency(self, results: Dict[int, bytes], compute: Any, done: Any) -> Optional[bytes]:
-        """The reference of a render study (chunk 0), computed first when missing."""
-        if self.kind != "render":
+        """Chunk 0's result where it feeds the others, computed first when missing."""
+        if not self.first_feeds_the_rest:
             return None
         if 0 not in results:
             done(0, compute(0))
@@ -258,68 +243,15 @@ def _seed(seed: Optional[int]) -> int:
     return int(_samplab.default_seed() if seed is None else seed)
 
 
-def _positive(name: str, value: int) -> None:
-    if _count(name, value) < 1:
-        raise Error(f"{name} = {value}: must be at least 1")
-
-
 def _compute(kind: str, params: Dict[str, Any], chunk: Any, dependency: Optional[bytes] = None) -> bytes:
     """One chunk's partial result, as bytes (what workers run and checkpoints keep)."""
-    if kind != "render":
-        return bytes(_samplab.study_chunk(_canonical({"kind": kind, **params}), list(chunk)))
-    if chunk == "reference":
-        image = _samplab.render(params["scene"], params["light"], _settings(params, None), params["reference_samples"])
-        return _arrays_bytes(image["rgb"], image["visibility"])
-    rgb, visibility = _bytes_arrays(dependency)
-    errors = []
-    for seed in chunk:
-        image = _samplab.render(params["scene"], params["light"], _settings(params, seed), None)
-        errors.append(json.loads(_samplab.image_errors(image["rgb"], rgb, visibility, params["penumbra"])))
-    return _canonical(errors).encode()
-
-
-def _settings(params: Dict[str, Any], seed: Optional[int]) -> Dict[str, Any]:
-    s = dict(params["settings"])
-    # sizes are (w, h) pairs; JSON (the fingerprint, the checkpoint) keeps them as lists
-    for size in ("res", "interleave"):
-        if s.get(size) is not None:
-            s[size] = tuple(s[size])
-    if seed is not None:
-        s["seed"] = seed
-    return s
-
-
-def _arrays_bytes(rgb: np.ndarray, visibility: np.ndarray) -> bytes:
-    out = io.BytesIO()
-    np.save(out, np.ascontiguousarray(rgb, dtype=np.float32), allow_pickle=False)
-    np.save(out, np.ascontiguousarray(visibility, dtype=np.float32), allow_pickle=False)
-    return out.getvalue()
-
-
-def _bytes_arrays(data: Optional[bytes]) -> tuple:
-    if data is None:
-        raise Error("a render study's error chunk needs its reference")
-    f = io.BytesIO(data)
-    return np.load(f, allow_pickle=False), np.load(f, allow_pickle=False)
+    return bytes(_samplab.study_chunk(_canonical({"kind": kind, **params}), list(chunk), dependency))
 
 
 def _merge(kind: str, params: Dict[str, Any], parts: List[bytes]) -> tuple:
     """Every chunk's result, in chunk order, into the study's result: (data, JSON, CSV)."""
-    if kind != "render":
-        text, table, statistics = _samplab.study_merge(_canonical({"kind": kind, **params}), parts)
-        return (json.loads(text) if statistics is None else statistics), text, table
-    errors = [e for part in parts[1:] for e in json.loads(part)]
-    summary = {}
-    for name in errors[0]:
-        count, mean, sd, low, high = _samplab.summary([float(e[name]) for e in errors])
-        summary[name] = {"mean": mean, "sd": sd, "min": low, "max": high}
-    data = {"seeds": params["seeds"], "errors": errors, "summary": summary}
-    out = io.StringIO()
-    w = csv.writer(out, lineterminator="\n")
-    w.writerow(["seed"] + list(errors[0]))
-    for seed, e in zip(params["seeds"], errors):
-        w.writerow([seed] + list(e.values()))
-    return data, json.dumps(data, allow_nan=True), out.getvalue()
+    text, table, statistics = _samplab.study_merge(_canonical({"kind": kind, **params}), parts)
+    return (json.loads(text) if statistics is None else statistics), text, table
 
 
 @dataclass
