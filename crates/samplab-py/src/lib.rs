@@ -53,12 +53,7 @@ fn err<E: std::fmt::Display + 'static>(e: E) -> PyErr {
 /// The typed exception for a library failure, when it has one.
 fn typed(library: Option<&samplab::Error>, file: Option<String>, message: &str) -> Option<PyErr> {
     use samplab::Error as E;
-    let typed = matches!(library, Some(E::UnknownName { .. } | E::Memory { .. } | E::Io { .. } | E::WorkLimit { .. }))
-        || (library.is_none() && file.is_some());
-    if !typed {
-        return None;
-    }
-    Python::attach(|py| -> PyResult<PyErr> {
+    Python::attach(|py| -> PyResult<Option<PyErr>> {
         let make = |class: &str| py.import("samplab")?.getattr(class)?.call1((message,));
         let instance = match (library, file.as_ref()) {
             (Some(E::UnknownName { kind, name, suggestions }), _) => {
@@ -80,16 +75,17 @@ fn typed(library: Option<&samplab::Error>, file: Option<String>, message: &str) 
                 e.setattr("limit", *limit)?;
                 e
             }
-            (Some(E::Io { path, .. }), _) | (_, Some(path)) => {
+            (Some(E::Io { path, .. }), _) | (None, Some(path)) => {
                 let e = make("FileError")?;
                 e.setattr("path", path)?;
                 e
             }
-            _ => make("Error")?,
+            _ => return Ok(None),
         };
-        Ok(PyErr::from_value(instance))
+        Ok(Some(PyErr::from_value(instance)))
     })
     .ok()
+    .flatten()
 }
 
 /// Jobs of fewer values than this run without a watcher thread ([`interruptible`]): they

@@ -107,6 +107,13 @@ def _count(name: str, value: Any) -> int:
     return int(value)
 
 
+def _counts(name: str, value: Any) -> List[int]:
+    """One count or a sequence of counts, each checked by ``_count`` (a float such as 64.0
+    is refused as one count, not iterated)."""
+    values = list(value) if isinstance(value, (list, tuple, range, np.ndarray)) else [value]
+    return [_count(name, v) for v in values]
+
+
 def _points(points: Any, what: str = "points", *, stack: bool) -> np.ndarray:
     """A C-contiguous float64 array of shape (n, d), or (sets, n, d) when ``stack``
     (an (n, d) array is then one set)."""
@@ -332,12 +339,11 @@ def integrate(
     relative mean, relative variance, RMSE, N^2 MSE and the closed form where one applies;
     a fit per sampler: the convergence exponent and its 95% interval)."""
     names = [samplers] if isinstance(samplers, str) else list(samplers)
-    counts = [n] if isinstance(n, (int, np.integer)) else list(n)
     return json.loads(
         _samplab.integrate(
             names,
             integrand,
-            [_count("n", c) for c in counts],
+            _counts("n", n),
             _count("sets", sets),
             _count("instances", instances),
             _seed(seed),
@@ -377,7 +383,6 @@ def predict(
     ``cache``: read and keep measured sampler spectra in the user's cache (``$SAMPLAB_CACHE``,
     else ``$XDG_CACHE_HOME/samplab``, else ``~/.cache/samplab``)."""
     names = [] if samplers is None else [samplers] if isinstance(samplers, str) else list(samplers)
-    counts = list(n) if isinstance(n, (list, tuple, range, np.ndarray)) else [n]
     given = list(integrand) if isinstance(integrand, (list, tuple)) else [integrand]
     given = [np.ascontiguousarray(g, dtype=np.float64) if isinstance(g, np.ndarray) else g for g in given]
     integrals = [] if exact is None else [exact] if isinstance(exact, (int, float)) else list(exact)
@@ -386,7 +391,7 @@ def predict(
         _samplab.predict(
             names,
             given,
-            [_count("n", c) for c in counts],
+            _counts("n", n),
             _count("res", res),
             _count("sets", sets),
             measured,

@@ -32,7 +32,7 @@ from typing import Any, Dict, Iterable, List, Optional, Sequence
 
 import numpy as np
 
-from . import _count, _samplab
+from . import _count, _counts, _samplab
 from ._samplab import Error
 
 __all__ = ["Study", "StudyResult"]
@@ -83,7 +83,7 @@ class Study:
         (sampler, count, instance) with all its realizations; a chunk is
         ``units_per_chunk`` consecutive units."""
         samplers = [samplers] if isinstance(samplers, str) else list(samplers)
-        n = [_count("n", x) for x in ([n] if isinstance(n, int) else n)]
+        n = _counts("n", n)
         params = dict(samplers=samplers, integrand=integrand, n=n, sets=_count("sets", sets), instances=_count("instances", instances), seed=_seed(seed))
         return cls._planned("integrate", params, units_per_chunk)
 
