@@ -457,6 +457,12 @@ fn statistics_dict<'py>(py: Python<'py>, st: &samplab::spectrum::Statistics) -> 
     Ok(out)
 }
 
+/// Every study kind's parameters, as JSON ([`samplab_render::study::KINDS`]).
+#[pyfunction]
+fn study_kinds() -> PyResult<String> {
+    serde_json::to_string(samplab_render::study::KINDS).map_err(err)
+}
+
 /// A study's chunk list: the description (JSON, `{"kind": ..., parameters}`) checked
 /// before any work and cut into chunks of `per_chunk` units, sets or seeds; returns the
 /// description as the CLI writes it, the chunks, and whether chunk 0's result feeds the
@@ -863,6 +869,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(predict, m)?)?;
+    m.add_function(wrap_pyfunction!(study_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(study_plan, m)?)?;
     m.add_function(wrap_pyfunction!(study_chunk, m)?)?;
     m.add_function(wrap_pyfunction!(study_merge, m)?)?;

@@ -204,3 +204,26 @@ def test_the_readme_example_runs(tmp_path):
     run = subprocess.run([sys.executable, example, str(tmp_path), "--quick"], capture_output=True, text=True, timeout=300)
     assert run.returncode == 0, run.stderr[-2000:]
     assert sorted(os.listdir(tmp_path)) == ["fig6.ckpt", "fig6.csv", "fig6.png"]
+
+
+def test_constructors_are_generated_from_the_library_kinds():
+    """Each Study constructor's parameters, defaults and documentation are the library's
+    declaration (samplab_render::study::KINDS): a signature for help(), Python's own
+    TypeError for a missing or unknown argument."""
+    import inspect
+
+    kinds = json.loads(samplab._samplab.study_kinds())
+    assert [k["kind"] for k in kinds] == ["integrate", "spectrum", "discrepancy", "render"]
+    for k in kinds:
+        make = getattr(Study, k["kind"])
+        names = list(inspect.signature(make).parameters)
+        declared = [p["name"] for p in k["parameters"]] + [k["per_chunk"][0]] + ([k["rest"]] if k["rest"] else [])
+        assert names == declared, k["kind"]
+        assert make.__doc__ and make.__doc__.startswith(k["doc"].split("`")[0])
+    with pytest.raises(TypeError):
+        Study.spectrum("jitter", 64, res=16)  # sets is required
+    with pytest.raises(TypeError):
+        Study.integrate("random", "quad", 16, bogus=1)
+    # defaults come from the declaration: 50 sets, 10 instances
+    study = Study.integrate("random", "quad", 16, seed=1)
+    assert (study.params["sets"], study.params["instances"]) == (50, 10)

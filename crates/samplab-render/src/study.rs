@@ -18,6 +18,114 @@ use crate::image::Image;
 use crate::mitsuba::Paths;
 use crate::settings::{Settings, load_scene};
 
+/// What a front end needs to build a study of one kind: its parameters in order (the
+/// positional ones first), their types and defaults, how its chunks are sized, and what it
+/// computes. A front end's constructor for a kind is generated from this.
+#[derive(Debug, Serialize)]
+pub struct Kind {
+    /// The kind (`kind` of the description).
+    pub kind: &'static str,
+    /// What the study computes, for the constructor's documentation.
+    pub doc: &'static str,
+    /// The parameters, in order.
+    pub parameters: &'static [Parameter],
+    /// The keyword that sizes the chunks, and its default.
+    pub per_chunk: (&'static str, usize),
+    /// The parameter that collects every other keyword (a render's settings), if any.
+    pub rest: Option<&'static str>,
+}
+
+/// One parameter of a study kind.
+#[derive(Debug, Serialize)]
+pub struct Parameter {
+    /// Its name (a field of the description).
+    pub name: &'static str,
+    /// `count`, `counts` (one or several), `name`, `names` (one or several), `seed` (none:
+    /// the default seed), `bool`, `float`, `float?` or `name?` (optional).
+    pub of: &'static str,
+    /// Its default as JSON; none when it must be given.
+    pub default: Option<&'static str>,
+    /// Whether it may be given by position.
+    pub positional: bool,
+}
+
+const fn given(name: &'static str, of: &'static str) -> Parameter {
+    Parameter { name, of, default: None, positional: true }
+}
+
+const fn keyword(name: &'static str, of: &'static str, default: Option<&'static str>) -> Parameter {
+    Parameter { name, of, default, positional: false }
+}
+
+/// Every study kind.
+pub const KINDS: &[Kind] = &[
+    Kind {
+        kind: "integrate",
+        doc: "Integration error of `samplers` x counts `n` on `instances` instances of the integrand family, \
+              `sets` realizations each (`samplab integrate`). A unit is one (sampler, count, instance) with all \
+              its realizations; a chunk is `units_per_chunk` consecutive units.",
+        parameters: &[
+            given("samplers", "names"),
+            given("integrand", "name"),
+            given("n", "counts"),
+            keyword("sets", "count", Some("50")),
+            keyword("instances", "count", Some("10")),
+            keyword("seed", "seed", Some("null")),
+        ],
+        per_chunk: ("units_per_chunk", 1),
+        rest: None,
+    },
+    Kind {
+        kind: "spectrum",
+        doc: "Periodogram, expected spectrum and spectrum variance of `sets` realizations of `sampler` \
+              (`samplab spectrum`). `sets_per_chunk` must be 16 times a power of two: a chunk is one node of \
+              the merge tree.",
+        parameters: &[
+            given("sampler", "name"),
+            given("n", "count"),
+            keyword("sets", "count", None),
+            keyword("res", "count", None),
+            keyword("d", "count", Some("2")),
+            keyword("direct", "bool", Some("false")),
+            keyword("tolerance", "float", Some("1e-9")),
+            keyword("seed", "seed", Some("null")),
+        ],
+        per_chunk: ("sets_per_chunk", 256),
+        rest: None,
+    },
+    Kind {
+        kind: "discrepancy",
+        doc: "Discrepancies `metrics` of `sets` realizations of `sampler` (`samplab discrepancy --sampler`), \
+              `sets_per_chunk` realizations per chunk.",
+        parameters: &[
+            given("metrics", "names"),
+            given("sampler", "name"),
+            given("n", "count"),
+            keyword("sets", "count", None),
+            keyword("d", "count", Some("2")),
+            keyword("seed", "seed", Some("null")),
+            keyword("max_work", "float?", Some("null")),
+        ],
+        per_chunk: ("sets_per_chunk", 100),
+        rest: None,
+    },
+    Kind {
+        kind: "render",
+        doc: "Error of renders of `scene` (the CLI's settings as keywords) against its converged reference, one \
+              render per seed of `seeds` (`samplab render --reference --json` per seed). The reference is a \
+              chunk of its own, computed first.",
+        parameters: &[
+            given("scene", "name"),
+            given("seeds", "counts"),
+            keyword("light", "name?", Some("null")),
+            keyword("reference_samples", "count", Some("1024")),
+            keyword("penumbra", "bool", Some("false")),
+        ],
+        per_chunk: ("seeds_per_chunk", 1),
+        rest: Some("settings"),
+    },
+];
+
 /// Renders of `scene` with `settings`, one per seed of `seeds`, against the reference.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -215,6 +323,38 @@ mod tests {
             assert_eq!(merged["errors"][k]["rmse"].as_f64().unwrap().to_bits(), rmse.to_bits(), "seed {seed}");
         }
         assert!(s.compute(&[3], None, &Progress::SILENT).is_err(), "an error chunk without its reference");
+    }
+
+    /// Each kind's declared parameters are exactly its description's fields: a front end
+    /// built from [`KINDS`] can give every field and nothing else.
+    #[test]
+    fn every_kind_declares_its_description_fields() {
+        let library = |text: &str| Study::from_json(text).unwrap().to_json();
+        let examples = [
+            library(
+                r#"{"kind":"integrate","samplers":["random"],"integrand":"quad","n":[16],"sets":2,"instances":1,"seed":1}"#,
+            ),
+            library(
+                r#"{"kind":"spectrum","sampler":"jitter","n":16,"d":2,"sets":2,"res":8,"direct":false,"tolerance":1e-9,"seed":1}"#,
+            ),
+            library(
+                r#"{"kind":"discrepancy","metrics":["star"],"sampler":"jitter","n":16,"d":2,"sets":2,"seed":1,"max_work":null}"#,
+            ),
+            study(vec![1]).to_json(),
+        ];
+        assert_eq!(KINDS.len(), examples.len());
+        for (kind, example) in KINDS.iter().zip(&examples) {
+            let value: serde_json::Value = serde_json::from_str(example).unwrap();
+            let fields: std::collections::BTreeSet<&str> =
+                value.as_object().unwrap().keys().map(String::as_str).filter(|k| *k != "kind").collect();
+            let declared: std::collections::BTreeSet<&str> =
+                kind.parameters.iter().map(|p| p.name).chain(kind.rest).collect();
+            assert_eq!(value["kind"], kind.kind);
+            assert_eq!(fields, declared, "{}", kind.kind);
+            for p in kind.parameters.iter().filter_map(|p| p.default) {
+                serde_json::from_str::<serde_json::Value>(p).unwrap();
+            }
+        }
     }
 
     #[test]

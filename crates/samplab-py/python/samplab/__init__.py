@@ -110,7 +110,8 @@ def _count(name: str, value: Any) -> int:
 def _counts(name: str, value: Any) -> List[int]:
     """One count or a sequence of counts, each checked by ``_count`` (a float such as 64.0
     is refused as one count, not iterated)."""
-    values = list(value) if isinstance(value, (list, tuple, range, np.ndarray)) else [value]
+    iterable = hasattr(value, "__iter__") and not isinstance(value, (str, bytes))
+    values = list(value) if iterable else [value]
     return [_count(name, v) for v in values]
 
 

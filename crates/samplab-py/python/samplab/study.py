@@ -22,13 +22,14 @@ an error naming it, never used.
 from __future__ import annotations
 
 import hashlib
+import inspect
 import json
 import os
 import sys
 import time
 import uuid
 from dataclasses import dataclass, field
-from typing import Any, Dict, Iterable, List, Optional, Sequence
+from typing import Any, Dict, List, Optional
 
 import numpy as np
 
@@ -43,6 +44,47 @@ MAGIC = b"samplab-chunk 1\n"
 
 def _canonical(value: Any) -> str:
     return json.dumps(value, sort_keys=True, separators=(",", ":"))
+
+
+#: how each parameter type of ``_samplab.study_kinds()`` is read from Python
+_READ = {
+    "count": _count,
+    "counts": _counts,
+    "name": lambda name, v: str(v),
+    "names": lambda name, v: [v] if isinstance(v, str) else [str(x) for x in v],
+    "name?": lambda name, v: None if v is None else str(v),
+    "seed": lambda name, v: int(_samplab.default_seed()) if v is None else _count(name, v),
+    "bool": lambda name, v: bool(v),
+    "float": lambda name, v: float(v),
+    "float?": lambda name, v: None if v is None else float(v),
+}
+
+
+def _constructor(kind: str) -> Any:
+    """``Study.<kind>(...)``, its parameters, defaults and documentation those the library
+    declares for the kind (``samplab_render::study::KINDS``)."""
+    info = next(k for k in json.loads(_samplab.study_kinds()) if k["kind"] == kind)
+    params, (chunk_name, chunk_default), rest = info["parameters"], info["per_chunk"], info["rest"]
+    P = inspect.Parameter
+    signature = [P("cls", P.POSITIONAL_ONLY)]
+    signature += [P(p["name"], P.POSITIONAL_OR_KEYWORD if p["positional"] else P.KEYWORD_ONLY, default=P.empty if p["default"] is None else json.loads(p["default"])) for p in params]
+    signature += [P(chunk_name, P.KEYWORD_ONLY, default=chunk_default)] + ([P(rest, P.VAR_KEYWORD)] if rest else [])
+
+    def make(cls: Any, *args: Any, **kwargs: Any) -> "Study":
+        bound = inspect.Signature(signature).bind(cls, *args, **kwargs)
+        bound.apply_defaults()
+        given = dict(bound.arguments)
+        values = {p["name"]: _READ[p["of"]](p["name"], given[p["name"]]) for p in params}
+        if rest:
+            if "seed" in given[rest]:
+                raise Error("seed: give the seeds as `seeds`")
+            values[rest] = given[rest]
+        return cls._planned(kind, values, given[chunk_name])
+
+    make.__name__ = make.__qualname__ = kind
+    make.__doc__ = info["doc"].replace("`", "``")
+    make.__signature__ = inspect.Signature(signature)  # type: ignore[attr-defined]
+    return classmethod(make)
 
 
 @dataclass
@@ -66,86 +108,10 @@ class Study:
         del params["kind"]
         return cls(kind, params, [list(c) for c in chunks], feeds)
 
-    @classmethod
-    def integrate(
-        cls,
-        samplers: Sequence[str],
-        integrand: str,
-        n: Sequence[int],
-        *,
-        sets: int = 50,
-        instances: int = 10,
-        seed: Optional[int] = None,
-        units_per_chunk: int = 1,
-    ) -> "Study":
-        """Integration error of ``samplers`` x counts ``n`` on ``instances`` instances of the
-        integrand family, ``sets`` realizations each (``samplab integrate``). A unit is one
-        (sampler, count, instance) with all its realizations; a chunk is
-        ``units_per_chunk`` consecutive units."""
-        samplers = [samplers] if isinstance(samplers, str) else list(samplers)
-        n = _counts("n", n)
-        params = dict(samplers=samplers, integrand=integrand, n=n, sets=_count("sets", sets), instances=_count("instances", instances), seed=_seed(seed))
-        return cls._planned("integrate", params, units_per_chunk)
-
-    @classmethod
-    def spectrum(
-        cls,
-        sampler: str,
-        n: int,
-        *,
-        sets: int,
-        res: int,
-        d: int = 2,
-        direct: bool = False,
-        tolerance: float = 1e-9,
-        seed: Optional[int] = None,
-        sets_per_chunk: int = 256,
-    ) -> "Study":
-        """Periodogram, expected spectrum and spectrum variance of ``sets`` realizations of
-        ``sampler`` (``samplab spectrum``). ``sets_per_chunk`` must be 16 times a power of
-        two: a chunk is one node of the merge tree."""
-        params = dict(sampler=sampler, n=_count("n", n), d=_count("d", d), sets=_count("sets", sets), res=_count("res", res), direct=bool(direct), tolerance=float(tolerance), seed=_seed(seed))
-        return cls._planned("spectrum", params, sets_per_chunk)
-
-    @classmethod
-    def discrepancy(
-        cls,
-        metrics: Sequence[str],
-        sampler: str,
-        n: int,
-        *,
-        sets: int,
-        d: int = 2,
-        seed: Optional[int] = None,
-        max_work: Optional[float] = None,
-        sets_per_chunk: int = 100,
-    ) -> "Study":
-        """Discrepancies ``metrics`` of ``sets`` realizations of ``sampler`` (``samplab
-        discrepancy --sampler``), ``sets_per_chunk`` realizations per chunk."""
-        metrics = [metrics] if isinstance(metrics, str) else list(metrics)
-        max_work = None if max_work is None else float(max_work)
-        params = dict(metrics=metrics, sampler=sampler, n=_count("n", n), d=_count("d", d), sets=_count("sets", sets), seed=_seed(seed), max_work=max_work)
-        return cls._planned("discrepancy", params, sets_per_chunk)
-
-    @classmethod
-    def render(
-        cls,
-        scene: str,
-        seeds: Iterable[int],
-        *,
-        light: Optional[str] = None,
-        reference_samples: int = 1024,
-        penumbra: bool = False,
-        seeds_per_chunk: int = 1,
-        **settings: Any,
-    ) -> "Study":
-        """Error of renders of ``scene`` (the CLI's settings as keywords) against its
-        converged reference, one render per seed of ``seeds`` (``samplab render --reference
-        --json`` per seed). The reference is a chunk of its own, computed first."""
-        if "seed" in settings:
-            raise Error("seed: give the seeds as `seeds`")
-        params = dict(scene=scene, light=light, reference_samples=_count("reference_samples", reference_samples), penumbra=bool(penumbra), settings=settings, seeds=[_count("seed", s) for s in seeds])
-        return cls._planned("render", params, seeds_per_chunk)
+    integrate = _constructor("integrate")
+    spectrum = _constructor("spectrum")
+    discrepancy = _constructor("discrepancy")
+    render = _constructor("render")
 
     # ----- identity -----------------------------------------------------------------------
 
@@ -237,10 +203,6 @@ class Study:
         futures = {submit(i, dependency): i for i in todo if i not in results}
         for future in as_completed(list(futures)):
             done(futures[future], future.result())
-
-
-def _seed(seed: Optional[int]) -> int:
-    return int(_samplab.default_seed() if seed is None else seed)
 
 
 def _compute(kind: str, params: Dict[str, Any], chunk: Any, dependency: Optional[bytes] = None) -> bytes:
