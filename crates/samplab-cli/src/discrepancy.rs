@@ -50,10 +50,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         bail!("name at least one metric before the file (e.g. star)");
     }
     let metrics: Vec<Metric> = metric_items.iter().map(|m| Metric::parse(m)).collect::<Result<_, _>>()?;
-    let limits = Limits { max_work: a.max_work.unwrap_or(Limits::default().max_work) };
-    if a.max_work.is_some_and(|w| w.is_nan() || w <= 0.0) {
-        bail!("--max-work must be a positive number");
-    }
+    let limits = Limits::new(a.max_work)?;
     let crate::sets::Loaded { sets, source, .. } = a.source.load(file.as_deref(), 1, &(0.0..=1.0))?;
     let bar = Bar::new((sets.len() * metrics.len()) as u64, "evaluations");
     let progress = bar.progress();

@@ -397,11 +397,7 @@ fn discrepancy(
     max_work: Option<f64>,
 ) -> PyResult<Vec<f64>> {
     let m = Metric::parse(metric).map_err(err)?;
-    let limits = match max_work {
-        Some(w) if w.is_nan() || w <= 0.0 => return Err(err("max_work must be a positive number")),
-        Some(w) => Limits { max_work: w },
-        None => Limits::default(),
-    };
+    let limits = Limits::new(max_work).map_err(err)?;
     let sets = point_sets(&points)?;
     interruptible(py, points.len(), |stop| {
         let progress = Progress::until(stop);

@@ -133,15 +133,6 @@ fn some<T>(name: &str, values: &[T]) -> Result<()> {
     Ok(())
 }
 
-/// The work limit of a discrepancy study.
-fn limits(max_work: Option<f64>) -> Result<Limits> {
-    match max_work {
-        Some(w) if w.is_nan() || w <= 0.0 => Err(invalid("max_work must be a positive number".into())),
-        Some(w) => Ok(Limits { max_work: w }),
-        None => Ok(Limits::default()),
-    }
-}
-
 /// The sampler `spec`, checked at `n` points in `d` dimensions.
 fn sampler(spec: &str, n: usize, d: usize) -> Result<Box<dyn crate::Sampler>> {
     let sampler = crate::sampler::build(spec)?;
@@ -232,7 +223,7 @@ impl Description {
                 for m in &metrics {
                     Metric::parse(m)?;
                 }
-                limits(max_work)?;
+                Limits::new(max_work)?;
                 // checked by planning, not by generating a set (a CCVT of 10^6 points is
                 // not optimized here)
                 let sampler = self::sampler(&sampler, n, d)?.spec();
@@ -286,7 +277,7 @@ impl Description {
                 }
                 let sampler = crate::sampler::build(sampler)?;
                 let plan = sampler.plan(*n, *d)?;
-                let limits = limits(*max_work)?;
+                let limits = Limits::new(*max_work)?;
                 let stack = plan.stack(Seed(*seed), first..end, progress)?;
                 let points: Vec<PointSet> =
                     stack.chunks(n * d).map(|set| PointSet::from_raw(*d, set.to_vec())).collect();

@@ -193,6 +193,22 @@ impl std::default::Default for Limits {
 }
 
 impl Limits {
+    /// The limits with `max_work` steps at most (the default when none).
+    ///
+    /// # Errors
+    /// [`Error::Setting`] `max_work` when it is not a positive number.
+    pub fn new(max_work: Option<f64>) -> Result<Limits> {
+        match max_work {
+            Some(w) if w.is_nan() || w <= 0.0 => Err(Error::Setting {
+                name: "max_work",
+                value: w.to_string(),
+                reason: "must be a positive number".into(),
+            }),
+            Some(w) => Ok(Limits { max_work: w }),
+            None => Ok(Limits::default()),
+        }
+    }
+
     /// Refuse `work` steps of `what` over the limit, before doing any of it.
     ///
     /// # Errors
