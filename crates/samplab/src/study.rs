@@ -358,7 +358,7 @@ impl Description {
                 let k = metrics.len();
                 let mut values = vec![Vec::with_capacity(*sets); k];
                 for part in parts {
-                    if part.len() % (8 * k) != 0 {
+                    if part.is_empty() || part.len() % (8 * k) != 0 {
                         return Err(invalid(format!("a discrepancy chunk of {} bytes for {k} metrics", part.len())));
                     }
                     let per = part.len() / (8 * k);
@@ -428,6 +428,8 @@ mod tests {
             assert!(d.compute(&chunk, &Progress::SILENT).is_err(), "{chunk:?}");
         }
         assert!(discrepancy(8).plan(0).unwrap_err().to_string().contains("sets_per_chunk = 0"));
+        // a part of no bytes is refused, not split into chunks of zero values
+        assert!(d.merge(&[Vec::new()]).is_err());
         assert!(discrepancy(0).plan(1).is_err());
         let spectrum = |per_chunk| {
             Description::Spectrum {

@@ -79,7 +79,7 @@ def _constructor(kind: str) -> Any:
             if "seed" in given[rest]:
                 raise Error("seed: give the seeds as `seeds`")
             values[rest] = given[rest]
-        return cls._planned(kind, values, given[chunk_name])
+        return cls._planned(kind, values, _count(chunk_name, given[chunk_name]))
 
     make.__name__ = make.__qualname__ = kind
     make.__doc__ = info["doc"].replace("`", "``")
@@ -103,7 +103,7 @@ class Study:
     @classmethod
     def _planned(cls, kind: str, params: Dict[str, Any], per_chunk: int) -> "Study":
         """Checked and cut into chunks by the library, before any work."""
-        described, chunks, feeds = _samplab.study_plan(_canonical({"kind": kind, **params}), _count("per chunk", per_chunk))
+        described, chunks, feeds = _samplab.study_plan(_canonical({"kind": kind, **params}), per_chunk)
         params = json.loads(described)
         del params["kind"]
         return cls(kind, params, [list(c) for c in chunks], feeds)
