@@ -459,14 +459,39 @@ fn study_kinds() -> PyResult<String> {
     serde_json::to_string(samplab_render::study::KINDS).map_err(err)
 }
 
-/// A study's chunk list: the description (JSON, `{"kind": ..., parameters}`) checked
-/// before any work and cut into chunks of `per_chunk` units, sets or seeds; returns the
-/// description as the CLI writes it, the chunks, and whether chunk 0's result feeds the
-/// others ([`samplab_render::study::Study`]).
+/// A study's chunk list: the constructor's arguments (JSON, `{"kind": ..., arguments}`,
+/// read by [`samplab_render::study::read`]) checked before any work and cut into chunks;
+/// returns the description as the CLI writes it, the chunks, and whether chunk 0's result
+/// feeds the others ([`samplab_render::study::Study`]).
 #[pyfunction]
-fn study_plan(description: &str, per_chunk: usize) -> PyResult<(String, Vec<Vec<u64>>, bool)> {
-    let (study, chunks) = Study::from_json(description).and_then(|s| s.plan(per_chunk)).map_err(err)?;
+fn study_plan(arguments: &str) -> PyResult<(String, Vec<Vec<u64>>, bool)> {
+    let (study, chunks) =
+        samplab_render::study::read(arguments).and_then(|(s, per_chunk)| s.plan(per_chunk)).map_err(err)?;
     Ok((study.to_json(), chunks, study.first_feeds_the_rest()))
+}
+
+/// A study's checkpoint folder: finished chunks kept and read back, each checked
+/// ([`samplab::study::Checkpoint`]).
+#[pyclass(module = "samplab._samplab", frozen)]
+struct Checkpoint(samplab::study::Checkpoint);
+
+#[pymethods]
+impl Checkpoint {
+    #[new]
+    fn new(folder: std::path::PathBuf, fingerprint: &str, manifest: &str) -> PyResult<Self> {
+        samplab::study::Checkpoint::open(&folder, fingerprint, manifest).map(Checkpoint).map_err(err)
+    }
+
+    /// Keeps chunk `chunk`'s bytes.
+    fn save(&self, chunk: usize, data: &[u8]) -> PyResult<()> {
+        self.0.save(chunk, data).map_err(err)
+    }
+
+    /// The kept chunks among the first `chunks`: (chunk, bytes) pairs.
+    fn load<'py>(&self, py: Python<'py>, chunks: usize) -> PyResult<Vec<(usize, Bound<'py, PyBytes>)>> {
+        let found = self.0.load(chunks).map_err(err)?;
+        Ok(found.into_iter().map(|(i, data)| (i, PyBytes::new(py, &data))).collect())
+    }
 }
 
 /// One chunk of a study, as bytes (what a worker returns and a checkpoint keeps); `first`
@@ -865,6 +890,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(predict, m)?)?;
+    m.add_class::<Checkpoint>()?;
     m.add_function(wrap_pyfunction!(study_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(study_plan, m)?)?;
     m.add_function(wrap_pyfunction!(study_chunk, m)?)?;

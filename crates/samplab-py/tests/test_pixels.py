@@ -36,7 +36,7 @@ def test_every_pixel_sampler_is_listed_and_draws_in_the_unit_interval():
         (lambda: samplab.pixels("zsobol", (4, 4), spp=3), "spp a power of two: try 2 and 4"),
         (lambda: samplab.pixels("zsobl", (4, 4), spp=4), "did you mean zsobol"),
         (lambda: samplab.pixels("zsobol", (0, 4), spp=4), "a film side is 1 to"),
-        (lambda: samplab.pixels("zsobol", (4, 4), spp=4.0), "spp must be a whole number"),
+        (lambda: samplab.pixels("zsobol", (4, 4), spp=4.0), "spp = 4.0: must be a whole number"),
         (lambda: samplab.pixels("zsobol", 4, spp=4), "res must be (width, height)"),
         (lambda: samplab.pixels("sobol", (4, 4), spp=4, dims=2000), "2000D is not supported"),
         (lambda: samplab.pixels("sobol", (4, 4), spp=2**40), "spp = 1099511627776: out of range"),

@@ -47,7 +47,7 @@ def test_study_arguments_are_checked_with_samplab_errors(tmp_path):
         Study.integrate(["random"], "quad", [16.7])
     # a lone float count is refused as a count, not iterated (it raised TypeError)
     for call in (lambda: samplab.integrate("random", "quad", 64.0), lambda: Study.integrate("random", "quad", 64.0)):
-        with pytest.raises(samplab.Error, match="whole number, got 64.0"):
+        with pytest.raises(samplab.Error, match="= 64.0: must be a whole number"):
             call()
     with pytest.raises(samplab.Error, match="n: empty"):
         Study.integrate(["random"], "quad", [])

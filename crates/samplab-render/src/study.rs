@@ -9,6 +9,7 @@
 //! [`Study::first_feeds_the_rest`]), merge.
 
 use serde::{Deserialize, Serialize};
+use serde_json::Value;
 
 use samplab::progress::Progress;
 use samplab::study::{Chunk, Description, Merged};
@@ -126,6 +127,116 @@ pub const KINDS: &[Kind] = &[
     },
 ];
 
+impl Kind {
+    /// The kind named `kind`.
+    ///
+    /// # Errors
+    /// An unknown kind, with the known ones.
+    pub fn named(kind: &str) -> Result<&'static Kind> {
+        KINDS.iter().find(|k| k.kind == kind).ok_or_else(|| {
+            samplab::Error::UnknownName {
+                kind: "study kind",
+                name: kind.to_string(),
+                suggestions: KINDS.iter().map(|k| k.kind.to_string()).collect(),
+            }
+            .into()
+        })
+    }
+
+    /// The study a front end's arguments describe, and its chunk size: `arguments` holds
+    /// the kind's parameters by name (a declared default where one is absent), its chunk
+    /// keyword and, for a kind with a `rest`, an object of every other keyword. Each value
+    /// is read by its declared type: a count is a whole number in [0, 2^64) (a float such
+    /// as 64.0 or a bool is refused), `counts` and `names` take one value or a list, a
+    /// `seed` of null is the default seed.
+    ///
+    /// # Errors
+    /// The first argument that is missing or of the wrong type, named.
+    ///
+    /// # Panics
+    /// Never: the declared defaults are JSON (a test reads every one).
+    pub fn read(&self, arguments: &serde_json::Map<String, Value>) -> Result<(Study, usize)> {
+        let mut description = serde_json::Map::new();
+        description.insert("kind".into(), self.kind.into());
+        for p in self.parameters {
+            let default = p.default.map(|d| serde_json::from_str::<Value>(d).expect("declared defaults are JSON"));
+            let value = arguments
+                .get(p.name)
+                .cloned()
+                .or(default)
+                .ok_or_else(|| Error::from(setting(p.name, &Value::Null, "must be given")))?;
+            description.insert(p.name.into(), typed(p.of, p.name, &value)?);
+        }
+        if let Some(rest) = self.rest {
+            let others = arguments.get(rest).cloned().unwrap_or_else(|| Value::Object(Default::default()));
+            if let Some(seed) = others.get("seed") {
+                return Err(setting("seed", seed, "give the seeds as `seeds`").into());
+            }
+            description.insert(rest.into(), others);
+        }
+        let (name, default) = self.per_chunk;
+        let per_chunk = match arguments.get(name) {
+            Some(v) => usize::try_from(count(name, v)?.as_u64().unwrap_or(0)).unwrap_or(usize::MAX),
+            None => default,
+        };
+        Ok((Study::from_value(Value::Object(description))?, per_chunk))
+    }
+}
+
+/// The study a front end's arguments describe (a JSON object: `kind` and the arguments
+/// [`Kind::read`] takes), and its chunk size.
+///
+/// # Errors
+/// Text that is not a JSON object, an unknown kind, or [`Kind::read`]'s errors.
+pub fn read(arguments: &str) -> Result<(Study, usize)> {
+    let bad = |e: serde_json::Error| invalid(format!("not a study's arguments: {e}"));
+    let arguments: serde_json::Map<String, Value> = serde_json::from_str(arguments).map_err(bad)?;
+    let kind = arguments.get("kind").and_then(Value::as_str).unwrap_or_default();
+    Kind::named(kind)?.read(&arguments)
+}
+
+fn setting(name: &'static str, value: &Value, reason: &str) -> samplab::Error {
+    samplab::Error::Setting { name, value: value.to_string(), reason: reason.to_string() }
+}
+
+/// A count: a whole number in [0, 2^64).
+fn count(name: &'static str, v: &Value) -> std::result::Result<Value, samplab::Error> {
+    match v.as_f64() {
+        _ if v.is_u64() => Ok(v.clone()),
+        // a negative integer, or one past 2^64 (which JSON readers hold as a float)
+        Some(x) if v.is_i64() || (x.fract() == 0.0 && x.abs() >= 18_446_744_073_709_551_616.0) => {
+            Err(setting(name, v, "out of range [0, 2^64)"))
+        }
+        _ => Err(setting(name, v, "must be a whole number")),
+    }
+}
+
+fn text(name: &'static str, v: &Value) -> std::result::Result<Value, samplab::Error> {
+    if v.is_string() { Ok(v.clone()) } else { Err(setting(name, v, "must be a name (a string)")) }
+}
+
+/// `value` read as parameter `name` of type `of` (see [`Parameter::of`]).
+fn typed(of: &str, name: &'static str, value: &Value) -> std::result::Result<Value, samplab::Error> {
+    let one_or_many = |each: fn(&'static str, &Value) -> std::result::Result<Value, samplab::Error>| match value {
+        Value::Array(items) => {
+            items.iter().map(|v| each(name, v)).collect::<std::result::Result<Vec<_>, _>>().map(Value::Array)
+        }
+        v => Ok(Value::Array(vec![each(name, v)?])),
+    };
+    match (of, value) {
+        ("counts", _) => one_or_many(count),
+        ("names", _) => one_or_many(text),
+        ("seed", Value::Null) => Ok(samplab::Seed::DEFAULT.0.into()),
+        ("count" | "seed", _) => count(name, value),
+        ("name?" | "float?", Value::Null) | ("bool", Value::Bool(_)) | ("float" | "float?", Value::Number(_)) => {
+            Ok(value.clone())
+        }
+        ("name" | "name?", _) => text(name, value),
+        ("bool", _) => Err(setting(name, value, "must be true or false")),
+        _ => Err(setting(name, value, "must be a number")),
+    }
+}
+
 /// Renders of `scene` with `settings`, one per seed of `seeds`, against the reference.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -163,9 +274,12 @@ impl Study {
     /// # Errors
     /// JSON that is not a study description, naming what is wrong.
     pub fn from_json(text: &str) -> Result<Study> {
+        Study::from_value(serde_json::from_str(text).map_err(|e| invalid(format!("not a study description: {e}")))?)
+    }
+
+    fn from_value(mut value: Value) -> Result<Study> {
         let bad = |e: serde_json::Error| invalid(format!("not a study description: {e}"));
-        let mut value: serde_json::Value = serde_json::from_str(text).map_err(bad)?;
-        if value.get("kind").and_then(serde_json::Value::as_str) == Some("render") {
+        if value.get("kind").and_then(Value::as_str) == Some("render") {
             value.as_object_mut().map(|o| o.remove("kind"));
             Ok(Study::Render(Box::new(serde_json::from_value(value).map_err(bad)?)))
         } else {
@@ -255,9 +369,9 @@ impl Study {
             Study::Library(d) => return Ok(d.merge(parts)?),
             Study::Render(r) => r,
         };
-        let mut errors: Vec<serde_json::Map<String, serde_json::Value>> = Vec::new();
+        let mut errors: Vec<serde_json::Map<String, Value>> = Vec::new();
         for part in parts.iter().skip(1) {
-            let chunk: Vec<serde_json::Map<String, serde_json::Value>> =
+            let chunk: Vec<serde_json::Map<String, Value>> =
                 serde_json::from_slice(part).map_err(|e| invalid(format!("a render chunk that is not errors: {e}")))?;
             errors.extend(chunk);
         }
@@ -266,7 +380,7 @@ impl Study {
         }
         let names: Vec<String> = errors.first().map(|e| e.keys().cloned().collect()).unwrap_or_default();
         let column = |name: &str| errors.iter().map(|e| e[name].as_f64().unwrap_or(f64::NAN)).collect::<Vec<f64>>();
-        let summary: serde_json::Map<String, serde_json::Value> = names
+        let summary: serde_json::Map<String, Value> = names
             .iter()
             .map(|name| {
                 let s = samplab::stats::Summary::of(&column(name));
@@ -286,6 +400,41 @@ impl Study {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// What a front end's arguments become: each read by its declared type, defaults
+    /// filled in, the wrong types refused by name (a float count is not truncated).
+    #[test]
+    fn arguments_are_read_by_their_declared_types() {
+        let (study, per_chunk) =
+            read(r#"{"kind": "integrate", "samplers": "random", "integrand": "quad", "n": 16}"#).unwrap();
+        let described: Value = serde_json::from_str(&study.to_json()).unwrap();
+        assert_eq!(described["samplers"], serde_json::json!(["random"]));
+        assert_eq!(described["n"], serde_json::json!([16]));
+        assert_eq!(
+            (described["sets"].as_u64(), described["seed"].as_u64()),
+            (Some(50), Some(samplab::Seed::DEFAULT.0))
+        );
+        assert_eq!(per_chunk, 1);
+        let refused = |arguments: &str| read(arguments).unwrap_err().to_string();
+        let integrate =
+            |extra: &str| format!(r#"{{"kind": "integrate", "samplers": ["random"], "integrand": "quad", {extra}}}"#);
+        assert_eq!(refused(&integrate(r#""n": [16.7]"#)), "n = 16.7: must be a whole number");
+        assert_eq!(refused(&integrate(r#""n": 64.0"#)), "n = 64.0: must be a whole number");
+        assert_eq!(refused(&integrate(r#""n": [true]"#)), "n = true: must be a whole number");
+        assert_eq!(refused(&integrate(r#""n": [-1]"#)), "n = -1: out of range [0, 2^64)");
+        assert_eq!(
+            refused(&integrate(r#""n": 16, "units_per_chunk": 2.5"#)),
+            "units_per_chunk = 2.5: must be a whole number"
+        );
+        assert!(
+            refused(r#"{"kind": "integrate", "integrand": "quad", "n": 16}"#)
+                .starts_with("samplers = null: must be given")
+        );
+        assert!(refused(r#"{"kind": "spectra"}"#).contains("unknown study kind 'spectra'"));
+        assert!(
+            refused(r#"{"kind": "render", "scene": "box", "seeds": 1, "settings": {"seed": 3}}"#).contains("seeds")
+        );
+    }
 
     fn study(seeds: Vec<u64>) -> Study {
         let settings = Settings { n: 4, res: Some((24, 16)), ..Settings::default() };
@@ -310,7 +459,7 @@ mod tests {
         let parts: Vec<Vec<u8>> = std::iter::once(first.clone())
             .chain(chunks[1..].iter().map(|c| s.compute(c, Some(&first), &Progress::SILENT).unwrap()))
             .collect();
-        let merged: serde_json::Value = serde_json::from_str(&s.merge(&parts).unwrap().json).unwrap();
+        let merged: Value = serde_json::from_str(&s.merge(&parts).unwrap().json).unwrap();
         let scene = load_scene("spheres", None, Paths::InsideScene).unwrap();
         let Study::Render(r) = &s else { unreachable!() };
         let reference_options = r.settings.options(&scene).unwrap().reference(&scene, 64).unwrap();
@@ -344,7 +493,7 @@ mod tests {
         ];
         assert_eq!(KINDS.len(), examples.len());
         for (kind, example) in KINDS.iter().zip(&examples) {
-            let value: serde_json::Value = serde_json::from_str(example).unwrap();
+            let value: Value = serde_json::from_str(example).unwrap();
             let fields: std::collections::BTreeSet<&str> =
                 value.as_object().unwrap().keys().map(String::as_str).filter(|k| *k != "kind").collect();
             let declared: std::collections::BTreeSet<&str> =
@@ -352,7 +501,7 @@ mod tests {
             assert_eq!(value["kind"], kind.kind);
             assert_eq!(fields, declared, "{}", kind.kind);
             for p in kind.parameters.iter().filter_map(|p| p.default) {
-                serde_json::from_str::<serde_json::Value>(p).unwrap();
+                serde_json::from_str::<Value>(p).unwrap();
             }
         }
     }

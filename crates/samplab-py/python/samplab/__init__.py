@@ -101,7 +101,7 @@ def _seed(seed: Optional[int]) -> int:
 
 def _count(name: str, value: Any) -> int:
     if isinstance(value, (bool, float)) or not isinstance(value, (int, np.integer)):
-        raise Error(f"{name} must be a whole number, got {value!r}")
+        raise Error(f"{name} = {value!r}: must be a whole number")
     if not 0 <= value < 2**64:
         raise Error(f"{name} = {value}: out of range [0, 2^64)")
     return int(value)

@@ -13,9 +13,8 @@ seeded by ``seed.derive(k)``), and partial results are merged in chunk order wha
 the workers finish in, so ``study.run()``, ``study.run(client)`` on any cluster, any resumed
 run, and the CLI give the same bytes.
 
-A checkpoint directory keeps each finished chunk in its own file, written to a temporary
-name and renamed (so a file is whole or absent). Each file carries the study's fingerprint,
-the chunk's index and a SHA-256 of its contents; a file that fails any check is refused with
+A checkpoint directory keeps each finished chunk in its own file, whole or absent, checked
+when read back (``samplab::study::Checkpoint``): a file that fails any check is refused with
 an error naming it, never used.
 """
 
@@ -33,36 +32,28 @@ from typing import Any, Dict, List, Optional
 
 import numpy as np
 
-from . import _count, _counts, _samplab
+from . import _samplab
 from ._samplab import Error
 
 __all__ = ["Study", "StudyResult"]
 
 FORMAT = 1
-MAGIC = b"samplab-chunk 1\n"
 
 
 def _canonical(value: Any) -> str:
     return json.dumps(value, sort_keys=True, separators=(",", ":"))
 
 
-#: how each parameter type of ``_samplab.study_kinds()`` is read from Python
-_READ = {
-    "count": _count,
-    "counts": _counts,
-    "name": lambda name, v: str(v),
-    "names": lambda name, v: [v] if isinstance(v, str) else [str(x) for x in v],
-    "name?": lambda name, v: None if v is None else str(v),
-    "seed": lambda name, v: int(_samplab.default_seed()) if v is None else _count(name, v),
-    "bool": lambda name, v: bool(v),
-    "float": lambda name, v: float(v),
-    "float?": lambda name, v: None if v is None else float(v),
-}
+def _plain(value: Any) -> Any:
+    """numpy scalars and arrays as JSON (the library reads each argument by its type)."""
+    if isinstance(value, (np.generic, np.ndarray)):
+        return value.tolist()
+    raise Error(f"{value!r}: not a number, a name or a list of them")
 
 
 def _constructor(kind: str) -> Any:
     """``Study.<kind>(...)``, its parameters, defaults and documentation those the library
-    declares for the kind (``samplab_render::study::KINDS``)."""
+    declares for the kind (``samplab_render::study::KINDS``), which also reads the values."""
     info = next(k for k in json.loads(_samplab.study_kinds()) if k["kind"] == kind)
     params, (chunk_name, chunk_default), rest = info["parameters"], info["per_chunk"], info["rest"]
     P = inspect.Parameter
@@ -71,15 +62,12 @@ def _constructor(kind: str) -> Any:
     signature += [P(chunk_name, P.KEYWORD_ONLY, default=chunk_default)] + ([P(rest, P.VAR_KEYWORD)] if rest else [])
 
     def make(cls: Any, *args: Any, **kwargs: Any) -> "Study":
-        bound = inspect.Signature(signature).bind(cls, *args, **kwargs)
-        bound.apply_defaults()
-        given = dict(bound.arguments)
-        values = {p["name"]: _READ[p["of"]](p["name"], given[p["name"]]) for p in params}
-        if rest:
-            if "seed" in given[rest]:
-                raise Error("seed: give the seeds as `seeds`")
-            values[rest] = given[rest]
-        return cls._planned(kind, values, _count(chunk_name, given[chunk_name]))
+        arguments = inspect.Signature(signature).bind(cls, *args, **kwargs).arguments
+        del arguments["cls"]
+        described, chunks, feeds = _samplab.study_plan(json.dumps({"kind": kind, **arguments}, default=_plain))
+        params = json.loads(described)
+        del params["kind"]
+        return cls(kind, params, [list(c) for c in chunks], feeds)
 
     make.__name__ = make.__qualname__ = kind
     make.__doc__ = info["doc"].replace("`", "``")
@@ -97,16 +85,6 @@ class Study:
     chunks: List[Any] = field(default_factory=list)
     #: whether chunk 0's result is given to every other chunk (a render study's reference)
     first_feeds_the_rest: bool = False
-
-    # ----- constructors -------------------------------------------------------------------
-
-    @classmethod
-    def _planned(cls, kind: str, params: Dict[str, Any], per_chunk: int) -> "Study":
-        """Checked and cut into chunks by the library, before any work."""
-        described, chunks, feeds = _samplab.study_plan(_canonical({"kind": kind, **params}), per_chunk)
-        params = json.loads(described)
-        del params["kind"]
-        return cls(kind, params, [list(c) for c in chunks], feeds)
 
     integrate = _constructor("integrate")
     spectrum = _constructor("spectrum")
@@ -143,10 +121,11 @@ class Study:
         if client is not None and not callable(getattr(client, "submit", None)):
             raise Error(f"client: {client!r} is not a Dask client (give a dask.distributed.Client, or nothing to run here)")
         start = time.monotonic()
-        store = _Checkpoint(checkpoint, self) if checkpoint else None
-        results: Dict[int, bytes] = {}
-        if store:
-            results.update(store.load_all())
+        store = None
+        if checkpoint:
+            manifest = _canonical({"fingerprint": self.fingerprint, "kind": self.kind, "params": self.params, "chunks": len(self.chunks)})
+            store = _samplab.Checkpoint(checkpoint, self.fingerprint, manifest)
+        results: Dict[int, bytes] = dict(store.load(len(self.chunks))) if store else {}
         reused = len(results)
         todo = [i for i in range(len(self.chunks)) if i not in results]
         bar = _Bar(len(self.chunks), reused, progress)
@@ -283,73 +262,6 @@ def _write_atomic(path: str, data: bytes) -> None:
         f.flush()
         os.fsync(f.fileno())
     os.replace(tmp, path)
-
-
-class _Checkpoint:
-    """Finished chunks of one study in a directory: ``<fingerprint>-<chunk>.chunk``, each
-    MAGIC, a JSON header line (fingerprint, chunk, length), the payload, and a SHA-256 of
-    all that."""
-
-    def __init__(self, path: str, study: Study):
-        self.path = path
-        self.study = study
-        self.fp = study.fingerprint
-        if os.path.exists(path) and not os.path.isdir(path):
-            raise Error(f"{path}: the checkpoint must be a folder, and this is a file")
-        os.makedirs(path, exist_ok=True)
-        manifest = os.path.join(path, "study.json")
-        mine = _canonical({"fingerprint": self.fp, "kind": study.kind, "params": study.params, "chunks": len(study.chunks)})
-        if os.path.exists(manifest):
-            with open(manifest, encoding="utf-8") as f:
-                theirs = f.read()
-            try:
-                their_fp = json.loads(theirs)["fingerprint"]
-            except (ValueError, KeyError, TypeError):
-                raise Error(f"{manifest}: not a samplab study manifest")
-            if their_fp != self.fp:
-                raise Error(f"{path}: the checkpoint holds another study (fingerprint {their_fp[:12]}, this one {self.fp[:12]}); use another directory")
-        else:
-            _write_atomic(manifest, mine.encode())
-
-    def _file(self, i: int) -> str:
-        return os.path.join(self.path, f"{self.fp[:16]}-{i}.chunk")
-
-    def save(self, i: int, data: bytes) -> None:
-        header = _canonical({"fingerprint": self.fp, "chunk": i, "length": len(data)}).encode() + b"\n"
-        body = MAGIC + header + data
-        _write_atomic(self._file(i), body + hashlib.sha256(body).digest())
-
-    def load_all(self) -> Dict[int, bytes]:
-        found = {}
-        for i in range(len(self.study.chunks)):
-            path = self._file(i)
-            if os.path.exists(path):
-                found[i] = self._load(path, i)
-        for name in os.listdir(self.path):
-            if name.endswith(".chunk") and not name.startswith(self.fp[:16]):
-                raise Error(f"{os.path.join(self.path, name)}: a chunk of another study; use another directory")
-        return found
-
-    def _load(self, path: str, i: int) -> bytes:
-        bad = lambda why: Error(f"{path}: {why}; delete it to compute the chunk again")  # noqa: E731
-        # a link to a device (/dev/zero) or a FIFO would be read without end
-        if not os.path.isfile(path):
-            raise bad("not a regular file")
-        with open(path, "rb") as f:
-            raw = f.read()
-        if not raw.startswith(MAGIC) or len(raw) < len(MAGIC) + 32:
-            raise bad("not a samplab chunk file")
-        body, digest = raw[:-32], raw[-32:]
-        if hashlib.sha256(body).digest() != digest:
-            raise bad("corrupted (its checksum does not match)")
-        header_end = body.index(b"\n", len(MAGIC))
-        header = json.loads(body[len(MAGIC) : header_end])
-        data = body[header_end + 1 :]
-        if header.get("fingerprint") != self.fp:
-            raise bad("a chunk of another study")
-        if header.get("chunk") != i or header.get("length") != len(data):
-            raise bad(f"holds chunk {header.get('chunk')} of {header.get('length')} bytes, not chunk {i}")
-        return data
 
 
 class _Bar:

@@ -19,6 +19,10 @@
 //!   concatenated in set order and summarized with the CLI's compensated sums.
 //!
 //! Realization k of a study is seeded by `seed.derive(k)` wherever it is computed.
+//! A [`Checkpoint`] keeps finished chunks on disk, each checked when read back.
+
+mod checkpoint;
+pub use checkpoint::Checkpoint;
 
 use serde::{Deserialize, Serialize};
 
