@@ -12,11 +12,38 @@ use crate::plot::{HeatMap, LineChart, Series};
 use crate::{Cell, Claim, Ctx, Error, Figure, Output, Table};
 
 pub(super) fn jitter_theory(ctx: &Ctx) -> Result<Output, Error> {
-    // Fig. 4: the ratio |<S'>/<S>| = phi and the variance (1 - phi^2)/N over sigma (fraction
-    // of the spacing) and frequency (in units of the grid frequency)
-    let (cols, rows) = (120usize, 100usize);
     let n = 256usize;
     let k = (n as f64).sqrt();
+    let (mut figures, fig4_claim) = fig4(n, k)?;
+    figures.extend(fig11(n, k)?);
+    let fig11_claims = fig11_claims(n, k);
+    let (m, variance_table, worst) = jitter_variance(ctx, n, k)?;
+    let (eq6_table, eq6_claim) = eq6(ctx, n, k)?;
+    // each value is a chi-square estimate with 2(m-1) degrees of freedom (relative sd
+    // 1/sqrt(m-1)); the annuli at 2, 4, 8 average at least 12 frequencies: 5 of their
+    // standard errors
+    let tol = 5.0 / ((m - 1) as f64 * 12.0).sqrt();
+    Ok(Output {
+        tables: vec![eq6_table, variance_table],
+        figures,
+        claims: [fig4_claim, eq6_claim].into_iter().chain(fig11_claims).chain([Claim {
+            id: "jitter-variance-theory".into(),
+            statement: "The variance of the spectrum of Gaussian and box jitter follows the exact form (1 - phi^2)/N at low frequencies, whose leading term is eqs. 9 and 11's (their second-order terms are tested by eq9-second-order and eq11-second-order)".into(),
+            published: "eqs. 9 and 11 (their leading terms)".into(),
+            ours: format!("largest relative deviation from (1 - phi^2)/N at w = 2, 4, 8: {:.1}% (allowed {:.1}%)", 100.0 * worst, 100.0 * tol),
+            theory: "(1 - phi^2)/N, whose expansion's leading term is eqs. 9 and 11's (their printed second-order terms have the opposite sign of the exact expansion's)".into(),
+            decision: criteria::within(worst, 0.0, tol),
+            ..Claim::default()
+        }]).collect(),
+        notes: vec!["Figure 4 and 11 are closed forms; the table checks them against measurement. The exact forms come from the characteristic function phi of the jitter: <S'> = phi <S> and, for fixed base points, V(S') = (1 - |phi|^2)/N.".into()],
+    })
+}
+
+/// Fig. 4: the ratio |<S'>/<S>| = phi and the variance (1 - phi^2)/N over sigma (fraction
+/// of the spacing) and frequency (in units of the grid frequency), and the claim on its
+/// regions.
+fn fig4(n: usize, k: f64) -> Result<(Vec<Figure>, Claim), Error> {
+    let (cols, rows) = (120usize, 100usize);
     let mut ratio = Vec::with_capacity(rows * cols);
     let mut printed = Vec::with_capacity(rows * cols);
     let mut variance = Vec::with_capacity(rows * cols);
@@ -58,7 +85,7 @@ pub(super) fn jitter_theory(ctx: &Ctx) -> Result<Output, Error> {
         y_label: "sigma (fraction of the grid spacing)".into(),
         log,
     };
-    let mut figures = vec![
+    let figures = vec![
         Figure::render(
             "subr2013-fig4-ratio",
             "Fig. 4(a): |<S'>/<S>| = exp(-2 pi^2 sigma^2 w^2) of Gaussian jitter over sigma and frequency",
@@ -83,6 +110,11 @@ pub(super) fn jitter_theory(ctx: &Ctx) -> Result<Output, Error> {
             (820, 600),
         )?,
     ];
+    Ok((figures, fig4_claim))
+}
+
+/// Fig. 11 as drawn.
+fn fig11(n: usize, k: f64) -> Result<Vec<Figure>, Error> {
     // Fig. 11 as drawn: box over Gaussian jitter at equal parameter (box half-width = sigma),
     // the printed second-order forms (left: eq. 10 / eq. 8, right: eq. 11 / eq. 9) solid, the
     // exact forms dashed
@@ -116,6 +148,7 @@ pub(super) fn jitter_theory(ctx: &Ctx) -> Result<Output, Error> {
     let var = panel(&|w, p| theory::box_variance_eq11(w, p, n) / theory::gaussian_variance_eq9(w, p, n), &|w, p| {
         theory::box_variance(w, p, n) / theory::gaussian_variance(w, p, n)
     });
+    let mut figures = Vec::new();
     for (id, caption, y_label, series, log_y) in [
         (
             "subr2013-fig11-bias",
@@ -143,6 +176,39 @@ pub(super) fn jitter_theory(ctx: &Ctx) -> Result<Output, Error> {
         };
         figures.push(Figure::render(id, caption, &chart, (900, 560))?);
     }
+    Ok(figures)
+}
+
+/// Whether a printed second-order form (eq. 9 or 11) errs less than its leading term alone
+/// at x = pi w sigma = 0.1 and 0.2 (what a second-order term is for), and the errors.
+fn second_order(
+    n: usize,
+    printed: fn(f64, f64, usize) -> f64,
+    exact: fn(f64, f64, usize) -> f64,
+    leading: f64,
+) -> (bool, String) {
+    let cases: Vec<(f64, f64, f64)> = [0.1f64, 0.2]
+        .iter()
+        .map(|&x| {
+            let (w, sigma) = (x / PI, 1.0);
+            let e = exact(w, sigma, n);
+            let lead = (2.0 * x).powi(2) * leading / n as f64;
+            ((printed(w, sigma, n) - e).abs() / e, (lead - e).abs() / e, x)
+        })
+        .collect();
+    let ok = cases.iter().all(|c| c.0 < c.1);
+    let text = cases
+        .iter()
+        .map(|(p, l, x)| {
+            format!("pi w sigma = {x}: printed off by {:.2}%, leading term alone by {:.2}%", 100.0 * p, 100.0 * l)
+        })
+        .collect::<Vec<_>>()
+        .join("; ");
+    (ok, text)
+}
+
+/// Fig. 11's claims, on the exact forms.
+fn fig11_claims(n: usize, k: f64) -> Vec<Claim> {
     // the claims' domain, fixed before the figure's: the exact forms at frequencies up to
     // 3 sqrt(N) and sigma = 0.1, 0.25, 0.5
     let ws: Vec<f64> = (1..=200).map(|i| 3.0 * k * i as f64 / 200.0).collect();
@@ -160,32 +226,10 @@ pub(super) fn jitter_theory(ctx: &Ctx) -> Result<Output, Error> {
     let least = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
     let (max_var, min_var, max_bias) = (most(&var_gap), least(&var_gap), most(&bias_gap));
     const MATERIAL: f64 = 0.01;
-    // eqs. 9 and 11 as second-order forms: at x = pi w sigma = 0.1 and 0.2 the printed form
-    // must err less than its leading term alone (what a second-order term is for)
-    let second_order = |printed: fn(f64, f64, usize) -> f64, exact: fn(f64, f64, usize) -> f64, leading: f64| {
-        let cases: Vec<(f64, f64, f64)> = [0.1f64, 0.2]
-            .iter()
-            .map(|&x| {
-                let (w, sigma) = (x / PI, 1.0);
-                let e = exact(w, sigma, n);
-                let lead = (2.0 * x).powi(2) * leading / n as f64;
-                ((printed(w, sigma, n) - e).abs() / e, (lead - e).abs() / e, x)
-            })
-            .collect();
-        let ok = cases.iter().all(|c| c.0 < c.1);
-        let text = cases
-            .iter()
-            .map(|(p, l, x)| {
-                format!("pi w sigma = {x}: printed off by {:.2}%, leading term alone by {:.2}%", 100.0 * p, 100.0 * l)
-            })
-            .collect::<Vec<_>>()
-            .join("; ");
-        (ok, text)
-    };
-    let (eq9_ok, eq9_text) = second_order(theory::gaussian_variance_eq9, theory::gaussian_variance, 1.0);
-    let (eq11_ok, eq11_text) = second_order(theory::box_variance_eq11, theory::box_variance, 1.0 / 3.0);
+    let (eq9_ok, eq9_text) = second_order(n, theory::gaussian_variance_eq9, theory::gaussian_variance, 1.0);
+    let (eq11_ok, eq11_text) = second_order(n, theory::box_variance_eq11, theory::box_variance, 1.0 / 3.0);
     let criterion = "the printed form errs less than its leading term alone at pi w sigma = 0.1 and 0.2";
-    let fig11_claims = vec![
+    vec![
         Claim {
             id: "box-lower-variance".into(),
             statement: "Box jitter has lower spectrum variance than Gaussian jitter of the same parameter".into(),
@@ -227,8 +271,12 @@ pub(super) fn jitter_theory(ctx: &Ctx) -> Result<Output, Error> {
             explanation: Some("1 - sinc^2(x) = x^2 / 3 - 2 x^4 / 45 + ..., so with x = 2 pi w delta the bracket is 1/3 - 8/45 (pi w delta)^2: the printed term has the wrong sign and half the size".into()),
             ..Claim::default()
         },
-    ];
-    // measured against predicted: the variance of jittered 16 x 16 grids below the grid frequency
+    ]
+}
+
+/// Measured against predicted: the variance of jittered 16 x 16 grids below the grid
+/// frequency; the realizations, the table and the largest relative deviation.
+fn jitter_variance(ctx: &Ctx, n: usize, k: f64) -> Result<(usize, Table, f64), Error> {
     let (m, res) = (ctx.pick(200, 800), 64);
     ctx.set_length(5);
     let mut rows_t = Vec::new();
@@ -263,6 +311,20 @@ pub(super) fn jitter_theory(ctx: &Ctx) -> Result<Output, Error> {
         rows_t.push(row);
         ctx.advance(1)?;
     }
+    let table = Table {
+        id: "subr2013-jitter-variance".into(),
+        caption: format!(
+            "Radially averaged variance of the spectrum, measured ({m} realizations of 16 x 16 grids) against (1 - phi^2)/N averaged over the same annuli, at radial frequencies 2, 4 and 8"
+        ),
+        columns: ["strategy", "w = 2", "theory", "w = 4", "theory", "w = 8", "theory"].map(String::from).to_vec(),
+        rows: rows_t,
+    };
+    Ok((m, table, worst))
+}
+
+/// Eqs. 5-6 tested on a cosine whose integral is 0: the measured variance of the estimate
+/// against eq. 6's |F|^2-weighted spectrum variance.
+fn eq6(ctx: &Ctx, n: usize, k: f64) -> Result<(Table, Claim), Error> {
     // eqs. 5-6: the estimator's variance is the variance of the spectrum weighted by |F|^2.
     // f(x, y) = cos(2 pi (a x + b y) + c) has integral 0 and |F|^2 = 1/4 at +-(a, b); with
     // 2 (a, b) off the 16 x 16 grid's frequencies the cross terms vanish, so eq. 6 predicts
@@ -313,32 +375,13 @@ pub(super) fn jitter_theory(ctx: &Ctx) -> Result<Output, Error> {
         decision: criteria::all(&eq6),
         ..Claim::default()
     };
-    // each value is a chi-square estimate with 2(m-1) degrees of freedom (relative sd
-    // 1/sqrt(m-1)); the annuli at 2, 4, 8 average at least 12 frequencies: 5 of their
-    // standard errors
-    let tol = 5.0 / ((m - 1) as f64 * 12.0).sqrt();
-    Ok(Output {
-        tables: vec![Table {
-            id: "subr2013-eq6".into(),
-            caption: format!("Eqs. 5-6 tested: the measured variance of the estimate of the integral of cos(2 pi ({a} x + {b} y) + {c}) (mean of I_N^2 over {runs} realizations, E[I_N] = 0 exactly) against eq. 6's |F|^2-weighted spectrum variance (1 - phi^2)/(2N), N = {n}"),
-            columns: ["strategy", "Var(I_N)", "standard error", "eq. 6"].map(String::from).to_vec(),
-            rows: rows_6,
-        }, Table {
-            id: "subr2013-jitter-variance".into(),
-            caption: format!("Radially averaged variance of the spectrum, measured ({m} realizations of 16 x 16 grids) against (1 - phi^2)/N averaged over the same annuli, at radial frequencies 2, 4 and 8"),
-            columns: ["strategy", "w = 2", "theory", "w = 4", "theory", "w = 8", "theory"].map(String::from).to_vec(),
-            rows: rows_t,
-        }],
-        figures,
-        claims: [fig4_claim, eq6_claim].into_iter().chain(fig11_claims).chain([Claim {
-            id: "jitter-variance-theory".into(),
-            statement: "The variance of the spectrum of Gaussian and box jitter follows the exact form (1 - phi^2)/N at low frequencies, whose leading term is eqs. 9 and 11's (their second-order terms are tested by eq9-second-order and eq11-second-order)".into(),
-            published: "eqs. 9 and 11 (their leading terms)".into(),
-            ours: format!("largest relative deviation from (1 - phi^2)/N at w = 2, 4, 8: {:.1}% (allowed {:.1}%)", 100.0 * worst, 100.0 * tol),
-            theory: "(1 - phi^2)/N, whose expansion's leading term is eqs. 9 and 11's (their printed second-order terms have the opposite sign of the exact expansion's)".into(),
-            decision: criteria::within(worst, 0.0, tol),
-            ..Claim::default()
-        }]).collect(),
-        notes: vec!["Figure 4 and 11 are closed forms; the table checks them against measurement. The exact forms come from the characteristic function phi of the jitter: <S'> = phi <S> and, for fixed base points, V(S') = (1 - |phi|^2)/N.".into()],
-    })
+    let table = Table {
+        id: "subr2013-eq6".into(),
+        caption: format!(
+            "Eqs. 5-6 tested: the measured variance of the estimate of the integral of cos(2 pi ({a} x + {b} y) + {c}) (mean of I_N^2 over {runs} realizations, E[I_N] = 0 exactly) against eq. 6's |F|^2-weighted spectrum variance (1 - phi^2)/(2N), N = {n}"
+        ),
+        columns: ["strategy", "Var(I_N)", "standard error", "eq. 6"].map(String::from).to_vec(),
+        rows: rows_6,
+    };
+    Ok((table, eq6_claim))
 }
