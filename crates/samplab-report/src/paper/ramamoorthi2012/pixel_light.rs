@@ -18,82 +18,15 @@ pub(super) fn pixel_light(ctx: &Ctx) -> Result<Output, Error> {
         ("stratified", "jitter", Pattern::Stratified),
     ];
     ctx.set_length(4);
-    let mut figures = Vec::new();
     let mut series = Vec::new();
     let mut rows = Vec::new();
     let mut shares = Vec::new();
     let mut mse = Vec::new();
-    // Fig. 9(b): the visibility itself over (pixel, light)
-    let side = 200;
-    let visibility: Vec<f64> = (0..side * side)
-        .map(|k| {
-            scene.visibility(
-                (k % side) as f64 / side as f64 + 0.5 / side as f64,
-                (k / side) as f64 / side as f64 + 0.5 / side as f64,
-            )
-        })
-        .collect();
-    figures.push(Figure::render(
-        "ramamoorthi2012-fig9",
-        "Fig. 9(b): the visibility V(x, y) of the random blocker (6 bars) at depth ratio beta = 3, pixel x across, light y up: constant along lines of slope 1/(1 - beta) = -1/2",
-        &HeatMap {
-            title: "Fig. 9(b): visibility V(x, y)".into(),
-            label: "V".into(),
-            values: visibility,
-            rows: side,
-            cols: side,
-            x_range: (0.0, 1.0),
-            y_range: (0.0, 1.0),
-            x_label: "pixel x".into(),
-            y_label: "light y".into(),
-            log: false,
-        },
-        (700, 600),
-    )?);
-    // the paper's layout: pixel (spatial) frequency across, light frequency up
-    let heat = |title: &str, values: Vec<f64>| {
-        let transposed = (0..res * res).map(|i| values[(i % res) * res + i / res]).collect();
-        let mut h = HeatMap::centred(title.into(), "|spectrum|".into(), transposed, res);
-        h.x_label = "pixel (spatial) frequency".into();
-        h.y_label = "light frequency".into();
-        h
-    };
-    figures.push(Figure::render(
-        "ramamoorthi2012-fig10-visibility",
-        "Fig. 10(a): spectrum of the visibility V(x, y) = G(x/beta + y(1 - 1/beta)) (V on a 512 x 512 lattice under a Hann window, so that the square's edges leak no energy along the axes): energy on a sheared line",
-        &heat("Fig. 10(a): visibility", pixel_light::visibility_spectrum(&scene, 512, res)?),
-        (760, 640),
-    )?);
+    let mut figures = visibility_figures(&scene, res)?;
     ctx.advance(1)?;
     for (i, (name, key, pattern)) in patterns.iter().enumerate() {
         let a = pixel_light::analyse(&scene, *pattern, pixels, n, res, ctx.seed.derive(10 + i as u64))?;
-        let (fig, panels) = match pattern {
-            Pattern::Uniform => ("fig10", ["(b)", "(c)"]),
-            Pattern::UniformJitter => ("fig11-uniform-jitter", ["(a)", "(b)"]),
-            Pattern::Stratified => ("fig11-stratified", ["(c)", "(d)"]),
-        };
-        let number = if *pattern == Pattern::Uniform { "10" } else { "11" };
-        figures.push(Figure::render(
-            &format!("ramamoorthi2012-{fig}-pattern"),
-            &format!(
-                "Fig. {number}{}: spectrum of the {name} sampling pattern ({pixels} pixels x {n} light samples){}",
-                panels[0],
-                match pattern {
-                    Pattern::Uniform => ": aliases along the light axis at multiples of N",
-                    Pattern::UniformJitter =>
-                        ": the same light frequencies as uniform, energy over all pixel frequencies",
-                    Pattern::Stratified => ": noise, with a band gap around the origin smaller than uniform jitter's",
-                }
-            ),
-            &heat(&format!("Fig. {number}{}: {name} pattern", panels[0]), a.pattern.clone()),
-            (760, 640),
-        )?);
-        figures.push(Figure::render(
-            &format!("ramamoorthi2012-{fig}-product"),
-            &format!("Fig. {number}{}: visibility times the {name} pattern", panels[1]),
-            &heat(&format!("Fig. {number}{}: visibility x {name}", panels[1]), a.product.clone()),
-            (760, 640),
-        )?);
+        figures.extend(pattern_figures(name, *pattern, &a, pixels, n, res)?);
         let share = a.banding_share(&bands);
         let squared: Vec<f64> = a.error.iter().map(|e| e * e).collect();
         let m = Summary::of(&squared);
@@ -129,7 +62,105 @@ pub(super) fn pixel_light(ctx: &Ctx) -> Result<Output, Error> {
         polar: false,
     };
     figures.push(Figure::render("ramamoorthi2012-fig11", "Figs. 10(d) and 11(e-f): error spectra along the scanline: uniform sampling has spikes at k N/(beta - 1) (banding); uniform jitter and stratified spread the error into noise", &chart, (900, 520))?);
-    let claims = vec![
+    let claims = claims(&shares, &mse, &bands, pixels);
+    Ok(Output {
+        tables: vec![Table { id: "ramamoorthi2012-pixel-light".into(), caption: format!("Error along the scanline per pattern: RMS, mean squared error per pixel with its standard error over the {pixels} pixels, and the share of the error energy (non-zero frequencies) at the banding frequencies k N/(beta-1), which are {:.1}% of the frequencies", 100.0 * fraction), columns: ["pattern", "RMS error", "MSE", "SE of MSE", "banding share"].map(String::from).to_vec(), rows }],
+        figures,
+        claims,
+        notes: vec!["The estimate per pixel is the mean visibility of its N samples; the exact value integrates the blocker pattern over the light analytically. Spectra over (pixel, light) use the samples as points in [0,1)^2 weighted by visibility.".into()],
+    })
+}
+
+/// A spectrum over (pixel, light) in the paper's layout: pixel (spatial) frequency across,
+/// light frequency up.
+fn heat(title: &str, values: Vec<f64>, res: usize) -> HeatMap {
+    let transposed = (0..res * res).map(|i| values[(i % res) * res + i / res]).collect();
+    let mut h = HeatMap::centred(title.into(), "|spectrum|".into(), transposed, res);
+    h.x_label = "pixel (spatial) frequency".into();
+    h.y_label = "light frequency".into();
+    h
+}
+
+/// Fig. 9(b), the visibility itself over (pixel, light), and Fig. 10(a), its spectrum.
+fn visibility_figures(scene: &Scene, res: usize) -> Result<Vec<Figure>, Error> {
+    // Fig. 9(b): the visibility itself over (pixel, light)
+    let side = 200;
+    let visibility: Vec<f64> = (0..side * side)
+        .map(|k| {
+            scene.visibility(
+                (k % side) as f64 / side as f64 + 0.5 / side as f64,
+                (k / side) as f64 / side as f64 + 0.5 / side as f64,
+            )
+        })
+        .collect();
+    let fig9 = Figure::render(
+        "ramamoorthi2012-fig9",
+        "Fig. 9(b): the visibility V(x, y) of the random blocker (6 bars) at depth ratio beta = 3, pixel x across, light y up: constant along lines of slope 1/(1 - beta) = -1/2",
+        &HeatMap {
+            title: "Fig. 9(b): visibility V(x, y)".into(),
+            label: "V".into(),
+            values: visibility,
+            rows: side,
+            cols: side,
+            x_range: (0.0, 1.0),
+            y_range: (0.0, 1.0),
+            x_label: "pixel x".into(),
+            y_label: "light y".into(),
+            log: false,
+        },
+        (700, 600),
+    )?;
+    let fig10 = Figure::render(
+        "ramamoorthi2012-fig10-visibility",
+        "Fig. 10(a): spectrum of the visibility V(x, y) = G(x/beta + y(1 - 1/beta)) (V on a 512 x 512 lattice under a Hann window, so that the square's edges leak no energy along the axes): energy on a sheared line",
+        &heat("Fig. 10(a): visibility", pixel_light::visibility_spectrum(scene, 512, res)?, res),
+        (760, 640),
+    )?;
+    Ok(vec![fig9, fig10])
+}
+
+/// Figs. 10(b-c) and 11(a-d): one sampling pattern's spectrum, and the visibility's times it.
+fn pattern_figures(
+    name: &str,
+    pattern: Pattern,
+    a: &pixel_light::Analysis,
+    pixels: usize,
+    n: usize,
+    res: usize,
+) -> Result<[Figure; 2], Error> {
+    let (fig, panels) = match pattern {
+        Pattern::Uniform => ("fig10", ["(b)", "(c)"]),
+        Pattern::UniformJitter => ("fig11-uniform-jitter", ["(a)", "(b)"]),
+        Pattern::Stratified => ("fig11-stratified", ["(c)", "(d)"]),
+    };
+    let number = if pattern == Pattern::Uniform { "10" } else { "11" };
+    let spectrum = Figure::render(
+        &format!("ramamoorthi2012-{fig}-pattern"),
+        &format!(
+            "Fig. {number}{}: spectrum of the {name} sampling pattern ({pixels} pixels x {n} light samples){}",
+            panels[0],
+            match pattern {
+                Pattern::Uniform => ": aliases along the light axis at multiples of N",
+                Pattern::UniformJitter => ": the same light frequencies as uniform, energy over all pixel frequencies",
+                Pattern::Stratified => ": noise, with a band gap around the origin smaller than uniform jitter's",
+            }
+        ),
+        &heat(&format!("Fig. {number}{}: {name} pattern", panels[0]), a.pattern.clone(), res),
+        (760, 640),
+    )?;
+    let product = Figure::render(
+        &format!("ramamoorthi2012-{fig}-product"),
+        &format!("Fig. {number}{}: visibility times the {name} pattern", panels[1]),
+        &heat(&format!("Fig. {number}{}: visibility x {name}", panels[1]), a.product.clone(), res),
+        (760, 640),
+    )?;
+    Ok([spectrum, product])
+}
+
+/// Banding at k N/(beta - 1) and the error of the three patterns.
+fn claims(shares: &[(f64, f64)], mse: &[Estimate], bands: &[f64], pixels: usize) -> Vec<Claim> {
+    let fraction = shares[0].1;
+    vec![
         Claim {
             id: "banding".into(),
             statement: "Uniform sampling bands at the spatial frequencies k N/(beta - 1); uniform jitter spreads that error into noise".into(),
@@ -157,11 +188,5 @@ pub(super) fn pixel_light(ctx: &Ctx) -> Result<Output, Error> {
             decision: criteria::less(mse[1], mse[2]),
             ..Claim::default()
         },
-    ];
-    Ok(Output {
-        tables: vec![Table { id: "ramamoorthi2012-pixel-light".into(), caption: format!("Error along the scanline per pattern: RMS, mean squared error per pixel with its standard error over the {pixels} pixels, and the share of the error energy (non-zero frequencies) at the banding frequencies k N/(beta-1), which are {:.1}% of the frequencies", 100.0 * fraction), columns: ["pattern", "RMS error", "MSE", "SE of MSE", "banding share"].map(String::from).to_vec(), rows }],
-        figures,
-        claims,
-        notes: vec!["The estimate per pixel is the mean visibility of its N samples; the exact value integrates the blocker pattern over the light analytically. Spectra over (pixel, light) use the samples as points in [0,1)^2 weighted by visibility.".into()],
-    })
+    ]
 }

@@ -126,6 +126,42 @@ pub(super) fn scenes(ctx: &Ctx) -> Result<Output, Error> {
     let names = families();
     ctx.set_length((cases.len() + names.len() * spps.len()) as u64);
     let refs = references(ctx, &cases, size, ctx.pick(1024, 8192))?;
+    let (measured, pictures) = measure(ctx, &cases, &names, &spps, size, &refs)?;
+    let mut out = Output::default();
+    for (c, case) in cases.iter().enumerate() {
+        out.tables.push(error_table(ctx, case, &names, &spps, &measured[c], size));
+        out.figures.push(rmse_chart(case, &names, &measured[c])?);
+        out.figures.push(spectrum_chart(case, &names, &measured[c])?);
+        out.figures.push(mosaic(case, &refs[c].0, &pictures[c])?);
+        out.claims.extend(lf_claims(case, &names, &measured[c]));
+        if case.name == "sphere-box" {
+            out.claims.push(dither_fades(&names, &measured[c])?);
+        }
+    }
+    let (table, claim) = flicker_table(&cases, &names, &measured, size, ctx);
+    out.tables.push(table);
+    out.claims.push(claim);
+    out.notes.push(format!(
+        "Each family draws every dimension of every estimate (film, lens, light sample, path vertices) from its own dimensions, keyed by pixel and sample. The error's low-frequency energy is judged at {TARGET_SPP} spp, where blue-noise samplers are meant to help, over {LF_FRAMES} frames (each frame its own samples); less than Owen-scrambled Sobol' per pixel's by more than 3 standard errors of the difference is reproduced, more by as much not reproduced, undecided in between. References carry their own noise, which sets a floor under the RMSE at the highest counts."
+    ));
+    out.notes.push(format!(
+        "heitz2019 optimizes the keys of its first 8 dimensions (its default): film, lens, shutter and gloss; the light samples (dimension 8 on) and the path vertices get hashed keys, white noise. The first version of this page judged one image per family against a fixed ratio (0.8); its low-frequency energies varied by a factor of 3 between seeds, so the claims now compare the means over {LF_FRAMES} frames by the report's interval criterion, as every statistical claim of the report does."
+    ));
+    Ok(out)
+}
+
+/// Per case, the families' images shown in its mosaic.
+type Pictures = Vec<Vec<(&'static str, Image)>>;
+
+/// Every family's errors on every case (per case, per family), and the images shown.
+fn measure(
+    ctx: &Ctx,
+    cases: &[Case],
+    names: &[&'static str],
+    spps: &[usize],
+    size: usize,
+    refs: &[(Image, Vec<f64>)],
+) -> Result<(Vec<Vec<Errors>>, Pictures), Error> {
     // per case, per family
     let mut measured: Vec<Vec<Errors>> = cases
         .iter()
@@ -142,9 +178,9 @@ pub(super) fn scenes(ctx: &Ctx) -> Result<Output, Error> {
                 .collect()
         })
         .collect();
-    let mut pictures: Vec<Vec<(&str, Image)>> = cases.iter().map(|_| Vec::new()).collect();
+    let mut pictures: Pictures = cases.iter().map(|_| Vec::new()).collect();
     for (f, name) in names.iter().enumerate() {
-        for &spp in &spps {
+        for &spp in spps {
             let seed = ctx.seed.derive_str(name).derive(spp as u64);
             if let Some(mut p) = prepared(&spec(ctx, name), size, spp, seed)? {
                 for (c, case) in cases.iter().enumerate() {
@@ -174,96 +210,87 @@ pub(super) fn scenes(ctx: &Ctx) -> Result<Output, Error> {
             ctx.advance(1)?;
         }
     }
-    let mut out = Output::default();
-    for (c, case) in cases.iter().enumerate() {
-        let at = |f: usize| {
-            let s = &measured[c][f];
-            s.spp.iter().position(|&n| n == TARGET_SPP).map(|i| &s.metrics[i])
-        };
-        let mut rows = Vec::new();
-        for (f, name) in names.iter().enumerate() {
-            let s = &measured[c][f];
-            let mut row = vec![Cell::Text(spec(ctx, name))];
-            for &n in &spps {
-                row.push(
-                    s.spp
-                        .iter()
-                        .position(|&k| k == n)
-                        .map_or(Cell::Text("-".into()), |i| Cell::num(s.metrics[i].rmse, 5)),
-                );
-            }
-            let counts: Vec<f64> = s.spp.iter().map(|&n| n as f64).collect();
-            match convergence(&s.planes, &counts, &[SIGMA]) {
-                Ok(fit) => row.extend([Cell::num(fit.rmse.0, 2), Cell::num(fit.blurred[0].1, 2)]),
-                Err(_) => row.extend([Cell::Text("-".into()), Cell::Text("-".into())]),
-            }
-            match at(f) {
-                Some(m) => row.extend([
-                    estimate(&s.energy)
-                        .map_or(Cell::Text("-".into()), |e| Cell::Text(format!("{:.3} ± {:.3}", e.value, e.se))),
-                    Cell::num(m.blurred[0].rmse / m.blurred[0].white, 2),
-                ]),
-                None => row.extend([Cell::Text("-".into()), Cell::Text("-".into())]),
-            }
-            rows.push(row);
+    Ok((measured, pictures))
+}
+
+/// A case's table: per family, RMSE per spp, the slopes, and the low-frequency energy and
+/// blurred RMSE at [`TARGET_SPP`].
+fn error_table(ctx: &Ctx, case: &Case, names: &[&str], spps: &[usize], measured: &[Errors], size: usize) -> Table {
+    let at = |f: usize| {
+        let s = &measured[f];
+        s.spp.iter().position(|&n| n == TARGET_SPP).map(|i| &s.metrics[i])
+    };
+    let mut rows = Vec::new();
+    for (f, name) in names.iter().enumerate() {
+        let s = &measured[f];
+        let mut row = vec![Cell::Text(spec(ctx, name))];
+        for &n in spps {
+            row.push(
+                s.spp.iter().position(|&k| k == n).map_or(Cell::Text("-".into()), |i| Cell::num(s.metrics[i].rmse, 5)),
+            );
         }
-        let mut columns = vec!["family".to_string()];
-        columns.extend(spps.iter().map(|n| format!("RMSE {n} spp")));
-        columns.extend([
-            "RMSE slope".to_string(),
-            format!("blurred ({SIGMA} px) slope"),
-            format!("low-frequency energy, {TARGET_SPP} spp ({LF_FRAMES} frames)"),
-            format!("blurred RMSE / white's, {TARGET_SPP} spp"),
-        ]);
-        out.tables.push(Table {
-            id: format!("renderer-{}-errors", case.name),
-            caption: format!(
-                "{}, {}: luminance error against the reference ({size} x {size} pixels): RMSE per spp, the slopes of ln RMSE and of ln blurred RMSE (Gaussian of {SIGMA} px) against ln spp (Monte Carlo: -0.5), and at {TARGET_SPP} spp the error's low-frequency energy (white noise 1; the mean over {LF_FRAMES} frames) and its blurred RMS over white noise's of the same variance",
-                case.name, case.what
-            ),
-            columns,
-            rows,
-        });
-        out.figures.push(rmse_chart(case, &names, &measured[c])?);
-        out.figures.push(spectrum_chart(case, &names, &measured[c])?);
-        out.figures.push(mosaic(case, &refs[c].0, &pictures[c])?);
-        let energy = |name: &str| names.iter().position(|n| *n == name).and_then(|f| estimate(&measured[c][f].energy));
-        if let Some(base) = energy("sobol") {
-            for (name, source) in [
-                ("zsobol", "Ahmed & Wonka 2020: screen-space blue-noise error (title)"),
-                ("heitz2019", "Heitz et al. 2019: errors distributed as a blue noise in screen space (title)"),
-            ] {
-                let Some(e) = energy(name) else { continue };
-                out.claims.push(Claim {
-                    id: format!("lf-{name}-{}", case.name),
-                    statement: format!(
-                        "{}: {name}'s error at {TARGET_SPP} spp has less low-frequency energy than Owen-scrambled Sobol' per pixel",
-                        case.name
-                    ),
-                    published: source.into(),
-                    ours: format!(
-                        "{:.3} ± {:.3} against {:.3} ± {:.3} (white noise 1; mean ± standard error over {LF_FRAMES} frames)",
-                        e.value, e.se, base.value, base.se
-                    ),
-                    decision: criteria::less(e, base),
-                    ..Claim::default()
-                });
-            }
+        let counts: Vec<f64> = s.spp.iter().map(|&n| n as f64).collect();
+        match convergence(&s.planes, &counts, &[SIGMA]) {
+            Ok(fit) => row.extend([Cell::num(fit.rmse.0, 2), Cell::num(fit.blurred[0].1, 2)]),
+            Err(_) => row.extend([Cell::Text("-".into()), Cell::Text("-".into())]),
         }
-        if case.name == "sphere-box" {
-            out.claims.push(dither_fades(&names, &measured[c])?);
+        match at(f) {
+            Some(m) => row.extend([
+                estimate(&s.energy)
+                    .map_or(Cell::Text("-".into()), |e| Cell::Text(format!("{:.3} ± {:.3}", e.value, e.se))),
+                Cell::num(m.blurred[0].rmse / m.blurred[0].white, 2),
+            ]),
+            None => row.extend([Cell::Text("-".into()), Cell::Text("-".into())]),
+        }
+        rows.push(row);
+    }
+    let mut columns = vec!["family".to_string()];
+    columns.extend(spps.iter().map(|n| format!("RMSE {n} spp")));
+    columns.extend([
+        "RMSE slope".to_string(),
+        format!("blurred ({SIGMA} px) slope"),
+        format!("low-frequency energy, {TARGET_SPP} spp ({LF_FRAMES} frames)"),
+        format!("blurred RMSE / white's, {TARGET_SPP} spp"),
+    ]);
+    Table {
+        id: format!("renderer-{}-errors", case.name),
+        caption: format!(
+            "{}, {}: luminance error against the reference ({size} x {size} pixels): RMSE per spp, the slopes of ln RMSE and of ln blurred RMSE (Gaussian of {SIGMA} px) against ln spp (Monte Carlo: -0.5), and at {TARGET_SPP} spp the error's low-frequency energy (white noise 1; the mean over {LF_FRAMES} frames) and its blurred RMS over white noise's of the same variance",
+            case.name, case.what
+        ),
+        columns,
+        rows,
+    }
+}
+
+/// A case's claims: zsobol's and heitz2019's low-frequency energy against Owen-Sobol' per
+/// pixel's.
+fn lf_claims(case: &Case, names: &[&str], measured: &[Errors]) -> Vec<Claim> {
+    let mut claims = Vec::new();
+    let energy = |name: &str| names.iter().position(|n| *n == name).and_then(|f| estimate(&measured[f].energy));
+    if let Some(base) = energy("sobol") {
+        for (name, source) in [
+            ("zsobol", "Ahmed & Wonka 2020: screen-space blue-noise error (title)"),
+            ("heitz2019", "Heitz et al. 2019: errors distributed as a blue noise in screen space (title)"),
+        ] {
+            let Some(e) = energy(name) else { continue };
+            claims.push(Claim {
+                id: format!("lf-{name}-{}", case.name),
+                statement: format!(
+                    "{}: {name}'s error at {TARGET_SPP} spp has less low-frequency energy than Owen-scrambled Sobol' per pixel",
+                    case.name
+                ),
+                published: source.into(),
+                ours: format!(
+                    "{:.3} ± {:.3} against {:.3} ± {:.3} (white noise 1; mean ± standard error over {LF_FRAMES} frames)",
+                    e.value, e.se, base.value, base.se
+                ),
+                decision: criteria::less(e, base),
+                ..Claim::default()
+            });
         }
     }
-    let (table, claim) = flicker_table(&cases, &names, &measured, size, ctx);
-    out.tables.push(table);
-    out.claims.push(claim);
-    out.notes.push(format!(
-        "Each family draws every dimension of every estimate (film, lens, light sample, path vertices) from its own dimensions, keyed by pixel and sample. The error's low-frequency energy is judged at {TARGET_SPP} spp, where blue-noise samplers are meant to help, over {LF_FRAMES} frames (each frame its own samples); less than Owen-scrambled Sobol' per pixel's by more than 3 standard errors of the difference is reproduced, more by as much not reproduced, undecided in between. References carry their own noise, which sets a floor under the RMSE at the highest counts."
-    ));
-    out.notes.push(format!(
-        "heitz2019 optimizes the keys of its first 8 dimensions (its default): film, lens, shutter and gloss; the light samples (dimension 8 on) and the path vertices get hashed keys, white noise. The first version of this page judged one image per family against a fixed ratio (0.8); its low-frequency energies varied by a factor of 3 between seeds, so the claims now compare the means over {LF_FRAMES} frames by the report's interval criterion, as every statistical claim of the report does."
-    ));
-    Ok(out)
+    claims
 }
 
 /// The mean of per-frame values and its standard error (None for none).

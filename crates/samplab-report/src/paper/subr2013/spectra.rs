@@ -40,11 +40,47 @@ pub(super) fn spectra(ctx: &Ctx) -> Result<Output, Error> {
         stats.push(st);
         ctx.advance(1)?;
     }
+    let figures = fig2(curves, res)?;
+    let gj = &stats[3];
+    let jit = &stats[1];
+    let low = |st: &spectrum::Statistics| spectrum::radial(&st.variance, res, 2).0[..8].iter().sum::<f64>() / 8.0;
+    let claims = vec![
+        periodogram_blind(&stats, res),
+        Claim {
+            id: "gaussian-jitter-low-variance".into(),
+            statement: "Gaussian jitter (sigma 0.1) has a lower spectrum variance than jitter at low frequencies"
+                .into(),
+            published: "Fig. 2(c)".into(),
+            ours: format!(
+                "mean V(S) over radial frequencies 1-8: GJittered:0.1 {:.2e}, jittered {:.2e}",
+                low(gj),
+                low(jit)
+            ),
+            theory: "eq. 9: V ~ (2 pi w sigma)^2 / N".into(),
+            decision: criteria::exactly(
+                low(gj) < low(jit),
+                "mean V(S) over radial frequencies 1-8 lower for GJittered:0.1",
+            ),
+            ..Claim::default()
+        },
+        rotated_grid(ctx, res)?,
+    ];
+    Ok(Output {
+        tables: vec![],
+        figures,
+        claims,
+        notes: vec!["Spectra are computed with samplab's non-uniform FFT at tolerance 1e-9 (tested against the direct DFT); radial bins are the rounded |w| = 1..R/2-1, DC excluded. Uniform jitter and the regular grid are computed for the claim and not drawn.".into()],
+    })
+}
+
+/// Fig. 2's three panels, with the noise floor of |<S>|.
+fn fig2(curves: [Vec<Series>; 3], res: usize) -> Result<Vec<Figure>, Error> {
     // |<S>| of 20 realizations cannot fall below the amplitude of the mean of 20
     // independent spectra of noise (E|S|^2 = 1/N off DC): that mean is complex normal with
     // E|.|^2 = 1/(20 N), so its amplitude is Rayleigh with mean sqrt(pi / (80 N)) (the
     // curves are radial averages of amplitudes, so the floor is the mean, not the RMS)
     let floor = (std::f64::consts::PI / (80.0 * 256.0f64)).sqrt();
+    let mut curves = curves;
     curves[1].push(Series {
         dashed: true,
         colour_key: Some("floor".into()),
@@ -73,7 +109,11 @@ pub(super) fn spectra(ctx: &Ctx) -> Result<Output, Error> {
             (900, 520),
         )?);
     }
-    // the periodogram cannot tell uniform jitter from a regular grid; |<S>| can
+    Ok(figures)
+}
+
+/// The periodogram cannot tell uniform jitter from a regular grid; |<S>| can.
+fn periodogram_blind(stats: &[spectrum::Statistics], res: usize) -> Claim {
     let (uniform, regular) = (&stats[5], &stats[6]);
     let same = uniform.periodogram.iter().zip(&regular.periodogram).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
     let dc = (res / 2) * res + res / 2;
@@ -93,9 +133,26 @@ pub(super) fn spectra(ctx: &Ctx) -> Result<Output, Error> {
         h.iter().sum::<f64>() / h.len() as f64
     };
     let (u_h, r_h) = (harmonics(uniform), harmonics(regular));
-    let gj = &stats[3];
-    let jit = &stats[1];
-    // section 5: a randomly rotated and shifted grid, isotropic on average, regular in each set
+    Claim {
+            id: "periodogram-blind".into(),
+            statement: "The periodogram cannot tell uniform jitter from a regular grid, while the amplitude of the expected spectrum can".into(),
+            published: "section 2 and Fig. 2".into(),
+            ours: format!("largest periodogram difference {same:.1e}; mean |<S>|^2 at the grid's harmonics: uniform jitter {u_h:.3}, regular grid {r_h:.3} (largest |<S>| off DC {u_max:.3} and {r_max:.3})"),
+            theory: "uniform jitter's expected spectrum is DC only (Appendix C): |<S>|^2 = 1/20 on average over 20 realizations; each realization is a shifted grid, whose periodogram is the grid's".into(),
+            decision: criteria::all(&[
+                criteria::within(same, 0.0, 1e-8),
+                criteria::exactly(
+                    u_h <= (1.0 + criteria::Z) / m,
+                    &format!("uniform jitter's mean |<S>|^2 at the harmonics {u_h:.3} <= (1 + {}) / {m}", criteria::Z),
+                ),
+                criteria::within(r_h, 1.0, 1e-6),
+            ]),
+            ..Claim::default()
+        }
+}
+
+/// Section 5: a randomly rotated and shifted grid, isotropic on average, regular in each set.
+fn rotated_grid(ctx: &Ctx, res: usize) -> Result<Claim, Error> {
     let rotated = samplab::sampler::generate_sets(
         samplab::sampler::build("regular.rotated")?.as_ref(),
         256,
@@ -114,46 +171,12 @@ pub(super) fn spectra(ctx: &Ctx) -> Result<Output, Error> {
         .map(|s| spectrum::periodogram(s, res, Method::default()).map(|p| mean_aniso(&p)))
         .collect::<Result<Vec<f64>, _>>()?;
     let per_set = per_set.iter().sum::<f64>() / per_set.len() as f64;
-    let low = |st: &spectrum::Statistics| spectrum::radial(&st.variance, res, 2).0[..8].iter().sum::<f64>() / 8.0;
-    let claims = vec![
-        Claim {
-            id: "periodogram-blind".into(),
-            statement: "The periodogram cannot tell uniform jitter from a regular grid, while the amplitude of the expected spectrum can".into(),
-            published: "section 2 and Fig. 2".into(),
-            ours: format!("largest periodogram difference {same:.1e}; mean |<S>|^2 at the grid's harmonics: uniform jitter {u_h:.3}, regular grid {r_h:.3} (largest |<S>| off DC {u_max:.3} and {r_max:.3})"),
-            theory: "uniform jitter's expected spectrum is DC only (Appendix C): |<S>|^2 = 1/20 on average over 20 realizations; each realization is a shifted grid, whose periodogram is the grid's".into(),
-            decision: criteria::all(&[
-                criteria::within(same, 0.0, 1e-8),
-                criteria::exactly(
-                    u_h <= (1.0 + criteria::Z) / m,
-                    &format!("uniform jitter's mean |<S>|^2 at the harmonics {u_h:.3} <= (1 + {}) / {m}", criteria::Z),
-                ),
-                criteria::within(r_h, 1.0, 1e-6),
-            ]),
-            ..Claim::default()
-        },
-        Claim {
-            id: "gaussian-jitter-low-variance".into(),
-            statement: "Gaussian jitter (sigma 0.1) has a lower spectrum variance than jitter at low frequencies".into(),
-            published: "Fig. 2(c)".into(),
-            ours: format!("mean V(S) over radial frequencies 1-8: GJittered:0.1 {:.2e}, jittered {:.2e}", low(gj), low(jit)),
-            theory: "eq. 9: V ~ (2 pi w sigma)^2 / N".into(),
-            decision: criteria::exactly(low(gj) < low(jit), "mean V(S) over radial frequencies 1-8 lower for GJittered:0.1"),
-            ..Claim::default()
-        },
-        Claim {
+    Ok(Claim {
             id: "rotated-grid-anisotropy".into(),
             statement: "A randomly rotated and shifted grid has a nearly isotropic periodogram on average, yet each realization is perfectly regular (highly anisotropic)".into(),
             published: "section 5".into(),
             ours: format!("mean anisotropy over radial bins 1..R/4: per strategy (20 sets) {per_strategy:.1} dB, per set {per_set:.1} dB"),
             decision: criteria::exactly(per_set > per_strategy + 6.0, "per-set anisotropy exceeds the strategy's by more than 6 dB"),
             ..Claim::default()
-        },
-    ];
-    Ok(Output {
-        tables: vec![],
-        figures,
-        claims,
-        notes: vec!["Spectra are computed with samplab's non-uniform FFT at tolerance 1e-9 (tested against the direct DFT); radial bins are the rounded |w| = 1..R/2-1, DC excluded. Uniform jitter and the regular grid are computed for the claim and not drawn.".into()],
-    })
+        })
 }
