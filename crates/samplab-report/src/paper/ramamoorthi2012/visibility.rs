@@ -18,68 +18,12 @@ pub(super) fn error_vs_position(ctx: &Ctx) -> Result<Output, Error> {
     let mut series = Vec::new();
     let mut worst = Vec::new();
     for (name, spec) in [STRATEGIES[0], STRATEGIES[1], STRATEGIES[3], ("random", "random")] {
-        let s = sampler::build(spec)?;
-        // the same realizations for every position: N x RMS error as a function of y0
-        let sets = sampler::generate_sets(s.as_ref(), n, 1, ctx.seed.derive_str(spec), reps)?;
-        let mut curve = Vec::with_capacity(positions);
-        let mut max_err: f64 = 0.0;
-        for i in 0..positions {
-            let y0 = (i as f64 + 0.5) / positions as f64;
-            let f = Family::parse(&format!("step:y0={y0}"))?.instance(ctx.seed, 0)?;
-            let exact = f.exact();
-            let sq: f64 = sets
-                .iter()
-                .map(|p| {
-                    let e = p.iter().map(|x| f.eval(x)).sum::<f64>() / n as f64 - exact;
-                    max_err = max_err.max(e.abs());
-                    e * e
-                })
-                .sum::<f64>()
-                / reps as f64;
-            curve.push((y0, n as f64 * sq.sqrt()));
-        }
-        // the worst case sits just past a sample (a step at y0 = y_k + 0): probe there too
-        for k in 0..2 * n {
-            let y0 = k as f64 / (2 * n) as f64 + 1e-9;
-            let f = Family::parse(&format!("step:y0={y0}"))?.instance(ctx.seed, 0)?;
-            for p in &sets {
-                let e = p.iter().map(|x| f.eval(x)).sum::<f64>() / n as f64 - f.exact();
-                max_err = max_err.max(e.abs());
-            }
-        }
+        let (curve, max_err) = rms_curve(ctx, spec, n, positions, reps)?;
         worst.push((name, spec, n as f64 * max_err));
         series.push(Series { colour_key: Some(spec.into()), ..Series::line(name, curve) });
         ctx.advance(1)?;
     }
-    // theory within a stratum at relative position t: uniform |min(t, 1-t)|, stratified sqrt(t (1-t))
-    let theory = |f: fn(f64) -> f64| {
-        (0..positions)
-            .map(|i| (i as f64 + 0.5) / positions as f64)
-            .map(|y| (y, f((y * n as f64).fract())))
-            .collect::<Vec<_>>()
-    };
-    series.push(Series {
-        dashed: true,
-        colour_key: Some("regular".into()),
-        ..Series::line("uniform, theory", theory(|t| t.min(1.0 - t)))
-    });
-    series.push(Series {
-        dashed: true,
-        colour_key: Some("jitter".into()),
-        ..Series::line("stratified, theory", theory(|t| (t * (1.0 - t)).sqrt()))
-    });
-    // independent points: N x sqrt(y0 (1 - y0) / N)
-    series.push(Series {
-        dashed: true,
-        colour_key: Some("random".into()),
-        ..Series::line(
-            "random, theory",
-            (0..positions)
-                .map(|i| (i as f64 + 0.5) / positions as f64)
-                .map(|y| (y, (n as f64 * y * (1.0 - y)).sqrt()))
-                .collect(),
-        )
-    });
+    series.extend(theory_series(n, positions));
     let chart = LineChart {
         title: "N x RMS error against the discontinuity's position (N = 8)".into(),
         x_label: "position y0 of the discontinuity".into(),
@@ -115,33 +59,107 @@ pub(super) fn error_vs_position(ctx: &Ctx) -> Result<Output, Error> {
             &chart,
             (900, 520),
         )?],
-        claims: vec![
-            Claim {
-                id: "uniform-worst-case".into(),
-                statement:
-                    "Uniform (centred) sampling has worst-case error 1/(2N) for one discontinuity, the lower bound"
-                        .into(),
-                published: "1/(2N) (eq. 8, Figs. 3 and 4)".into(),
-                ours: format!(
-                    "N x worst error = {uniform_worst:.9} over 400 positions and the {} positions just past a sample",
-                    2 * n
-                ),
-                theory: "0.5".into(),
-                decision: criteria::within(uniform_worst, 0.5, 1e-6),
-                ..Claim::default()
-            },
-            Claim {
-                id: "halton-worst-case".into(),
-                statement: "Halton (base 2) has worst-case error 1/N for one discontinuity".into(),
-                published: "1/N (Fig. 3)".into(),
-                ours: format!("N x worst error = {halton_worst:.9}"),
-                theory: "1".into(),
-                decision: criteria::within(halton_worst, 1.0, 1e-6),
-                ..Claim::default()
-            },
-        ],
+        claims: worst_claims(uniform_worst, halton_worst, n),
         notes: vec![],
     })
+}
+
+/// N x the RMS error of `spec`'s realizations against the position y0 of one step, and the
+/// worst absolute error seen.
+fn rms_curve(ctx: &Ctx, spec: &str, n: usize, positions: usize, reps: usize) -> Result<(Vec<(f64, f64)>, f64), Error> {
+    let s = sampler::build(spec)?;
+    // the same realizations for every position: N x RMS error as a function of y0
+    let sets = sampler::generate_sets(s.as_ref(), n, 1, ctx.seed.derive_str(spec), reps)?;
+    let mut curve = Vec::with_capacity(positions);
+    let mut max_err: f64 = 0.0;
+    for i in 0..positions {
+        let y0 = (i as f64 + 0.5) / positions as f64;
+        let f = Family::parse(&format!("step:y0={y0}"))?.instance(ctx.seed, 0)?;
+        let exact = f.exact();
+        let sq: f64 = sets
+            .iter()
+            .map(|p| {
+                let e = p.iter().map(|x| f.eval(x)).sum::<f64>() / n as f64 - exact;
+                max_err = max_err.max(e.abs());
+                e * e
+            })
+            .sum::<f64>()
+            / reps as f64;
+        curve.push((y0, n as f64 * sq.sqrt()));
+    }
+    // the worst case sits just past a sample (a step at y0 = y_k + 0): probe there too
+    for k in 0..2 * n {
+        let y0 = k as f64 / (2 * n) as f64 + 1e-9;
+        let f = Family::parse(&format!("step:y0={y0}"))?.instance(ctx.seed, 0)?;
+        for p in &sets {
+            let e = p.iter().map(|x| f.eval(x)).sum::<f64>() / n as f64 - f.exact();
+            max_err = max_err.max(e.abs());
+        }
+    }
+    Ok((curve, max_err))
+}
+
+/// The closed forms of Fig. 3's curves.
+fn theory_series(n: usize, positions: usize) -> Vec<Series> {
+    let mut series = Vec::new();
+    // theory within a stratum at relative position t: uniform |min(t, 1-t)|, stratified sqrt(t (1-t))
+    let theory = |f: fn(f64) -> f64| {
+        (0..positions)
+            .map(|i| (i as f64 + 0.5) / positions as f64)
+            .map(|y| (y, f((y * n as f64).fract())))
+            .collect::<Vec<_>>()
+    };
+    series.push(Series {
+        dashed: true,
+        colour_key: Some("regular".into()),
+        ..Series::line("uniform, theory", theory(|t| t.min(1.0 - t)))
+    });
+    series.push(Series {
+        dashed: true,
+        colour_key: Some("jitter".into()),
+        ..Series::line("stratified, theory", theory(|t| (t * (1.0 - t)).sqrt()))
+    });
+    // independent points: N x sqrt(y0 (1 - y0) / N)
+    series.push(Series {
+        dashed: true,
+        colour_key: Some("random".into()),
+        ..Series::line(
+            "random, theory",
+            (0..positions)
+                .map(|i| (i as f64 + 0.5) / positions as f64)
+                .map(|y| (y, (n as f64 * y * (1.0 - y)).sqrt()))
+                .collect(),
+        )
+    });
+    series
+}
+
+/// The worst cases of uniform (centred) and Halton sampling against their closed forms.
+fn worst_claims(uniform_worst: f64, halton_worst: f64, n: usize) -> Vec<Claim> {
+    vec![
+        Claim {
+            id: "uniform-worst-case".into(),
+            statement: "Uniform (centred) sampling has worst-case error 1/(2N) for one discontinuity, the lower bound"
+                .into(),
+            published: "1/(2N) (eq. 8, Figs. 3 and 4)".into(),
+            ours: format!(
+                "N x worst error = {uniform_worst:.9} over 400 positions and the {} positions just past a sample",
+                2 * n
+            ),
+            theory: "0.5".into(),
+            decision: criteria::within(uniform_worst, 0.5, 1e-6),
+            ..Claim::default()
+        },
+        Claim {
+            id: "halton-worst-case".into(),
+            statement: "Halton (base 2) has worst-case error 1/N for one discontinuity".into(),
+            published: "1/N (Fig. 3)".into(),
+            ours: format!("N x worst error = {halton_worst:.9}"),
+            theory: "1".into(),
+            decision: criteria::within(halton_worst, 1.0, 1e-6),
+            ..Claim::default()
+        },
+    ]
 }
 
 pub(super) fn tables(ctx: &Ctx) -> Result<Output, Error> {
@@ -305,66 +323,8 @@ pub(super) fn discontinuities(ctx: &Ctx) -> Result<Output, Error> {
                 table_rows.push(row);
             }
         }
-        let mut series = curves.clone();
-        for (name, spec) in &STRATEGIES[..3] {
-            let pts =
-                ks.iter().filter_map(|&k| theory::visibility_normalized_mse(spec, k).map(|t| (k as f64, t))).collect();
-            series.push(Series {
-                dashed: true,
-                colour_key: Some(spec.to_string()),
-                ..Series::line(format!("{name}, theory"), pts)
-            });
-        }
-        let chart = LineChart {
-            title: format!("N^2 x variance against the number of discontinuities (up to {which}), N = 256"),
-            x_label: "number of discontinuities".into(),
-            y_label: "N^2 x mean squared error".into(),
-            series,
-            log_y: false,
-            log_x: false,
-            polar: false,
-        };
-        figures.push(Figure::render(
-            &format!("ramamoorthi2012-fig7-{which}"),
-            &format!("Fig. 7: normalized variance, up to {which} discontinuities, 1000 trials; dashed: theory"),
-            &chart,
-            (900, 560),
-        )?);
-        if which == "100" {
-            let last = |i: usize| curves[i].points.last().expect("points").1;
-            let ratio = last(1) / last(0);
-            claims.push(Claim {
-                id: "stratified-twice-at-100".into(),
-                statement: "With many discontinuities (100), stratified sampling still has about twice the variance of uniform sampling".into(),
-                published: "about twice (Fig. 7b)".into(),
-                ours: format!("stratified / uniform = {ratio:.2} at 100 discontinuities"),
-                theory: "2 while the discontinuities fall in distinct strata".into(),
-                decision: criteria::exactly((1.8..2.2).contains(&ratio), "stratified / uniform within [1.8, 2.2]"),
-                explanation: Some(format!(
-                    "with 100 discontinuities at uniform random positions over 256 strata, about C(100,2)/256 = 19 pairs share a stratum, which the per-discontinuity theory excludes; the schemes then draw closer ({ratio:.2}), as the paper notes for very complex visibility"
-                )),
-                ..Claim::default()
-            });
-        } else {
-            let halton: Vec<f64> = curves[3].points.iter().map(|p| p.1).collect();
-            let zigzag = (1..halton.len() - 1)
-                .filter(|&i| (halton[i] - halton[i - 1]) * (halton[i + 1] - halton[i]) < 0.0)
-                .count();
-            claims.push(Claim {
-                id: "halton-odd-even".into(),
-                statement:
-                    "Halton's error is non-monotonic between odd and even numbers of discontinuities (larger for odd)"
-                        .into(),
-                published: "Fig. 7a".into(),
-                ours: format!(
-                    "{zigzag} direction changes over k = 1..7; values {}",
-                    halton.iter().map(|v| format!("{v:.3}")).collect::<Vec<_>>().join(", ")
-                ),
-                theory: String::new(),
-                decision: criteria::exactly(zigzag >= 4, "at least 4 changes of direction over k = 1..7"),
-                ..Claim::default()
-            });
-        }
+        figures.push(fig7(which, ks, &curves)?);
+        claims.push(fig7_claim(which, &curves));
     }
     let mut columns: Vec<String> = vec!["discontinuities".into()];
     columns.extend(STRATEGIES.iter().map(|s| s.0.to_string()));
@@ -381,4 +341,71 @@ pub(super) fn discontinuities(ctx: &Ctx) -> Result<Output, Error> {
         claims,
         notes: vec![],
     })
+}
+
+/// Fig. 7 up to `which` discontinuities: the measured curves and the closed forms.
+fn fig7(which: &str, ks: &[usize], curves: &[Series]) -> Result<Figure, Error> {
+    let mut series = curves.to_vec();
+    for (name, spec) in &STRATEGIES[..3] {
+        let pts =
+            ks.iter().filter_map(|&k| theory::visibility_normalized_mse(spec, k).map(|t| (k as f64, t))).collect();
+        series.push(Series {
+            dashed: true,
+            colour_key: Some(spec.to_string()),
+            ..Series::line(format!("{name}, theory"), pts)
+        });
+    }
+    let chart = LineChart {
+        title: format!("N^2 x variance against the number of discontinuities (up to {which}), N = 256"),
+        x_label: "number of discontinuities".into(),
+        y_label: "N^2 x mean squared error".into(),
+        series,
+        log_y: false,
+        log_x: false,
+        polar: false,
+    };
+    Figure::render(
+        &format!("ramamoorthi2012-fig7-{which}"),
+        &format!("Fig. 7: normalized variance, up to {which} discontinuities, 1000 trials; dashed: theory"),
+        &chart,
+        (900, 560),
+    )
+}
+
+/// Fig. 7's claim: Halton's zigzag up to 7 discontinuities, stratified against uniform at 100.
+fn fig7_claim(which: &str, curves: &[Series]) -> Claim {
+    if which == "100" {
+        let last = |i: usize| curves[i].points.last().expect("points").1;
+        let ratio = last(1) / last(0);
+        Claim {
+            id: "stratified-twice-at-100".into(),
+            statement: "With many discontinuities (100), stratified sampling still has about twice the variance of uniform sampling".into(),
+            published: "about twice (Fig. 7b)".into(),
+            ours: format!("stratified / uniform = {ratio:.2} at 100 discontinuities"),
+            theory: "2 while the discontinuities fall in distinct strata".into(),
+            decision: criteria::exactly((1.8..2.2).contains(&ratio), "stratified / uniform within [1.8, 2.2]"),
+            explanation: Some(format!(
+                "with 100 discontinuities at uniform random positions over 256 strata, about C(100,2)/256 = 19 pairs share a stratum, which the per-discontinuity theory excludes; the schemes then draw closer ({ratio:.2}), as the paper notes for very complex visibility"
+            )),
+            ..Claim::default()
+        }
+    } else {
+        let halton: Vec<f64> = curves[3].points.iter().map(|p| p.1).collect();
+        let zigzag =
+            (1..halton.len() - 1).filter(|&i| (halton[i] - halton[i - 1]) * (halton[i + 1] - halton[i]) < 0.0).count();
+        Claim {
+            id: "halton-odd-even".into(),
+            statement:
+                "Halton's error is non-monotonic between odd and even numbers of discontinuities (larger for odd)"
+                    .into(),
+            published: "Fig. 7a".into(),
+            ours: format!(
+                "{zigzag} direction changes over k = 1..7; values {}",
+                halton.iter().map(|v| format!("{v:.3}")).collect::<Vec<_>>().join(", ")
+            ),
+            theory: String::new(),
+            decision: criteria::exactly(zigzag >= 4, "at least 4 changes of direction over k = 1..7"),
+            ..Claim::default()
+        }
+    }
 }
