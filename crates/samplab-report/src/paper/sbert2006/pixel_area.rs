@@ -2,13 +2,13 @@
 //! points) and force-matrix patterns: Figs. 4 and 5 and Table 1, on Shirley's rotated
 //! checkerboard (the paper's scene is not published).
 
-use samplab_render::Footprint;
 use samplab_render::light::DiskMap;
+use samplab_render::{Footprint, Image};
 
 use super::super::shadows::{self, Setup, scene};
 use crate::criteria::{self, Decision, Estimate, Verdict};
 use crate::published;
-use crate::{Cell, Claim, Ctx, Error, Output, Table};
+use crate::{Cell, Claim, Ctx, Error, Figure, Output, Table};
 
 /// One pixel strategy: its name, sampler, interleaving tile and the published entry it
 /// stands for (published table, row).
@@ -119,12 +119,39 @@ pub(super) fn pixel_area(ctx: &Ctx) -> Result<Output, Error> {
     let mut figures =
         vec![shadows::picture("sbert2006-pixel-reference", "Shirley's checker-45: converged reference", &reference)?];
     let mut rows = Vec::new();
+    let mse = measure(ctx, base, &reference, seeds, &mut rows, &mut figures)?;
+    let (m16, m256) = (&mse[0], &mse[1]);
+    let (edge_table, edge_explanation) = edge_evidence(ctx)?;
+    let claims = claims(m16, m256, edge_explanation);
+    Ok(Output {
+        tables: vec![edge_table, Table {
+            id: "sbert2006-pixel-area".into(),
+            caption: format!("Pixel-area sampling of checker-45 (displayed values): MSE x 255^2 against a {reference_spp}-sample reference, mean of {seeds} seeds, and its standard error; published values are of the paper's own scene (compare the order, not the values)"),
+            columns: ["samples per pixel", "scheme", "MSE x 255^2", "standard error", "published MSE"].map(String::from).to_vec(),
+            rows,
+        }],
+        figures,
+        claims,
+        notes: vec!["Interleaved sampling: one Halton pattern (shifted per seed) of 64 points over a tile of 4 x 1 pixels, repeated over the image, each pixel taking its 16; the paper's cell is 'four pixels', and Halton's base-3 axis cannot split 64 points evenly between two rows, so the four pixels are in a row. The force matrix (256 of a 64 x 64 fine grid) is computed once per image and repeated in every pixel, as a dithering matrix is; computing one per pixel costs milliseconds each.".into()],
+    })
+}
+
+/// Every scheme's MSE over the seeds at 16 and 256 samples per pixel (a row and a picture
+/// each).
+fn measure(
+    ctx: &Ctx,
+    base: Setup,
+    reference: &Image,
+    seeds: u64,
+    rows: &mut Vec<Vec<Cell>>,
+    figures: &mut Vec<Figure>,
+) -> Result<Vec<Vec<Estimate>>, Error> {
     let mut mse = Vec::new();
     for (spp, group) in [(16usize, &SIXTEEN[..]), (256, &TWO_FIFTY_SIX[..])] {
         let mut estimates = Vec::new();
         for st in group {
             let setup = Setup { pixel: st.spec, interleave: st.tile, ..base };
-            let each = setup.errors_each(&reference, "jitter", 1, spp, seeds, ctx.seed)?;
+            let each = setup.errors_each(reference, "jitter", 1, spp, seeds, ctx.seed)?;
             ctx.advance(seeds)?;
             let e = shadows::mse_estimate(&each);
             let (table, row) = st.published;
@@ -151,8 +178,12 @@ pub(super) fn pixel_area(ctx: &Ctx) -> Result<Output, Error> {
         }
         mse.push(estimates);
     }
-    let (m16, m256) = (&mse[0], &mse[1]);
-    // the mechanism behind Fig. 4 on checker-45: its error pixels are crossed by one edge
+    Ok(mse)
+}
+
+/// The mechanism behind Fig. 4 on checker-45: its error pixels are crossed by one edge.
+/// The table of variances by edge angle, and the explanation it supports.
+fn edge_evidence(ctx: &Ctx) -> Result<(Table, String), Error> {
     let edge = edge_variances(ctx, ctx.pick(200, 800), 40)?;
     let stratified_wins =
         edge.iter().filter(|(_, st, sy)| criteria::less(*st, *sy).verdict == Verdict::Reproduced).count();
@@ -172,6 +203,11 @@ pub(super) fn pixel_area(ctx: &Ctx) -> Result<Output, Error> {
             .map(|(a, st, sy)| vec![Cell::num(*a, 1), Cell::num(st.value, 6), Cell::num(st.se, 6), Cell::num(sy.value, 6), Cell::num(sy.se, 6), Cell::num(sy.value / st.value, 2)])
             .collect(),
     };
+    Ok((edge_table, edge_explanation))
+}
+
+/// Table 1's and Figs. 4-5's orderings.
+fn claims(m16: &[Estimate], m256: &[Estimate], edge_explanation: String) -> Vec<Claim> {
     // strategy `best` against each of `others`
     let beats = |m: &[Estimate], best: usize, others: &[usize]| -> Decision {
         criteria::all(&others.iter().map(|&o| criteria::less(m[best], m[o])).collect::<Vec<_>>())
@@ -179,7 +215,7 @@ pub(super) fn pixel_area(ctx: &Ctx) -> Result<Output, Error> {
     let show = |m: &[Estimate], group: &[Strategy]| {
         group.iter().zip(m).map(|(s, e)| format!("{} {:.2}", s.name, e.value * 65025.0)).collect::<Vec<_>>().join("; ")
     };
-    let claims = vec![
+    vec![
         Claim {
             id: "pixel-n-offsets-of-n-points".into(),
             statement: "Sampling the pixel with N^2 samples, N offsets of N points each has the lowest error of the systematic configurations".into(),
@@ -225,16 +261,5 @@ pub(super) fn pixel_area(ctx: &Ctx) -> Result<Output, Error> {
             decision: beats(m256, 0, &[1, 2, 3, 4]),
             ..Claim::default()
         },
-    ];
-    Ok(Output {
-        tables: vec![edge_table, Table {
-            id: "sbert2006-pixel-area".into(),
-            caption: format!("Pixel-area sampling of checker-45 (displayed values): MSE x 255^2 against a {reference_spp}-sample reference, mean of {seeds} seeds, and its standard error; published values are of the paper's own scene (compare the order, not the values)"),
-            columns: ["samples per pixel", "scheme", "MSE x 255^2", "standard error", "published MSE"].map(String::from).to_vec(),
-            rows,
-        }],
-        figures,
-        claims,
-        notes: vec!["Interleaved sampling: one Halton pattern (shifted per seed) of 64 points over a tile of 4 x 1 pixels, repeated over the image, each pixel taking its 16; the paper's cell is 'four pixels', and Halton's base-3 axis cannot split 64 points evenly between two rows, so the four pixels are in a row. The force matrix (256 of a 64 x 64 fine grid) is computed once per image and repeated in every pixel, as a dithering matrix is; computing one per pixel costs milliseconds each.".into()],
-    })
+    ]
 }
