@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use crate::coverage::{self, Status};
-use crate::{Claim, Done, Error, Options, Paper, Scale, Table};
+use crate::{Claim, Done, Error, Figure, Options, Paper, Scale, Table};
 
 /// Escape text for HTML.
 pub fn escape(s: &str) -> String {
@@ -246,55 +246,10 @@ pub(crate) fn write_report(
         );
         for d in done {
             total_seconds += d.seconds;
-            let _ = write!(
-                body,
-                "<h2 id=\"{}\">{}</h2>\n<p class=\"caption\">Parameters: {}. Took {:.1} s.</p>\n",
-                d.experiment,
-                escape(&d.title),
-                escape(&d.parameters),
-                d.seconds
-            );
-            for note in &d.output.notes {
-                let _ = writeln!(body, "<p class=\"note\">{}</p>", escape(note));
-            }
-            for t in &d.output.tables {
-                table_files(dir, t)?;
-                body.push_str(&table_html(t));
-            }
-            for f in &d.output.figures {
-                write(&dir.join(format!("figures/{}.png", f.id)), &f.png)?;
-                let id = escape(&f.id);
-                let svg_link = match &f.svg {
-                    Some(svg) => {
-                        write(&dir.join(format!("figures/{}.svg", f.id)), svg.as_bytes())?;
-                        format!(" (<a href=\"figures/{id}.svg\">SVG</a>)")
-                    }
-                    None => String::new(),
-                };
-                let size = f
-                    .display_width()
-                    .map_or(String::new(), |w| format!(" width=\"{w}\" style=\"image-rendering:pixelated\""));
-                let _ = writeln!(
-                    body,
-                    "<figure id=\"{id}\"><img src=\"figures/{id}.png\"{size} alt=\"{cap}\"><figcaption>{cap}{svg_link}</figcaption></figure>",
-                    cap = escape(&f.caption)
-                );
-                lint.extend(f.lint.iter().map(|l| format!("{}: {l}", f.id)));
-            }
+            experiment_html(dir, d, &mut body, &mut lint)?;
         }
         write(&dir.join(format!("{}.html", paper.key)), page(paper.title, &nav, &body).as_bytes())?;
-        let [r, k, n, u] = counts(&claims);
-        let _ = write!(
-            index_rows,
-            "<tr><td><a href=\"{key}.html\">{title}</a></td><td>{}</td><td>{r}</td><td>{k}</td><td>{n}</td><td>{u}</td>",
-            done.len(),
-            key = paper.key,
-            title = escape(paper.title)
-        );
-        for c in status_counts {
-            let _ = write!(index_rows, "<td>{c}</td>");
-        }
-        index_rows.push_str("</tr>\n");
+        index_rows.push_str(&index_row(paper, done.len(), &claims, status_counts));
         all_claims.extend(claims.into_iter().map(|c| (paper.key.to_string(), c.clone())));
     }
     let refs: Vec<&Claim> = all_claims.iter().map(|(_, c)| c).collect();
@@ -312,6 +267,79 @@ pub(crate) fn write_report(
         claims_table(&refs)
     );
     write(&dir.join("lint.json"), serde_json::to_string_pretty(&lint).expect("plain data").as_bytes())?;
+    write_claims_json(dir, &all_claims)?;
+    // the index last: a folder with an index is a finished report
+    write(&dir.join("index.html"), page("samplab: reproducing the papers", &nav, &body).as_bytes())?;
+    Ok(all_claims)
+}
+
+/// One experiment's section of its paper's page: heading, notes, tables (their files
+/// written) and figures (theirs written); the figures' lint gathered.
+fn experiment_html(dir: &Path, d: &Done, body: &mut String, lint: &mut Vec<String>) -> Result<(), Error> {
+    let _ = write!(
+        body,
+        "<h2 id=\"{}\">{}</h2>\n<p class=\"caption\">Parameters: {}. Took {:.1} s.</p>\n",
+        d.experiment,
+        escape(&d.title),
+        escape(&d.parameters),
+        d.seconds
+    );
+    for note in &d.output.notes {
+        let _ = writeln!(body, "<p class=\"note\">{}</p>", escape(note));
+    }
+    for t in &d.output.tables {
+        table_files(dir, t)?;
+        body.push_str(&table_html(t));
+    }
+    for f in &d.output.figures {
+        body.push_str(&figure_html(dir, f)?);
+        lint.extend(f.lint.iter().map(|l| format!("{}: {l}", f.id)));
+    }
+    Ok(())
+}
+
+/// A figure's element, its PNG and SVG files written.
+fn figure_html(dir: &Path, f: &Figure) -> Result<String, Error> {
+    write(&dir.join(format!("figures/{}.png", f.id)), &f.png)?;
+    let id = escape(&f.id);
+    let svg_link = match &f.svg {
+        Some(svg) => {
+            write(&dir.join(format!("figures/{}.svg", f.id)), svg.as_bytes())?;
+            format!(" (<a href=\"figures/{id}.svg\">SVG</a>)")
+        }
+        None => String::new(),
+    };
+    let size =
+        f.display_width().map_or(String::new(), |w| format!(" width=\"{w}\" style=\"image-rendering:pixelated\""));
+    Ok(format!(
+        "<figure id=\"{id}\"><img src=\"figures/{id}.png\"{size} alt=\"{cap}\"><figcaption>{cap}{svg_link}</figcaption></figure>\n",
+        cap = escape(&f.caption)
+    ))
+}
+
+/// A paper's row of the summary: experiments, claims by verdict, coverage by status.
+fn index_row(
+    paper: &Paper,
+    experiments: usize,
+    claims: &[&Claim],
+    status_counts: impl IntoIterator<Item = usize>,
+) -> String {
+    let [r, k, n, u] = counts(claims);
+    let mut row = format!(
+        "<tr><td><a href=\"{key}.html\">{title}</a></td><td>{}</td><td>{r}</td><td>{k}</td><td>{n}</td><td>{u}</td>",
+        experiments,
+        key = paper.key,
+        title = escape(paper.title)
+    );
+    for c in status_counts {
+        let _ = write!(row, "<td>{c}</td>");
+    }
+    row.push_str("</tr>\n");
+    row
+}
+
+/// claims.json: every claim with its paper, the verdict shown and its explanation.
+fn write_claims_json(dir: &Path, all_claims: &[(String, Claim)]) -> Result<(), Error> {
     let claims_json: Vec<serde_json::Value> = all_claims
         .iter()
         .map(|(paper, c)| {
@@ -325,7 +353,5 @@ pub(crate) fn write_report(
         })
         .collect();
     write(&dir.join("claims.json"), serde_json::to_string_pretty(&claims_json).expect("plain data").as_bytes())?;
-    // the index last: a folder with an index is a finished report
-    write(&dir.join("index.html"), page("samplab: reproducing the papers", &nav, &body).as_bytes())?;
-    Ok(all_claims)
+    Ok(())
 }
