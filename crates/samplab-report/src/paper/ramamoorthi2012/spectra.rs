@@ -142,34 +142,7 @@ pub(super) fn gaussian_light(ctx: &Ctx) -> Result<Output, Error> {
         log_x: true,
         polar: false,
     };
-    let ratio = gauss[1].ratio(gauss[0]);
-    let claims = vec![
-        Claim {
-            id: "fig12-constant-uniform-jitter-as-stratified".into(),
-            statement: "Constant linear light, one discontinuity: uniform jitter has the same RMS error as stratified sampling".into(),
-            published: "Fig. 12(a) caption".into(),
-            ours: format!(
-                "N^2 x MSE: uniform jitter {:.4}, stratified {:.4} (N = {n}, {trials} edges each)",
-                constant[1].value, constant[2].value
-            ),
-            theory: "1/6 for both (Fig. 4)".into(),
-            decision: criteria::agrees(constant[1], constant[2], 0.0),
-            ..Claim::default()
-        },
-        Claim {
-            id: "fig12-gaussian-uniform-jitter-as-uniform".into(),
-            statement: "Gaussian linear light, one discontinuity: the smoother spectrum lets uniform jitter perform essentially as well as uniform sampling (read as: within 25% in mean squared error)".into(),
-            published: "Fig. 12(b) caption".into(),
-            ours: format!(
-                "uniform jitter / uniform MSE = {:.3} with the Gaussian light ({:.3} with the constant one)",
-                ratio.value,
-                constant[1].value / constant[0].value
-            ),
-            theory: "2 for a constant light (1/6 against 1/12, Fig. 4)".into(),
-            decision: criteria::in_range(ratio, 0.0, 1.25),
-            ..Claim::default()
-        },
-    ];
+    let claims = fig12_claims(constant, gauss, n, trials);
     Ok(Output {
         tables: vec![Table {
             id: "ramamoorthi2012-fig12".into(),
@@ -197,9 +170,76 @@ pub(super) fn gaussian_light(ctx: &Ctx) -> Result<Output, Error> {
 pub(super) fn square_light(ctx: &Ctx) -> Result<Output, Error> {
     let (n, side, res, trials) = (25usize, 5usize, 64usize, ctx.pick(20_000, 200_000));
     ctx.set_length(5);
+    let figures = fig15(ctx, side, res)?;
+    ctx.advance(1)?;
+    let mut rows = Vec::new();
+    let mut ratios = Vec::new();
+    for (light_name, light) in Light::BOTH {
+        let strat = edge_mse(ctx, "jitter", n, 2, light, trials)?;
+        let uj = edge_mse(ctx, "jitter.uniform", n, 2, light, trials)?;
+        ctx.advance(2)?;
+        let ratio = uj.ratio(strat);
+        rows.push(vec![
+            Cell::from(light_name),
+            Cell::num(strat.value, 5),
+            Cell::num(uj.value, 5),
+            Cell::num(ratio.value, 3),
+            if light == Light::Constant { Cell::num((n as f64).sqrt(), 0) } else { Cell::Empty },
+        ]);
+        ratios.push((strat, uj, ratio));
+    }
+    let (constant, gauss) = (ratios[0], ratios[1]);
+    let claims = fig14_claims(constant, gauss, side);
+    Ok(Output {
+        tables: vec![Table {
+            id: "ramamoorthi2012-fig15".into(),
+            caption: format!("N x mean squared error of a vertical edge (uniform position) on a square light, N = {n} (5 x 5), {trials} edges per strategy"),
+            columns: ["light", "stratified", "uniform jitter", "uniform jitter / stratified", "theory (constant)"].map(String::from).to_vec(),
+            rows,
+        }],
+        figures,
+        claims,
+        notes: vec!["The spectra are of one pixel's light (2D), not the pixel-light spectra of section 5; each map is the product of its two axes' spectra (the edge, the comb and the Gaussian are all separable), floored at 1e-6 for the log colour scale.".into()],
+    })
+}
+
+/// Fig. 12's claims: uniform jitter against stratified under the constant light, against
+/// uniform under the Gaussian one.
+fn fig12_claims(constant: &[Estimate], gauss: &[Estimate], n: usize, trials: usize) -> Vec<Claim> {
+    let ratio = gauss[1].ratio(gauss[0]);
+    vec![
+        Claim {
+            id: "fig12-constant-uniform-jitter-as-stratified".into(),
+            statement: "Constant linear light, one discontinuity: uniform jitter has the same RMS error as stratified sampling".into(),
+            published: "Fig. 12(a) caption".into(),
+            ours: format!(
+                "N^2 x MSE: uniform jitter {:.4}, stratified {:.4} (N = {n}, {trials} edges each)",
+                constant[1].value, constant[2].value
+            ),
+            theory: "1/6 for both (Fig. 4)".into(),
+            decision: criteria::agrees(constant[1], constant[2], 0.0),
+            ..Claim::default()
+        },
+        Claim {
+            id: "fig12-gaussian-uniform-jitter-as-uniform".into(),
+            statement: "Gaussian linear light, one discontinuity: the smoother spectrum lets uniform jitter perform essentially as well as uniform sampling (read as: within 25% in mean squared error)".into(),
+            published: "Fig. 12(b) caption".into(),
+            ours: format!(
+                "uniform jitter / uniform MSE = {:.3} with the Gaussian light ({:.3} with the constant one)",
+                ratio.value,
+                constant[1].value / constant[0].value
+            ),
+            theory: "2 for a constant light (1/6 against 1/12, Fig. 4)".into(),
+            decision: criteria::in_range(ratio, 0.0, 1.25),
+            ..Claim::default()
+        },
+    ]
+}
+
+/// Fig. 15's maps, each separable: |F(u)| |G(v)|, u across (index k % res), v up.
+fn fig15(ctx: &Ctx, side: usize, res: usize) -> Result<Vec<Figure>, Error> {
     let half = (res / 2) as f64;
     let freq = |k: usize| k as f64 - half;
-    // every map is separable: |F(u)| |G(v)|, u across (index k % res), v up
     let map = |fu: &dyn Fn(f64) -> f64, fv: &dyn Fn(f64) -> f64| -> Vec<f64> {
         let (us, vs): (Vec<f64>, Vec<f64>) = (0..res).map(|k| (fu(freq(k)), fv(freq(k)))).unzip();
         (0..res * res).map(|i| (vs[i / res] * us[i % res]).max(1e-6)).collect()
@@ -246,25 +286,17 @@ pub(super) fn square_light(ctx: &Ctx) -> Result<Output, Error> {
             (700, 600),
         )?);
     }
-    ctx.advance(1)?;
-    let mut rows = Vec::new();
-    let mut ratios = Vec::new();
-    for (light_name, light) in Light::BOTH {
-        let strat = edge_mse(ctx, "jitter", n, 2, light, trials)?;
-        let uj = edge_mse(ctx, "jitter.uniform", n, 2, light, trials)?;
-        ctx.advance(2)?;
-        let ratio = uj.ratio(strat);
-        rows.push(vec![
-            Cell::from(light_name),
-            Cell::num(strat.value, 5),
-            Cell::num(uj.value, 5),
-            Cell::num(ratio.value, 3),
-            if light == Light::Constant { Cell::num((n as f64).sqrt(), 0) } else { Cell::Empty },
-        ]);
-        ratios.push((strat, uj, ratio));
-    }
-    let (constant, gauss) = (ratios[0], ratios[1]);
-    let claims = vec![
+    Ok(figures)
+}
+
+/// Figs. 14 and 15's claims: (stratified, uniform jitter, their ratio) under the constant
+/// and the Gaussian light.
+fn fig14_claims(
+    constant: (Estimate, Estimate, Estimate),
+    gauss: (Estimate, Estimate, Estimate),
+    side: usize,
+) -> Vec<Claim> {
+    vec![
         Claim {
             id: "fig14-square-aligned-edge".into(),
             statement: "Square light, an edge parallel to the sample columns: uniform jitter has higher error than stratified sampling, every light scanline giving the same result".into(),
@@ -292,16 +324,5 @@ pub(super) fn square_light(ctx: &Ctx) -> Result<Output, Error> {
             decision: criteria::less(gauss.2, constant.2),
             ..Claim::default()
         },
-    ];
-    Ok(Output {
-        tables: vec![Table {
-            id: "ramamoorthi2012-fig15".into(),
-            caption: format!("N x mean squared error of a vertical edge (uniform position) on a square light, N = {n} (5 x 5), {trials} edges per strategy"),
-            columns: ["light", "stratified", "uniform jitter", "uniform jitter / stratified", "theory (constant)"].map(String::from).to_vec(),
-            rows,
-        }],
-        figures,
-        claims,
-        notes: vec!["The spectra are of one pixel's light (2D), not the pixel-light spectra of section 5; each map is the product of its two axes' spectra (the edge, the comb and the Gaussian are all separable), floored at 1e-6 for the log colour scale.".into()],
-    })
+    ]
 }
