@@ -1,13 +1,14 @@
 //! Sections 4.2.3, 6 and 7: rendered soft shadows from linear, square, circular and
 //! Gaussian lights (Figs. 8, 13, 16, 18 and 20).
 
+use samplab_render::Image;
 use samplab_render::light::DiskMap;
 use samplab_render::scenes::LightKind;
 
 use super::super::shadows::{self, Setup, scene};
 use samplab::stats::Summary;
 
-use crate::criteria::{self, Decision, Verdict};
+use crate::criteria::{self, Decision, Estimate, Verdict};
 use crate::plot::{LineChart, Series};
 use crate::published;
 use crate::{Cell, Claim, Ctx, Error, Figure, Output, Table};
@@ -137,57 +138,9 @@ pub(super) fn planar_lights(ctx: &Ctx) -> Result<Output, Error> {
             let ratio = mse[0].value / mse[1].value;
             row.push(Cell::num(ratio, 2));
             rows.push(row);
-            let uniform_should_win = kind != LightKind::Square;
-            claims.push(Claim {
-                id: format!("{scene_name}-{}", light_name.to_lowercase()),
-                statement: format!(
-                    "{scene_name}, {light_name} light: uniform jitter has {} error than stratified sampling",
-                    if uniform_should_win { "lower" } else { "higher" }
-                ),
-                published: format!("Fig. {figure}"),
-                ours: format!("stratified / uniform jitter MSE = {ratio:.2} at {spp} samples"),
-                theory: if uniform_should_win {
-                    "smooth lights spread the sampling comb's energy (section 6)".into()
-                } else {
-                    "edges aligned with the light's scanlines correlate the strata (section 6, Fig. 14)".into()
-                },
-                decision: if uniform_should_win {
-                    criteria::less(mse[1], mse[0])
-                } else {
-                    criteria::less(mse[0], mse[1])
-                },
-                ..Claim::default()
-            });
-            if scene_name == "sphere-box" && kind == LightKind::Disk {
-                claims.push(Claim {
-                    id: "sphere-box-circular-halton".into(),
-                    statement: "sphere-box, circular light: uniform jitter (about 20 of 25 samples kept) has less error than 25 Halton samples with the Shirley-Chiu warp".into(),
-                    published: "Fig. 16(c, d): uniform jitter about 25% better".into(),
-                    ours: format!("Halton / uniform jitter MSE = {:.2}", mse[2].value / mse[1].value),
-                    theory: String::new(),
-                    decision: criteria::less(mse[1], mse[2]),
-                    ..Claim::default()
-                });
-            }
+            claims.extend(planar_claims((scene_name, figure), (light_name, kind), &mse, spp));
             if scene_name == "spheres" && kind != LightKind::Gaussian {
-                let light = light_name.to_lowercase();
-                figures.push(shadows::picture(
-                    &format!("ramamoorthi2012-fig13-{light}-reference"),
-                    &format!("Fig. 13, {light_name} light: reference"),
-                    &reference,
-                )?);
-                for (name, spec) in &strategies[..2] {
-                    let img = setup.render(spec, spp, 1, ctx.seed)?;
-                    figures.push(shadows::error_picture(
-                        &format!("ramamoorthi2012-fig13-{light}-{}", spec.replace('.', "-")),
-                        &format!(
-                            "Fig. 13, {light_name} light, {name}, {spp} samples: signed error x 10 (red: too bright, green: too dark)"
-                        ),
-                        &img,
-                        &reference,
-                        10.0,
-                    )?);
-                }
+                figures.extend(fig13(ctx, setup, &reference, light_name, spp, &strategies[..2])?);
             }
         }
     }
@@ -255,29 +208,7 @@ pub(super) fn grids_lights(ctx: &Ctx) -> Result<Output, Error> {
             }
             row.push(Cell::num(mse[0].value / mse[1].value, 2));
             rows.push(row);
-            let id = |what: &str| format!("{scene_name}-{}{what}", light_name.to_lowercase());
-            claims.push(Claim {
-                id: id(""),
-                statement: format!("{scene_name} scene, {light_name} light, {n} samples: uniform jitter has less error than stratified sampling"),
-                published: format!("Fig. {figure}"),
-                ours: format!("stratified / uniform jitter MSE = {:.2} ({seeds} seeds)", mse[0].value / mse[1].value),
-                theory: String::new(),
-                decision: criteria::less(mse[1], mse[0]),
-                explanation: (scene_name == GRIDS[1]).then(|| ALIGNED_EXPLANATION.into()),
-                ..Claim::default()
-            });
-            if kind == LightKind::Disk {
-                claims.push(Claim {
-                    id: id("-halton"),
-                    statement: format!("{scene_name} scene, circular light: uniform jitter (about 20 of 25 samples kept) has less error than 25 Halton samples with the Shirley-Chiu warp"),
-                    published: "Fig. 17(c, d): somewhat better".into(),
-                    ours: format!("Halton / uniform jitter MSE = {:.2}", mse[2].value / mse[1].value),
-                    theory: String::new(),
-                    decision: criteria::less(mse[1], mse[2]),
-                    explanation: (scene_name == GRIDS[1]).then(|| ALIGNED_EXPLANATION.into()),
-                    ..Claim::default()
-                });
-            }
+            claims.extend(grids_claims(scene_name, (light_name, kind, figure, n), seeds, &mse));
         }
     }
     Ok(Output {
@@ -332,7 +263,6 @@ pub(super) fn error_vs_n(ctx: &Ctx) -> Result<Output, Error> {
         // per count, uniform jitter's MSE below stratified's by 3 standard errors over the seeds
         let (stratified, uniform) = mse.split_at(ns.len());
         let per_count: Vec<Decision> = uniform.iter().zip(stratified).map(|(u, s)| criteria::less(*u, *s)).collect();
-        let wins = per_count.iter().filter(|d| d.verdict == Verdict::Reproduced).count();
         for (i, &n) in ns.iter().enumerate() {
             rows.push(vec![
                 Cell::from(scene_name),
@@ -342,27 +272,7 @@ pub(super) fn error_vs_n(ctx: &Ctx) -> Result<Output, Error> {
                 Cell::num(100.0 * series[1].points[i].1, 2),
             ]);
         }
-        claims.push(Claim {
-            id: format!("{scene_name}-error-vs-n-{}", light_name.to_lowercase()),
-            statement: format!("{scene_name} scene, {light_name} light: uniform jitter has lower error than stratified sampling across sample counts"),
-            published: "Fig. 20: a clear benefit at every count".into(),
-            ours: format!("uniform jitter's MSE lower by more than 3 standard errors ({seeds} seeds) at {wins} of {} counts", ns.len()),
-            theory: "section 6".into(),
-            decision: criteria::all(&per_count),
-            explanation: if scene_name == GRIDS[1] {
-                Some(ALIGNED_EXPLANATION.into())
-            } else {
-                let lost: Vec<String> = ns
-                    .iter()
-                    .zip(&per_count)
-                    .zip(uniform.iter().zip(stratified))
-                    .filter(|((_, d), _)| d.verdict == Verdict::NotReproduced)
-                    .map(|((n, _), (u, s))| format!("N = {n} (MSE {:.2e} against {:.2e})", u.value, s.value))
-                    .collect();
-                (!lost.is_empty()).then(|| format!("uniform jitter loses at {} and wins by more than 3 standard errors at {wins} of {} counts; no explanation found for the counts it loses (the paper's Fig. 20 prints no values to compare at them)", lost.join(", "), ns.len()))
-            },
-            ..Claim::default()
-        });
+        claims.push(error_vs_n_claim(scene_name, light_name, &ns, seeds, &mse, &per_count));
         let chart = LineChart {
             title: format!("{scene_name} scene, {light_name} light: relative RMS error against N"),
             x_label: "light samples per pixel N".into(),
@@ -392,4 +302,151 @@ pub(super) fn error_vs_n(ctx: &Ctx) -> Result<Output, Error> {
         claims,
         notes: vec![GRIDS_NOTE.into()],
     })
+}
+
+/// One (scene, light)'s claims: uniform jitter against stratified sampling, and against
+/// Halton on the circular light of sphere-box.
+fn planar_claims(
+    (scene_name, figure): (&str, &str),
+    (light_name, kind): (&str, LightKind),
+    mse: &[Estimate],
+    spp: usize,
+) -> Vec<Claim> {
+    let mut claims = Vec::new();
+    let ratio = mse[0].value / mse[1].value;
+    let uniform_should_win = kind != LightKind::Square;
+    claims.push(Claim {
+        id: format!("{scene_name}-{}", light_name.to_lowercase()),
+        statement: format!(
+            "{scene_name}, {light_name} light: uniform jitter has {} error than stratified sampling",
+            if uniform_should_win { "lower" } else { "higher" }
+        ),
+        published: format!("Fig. {figure}"),
+        ours: format!("stratified / uniform jitter MSE = {ratio:.2} at {spp} samples"),
+        theory: if uniform_should_win {
+            "smooth lights spread the sampling comb's energy (section 6)".into()
+        } else {
+            "edges aligned with the light's scanlines correlate the strata (section 6, Fig. 14)".into()
+        },
+        decision: if uniform_should_win { criteria::less(mse[1], mse[0]) } else { criteria::less(mse[0], mse[1]) },
+        ..Claim::default()
+    });
+    if scene_name == "sphere-box" && kind == LightKind::Disk {
+        claims.push(Claim {
+            id: "sphere-box-circular-halton".into(),
+            statement: "sphere-box, circular light: uniform jitter (about 20 of 25 samples kept) has less error than 25 Halton samples with the Shirley-Chiu warp".into(),
+            published: "Fig. 16(c, d): uniform jitter about 25% better".into(),
+            ours: format!("Halton / uniform jitter MSE = {:.2}", mse[2].value / mse[1].value),
+            theory: String::new(),
+            decision: criteria::less(mse[1], mse[2]),
+            ..Claim::default()
+        });
+    }
+    claims
+}
+
+/// Fig. 13 on one light: the reference, and each strategy's signed error.
+fn fig13(
+    ctx: &Ctx,
+    setup: Setup,
+    reference: &Image,
+    light_name: &str,
+    spp: usize,
+    strategies: &[(&str, &str)],
+) -> Result<Vec<Figure>, Error> {
+    let light = light_name.to_lowercase();
+    let mut figures = Vec::new();
+    figures.push(shadows::picture(
+        &format!("ramamoorthi2012-fig13-{light}-reference"),
+        &format!("Fig. 13, {light_name} light: reference"),
+        reference,
+    )?);
+    for (name, spec) in strategies {
+        let img = setup.render(spec, spp, 1, ctx.seed)?;
+        figures.push(shadows::error_picture(
+            &format!("ramamoorthi2012-fig13-{light}-{}", spec.replace('.', "-")),
+            &format!(
+                "Fig. 13, {light_name} light, {name}, {spp} samples: signed error x 10 (red: too bright, green: too dark)"
+            ),
+            &img,
+            reference,
+            10.0,
+        )?);
+    }
+    Ok(figures)
+}
+
+/// One grid scene and light's claims: uniform jitter against stratified sampling, and
+/// against Halton on the circular light.
+fn grids_claims(
+    scene_name: &str,
+    (light_name, kind, figure, n): (&str, LightKind, &str, usize),
+    seeds: u64,
+    mse: &[Estimate],
+) -> Vec<Claim> {
+    let mut claims = Vec::new();
+    let id = |what: &str| format!("{scene_name}-{}{what}", light_name.to_lowercase());
+    claims.push(Claim {
+        id: id(""),
+        statement: format!("{scene_name} scene, {light_name} light, {n} samples: uniform jitter has less error than stratified sampling"),
+        published: format!("Fig. {figure}"),
+        ours: format!("stratified / uniform jitter MSE = {:.2} ({seeds} seeds)", mse[0].value / mse[1].value),
+        theory: String::new(),
+        decision: criteria::less(mse[1], mse[0]),
+        explanation: (scene_name == GRIDS[1]).then(|| ALIGNED_EXPLANATION.into()),
+        ..Claim::default()
+    });
+    if kind == LightKind::Disk {
+        claims.push(Claim {
+            id: id("-halton"),
+            statement: format!("{scene_name} scene, circular light: uniform jitter (about 20 of 25 samples kept) has less error than 25 Halton samples with the Shirley-Chiu warp"),
+            published: "Fig. 17(c, d): somewhat better".into(),
+            ours: format!("Halton / uniform jitter MSE = {:.2}", mse[2].value / mse[1].value),
+            theory: String::new(),
+            decision: criteria::less(mse[1], mse[2]),
+            explanation: (scene_name == GRIDS[1]).then(|| ALIGNED_EXPLANATION.into()),
+            ..Claim::default()
+        });
+    }
+    claims
+}
+
+/// Fig. 20's claim on one grid scene and light: uniform jitter's MSE below stratified's
+/// at every count (`mse`: stratified's counts, then uniform jitter's).
+fn error_vs_n_claim(
+    scene_name: &str,
+    light_name: &str,
+    ns: &[usize],
+    seeds: u64,
+    mse: &[Estimate],
+    per_count: &[Decision],
+) -> Claim {
+    let (stratified, uniform) = mse.split_at(ns.len());
+    let wins = per_count.iter().filter(|d| d.verdict == Verdict::Reproduced).count();
+    Claim {
+        id: format!("{scene_name}-error-vs-n-{}", light_name.to_lowercase()),
+        statement: format!(
+            "{scene_name} scene, {light_name} light: uniform jitter has lower error than stratified sampling across sample counts"
+        ),
+        published: "Fig. 20: a clear benefit at every count".into(),
+        ours: format!(
+            "uniform jitter's MSE lower by more than 3 standard errors ({seeds} seeds) at {wins} of {} counts",
+            ns.len()
+        ),
+        theory: "section 6".into(),
+        decision: criteria::all(per_count),
+        explanation: if scene_name == GRIDS[1] {
+            Some(ALIGNED_EXPLANATION.into())
+        } else {
+            let lost: Vec<String> = ns
+                .iter()
+                .zip(per_count)
+                .zip(uniform.iter().zip(stratified))
+                .filter(|((_, d), _)| d.verdict == Verdict::NotReproduced)
+                .map(|((n, _), (u, s))| format!("N = {n} (MSE {:.2e} against {:.2e})", u.value, s.value))
+                .collect();
+            (!lost.is_empty()).then(|| format!("uniform jitter loses at {} and wins by more than 3 standard errors at {wins} of {} counts; no explanation found for the counts it loses (the paper's Fig. 20 prints no values to compare at them)", lost.join(", "), ns.len()))
+        },
+        ..Claim::default()
+    }
 }
