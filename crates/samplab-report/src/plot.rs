@@ -530,6 +530,34 @@ impl LineChart {
         (x, y)
     }
 
+    /// The labels of the log axes, drawn at [`log_ticks`] beside them (`at` maps a point
+    /// to its pixel in `main`; plotters' own log labels are blank).
+    fn log_labels<DB: DrawingBackend>(
+        &self,
+        main: &DrawingArea<DB, Shift>,
+        ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
+        at: impl Fn(f64, f64) -> (i32, i32),
+    ) -> Result<(), String> {
+        let font = TextStyle::from(("sans-serif", LABEL_FONT).into_font());
+        if self.log_y {
+            for v in log_ticks(y0, y1) {
+                let (px, py) = at(x0, v);
+                main.draw(&PathElement::new([(px - 5, py), (px, py)], BLACK)).map_err(err)?;
+                let style = font.clone().pos(Pos::new(HPos::Right, VPos::Center));
+                main.draw(&Text::new(tick(v, true), (px - 8, py), style)).map_err(err)?;
+            }
+        }
+        if self.log_x {
+            for v in log_ticks(x0, x1) {
+                let (px, py) = at(v, y0);
+                main.draw(&PathElement::new([(px, py), (px, py + 5)], BLACK)).map_err(err)?;
+                let style = font.clone().pos(Pos::new(HPos::Center, VPos::Top));
+                main.draw(&Text::new(tick(v, true), (px, py + 8), style)).map_err(err)?;
+            }
+        }
+        Ok(())
+    }
+
     fn draw_polar<DB: DrawingBackend>(&self, main: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let (_, (_, y1)) = self.ranges();
         let r = y1.max(1e-12) * 1.05;
@@ -624,23 +652,7 @@ impl Drawable for LineChart {
                     let (px, py) = chart.backend_coord(&(x, y));
                     (px - base.0, py - base.1)
                 };
-                let font = TextStyle::from(("sans-serif", LABEL_FONT).into_font());
-                if self.log_y {
-                    for v in log_ticks(y0, y1) {
-                        let (px, py) = at(x0, v);
-                        main.draw(&PathElement::new([(px - 5, py), (px, py)], BLACK)).map_err(err)?;
-                        let style = font.clone().pos(Pos::new(HPos::Right, VPos::Center));
-                        main.draw(&Text::new(tick(v, true), (px - 8, py), style)).map_err(err)?;
-                    }
-                }
-                if self.log_x {
-                    for v in log_ticks(x0, x1) {
-                        let (px, py) = at(v, y0);
-                        main.draw(&PathElement::new([(px, py), (px, py + 5)], BLACK)).map_err(err)?;
-                        let style = font.clone().pos(Pos::new(HPos::Center, VPos::Top));
-                        main.draw(&Text::new(tick(v, true), (px, py + 8), style)).map_err(err)?;
-                    }
-                }
+                self.log_labels(&main, ((x0, x1), (y0, y1)), at)?;
             }};
         }
         let mut builder = ChartBuilder::on(&main);

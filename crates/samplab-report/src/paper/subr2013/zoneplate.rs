@@ -157,13 +157,43 @@ pub(super) fn zoneplate(ctx: &Ctx) -> Result<Output, Error> {
     ctx.set_length(2 * 26);
     let zone = combined(ctx, "zoneplate", runs, ctx.seed)?;
     let wave = combined(ctx, GRID_WAVE, runs, ctx.seed.derive_str("wave"))?;
-    // Subr & Kautz eqs. 4 and 8 for the wave at the grid frequency: the grid sees the
-    // constant (1 - cos 1) / 2, a bias of cos(1) / 2; the shared offset alpha (U - 1/2) and the
-    // normal offset sigma (cells) scale it by sinc(pi alpha) and exp(-2 pi^2 sigma^2)
-    let wave_bias = |sigma: f64, alpha: f64| {
-        let sinc = if alpha == 0.0 { 1.0 } else { (PI * alpha).sin() / (PI * alpha) };
-        0.5 * 1f64.cos() * sinc.abs() * (-2.0 * PI * PI * sigma * sigma).exp()
+    let claims = claims(&zone, &wave, runs);
+    let bias_caption = |what: &str| {
+        format!(
+            "Fig. 10: bias of uniform jitter (offset scale alpha) combined with Gaussian jitter sigma, {what}, N = 256, {runs} realizations, +- 1 standard error; dashed: Poisson disk"
+        )
     };
+    Ok(Output {
+        tables: vec![
+            zone.table("subr2013-fig10", format!("Absolute bias and variance of the estimate of the zone plate's integral ({:.6}), N = 256, {runs} realizations; Poisson disk: bias {:.2e}, variance {:.2e}", zone.exact, zone.poisson.0, zone.poisson.1)),
+            wave.table("subr2013-fig10-wave", format!("The same on the plane wave (1 + cos(2 pi 16 x + 1)) / 2, all its energy at the 16 x 16 grid's frequency (integral 1/2); Poisson disk: bias {:.2e}, variance {:.2e}", wave.poisson.0, wave.poisson.1)),
+        ],
+        figures: vec![
+            Figure::render("subr2013-fig10-bias", &bias_caption("zone plate"), &zone.chart("Bias against alpha, zone plate, N = 256".into(), "|mean - exact|", true, None), (900, 520))?,
+            Figure::render("subr2013-fig10-variance", "Fig. 10: variance of the same estimators on the zone plate; dashed: Poisson disk", &zone.chart("Variance against alpha, zone plate, N = 256".into(), "variance", false, None), (900, 520))?,
+            Figure::render(
+                "subr2013-fig10-wave-bias",
+                &format!("{}; dashed in each sigma's colour: 1/2 sinc(pi alpha) exp(-2 pi^2 sigma^2)", bias_caption("plane wave at the grid frequency")),
+                &wave.chart("Bias against alpha, plane wave at the grid frequency, N = 256".into(), "|mean - exact|", true, Some(&wave_bias)),
+                (900, 520),
+            )?,
+            Figure::render("subr2013-fig10-wave-variance", "Fig. 10 on the plane wave at the grid frequency: variance; dashed: Poisson disk", &wave.chart("Variance against alpha, plane wave at the grid frequency, N = 256".into(), "variance", false, None), (900, 520))?,
+        ],
+        claims,
+        notes: vec![],
+    })
+}
+
+/// Subr & Kautz eqs. 4 and 8 for the wave at the grid frequency: the grid sees the constant
+/// (1 - cos 1) / 2, a bias of cos(1) / 2; the shared offset alpha (U - 1/2) and the normal
+/// offset sigma (cells) scale it by sinc(pi alpha) and exp(-2 pi^2 sigma^2).
+fn wave_bias(sigma: f64, alpha: f64) -> f64 {
+    let sinc = if alpha == 0.0 { 1.0 } else { (PI * alpha).sin() / (PI * alpha) };
+    0.5 * 1f64.cos() * sinc.abs() * (-2.0 * PI * PI * sigma * sigma).exp()
+}
+
+/// Fig. 10's claims on the zone plate and on the plane wave at the grid frequency.
+fn claims(zone: &Combined, wave: &Combined, runs: usize) -> Vec<Claim> {
     let (zone_grid, zone_largest, zone_se) = zone.grid_most_biased();
     let (wave_grid, wave_largest, _) = wave.grid_most_biased();
     let agreement: Vec<Decision> = wave
@@ -175,7 +205,7 @@ pub(super) fn zoneplate(ctx: &Ctx) -> Result<Output, Error> {
         .map(|(j, i, s, a)| criteria::agrees(wave.bias[j][i], Estimate::exact(wave_bias(s, a)), 1e-12))
         .collect();
     let unbiased = |c: &Combined| criteria::agrees(c.bias[0][4], Estimate::exact(0.0), 0.0);
-    let claims = vec![
+    vec![
         Claim {
             id: "regular-grid-biased".into(),
             statement: "With alpha = 0, sigma = 0 (a regular grid) the variance is zero and the bias is the largest (zone plate)".into(),
@@ -212,7 +242,7 @@ pub(super) fn zoneplate(ctx: &Ctx) -> Result<Output, Error> {
                 wave.bias[0][4].value / wave.bias[0][4].se.max(1e-300)
             ),
             theory: "0 (Subr & Kautz Appendix C: the expected spectrum of uniform jitter is DC only)".into(),
-            decision: criteria::all(&[unbiased(&zone), unbiased(&wave)]),
+            decision: criteria::all(&[unbiased(zone), unbiased(wave)]),
             ..Claim::default()
         },
         Claim {
@@ -224,29 +254,5 @@ pub(super) fn zoneplate(ctx: &Ctx) -> Result<Output, Error> {
             addition: Some("samplab's test of eqs. 4 and 8 on the setting of Fig. 10".into()),
             ..Claim::default()
         },
-    ];
-    let bias_caption = |what: &str| {
-        format!(
-            "Fig. 10: bias of uniform jitter (offset scale alpha) combined with Gaussian jitter sigma, {what}, N = 256, {runs} realizations, +- 1 standard error; dashed: Poisson disk"
-        )
-    };
-    Ok(Output {
-        tables: vec![
-            zone.table("subr2013-fig10", format!("Absolute bias and variance of the estimate of the zone plate's integral ({:.6}), N = 256, {runs} realizations; Poisson disk: bias {:.2e}, variance {:.2e}", zone.exact, zone.poisson.0, zone.poisson.1)),
-            wave.table("subr2013-fig10-wave", format!("The same on the plane wave (1 + cos(2 pi 16 x + 1)) / 2, all its energy at the 16 x 16 grid's frequency (integral 1/2); Poisson disk: bias {:.2e}, variance {:.2e}", wave.poisson.0, wave.poisson.1)),
-        ],
-        figures: vec![
-            Figure::render("subr2013-fig10-bias", &bias_caption("zone plate"), &zone.chart("Bias against alpha, zone plate, N = 256".into(), "|mean - exact|", true, None), (900, 520))?,
-            Figure::render("subr2013-fig10-variance", "Fig. 10: variance of the same estimators on the zone plate; dashed: Poisson disk", &zone.chart("Variance against alpha, zone plate, N = 256".into(), "variance", false, None), (900, 520))?,
-            Figure::render(
-                "subr2013-fig10-wave-bias",
-                &format!("{}; dashed in each sigma's colour: 1/2 sinc(pi alpha) exp(-2 pi^2 sigma^2)", bias_caption("plane wave at the grid frequency")),
-                &wave.chart("Bias against alpha, plane wave at the grid frequency, N = 256".into(), "|mean - exact|", true, Some(&wave_bias)),
-                (900, 520),
-            )?,
-            Figure::render("subr2013-fig10-wave-variance", "Fig. 10 on the plane wave at the grid frequency: variance; dashed: Poisson disk", &wave.chart("Variance against alpha, plane wave at the grid frequency, N = 256".into(), "variance", false, None), (900, 520))?,
-        ],
-        claims,
-        notes: vec![],
-    })
+    ]
 }
