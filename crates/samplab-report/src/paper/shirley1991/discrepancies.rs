@@ -413,6 +413,47 @@ fn figures(measured: &[Measured], [p5, p6, p7]: &Published) -> Result<Vec<Figure
     ])
 }
 
+/// The mean projected discrepancy against direction, as a line and in polar form.
+fn projected_figures(curves: &[(&str, &str, Vec<(f64, f64)>)]) -> Result<Vec<Figure>, Error> {
+    let series = curves
+        .iter()
+        .filter(|(n, _, _)| ["separate", "jittered", "regular", "random", "sobol (Owen)", "pmj02"].contains(n))
+        .map(|(n, spec, c)| Series { colour_key: Some(spec.to_string()), ..Series::line(*n, c.clone()) })
+        .collect::<Vec<_>>();
+    let line = LineChart {
+        title: "Projected discrepancy against direction (16 points)".into(),
+        x_label: "direction (degrees from the x axis)".into(),
+        y_label: "mean extreme 1D discrepancy".into(),
+        series: series.clone(),
+        log_y: false,
+        log_x: false,
+        polar: false,
+    };
+    let polar = LineChart {
+        title: "Projected discrepancy, polar (radius = discrepancy)".into(),
+        x_label: String::new(),
+        y_label: "discrepancy".into(),
+        series,
+        log_y: false,
+        log_x: false,
+        polar: true,
+    };
+    Ok(vec![
+        Figure::render(
+            "shirley1991-projected",
+            "Mean projected (extreme) discrepancy against direction, 100 sets of 16 points",
+            &line,
+            (900, 520),
+        )?,
+        Figure::render(
+            "shirley1991-projected-polar",
+            "The same in polar form: distance from the centre is the discrepancy in that direction",
+            &polar,
+            (760, 760),
+        )?,
+    ])
+}
+
 /// Table 6 prints jittered sampling's SD of S as 0.00192, below half-jittered's 0.0029; a
 /// note weighs it against ours with the standard error of a sample SD.
 fn table6_jittered_sd(measured: &[Measured], printed: &PublishedTable) -> String {
@@ -486,35 +527,9 @@ pub(super) fn projected(ctx: &Ctx) -> Result<Output, Error> {
         identity: true,
         ..Claim::default()
     }];
-    let series = curves
-        .iter()
-        .filter(|(n, _, _)| ["separate", "jittered", "regular", "random", "sobol (Owen)", "pmj02"].contains(n))
-        .map(|(n, spec, c)| Series { colour_key: Some(spec.to_string()), ..Series::line(*n, c.clone()) })
-        .collect::<Vec<_>>();
-    let line = LineChart {
-        title: "Projected discrepancy against direction (16 points)".into(),
-        x_label: "direction (degrees from the x axis)".into(),
-        y_label: "mean extreme 1D discrepancy".into(),
-        series: series.clone(),
-        log_y: false,
-        log_x: false,
-        polar: false,
-    };
-    let polar = LineChart {
-        title: "Projected discrepancy, polar (radius = discrepancy)".into(),
-        x_label: String::new(),
-        y_label: "discrepancy".into(),
-        series,
-        log_y: false,
-        log_x: false,
-        polar: true,
-    };
     Ok(Output {
         tables: vec![table],
-        figures: vec![
-            Figure::render("shirley1991-projected", "Mean projected (extreme) discrepancy against direction, 100 sets of 16 points", &line, (900, 520))?,
-            Figure::render("shirley1991-projected-polar", "The same in polar form: distance from the centre is the discrepancy in that direction", &polar, (760, 760))?,
-        ],
+        figures: projected_figures(&curves)?,
         claims,
         notes: vec!["The conclusion asks whether some distributions have low projected discrepancy in many directions: the table's 'mean over directions' column answers it for these strategies, including two modern ones (Owen-scrambled Sobol' and pmj02) that the paper did not have.".into()],
     })

@@ -16,15 +16,32 @@ use crate::{Cell, Claim, Ctx, Error, Figure, Output, Table};
 pub(super) fn nonuniform(ctx: &Ctx) -> Result<Output, Error> {
     ctx.set_length(3);
     let mut out = Output::default();
-    // eq. 2, F(x) = 1/2 + x - x|x|/2, and the inverse printed in section 4
+    out.claims.push(tent_claim());
+    ctx.advance(1)?;
+    out.figures.extend(figures(ctx)?);
+    ctx.advance(1)?;
+    let (table, claim) = generalized(ctx)?;
+    out.tables.push(table);
+    out.claims.push(claim);
+    ctx.advance(1)?;
+    Ok(out)
+}
+
+/// Eq. 2: the tent density's per-axis distribution function F(x) = 1/2 + x - x|x|/2.
+fn tent_cdf(x: f64) -> f64 {
+    0.5 + x - 0.5 * x * x.abs()
+}
+
+/// samplab's tent warp against the transformation printed in section 4, and F.
+fn tent_claim() -> Claim {
+    // the inverse printed in section 4
     let printed = |u: f64| if u < 0.5 { -1.0 + (2.0 * u).sqrt() } else { 1.0 - (2.0 * (1.0 - u)).sqrt() };
-    let f = |x: f64| 0.5 + x - 0.5 * x * x.abs();
     let us: Vec<f64> = (0..=1000).map(|i| i as f64 / 1000.0).collect();
     let worst = us
         .iter()
-        .map(|&u| (warp::tent_inverse_cdf(u) - printed(u)).abs().max((f(warp::tent_inverse_cdf(u)) - u).abs()))
+        .map(|&u| (warp::tent_inverse_cdf(u) - printed(u)).abs().max((tent_cdf(warp::tent_inverse_cdf(u)) - u).abs()))
         .fold(0.0, f64::max);
-    out.claims.push(Claim {
+    Claim {
         id: "tent-warp-inverts-eq2".into(),
         statement: "Points with the tent density (1-|x|)(1-|y|) come from canonical ones through the inverse of F(x) = 1/2 + x - x|x|/2 per axis (eq. 2), which is x = -1 + sqrt(2u) below 1/2 and 1 - sqrt(2(1-u)) above".into(),
         published: "eqs. 1-2 and the transformation of section 4".into(),
@@ -33,10 +50,13 @@ pub(super) fn nonuniform(ctx: &Ctx) -> Result<Output, Error> {
         decision: criteria::within(worst, 0.0, 1e-12),
         identity: true,
         ..Claim::default()
-    });
-    ctx.advance(1)?;
-    // Figures 7 and 8: one set of 16 jittered points with its strata, warped
+    }
+}
+
+/// Figures 7 and 8: one set of 16 jittered points with its strata, warped.
+fn figures(ctx: &Ctx) -> Result<Vec<Figure>, Error> {
     let jitter = sampler::build("jitter")?;
+    let mut figures = Vec::new();
     let set = sampler::generate_sets(jitter.as_ref(), N, 2, ctx.seed.derive_str("figures"), 1)?.remove(0);
     for (id, caption, name) in [
         (
@@ -56,16 +76,19 @@ pub(super) fn nonuniform(ctx: &Ctx) -> Result<Output, Error> {
         ),
     ] {
         let w = warp::lookup(name)?;
-        out.figures.push(Figure::render(
+        figures.push(Figure::render(
             id,
             caption,
             &Strata { set: &set, warp: w, cells: 4, title: caption.split(':').next().unwrap_or(id).to_string() },
             (620, 620),
         )?);
     }
-    ctx.advance(1)?;
-    // the generalized discrepancy of the warped set, by brute force over every critical
-    // rectangle anchored at (-1, -1), against the star discrepancy of the original set
+    Ok(figures)
+}
+
+/// The generalized discrepancy of the warped sets, by brute force over every critical
+/// rectangle anchored at (-1, -1), against the star discrepancy of the original sets.
+fn generalized(ctx: &Ctx) -> Result<(Table, Claim), Error> {
     let mut rows = Vec::new();
     let mut largest: f64 = 0.0;
     for (i, (name, spec)) in STRATEGIES.iter().enumerate() {
@@ -75,20 +98,20 @@ pub(super) fn nonuniform(ctx: &Ctx) -> Result<Output, Error> {
         let mut values = Vec::new();
         for s in &sets {
             let star = discrepancy::compute(&Metric::parse("star")?, s, Limits::default())?;
-            let general = tent_star_brute_force(&warp::apply(tent, s)?, &f);
+            let general = tent_star_brute_force(&warp::apply(tent, s)?, &tent_cdf);
             gap = gap.max((star - general).abs());
             values.push(general);
         }
         largest = largest.max(gap);
         rows.push(vec![Cell::from(*name), Cell::num(Summary::of(&values).mean, 4), Cell::num(gap, 2)]);
     }
-    out.tables.push(Table {
+    let table = Table {
         id: "shirley1991-generalized".into(),
         caption: "Generalized star discrepancy of tent-warped sets (100 sets of 16 points per strategy; rectangles anchored at (-1, -1), the tent's mass in closed form), and the largest difference from the star discrepancy of the unwarped sets".into(),
         columns: ["strategy", "mean generalized D", "largest |generalized D - D|"].map(String::from).to_vec(),
         rows,
-    });
-    out.claims.push(Claim {
+    };
+    let claim = Claim {
         id: "generalized-equals-star".into(),
         statement: "With a separable density and the per-axis transformation, the conventional discrepancy of the original set equals the generalized discrepancy of the transformed set".into(),
         published: "section 4".into(),
@@ -97,9 +120,8 @@ pub(super) fn nonuniform(ctx: &Ctx) -> Result<Output, Error> {
         decision: criteria::within(largest, 0.0, 1e-12),
         identity: true,
         ..Claim::default()
-    });
-    ctx.advance(1)?;
-    Ok(out)
+    };
+    Ok((table, claim))
 }
 
 /// sup over rectangles [-1, a) x [-1, b) of |n/N - mass| under the tent density (mass
