@@ -53,6 +53,31 @@ pub(super) fn masks(ctx: &Ctx) -> Result<Output, Error> {
         measured.push((name, m));
         ctx.advance(1)?;
     }
+    let claims = claims(&measured, side);
+    let mut columns = vec!["family".to_string()];
+    columns.extend((0..DIMS).map(|d| format!("d{d}")));
+    columns.extend(["pair (0, 1)".to_string(), "flicker d0".to_string(), "x-t d0".to_string()]);
+    Ok(Output {
+        tables: vec![Table {
+            id: "renderer-masks".into(),
+            caption: format!(
+                "Low-frequency energy (mean power below 1/16 cycle per pixel, 1/8 of Nyquist, over the variance; white noise 1) of each dimension's mask: sample 0 of frame 0, {side} x {side} pixels, 1 spp; pair (0, 1): of the 1-spp images of 8 fixed Heaviside steps in the pair's square; flicker d0: RMS frame-to-frame change of dimension 0's mask over its RMS, 16 frames (independent frames: 1.41, a static pattern: 0); x-t d0: low-frequency energy of row 0 over the 16 frames"
+            ),
+            columns,
+            rows,
+        }],
+        claims,
+        notes: vec![format!(
+            "A blue-noise mask has little energy at low frequencies (below {} of white noise's counts as blue here), so that the error of a smooth integrand looks like fine grain, which a blur or the eye removes.",
+            super::BLUE
+        )],
+        ..Output::default()
+    })
+}
+
+/// Which masks are blue (and independent's white), and whether the padded families' later
+/// dimensions are as blue as their first two.
+fn claims(measured: &[(&str, Vec<MaskMeasures>)], side: u32) -> Vec<Claim> {
     let energy = |name: &str, d: usize| measured.iter().find(|(n, _)| *n == name).map(|(_, m)| m[d].low_frequency);
     let mut claims = Vec::new();
     for (name, source) in BLUE_CLAIMS {
@@ -97,23 +122,5 @@ pub(super) fn masks(ctx: &Ctx) -> Result<Output, Error> {
             ..Claim::default()
         });
     }
-    let mut columns = vec!["family".to_string()];
-    columns.extend((0..DIMS).map(|d| format!("d{d}")));
-    columns.extend(["pair (0, 1)".to_string(), "flicker d0".to_string(), "x-t d0".to_string()]);
-    Ok(Output {
-        tables: vec![Table {
-            id: "renderer-masks".into(),
-            caption: format!(
-                "Low-frequency energy (mean power below 1/16 cycle per pixel, 1/8 of Nyquist, over the variance; white noise 1) of each dimension's mask: sample 0 of frame 0, {side} x {side} pixels, 1 spp; pair (0, 1): of the 1-spp images of 8 fixed Heaviside steps in the pair's square; flicker d0: RMS frame-to-frame change of dimension 0's mask over its RMS, 16 frames (independent frames: 1.41, a static pattern: 0); x-t d0: low-frequency energy of row 0 over the 16 frames"
-            ),
-            columns,
-            rows,
-        }],
-        claims,
-        notes: vec![format!(
-            "A blue-noise mask has little energy at low frequencies (below {} of white noise's counts as blue here), so that the error of a smooth integrand looks like fine grain, which a blur or the eye removes.",
-            super::BLUE
-        )],
-        ..Output::default()
-    })
+    claims
 }

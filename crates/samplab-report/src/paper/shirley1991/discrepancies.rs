@@ -413,8 +413,11 @@ fn figures(measured: &[Measured], [p5, p6, p7]: &Published) -> Result<Vec<Figure
     ])
 }
 
+/// A strategy's name and spec, and its mean projected discrepancy by direction (degrees).
+type Curve<'a> = (&'a str, &'a str, Vec<(f64, f64)>);
+
 /// The mean projected discrepancy against direction, as a line and in polar form.
-fn projected_figures(curves: &[(&str, &str, Vec<(f64, f64)>)]) -> Result<Vec<Figure>, Error> {
+fn projected_figures(curves: &[Curve]) -> Result<Vec<Figure>, Error> {
     let series = curves
         .iter()
         .filter(|(n, _, _)| ["separate", "jittered", "regular", "random", "sobol (Owen)", "pmj02"].contains(n))
