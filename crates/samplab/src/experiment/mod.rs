@@ -234,7 +234,7 @@ impl<'a> Study<'a> {
             || format!("{} instances and {units} units", self.instances),
             256 * self.instances as u128 + 64 * units,
         )?;
-        let dims = self.family.entry.dims;
+        let dims = self.family.dims();
         for s in self.samplers {
             for &n in self.ns {
                 s.plan(n, dims)?;
@@ -274,7 +274,7 @@ impl Prepared<'_> {
         let (sampler, n, f) = (&self.study.samplers[s], self.study.ns[c], &self.instances[k]);
         let spec = sampler.spec();
         let base = self.study.seed.derive_str(&spec).derive(n as u64).derive(k as u64);
-        let plan = sampler.plan(n, self.study.family.entry.dims)?;
+        let plan = sampler.plan(n, self.study.family.dims())?;
         let exact = f.exact();
         let estimates: Vec<f64> = (0..self.study.sets as u64)
             .into_par_iter()

@@ -16,14 +16,16 @@ use crate::spec::{Default, Kind, ParamSpec, Params};
 
 mod delaunay;
 mod grid;
+mod high;
 use crate::numeric::quadrature;
 
 pub use delaunay::Delaunay;
 pub use grid::Grid;
+pub use high::{GaussianD, Genz, HalfSpace, Ishigami, Keister, genz_instance};
 
 /// A function on \[0,1\]^d with a known integral.
 pub trait Integrand: Send + Sync {
-    /// Dimensions (1 or 2).
+    /// Dimensions.
     fn dims(&self) -> usize;
     /// The value at `x`.
     fn eval(&self, x: &[f64]) -> f64;
@@ -420,8 +422,17 @@ pub struct IntegrandEntry {
     /// Name, aliases, summary, parameters, references.
     pub about: About,
     /// Dimensions.
-    pub dims: usize,
+    pub dims: Dims,
     build: fn(&Params, &mut Rng) -> Result<Box<dyn Integrand>>,
+}
+
+/// How many dimensions a family's integrands have.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dims {
+    /// Always this many.
+    Fixed(usize),
+    /// The family's parameter `d`.
+    Param,
 }
 
 impl std::fmt::Debug for IntegrandEntry {
@@ -435,7 +446,10 @@ impl Entry for IntegrandEntry {
         &self.about
     }
     fn details(&self) -> Vec<String> {
-        vec![format!("dimensions: {}", self.dims)]
+        match self.dims {
+            Dims::Fixed(d) => vec![format!("dimensions: {d}")],
+            Dims::Param => vec!["dimensions: the parameter d".to_string()],
+        }
     }
 }
 
@@ -443,7 +457,7 @@ impl Entry for IntegrandEntry {
 pub static INTEGRANDS: Registry<IntegrandEntry> = Registry::new(
     "integrand",
     "INTEGRANDS  (exact integrals; random families draw instance k from a hashed seed)",
-    &[&[FAMILIES]],
+    &[&[FAMILIES, high::FAMILIES]],
 );
 
 const fn auto(name: &'static str, min: f64, max: f64, how: &'static str, doc: &'static str) -> ParamSpec {
@@ -475,7 +489,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             references: &["subr2013"],
             terse: false,
         },
-        dims: 2,
+        dims: Dims::Fixed(2),
         build: |_, rng| Ok(Box::new(Quad::random(rng))),
     },
     IntegrandEntry {
@@ -487,7 +501,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             references: &["subr2013"],
             terse: false,
         },
-        dims: 2,
+        dims: Dims::Fixed(2),
         build: |p, rng| Ok(Box::new(Delaunay::random(p.int("points") as usize, false, rng)?)),
     },
     IntegrandEntry {
@@ -499,7 +513,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             references: &["subr2013"],
             terse: false,
         },
-        dims: 2,
+        dims: Dims::Fixed(2),
         build: |p, rng| Ok(Box::new(Delaunay::random(p.int("points") as usize, true, rng)?)),
     },
     IntegrandEntry {
@@ -516,7 +530,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             references: &["subr2013"],
             terse: false,
         },
-        dims: 2,
+        dims: Dims::Fixed(2),
         build: |p, _| Ok(Box::new(ZonePlate { a: p.real("a") })),
     },
     IntegrandEntry {
@@ -542,7 +556,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             references: &["subr2013"],
             terse: false,
         },
-        dims: 2,
+        dims: Dims::Fixed(2),
         build: |p, rng| {
             let phase = or_random(p, "phase", rng, 0.0, std::f64::consts::TAU);
             Ok(Box::new(Cosine { u: p.int("u") as f64, v: p.int("v") as f64, phase }))
@@ -567,7 +581,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             references: &["sbert2006"],
             terse: false,
         },
-        dims: 2,
+        dims: Dims::Fixed(2),
         build: |p, rng| {
             let r = or_random(p, "r", rng, 0.1, 0.4);
             let (cx, cy) = (or_random(p, "cx", rng, r, 1.0 - r), or_random(p, "cy", rng, r, 1.0 - r));
@@ -594,7 +608,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             references: &["sbert2006"],
             terse: false,
         },
-        dims: 2,
+        dims: Dims::Fixed(2),
         build: |p, rng| {
             let angle = or_random(p, "angle", rng, 0.0, 360.0).to_radians();
             let point = [or_random(p, "x", rng, 0.0, 1.0), or_random(p, "y", rng, 0.0, 1.0)];
@@ -619,7 +633,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             references: &[],
             terse: false,
         },
-        dims: 2,
+        dims: Dims::Fixed(2),
         build: |p, rng| {
             Ok(Box::new(Gaussian {
                 sigma: p.real("sigma"),
@@ -636,7 +650,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             references: &[],
             terse: false,
         },
-        dims: 2,
+        dims: Dims::Fixed(2),
         build: |_, rng| Ok(Box::new(Smooth { a: 0.5 + 1.5 * uniform(rng), b: 0.5 + 1.5 * uniform(rng) })),
     },
     IntegrandEntry {
@@ -648,7 +662,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             references: &["ramamoorthi2012"],
             terse: false,
         },
-        dims: 1,
+        dims: Dims::Fixed(1),
         build: |p, rng| Ok(Box::new(Visibility { edges: vec![or_random(p, "y0", rng, 0.0, 1.0)], start: 0.0 })),
     },
     IntegrandEntry {
@@ -663,7 +677,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             references: &["ramamoorthi2012"],
             terse: false,
         },
-        dims: 1,
+        dims: Dims::Fixed(1),
         build: |p, rng| {
             let (a, b) = (or_random(p, "y0", rng, 0.0, 1.0), or_random(p, "z0", rng, 0.0, 1.0));
             let (y0, z0) = if p.real_or_auto("y0").is_some() || p.real_or_auto("z0").is_some() {
@@ -695,7 +709,7 @@ static FAMILIES: &[IntegrandEntry] = &[
             references: &["ramamoorthi2012"],
             terse: false,
         },
-        dims: 1,
+        dims: Dims::Fixed(1),
         build: |p, rng| {
             let k = p.int("k") as usize;
             let mut edges: Vec<f64> = (0..k).map(|_| uniform(rng)).collect();
@@ -734,6 +748,14 @@ impl Family {
     /// The canonical spec.
     pub fn spec(&self) -> String {
         canonical(&self.entry.about, &self.params)
+    }
+
+    /// The dimensions of its integrands.
+    pub fn dims(&self) -> usize {
+        match self.entry.dims {
+            Dims::Fixed(d) => d,
+            Dims::Param => self.params.int("d") as usize,
+        }
     }
 
     /// Instance `k` of the family for `seed`.

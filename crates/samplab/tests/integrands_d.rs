@@ -1,0 +1,132 @@
+//! The d-dimensional families' exact integrals against independent computations: tensor
+//! Gauss-Legendre rules split at every kink and jump (Genz), a radial quadrature (Keister),
+//! and the point symmetry of the cube (the half-space).
+
+use samplab::Seed;
+use samplab::integrand::{Family, Integrand, genz_instance};
+use samplab::numeric::quadrature::gauss_legendre;
+use samplab::numeric::{normal_cdf, normal_quantile};
+
+/// The integral over [0,1] of `f` split at `breaks` (each piece 8 panels of 16 points).
+fn pieces(f: impl Fn(f64) -> f64, breaks: &[f64]) -> f64 {
+    let mut cuts: Vec<f64> = std::iter::once(0.0).chain(breaks.iter().copied()).chain([1.0]).collect();
+    cuts.sort_by(f64::total_cmp);
+    cuts.windows(2).map(|w| gauss_legendre(&f, w[0], w[1], 8)).sum()
+}
+
+/// The integral over [0,1]^d (d <= 3) of `f`, every axis split at `breaks`.
+fn tensor(f: &dyn Fn(&[f64]) -> f64, d: usize, breaks: &[f64]) -> f64 {
+    match d {
+        1 => pieces(|x| f(&[x]), breaks),
+        2 => pieces(|x| pieces(|y| f(&[x, y]), breaks), breaks),
+        3 => pieces(|x| pieces(|y| pieces(|z| f(&[x, y, z]), breaks), breaks), breaks),
+        _ => unreachable!(),
+    }
+}
+
+#[test]
+fn genz_families_integrate_to_their_exact_values() {
+    for name in ["oscillatory", "product-peak", "corner-peak", "gaussian", "continuous", "discontinuous"] {
+        for d in [1usize, 2, 3] {
+            if d == 3 && name != "corner-peak" && name != "continuous" {
+                continue; // the 3D tensor rule is slow; two families cover d = 3
+            }
+            let spec = format!("genz.{name}:d={d}");
+            for k in 0..3 {
+                let f = genz_instance(&spec, Seed(7), k).unwrap();
+                // the same instance as the registry's
+                let registered = Family::parse(&spec).unwrap().instance(Seed(7), k).unwrap();
+                assert_eq!((registered.dims(), registered.exact()), (d, f.exact()));
+                // the continuous family kinks and the discontinuous one jumps at the u_i
+                let breaks = f.coefficients().1.to_vec();
+                let quadrature = tensor(&|x| f.eval(x), d, &breaks);
+                let exact = f.exact();
+                assert!(
+                    (quadrature - exact).abs() <= 1e-9 * exact.abs().max(1.0),
+                    "genz.{name} d={d} instance {k}: exact {exact}, quadrature {quadrature}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn keister_matches_a_radial_quadrature() {
+    for d in [1usize, 2, 3, 5, 8, 16, 32] {
+        let f = Family::parse(&format!("keister:d={d}")).unwrap().instance(Seed(1), 0).unwrap();
+        // the surface of S^(d-1) times the integral over r in [0, 14] of r^(d-1) cos r exp(-r^2)
+        let half = d as f64 / 2.0;
+        let surface = 2.0 * std::f64::consts::PI.powf(half) / libm_gamma(half);
+        let radial = gauss_legendre(|r| r.powi(d as i32 - 1) * r.cos() * (-r * r).exp(), 0.0, 14.0, 64);
+        let expected = surface * radial;
+        assert!(
+            (f.exact() - expected).abs() <= 1e-10 * expected.abs().max(1.0),
+            "keister d={d}: {} against {expected}",
+            f.exact()
+        );
+    }
+}
+
+/// Gamma(x) for x a multiple of 1/2, by its recurrence from Gamma(1/2) and Gamma(1).
+fn libm_gamma(x: f64) -> f64 {
+    let (mut g, mut t) = if (x * 2.0) as usize % 2 == 1 { (std::f64::consts::PI.sqrt(), 0.5) } else { (1.0, 1.0) };
+    while t < x - 1e-9 {
+        g *= t;
+        t += 1.0;
+    }
+    g
+}
+
+#[test]
+fn keister_in_one_dimension_is_the_gaussian_weighted_cosine() {
+    // d = 1 in the cube's own coordinate, against sqrt(pi) exp(-1/4) (the integral of
+    // cos(t) exp(-t^2) over the line)
+    let f = Family::parse("keister:d=1").unwrap().instance(Seed(1), 0).unwrap();
+    // Phi^-1 is steep at both ends: panels shrink geometrically towards them
+    let ends: Vec<f64> = (1..=14).flat_map(|k| [10f64.powi(-k), 1.0 - 10f64.powi(-k)]).collect();
+    let cube = pieces(|x| f.eval(&[x]), &ends);
+    let exact = std::f64::consts::PI.sqrt() * (-0.25f64).exp();
+    assert!((f.exact() - exact).abs() < 1e-14);
+    assert!((cube - exact).abs() < 1e-9, "{cube} against {exact}");
+}
+
+#[test]
+fn ishigami_and_gaussian_d_integrate_to_their_exact_values() {
+    let f = Family::parse("ishigami").unwrap().instance(Seed(2), 0).unwrap();
+    assert!((tensor(&|x| f.eval(x), 3, &[0.5]) - 3.5).abs() < 1e-9);
+    assert_eq!(f.exact(), 3.5);
+    let family = Family::parse("gaussian.d:d=2,sigma=0.2").unwrap();
+    for k in 0..3 {
+        let f = family.instance(Seed(3), k).unwrap();
+        assert!((tensor(&|x| f.eval(x), 2, &[]) - f.exact()).abs() < 1e-10);
+    }
+}
+
+#[test]
+fn the_half_space_is_point_symmetric_about_the_centre() {
+    // f(x) + f(1 - x) = 1 off the boundary, so the integral is 1/2 whatever the normal
+    for d in [2usize, 5, 40] {
+        let family = Family::parse(&format!("heaviside.d:d={d}")).unwrap();
+        for k in 0..5 {
+            let f = family.instance(Seed(4), k).unwrap();
+            let mut rng = Seed(k).rng();
+            for _ in 0..1000 {
+                let x: Vec<f64> = (0..d).map(|_| samplab::seed::uniform(&mut rng)).collect();
+                let mirror: Vec<f64> = x.iter().map(|v| 1.0 - v).collect();
+                assert_eq!(f.eval(&x) + f.eval(&mirror), 1.0);
+            }
+            assert_eq!(f.exact(), 0.5);
+        }
+    }
+}
+
+#[test]
+fn the_normal_quantile_inverts_the_distribution_function() {
+    assert!((normal_quantile(0.975) - 1.959_963_984_540_054).abs() < 1e-14);
+    assert!(normal_quantile(0.5).abs() < 1e-16);
+    for &p in &[1e-300, 1e-100, 1e-10, 0.001, 0.1, 0.3, 0.7, 0.9, 0.999, 1.0 - 1e-10] {
+        let x = normal_quantile(p);
+        let back = normal_cdf(x);
+        assert!((back - p).abs() <= 1e-13 * p.min(1.0 - p).max(1e-300) + 1e-300, "p = {p}: Phi(Phi^-1(p)) = {back}");
+    }
+}
