@@ -19,6 +19,7 @@ pub(crate) use say;
 
 mod alloc;
 mod bar;
+mod cubature;
 mod discrepancy;
 mod generate;
 mod image_metrics;
@@ -76,6 +77,8 @@ enum Command {
     Discrepancy(discrepancy::Args),
     /// Bias, variance and convergence exponents of samplers on the papers' test integrands.
     Integrate(integrate::Args),
+    /// An integral to a stated accuracy (abs/rel tolerance), with its error bound.
+    Cubature(cubature::Args),
     /// Periodogram, expected spectrum and spectrum variance over realizations (Subr & Kautz).
     Spectrum(spectrum::Args),
     /// Predict samplers' variance on an integrand from their spectra (Pilleboue et al. 2015),
@@ -191,6 +194,7 @@ fn run(cli: Cli) -> ExitCode {
         Command::Plot(a) => plot::run(&a),
         Command::Discrepancy(a) => discrepancy::run(&a),
         Command::Integrate(a) => integrate::run(&a),
+        Command::Cubature(a) => cubature::run(&a),
         Command::Spectrum(a) => spectrum::run(&a),
         Command::Predict(a) => predict::run(&a),
         Command::Render(a) => render::run(&a),

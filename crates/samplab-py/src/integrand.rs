@@ -103,8 +103,8 @@ impl Given {
             return Ok((Given::Grid(Grid::new(w, h, values).map_err(err)?), format!("array {w}x{h}")));
         }
         if value.is_callable() {
-            if !(1..=2).contains(&dims) {
-                return Err(err(format!("d {dims}: a callable integrand is 1D or 2D here")));
+            if dims == 0 {
+                return Err(err("d 0: a callable integrand needs at least one dimension".to_string()));
             }
             let name =
                 value.getattr("__name__").and_then(|n| n.extract::<String>()).unwrap_or_else(|_| "callable".into());

@@ -561,6 +561,9 @@ fn predict(
     let mut exact = exact.into_iter();
     let mut given = Vec::new();
     for value in &integrands {
+        if value.is_callable() && !(1..=2).contains(&dims) {
+            return Err(err(format!("d {dims}: a callable integrand is 1D or 2D here")));
+        }
         let known = if value.is_callable() { exact.next() } else { None };
         given.push(integrand::Given::from_python(value, seed, dims, known)?);
     }
@@ -593,6 +596,30 @@ fn predict(
         return Err(e);
     }
     serde_json::to_string(&outcome?).map_err(err)
+}
+
+/// The integral of `integrand` (a family spec, instance 0 for the seed, or a callable of
+/// `dims` dimensions with integral `exact` when known) to a tolerance:
+/// [`samplab::cubature::cubature`] with `settings` (JSON, any of its fields), as the JSON
+/// `samplab cubature --json` prints.
+#[pyfunction]
+fn cubature(
+    py: Python<'_>,
+    integrand: Bound<'_, PyAny>,
+    dims: usize,
+    exact: Option<f64>,
+    settings: &str,
+) -> PyResult<String> {
+    let settings: samplab::cubature::Settings =
+        serde_json::from_str(settings).map_err(|e| err(format!("cubature settings: {e}")))?;
+    let (given, name) = integrand::Given::from_python(&integrand, settings.seed.0, dims, exact)?;
+    let f = given.integrand();
+    let outcome =
+        interruptible(py, usize::MAX, |stop| samplab::cubature::cubature(f, &settings, &Progress::until(stop)));
+    if let Some(e) = given.failure() {
+        return Err(e);
+    }
+    Ok(outcome?.to_json(&name, given.has_exact().then(|| f.exact())).to_string())
 }
 
 /// Instance `instance` of the integrand family `spec` for `seed`: its values at the rows of
@@ -891,6 +918,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(predict, m)?)?;
     m.add_class::<Checkpoint>()?;
+    m.add_function(wrap_pyfunction!(cubature, m)?)?;
     m.add_function(wrap_pyfunction!(study_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(study_plan, m)?)?;
     m.add_function(wrap_pyfunction!(study_chunk, m)?)?;

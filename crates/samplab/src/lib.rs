@@ -28,6 +28,7 @@
 #![deny(missing_docs)]
 
 pub mod bibliography;
+pub mod cubature;
 pub mod discrepancy;
 pub mod error;
 pub mod experiment;

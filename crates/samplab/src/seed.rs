@@ -13,7 +13,7 @@ use rand_distr::StandardNormal;
 pub type Rng = rand_pcg::Pcg64;
 
 /// The seed of every random choice samplab makes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize)]
 pub struct Seed(pub u64);
 
 impl Seed {

@@ -61,6 +61,7 @@ __all__ = [
     "metrics",
     "warps",
     "integrands",
+    "cubature",
     "predict",
     "formats",
     "scenes",
@@ -350,6 +351,48 @@ def integrate(
             _seed(seed),
         )
     )
+
+
+def cubature(
+    integrand: Any,
+    d: Optional[int] = None,
+    *,
+    abs_tol: Optional[float] = None,
+    rel_tol: Optional[float] = None,
+    sampler: Optional[str] = None,
+    level: Optional[float] = None,
+    replications: Optional[int] = None,
+    min_n: Optional[int] = None,
+    max_n: Optional[int] = None,
+    seed: Optional[int] = None,
+    exact: Optional[float] = None,
+) -> Dict[str, Any]:
+    """The integral of ``integrand`` over [0, 1]^d to a tolerance, as ``samplab cubature
+    --json``: ``{"estimate", "bound", "kind", "converged", "n", "evaluations", "steps",
+    "seconds", "integrand", "exact"}``.
+
+    ``integrand`` is a family spec (``"keister:d=8"``) or a vectorized callable ``f(x)``, x of
+    shape (n, d), returning n values (give ``d``, and ``exact`` when the integral is known).
+    The points per randomization are doubled from ``min_n`` (256) until the bound is at most
+    ``max(abs_tol, rel_tol |estimate|)`` (1e-3, 0) or ``max_n`` (2^20) is reached
+    (``converged`` says which). The bound is probabilistic: Student's t interval at
+    ``level`` (0.99) over ``replications`` (16) randomizations of ``sampler`` (a randomized
+    one, ``sobol.owen`` by default). Unset keywords take the library's defaults."""
+    if callable(integrand) and d is None:
+        raise Error("d: give the dimension of a callable integrand")
+    given: Dict[str, Any] = {}
+    for name, value in (("abs_tol", abs_tol), ("rel_tol", rel_tol), ("level", level)):
+        if value is not None:
+            given[name] = float(value)
+    for name, value in (("replications", replications), ("min_n", min_n), ("max_n", max_n)):
+        if value is not None:
+            given[name] = _count(name, value)
+    if sampler is not None:
+        given["sampler"] = str(sampler)
+    if seed is not None:
+        given["seed"] = _seed(seed)
+    dims = 0 if d is None else _count("d", d)
+    return json.loads(_samplab.cubature(integrand, dims, None if exact is None else float(exact), json.dumps(given)))
 
 
 def predict(

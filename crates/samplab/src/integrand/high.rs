@@ -85,7 +85,9 @@ impl Integrand for Genz {
         let dot = || a.iter().zip(x).map(|(a, x)| a * x).sum::<f64>();
         match self.shape {
             Shape::Oscillatory => (TAU * u[0] + dot()).cos(),
-            Shape::ProductPeak => a.iter().zip(u).zip(x).map(|((a, u), x)| 1.0 / (1.0 / (a * a) + (x - u).powi(2))).product(),
+            Shape::ProductPeak => {
+                a.iter().zip(u).zip(x).map(|((a, u), x)| 1.0 / (1.0 / (a * a) + (x - u).powi(2))).product()
+            }
             Shape::CornerPeak => (1.0 + dot()).powi(-(a.len() as i32 + 1)),
             Shape::Gaussian => (-a.iter().zip(u).zip(x).map(|((a, u), x)| (a * (x - u)).powi(2)).sum::<f64>()).exp(),
             Shape::Continuous => (-a.iter().zip(u).zip(x).map(|((a, u), x)| a * (x - u).abs()).sum::<f64>()).exp(),
@@ -129,15 +131,11 @@ impl Integrand for Genz {
                     .sum();
                 corners / (factorial * a.iter().product::<f64>())
             }
-            Shape::Gaussian => {
-                each(&|a, u| PI.sqrt() / (2.0 * a) * (libm::erf(a * (1.0 - u)) + libm::erf(a * u)))
-            }
+            Shape::Gaussian => each(&|a, u| PI.sqrt() / (2.0 * a) * (libm::erf(a * (1.0 - u)) + libm::erf(a * u))),
             Shape::Continuous => each(&|a, u| (2.0 - (-a * u).exp() - (-a * (1.0 - u)).exp()) / a),
-            Shape::Discontinuous => a
-                .iter()
-                .enumerate()
-                .map(|(i, &a)| ((a * if i < 2 { u[i] } else { 1.0 }).exp() - 1.0) / a)
-                .product(),
+            Shape::Discontinuous => {
+                a.iter().enumerate().map(|(i, &a)| ((a * if i < 2 { u[i] } else { 1.0 }).exp() - 1.0) / a).product()
+            }
         }
     }
 }
@@ -188,8 +186,7 @@ impl Integrand for Keister {
     fn eval(&self, x: &[f64]) -> f64 {
         // a coordinate at 0 (possible for an unrandomized net) is taken at the least
         // positive double, one at 1 (from outside the samplers) below it: Phi^-1 is finite
-        let r2: f64 =
-            x.iter().map(|&x| normal_quantile(x.clamp(f64::MIN_POSITIVE, BELOW_ONE)).powi(2) / 2.0).sum();
+        let r2: f64 = x.iter().map(|&x| normal_quantile(x.clamp(f64::MIN_POSITIVE, BELOW_ONE)).powi(2) / 2.0).sum();
         PI.powf(self.d as f64 / 2.0) * r2.sqrt().cos()
     }
 
@@ -324,12 +321,7 @@ pub(super) static FAMILIES: &[IntegrandEntry] = &[
     ),
     genz_entry!(3, 7.03, 1000, "Genz's Gaussian exp(-sum a_i^2 (x_i - u_i)^2)"),
     genz_entry!(4, 20.4, 1000, "Genz's continuous exp(-sum a_i |x_i - u_i|), kinked at u"),
-    genz_entry!(
-        5,
-        4.3,
-        1000,
-        "Genz's discontinuous exp(a.x) on x_1 <= u_1, x_2 <= u_2, 0 elsewhere"
-    ),
+    genz_entry!(5, 4.3, 1000, "Genz's discontinuous exp(a.x) on x_1 <= u_1, x_2 <= u_2, 0 elsewhere"),
     IntegrandEntry {
         about: About::new("keister", "Keister's pi^(d/2) cos(|Phi^-1(x) / sqrt 2|): cos(|t|) exp(-|t|^2) over R^d")
             .params(&[dims(3, 1000)])
@@ -340,8 +332,18 @@ pub(super) static FAMILIES: &[IntegrandEntry] = &[
     IntegrandEntry {
         about: About::new("ishigami", "Ishigami's sin z_1 + a sin^2 z_2 + b z_3^4 sin z_1, z = pi (2x - 1); mean a/2")
             .params(&[
-                ParamSpec { name: "a", kind: Kind::Real { min: -1e3, max: 1e3 }, default: Default::Number(7.0), doc: "a" },
-                ParamSpec { name: "b", kind: Kind::Real { min: -1e3, max: 1e3 }, default: Default::Number(0.1), doc: "b" },
+                ParamSpec {
+                    name: "a",
+                    kind: Kind::Real { min: -1e3, max: 1e3 },
+                    default: Default::Number(7.0),
+                    doc: "a",
+                },
+                ParamSpec {
+                    name: "b",
+                    kind: Kind::Real { min: -1e3, max: 1e3 },
+                    default: Default::Number(0.1),
+                    doc: "b",
+                },
             ])
             .cite(&["ishigami1990"]),
         dims: Dims::Fixed(3),
