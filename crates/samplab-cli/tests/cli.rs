@@ -298,7 +298,8 @@ fn cubature_reaches_the_tolerance_and_refuses_bad_settings() {
     let r = samplab(&["cubature", "--integrand", "genz.gaussian:d=3", "--abs-tol", "1e-4", "--json"]);
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
     let v: serde_json::Value = serde_json::from_slice(&r.stdout).unwrap();
-    let (estimate, exact, bound) = (v["estimate"].as_f64().unwrap(), v["exact"].as_f64().unwrap(), v["bound"].as_f64().unwrap());
+    let (estimate, exact, bound) =
+        (v["estimate"].as_f64().unwrap(), v["exact"].as_f64().unwrap(), v["bound"].as_f64().unwrap());
     assert!(v["converged"].as_bool().unwrap() && bound <= 1e-4);
     // a 99% bound: this seed's estimate is inside it (fixed seed, so the test is exact)
     assert!((estimate - exact).abs() <= bound, "{estimate} against {exact} +- {bound}");
