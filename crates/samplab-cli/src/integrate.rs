@@ -64,7 +64,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     }
     let study = Study {
         samplers: &samplers,
-        family: &family,
+        family: (&family).into(),
         ns: &a.n,
         sets: a.sets,
         instances: a.instances,

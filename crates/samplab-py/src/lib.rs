@@ -539,6 +539,36 @@ fn integrate(
     Ok(interruptible(py, usize::MAX, |stop| d.run(&Progress::until(stop)))?.json)
 }
 
+/// An integration study of a callable of `dims` dimensions with integral `exact` (every
+/// instance the same function), as [`integrate`] returns it.
+#[pyfunction]
+fn integrate_given(
+    py: Python<'_>,
+    samplers: Vec<String>,
+    f: Bound<'_, PyAny>,
+    ns: Vec<usize>,
+    sets: usize,
+    seed: u64,
+    given: (usize, f64),
+) -> PyResult<String> {
+    let (dims, exact) = given;
+    let (given, name) = integrand::Given::from_python(&f, seed, dims, Some(exact))?;
+    let samplers = samplers.iter().map(|s| samplab::sampler::build(s)).collect::<Result<Vec<_>, _>>().map_err(err)?;
+    let study = samplab::experiment::Study {
+        samplers: &samplers,
+        family: samplab::experiment::Integrands::Given(given.integrand(), &name),
+        ns: &ns,
+        sets,
+        instances: 1,
+        seed: Seed(seed),
+    };
+    let rows = interruptible(py, usize::MAX, |stop| samplab::experiment::run(&study, &Progress::until(stop)));
+    if let Some(e) = given.failure() {
+        return Err(e);
+    }
+    Ok(samplab::experiment::json(&rows?))
+}
+
 /// A prediction study, as `samplab predict --json` prints it: {"rows", "ranking", ...};
 /// every registered sampler of the integrands' dimension when `samplers` is empty. Each
 /// integrand is a spec, a 2D array or a callable of `dims` dimensions (its integral in
@@ -919,6 +949,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(predict, m)?)?;
     m.add_class::<Checkpoint>()?;
     m.add_function(wrap_pyfunction!(cubature, m)?)?;
+    m.add_function(wrap_pyfunction!(integrate_given, m)?)?;
     m.add_function(wrap_pyfunction!(study_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(study_plan, m)?)?;
     m.add_function(wrap_pyfunction!(study_chunk, m)?)?;

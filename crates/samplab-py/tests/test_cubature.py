@@ -49,3 +49,28 @@ def test_errors_name_what_is_wrong():
 
     with pytest.raises(ValueError, match="my bug"):
         samplab.cubature(broken, 2)
+
+
+def test_samplers_compared_on_your_function():
+    """samplab.integrate on a callable: the same rows as the family it computes, and its
+    integral from samplab.cubature."""
+    spec = "keister:d=2"  # no random coefficients: every instance is this function
+    x0 = np.array([[0.5, 0.5]])
+    _, exact = samplab._samplab.integrand_eval(spec, 0, samplab.DEFAULT_SEED, x0)
+
+    def f(x):
+        return samplab._samplab.integrand_eval(spec, 0, samplab.DEFAULT_SEED, np.ascontiguousarray(x))[0]
+
+    mine = samplab.integrate(["random", "sobol.owen"], f, [64, 256, 1024], sets=20, d=2, exact=exact)
+    family = samplab.integrate(["random", "sobol.owen"], spec, [64, 256, 1024], sets=20, instances=1)
+    for a, b in zip(mine["rows"], family["rows"]):
+        assert a["integrand"] == "f"
+        for key in ("relative_mean", "relative_variance", "rmse"):
+            assert a[key] == b[key], key
+    # sobol.owen converges faster than random on this smooth function
+    fits = {fit["sampler"]: fit["exponent"] for fit in mine["fits"]}
+    assert fits["sobol.owen"] < fits["random"]
+    reference = samplab.cubature(f, 2, abs_tol=1e-6)
+    assert abs(reference["estimate"] - exact) <= 1e-6
+    with pytest.raises(samplab.Error, match="exact="):
+        samplab.integrate("random", f, 64, d=2)

@@ -68,8 +68,11 @@ fn delaunay_piecewise_functions_are_continuous_or_constant_where_expected() {
 fn study(samplers: &[&str], integrand: &str, ns: &[usize], sets: usize, instances: usize, seed: u64) -> Vec<Row> {
     let s: Vec<Box<dyn Sampler>> = samplers.iter().map(|x| sampler::build(x).unwrap()).collect();
     let family = Family::parse(integrand).unwrap();
-    experiment::run(&Study { samplers: &s, family: &family, ns, sets, instances, seed: Seed(seed) }, &Progress::SILENT)
-        .unwrap()
+    experiment::run(
+        &Study { samplers: &s, family: (&family).into(), ns, sets, instances, seed: Seed(seed) },
+        &Progress::SILENT,
+    )
+    .unwrap()
 }
 
 #[test]
@@ -129,7 +132,7 @@ fn bad_studies_are_errors() {
     let family = Family::parse("quad").unwrap();
     let run = |ns: &[usize], sets: usize| {
         experiment::run(
-            &Study { samplers: &s, family: &family, ns, sets, instances: 2, seed: Seed(1) },
+            &Study { samplers: &s, family: (&family).into(), ns, sets, instances: 2, seed: Seed(1) },
             &Progress::SILENT,
         )
     };
@@ -144,7 +147,7 @@ fn bad_studies_are_errors() {
 fn a_study_computed_unit_by_unit_through_bytes_equals_the_whole_run() {
     let s: Vec<Box<dyn Sampler>> = ["random", "jitter"].iter().map(|x| sampler::build(x).unwrap()).collect();
     let family = Family::parse("disk").unwrap();
-    let study = Study { samplers: &s, family: &family, ns: &[16, 64], sets: 20, instances: 3, seed: Seed(4) };
+    let study = Study { samplers: &s, family: (&family).into(), ns: &[16, 64], sets: 20, instances: 3, seed: Seed(4) };
     let whole = experiment::run(&study, &Progress::SILENT).unwrap();
     let prepared = study.prepare().unwrap();
     assert_eq!(prepared.units(), 12);

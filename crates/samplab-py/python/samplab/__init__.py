@@ -330,17 +330,32 @@ def spectrum(points: Any, res: int = 128, direct: bool = False, tolerance: float
 
 def integrate(
     samplers: Union[str, Sequence[str]],
-    integrand: str,
+    integrand: Any,
     n: Union[int, Sequence[int]],
     sets: int = 50,
     instances: int = 10,
     seed: Optional[int] = None,
+    *,
+    d: Optional[int] = None,
+    exact: Optional[float] = None,
 ) -> Dict[str, List[Dict[str, Any]]]:
     """Bias, variance and convergence of samplers on an integrand family, as ``samplab
     integrate --json``: ``{"rows": [...], "fits": [...]}`` (a row per sampler and count:
     relative mean, relative variance, RMSE, N^2 MSE and the closed form where one applies;
-    a fit per sampler: the convergence exponent and its 95% interval)."""
+    a fit per sampler: the convergence exponent and its 95% interval).
+
+    ``integrand`` is a family spec (``"quad"``, ``"keister:d=3"``) or your own vectorized
+    function ``f(x)``, x of shape (n, d), returning n values: give its dimension ``d`` and
+    its integral ``exact`` (``samplab.cubature`` computes one to a tolerance); it is one
+    function, so ``instances`` does not apply."""
     names = [samplers] if isinstance(samplers, str) else list(samplers)
+    if callable(integrand):
+        if d is None or exact is None:
+            raise Error("a callable integrand needs d= (its dimension) and exact= (its integral; samplab.cubature computes one)")
+        given = (_count("d", d), float(exact))
+        return json.loads(
+            _samplab.integrate_given(names, integrand, _counts("n", n), _count("sets", sets), _seed(seed), given)
+        )
     return json.loads(
         _samplab.integrate(
             names,

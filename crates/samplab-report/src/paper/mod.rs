@@ -48,5 +48,5 @@ pub(crate) fn study(
     let family = Family::parse(integrand)?;
     let report = |k| ctx.tick(k);
     let progress = Progress::new(&report).stopped_by(ctx.stop);
-    Ok(experiment::run(&Study { samplers: &s, family: &family, ns, sets, instances, seed }, &progress)?)
+    Ok(experiment::run(&Study { samplers: &s, family: (&family).into(), ns, sets, instances, seed }, &progress)?)
 }

@@ -15,12 +15,83 @@ use crate::sampler::Sampler;
 use crate::seed::Seed;
 use crate::theory;
 
+/// The integrands of a study: instances of a registered family, or one integrand given by
+/// the caller (a Python function, say) with its name.
+#[derive(Clone, Copy)]
+pub enum Integrands<'a> {
+    /// Instance k of the family for the study's seed.
+    Family(&'a Family),
+    /// The same integrand for every instance.
+    Given(&'a dyn Integrand, &'a str),
+}
+
+impl<'a> From<&'a Family> for Integrands<'a> {
+    fn from(family: &'a Family) -> Self {
+        Integrands::Family(family)
+    }
+}
+
+impl<'a> Integrands<'a> {
+    /// Their dimensions.
+    pub fn dims(&self) -> usize {
+        match self {
+            Integrands::Family(f) => f.dims(),
+            Integrands::Given(f, _) => f.dims(),
+        }
+    }
+
+    /// The family's canonical spec, or the given integrand's name.
+    pub fn spec(&self) -> String {
+        match self {
+            Integrands::Family(f) => f.spec(),
+            Integrands::Given(_, name) => (*name).to_string(),
+        }
+    }
+
+    fn instance(&self, seed: Seed, k: u64) -> Result<Box<dyn Integrand + 'a>> {
+        match *self {
+            Integrands::Family(f) => f.instance(seed, k),
+            Integrands::Given(f, _) => Ok(Box::new(Borrowed(f))),
+        }
+    }
+}
+
+/// A borrowed integrand as an owned one (every method forwarded).
+struct Borrowed<'a>(&'a dyn Integrand);
+
+impl Integrand for Borrowed<'_> {
+    fn dims(&self) -> usize {
+        self.0.dims()
+    }
+    fn eval(&self, x: &[f64]) -> f64 {
+        self.0.eval(x)
+    }
+    fn eval_many(&self, points: &[f64], out: &mut [f64]) {
+        self.0.eval_many(points, out);
+    }
+    fn exact(&self) -> f64 {
+        self.0.exact()
+    }
+    fn boundary_length(&self) -> Option<f64> {
+        self.0.boundary_length()
+    }
+    fn discontinuities(&self) -> Option<usize> {
+        self.0.discontinuities()
+    }
+    fn fourier(&self, k: [i64; 2]) -> Option<[f64; 2]> {
+        self.0.fourier(k)
+    }
+    fn exact_square(&self) -> Option<f64> {
+        self.0.exact_square()
+    }
+}
+
 /// A study: samplers x counts on one integrand family.
 pub struct Study<'a> {
     /// Samplers by name (their specs).
     pub samplers: &'a [Box<dyn Sampler>],
-    /// The integrand family.
-    pub family: &'a Family,
+    /// The integrands.
+    pub family: Integrands<'a>,
     /// The counts N.
     pub ns: &'a [usize],
     /// Realizations per instance (M >= 2).
@@ -196,7 +267,7 @@ impl UnitStats {
 /// A study checked and prepared: its instances drawn, every (sampler, count) planned.
 pub struct Prepared<'s> {
     study: &'s Study<'s>,
-    instances: Vec<Box<dyn Integrand>>,
+    instances: Vec<Box<dyn Integrand + 's>>,
 }
 
 impl<'a> Study<'a> {
@@ -281,7 +352,10 @@ impl Prepared<'_> {
             .map(|m| {
                 progress.check()?;
                 let pts = plan.generate(base.derive(m))?;
-                Ok(pts.iter().map(|x| f.eval(x)).sum::<f64>() / n as f64)
+                // in one batch (a Python integrand is called once per realization)
+                let mut values = vec![0.0; n];
+                f.eval_many(pts.as_slice(), &mut values);
+                Ok(values.iter().sum::<f64>() / n as f64)
             })
             .collect::<Result<_>>()?;
         let stats = crate::stats::Summary::of(&estimates);

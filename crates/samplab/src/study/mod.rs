@@ -163,7 +163,7 @@ impl Integration {
     fn study<'a>(&'a self, n: &'a [usize], sets: usize, instances: usize, seed: u64) -> crate::experiment::Study<'a> {
         crate::experiment::Study {
             samplers: &self.samplers,
-            family: &self.family,
+            family: (&self.family).into(),
             ns: n,
             sets,
             instances,
