@@ -3,7 +3,7 @@
 //! from the number of trials (fixed seeds).
 
 use samplab::experiment::{self, Row, Study};
-use samplab::integrand::{Family, INTEGRANDS};
+use samplab::integrand::{Dims, Family, INTEGRANDS};
 use samplab::progress::Progress;
 use samplab::{Sampler, Seed, sampler};
 
@@ -25,6 +25,11 @@ fn midpoint(f: &dyn samplab::integrand::Integrand, k: usize) -> f64 {
 #[test]
 fn exact_integrals_equal_brute_force_quadrature() {
     for e in INTEGRANDS.iter() {
+        // the d-dimensional families have their own rules, split at their kinks and jumps
+        // (tests/integrands_d.rs): a midpoint rule across a jump errs by more than 1e-4
+        if !matches!(e.dims, Dims::Fixed(1 | 2)) {
+            continue;
+        }
         let family = Family::parse(e.about.name).unwrap();
         for k in 0..4 {
             let f = family.instance(Seed(11), k).unwrap();

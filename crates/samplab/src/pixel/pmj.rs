@@ -13,10 +13,10 @@ use crate::sampler::stratified::pmj::pmj02_digits;
 use crate::seed::Seed;
 use crate::spec::Params;
 
-/// Sequences in the pool.
+/// Entries in the pool (two sequences each).
 const POOL: usize = 16;
 
-/// The largest spp: the pool holds [`POOL`] sequences of at most this many points.
+/// The largest spp: the pool holds 2 [`POOL`] sequences of at most this many points.
 const MOST: u64 = 1 << 16;
 
 pub(crate) static ENTRIES: &[PixelEntry] = &[
@@ -28,16 +28,16 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
         )
         .aliases(&["pixel.pmj02"])
         .cite(&["christensen2018", "helmer2021", "pharr2023"]),
-        spp: super::Counts::AtMost { most: MOST, why: "the pool holds 16 sequences of at most 2^16 points" },
+        spp: super::Counts::AtMost { most: MOST, why: "the pool holds 32 sequences of at most 2^16 points" },
         dims: "any (blocks of two 2D pmj02)",
         max_dims: super::MAX_DIMS,
-        mapping: "dimension padding by blocks of four: dimensions 4k .. 4k+3 take entry h mod 16 of the \
-                  pool (two independent pmj02 sequences, the second read through a fixed nested scramble of \
-                  its index, which decorrelates the pairs and keeps its prefixes nets), sample pi(i) of its first spp for both pairs (pi \
-                  a nested uniform scramble of the index for a power-of-two spp, so that every prefix of \
-                  2^j samples is a net; a hashed permutation otherwise), each value XOR-ed with hashed \
-                  digits (a digital shift, which keeps every (0,m,2)-net a net), h a hash of (seed, pixel, \
-                  frame, k)",
+        mapping: "dimension padding by blocks of four: dimensions 4k .. 4k+3 take the pool entry named by \
+                  the top 4 bits of h (two independent pmj02 sequences, the second read through a fixed \
+                  nested scramble of its index, which decorrelates the pairs and keeps its prefixes nets), \
+                  sample pi(i) of its first spp for both pairs (pi a nested uniform scramble of the index for \
+                  a power-of-two spp, so that every prefix of 2^j samples is a net; a hashed permutation \
+                  otherwise), each value XOR-ed with hashed digits (a digital shift, which keeps every \
+                  (0,m,2)-net a net), h a 64-bit hash of (seed, pixel, frame, k)",
         build: build_plain,
     },
     PixelEntry {
