@@ -118,12 +118,15 @@ def test_integration_study_equals_the_cli(cli):
 
 def test_integrands_evaluate_with_exact_integrals():
     for fam in samplab.integrands():
-        d = int(fam["details"][0].split(": ")[1])
+        dims = fam["details"][0].split(": ")[1]
+        # a d-dimensional family at its default d
+        d = int(dims) if dims.isdigit() else next(p["default"] for p in fam["params"] if p["name"] == "d")
         x = samplab.generate("sobol.owen", n=2**14, d=d, seed=1)
         values, exact = samplab.integrand(fam["name"], x, instance=1, seed=5)
         assert values.shape == (2**14,)
-        # a 2^14-point scrambled Sobol' estimate of a bounded integrand is close
-        assert values.mean() == pytest.approx(exact, abs=0.02), fam["name"]
+        # a 2^14-point scrambled Sobol' estimate of a bounded integrand is close (1% of
+        # the larger integrals: Genz's peaks reach 100)
+        assert values.mean() == pytest.approx(exact, abs=0.02, rel=0.01), fam["name"]
 
 
 def test_blue_noise_samplers_and_spacing_metrics_from_python():
