@@ -26,6 +26,7 @@ mod image_metrics;
 mod integrate;
 mod list;
 mod mask;
+mod own;
 mod pixels;
 mod plot;
 mod predict;

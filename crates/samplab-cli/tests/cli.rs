@@ -308,6 +308,49 @@ fn cubature_reaches_the_tolerance_and_refuses_bad_settings() {
     assert_bad_input(&["cubature", "--integrand", "keister:d=2", "--replications", "1"], &["--replications 1"]);
     assert_bad_input(&["cubature", "--integrand", "keister:d=2", "--sampler", "sobol"], &["deterministic"]);
     assert_bad_input(&["cubature", "--integrand", "keister:d=2", "--min-n", "0"], &["--min-n 0"]);
+    assert_bad_input(&["cubature", "--integrand", "keister:d=2", "--rule", "nett"], &["--rule nett", "replicated"]);
+    assert_bad_input(
+        &["cubature", "--integrand", "keister:d=2", "--rule", "net", "--sampler", "sobol.owen"],
+        &["net.lms"],
+    );
+    assert_bad_input(&["cubature", "--integrand", "keister:d=2", "--exact", "1"], &["--exact"]);
+    assert_bad_input(&["cubature", "--integrand", "expr:exp(-x0*x0 - )"], &["column 14", "found `)`"]);
+    assert_bad_input(&["cubature", "--integrand", "expr:log(x0 - 1)"], &["NaN at x = ("]);
+    assert_bad_input(&["cubature", "--integrand", "image:/nonexistent/sky.exr"], &["/nonexistent/sky.exr"]);
+}
+
+#[test]
+fn cubature_of_a_formula_and_of_an_image() {
+    let json = |args: &[&str]| -> serde_json::Value {
+        let r = samplab(args);
+        assert!(r.status.success(), "{args:?}: {}", String::from_utf8_lossy(&r.stderr));
+        serde_json::from_slice(&r.stdout).unwrap()
+    };
+    // exp(-x0^2 - x1^2) over the unit square: (sqrt(pi)/2 erf(1))^2
+    let exact = 0.557_746_285_351_033_6;
+    for rule in ["net", "lattice", "replicated"] {
+        let v =
+            json(&["cubature", "--integrand", "expr:exp(-x0*x0-x1*x1)", "--abs-tol", "1e-6", "--rule", rule, "--json"]);
+        assert!(v["converged"].as_bool().unwrap(), "{rule}");
+        assert!((v["estimate"].as_f64().unwrap() - exact).abs() <= 1e-6, "{rule}: {v}");
+        assert!(v["exact"].is_null(), "a formula's integral is unknown unless given");
+    }
+    // a 4 x 2 grey PNG: the integral is the mean of its linear values
+    let dir = temp("image-integrand");
+    let png = dir.join("grey.png");
+    let grey: Vec<u8> = vec![0, 64, 128, 255, 32, 96, 160, 224];
+    image::GrayImage::from_raw(4, 2, grey.clone()).unwrap().save(&png).unwrap();
+    let linear = |g: u8| {
+        let v = f64::from(g) / 255.0;
+        if v <= 0.04045 { v / 12.92 } else { ((v + 0.055) / 1.055).powf(2.4) }
+    };
+    let mean = grey.iter().map(|&g| linear(g)).sum::<f64>() / 8.0;
+    for prefix in ["image:", "image.box:"] {
+        let spec = format!("{prefix}{}", png.display());
+        let v = json(&["cubature", "--integrand", &spec, "--abs-tol", "1e-4", "--json"]);
+        assert!((v["exact"].as_f64().unwrap() - mean).abs() < 1e-6, "{prefix}: {v}");
+        assert!((v["estimate"].as_f64().unwrap() - mean).abs() < 1e-3, "{prefix}: {v}");
+    }
 }
 
 #[test]

@@ -495,18 +495,33 @@ impl Checkpoint {
 }
 
 /// One chunk of a study, as bytes (what a worker returns and a checkpoint keeps); `first`
-/// is chunk 0's bytes where they feed the others.
+/// is chunk 0's bytes where they feed the others; `function` the integrand of an
+/// integration study that declares one (`d` and `exact`).
 #[pyfunction]
-#[pyo3(signature = (description, chunk, first=None))]
+#[pyo3(signature = (description, chunk, first=None, function=None))]
 fn study_chunk<'py>(
     py: Python<'py>,
     description: &str,
     chunk: Vec<u64>,
     first: Option<Vec<u8>>,
+    function: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyBytes>> {
     let study = Study::from_json(description).map_err(err)?;
-    let data = interruptible(py, usize::MAX, |stop| study.compute(&chunk, first.as_deref(), &Progress::until(stop)))?;
-    Ok(PyBytes::new(py, &data))
+    let given = match (&function, &study) {
+        (None, _) => None,
+        (
+            Some(f),
+            Study::Library(samplab::study::Description::Integrate { d: Some(d), exact: Some(exact), seed, .. }),
+        ) => Some(integrand::Given::from_python(f, *seed, *d, Some(*exact))?.0),
+        (Some(_), _) => return Err(err("a function was given to a study that declares no integrand function")),
+    };
+    let data = interruptible(py, usize::MAX, |stop| {
+        study.compute(&chunk, first.as_deref(), given.as_ref().map(integrand::Given::integrand), &Progress::until(stop))
+    });
+    if let Some(e) = given.as_ref().and_then(integrand::Given::failure) {
+        return Err(e);
+    }
+    Ok(PyBytes::new(py, &data?))
 }
 
 /// Every chunk's bytes, in chunk order, merged: (JSON, CSV, the spectrum statistics as
@@ -534,8 +549,16 @@ fn integrate(
     instances: usize,
     seed: u64,
 ) -> PyResult<String> {
-    let d =
-        samplab::study::Description::Integrate { samplers, integrand: integrand.into(), n: ns, sets, instances, seed };
+    let d = samplab::study::Description::Integrate {
+        samplers,
+        integrand: integrand.into(),
+        n: ns,
+        sets,
+        instances,
+        seed,
+        d: None,
+        exact: None,
+    };
     Ok(interruptible(py, usize::MAX, |stop| d.run(&Progress::until(stop)))?.json)
 }
 
@@ -553,20 +576,21 @@ fn integrate_given(
 ) -> PyResult<String> {
     let (dims, exact) = given;
     let (given, name) = integrand::Given::from_python(&f, seed, dims, Some(exact))?;
-    let samplers = samplers.iter().map(|s| samplab::sampler::build(s)).collect::<Result<Vec<_>, _>>().map_err(err)?;
-    let study = samplab::experiment::Study {
-        samplers: &samplers,
-        family: samplab::experiment::Integrands::Given(given.integrand(), &name),
-        ns: &ns,
+    let study = samplab::study::Description::Integrate {
+        samplers,
+        integrand: name,
+        n: ns,
         sets,
         instances: 1,
-        seed: Seed(seed),
+        seed,
+        d: Some(dims),
+        exact: Some(exact),
     };
-    let rows = interruptible(py, usize::MAX, |stop| samplab::experiment::run(&study, &Progress::until(stop)));
+    let merged = interruptible(py, usize::MAX, |stop| study.run_with(Some(given.integrand()), &Progress::until(stop)));
     if let Some(e) = given.failure() {
         return Err(e);
     }
-    Ok(samplab::experiment::json(&rows?))
+    Ok(merged?.json)
 }
 
 /// A prediction study, as `samplab predict --json` prints it: {"rows", "ranking", ...};

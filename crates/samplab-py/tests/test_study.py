@@ -227,3 +227,33 @@ def test_constructors_are_generated_from_the_library_kinds():
     # defaults come from the declaration: 50 sets, 10 instances
     study = Study.integrate("random", "quad", 16, seed=1)
     assert (study.params["sets"], study.params["instances"]) == (50, 10)
+
+
+def _gauss(x):
+    return np.exp(-(x * x).sum(axis=1))
+
+
+def test_an_integration_study_of_your_function_runs_on_dask(client, tmp_path):
+    # exp(-|x|^2) over [0,1]^2, a module-level function (workers unpickle it by value or by
+    # reference; a lambda works too, through cloudpickle)
+    exact = 0.5577462853510336
+    kw = dict(sets=6, seed=4, d=2, exact=exact)
+    study = Study.integrate(["random", "sobol.owen"], _gauss, [16, 64], **kw)
+    assert study.params["integrand"] == "_gauss" and study.params["instances"] == 1
+    local = study.run(progress=False)
+    on_dask = study.run(client, progress=False)
+    lam = Study.integrate(["random", "sobol.owen"], lambda x: np.exp(-(x * x).sum(axis=1)), [16, 64], **kw)
+    # the same rows as samplab.integrate with the callable (one path in the library)
+    direct = samplab.integrate(["random", "sobol.owen"], _gauss, [16, 64], sets=6, seed=4, d=2, exact=exact)
+    assert local.data == direct
+    assert on_dask.to_json() == local.to_json()
+    assert [r["rmse"] for r in lam.run(client, progress=False).data["rows"]] == [r["rmse"] for r in direct["rows"]]
+    # a checkpoint is tied to the function's code: another function does not reuse it
+    study.run(checkpoint=str(tmp_path), progress=False)
+    assert study.run(checkpoint=str(tmp_path), progress=False).reused == len(study.chunks)
+    other = Study.integrate(["random", "sobol.owen"], lambda x: np.cos(x.sum(axis=1)), [16, 64], **kw)
+    assert other.fingerprint != study.fingerprint
+    with pytest.raises(samplab.Error, match="needs d="):
+        Study.integrate("random", _gauss, 16, d=2)
+    with pytest.raises(samplab.Error, match="a family takes neither"):
+        Study.integrate("random", "quad", 16, d=2, exact=1.0)

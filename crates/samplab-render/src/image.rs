@@ -49,6 +49,12 @@ fn luminance(rgb: &[f32]) -> f64 {
     0.2126 * f64::from(rgb[0]) + 0.7152 * f64::from(rgb[1]) + 0.0722 * f64::from(rgb[2])
 }
 
+/// The sRGB transfer function's inverse (IEC 61966-2-1): an encoded value in [0, 1] to
+/// linear.
+fn srgb_to_linear(v: f64) -> f64 {
+    if v <= 0.04045 { v / 12.92 } else { ((v + 0.055) / 1.055).powf(2.4) }
+}
+
 fn srgb8(linear: f64) -> u8 {
     let c = linear.clamp(0.0, 1.0);
     let s = if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
@@ -198,6 +204,26 @@ impl Image {
         let mut bytes = Cursor::new(Vec::new());
         exr::image::Image::from_layer(layer).write().to_buffered(&mut bytes).map_err(|e| fail(e.to_string()))?;
         out.file(path, bytes.get_ref()).map_err(|e| fail(e.to_string()))
+    }
+
+    /// Read an image by its extension: OpenEXR ([`Image::read_exr`]) or PNG (8- or 16-bit,
+    /// grey or colour, decoded from sRGB to linear values; alpha ignored).
+    ///
+    /// # Errors
+    /// Another extension, an unreadable or malformed file.
+    pub fn read(path: &Path) -> Result<Image> {
+        let fail = |m: String| Error::Image { path: path.display().to_string(), message: m };
+        match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+            Some("exr") => Image::read_exr(path),
+            Some("png") => {
+                let decoded = image::open(path).map_err(|e| fail(e.to_string()))?.into_rgb32f();
+                let (width, height) = (decoded.width() as usize, decoded.height() as usize);
+                // into_rgb32f scales the stored (sRGB-encoded) values to [0, 1]
+                let rgb = decoded.into_raw().into_iter().map(|v| srgb_to_linear(f64::from(v)) as f32).collect();
+                Ok(Image { width, height, rgb, visibility: None })
+            }
+            _ => Err(fail("unknown image format (use .exr or .png)".into())),
+        }
     }
 
     /// Read an OpenEXR file's first layer: R, G, B (Y alone is read as grey) and V if there.

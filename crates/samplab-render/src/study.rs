@@ -64,7 +64,9 @@ pub const KINDS: &[Kind] = &[
         kind: "integrate",
         doc: "Integration error of `samplers` x counts `n` on `instances` instances of the integrand family, \
               `sets` realizations each (`samplab integrate`). A unit is one (sampler, count, instance) with all \
-              its realizations; a chunk is `units_per_chunk` consecutive units.",
+              its realizations; a chunk is `units_per_chunk` consecutive units. The integrand may be your own \
+              vectorized function (x of shape (n, d)) with its dimensions `d` and integral `exact`; Dask \
+              workers receive it pickled (cloudpickle), so it must not depend on state only this process has.",
         parameters: &[
             given("samplers", "names"),
             given("integrand", "name"),
@@ -72,6 +74,8 @@ pub const KINDS: &[Kind] = &[
             keyword("sets", "count", Some("50")),
             keyword("instances", "count", Some("10")),
             keyword("seed", "seed", Some("null")),
+            keyword("d", "count?", Some("null")),
+            keyword("exact", "float?", Some("null")),
         ],
         per_chunk: ("units_per_chunk", 1),
         rest: None,
@@ -227,10 +231,10 @@ fn typed(of: &str, name: &'static str, value: &Value) -> std::result::Result<Val
         ("counts", _) => one_or_many(count),
         ("names", _) => one_or_many(text),
         ("seed", Value::Null) => Ok(samplab::Seed::DEFAULT.0.into()),
-        ("count" | "seed", _) => count(name, value),
-        ("name?" | "float?", Value::Null) | ("bool", Value::Bool(_)) | ("float" | "float?", Value::Number(_)) => {
-            Ok(value.clone())
-        }
+        ("name?" | "float?" | "count?", Value::Null)
+        | ("bool", Value::Bool(_))
+        | ("float" | "float?", Value::Number(_)) => Ok(value.clone()),
+        ("count" | "count?" | "seed", _) => count(name, value),
         ("name" | "name?", _) => text(name, value),
         ("bool", _) => Err(setting(name, value, "must be true or false")),
         _ => Err(setting(name, value, "must be a number")),
@@ -336,13 +340,20 @@ impl Study {
     }
 
     /// One chunk's result, as bytes; `first` is chunk 0's result where
-    /// [`Study::first_feeds_the_rest`].
+    /// [`Study::first_feeds_the_rest`]; `given` the caller's integrand where an integration
+    /// study declares one.
     ///
     /// # Errors
     /// A chunk without what it needs, or the computation's error.
-    pub fn compute(&self, chunk: &[u64], first: Option<&[u8]>, progress: &Progress) -> Result<Vec<u8>> {
+    pub fn compute(
+        &self,
+        chunk: &[u64],
+        first: Option<&[u8]>,
+        given: Option<&dyn samplab::integrand::Integrand>,
+        progress: &Progress,
+    ) -> Result<Vec<u8>> {
         let r = match self {
-            Study::Library(d) => return Ok(d.compute(chunk, progress)?),
+            Study::Library(d) => return Ok(d.compute_with(chunk, given, progress)?),
             Study::Render(r) => r,
         };
         let scene = load_scene(&r.scene, r.light.as_deref(), Paths::InsideScene)?;
@@ -455,9 +466,9 @@ mod tests {
         let (s, chunks) = study(vec![3, 9, 4]).plan(2).unwrap();
         assert_eq!(chunks, vec![vec![], vec![3, 9], vec![4]]);
         assert_eq!(Study::from_json(&s.to_json()).unwrap(), s);
-        let first = s.compute(&chunks[0], None, &Progress::SILENT).unwrap();
+        let first = s.compute(&chunks[0], None, None, &Progress::SILENT).unwrap();
         let parts: Vec<Vec<u8>> = std::iter::once(first.clone())
-            .chain(chunks[1..].iter().map(|c| s.compute(c, Some(&first), &Progress::SILENT).unwrap()))
+            .chain(chunks[1..].iter().map(|c| s.compute(c, Some(&first), None, &Progress::SILENT).unwrap()))
             .collect();
         let merged: Value = serde_json::from_str(&s.merge(&parts).unwrap().json).unwrap();
         let scene = load_scene("spheres", None, Paths::InsideScene).unwrap();
@@ -471,7 +482,7 @@ mod tests {
             let rmse = image.errors(&reference, false).unwrap().rmse;
             assert_eq!(merged["errors"][k]["rmse"].as_f64().unwrap().to_bits(), rmse.to_bits(), "seed {seed}");
         }
-        assert!(s.compute(&[3], None, &Progress::SILENT).is_err(), "an error chunk without its reference");
+        assert!(s.compute(&[3], None, None, &Progress::SILENT).is_err(), "an error chunk without its reference");
     }
 
     /// Each kind's declared parameters are exactly its description's fields: a front end
@@ -481,7 +492,7 @@ mod tests {
         let library = |text: &str| Study::from_json(text).unwrap().to_json();
         let examples = [
             library(
-                r#"{"kind":"integrate","samplers":["random"],"integrand":"quad","n":[16],"sets":2,"instances":1,"seed":1}"#,
+                r#"{"kind":"integrate","samplers":["random"],"integrand":"f","n":[16],"sets":2,"instances":1,"seed":1,"d":2,"exact":0.5}"#,
             ),
             library(
                 r#"{"kind":"spectrum","sampler":"jitter","n":16,"d":2,"sets":2,"res":8,"direct":false,"tolerance":1e-9,"seed":1}"#,

@@ -130,3 +130,84 @@ fn the_normal_quantile_inverts_the_distribution_function() {
         assert!((back - p).abs() <= 1e-13 * p.min(1.0 - p).max(1e-300) + 1e-300, "p = {p}: Phi(Phi^-1(p)) = {back}");
     }
 }
+
+#[test]
+fn blinn_phong_matches_the_hemisphere_integral_and_the_mapped_square() {
+    use std::f64::consts::PI;
+    for e in [0.0, 1.0, 7.5, 32.0, 400.0] {
+        let f = Family::parse(&format!("blinn-phong:e={e}")).unwrap().instance(Seed(0), 0).unwrap();
+        // the BRDF times cos theta over the hemisphere, the half vector built as a vector:
+        // theta in [0, pi/2] by Gauss-Legendre (the integrand does not depend on phi)
+        let lobe = |theta: f64| {
+            let w = [theta.sin(), 0.0, theta.cos()];
+            let h = [w[0], w[1], w[2] + 1.0];
+            let cos_h = h[2] / (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]).sqrt();
+            (e + 2.0) / (2.0 * PI) * cos_h.powf(e) * theta.cos() * theta.sin() * 2.0 * PI
+        };
+        let hemisphere = pieces(|x| lobe(x * PI / 2.0) * PI / 2.0, &[0.25, 0.5, 0.75]);
+        assert!((hemisphere - f.exact()).abs() < 1e-12 * f.exact(), "e {e}: {hemisphere} vs {}", f.exact());
+        // the integrand on the square (through the concentric map) by a 1500^2 midpoint rule
+        let k = 1500;
+        let mut sum = 0.0;
+        for j in 0..k {
+            for i in 0..k {
+                sum += f.eval(&[(i as f64 + 0.5) / k as f64, (j as f64 + 0.5) / k as f64]);
+            }
+        }
+        let square = sum / (k * k) as f64;
+        assert!((square - f.exact()).abs() < 1e-5 * f.exact(), "e {e}: {square} vs {}", f.exact());
+    }
+    // Lambert: reflectance 1
+    let lambert = Family::parse("blinn-phong:e=0").unwrap().instance(Seed(0), 0).unwrap();
+    assert!((lambert.exact() - 1.0).abs() < 1e-15);
+}
+
+/// QMCPy 2.4's values (scripts/qmcpy_integrals.py wrote the fixture).
+fn qmcpy() -> serde_json::Value {
+    serde_json::from_str(include_str!("fixtures/qmcpy_integrals.json")).unwrap()
+}
+
+#[test]
+fn keister_equals_qmcpys_closed_form_in_1_to_32_dimensions() {
+    let fixture = qmcpy();
+    for (d, value) in fixture["keister"].as_object().unwrap() {
+        let want = value.as_f64().unwrap();
+        let ours = Family::parse(&format!("keister:d={d}")).unwrap().instance(Seed(0), 0).unwrap().exact();
+        assert!((ours - want).abs() <= 1e-12 * want.abs(), "d {d}: {ours} vs QMCPy's {want}");
+    }
+}
+
+#[test]
+fn genz_and_ishigami_agree_with_qmcpys_guaranteed_estimates() {
+    let fixture = qmcpy();
+    for case in fixture["genz"].as_array().unwrap() {
+        let a: Vec<f64> = case["a"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        // QMCPy's oscillatory is cos(sum c_i t_i) (no shift); its corner peak has no shift
+        let f = samplab::integrand::Genz::new(case["family"].as_str().unwrap(), a.clone(), vec![0.0; a.len()]).unwrap();
+        let (want, bound) = (case["value"].as_f64().unwrap(), case["bound"].as_f64().unwrap());
+        assert!((f.exact() - want).abs() <= bound + 1e-14, "{case}: ours {}", f.exact());
+    }
+    let ishigami = &fixture["ishigami"];
+    let ours = Family::parse("ishigami:a=7,b=0.1").unwrap().instance(Seed(0), 0).unwrap().exact();
+    let (want, bound) = (ishigami["value"].as_f64().unwrap(), ishigami["bound"].as_f64().unwrap());
+    assert!((ours - want).abs() <= bound, "ours {ours}, QMCPy {want} +- {bound}");
+}
+
+#[test]
+fn the_corner_peak_matches_the_corner_sum_where_that_sum_is_well_conditioned() {
+    // the sum over the 2^d corners of (-1)^|v| / (1 + a.v), over d! prod a: exact in exact
+    // arithmetic, and accurate in floating point when the a_i are of order 1
+    for a in [vec![0.7], vec![1.3, 0.4], vec![0.9, 2.0, 0.5], vec![0.5, 0.6, 0.7, 0.8, 0.9]] {
+        let d = a.len();
+        let factorial: f64 = (1..=d).map(|k| k as f64).product();
+        let corners: f64 = (0u64..1 << d)
+            .map(|v| {
+                let dot: f64 = a.iter().enumerate().filter(|(i, _)| v >> i & 1 == 1).map(|(_, a)| a).sum();
+                if v.count_ones() % 2 == 0 { 1.0 / (1.0 + dot) } else { -1.0 / (1.0 + dot) }
+            })
+            .sum();
+        let want = corners / (factorial * a.iter().product::<f64>());
+        let f = samplab::integrand::Genz::new("genz.corner-peak", a.clone(), vec![0.0; d]).unwrap();
+        assert!((f.exact() - want).abs() < 1e-13 * want, "{a:?}: {} vs {want}", f.exact());
+    }
+}

@@ -328,6 +328,20 @@ def spectrum(points: Any, res: int = 128, direct: bool = False, tolerance: float
     return _samplab.spectrum(_points(points, stack=True), _count("res", res), bool(direct), float(tolerance))
 
 
+def _by_columns(f: Any, columns: bool) -> Any:
+    """``f`` called with x of shape (n, d), where ``columns`` says it takes (d, n)."""
+    if not columns:
+        return f
+    if not callable(f):
+        raise Error("columns=True: only a callable integrand takes points")
+
+    def by_rows(x: Any) -> Any:
+        return f(x.T)
+
+    by_rows.__name__ = getattr(f, "__name__", "f")
+    return by_rows
+
+
 def integrate(
     samplers: Union[str, Sequence[str]],
     integrand: Any,
@@ -338,6 +352,7 @@ def integrate(
     *,
     d: Optional[int] = None,
     exact: Optional[float] = None,
+    columns: bool = False,
 ) -> Dict[str, List[Dict[str, Any]]]:
     """Bias, variance and convergence of samplers on an integrand family, as ``samplab
     integrate --json``: ``{"rows": [...], "fits": [...]}`` (a row per sampler and count:
@@ -347,8 +362,10 @@ def integrate(
     ``integrand`` is a family spec (``"quad"``, ``"keister:d=3"``) or your own vectorized
     function ``f(x)``, x of shape (n, d), returning n values: give its dimension ``d`` and
     its integral ``exact`` (``samplab.cubature`` computes one to a tolerance); it is one
-    function, so ``instances`` does not apply."""
+    function, so ``instances`` does not apply. ``columns=True``: x of shape (d, n), scipy's
+    convention."""
     names = [samplers] if isinstance(samplers, str) else list(samplers)
+    integrand = _by_columns(integrand, columns)
     if callable(integrand):
         if d is None or exact is None:
             raise Error("a callable integrand needs d= (its dimension) and exact= (its integral; samplab.cubature computes one)")
@@ -374,6 +391,7 @@ def cubature(
     *,
     abs_tol: Optional[float] = None,
     rel_tol: Optional[float] = None,
+    rule: Optional[str] = None,
     sampler: Optional[str] = None,
     level: Optional[float] = None,
     replications: Optional[int] = None,
@@ -381,20 +399,27 @@ def cubature(
     max_n: Optional[int] = None,
     seed: Optional[int] = None,
     exact: Optional[float] = None,
+    columns: bool = False,
 ) -> Dict[str, Any]:
     """The integral of ``integrand`` over [0, 1]^d to a tolerance, as ``samplab cubature
     --json``: ``{"estimate", "bound", "kind", "converged", "n", "evaluations", "steps",
     "seconds", "integrand", "exact"}``.
 
     ``integrand`` is a family spec (``"keister:d=8"``) or a vectorized callable ``f(x)``, x of
-    shape (n, d), returning n values (give ``d``, and ``exact`` when the integral is known).
-    The points per randomization are doubled from ``min_n`` (256) until the bound is at most
-    ``max(abs_tol, rel_tol |estimate|)`` (1e-3, 0) or ``max_n`` (2^20) is reached
-    (``converged`` says which). The bound is probabilistic: Student's t interval at
-    ``level`` (0.99) over ``replications`` (16) randomizations of ``sampler`` (a randomized
-    one, ``sobol.owen`` by default). Unset keywords take the library's defaults."""
+    shape (n, d), returning n values (give ``d``, and ``exact`` when the integral is known);
+    ``columns=True`` passes x of shape (d, n) instead, as ``scipy.integrate.qmc_quad`` does.
+    The points per randomization are doubled from ``min_n`` (256; 1024 for the guaranteed
+    rules) until the bound is at most ``max(abs_tol, rel_tol |estimate|)`` (1e-3, 0) or
+    ``max_n`` (2^20) is reached (``converged`` says which); a sequence's earlier points are
+    kept. ``rule`` picks the bound: ``"replicated"`` (the default; probabilistic, Student's
+    t interval at ``level`` (0.99) over ``replications`` (16) randomizations of
+    ``sampler``, ``sobol.owen`` by default), ``"net"`` or ``"lattice"`` (guaranteed for
+    integrands in the cone of Hickernell & Jimenez Rugama 2016, on one randomized digital
+    net, ``net.lms``, or shifted lattice sequence with the baker's transform). Unset
+    keywords take the library's defaults."""
     if callable(integrand) and d is None:
         raise Error("d: give the dimension of a callable integrand")
+    integrand = _by_columns(integrand, columns)
     given: Dict[str, Any] = {}
     for name, value in (("abs_tol", abs_tol), ("rel_tol", rel_tol), ("level", level)):
         if value is not None:
@@ -402,8 +427,9 @@ def cubature(
     for name, value in (("replications", replications), ("min_n", min_n), ("max_n", max_n)):
         if value is not None:
             given[name] = _count(name, value)
-    if sampler is not None:
-        given["sampler"] = str(sampler)
+    for name, text in (("rule", rule), ("sampler", sampler)):
+        if text is not None:
+            given[name] = str(text)
     if seed is not None:
         given["seed"] = _seed(seed)
     dims = 0 if d is None else _count("d", d)

@@ -16,16 +16,23 @@ None is samplab's default seed, so an engine is reproducible unless given a Gene
 
 ``d = 0`` and ``random(0)`` give empty arrays, and ``optimization="random-cd"`` or
 ``"lloyd"`` applies scipy's optimizers to every draw, as scipy's own engines do.
+
+``qmc_quad`` is ``scipy.integrate.qmc_quad``'s call and result computed by
+``samplab.cubature`` (the points made and summed in Rust), with a tolerance on top.
 """
 
 from __future__ import annotations
 
+from collections import namedtuple
 from typing import Any, Optional
 
 import numpy as np
 from scipy.stats import qmc as _qmc
 
-from . import DEFAULT_SEED, Error, _samplab, _seed
+from . import DEFAULT_SEED, Error, _samplab, _seed, cubature
+
+#: ``qmc_quad``'s result, with the fields of scipy's ``QMCQuadResult``.
+QMCQuadResult = namedtuple("QMCQuadResult", ["integral", "standard_error"])
 
 
 def _samplab_seed(seed: Any) -> int:
@@ -91,3 +98,55 @@ class Engine(_qmc.QMCEngine):
             raise Error(f"{self.spec} makes whole sets, not a sequence: it cannot fast-forward")
         self.num_generated += int(n)
         return self
+
+
+def qmc_quad(
+    func: Any,
+    a: Any,
+    b: Any,
+    *,
+    n_estimates: int = 8,
+    n_points: int = 1024,
+    qrng: Any = None,
+    log: bool = False,
+    abs_tol: Optional[float] = None,
+    rel_tol: Optional[float] = None,
+    max_n: Optional[int] = None,
+) -> QMCQuadResult:
+    """The integral of ``func`` over the box [a, b], as ``scipy.integrate.qmc_quad`` computes
+    it: ``func(x)`` takes x of shape (d, n) and returns n values; ``n_estimates``
+    randomizations of ``n_points`` points each of ``qrng`` (a randomized samplab spec, an
+    ``Engine``, or None for ``"sobol.owen"``); the result's ``integral`` is their mean and
+    ``standard_error`` its standard error. With ``abs_tol`` or ``rel_tol`` (on the box's
+    integral), ``n_points`` is only the first n: it is doubled, the earlier points kept, until
+    Student's t bound at 0.99 over the randomizations meets the tolerance or ``max_n`` is
+    reached (``samplab.cubature``). ``log=True`` (values as logarithms) is not supported."""
+    if log:
+        raise Error("log=True: samplab.qmc.qmc_quad integrates values, not their logarithms (use scipy.integrate.qmc_quad)")
+    lo, hi = np.atleast_1d(np.asarray(a, dtype=float)), np.atleast_1d(np.asarray(b, dtype=float))
+    if lo.shape != hi.shape or lo.ndim != 1 or not (np.isfinite(lo).all() and np.isfinite(hi).all()):
+        raise Error(f"a and b: finite bounds of one shape, got {a!r} and {b!r}")
+    spec = qrng.spec if isinstance(qrng, Engine) else ("sobol.owen" if qrng is None else qrng)
+    if not isinstance(spec, str):
+        raise Error(f"qrng: a samplab spec or samplab.qmc.Engine, got {qrng!r}")
+    width = hi - lo
+    volume = float(np.prod(width))
+
+    def on_box(x: Any) -> Any:
+        return func((lo + width * x).T)
+
+    tolerance = abs_tol is not None or rel_tol is not None
+    r = cubature(
+        on_box,
+        len(lo),
+        abs_tol=(abs_tol / abs(volume) if abs_tol and volume else 0.0) if tolerance else 1e-300,
+        rel_tol=rel_tol or 0.0,
+        sampler=spec,
+        replications=n_estimates,
+        min_n=n_points,
+        max_n=(max_n if max_n is not None else 1 << 20) if tolerance else n_points,
+    )
+    from scipy.stats import t as student_t
+
+    t = float(student_t.ppf(0.995, n_estimates - 1))
+    return QMCQuadResult(r["estimate"] * volume, r["bound"] / t * abs(volume))

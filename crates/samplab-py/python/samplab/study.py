@@ -64,15 +64,40 @@ def _constructor(kind: str) -> Any:
     def make(cls: Any, *args: Any, **kwargs: Any) -> "Study":
         arguments = inspect.Signature(signature).bind(cls, *args, **kwargs).arguments
         del arguments["cls"]
+        function = _function(arguments)
         described, chunks, feeds = _samplab.study_plan(json.dumps({"kind": kind, **arguments}, default=_plain))
         params = json.loads(described)
         del params["kind"]
-        return cls(kind, params, [list(c) for c in chunks], feeds)
+        return cls(kind, params, [list(c) for c in chunks], feeds, function)
 
     make.__name__ = make.__qualname__ = kind
     make.__doc__ = info["doc"].replace("`", "``")
     make.__signature__ = inspect.Signature(signature)  # type: ignore[attr-defined]
     return classmethod(make)
+
+
+def _function(arguments: Dict[str, Any]) -> Any:
+    """An integration study's own integrand, taken out of ``arguments`` (which keep its
+    name; one function, so one instance unless asked), or None."""
+    f, declared = arguments.get("integrand"), [arguments.get("d"), arguments.get("exact")]
+    if callable(f) != (None not in declared) or (not callable(f) and declared != [None, None]):
+        raise Error("a callable integrand needs d= (its dimension) and exact= (its integral); a family takes neither")
+    if not callable(f):
+        return None
+    arguments["integrand"] = getattr(f, "__name__", type(f).__name__)
+    arguments.setdefault("instances", 1)
+    return f
+
+
+def _identity(f: Any) -> str:
+    """What a checkpoint of a study of ``f`` is tied to: its code, constants, defaults and
+    captured values (by repr), so that editing the function invalidates its chunks."""
+    code = getattr(f, "__code__", None)
+    if code is None:
+        return repr(f)
+    captured = [c.cell_contents for c in (getattr(f, "__closure__", None) or ())]
+    parts = (f.__module__, f.__qualname__, code.co_code, code.co_consts, code.co_names, f.__defaults__, captured)
+    return hashlib.sha256(repr(parts).encode()).hexdigest()
 
 
 @dataclass
@@ -85,6 +110,9 @@ class Study:
     chunks: List[Any] = field(default_factory=list)
     #: whether chunk 0's result is given to every other chunk (a render study's reference)
     first_feeds_the_rest: bool = False
+    #: an integration study's own integrand (a vectorized callable; Dask workers receive it
+    #: pickled), or None
+    function: Any = None
 
     integrate = _constructor("integrate")
     spectrum = _constructor("spectrum")
@@ -99,7 +127,8 @@ class Study:
         version): chunks of one study are never mistaken for another's."""
         from . import __version__
 
-        text = _canonical({"format": FORMAT, "version": __version__, "kind": self.kind, "params": self.params, "chunks": self.chunks})
+        function = {} if self.function is None else {"function": _identity(self.function)}
+        text = _canonical({"format": FORMAT, "version": __version__, "kind": self.kind, "params": self.params, "chunks": self.chunks, **function})
         return hashlib.sha256(text.encode()).hexdigest()
 
     # ----- running ------------------------------------------------------------------------
@@ -154,7 +183,7 @@ class Study:
         for i in todo:
             if i in results:
                 continue
-            done(i, _compute(self.kind, self.params, self.chunks[i], dependency))
+            done(i, _compute(self.kind, self.params, self.chunks[i], dependency, self.function))
 
     def _dependency(self, results: Dict[int, bytes], compute: Any, done: Any) -> Optional[bytes]:
         """Chunk 0's result where it feeds the others, computed first when missing."""
@@ -172,9 +201,7 @@ class Study:
         fp = f"{self.fingerprint[:12]}-{uuid.uuid4().hex[:8]}"
 
         def submit(i: int, dependency: Any = None) -> Any:
-            return client.submit(
-                _compute, self.kind, self.params, self.chunks[i], dependency, key=f"samplab-{fp}-{i}", retries=retries
-            )
+            return client.submit(_compute, self.kind, self.params, self.chunks[i], dependency, self.function, key=f"samplab-{fp}-{i}", retries=retries)
 
         dependency = self._dependency(results, lambda i: submit(i).result(), done)
         if dependency is not None:
@@ -184,9 +211,9 @@ class Study:
             done(futures[future], future.result())
 
 
-def _compute(kind: str, params: Dict[str, Any], chunk: Any, dependency: Optional[bytes] = None) -> bytes:
+def _compute(kind: str, params: Dict[str, Any], chunk: Any, dependency: Optional[bytes] = None, function: Any = None) -> bytes:
     """One chunk's partial result, as bytes (what workers run and checkpoints keep)."""
-    return bytes(_samplab.study_chunk(_canonical({"kind": kind, **params}), list(chunk), dependency))
+    return bytes(_samplab.study_chunk(_canonical({"kind": kind, **params}), list(chunk), dependency, function))
 
 
 def _merge(kind: str, params: Dict[str, Any], parts: List[bytes]) -> tuple:

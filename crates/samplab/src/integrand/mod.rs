@@ -15,13 +15,17 @@ use crate::seed::{Rng, Seed, uniform};
 use crate::spec::{Default, Kind, ParamSpec, Params};
 
 mod delaunay;
+mod expr;
 mod grid;
 mod high;
+mod texture;
 use crate::numeric::quadrature;
 
 pub use delaunay::Delaunay;
+pub use expr::Expr;
 pub use grid::Grid;
-pub use high::{GaussianD, Genz, HalfSpace, Ishigami, Keister, genz_instance};
+pub use high::{BlinnPhong, GaussianD, Genz, HalfSpace, Ishigami, Keister, genz_instance};
+pub use texture::{Lookup, Texture};
 
 /// A function on \[0,1\]^d with a known integral.
 pub trait Integrand: Send + Sync {
@@ -57,6 +61,48 @@ pub trait Integrand: Send + Sync {
     /// The integral of f^2 over the domain, where a closed form is known.
     fn exact_square(&self) -> Option<f64> {
         None
+    }
+}
+
+/// A closure as an integrand: any `Fn(&[f64]) -> f64` of `dims` coordinates, its integral
+/// unknown (NaN) unless stated.
+///
+/// ```
+/// use samplab::cubature::{Settings, cubature};
+/// use samplab::integrand::Closure;
+/// use samplab::progress::Progress;
+/// let f = Closure::new(2, |x: &[f64]| x[0] * x[1]).with_exact(0.25);
+/// let c = cubature(&f, &Settings { abs_tol: 1e-4, ..Settings::default() }, &Progress::SILENT).unwrap();
+/// assert!(c.converged && (c.estimate - 0.25).abs() < 1e-4);
+/// ```
+pub struct Closure<F> {
+    dims: usize,
+    f: F,
+    exact: f64,
+}
+
+impl<F: Fn(&[f64]) -> f64 + Send + Sync> Closure<F> {
+    /// `f` over \[0,1\]^dims.
+    pub fn new(dims: usize, f: F) -> Closure<F> {
+        Closure { dims, f, exact: f64::NAN }
+    }
+
+    /// The same with its exact integral stated.
+    #[must_use]
+    pub fn with_exact(self, exact: f64) -> Closure<F> {
+        Closure { exact, ..self }
+    }
+}
+
+impl<F: Fn(&[f64]) -> f64 + Send + Sync> Integrand for Closure<F> {
+    fn dims(&self) -> usize {
+        self.dims
+    }
+    fn eval(&self, x: &[f64]) -> f64 {
+        (self.f)(x)
+    }
+    fn exact(&self) -> f64 {
+        self.exact
     }
 }
 

@@ -29,6 +29,7 @@ use serde::{Deserialize, Serialize};
 use crate::discrepancy::{Limits, Metric};
 use crate::error::{Error, Result};
 use crate::experiment::UnitStats;
+use crate::integrand::Integrand;
 use crate::points::PointSet;
 use crate::progress::Progress;
 use crate::seed::Seed;
@@ -60,6 +61,13 @@ pub enum Description {
         instances: usize,
         /// The seed.
         seed: u64,
+        /// For an integrand the caller gives (a Python function named `integrand`, passed
+        /// to [`Description::compute_with`]): its dimensions.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        d: Option<usize>,
+        /// ... and its exact integral.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        exact: Option<f64>,
     },
     /// `samplab spectrum`: periodogram, expected spectrum and spectrum variance.
     Spectrum {
@@ -144,31 +152,81 @@ fn sampler(spec: &str, n: usize, d: usize) -> Result<Box<dyn crate::Sampler>> {
     Ok(sampler)
 }
 
-/// An integration study's samplers and family, built.
-struct Integration {
+/// An integration study's samplers and integrands, built.
+struct Integration<'g> {
     samplers: Vec<Box<dyn crate::Sampler>>,
-    family: crate::integrand::Family,
+    integrand: String,
+    source: Source<'g>,
 }
 
-impl Integration {
-    fn new(samplers: &[String], integrand: &str, n: &[usize]) -> Result<Integration> {
+/// Where an integration study's integrands come from.
+enum Source<'g> {
+    /// A registered family.
+    Family(crate::integrand::Family),
+    /// The caller's function.
+    Given(&'g dyn Integrand),
+    /// The caller's function, declared but not given (planning and merging evaluate
+    /// nothing).
+    Declared(Declared),
+}
+
+/// A given integrand's declaration: its dimensions and integral, never evaluated.
+struct Declared {
+    dims: usize,
+    exact: f64,
+}
+
+impl Integrand for Declared {
+    fn dims(&self) -> usize {
+        self.dims
+    }
+    fn eval(&self, _: &[f64]) -> f64 {
+        f64::NAN
+    }
+    fn exact(&self) -> f64 {
+        self.exact
+    }
+}
+
+impl<'g> Integration<'g> {
+    /// `given` is the function when the description declares one (`d` and `exact`).
+    fn new(description: &Description, given: Option<&'g dyn Integrand>) -> Result<Integration<'g>> {
+        let Description::Integrate { samplers, integrand, n, d, exact, .. } = description else {
+            unreachable!("an integration study")
+        };
         let samplers = samplers.iter().map(|s| crate::sampler::build(s)).collect::<Result<Vec<_>>>()?;
-        let family = crate::integrand::Family::parse(integrand)?;
         if n.contains(&0) {
             return Err(invalid("counts must be positive".into()));
         }
-        Ok(Integration { samplers, family })
+        let source = match (d, exact, given) {
+            (None, None, None) => Source::Family(crate::integrand::Family::parse(integrand)?),
+            (None, None, Some(_)) => return Err(invalid("a function was given but the study declares none".into())),
+            (Some(d), Some(exact), given) => {
+                if *d == 0 || !exact.is_finite() {
+                    return Err(invalid(format!(
+                        "d = {d}, exact = {exact}: a given integrand needs d >= 1 and a finite exact"
+                    )));
+                }
+                if given.is_some_and(|f| f.dims() != *d) {
+                    return Err(invalid(format!(
+                        "the given integrand has {} dimensions, the study {d}",
+                        given.map_or(0, |f| f.dims())
+                    )));
+                }
+                given.map_or(Source::Declared(Declared { dims: *d, exact: *exact }), Source::Given)
+            }
+            _ => return Err(invalid("a given integrand needs both d and exact".into())),
+        };
+        Ok(Integration { samplers, integrand: integrand.clone(), source })
     }
 
     fn study<'a>(&'a self, n: &'a [usize], sets: usize, instances: usize, seed: u64) -> crate::experiment::Study<'a> {
-        crate::experiment::Study {
-            samplers: &self.samplers,
-            family: (&self.family).into(),
-            ns: n,
-            sets,
-            instances,
-            seed: Seed(seed),
-        }
+        let family = match &self.source {
+            Source::Family(family) => family.into(),
+            Source::Given(f) => crate::experiment::Integrands::Given(*f, &self.integrand),
+            Source::Declared(declared) => crate::experiment::Integrands::Given(declared, &self.integrand),
+        };
+        crate::experiment::Study { samplers: &self.samplers, family, ns: n, sets, instances, seed: Seed(seed) }
     }
 }
 
@@ -188,12 +246,12 @@ impl Description {
             return Err(invalid(format!("{name} = 0: must be at least 1")));
         }
         match self {
-            Description::Integrate { ref samplers, ref integrand, ref n, sets, instances, seed } => {
+            Description::Integrate { ref samplers, ref n, sets, instances, seed, .. } => {
                 some("samplers", samplers)?;
                 some("n", n)?;
                 let units = samplers.len() * n.len() * instances;
                 chunk_count("units", units, per_chunk)?;
-                let built = Integration::new(samplers, integrand, n)?;
+                let built = Integration::new(&self, None)?;
                 built.study(n, sets, instances, seed).prepare()?;
                 let chunks = (0..units)
                     .step_by(per_chunk)
@@ -245,11 +303,24 @@ impl Description {
     /// # Errors
     /// A chunk that is not one of this study's, or the computation's error.
     pub fn compute(&self, chunk: &[u64], progress: &Progress) -> Result<Vec<u8>> {
+        self.compute_with(chunk, None, progress)
+    }
+
+    /// [`Description::compute`] for a study whose integrand the caller gives: `given` is
+    /// that function (of the declared `d` dimensions).
+    ///
+    /// # Errors
+    /// As [`Description::compute`]; a function missing where the study declares one, or
+    /// given where it declares none.
+    pub fn compute_with(&self, chunk: &[u64], given: Option<&dyn Integrand>, progress: &Progress) -> Result<Vec<u8>> {
         use rayon::prelude::*;
         let bad = || invalid(format!("chunk {chunk:?} is not a chunk of this study"));
         match self {
-            Description::Integrate { samplers, integrand, n, sets, instances, seed } => {
-                let built = Integration::new(samplers, integrand, n)?;
+            Description::Integrate { samplers, n, sets, instances, seed, d, .. } => {
+                if d.is_some() && given.is_none() {
+                    return Err(invalid("the study's integrand is a function: give it to compute a chunk".into()));
+                }
+                let built = Integration::new(self, given)?;
                 let study = built.study(n, *sets, *instances, *seed);
                 let prepared = study.prepare()?;
                 let units = samplers.len() * n.len() * instances;
@@ -313,12 +384,20 @@ impl Description {
     /// # Errors
     /// As [`Description::plan`] and [`Description::compute`].
     pub fn run(self, progress: &Progress) -> Result<Merged> {
+        self.run_with(None, progress)
+    }
+
+    /// [`Description::run`] with the caller's integrand ([`Description::compute_with`]).
+    ///
+    /// # Errors
+    /// As [`Description::run`] and [`Description::compute_with`].
+    pub fn run_with(self, given: Option<&dyn Integrand>, progress: &Progress) -> Result<Merged> {
         let per_chunk = match &self {
             Description::Spectrum { sets, .. } => BLOCK << root_level(*sets),
             _ => usize::MAX,
         };
         let (d, chunks) = self.plan(per_chunk)?;
-        let parts = chunks.iter().map(|c| d.compute(c, progress)).collect::<Result<Vec<_>>>()?;
+        let parts = chunks.iter().map(|c| d.compute_with(c, given, progress)).collect::<Result<Vec<_>>>()?;
         d.merge(&parts)
     }
 
@@ -331,8 +410,8 @@ impl Description {
     /// Never: values are read by chunks of exactly 8 bytes.
     pub fn merge(&self, parts: &[Vec<u8>]) -> Result<Merged> {
         match self {
-            Description::Integrate { samplers, integrand, n, sets, instances, seed } => {
-                let built = Integration::new(samplers, integrand, n)?;
+            Description::Integrate { n, sets, instances, seed, .. } => {
+                let built = Integration::new(self, None)?;
                 let study = built.study(n, *sets, *instances, *seed);
                 let prepared = study.prepare()?;
                 let stats = parts
@@ -464,6 +543,8 @@ mod tests {
             sets: 4,
             instances: 2,
             seed: 1,
+            d: None,
+            exact: None,
         };
         let merged = d.run(&Progress::SILENT).unwrap();
         let line = merged.csv.lines().nth(1).unwrap();

@@ -245,6 +245,27 @@ pub struct Embedded {
     tent: bool,
 }
 
+/// The longest vector constructed so far for each weights: construction is component by
+/// component, so the vector for d dimensions is the first d components of any longer one
+/// (a cubature plans n = 1024, 2048, ... and pays the construction once).
+static CONSTRUCTED: std::sync::Mutex<Vec<(Weights, Arc<Vec<u64>>)>> = std::sync::Mutex::new(Vec::new());
+
+/// The first `dims` components of the embedded vector for `weights`.
+fn constructed(weights: Weights, dims: usize) -> Result<Vec<u64>> {
+    let mut cache = CONSTRUCTED.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    let slot = match cache.iter().position(|(w, _)| *w == weights) {
+        Some(i) => i,
+        None => {
+            cache.push((weights, Arc::default()));
+            cache.len() - 1
+        }
+    };
+    if cache[slot].1.len() < dims {
+        cache[slot].1 = Arc::new(cbc::construct(1 << EMBEDDED_M, dims, weights, true)?);
+    }
+    Ok(cache[slot].1[..dims].to_vec())
+}
+
 /// Where an embedded sequence's generating vector comes from.
 #[derive(Debug, Clone)]
 enum Vector {
@@ -266,7 +287,7 @@ impl Construction for Embedded {
     }
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
         let z = match &self.vector {
-            Vector::Constructed(weights) => cbc::construct(1 << EMBEDDED_M, shape.dims(), *weights, true)?,
+            Vector::Constructed(weights) => constructed(*weights, shape.dims())?,
             Vector::File(z) => z[..shape.dims()].to_vec(),
         };
         Ok(Box::new(Rank1 { z, order: Order::Radical, shift: self.shift, tent: self.tent }))
@@ -455,3 +476,18 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         build: |p| Ok(Box::new(Korobov { a: p.int_or_auto("a"), shift: true })),
     },
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The cache's premise: the embedded CBC vector for d dimensions is the first d
+    /// components of the one for more.
+    #[test]
+    fn constructed_vectors_are_prefixes() {
+        let weights = Weights::decaying(2.0);
+        let long = cbc::construct(1 << 12, 6, weights, true).unwrap();
+        let short = cbc::construct(1 << 12, 3, weights, true).unwrap();
+        assert_eq!(short[..], long[..3]);
+    }
+}
