@@ -138,3 +138,20 @@ def test_qmc_quad_takes_scipys_call_and_meets_a_tolerance():
     assert abs(tight.integral - exact) <= 1e-7
     with pytest.raises(samplab.Error, match="log=True"):
         qmc_quad(f, a, b, log=True)
+
+
+def test_a_reference_integral_is_computed_where_none_is_given():
+    # exp(-|x|^2) over [0, 1]^2: (sqrt(pi)/2 erf(1))^2
+    from math import erf, pi, sqrt
+
+    exact = (sqrt(pi) / 2 * erf(1.0)) ** 2
+
+    def f(x):
+        return np.exp(-(x * x).sum(axis=1))
+
+    assert abs(samplab.reference(f, 2) - exact) <= 1e-9 * exact
+    rows = samplab.integrate(["random"], f, [16, 64], sets=4, d=2)["rows"]
+    given = samplab.integrate(["random"], f, [16, 64], sets=4, d=2, exact=samplab.reference(f, 2))["rows"]
+    assert rows == given
+    with pytest.raises(samplab.Error, match="give exact="):
+        samplab.reference(lambda x: np.sin(1e4 * x[:, 0]) + 1e3 * (x[:, 0] < 1e-7), 1)

@@ -254,6 +254,9 @@ def test_an_integration_study_of_your_function_runs_on_dask(client, tmp_path):
     other = Study.integrate(["random", "sobol.owen"], lambda x: np.cos(x.sum(axis=1)), [16, 64], **kw)
     assert other.fingerprint != study.fingerprint
     with pytest.raises(samplab.Error, match="needs d="):
-        Study.integrate("random", _gauss, 16, d=2)
+        Study.integrate("random", _gauss, 16, exact=exact)
+    # without exact, the study computes it to a relative 1e-9 first
+    computed = Study.integrate(["random", "sobol.owen"], _gauss, [16, 64], sets=6, seed=4, d=2)
+    assert abs(computed.params["exact"] - exact) < 1e-9
     with pytest.raises(samplab.Error, match="a family takes neither"):
         Study.integrate("random", "quad", 16, d=2, exact=1.0)

@@ -80,10 +80,14 @@ def _function(arguments: Dict[str, Any]) -> Any:
     """An integration study's own integrand, taken out of ``arguments`` (which keep its
     name; one function, so one instance unless asked), or None."""
     f, declared = arguments.get("integrand"), [arguments.get("d"), arguments.get("exact")]
-    if callable(f) != (None not in declared) or (not callable(f) and declared != [None, None]):
-        raise Error("a callable integrand needs d= (its dimension) and exact= (its integral); a family takes neither")
+    if callable(f) == (declared[0] is None) or (not callable(f) and declared[1] is not None):
+        raise Error("a callable integrand needs d= (its dimension; exact= its integral, else computed); a family takes neither")
     if not callable(f):
         return None
+    if declared[1] is None:
+        from . import reference
+
+        arguments["exact"] = reference(f, declared[0])
     arguments["integrand"] = getattr(f, "__name__", type(f).__name__)
     arguments.setdefault("instances", 1)
     return f
