@@ -350,6 +350,13 @@ fn format_of(path: &str, name: Option<&str>) -> PyResult<samplab::io::Format> {
     }
 }
 
+/// `data` written to `path` atomically (a temporary file renamed over it: the old file or the
+/// new one, never part of one), as every samplab output is.
+#[pyfunction]
+fn write_file(path: &str, data: &[u8]) -> PyResult<()> {
+    samplab::io::write_atomic(std::path::Path::new(path), data).map_err(err)
+}
+
 /// Write a (sets, n, d) stack to `path` in `format` (text, csv, npy, json; by default
 /// from the extension), atomically, as `samplab generate -o` writes files.
 #[pyfunction]
@@ -974,6 +981,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Checkpoint>()?;
     m.add_function(wrap_pyfunction!(cubature, m)?)?;
     m.add_function(wrap_pyfunction!(integrate_given, m)?)?;
+    m.add_function(wrap_pyfunction!(write_file, m)?)?;
     m.add_function(wrap_pyfunction!(study_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(study_plan, m)?)?;
     m.add_function(wrap_pyfunction!(study_chunk, m)?)?;

@@ -247,6 +247,10 @@ def test_an_integration_study_of_your_function_runs_on_dask(client, tmp_path):
     direct = samplab.integrate(["random", "sobol.owen"], _gauss, [16, 64], sets=6, seed=4, d=2, exact=exact)
     assert local.data == direct
     assert on_dask.to_json() == local.to_json()
+    # written atomically by the library: the same text, and a bad folder is a FileError
+    assert local.to_json(str(tmp_path / "rows.json")) == (tmp_path / "rows.json").read_text()
+    with pytest.raises(samplab.FileError):
+        local.to_csv(str(tmp_path / "missing" / "rows.csv"))
     assert [r["rmse"] for r in lam.run(client, progress=False).data["rows"]] == [r["rmse"] for r in direct["rows"]]
     # a checkpoint is tied to the function's code: another function does not reuse it
     study.run(checkpoint=str(tmp_path), progress=False)

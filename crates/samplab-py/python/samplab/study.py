@@ -23,7 +23,6 @@ from __future__ import annotations
 import hashlib
 import inspect
 import json
-import os
 import sys
 import time
 import uuid
@@ -96,11 +95,8 @@ def _function(arguments: Dict[str, Any]) -> Any:
 def _identity(f: Any) -> str:
     """What a checkpoint of a study of ``f`` is tied to: its code, constants, defaults and
     captured values (by repr), so that editing the function invalidates its chunks."""
-    code = getattr(f, "__code__", None)
-    if code is None:
-        return repr(f)
-    captured = [c.cell_contents for c in (getattr(f, "__closure__", None) or ())]
-    parts = (f.__module__, f.__qualname__, code.co_code, code.co_consts, code.co_names, f.__defaults__, captured)
+    code, cells = getattr(f, "__code__", None), getattr(f, "__closure__", None) or ()
+    parts = repr(f) if code is None else (f.__module__, f.__qualname__, code.co_code, code.co_consts, code.co_names, f.__defaults__, [c.cell_contents for c in cells])
     return hashlib.sha256(repr(parts).encode()).hexdigest()
 
 
@@ -245,14 +241,14 @@ class StudyResult:
         discrepancy --json``, the ``statistics`` of ``spectrum.json``; per-seed errors and
         their summary for renders."""
         if path:
-            _write_atomic(path, self.text.encode())
+            _samplab.write_file(path, self.text.encode())
         return self.text
 
     def to_csv(self, path: Optional[str] = None) -> str:
         """One row per result line: integration rows, per-metric summaries, per-seed
         errors, or ``radial.csv`` of the spectra (numbers as the CLI prints them)."""
         if path:
-            _write_atomic(path, self.table.encode())
+            _samplab.write_file(path, self.table.encode())
         return self.table
 
     def plot(self, ax: Any = None) -> Any:
@@ -284,15 +280,6 @@ class StudyResult:
             ax.set(xlabel="seed", ylabel=key, title=self.params["scene"])
         ax.legend()
         return ax
-
-
-def _write_atomic(path: str, data: bytes) -> None:
-    tmp = f"{path}.tmp-{os.getpid()}"
-    with open(tmp, "wb") as f:
-        f.write(data)
-        f.flush()
-        os.fsync(f.fileno())
-    os.replace(tmp, path)
 
 
 class _Bar:
