@@ -229,6 +229,8 @@ fn max_memory_holds_for_every_large_allocation() {
         "--max-memory 200M discrepancy nyquist --sampler random -n 1000000",
         "--max-memory 200MiB discrepancy l2-star --sampler random -n 6000000",
         "--max-memory 200MB integrate --sampler random --integrand quad -n 16 --instances 5000000",
+        "--max-memory 200M cubature --integrand keister:d=4 --min-n 100000000 --max-n 100000000",
+        "--max-memory 200M cubature --integrand expr:x0 --rule lattice --min-n 16777216 --max-n 16777216",
     ] {
         let (out, took) = sh(&dir, &format!("$S {args}"), SECOND * 30);
         refused(&out, args, "--max-memory");

@@ -123,6 +123,9 @@ impl Run<'_> {
         let mut n = self.min_n;
         loop {
             let m = n.trailing_zeros();
+            // the points, the values, the coefficients (complex for a lattice) and the map
+            let bytes = n as u128 * (d as u128 + 4) * 8;
+            crate::memory::check(|| format!("cubature of {n} {d}D points"), bytes)?;
             let points = sampler.plan(n, d)?.generate(seed)?;
             let points = points.as_slice();
             let old = y.len();

@@ -294,6 +294,9 @@ fn replicated(
     let mut sums = vec![0.0; r];
     let mut done = 0;
     loop {
+        // each thread holds one randomization's points and values at a time
+        let bytes = n as u128 * (d as u128 + 1) * 8 * r.min(rayon::current_num_threads()) as u128;
+        crate::memory::check(|| format!("cubature of {n} {d}D points x {r} randomizations"), bytes)?;
         let plan = sampler.plan(n, d)?;
         let sequence = plan.access(settings.seed).is_some();
         let from = if sequence { done } else { 0 };
