@@ -43,9 +43,10 @@ pub struct Args {
     /// Realizations M of the estimator per instance (at least 2)
     #[arg(long, default_value_t = 50)]
     sets: usize,
-    /// Instances K of the integrand family
-    #[arg(long, default_value_t = 10)]
-    instances: usize,
+    /// Instances K of the integrand family (default 10; 1 for your own integrand, which is
+    /// one function)
+    #[arg(long)]
+    instances: Option<usize>,
     /// Seed
     #[arg(long, default_value_t = Seed::DEFAULT.0)]
     seed: u64,
@@ -78,15 +79,10 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     {
         bail!("--plot {}: must end in .png or .svg", p.display());
     }
-    let study = Study {
-        samplers: &samplers,
-        family: integrands,
-        ns: &a.n,
-        sets: a.sets,
-        instances: a.instances,
-        seed: Seed(a.seed),
-    };
-    let bar = Bar::new((samplers.len() * a.n.len() * a.instances) as u64, "instances");
+    let instances = a.instances.unwrap_or(if own.is_some() { 1 } else { 10 });
+    let study =
+        Study { samplers: &samplers, family: integrands, ns: &a.n, sets: a.sets, instances, seed: Seed(a.seed) };
+    let bar = Bar::new((samplers.len() * a.n.len() * instances) as u64, "instances");
     let rows = experiment::run(&study, &bar.progress())?;
     drop(bar);
     let fits = experiment::fits(&rows);

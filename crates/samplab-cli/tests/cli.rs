@@ -320,6 +320,31 @@ fn cubature_reaches_the_tolerance_and_refuses_bad_settings() {
 }
 
 #[test]
+fn integrate_takes_a_formula_as_one_integrand() {
+    let run = |extra: &[&str]| {
+        let mut args =
+            vec!["integrate", "--sampler", "sobol.owen", "--integrand", "expr:x0*x1", "-n", "64", "--sets", "8"];
+        args.extend_from_slice(extra);
+        let r = samplab(&args);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        r.stdout
+    };
+    // one function, so one instance unless asked; its integral given or computed (1/4)
+    let given = run(&["--exact", "0.25", "--json"]);
+    assert_eq!(given, run(&["--exact", "0.25", "--instances", "1", "--json"]));
+    let v: serde_json::Value = serde_json::from_slice(&given).unwrap();
+    // the mean of 8 realizations within five of its standard errors of the integral
+    let near_one = |row: &serde_json::Value| {
+        let se = (row["relative_variance"].as_f64().unwrap() / 8.0).sqrt();
+        assert!((row["relative_mean"].as_f64().unwrap() - 1.0).abs() < 5.0 * se, "{row}");
+    };
+    assert_eq!(v["rows"][0]["integrand"], "expr:x0*x1");
+    near_one(&v["rows"][0]);
+    let computed: serde_json::Value = serde_json::from_slice(&run(&["--json"])).unwrap();
+    near_one(&computed["rows"][0]);
+}
+
+#[test]
 fn cubature_of_a_formula_and_of_an_image() {
     let json = |args: &[&str]| -> serde_json::Value {
         let r = samplab(args);
