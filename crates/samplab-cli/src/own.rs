@@ -4,7 +4,6 @@
 
 use std::path::Path;
 
-use samplab::cubature::{Settings, cubature};
 use samplab::integrand::{Expr, Integrand, Lookup, Texture};
 
 /// The formats, for the commands' help.
@@ -13,13 +12,9 @@ pub const HELP: &str = "Your own integrand: 'expr:exp(-x0*x0-x1*x1)' (a formula 
      image.box:mask.png (the image's linear luminance over the unit square, row 0 at x1 = 0; bilinear or box lookups; \
      its integral is the mean texel).";
 
-/// The relative accuracy of a formula's integral computed for reference.
-const REFERENCE_TOL: f64 = 1e-9;
-
 /// The integrand `text` names when it is not a registered family, with its exact integral
 /// where `exact` states it (an image's is its mean texel); a formula's otherwise computed
-/// when `reference` asks (by cubature to a relative 1e-9, at most 2^22 points x 16
-/// randomizations), or unknown.
+/// when `reference` asks ([`samplab::cubature::reference`]), or unknown.
 ///
 /// # Errors
 /// A malformed formula (with the column), an unreadable image, a reference that did not
@@ -29,18 +24,7 @@ pub fn parse(text: &str, exact: Option<f64>, reference: bool) -> anyhow::Result<
         let f = Expr::parse(formula, None)?;
         let exact = match exact {
             Some(exact) => exact,
-            None if reference => {
-                let settings = Settings { rel_tol: REFERENCE_TOL, abs_tol: 0.0, max_n: 1 << 22, ..Settings::default() };
-                let c = cubature(&f, &settings, &samplab::progress::Progress::SILENT)?;
-                if !c.converged {
-                    anyhow::bail!(
-                        "--integrand {text}: its integral for reference reached only {:.1e} relative at 2^22 points; \
-                         give it with --exact",
-                        c.bound / c.estimate.abs()
-                    );
-                }
-                c.estimate
-            }
+            None if reference => samplab::cubature::reference(&f, &samplab::progress::Progress::SILENT)?,
             None => f64::NAN,
         };
         return Ok(Some(Box::new(f.with_exact(exact))));

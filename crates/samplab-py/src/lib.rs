@@ -683,6 +683,19 @@ fn cubature(
     Ok(outcome?.to_json(&name, given.has_exact().then(|| f.exact())).to_string())
 }
 
+/// The integral of the callable `f` of `dims` dimensions for reference:
+/// [`samplab::cubature::reference`].
+#[pyfunction]
+fn reference(py: Python<'_>, f: Bound<'_, PyAny>, dims: usize) -> PyResult<f64> {
+    let (given, _) = integrand::Given::from_python(&f, Seed::DEFAULT.0, dims, None)?;
+    let value =
+        interruptible(py, usize::MAX, |stop| samplab::cubature::reference(given.integrand(), &Progress::until(stop)));
+    if let Some(e) = given.failure() {
+        return Err(e);
+    }
+    value
+}
+
 /// Instance `instance` of the integrand family `spec` for `seed`: its values at the rows of
 /// an (n, d) array, and its exact integral.
 #[pyfunction]
@@ -982,6 +995,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(cubature, m)?)?;
     m.add_function(wrap_pyfunction!(integrate_given, m)?)?;
     m.add_function(wrap_pyfunction!(write_file, m)?)?;
+    m.add_function(wrap_pyfunction!(reference, m)?)?;
     m.add_function(wrap_pyfunction!(study_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(study_plan, m)?)?;
     m.add_function(wrap_pyfunction!(study_chunk, m)?)?;

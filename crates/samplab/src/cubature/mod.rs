@@ -250,6 +250,33 @@ pub fn cubature(f: &dyn Integrand, settings: &Settings, progress: &Progress) -> 
     })
 }
 
+/// The relative accuracy of [`reference`].
+pub const REFERENCE_TOL: f64 = 1e-9;
+
+/// The integral of `f` for reference where it is not known: [`cubature`] with the
+/// replicated rule's defaults to a relative [`REFERENCE_TOL`], at most 2^22 points x 16
+/// randomizations.
+///
+/// # Errors
+/// As [`cubature`]; [`Error::Setting`] (`exact`) when it did not reach that accuracy.
+pub fn reference(f: &dyn Integrand, progress: &Progress) -> Result<f64> {
+    let settings = Settings { rel_tol: REFERENCE_TOL, abs_tol: 0.0, max_n: 1 << 22, ..Settings::default() };
+    let c = cubature(f, &settings, progress)?;
+    if !c.converged {
+        return Err(Error::Setting {
+            name: "exact",
+            value: "(not given)".into(),
+            reason: format!(
+                "the reference integral reached only {:.1e} relative (estimate {:.6e}) at 2^22 points: give exact= \
+                 (--exact on the CLI)",
+                c.bound / c.estimate.abs(),
+                c.estimate
+            ),
+        });
+    }
+    Ok(c.estimate)
+}
+
 /// The transform a guaranteed rule needs of `sampler`, or why it cannot use it: a net in
 /// base 2 (Walsh) or a lattice (Fourier), a sequence in natural order, randomized so that
 /// its points are not the same for every seed.
