@@ -250,7 +250,7 @@ pub fn cubature(f: &dyn Integrand, settings: &Settings, progress: &Progress) -> 
     })
 }
 
-/// The relative accuracy of [`reference`].
+/// The relative accuracy of [`reference()`].
 pub const REFERENCE_TOL: f64 = 1e-9;
 
 /// The integral of `f` for reference where it is not known: [`cubature`] with the
