@@ -121,6 +121,29 @@ fn fast_path_equals_the_direct_dft_within_its_tolerance() {
     }
 }
 
+#[test]
+fn a_plan_reused_across_sets_and_threads_gives_each_set_a_fresh_plans_bits() {
+    use rayon::prelude::*;
+    use samplab::spectrum::nufft::Nufft;
+    for dims in [1, 2] {
+        let sets: Vec<PointSet> = (0..12)
+            .map(|k| sampler::build("random").unwrap().generate(50 + 40 * k, dims, Seed(k as u64)).unwrap())
+            .collect();
+        let fresh: Vec<Vec<[f64; 2]>> =
+            sets.iter().map(|p| Nufft::new(32, dims, 1e-9).unwrap().transform(p).unwrap()).collect();
+        let plan = Nufft::new(32, dims, 1e-9).unwrap();
+        for threads in [1, 3] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            // every set twice, in an order that hands each buffer sets of other sizes
+            let again: Vec<Vec<[f64; 2]>> = pool
+                .install(|| (0..24).into_par_iter().map(|k| plan.transform(&sets[(7 * k) % 12]).unwrap()).collect());
+            for (k, s) in again.iter().enumerate() {
+                assert!(s == &fresh[(7 * k) % 12], "{dims}D, {threads} threads, call {k}");
+            }
+        }
+    }
+}
+
 /// Ramamoorthi et al. 2012 section 5: uniform sampling bands at k N / (beta - 1); uniform
 /// jitter and stratified sampling turn that error into noise spread over all frequencies.
 #[test]

@@ -77,6 +77,7 @@ fn sums(points: &[f64], dims: usize, f: impl Fn(f64) -> f64 + Sync, g: impl Fn(f
 /// no branch, and only the one addition on the running sum's dependency chain.
 const LANES: usize = 16;
 
+#[derive(Clone, Copy)]
 struct Lanes<const N: usize> {
     sum: [f64; N],
     err: [f64; N],
@@ -439,40 +440,137 @@ impl ScaledSum {
 /// is continuous).
 pub fn pair_sum_2d<const R: usize>(
     points: &[f64],
-    g: impl Fn(f64, f64) -> f64,
-    split: impl Fn(f64) -> ([f64; R], [f64; R]) + Copy,
+    g: impl Fn(f64, f64) -> f64 + Sync,
+    split: impl Fn(f64) -> ([f64; R], [f64; R]) + Copy + Sync,
+) -> f64 {
+    pair_sum_2d_in_runs(points, g, split, RUN)
+}
+
+/// Outputs per task of a merge (the bits do not depend on it: see [`merge_runs`]).
+const RUN: usize = 1 << 14;
+
+/// [`pair_sum_2d`], each merge cut into tasks of about `run` outputs.
+fn pair_sum_2d_in_runs<const R: usize>(
+    points: &[f64],
+    g: impl Fn(f64, f64) -> f64 + Sync,
+    split: impl Fn(f64) -> ([f64; R], [f64; R]) + Copy + Sync,
+    run: usize,
 ) -> f64 {
     let pts: Vec<Point> = points.chunks_exact(2).map(|p| Point { x: p[0], y: p[1], inner: 0.0 }).collect();
     let n = pts.len();
     let (mut pts, mut spare) = radix_sort_x(pts);
-    // compiled for the widest vector instructions (the sums are independent lanes: the same
-    // bits on every instruction set)
-    let (mut from, mut to) = (&mut pts, &mut spare);
-    crate::simd::wide(
-        #[inline(always)]
-        || {
-            // blocks of BLOCK points in x order: their pairs directly, then sorted by y
-            for block in from.chunks_mut(BLOCK) {
-                block_pairs(&g, block);
-                block.sort_unstable_by_key(|p| order_key(p.y));
-            }
-            // then the merges, each level from one buffer into the other
-            let mut width = BLOCK;
-            while width < n {
-                for lo in (0..n).step_by(2 * width) {
-                    let (mid, hi) = ((lo + width).min(n), (lo + 2 * width).min(n));
-                    merge(split, &from[lo..hi], mid - lo, &mut to[lo..hi]);
+    // blocks of BLOCK points in x order: their pairs directly, then sorted by y (compiled
+    // for the widest vector instructions: the sums are independent lanes, the same bits on
+    // every instruction set)
+    pts.par_chunks_mut(BLOCK * 64).for_each(|blocks| {
+        crate::simd::wide(
+            #[inline(always)]
+            || {
+                for block in blocks.chunks_mut(BLOCK) {
+                    block_pairs(&g, block);
+                    block.sort_unstable_by_key(|p| order_key(p.y));
                 }
-                std::mem::swap(&mut from, &mut to);
-                width *= 2;
-            }
-        },
-    );
+            },
+        )
+    });
+    // then the merges, each level from one buffer into the other
+    let (mut from, mut to) = (&mut pts, &mut spare);
+    let mut width = BLOCK;
+    while width < n {
+        // RR = R^2 products, W >= 2 RR running sums padded to whole vectors
+        match R {
+            1 => merge_runs::<R, 1, 8>(split, from, to, width, run),
+            2 => merge_runs::<R, 4, 8>(split, from, to, width, run),
+            3 => merge_runs::<R, 9, 24>(split, from, to, width, run),
+            _ => unreachable!("the closed forms here have kernels of rank 1 to 3"),
+        }
+        std::mem::swap(&mut from, &mut to);
+        width *= 2;
+    }
     let mut pair = Sum::default();
     for p in from.iter() {
         pair.add(2.0 * p.inner + g(p.x, p.x) * g(p.y, p.y));
     }
     pair.value()
+}
+
+/// One run of a merge: the earlier half's points `left` and the later half's `right` that
+/// it outputs, and the running sums over the earlier half's points before `left`.
+struct Run<'a, const W: usize> {
+    left: &'a [Point],
+    right: &'a [Point],
+    below: Lanes<W>,
+    total: Lanes<W>,
+}
+
+/// One merge level: each pair of y-sorted runs of `width` points in `from` merged into `to`,
+/// every later point given its pairs with the earlier half ([`merge`]), the merges in
+/// parallel. A merge of more than `run` points is cut into runs of about `run` outputs at
+/// later points j_k, with the earlier points i_k the serial merge has output before j_k
+/// (those with y <= y_(j_k)); a run starts from the earlier half's running sums over its
+/// first i_k points, which are the sums the serial merge holds there (its steps that take
+/// a later point add zeros, which leave the sums' bits as they are). So every run gives the
+/// serial merge's bits, and the runs of one merge go in parallel too.
+fn merge_runs<const R: usize, const RR: usize, const W: usize>(
+    split: impl Fn(f64) -> ([f64; R], [f64; R]) + Copy + Sync,
+    from: &[Point],
+    to: &mut [Point],
+    width: usize,
+    run: usize,
+) {
+    from.par_chunks(2 * width).zip(to.par_chunks_mut(2 * width)).for_each(|(from, to)| {
+        let (left, right) = from.split_at(width.min(from.len()));
+        let pieces = from.len().div_ceil(run.max(1)).min(right.len()).max(1);
+        let cuts: Vec<(usize, usize)> = (0..=pieces)
+            .map(|k| {
+                let j = k * right.len() / pieces;
+                match k {
+                    0 => (0, 0),
+                    _ if k == pieces => (left.len(), right.len()),
+                    _ => (left.partition_point(|q| q.y <= right[j].y), j),
+                }
+            })
+            .collect();
+        crate::simd::wide(
+            #[inline(always)]
+            || {
+                // the earlier half's running sums at each cut, and over all of it
+                let mut sums = Lanes::<W>::new();
+                let mut at = Vec::with_capacity(pieces);
+                let mut done = 0;
+                for &(i, _) in &cuts[..pieces] {
+                    for q in &left[done..i] {
+                        sums.add(earlier::<R, RR, W>(&split, q, 1.0));
+                    }
+                    done = i;
+                    at.push(sums);
+                }
+                for q in &left[done..] {
+                    sums.add(earlier::<R, RR, W>(&split, q, 1.0));
+                }
+                if pieces == 1 {
+                    // (a plain call: an iterator's fold here would not be compiled wide)
+                    let total = sums;
+                    merge::<R, RR, W>(&split, Run { left, right, below: at[0], total }, to);
+                    return;
+                }
+                let mut tasks = Vec::with_capacity(pieces);
+                let mut rest = to;
+                for (c, below) in cuts.windows(2).zip(at) {
+                    let r = Run { left: &left[c[0].0..c[1].0], right: &right[c[0].1..c[1].1], below, total: sums };
+                    let (out, tail) = rest.split_at_mut(r.left.len() + r.right.len());
+                    tasks.push((r, out));
+                    rest = tail;
+                }
+                tasks.into_par_iter().with_min_len(1).for_each(|(r, out)| {
+                    crate::simd::wide(
+                        #[inline(always)]
+                        || merge::<R, RR, W>(&split, r, out),
+                    )
+                });
+            },
+        )
+    });
 }
 
 /// Below this many points a comparison sort is faster than the radix sort's histograms.
@@ -570,40 +668,25 @@ fn contract<const R: usize, const RR: usize>(u: &[f64; R], v: &[f64; R], sums: &
     outer::<R, RR>(u, v).iter().zip(sums).map(|(w, s)| w * s).sum()
 }
 
-/// Merge the y-sorted halves `from[..mid]` (earlier in x) and `from[mid..]` (later) into
-/// `to`, adding to each later point its pairs with the earlier half: those below it in y
-/// from the running sums over the earlier points met before it, those above from the
-/// half's total less them. One pass without branches on the data: both candidates' terms
-/// are formed at every step, the one not taken weighted by zero (which leaves the running
-/// sums' bits as they are).
+/// Merge a run's y-sorted earlier points `r.left` and later points `r.right` into `to`,
+/// adding to each later point its pairs with the earlier half: those below it in y from the
+/// running sums over the earlier points met before it, those above from the half's total
+/// less them. One pass without branches on the data: both candidates' terms are formed at
+/// every step, the one not taken weighted by zero (which leaves the running sums' bits as
+/// they are).
 #[inline(always)]
-fn merge<const R: usize>(split: impl Fn(f64) -> ([f64; R], [f64; R]), from: &[Point], mid: usize, to: &mut [Point]) {
-    let (left, right) = from.split_at(mid);
-    if right.is_empty() {
-        to.copy_from_slice(left);
-        return;
-    }
-    // RR = R^2 products, W >= 2 RR running sums padded to whole vectors
-    match R {
-        1 => merge_rank::<R, 1, 8>(&split, left, right, to),
-        2 => merge_rank::<R, 4, 8>(&split, left, right, to),
-        3 => merge_rank::<R, 9, 24>(&split, left, right, to),
-        _ => unreachable!("the closed forms here have kernels of rank 1 to 3"),
-    }
-}
-
-#[inline(always)]
-fn merge_rank<const R: usize, const RR: usize, const W: usize>(
+fn merge<const R: usize, const RR: usize, const W: usize>(
     split: &impl Fn(f64) -> ([f64; R], [f64; R]),
-    left: &[Point],
-    right: &[Point],
+    r: Run<W>,
     to: &mut [Point],
 ) {
-    let mut total = Lanes::<W>::new();
-    for q in left {
-        total.add(earlier::<R, RR, W>(split, q, 1.0));
+    let Run { left, right, mut below, total } = r;
+    if right.is_empty() || left.is_empty() {
+        for (out, p) in to.iter_mut().zip(left.iter().chain(right)) {
+            *out = if left.is_empty() { later::<R, RR, W>(split, p, &below.values(), &total.less(&below)) } else { *p };
+        }
+        return;
     }
-    let mut below = Lanes::<W>::new();
     let (mut i, mut j) = (0, 0);
     for out in to.iter_mut() {
         let (q, p) = (left[i.min(left.len() - 1)], right[j.min(right.len() - 1)]);
@@ -720,6 +803,34 @@ mod tests {
             assert_eq!(spare.len(), n);
             let got: Vec<u64> = sorted.iter().map(|p| p.x.to_bits()).collect();
             assert_eq!(got, want.iter().map(|x| x.to_bits()).collect::<Vec<_>>(), "n = {n}");
+        }
+    }
+
+    #[test]
+    fn merges_cut_into_runs_give_the_serial_bits() {
+        // ties on both axes (coordinates on a 1/16 grid) put equal y on both sides of a cut
+        let mut rng = crate::Seed(13).rng();
+        for n in [3, 200, 5000] {
+            let points: Vec<f64> = (0..2 * n)
+                .map(|k| {
+                    let u = crate::seed::uniform(&mut rng);
+                    if k % 3 == 0 { (u * 16.0).floor() / 16.0 } else { u }
+                })
+                .collect();
+            let serial = pair_sum_2d_in_runs(&points, |x, y| 1.0 - x.max(y), |u| ([1.0 - u], [1.0]), usize::MAX);
+            let exact: f64 = (0..n)
+                .flat_map(|i| (0..n).map(move |j| (i, j)))
+                .map(|(i, j)| (1.0 - points[2 * i].max(points[2 * j])) * (1.0 - points[2 * i + 1].max(points[2 * j + 1])))
+                .sum();
+            assert!((serial - exact).abs() <= 1e-9 * exact, "n = {n}: {serial} vs {exact}");
+            for run in [1, 5, 64, 1000] {
+                for threads in [1, 3] {
+                    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                    let cut = pool
+                        .install(|| pair_sum_2d_in_runs(&points, |x, y| 1.0 - x.max(y), |u| ([1.0 - u], [1.0]), run));
+                    assert_eq!(cut.to_bits(), serial.to_bits(), "n = {n}, runs of {run}, {threads} threads");
+                }
+            }
         }
     }
 

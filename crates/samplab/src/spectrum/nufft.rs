@@ -22,6 +22,9 @@ use crate::error::{Error, Result};
 use crate::numeric::quadrature::gauss_legendre;
 use crate::points::PointSet;
 
+/// The side of the tiles in which the 2D transform's transposes go.
+const TILE: usize = 16;
+
 /// A planned transform for one resolution and tolerance (reusable across sets).
 pub struct Nufft {
     res: usize,
@@ -34,6 +37,19 @@ pub struct Nufft {
     /// 1 / (kernel's Fourier transform) at each output frequency k - R/2.
     correction: Vec<f64>,
     fft: std::sync::Arc<dyn rustfft::Fft<f64>>,
+    /// Work buffers of finished transforms, taken by the next ones: a fresh grid of this
+    /// size costs a page fault per 4 KiB on first write, and with several threads each fault
+    /// is a TLB shootdown on every core (measured: more system time than the transform).
+    scratch: std::sync::Mutex<Vec<Scratch>>,
+}
+
+/// The buffers of one transform: the real grid, the complex rows and the kept columns.
+#[derive(Default)]
+struct Scratch {
+    real: Vec<f64>,
+    rows: Vec<C64<f64>>,
+    cols: Vec<C64<f64>>,
+    fft: Vec<C64<f64>>,
 }
 
 impl std::fmt::Debug for Nufft {
@@ -79,7 +95,7 @@ impl Nufft {
         // the fit aims at tol / 1000, or a few times that jump
         let kernel = kernel_polynomials(&psi, width, (tol / 1000.0).max(4.0 * (-beta).exp()));
         let fft = FftPlanner::new().plan_fft_forward(grid);
-        Ok(Nufft { res, dims, grid, width, kernel, correction, fft })
+        Ok(Nufft { res, dims, grid, width, kernel, correction, fft, scratch: Default::default() })
     }
 
     /// The kernel weights of a point at x on the grid: the first grid index and 16 values
@@ -119,15 +135,28 @@ impl Nufft {
         if points.dims() != self.dims {
             return Err(Error::Invalid(format!("planned for {}D points, got {}D", self.dims, points.dims())));
         }
+        // the real grid, and as much again for the transform's complex rows and output
+        let (g, cells) = (self.grid, (self.grid as u128).pow(self.dims as u32));
+        crate::memory::check(|| format!("a non-uniform FFT on a {g}^{} grid", self.dims), 16 * cells)?;
+        let mut scratch = self.scratch.lock().map(|mut pool| pool.pop()).ok().flatten().unwrap_or_default();
+        let out = self.spread_and_transform(points, weights, &mut scratch);
+        if let Ok(mut pool) = self.scratch.lock() {
+            pool.push(scratch);
+        }
+        Ok(out)
+    }
+
+    /// The body of [`Nufft::transform_weighted`], in the buffers of `scratch`.
+    fn spread_and_transform(&self, points: &PointSet, weights: Option<&[f64]>, scratch: &mut Scratch) -> Vec<Complex> {
         let (g, w) = (self.grid, self.width);
         let wrap = |i: i64| i.rem_euclid(g as i64) as usize;
         // spread into a real grid: 16 values from each first index (the last 16 - w zero)
         // where they fit, index by index around the torus near its seam
-        // the real grid, and as much again for the transform's complex rows and output
-        let cells = (g as u128).pow(self.dims as u32);
-        crate::memory::check(|| format!("a non-uniform FFT on a {g}^{} grid", self.dims), 16 * cells)?;
-        let mut real = vec![0.0; g.pow(self.dims as u32)];
+        let Scratch { real, rows, cols, fft } = scratch;
+        real.clear();
+        real.resize(g.pow(self.dims as u32), 0.0);
         let inner = |f: i64| f >= 0 && f as usize + 16 <= g;
+        fft.resize(self.fft.get_inplace_scratch_len(), C64::new(0.0, 0.0));
         crate::simd::wide(
             #[inline(always)]
             || {
@@ -172,43 +201,56 @@ impl Nufft {
         let half = (self.res / 2) as i64;
         let at = |k: usize| wrap(k as i64 - half);
         if self.dims == 1 {
-            let mut row: Vec<C64<f64>> = real.iter().map(|&v| C64::new(v, 0.0)).collect();
-            self.fft.process(&mut row);
-            return Ok((0..self.res)
+            rows.clear();
+            rows.extend(real.iter().map(|&v| C64::new(v, 0.0)));
+            self.fft.process_with_scratch(rows, fft);
+            return (0..self.res)
                 .map(|i| {
-                    let v = row[at(i)] * (self.correction[i] * inv);
+                    let v = rows[at(i)] * (self.correction[i] * inv);
                     [v.re, v.im]
                 })
-                .collect());
+                .collect();
         }
         // the rows are real: rows 2p and 2p + 1 go through one complex FFT as z = a + i b,
         // and A_k = (Z_k + conj Z_-k) / 2, B_k = (Z_k - conj Z_-k) / 2i are unpacked for the
         // R kept columns only
-        let mut z: Vec<C64<f64>> = real
-            .chunks_exact(2 * g)
-            .flat_map(|pair| pair[..g].iter().zip(&pair[g..]).map(|(&a, &b)| C64::new(a, b)))
-            .collect();
-        self.fft.process(&mut z);
+        rows.clear();
+        rows.extend(
+            real.chunks_exact(2 * g).flat_map(|pair| pair[..g].iter().zip(&pair[g..]).map(|(&a, &b)| C64::new(a, b))),
+        );
+        self.fft.process_with_scratch(rows, fft);
+        let z = &*rows;
         // the second pass on the kept columns: gather each into a contiguous row, transform
         // them together, and read the result transposed
-        let mut cols = vec![C64::new(0.0, 0.0); self.res * g];
-        for (j, col) in cols.chunks_exact_mut(g).enumerate() {
-            let (k, minus) = (at(j), (g - at(j)) % g);
-            for (p, ab) in col.chunks_exact_mut(2).enumerate() {
-                let (zk, zm) = (z[p * g + k], z[p * g + minus].conj());
-                ab[0] = (zk + zm) * 0.5;
-                ab[1] = (zk - zm) * C64::new(0.0, -0.5);
+        // both transposes go tile by tile (TILE x TILE entries), so that each cache line and
+        // page read is used for a whole tile rather than once per entry
+        cols.clear();
+        cols.resize(self.res * g, C64::new(0.0, 0.0));
+        for j0 in (0..self.res).step_by(TILE) {
+            for p0 in (0..g / 2).step_by(TILE) {
+                for j in j0..(j0 + TILE).min(self.res) {
+                    let (k, minus) = (at(j), (g - at(j)) % g);
+                    for p in p0..(p0 + TILE).min(g / 2) {
+                        let (zk, zm) = (z[p * g + k], z[p * g + minus].conj());
+                        cols[j * g + 2 * p] = (zk + zm) * 0.5;
+                        cols[j * g + 2 * p + 1] = (zk - zm) * C64::new(0.0, -0.5);
+                    }
+                }
             }
         }
-        self.fft.process(&mut cols);
-        let mut out = Vec::with_capacity(self.res * self.res);
-        for i in 0..self.res {
-            for j in 0..self.res {
-                let v = cols[j * g + at(i)] * (self.correction[i] * self.correction[j] * inv);
-                out.push([v.re, v.im]);
+        self.fft.process_with_scratch(cols, fft);
+        let mut out = vec![[0.0; 2]; self.res * self.res];
+        for i0 in (0..self.res).step_by(TILE) {
+            for j0 in (0..self.res).step_by(TILE) {
+                for j in j0..(j0 + TILE).min(self.res) {
+                    for i in i0..(i0 + TILE).min(self.res) {
+                        let v = cols[j * g + at(i)] * (self.correction[i] * self.correction[j] * inv);
+                        out[i * self.res + j] = [v.re, v.im];
+                    }
+                }
             }
         }
-        Ok(out)
+        out
     }
 }
 

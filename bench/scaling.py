@@ -1,0 +1,114 @@
+#!/usr/bin/env python3
+"""How samplab's heavy work scales with threads: the table of the "every core used" issue.
+
+Each row is one command of the release binary, run with RAYON_NUM_THREADS = 1, 2 and, where
+the machine has them, 4, 8, 16 cores; rounds alternate the thread counts so that a slow
+spell of a noisy machine hits every column alike. Prints the median wall time per column,
+the speed-up at 2 threads and the serial fraction Amdahl's law gives from the 1- and
+2-thread medians, f = 2 T2 / T1 - 1 (T(p) = T1 (f + (1 - f) / p)). Each command's output is
+compared across thread counts: a row whose bytes differ is marked.
+
+Usage: bench/compare scaling [--rounds K] [ROW...]   (rows: render integrate extreme
+spectrum elimination l2 reproduce; all by default; K = 3)
+"""
+import hashlib
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SAMPLAB = os.path.join(ROOT, "target", "release", "samplab")
+
+# (name, label, arguments; OUT is replaced by a fresh path, its content hashed)
+ROWS = [
+    ("render", "render spheres 512x512, 64 spp",
+     ["render", "spheres", "--res", "512x512", "--spp", "64", "-o", "OUT.exr"]),
+    ("integrate", "integrate, 3 samplers x 4 counts x 2000 sets x 10 instances",
+     ["integrate", "--integrand", "quad", "--sampler", "random", "--sampler", "jitter", "--sampler", "sobol.owen",
+      "-n", "16,64,256,1024", "--sets", "2000", "--json"]),
+    ("extreme", "exact 2D extreme discrepancy, Owen-Sobol' 10^4",
+     ["discrepancy", "extreme", "--sampler", "sobol.owen", "-n", "10000", "--json"]),
+    ("spectrum", "spectrum statistics, 64 sets of 65536 points, 1024^2",
+     ["spectrum", "--sampler", "random", "-n", "65536", "--sets", "64", "--res", "1024", "-o", "OUT"]),
+    ("elimination", "generate elimination 10^5",
+     ["generate", "elimination", "-n", "100000", "-o", "OUT.npy"]),
+    ("l2", "L2-star + centered of 10^6 random points",
+     ["discrepancy", "l2-star", "centered", "--sampler", "random", "-n", "1000000", "--json"]),
+    ("reproduce", "samplab reproduce (fast)", ["reproduce", "--out", "OUT"]),
+]
+
+
+def digest(path):
+    """SHA-256 of a file, or of a folder's files (names and bytes) in sorted order; the
+    reproduction's HTML pages are left out, as they print the time each part took."""
+    h = hashlib.sha256()
+    if os.path.isdir(path):
+        for base, dirs, files in sorted(os.walk(path)):
+            dirs.sort()
+            for f in sorted(files):
+                if f.endswith(".html") or f.startswith(".samplab"):
+                    continue
+                p = os.path.join(base, f)
+                h.update(os.path.relpath(p, path).encode())
+                with open(p, "rb") as fh:
+                    h.update(fh.read())
+    elif os.path.exists(path):
+        with open(path, "rb") as fh:
+            h.update(fh.read())
+    return h.hexdigest()
+
+
+def run(args, threads, tmp):
+    out = os.path.join(tmp, "out%d" % threads)
+    argv = [a.replace("OUT", out) for a in args]
+    target = next((a for a in argv if a.startswith(out)), None)
+    if target and os.path.isdir(target):
+        shutil.rmtree(target)
+    env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
+    start = time.perf_counter()
+    done = subprocess.run([SAMPLAB] + argv, env=env, capture_output=True)
+    seconds = time.perf_counter() - start
+    if done.returncode != 0:
+        sys.exit("samplab %s: exit %d: %s" % (" ".join(argv), done.returncode, done.stderr.decode()[-400:]))
+    return seconds, digest(target) if target else hashlib.sha256(done.stdout).hexdigest()
+
+
+def main():
+    args = sys.argv[1:]
+    rounds = 3
+    if "--rounds" in args:
+        i = args.index("--rounds")
+        rounds = int(args[i + 1])
+        del args[i:i + 2]
+    rows = [r for r in ROWS if not args or r[0] in args]
+    cores = os.cpu_count() or 1
+    columns = [p for p in (1, 2, 4, 8, 16) if p <= cores]
+    print("samplab scaling, %s, %d cores, %d rounds, medians of wall time (%s)"
+          % (time.strftime("%Y-%m-%d"), cores, rounds, SAMPLAB))
+    header = "| work | " + " | ".join("%d thread%s" % (p, "" if p == 1 else "s") for p in columns) + \
+             " | speed-up at 2 | serial fraction | bytes |"
+    print(header)
+    print("|" + "---|" * (len(columns) + 4))
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, label, argv in rows:
+            times = {p: [] for p in columns}
+            digests = set()
+            for _ in range(rounds):
+                for p in columns:
+                    seconds, d = run(argv, p, tmp)
+                    times[p].append(seconds)
+                    digests.add(d)
+            med = {p: statistics.median(times[p]) for p in columns}
+            speedup = med[1] / med[2] if 2 in med else float("nan")
+            serial = 2.0 / speedup - 1.0
+            cells = " | ".join("%.2f s" % med[p] for p in columns)
+            print("| %s | %s | %.2fx | %.1f%% | %s |" % (label, cells, speedup, 100 * serial,
+                                                        "same" if len(digests) == 1 else "DIFFER"), flush=True)
+
+
+if __name__ == "__main__":
+    main()
