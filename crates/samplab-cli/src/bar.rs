@@ -79,18 +79,19 @@ impl Drop for Bar {
 /// [`samplab_report::Event`]s drawn on stderr).
 pub(crate) struct Experiments {
     bars: indicatif::MultiProgress,
-    current: std::sync::Mutex<Option<ProgressBar>>,
+    /// The bars of the experiments running, by their place in the run.
+    running: std::sync::Mutex<std::collections::HashMap<usize, ProgressBar>>,
 }
 
 impl Experiments {
     pub(crate) fn new() -> Experiments {
-        Experiments { bars: indicatif::MultiProgress::new(), current: std::sync::Mutex::new(None) }
+        Experiments { bars: indicatif::MultiProgress::new(), running: Default::default() }
     }
 
     /// Draw `event`.
-    pub(crate) fn show(&self, event: samplab_report::Event<'_>) {
+    pub(crate) fn show(&self, task: usize, event: samplab_report::Event<'_>) {
         use samplab_report::Event;
-        let mut current = self.current.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let mut running = self.running.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         match event {
             Event::Started { paper, experiment } => {
                 let bar = self.bars.add(ProgressBar::new(1));
@@ -98,11 +99,11 @@ impl Experiments {
                     bar.set_style(style);
                 }
                 bar.set_prefix(format!("{paper} {experiment}"));
-                *current = Some(bar);
+                running.insert(task, bar);
             }
-            Event::Length(units) => current.iter().for_each(|b| b.set_length(units)),
-            Event::Advanced(units) => current.iter().for_each(|b| b.inc(units)),
-            Event::Finished(_) => current.take().iter().for_each(ProgressBar::finish),
+            Event::Length(units) => running.get(&task).iter().for_each(|b| b.set_length(units)),
+            Event::Advanced(units) => running.get(&task).iter().for_each(|b| b.inc(units)),
+            Event::Finished(_) => running.remove(&task).iter().for_each(ProgressBar::finish),
         }
     }
 }

@@ -48,7 +48,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     };
     let start = Instant::now();
     let bars = crate::bar::Experiments::new();
-    let claims = samplab_report::reproduce(&chosen, &options, &crate::bar::STOP, &|e| bars.show(e))?;
+    let claims = samplab_report::reproduce(&chosen, &options, &crate::bar::STOP, &|task, e| bars.show(task, e))?;
     let count = |name: &str| claims.iter().filter(|(_, c)| c.verdict_name() == name).count();
     let explained =
         claims.iter().filter(|(_, c)| c.verdict() == Verdict::NotReproduced && c.explanation.is_some()).count();

@@ -913,10 +913,14 @@ fn reproduce(
     };
     let failed: Mutex<Option<PyErr>> = Mutex::new(None);
     let result = interruptible(py, usize::MAX, |stop| {
-        let state = Mutex::new(Watched::default());
-        let watch = |event: samplab_report::Event<'_>| {
+        // what each running experiment has told, by its place in the run
+        let state = Mutex::new(std::collections::HashMap::<usize, Watched>::new());
+        let watch = |task: usize, event: samplab_report::Event<'_>| {
             let Some(callback) = &progress else { return };
-            let Some(args) = state.lock().unwrap_or_else(PoisonError::into_inner).hear(event) else { return };
+            let Some(args) = state.lock().unwrap_or_else(PoisonError::into_inner).entry(task).or_default().hear(event)
+            else {
+                return;
+            };
             Python::attach(|py| {
                 if let Err(e) = callback.call1(py, args) {
                     stop.store(true, Ordering::Relaxed);
@@ -937,7 +941,7 @@ fn reproduce(
     serde_json::to_string(&list).map_err(err)
 }
 
-/// What a Python progress callback has been told of the running experiment.
+/// What a Python progress callback has been told of one running experiment.
 #[derive(Default)]
 struct Watched {
     paper: String,

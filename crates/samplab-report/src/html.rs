@@ -202,6 +202,37 @@ fn lint_html(lint: &[String]) -> String {
     h + "</ul>\n"
 }
 
+/// The run's timing on the index: each experiment's start and length, the threads, the
+/// wall time against the sum of the experiments' times, and the critical path (the
+/// longest experiment: they are independent); also written as `timing.json`, in the form
+/// of `data/timings.json`, which orders the next runs.
+fn timing_html(dir: &Path, results: &[(&Paper, Vec<Done>)], options: &Options, wall: f64) -> Result<String, Error> {
+    let mut all: Vec<(String, &Done)> = results
+        .iter()
+        .flat_map(|(p, done)| done.iter().map(move |d| (format!("{}/{}", p.key, d.experiment), d)))
+        .collect();
+    let sum: f64 = all.iter().map(|(_, d)| d.seconds).sum();
+    let threads = rayon::current_num_threads();
+    let scale = if options.scale == Scale::Fast { "fast" } else { "full" };
+    let seconds: serde_json::Map<String, serde_json::Value> =
+        all.iter().map(|(k, d)| (k.clone(), serde_json::json!((d.seconds * 100.0).round() / 100.0))).collect();
+    let json = serde_json::json!({ scale: { "threads": threads, "wall_seconds": wall, "experiments": seconds } });
+    write(&dir.join("timing.json"), serde_json::to_string_pretty(&json).expect("plain data").as_bytes())?;
+    all.sort_by(|a, b| a.1.started.total_cmp(&b.1.started));
+    let longest = all.iter().max_by(|a, b| a.1.seconds.total_cmp(&b.1.seconds));
+    let mut h = format!(
+        "<h2>Timing</h2>\n<p>{} experiments on {threads} threads, longest first (by <code>data/timings.json</code>): {wall:.1} s of wall time for {sum:.1} s of experiments ({:.2} experiments at once on average). The critical path is the longest experiment, {}: {:.1} s. <a href=\"timing.json\">timing.json</a></p>\n<table><tr><th>experiment</th><th>started (s)</th><th>took (s)</th></tr>\n",
+        all.len(),
+        sum / wall.max(1e-9),
+        longest.map_or(String::new(), |(k, _)| escape(k)),
+        longest.map_or(0.0, |(_, d)| d.seconds),
+    );
+    for (key, d) in &all {
+        let _ = writeln!(h, "<tr><td>{}</td><td>{:.1}</td><td>{:.1}</td></tr>", escape(key), d.started, d.seconds);
+    }
+    Ok(h + "</table>\n")
+}
+
 /// Claims reproduced, checked (identities that hold), not reproduced, undecided.
 fn counts(claims: &[&Claim]) -> [usize; 4] {
     let of = |name: &str| claims.iter().filter(|c| c.verdict_name() == name).count();
@@ -213,6 +244,7 @@ pub(crate) fn write_report(
     dir: &Path,
     results: &[(&Paper, Vec<Done>)],
     options: &Options,
+    wall: f64,
 ) -> Result<Vec<(String, Claim)>, Error> {
     write(&dir.join("style.css"), STYLE.as_bytes())?;
     let mut nav = String::from("<a href=\"index.html\">summary</a>");
@@ -258,12 +290,13 @@ pub(crate) fn write_report(
         "<p>samplab {} reproduction, scale {scale}, seed {}; experiments took {:.1} s in all. Every number in a table comes from this run, except the published values, which are read from one data file with their sources.</p>\n\
          <table><tr><th rowspan=\"2\">paper</th><th rowspan=\"2\">experiments</th><th colspan=\"4\">claims</th><th colspan=\"7\">numbered tables, figures and result equations</th></tr>\n\
          <tr><th>reproduced</th><th>checked</th><th>not reproduced</th><th>undecided</th><th>reproduced</th><th>differs</th><th>not reproduced</th><th>undecided</th><th>checked</th><th>shown</th><th>pending (not attempted)</th></tr>\n{index_rows}</table>\n\
-         {}<h2>Figure lint</h2>\n{}<h2>All claims</h2>\n{}<p><a href=\"claims.json\">claims.json</a></p>\n",
+         {}<h2>Figure lint</h2>\n{}{}<h2>All claims</h2>\n{}<p><a href=\"claims.json\">claims.json</a></p>\n",
         env!("CARGO_PKG_VERSION"),
         options.seed.0,
         total_seconds,
         if options.scale == Scale::Fast { full_scale_html(&all_claims) } else { String::new() },
         lint_html(&lint),
+        timing_html(dir, results, options, wall)?,
         claims_table(&refs)
     );
     write(&dir.join("lint.json"), serde_json::to_string_pretty(&lint).expect("plain data").as_bytes())?;

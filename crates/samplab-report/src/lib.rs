@@ -76,11 +76,13 @@ pub enum Event<'e> {
     Finished(f64),
 }
 
-/// Whoever watches a run: called with each [`Event`], from any thread.
-pub type Watch<'a> = &'a (dyn Fn(Event<'_>) + Sync);
+/// Whoever watches a run: called with each [`Event`] and the place of the experiment it
+/// concerns in the run (0, 1, .. in the pages' order), from any thread: experiments run
+/// side by side, so the events of several interleave.
+pub type Watch<'a> = &'a (dyn Fn(usize, Event<'_>) + Sync);
 
 /// A watcher that ignores every event.
-pub const UNWATCHED: Watch<'static> = &|_| {};
+pub const UNWATCHED: Watch<'static> = &|_, _| {};
 
 /// What an experiment gets: its scale, seed, the run's watcher and stop flag.
 pub struct Ctx<'a> {
@@ -92,18 +94,20 @@ pub struct Ctx<'a> {
     pub watch: Watch<'a>,
     /// Raised to stop the run (Ctrl-C); long library calls are given it.
     pub stop: &'a AtomicBool,
+    /// The experiment's place in the run, which the watcher is told with each event.
+    pub task: usize,
 }
 
 impl Ctx<'_> {
     /// This experiment has `units` units of work in all.
     pub fn set_length(&self, units: u64) {
-        (self.watch)(Event::Length(units));
+        (self.watch)(self.task, Event::Length(units));
     }
 
     /// `units` more units of this experiment are done, without checking the stop flag
     /// (what the library's [`Progress`] reports to).
     pub fn tick(&self, units: u64) {
-        (self.watch)(Event::Advanced(units));
+        (self.watch)(self.task, Event::Advanced(units));
     }
 
     /// `units` more units of this experiment are done.
@@ -339,6 +343,8 @@ pub struct Done {
     pub title: String,
     /// Its parameters.
     pub parameters: String,
+    /// When it started, in seconds after the run began.
+    pub started: f64,
     /// Seconds it took.
     pub seconds: f64,
     /// What it produced.
@@ -350,12 +356,16 @@ fn io_error(p: &Path, e: std::io::Error) -> Error {
 }
 
 /// Run `papers` and write the report, telling `watch` of each experiment's progress.
-/// Returns the claims. The run stops before the next experiment (and inside the long
-/// library calls) once `stop` is raised.
+/// Returns the claims. The experiments are independent (each has its own seed), so they
+/// run side by side on the thread pool, longest first by [`expected_seconds`] (one worker
+/// per thread takes the next experiment as it finishes one; each experiment's own
+/// parallel work fills the threads the others leave idle); their outputs do not depend on
+/// the order. The run stops before the next experiment (and inside the long library
+/// calls) once `stop` is raised.
 ///
 /// # Errors
-/// An experiment or a write fails, or the run was stopped ([`samplab::Error::Interrupted`]);
-/// the target folder is then left as it was.
+/// An experiment or a write fails (the first in the pages' order is reported), or the run
+/// was stopped ([`samplab::Error::Interrupted`]); the target folder is then left as it was.
 pub fn reproduce(
     papers: &[&Paper],
     options: &Options,
@@ -364,40 +374,96 @@ pub fn reproduce(
 ) -> Result<Vec<(String, Claim)>, Error> {
     // refused before the run, not after it
     samplab::io::check_folder(&options.out, options.replace)?;
-    let mut results: Vec<(&Paper, Vec<Done>)> = Vec::new();
-    for paper in papers {
-        let mut done = Vec::new();
-        for e in &paper.experiments {
-            let ctx = Ctx {
-                scale: options.scale,
-                seed: options.seed.derive_str(&format!("{}/{}", paper.key, e.id)),
-                watch,
-                stop,
-            };
-            if stop.load(Ordering::Relaxed) {
-                return Err(samplab::Error::Interrupted.into());
-            }
-            watch(Event::Started { paper: paper.key, experiment: e.id });
-            let start = Instant::now();
-            let output = (e.run)(&ctx)?;
-            watch(Event::Finished(start.elapsed().as_secs_f64()));
-            done.push(Done {
-                experiment: e.id,
-                title: format!("{} — {}", e.title, e.source),
-                parameters: e.parameters.into(),
-                seconds: start.elapsed().as_secs_f64(),
-                output,
+    let tasks: Vec<(&Paper, &Experiment)> =
+        papers.iter().flat_map(|p| p.experiments.iter().map(move |e| (*p, e))).collect();
+    let expected = expected_seconds(options.scale);
+    let cost = |t: usize| expected.get(&format!("{}/{}", tasks[t].0.key, tasks[t].1.id)).copied().unwrap_or(0.0);
+    let mut order: Vec<usize> = (0..tasks.len()).collect();
+    order.sort_by(|&a, &b| cost(b).total_cmp(&cost(a)));
+    let slots: Vec<std::sync::Mutex<Option<Result<Done, Error>>>> =
+        tasks.iter().map(|_| std::sync::Mutex::new(None)).collect();
+    let (next, failed) = (std::sync::atomic::AtomicUsize::new(0), AtomicBool::new(false));
+    let began = Instant::now();
+    rayon::scope(|scope| {
+        for _ in 0..rayon::current_num_threads().min(tasks.len()) {
+            scope.spawn(|_| {
+                loop {
+                    let k = next.fetch_add(1, Ordering::Relaxed);
+                    if k >= order.len() || stop.load(Ordering::Relaxed) || failed.load(Ordering::Relaxed) {
+                        break;
+                    }
+                    let (task, (paper, e)) = (order[k], tasks[order[k]]);
+                    let ctx = Ctx {
+                        scale: options.scale,
+                        seed: options.seed.derive_str(&format!("{}/{}", paper.key, e.id)),
+                        watch,
+                        stop,
+                        task,
+                    };
+                    watch(task, Event::Started { paper: paper.key, experiment: e.id });
+                    let start = Instant::now();
+                    let done = (e.run)(&ctx).map(|output| Done {
+                        experiment: e.id,
+                        title: format!("{} — {}", e.title, e.source),
+                        parameters: e.parameters.into(),
+                        started: start.duration_since(began).as_secs_f64(),
+                        seconds: start.elapsed().as_secs_f64(),
+                        output,
+                    });
+                    watch(task, Event::Finished(start.elapsed().as_secs_f64()));
+                    failed.fetch_or(done.is_err(), Ordering::Relaxed);
+                    *slots[task].lock().unwrap_or_else(std::sync::PoisonError::into_inner) = Some(done);
+                }
             });
         }
-        results.push((paper, done));
+    });
+    let wall = began.elapsed().as_secs_f64();
+    let mut done = slots.into_iter().map(|s| s.into_inner().unwrap_or_else(std::sync::PoisonError::into_inner));
+    let mut results: Vec<(&Paper, Vec<Done>)> = Vec::new();
+    for paper in papers {
+        let mut finished = Vec::new();
+        for _ in &paper.experiments {
+            match done.next().flatten() {
+                Some(d) => finished.push(d?),
+                // not run: a stop, or an error reported by an experiment later in the pages
+                None if stop.load(Ordering::Relaxed) => return Err(samplab::Error::Interrupted.into()),
+                None => {}
+            }
+        }
+        results.push((paper, finished));
+    }
+    if stop.load(Ordering::Relaxed) {
+        return Err(samplab::Error::Interrupted.into());
     }
     let mut claims = Vec::new();
     samplab::io::write_folder(&options.out, options.replace, |staging| -> Result<(), Error> {
         for sub in ["figures", "tables"] {
             std::fs::create_dir_all(staging.join(sub)).map_err(|e| io_error(staging, e))?;
         }
-        claims = html::write_report(staging, &results, options)?;
+        claims = html::write_report(staging, &results, options, wall)?;
         Ok(())
     })?;
     Ok(claims)
+}
+
+/// Each experiment's seconds ("paper/experiment") in the last run recorded at `scale`
+/// (`data/timings.json`, from a report's `timing.json`; the fast run's where the full
+/// scale has none recorded), which order the run: an experiment not listed goes last.
+///
+/// # Panics
+/// Never at run time: the file is compiled in, and a test reads it.
+pub fn expected_seconds(scale: Scale) -> std::collections::HashMap<String, f64> {
+    let all: serde_json::Value =
+        serde_json::from_str(include_str!("../data/timings.json")).expect("data/timings.json is JSON");
+    let of = |key: &str| -> std::collections::HashMap<String, f64> {
+        all[key]["experiments"]
+            .as_object()
+            .map(|m| m.iter().filter_map(|(k, v)| Some((k.clone(), v.as_f64()?))).collect())
+            .unwrap_or_default()
+    };
+    let mut seconds = of("fast");
+    if scale == Scale::Full {
+        seconds.extend(of("full"));
+    }
+    seconds
 }

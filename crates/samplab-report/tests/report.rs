@@ -26,19 +26,20 @@ fn attributes<'a>(html: &'a str, attr: &str) -> Vec<&'a str> {
 type Claims = Vec<(String, samplab_report::Claim)>;
 
 /// Run `papers` at fast scale with seed 7 on `threads` threads into `out`; the claims, and
-/// the run's events as text ("start paper/experiment", "length n", "finish").
+/// the run's events as text, each after its experiment's place in the run ("3 start
+/// paper/experiment", "3 length n", "3 finish").
 fn run(papers: &[Paper], out: &Path, threads: usize) -> (Claims, Vec<String>) {
     let refs: Vec<&Paper> = papers.iter().collect();
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
     let events = std::sync::Mutex::new(Vec::new());
-    let watch = |e: samplab_report::Event<'_>| {
+    let watch = |task: usize, e: samplab_report::Event<'_>| {
         let text = match e {
             samplab_report::Event::Started { paper, experiment } => format!("start {paper}/{experiment}"),
             samplab_report::Event::Length(n) => format!("length {n}"),
             samplab_report::Event::Advanced(_) => return,
             samplab_report::Event::Finished(_) => "finish".into(),
         };
-        events.lock().unwrap().push(text);
+        events.lock().unwrap().push(format!("{task} {text}"));
     };
     let claims = pool
         .install(|| {
@@ -60,33 +61,58 @@ static FULL_RUN: LazyLock<(PathBuf, Claims, Vec<String>)> = LazyLock::new(|| {
     (out, claims, events)
 });
 
-/// The watcher hears every experiment start, then its length, then its end, in the
-/// papers' order, one experiment at a time.
+/// The watcher hears every experiment once: its start, then its length and progress, then
+/// its end, under the experiment's place in the pages' order; the experiments that start
+/// first are the longest by `data/timings.json`.
 #[test]
-fn the_watcher_hears_each_experiment_start_and_finish_in_order() {
+fn the_watcher_hears_each_experiment_start_and_finish_longest_first() {
     let events = &FULL_RUN.2;
-    let expected: Vec<String> = paper::all()
-        .iter()
-        .flat_map(|p| p.experiments.iter().map(move |e| format!("start {}/{}", p.key, e.id)))
-        .collect();
-    let started: Vec<&String> = events.iter().filter(|e| e.starts_with("start ")).collect();
-    assert_eq!(started.len(), expected.len());
-    assert!(started.iter().zip(&expected).all(|(a, b)| *a == b));
-    let mut open = false;
+    let expected: Vec<String> =
+        paper::all().iter().flat_map(|p| p.experiments.iter().map(move |e| format!("{}/{}", p.key, e.id))).collect();
+    let mut open = vec![false; expected.len()];
+    let mut started = Vec::new();
     for e in events {
-        match e.split(' ').next().unwrap() {
+        let (task, text) = e.split_once(' ').unwrap();
+        let task: usize = task.parse().unwrap();
+        match text.split(' ').next().unwrap() {
             "start" => {
-                assert!(!open, "{e} before the last experiment finished");
-                open = true;
+                assert_eq!(text, format!("start {}", expected[task]), "the place names the experiment");
+                assert!(!open[task] && !started.contains(&task), "{e}: started twice");
+                open[task] = true;
+                started.push(task);
             }
             "finish" => {
-                assert!(open, "a finish without a start");
-                open = false;
+                assert!(open[task], "{e}: a finish without a start");
+                open[task] = false;
             }
-            _ => assert!(open, "{e} outside an experiment"),
+            _ => assert!(open[task], "{e} outside its experiment"),
         }
     }
-    assert!(!open);
+    assert_eq!(started.len(), expected.len());
+    assert!(open.iter().all(|o| !o));
+    // two workers take the two longest first (in either order)
+    let seconds = samplab_report::expected_seconds(Scale::Fast);
+    let mut by_length: Vec<usize> = (0..expected.len()).collect();
+    by_length.sort_by(|&a, &b| seconds[&expected[b]].total_cmp(&seconds[&expected[a]]));
+    let (mut first, mut want) = (started[..2].to_vec(), by_length[..2].to_vec());
+    first.sort_unstable();
+    want.sort_unstable();
+    assert_eq!(first, want);
+}
+
+/// Every experiment has its time in `data/timings.json` at both scales, so that each run
+/// is ordered longest first.
+#[test]
+fn every_experiment_has_an_expected_time() {
+    for scale in [Scale::Fast, Scale::Full] {
+        let seconds = samplab_report::expected_seconds(scale);
+        for p in paper::all() {
+            for e in &p.experiments {
+                let key = format!("{}/{}", p.key, e.id);
+                assert!(seconds.contains_key(&key), "{key} is missing from data/timings.json ({scale:?})");
+            }
+        }
+    }
 }
 
 /// Every file of `a`'s figures and tables equals the same file of `b`, and every claim of

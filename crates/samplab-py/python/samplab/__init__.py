@@ -517,8 +517,9 @@ def reproduce(
 
     Nothing is drawn on the terminal: ``progress(paper, experiment, done, total)``, when
     given, is called as each experiment starts (``done`` 0), learns its length, advances (at
-    most once per percent) and finishes (``done == total``), from any thread; an exception it
-    raises stops the run and is raised here."""
+    most once per percent) and finishes (``done == total``), from any thread: experiments run
+    side by side, so the calls of several interleave. An exception it raises stops the run
+    and is raised here."""
     if progress is not None and not callable(progress):
         raise Error(f"progress: {progress!r} is not callable")
     keys = None if only is None else [only] if isinstance(only, str) else list(only)
