@@ -116,13 +116,28 @@ fn write(
     let mut files: Vec<File> = vec![(
         "spectrum.json".into(),
         Box::new(|| {
-            let json = serde_json::json!({
-                "source": source, "res": st.res, "dims": st.dims, "n": st.n, "sets": st.sets,
-                "layout": "row-major; index (R/2, R/2) is DC; frequency = index - R/2 on each axis",
-                "normalization": "S(w) = (1/N) sum exp(-2 pi i w.x); variance divides by M - 1; radial bins r = 1..R/2-1 by rounded |w|, DC excluded",
-                "statistics": spectrum::json(st, &names),
-            });
-            Ok(serde_json::to_vec(&json)?)
+            // the keys in sorted order, as a serde_json map prints them
+            #[derive(serde::Serialize)]
+            struct SpectrumJson<'a> {
+                dims: usize,
+                layout: &'a str,
+                n: usize,
+                normalization: &'a str,
+                res: usize,
+                sets: usize,
+                source: &'a str,
+                statistics: Box<serde_json::value::RawValue>,
+            }
+            Ok(serde_json::to_vec(&SpectrumJson {
+                dims: st.dims,
+                layout: "row-major; index (R/2, R/2) is DC; frequency = index - R/2 on each axis",
+                n: st.n,
+                normalization: "S(w) = (1/N) sum exp(-2 pi i w.x); variance divides by M - 1; radial bins r = 1..R/2-1 by rounded |w|, DC excluded",
+                res: st.res,
+                sets: st.sets,
+                source,
+                statistics: spectrum::json(st, &names),
+            })?)
         }),
     )];
     for name in &a.stat {

@@ -190,9 +190,10 @@ fn slab(ys: impl Iterator<Item = f64>, w: f64, inv: f64, open: bool) -> f64 {
 /// slab's at its exact width, plus the best boxes of the two strips, precomputed once per
 /// node of the two halving trees of sides (O(k^2) for a node of k sides, up to 2048).
 /// A block of one pair is bounded by its exact value (all three slabs are the pair's), so
-/// the search refines the blocks of largest bound, 256 at a time (their children bounded
-/// in parallel), until no bound exceeds the best exact value found: the result is the
-/// maximum over every pair whatever the order or the thread count. A bound is one pass
+/// the search refines the blocks of largest bound (one worker per thread takes the next
+/// from a shared heap and puts back its children), until no bound exceeds the best exact
+/// value found: the result is the maximum over every pair whatever the order or the
+/// thread count. A bound is one pass
 /// over a slab's points in y order (read from a bitmap of y ranks), O(n).
 ///
 /// How many blocks are refined depends on the set; the worst case is every pair, O(n^3)
@@ -203,38 +204,61 @@ fn slab(ys: impl Iterator<Item = f64>, w: f64, inv: f64, open: bool) -> f64 {
 /// each; at n = 2048, 70% of the bounds computed were of larger blocks, two to four passes
 /// each).
 pub fn extreme_2d(points: &[f64]) -> f64 {
+    use std::sync::atomic::{AtomicU64, Ordering};
     let sides = Sides::new(points);
-    let mut best: f64 = 0.0;
-    let mut heap = BinaryHeap::new();
-    heap.push(sides.bound(Block { i: 1, j: 1, ub: 0.0 }, &mut vec![0; sides.words]));
+    let root = sides.bound(Block { i: 1, j: 1, ub: 0.0 }, &mut vec![0; sides.words]);
+    // the blocks to refine, and how many workers hold one they are refining
+    let shared = std::sync::Mutex::new((BinaryHeap::from([root]), 0usize));
+    // the best exact value found (a non-negative double's bits order as the double)
+    let best = AtomicU64::new(0.0f64.to_bits());
     // blocks whose bound, computed in floating point, is within this of the best may
     // still hold a pair worth it: refined rather than dropped
     const SLACK: f64 = 1e-13;
-    let mut batch = Vec::new();
-    loop {
-        batch.clear();
-        while batch.len() < 256 {
-            match heap.peek_mut() {
-                Some(top) if top.ub >= best - SLACK => batch.push(PeekMut::pop(top)),
-                _ => break,
+    let worth = |b: &Block| b.ub >= f64::from_bits(best.load(Ordering::Relaxed)) - SLACK;
+    let lock = || shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    // each worker takes the block of largest bound, bounds its children and puts back
+    // those that may beat the best: no step waits for the slowest of a batch, so every
+    // thread stays busy to the end; the result is the largest pair whatever the order
+    let worker = || {
+        let mut bits = vec![0u64; sides.words];
+        loop {
+            let taken = {
+                let mut guard = lock();
+                let (heap, busy) = &mut *guard;
+                match heap.peek_mut() {
+                    Some(top) if worth(&top) => {
+                        *busy += 1;
+                        Some(PeekMut::pop(top))
+                    }
+                    // nothing worth refining, and nobody who could put more back: done
+                    _ if *busy == 0 => return,
+                    _ => None,
+                }
+            };
+            let Some(block) = taken else {
+                std::thread::yield_now();
+                continue;
+            };
+            let mut keep = Vec::with_capacity(4);
+            for child in sides.split(&block) {
+                let b = sides.bound(child, &mut bits);
+                if sides.lefts.len(b.i) == 1 && sides.rights.len(b.j) == 1 {
+                    best.fetch_max(b.ub.max(0.0).to_bits(), Ordering::Relaxed); // one pair: its exact value
+                } else if worth(&b) {
+                    keep.push(b);
+                }
             }
+            let mut guard = lock();
+            guard.0.extend(keep);
+            guard.1 -= 1;
         }
-        if batch.is_empty() {
-            return best;
+    };
+    rayon::scope(|scope| {
+        for _ in 0..rayon::current_num_threads() {
+            scope.spawn(|_| worker());
         }
-        let children: Vec<Block> = batch.iter().flat_map(|b| sides.split(b)).collect();
-        let bounded: Vec<Block> = children
-            .par_iter()
-            .map_init(|| vec![0u64; sides.words], |bits, &b| sides.bound(b, bits))
-            .collect();
-        for b in bounded {
-            if sides.lefts.len(b.i) == 1 && sides.rights.len(b.j) == 1 {
-                best = best.max(b.ub); // one pair: its exact value
-            } else if b.ub >= best - SLACK {
-                heap.push(b);
-            }
-        }
-    }
+    });
+    f64::from_bits(best.into_inner())
 }
 
 /// Strips up to this many sides get their own best boxes precomputed (O(k^2) each).

@@ -576,43 +576,106 @@ fn merge_runs<const R: usize, const RR: usize, const W: usize>(
 /// Below this many points a comparison sort is faster than the radix sort's histograms.
 const RADIX_FROM: usize = 4096;
 
-/// The points in x order (`f64::total_cmp`'s), by a least-significant-digit radix sort on
-/// the bits (11 at a time, a pass skipped where every key has the same digit; a comparison
-/// sort below [`RADIX_FROM`] points), and a spare buffer of the same length.
+/// The points in x order (`f64::total_cmp`'s), and a spare buffer of the same length: a
+/// comparison sort below [`RADIX_FROM`] points, else a stable sort, which has one result
+/// however it is made: the set cut into one piece per thread (a power of two of them),
+/// each sorted by a least-significant-digit radix sort on the bits ([`radix_sort`]), the
+/// sorted pieces merged pairwise, each merge in parallel runs ([`merge_by_x`]).
 fn radix_sort_x(mut pts: Vec<Point>) -> (Vec<Point>, Vec<Point>) {
-    if pts.len() < RADIX_FROM {
+    let n = pts.len();
+    let mut spare = pts.clone();
+    if n < RADIX_FROM {
         pts.sort_unstable_by_key(|p| order_key(p.x));
-        let spare = pts.clone();
         return (pts, spare);
     }
+    let mut pieces = rayon::current_num_threads().next_power_of_two();
+    while pieces > 1 && n / pieces < RADIX_FROM {
+        pieces /= 2;
+    }
+    let piece = n.div_ceil(pieces);
+    pts.par_chunks_mut(piece).zip(spare.par_chunks_mut(piece)).for_each(|(p, s)| radix_sort(p, s));
+    let (mut from, mut to) = (&mut pts, &mut spare);
+    let (mut width, mut swapped) = (piece, false);
+    while width < n {
+        from.par_chunks(2 * width).zip(to.par_chunks_mut(2 * width)).for_each(|(f, t)| merge_by_x(f, width, t));
+        std::mem::swap(&mut from, &mut to);
+        (width, swapped) = (2 * width, !swapped);
+    }
+    if swapped { (spare, pts) } else { (pts, spare) }
+}
+
+/// Sort `pts` by x, stably, by a least-significant-digit radix sort on the bits (11 at a
+/// time, a pass skipped where every key has the same digit), `spare` its scratch.
+fn radix_sort(pts: &mut [Point], spare: &mut [Point]) {
     const BITS: usize = 11;
     const PASSES: usize = 64_usize.div_ceil(BITS);
     let key = |p: &Point| (order_key(p.x) as u64) ^ (1 << 63);
     let digit = |k: u64, pass: usize| (k >> (BITS * pass)) as usize & ((1 << BITS) - 1);
     let mut counts = vec![[0usize; 1 << BITS]; PASSES];
-    for p in &pts {
+    for p in pts.iter() {
         let k = key(p);
         for (pass, count) in counts.iter_mut().enumerate() {
             count[digit(k, pass)] += 1;
         }
     }
-    let mut spare = pts.clone();
+    let (mut from, mut to) = (pts, spare);
+    let mut swapped = false;
     for (pass, count) in counts.iter_mut().enumerate() {
-        if count.contains(&pts.len()) {
+        if count.contains(&from.len()) {
             continue;
         }
         let mut start = 0;
         for c in count.iter_mut() {
             (*c, start) = (start, start + *c);
         }
-        for p in &pts {
+        for p in from.iter() {
             let d = digit(key(p), pass);
-            spare[count[d]] = *p;
+            to[count[d]] = *p;
             count[d] += 1;
         }
-        std::mem::swap(&mut pts, &mut spare);
+        std::mem::swap(&mut from, &mut to);
+        swapped = !swapped;
     }
-    (pts, spare)
+    if swapped {
+        // the sorted points are in the scratch: back into place
+        to.copy_from_slice(from);
+    }
+}
+
+/// Merge the x-sorted `from[..width]` and `from[width..]` into `to`, stably (the first
+/// half's point first on equal x), in runs of about [`RUN`] outputs in parallel: a run
+/// starts at a point j_k of the second half and at the first half's points with x <= its x,
+/// where the serial merge is at that point.
+fn merge_by_x(from: &[Point], width: usize, to: &mut [Point]) {
+    let (left, right) = from.split_at(width.min(from.len()));
+    let pieces = from.len().div_ceil(RUN).min(right.len()).max(1);
+    let cuts: Vec<(usize, usize)> = (0..=pieces)
+        .map(|k| {
+            let j = k * right.len() / pieces;
+            match k {
+                0 => (0, 0),
+                _ if k == pieces => (left.len(), right.len()),
+                _ => (left.partition_point(|q| order_key(q.x) <= order_key(right[j].x)), j),
+            }
+        })
+        .collect();
+    let mut runs = Vec::with_capacity(pieces);
+    let mut rest = to;
+    for c in cuts.windows(2) {
+        let (l, r) = (&left[c[0].0..c[1].0], &right[c[0].1..c[1].1]);
+        let (out, tail) = rest.split_at_mut(l.len() + r.len());
+        runs.push((l, r, out));
+        rest = tail;
+    }
+    runs.into_par_iter().with_min_len(1).for_each(|(l, r, out)| {
+        let (mut i, mut j) = (0, 0);
+        for o in out.iter_mut() {
+            let take_left = j == r.len() || (i < l.len() && order_key(l[i].x) <= order_key(r[j].x));
+            *o = if take_left { l[i] } else { r[j] };
+            i += usize::from(take_left);
+            j += usize::from(!take_left);
+        }
+    });
 }
 
 /// A coordinate's place in `f64::total_cmp`'s order, as an integer (sorts faster).
@@ -788,7 +851,7 @@ mod tests {
     fn radix_sort_gives_total_cmp_order() {
         let mut rng = crate::Seed(12).rng();
         let special = [0.0, -0.0, 1.0, 0.5, f64::MIN_POSITIVE, 1e-310, 0.25, 0.75];
-        for n in [1, 2, 7, 64, 1000, 5000, 20000] {
+        for n in [1, 2, 7, 64, 1000, 5000, 20000, 70001] {
             let coords: Vec<f64> = (0..2 * n)
                 .map(|k| match k % 5 {
                     0 => special[crate::seed::below(&mut rng, special.len() as u64) as usize],
@@ -799,10 +862,20 @@ mod tests {
             let pts: Vec<Point> = coords.chunks_exact(2).map(|p| Point { x: p[0], y: p[1], inner: 0.0 }).collect();
             let mut want: Vec<f64> = coords.iter().step_by(2).copied().collect();
             want.sort_by(f64::total_cmp);
-            let (sorted, spare) = radix_sort_x(pts);
-            assert_eq!(spare.len(), n);
-            let got: Vec<u64> = sorted.iter().map(|p| p.x.to_bits()).collect();
-            assert_eq!(got, want.iter().map(|x| x.to_bits()).collect::<Vec<_>>(), "n = {n}");
+            // above the comparison sort, the stable order (ties keep their y order here)
+            let mut stable = pts.clone();
+            stable.sort_by(|a, b| a.x.total_cmp(&b.x));
+            for threads in [1, 2, 3, 8] {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                let (sorted, spare) = pool.install(|| radix_sort_x(pts.clone()));
+                assert_eq!(spare.len(), n);
+                let got: Vec<u64> = sorted.iter().map(|p| p.x.to_bits()).collect();
+                assert_eq!(got, want.iter().map(|x| x.to_bits()).collect::<Vec<_>>(), "n = {n}, {threads} threads");
+                if n >= RADIX_FROM {
+                    let ys = |v: &[Point]| v.iter().map(|p| p.y.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(ys(&sorted), ys(&stable), "n = {n}, {threads} threads: not stable");
+                }
+            }
         }
     }
 

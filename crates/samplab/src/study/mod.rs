@@ -431,8 +431,7 @@ impl Description {
                 let st = merge_up(partials)?.finish(*res, *d, *n)?;
                 let names = crate::spectrum::STATISTICS;
                 Ok(Merged {
-                    json: serde_json::to_string(&crate::spectrum::json(&st, &names))
-                        .map_err(|e| invalid(e.to_string()))?,
+                    json: crate::spectrum::json(&st, &names).get().to_owned(),
                     csv: crate::spectrum::radial_csv(&st, &names),
                     statistics: Some(st),
                 })
