@@ -494,6 +494,19 @@ fn pair_sum_2d_in_runs<const R: usize>(
     pair.value()
 }
 
+/// Where a merge of `left` earlier and `right` later items is cut into `pieces` runs: at
+/// later items j_k = k right / pieces, each with `before(j_k)`, the earlier items the
+/// serial merge has output before later item j_k; from (0, 0) to (left, right).
+fn cuts(left: usize, right: usize, pieces: usize, before: impl Fn(usize) -> usize) -> Vec<(usize, usize)> {
+    (0..=pieces)
+        .map(|k| match k {
+            0 => (0, 0),
+            _ if k == pieces => (left, right),
+            _ => (before(k * right / pieces), k * right / pieces),
+        })
+        .collect()
+}
+
 /// One run of a merge: the earlier half's points `left` and the later half's `right` that
 /// it outputs, and the running sums over the earlier half's points before `left`.
 struct Run<'a, const W: usize> {
@@ -521,16 +534,7 @@ fn merge_runs<const R: usize, const RR: usize, const W: usize>(
     from.par_chunks(2 * width).zip(to.par_chunks_mut(2 * width)).for_each(|(from, to)| {
         let (left, right) = from.split_at(width.min(from.len()));
         let pieces = from.len().div_ceil(run.max(1)).min(right.len()).max(1);
-        let cuts: Vec<(usize, usize)> = (0..=pieces)
-            .map(|k| {
-                let j = k * right.len() / pieces;
-                match k {
-                    0 => (0, 0),
-                    _ if k == pieces => (left.len(), right.len()),
-                    _ => (left.partition_point(|q| q.y <= right[j].y), j),
-                }
-            })
-            .collect();
+        let cuts = cuts(left.len(), right.len(), pieces, |j| left.partition_point(|q| q.y <= right[j].y));
         crate::simd::wide(
             #[inline(always)]
             || {
@@ -649,16 +653,9 @@ fn radix_sort(pts: &mut [Point], spare: &mut [Point]) {
 fn merge_by_x(from: &[Point], width: usize, to: &mut [Point]) {
     let (left, right) = from.split_at(width.min(from.len()));
     let pieces = from.len().div_ceil(RUN).min(right.len()).max(1);
-    let cuts: Vec<(usize, usize)> = (0..=pieces)
-        .map(|k| {
-            let j = k * right.len() / pieces;
-            match k {
-                0 => (0, 0),
-                _ if k == pieces => (left.len(), right.len()),
-                _ => (left.partition_point(|q| order_key(q.x) <= order_key(right[j].x)), j),
-            }
-        })
-        .collect();
+    let cuts = cuts(left.len(), right.len(), pieces, |j| {
+        left.partition_point(|q| order_key(q.x) <= order_key(right[j].x))
+    });
     let mut runs = Vec::with_capacity(pieces);
     let mut rest = to;
     for c in cuts.windows(2) {
