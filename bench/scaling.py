@@ -44,13 +44,14 @@ ROWS = [
 
 def digest(path):
     """SHA-256 of a file, or of a folder's files (names and bytes) in sorted order; the
-    reproduction's HTML pages are left out, as they print the time each part took."""
+    reproduction's HTML pages and timing.json are left out, as they give the time each
+    part took."""
     h = hashlib.sha256()
     if os.path.isdir(path):
         for base, dirs, files in sorted(os.walk(path)):
             dirs.sort()
             for f in sorted(files):
-                if f.endswith(".html") or f.startswith(".samplab"):
+                if f.endswith(".html") or f == "timing.json" or f.startswith(".samplab"):
                     continue
                 p = os.path.join(base, f)
                 h.update(os.path.relpath(p, path).encode())
