@@ -14,6 +14,7 @@
 //! keeps the largest error against the direct DFT below tol relative to DC for random and
 //! structured sets alike (tested).
 
+use rayon::prelude::*;
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex as C64;
 
@@ -22,7 +23,8 @@ use crate::error::{Error, Result};
 use crate::numeric::quadrature::gauss_legendre;
 use crate::points::PointSet;
 
-/// The side of the tiles in which the 2D transform's transposes go.
+/// The side of the tiles in which the 2D transform's transposes go, and the rows of an
+/// FFT task.
 const TILE: usize = 16;
 
 /// A planned transform for one resolution and tolerance (reusable across sets).
@@ -49,7 +51,6 @@ struct Scratch {
     real: Vec<f64>,
     rows: Vec<C64<f64>>,
     cols: Vec<C64<f64>>,
-    fft: Vec<C64<f64>>,
 }
 
 impl std::fmt::Debug for Nufft {
@@ -96,6 +97,16 @@ impl Nufft {
         let kernel = kernel_polynomials(&psi, width, (tol / 1000.0).max(4.0 * (-beta).exp()));
         let fft = FftPlanner::new().plan_fft_forward(grid);
         Ok(Nufft { res, dims, grid, width, kernel, correction, fft, scratch: Default::default() })
+    }
+
+    /// The FFT of each grid-long row of `rows`, TILE rows to a parallel task (the rows are
+    /// independent: the same bits on any thread count).
+    fn ffts(&self, rows: &mut [C64<f64>]) {
+        let g = self.grid;
+        rows.par_chunks_mut(TILE * g).for_each(|chunk| {
+            let mut scratch = vec![C64::new(0.0, 0.0); self.fft.get_inplace_scratch_len()];
+            self.fft.process_with_scratch(chunk, &mut scratch);
+        });
     }
 
     /// The kernel weights of a point at x on the grid: the first grid index and 16 values
@@ -152,11 +163,10 @@ impl Nufft {
         let wrap = |i: i64| i.rem_euclid(g as i64) as usize;
         // spread into a real grid: 16 values from each first index (the last 16 - w zero)
         // where they fit, index by index around the torus near its seam
-        let Scratch { real, rows, cols, fft } = scratch;
+        let Scratch { real, rows, cols } = scratch;
         real.clear();
         real.resize(g.pow(self.dims as u32), 0.0);
         let inner = |f: i64| f >= 0 && f as usize + 16 <= g;
-        fft.resize(self.fft.get_inplace_scratch_len(), C64::new(0.0, 0.0));
         crate::simd::wide(
             #[inline(always)]
             || {
@@ -203,7 +213,7 @@ impl Nufft {
         if self.dims == 1 {
             rows.clear();
             rows.extend(real.iter().map(|&v| C64::new(v, 0.0)));
-            self.fft.process_with_scratch(rows, fft);
+            self.ffts(rows);
             return (0..self.res)
                 .map(|i| {
                     let v = rows[at(i)] * (self.correction[i] * inv);
@@ -218,38 +228,43 @@ impl Nufft {
         rows.extend(
             real.chunks_exact(2 * g).flat_map(|pair| pair[..g].iter().zip(&pair[g..]).map(|(&a, &b)| C64::new(a, b))),
         );
-        self.fft.process_with_scratch(rows, fft);
+        self.ffts(rows);
         let z = &*rows;
         // the second pass on the kept columns: gather each into a contiguous row, transform
         // them together, and read the result transposed
         // both transposes go tile by tile (TILE x TILE entries), so that each cache line and
         // page read is used for a whole tile rather than once per entry
+        // (each tile of TILE columns, or of TILE output rows, a parallel task)
         cols.clear();
         cols.resize(self.res * g, C64::new(0.0, 0.0));
-        for j0 in (0..self.res).step_by(TILE) {
+        cols.par_chunks_mut(TILE * g).enumerate().for_each(|(t, tile)| {
+            let j0 = t * TILE;
             for p0 in (0..g / 2).step_by(TILE) {
-                for j in j0..(j0 + TILE).min(self.res) {
-                    let (k, minus) = (at(j), (g - at(j)) % g);
+                for (dj, col) in tile.chunks_exact_mut(g).enumerate() {
+                    let (k, minus) = (at(j0 + dj), (g - at(j0 + dj)) % g);
                     for p in p0..(p0 + TILE).min(g / 2) {
                         let (zk, zm) = (z[p * g + k], z[p * g + minus].conj());
-                        cols[j * g + 2 * p] = (zk + zm) * 0.5;
-                        cols[j * g + 2 * p + 1] = (zk - zm) * C64::new(0.0, -0.5);
+                        col[2 * p] = (zk + zm) * 0.5;
+                        col[2 * p + 1] = (zk - zm) * C64::new(0.0, -0.5);
                     }
                 }
             }
-        }
-        self.fft.process_with_scratch(cols, fft);
+        });
+        self.ffts(cols);
         let mut out = vec![[0.0; 2]; self.res * self.res];
-        for i0 in (0..self.res).step_by(TILE) {
+        let cols = &*cols;
+        out.par_chunks_mut(TILE * self.res).enumerate().for_each(|(t, tile)| {
+            let i0 = t * TILE;
             for j0 in (0..self.res).step_by(TILE) {
                 for j in j0..(j0 + TILE).min(self.res) {
-                    for i in i0..(i0 + TILE).min(self.res) {
+                    for (di, row) in tile.chunks_exact_mut(self.res).enumerate() {
+                        let i = i0 + di;
                         let v = cols[j * g + at(i)] * (self.correction[i] * self.correction[j] * inv);
-                        out[i * self.res + j] = [v.re, v.im];
+                        row[j] = [v.re, v.im];
                     }
                 }
             }
-        }
+        });
         out
     }
 }
