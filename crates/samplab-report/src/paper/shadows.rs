@@ -1,5 +1,7 @@
 //! What the rendering experiments share: references, errors over seeds, and images.
 
+use std::sync::atomic::AtomicBool;
+
 use samplab::progress::Progress;
 use samplab::seed::Seed;
 use samplab_render::light::DiskMap;
@@ -11,6 +13,9 @@ use crate::{Error, Figure};
 /// One rendering configuration of an experiment.
 #[derive(Clone, Copy)]
 pub(crate) struct Setup<'a> {
+    /// The run's stop flag, which every render polls (a reference at full scale takes
+    /// minutes).
+    pub stop: &'a AtomicBool,
     pub scene: &'a Scene,
     pub size: (usize, usize),
     pub mode: Mode,
@@ -35,8 +40,9 @@ pub(crate) struct Setup<'a> {
 
 impl<'a> Setup<'a> {
     /// Visibility mode through pixel centres (Ramamoorthi et al. 2012, section 7).
-    pub fn visibility(scene: &'a Scene, size: (usize, usize), disk_map: DiskMap) -> Setup<'a> {
+    pub fn visibility(stop: &'a AtomicBool, scene: &'a Scene, size: (usize, usize), disk_map: DiskMap) -> Setup<'a> {
         Setup {
+            stop,
             scene,
             size,
             mode: Mode::Visibility,
@@ -75,7 +81,7 @@ impl<'a> Setup<'a> {
     /// Render with `light` x `n` light samples and `spp` estimates per pixel.
     pub fn render(&self, light: &str, n: usize, spp: usize, seed: Seed) -> Result<Image, Error> {
         let o = self.options(light, n, spp, seed)?;
-        Ok(render(self.scene, &o, &Progress::SILENT).map_err(render_error)?.image)
+        Ok(render(self.scene, &o, &Progress::until(self.stop)).map_err(render_error)?.image)
     }
 
     /// A converged reference: Owen-scrambled Sobol' with `n` light samples and `spp`
@@ -88,7 +94,7 @@ impl<'a> Setup<'a> {
     /// Owen-scrambled Sobol' over the pixel, lens, time and gloss, one pattern per estimate.
     pub fn converged(&self, light: &str, n: usize, spp: usize, seed: Seed) -> Result<Image, Error> {
         let o = self.options(light, n, spp, seed)?.converged(light, n, spp).map_err(render_error)?;
-        Ok(render(self.scene, &o, &Progress::SILENT).map_err(render_error)?.image)
+        Ok(render(self.scene, &o, &Progress::until(self.stop)).map_err(render_error)?.image)
     }
 
     /// Errors against `reference` of each of `seeds` renders (seed k derived from `seed`).
@@ -120,8 +126,12 @@ pub(crate) fn scene(name: &str, kind: Option<LightKind>) -> Result<Scene, Error>
     builtin(name, kind).map_err(render_error)
 }
 
+/// A renderer's error as the report's (a stop stays a stop).
 fn render_error(e: samplab_render::Error) -> Error {
-    Error::Invalid(e.to_string())
+    match e {
+        samplab_render::Error::Samplab(e) => Error::Samplab(e),
+        e => Error::Invalid(e.to_string()),
+    }
 }
 
 /// The mean MSE of several renders and its standard error.

@@ -30,7 +30,7 @@ pub(super) fn grids_linear(ctx: &Ctx) -> Result<Output, Error> {
     let strategies = [("uniform", "regular"), ("uniform jitter", "jitter.uniform"), ("stratified", "jitter")];
     ctx.set_length((strategies.len() as u64) * seeds + 1);
     let grids = scene("grids", Some(LightKind::Linear))?;
-    let setup = Setup::visibility(&grids, size, DiskMap::Concentric);
+    let setup = Setup::visibility(ctx.stop, &grids, size, DiskMap::Concentric);
     let reference = setup.reference(reference_n, 1, ctx.seed.derive_str("reference"))?;
     ctx.advance(1)?;
     let published = published::table("ramamoorthi2012", "fig8");
@@ -114,9 +114,9 @@ pub(super) fn planar_lights(ctx: &Ctx) -> Result<Output, Error> {
     for (scene_name, figure) in [("spheres", "13"), ("sphere-box", "16 and 18")] {
         for (light_name, kind) in lights {
             let s = scene(scene_name, Some(kind))?;
-            let setup = Setup::visibility(&s, size, DiskMap::Reject);
+            let setup = Setup::visibility(ctx.stop, &s, size, DiskMap::Reject);
             // Halton goes through the Shirley-Chiu (concentric) warp, as in Fig. 16(d)
-            let warped = Setup::visibility(&s, size, DiskMap::Concentric);
+            let warped = Setup::visibility(ctx.stop, &s, size, DiskMap::Concentric);
             let reference = setup.reference(reference_n, 1, ctx.seed.derive_str("reference"))?;
             ctx.advance(1)?;
             // the paper's counts: Fig. 13 renders with 50 samples (7 x 7 = 49 here, the
@@ -173,7 +173,7 @@ pub(super) fn grids_lights(ctx: &Ctx) -> Result<Output, Error> {
     for scene_name in GRIDS {
         for (light_name, kind, figure, n) in lights {
             let s = scene(scene_name, Some(kind))?;
-            let setup = Setup::visibility(&s, size, DiskMap::Reject);
+            let setup = Setup::visibility(ctx.stop, &s, size, DiskMap::Reject);
             let reference = setup.reference(reference_n, 1, ctx.seed.derive_str("reference"))?;
             ctx.advance(1)?;
             let mut runs = vec![("stratified", "jitter", setup), ("uniform jitter", "jitter.uniform", setup)];
@@ -181,7 +181,7 @@ pub(super) fn grids_lights(ctx: &Ctx) -> Result<Output, Error> {
                 runs.push((
                     "Halton, Shirley-Chiu warp",
                     "halton.shift",
-                    Setup::visibility(&s, size, DiskMap::Concentric),
+                    Setup::visibility(ctx.stop, &s, size, DiskMap::Concentric),
                 ));
             }
             let mut mse = Vec::new();
@@ -237,7 +237,7 @@ pub(super) fn error_vs_n(ctx: &Ctx) -> Result<Output, Error> {
         GRIDS.into_iter().flat_map(|g| [(g, ("circular", LightKind::Disk)), (g, ("Gaussian", LightKind::Gaussian))])
     {
         let s = scene(scene_name, Some(kind))?;
-        let setup = Setup::visibility(&s, size, DiskMap::Reject);
+        let setup = Setup::visibility(ctx.stop, &s, size, DiskMap::Reject);
         let reference = setup.reference(ctx.pick(2048, 8192), 1, ctx.seed.derive_str("reference"))?;
         ctx.advance(1)?;
         let mut series = Vec::new();

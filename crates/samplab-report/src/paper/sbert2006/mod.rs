@@ -419,8 +419,11 @@ fn offsets(ctx: &Ctx) -> Result<Output, Error> {
     let configs: [&[(usize, usize)]; 2] = [&[(1, 16), (4, 4)], &[(1, 256), (4, 64), (16, 16)]];
     ctx.set_length(1 + 5 * seeds);
     let s = scene("sphere-box", Some(LightKind::Square))?;
-    let setup =
-        Setup { mode: Mode::Direct, pattern: Pattern::PerEstimate, ..Setup::visibility(&s, size, DiskMap::Concentric) };
+    let setup = Setup {
+        mode: Mode::Direct,
+        pattern: Pattern::PerEstimate,
+        ..Setup::visibility(ctx.stop, &s, size, DiskMap::Concentric)
+    };
     let reference = setup.reference(reference_n, 1, ctx.seed.derive_str("reference"))?;
     ctx.advance(1)?;
     let published = published::table("sbert2006", "table1");

@@ -20,7 +20,8 @@ pub(super) fn obscurance(ctx: &Ctx) -> Result<Output, Error> {
     let (mut rows, mut figures, mut claims) = (Vec::new(), Vec::new(), Vec::new());
     for scene_name in SCENES {
         let s = scene(scene_name, None)?;
-        let setup = Setup { mode: Mode::Obscurance, range: 1.0, ..Setup::visibility(&s, size, DiskMap::Concentric) };
+        let setup =
+            Setup { mode: Mode::Obscurance, range: 1.0, ..Setup::visibility(ctx.stop, &s, size, DiskMap::Concentric) };
         let reference = setup.reference(reference_n, 1, ctx.seed.derive_str("reference"))?;
         ctx.advance(1)?;
         // obscurances fill the top of [0, 1]: every image of the scene is shown stretched

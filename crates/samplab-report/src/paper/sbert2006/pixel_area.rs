@@ -112,8 +112,11 @@ pub(super) fn pixel_area(ctx: &Ctx) -> Result<Output, Error> {
     let (size, seeds, reference_spp) = (ctx.pick((96, 72), (256, 192)), ctx.pick(4, 8), ctx.pick(1024, 4096));
     ctx.set_length(1 + 9 * seeds);
     let s = scene("checker-45", None)?;
-    let base =
-        Setup { footprint: Footprint::Area, displayed: true, ..Setup::visibility(&s, size, DiskMap::Concentric) };
+    let base = Setup {
+        footprint: Footprint::Area,
+        displayed: true,
+        ..Setup::visibility(ctx.stop, &s, size, DiskMap::Concentric)
+    };
     let reference = base.reference(1, reference_spp, ctx.seed.derive_str("reference"))?;
     ctx.advance(1)?;
     let mut figures =

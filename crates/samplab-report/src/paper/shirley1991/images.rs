@@ -44,7 +44,7 @@ fn one_scene(
         footprint: Footprint::Area,
         pattern: Pattern::PerPixel,
         displayed: true,
-        ..Setup::visibility(&scene, (128, 96), DiskMap::Concentric)
+        ..Setup::visibility(ctx.stop, &scene, (128, 96), DiskMap::Concentric)
     };
     let reference = setup.reference(4, ctx.pick(256, 1024), ctx.seed.derive_str("reference"))?;
     out.figures.push(shadows::picture(

@@ -163,7 +163,7 @@ pub(super) fn shadows(ctx: &Ctx) -> Result<Output, Error> {
         figure: "fig8",
         domain: "disc light (16 shadow rays)",
         spps: &[1, 4, 16],
-        setup: Setup::visibility(&s, size, DiskMap::Concentric),
+        setup: Setup::visibility(ctx.stop, &s, size, DiskMap::Concentric),
         render: &|setup, spec, spp, seed| setup.render(spec, 16, spp, seed),
         reference: &|setup, seed| setup.reference(reference_n, 1, seed),
     };
@@ -204,7 +204,7 @@ pub(super) fn defocus(ctx: &Ctx) -> Result<Output, Error> {
         setup: Setup {
             mode: Mode::Direct,
             footprint: Footprint::Area,
-            ..Setup::visibility(&s, size, DiskMap::Concentric)
+            ..Setup::visibility(ctx.stop, &s, size, DiskMap::Concentric)
         },
         render: &|setup, spec, spp, seed| {
             Setup { pixel: spec, lens: spec, ..*setup }.render(FIXED_LIGHT, 16, spp, seed)
@@ -241,7 +241,7 @@ pub(super) fn motion(ctx: &Ctx) -> Result<Output, Error> {
         figure: "fig9",
         domain: "shutter interval",
         spps: &spps,
-        setup: Setup { mode: Mode::Direct, ..Setup::visibility(&s, size, DiskMap::Concentric) },
+        setup: Setup { mode: Mode::Direct, ..Setup::visibility(ctx.stop, &s, size, DiskMap::Concentric) },
         render: &|setup, spec, spp, seed| Setup { time: spec, ..*setup }.render(FIXED_LIGHT, 16, spp, seed),
         reference: &|setup, seed| setup.converged(FIXED_LIGHT, 16, reference_spp, seed),
     };
