@@ -54,9 +54,10 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     let crate::sets::Loaded { sets, source, .. } = a.source.load(file.as_deref(), 1, &(0.0..=1.0))?;
     let bar = Bar::new((sets.len() * metrics.len()) as u64, "evaluations");
     let progress = bar.progress();
-    // values[m][k]: metric m on set k, computed in parallel, deterministic
-    let values: Vec<Vec<f64>> = metrics
-        .iter()
+    // values[m][k]: metric m on set k, computed in parallel (the metrics too, so that one's
+    // serial parts overlap another's work), deterministic; the first metric's error first
+    let values: Vec<anyhow::Result<Vec<f64>>> = metrics
+        .par_iter()
         .map(|m| {
             sets.par_iter()
                 .enumerate()
@@ -68,7 +69,8 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
                 })
                 .collect::<anyhow::Result<Vec<f64>>>()
         })
-        .collect::<anyhow::Result<_>>()?;
+        .collect();
+    let values: Vec<Vec<f64>> = values.into_iter().collect::<anyhow::Result<_>>()?;
     drop(bar);
     let out = if a.json {
         discrepancy::json(&metrics, &values, &sets.iter().map(PointSet::len).collect::<Vec<_>>(), &source)
