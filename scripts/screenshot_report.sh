@@ -9,23 +9,12 @@
 set -euo pipefail
 report="${1:-report}"
 [ -f "$report/index.html" ] || { echo "no $report/index.html: run samplab reproduce first" >&2; exit 2; }
-if ! command -v chromium >/dev/null 2>&1; then
-  if [ "$(id -u)" = 0 ]; then
-    apt-get update -qq && apt-get install -y -qq chromium >/dev/null
-  else
-    echo "chromium is not installed and this user cannot install it" >&2; exit 2
-  fi
-fi
+source "$(dirname "$0")/chromium.sh"
 mkdir -p "$report/screenshots"
-profile="$(mktemp -d)"
-trap 'rm -rf "$profile"' EXIT
 status=0
 for page in "$report"/*.html; do
   name="$(basename "$page" .html)"
-  chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
-    --disable-background-networking --disable-component-update --disable-sync \
-    --user-data-dir="$profile" --hide-scrollbars --window-size=1200,2400 \
-    --screenshot="$report/screenshots/$name.png" "file://$(realpath "$page")" >/dev/null 2>&1
+  headless --window-size=1200,2400 --screenshot="$report/screenshots/$name.png" "file://$(realpath "$page")" >/dev/null 2>&1
   [ -s "$report/screenshots/$name.png" ] || { echo "no screenshot of $page" >&2; status=1; }
 done
 # every image a page shows must exist and decode as a PNG with a size

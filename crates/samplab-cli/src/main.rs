@@ -18,6 +18,7 @@ macro_rules! say {
 pub(crate) use say;
 
 mod alloc;
+mod atlas;
 mod bar;
 mod cubature;
 mod discrepancy;
@@ -66,6 +67,9 @@ enum Command {
     /// Reproduce the four papers' tables and figures, the samplers-in-the-renderer page and the
     /// predicted-against-measured page, in an HTML report (the main job).
     Reproduce(reproduce::Args),
+    /// Every sampler measured the same way: a page per sampler (points, spectrum, PCF,
+    /// discrepancy and integration error against n, speed) and a sortable comparison page.
+    Atlas(atlas::Args),
     /// List samplers, warps or file formats, with aliases, parameters and references.
     List(list::Args),
     /// Generate point sets with a sampler (text to stdout by default).
@@ -190,6 +194,7 @@ fn run(cli: Cli) -> ExitCode {
     }
     finish(match cli.command {
         Command::Reproduce(a) => reproduce::run(&a),
+        Command::Atlas(a) => atlas::run(&a),
         Command::List(a) => list::run(&a),
         Command::Generate(a) => generate::run(&a),
         Command::Plot(a) => plot::run(&a),

@@ -1,4 +1,4 @@
-"""The README's examples page: five figures a notebook would make with samplab.
+"""The Python guide's examples page (docs/guide/python.md): five figures a notebook would make with samplab.
 
     python crates/samplab-py/examples/gallery.py OUT_DIR
 

@@ -1,4 +1,4 @@
-"""The README's study example: Subr & Kautz's convergence study on a Dask LocalCluster,
+"""The Python guide's study example (docs/guide/python.md): Subr & Kautz's convergence study on a Dask LocalCluster,
 checkpointed, byte-identical to the local run; then a CSV and a plot.
 
     python examples/study.py OUT [--quick]

@@ -28,6 +28,10 @@ pub struct Item {
     /// Why it is not attempted (then there is no experiment).
     #[serde(default)]
     pub not_attempted: Option<String>,
+    /// The figure of `shows` that the index opens the paper's overview with (one or two
+    /// items per paper carry one).
+    #[serde(default)]
+    pub key: Option<String>,
 }
 
 /// The status of an item, from its claims' verdicts.
@@ -127,6 +131,11 @@ pub fn audit(items: &[Item], claims: &[&Claim], made: &[&str]) -> Vec<String> {
                 breaches.push(format!("{}: shows {id}, which the run did not make", it.item));
             }
         }
+        if let Some(key) = &it.key
+            && !it.shows.contains(key)
+        {
+            breaches.push(format!("{}: its key figure {key} is not one it shows", it.item));
+        }
         let tested = claims.iter().any(|c| it.claims.contains(&c.id) && !c.identity);
         if matches!(status, Status::Reproduced | Status::Differs) && !tested {
             breaches.push(format!("{}: {} on identities alone", it.item, status.name()));
@@ -184,6 +193,7 @@ mod tests {
             claims: claims.iter().map(|s| s.to_string()).collect(),
             shows: vec!["fig".into()],
             not_attempted: None,
+            key: None,
         }
     }
 
@@ -221,6 +231,10 @@ mod tests {
         // an identity that fails with an explanation "differs", on nothing but an identity
         assert!(audit(&[item(&["f"])], &all, &["fig"])[0].contains("differs on identities alone"));
         assert!(audit(&[item(&["i"])], &all, &["fig"]).is_empty(), "checked on an identity is what it says");
+        // a key figure must be one the item shows
+        let keyed = |key: &str| Item { key: Some(key.into()), ..item(&["a"]) };
+        assert!(audit(&[keyed("fig")], &all, &["fig"]).is_empty());
+        assert!(audit(&[keyed("other")], &all, &["fig", "other"])[0].contains("key figure other is not one it shows"));
     }
 
     #[test]

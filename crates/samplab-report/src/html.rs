@@ -16,7 +16,7 @@ fn write(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     std::fs::write(path, bytes).map_err(|e| Error::Io { path: path.display().to_string(), reason: e.to_string() })
 }
 
-const STYLE: &str =
+pub(crate) const STYLE: &str =
     "body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222;line-height:1.45}
 h1,h2,h3{line-height:1.2}table{border-collapse:collapse;margin:.8em 0;font-size:.92em}
 th,td{border:1px solid #ccc;padding:.3em .6em;text-align:right}th{background:#f3f3f3}
@@ -27,6 +27,8 @@ figcaption,.caption{color:#555;font-size:.9em}.reproduced{color:#17692b;font-wei
 .criterion{color:#666;font-size:.85em}.addition{color:#0b5f86;font-weight:600}
 .note{background:#f8f8f2;border-left:3px solid #bbb;padding:.4em .8em;margin:.5em 0}
 .pending{color:#666}code{background:#f3f3f3;padding:0 .2em}nav a{margin-right:1em}
+.overview{border-top:1px solid #ddd;margin-top:1.5em}.keys{display:flex;flex-wrap:wrap;gap:1.2em}
+.keys figure{flex:1 1 440px;margin:.5em 0}.keys ul{margin:.3em 0;padding-left:1.2em}
 ";
 
 fn verdict_html(c: &Claim) -> String {
@@ -233,6 +235,60 @@ fn timing_html(dir: &Path, results: &[(&Paper, Vec<Done>)], options: &Options, w
     Ok(h + "</table>\n")
 }
 
+/// A paper's overview on the index: its title and source, its claims by verdict, and its
+/// key figures (the coverage items that name one), each with the claims it decides and
+/// their verdicts, linked into the paper's page. Errors when a key figure is not a figure
+/// of the run (a table has no picture to open with).
+fn overview_html(
+    paper: &Paper,
+    cite: &str,
+    items: &[coverage::Item],
+    claims: &[&Claim],
+    figures: &[&Figure],
+) -> Result<String, Error> {
+    let [r, k, n, u] = counts(claims);
+    let mut h = format!(
+        "<section class=\"overview\"><h2><a href=\"{key}.html\">{title}</a></h2>\n<p class=\"caption\">{}</p>\n<p>{} claims: <span class=\"reproduced\">{r} reproduced</span>, <span class=\"checked\">{k} checked</span>, <span class=\"not-reproduced\">{n} not reproduced</span>, <span class=\"undecided\">{u} undecided</span> (<a href=\"{key}.html#claims\">the paper's claims</a>).</p>\n<div class=\"keys\">\n",
+        escape(cite),
+        claims.len(),
+        key = paper.key,
+        title = escape(paper.title)
+    );
+    for it in items {
+        let Some(fig) = &it.key else { continue };
+        let Some(figure) = figures.iter().find(|f| &f.id == fig) else {
+            return Err(Error::Invalid(format!(
+                "{} coverage: the key figure {fig} of {} is not a figure of the run",
+                paper.key, it.item
+            )));
+        };
+        let _ = writeln!(
+            h,
+            "<figure><a href=\"{key}.html#{f}\"><img src=\"figures/{f}.png\" alt=\"{item}\"{size}></a><figcaption><b>{item}</b>: {what}. It decides:<ul>",
+            key = paper.key,
+            f = escape(fig),
+            size = figure.display_width().map_or(" style=\"max-width:100%\"".into(), |w| format!(
+                " width=\"{w}\" style=\"image-rendering:pixelated;max-width:100%\""
+            )),
+            item = escape(&it.item),
+            what = escape(&it.what)
+        );
+        for c in claims.iter().filter(|c| it.claims.contains(&c.id)) {
+            let _ = writeln!(
+                h,
+                "<li><a href=\"{}.html#claim-{}\">{}</a>: <span class=\"{}\">{}</span></li>",
+                paper.key,
+                escape(&c.id),
+                escape(&c.statement),
+                c.verdict_name().replace(' ', "-"),
+                c.verdict_name()
+            );
+        }
+        h.push_str("</ul></figcaption></figure>\n");
+    }
+    Ok(h + "</div></section>\n")
+}
+
 /// Claims reproduced, checked (identities that hold), not reproduced, undecided.
 fn counts(claims: &[&Claim]) -> [usize; 4] {
     let of = |name: &str| claims.iter().filter(|c| c.verdict_name() == name).count();
@@ -253,6 +309,7 @@ pub(crate) fn write_report(
     }
     let mut all_claims: Vec<(String, Claim)> = Vec::new();
     let mut index_rows = String::new();
+    let mut overviews = String::new();
     let mut total_seconds = 0.0;
     let mut lint: Vec<String> = Vec::new();
     for (paper, done) in results {
@@ -271,8 +328,10 @@ pub(crate) fn write_report(
             return Err(Error::Invalid(format!("{} coverage audit: {}", paper.key, breaches.join("; "))));
         }
         let (cov, status_counts) = coverage_table(&items, &claims);
+        let figures: Vec<&Figure> = done.iter().flat_map(|d| &d.output.figures).collect();
+        overviews.push_str(&overview_html(paper, &cite, &items, &claims, &figures)?);
         let mut body = format!(
-            "<p>{}</p>\n<h2>Coverage</h2>\n<p>Every numbered table and figure of the paper (and the equations it states as results), with the status its claims' verdicts give: reproduced (every claim), differs (a claim not reproduced, with a written explanation), not reproduced, undecided (an interval that cannot decide), checked (every claim an identity or a closed form checked against itself: the code agrees with the equation, which reproduces no result), shown (drawn or computed, with no statement of the paper to test), or not attempted (and why). Each row links the figures and tables that show it.</p>\n{cov}<h2>Claims</h2>\n{}",
+            "<p>{}</p>\n<h2>Coverage</h2>\n<p>Every numbered table and figure of the paper (and the equations it states as results), with the status its claims' verdicts give: reproduced (every claim), differs (a claim not reproduced, with a written explanation), not reproduced, undecided (an interval that cannot decide), checked (every claim an identity or a closed form checked against itself: the code agrees with the equation, which reproduces no result), shown (drawn or computed, with no statement of the paper to test), or not attempted (and why). Each row links the figures and tables that show it.</p>\n{cov}<h2 id=\"claims\">Claims</h2>\n{}",
             escape(&cite),
             claims_table(&claims)
         );
@@ -287,7 +346,7 @@ pub(crate) fn write_report(
     let refs: Vec<&Claim> = all_claims.iter().map(|(_, c)| c).collect();
     let scale = if options.scale == Scale::Fast { "fast (default)" } else { "full (the papers' own scales)" };
     let body = format!(
-        "<p>samplab {} reproduction, scale {scale}, seed {}; experiments took {:.1} s in all. Every number in a table comes from this run, except the published values, which are read from one data file with their sources.</p>\n\
+        "<p>samplab {} reproduction, scale {scale}, seed {}; experiments took {:.1} s in all. Every number in a table comes from this run, except the published values, which are read from one data file with their sources. Per paper: its key figures, the claims they decide and their verdicts; then the counts, the figure lint, the timing and every claim.</p>\n{overviews}<h2>Summary</h2>\n\
          <table><tr><th rowspan=\"2\">paper</th><th rowspan=\"2\">experiments</th><th colspan=\"4\">claims</th><th colspan=\"7\">numbered tables, figures and result equations</th></tr>\n\
          <tr><th>reproduced</th><th>checked</th><th>not reproduced</th><th>undecided</th><th>reproduced</th><th>differs</th><th>not reproduced</th><th>undecided</th><th>checked</th><th>shown</th><th>pending (not attempted)</th></tr>\n{index_rows}</table>\n\
          {}<h2>Figure lint</h2>\n{}{}<h2>All claims</h2>\n{}<p><a href=\"claims.json\">claims.json</a></p>\n",

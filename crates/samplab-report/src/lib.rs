@@ -18,6 +18,7 @@ use samplab::Seed;
 use samplab::progress::Progress;
 use serde::Serialize;
 
+pub mod atlas;
 pub mod coverage;
 pub mod criteria;
 pub mod html;

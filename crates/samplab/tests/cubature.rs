@@ -137,7 +137,7 @@ fn the_lattice_rule_meets_1e_3_on_keister_in_1_to_8_dimensions_in_every_one_of_5
 fn a_spike_the_first_points_miss_fools_the_guaranteed_rule() {
     // outside the cone: a 3D Gaussian bump of width 0.02 and integral 1 (to 1e-12), which
     // 1024 points mostly miss; the rule sees a nearly flat function, so its bound is met at
-    // once and is wrong (the README shows this)
+    // once and is wrong (docs/guide/integrate.md shows this)
     let spike = "exp(-((x0-0.7)^2+(x1-0.3)^2+(x2-0.6)^2)/0.02^2) / (0.02*sqrt(pi))^3";
     let f = samplab::integrand::Expr::parse(spike, None).unwrap();
     let settings = Settings { rule: Rule::Net, abs_tol: 1e-2, seed: Seed(3), ..Settings::default() };

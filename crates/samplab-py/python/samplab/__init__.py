@@ -147,45 +147,145 @@ def _registry(kind: str) -> List[Dict[str, Any]]:
 
 
 def samplers() -> List[Dict[str, Any]]:
-    """Every sampler: name, aliases, summary, params (name, kind, default, range, doc),
-    references, and details (counts it can make, dimensions)."""
+    """Every registered sampler, as ``samplab list samplers`` lists it.
+
+    Returns
+    -------
+    list of dict
+        Per entry: ``name``, ``aliases``, ``summary``, ``params`` (name, kind, default,
+        range, doc), ``references`` and ``details`` (the counts it can make, its
+        dimensions).
+
+    Examples
+    --------
+    >>> names = [s["name"] for s in samplab.samplers()]
+    >>> "sobol.owen" in names and "jitter" in names
+    True
+    """
     return _registry("samplers")
 
 
 def metrics() -> List[Dict[str, Any]]:
-    """Every discrepancy metric, with its flags in ``details`` (L2, shift invariance,
-    lower bound)."""
+    """Every discrepancy and spacing metric.
+
+    Returns
+    -------
+    list of dict
+        Per entry its name, aliases, summary, parameters and references; ``details``
+        holds its flags (L2, shift invariance, lower bound).
+
+    Examples
+    --------
+    >>> "l2-star" in [m["name"] for m in samplab.metrics()]
+    True
+    """
     return _registry("metrics")
 
 
 def warps() -> List[Dict[str, Any]]:
-    """Every warp (square to disk, tent, Gaussian, hemispheres), with its dimensions."""
+    """Every warp (square to disk, tent, Gaussian, hemispheres), with its dimensions.
+
+    Returns
+    -------
+    list of dict
+        Per entry its name, aliases, summary and references.
+
+    Examples
+    --------
+    >>> "disk.concentric" in [w["name"] for w in samplab.warps()]
+    True
+    """
     return _registry("warps")
 
 
 def integrands() -> List[Dict[str, Any]]:
-    """Every integrand family with an exact integral (the papers' test cases)."""
+    """Every integrand family with an exact integral (the papers' test cases, Genz's
+    families, Keister, Ishigami, ...).
+
+    Returns
+    -------
+    list of dict
+        Per entry its name, aliases, summary, parameters and references.
+
+    Examples
+    --------
+    >>> "keister" in [f["name"] for f in samplab.integrands()]
+    True
+    """
     return _registry("integrands")
 
 
 def formats() -> List[Dict[str, Any]]:
-    """Every point-file format of the CLI."""
+    """Every point-file format of the CLI (text, CSV, .npy, JSON).
+
+    Returns
+    -------
+    list of dict
+        Per format its name, aliases and summary.
+
+    Examples
+    --------
+    >>> sorted(f["name"] for f in samplab.formats())
+    ['csv', 'json', 'npy', 'text']
+    """
     return _registry("formats")
 
 
 def scenes() -> List[Dict[str, Any]]:
-    """Every built-in scene of the renderer."""
+    """Every built-in scene of the renderer.
+
+    Returns
+    -------
+    list of dict
+        Per scene its name, aliases and summary.
+
+    Examples
+    --------
+    >>> "sphere-box" in [s["name"] for s in samplab.scenes()]
+    True
+    """
     return _registry("scenes")
 
 
 def generate(spec: str, n: int, d: int = 2, seed: Optional[int] = None, sets: Optional[int] = None) -> np.ndarray:
-    """Points of the sampler ``spec`` (e.g. ``"jitter"``, ``"sobol.owen"``,
-    ``"GJittered:0.25"``) in [0, 1)^d, float64.
+    """Points of a sampler in [0, 1)^d.
 
-    Returns an (n, d) array, or (sets, n, d) when ``sets`` is given. Set k is seeded by a
-    hash of ``seed`` and k, as ``samplab generate`` does: the bytes equal the CLI's for the
-    same arguments. A count the sampler cannot make (a grid asked for 15 points) raises
-    ``samplab.Error`` naming the nearest counts that work.
+    Parameters
+    ----------
+    spec : str
+        The sampler's spec, e.g. ``"jitter"``, ``"sobol.owen"``, ``"GJittered:0.25"``
+        (``samplers()`` lists them).
+    n : int
+        Points per set.
+    d : int, default 2
+        Dimensions.
+    seed : int, optional
+        The seed (``DEFAULT_SEED`` when omitted). Set k is seeded by a hash of ``seed`` and
+        k, as ``samplab generate`` does: the bytes equal the CLI's for the same arguments.
+    sets : int, optional
+        Independent sets (realizations); one set when omitted.
+
+    Returns
+    -------
+    numpy.ndarray
+        float64 of shape (n, d), or (sets, n, d) when ``sets`` is given.
+
+    Raises
+    ------
+    samplab.Error
+        A count the sampler cannot make (a grid asked for 15 points), naming the nearest
+        counts that work; an unknown name (``UnknownNameError``, with suggestions).
+
+    Examples
+    --------
+    >>> pts = samplab.generate("jitter", n=16, seed=1)
+    >>> pts.shape, pts.dtype.name
+    ((16, 2), 'float64')
+    >>> cells = np.floor(pts * 4).astype(int)          # one point in each of the 4 x 4 cells
+    >>> len({(int(a), int(b)) for a, b in cells})
+    16
+    >>> samplab.generate("sobol.owen", n=1024, d=3, sets=10).shape
+    (10, 1024, 3)
     """
     m = 1 if sets is None else _count("sets", sets)
     out = _samplab.generate(spec, _count("n", n), _count("d", d), _seed(seed), m)
@@ -193,21 +293,65 @@ def generate(spec: str, n: int, d: int = 2, seed: Optional[int] = None, sets: Op
 
 
 def pixel_samplers() -> List[Dict[str, Any]]:
-    """Every pixel sampler family (``"zsobol"``, ``"sobol.padded"``, ``"pmj02.bn"``,
-    ``"dither"``, ``"openqmc.sobolbn"``, ...): name, aliases, summary, params, references,
-    and details (sample counts, dimensions, and how the family becomes a pixel sampler)."""
+    """Every pixel sampler family (``"zsobol"``, ``"sobol.padded"``,
+    ``"pmj02.bn"``, ``"dither"``, ``"openqmc.sobolbn"``, ...).
+
+    Returns
+    -------
+    list of dict
+        Per family its name, aliases, summary, params and references, and ``details``
+        (sample counts, dimensions, and how the family becomes a pixel sampler).
+
+    Examples
+    --------
+    >>> "zsobol" in [p["name"] for p in samplab.pixel_samplers()]
+    True
+    """
     return _registry("pixels")
 
 
 def pixels(
     spec: str, res: Sequence[int], spp: int, dims: int = 2, frames: int = 1, seed: Optional[int] = None
 ) -> np.ndarray:
-    """Every value the pixel sampler ``spec`` gives a film of ``res = (width, height)``
-    pixels: a float64 array of shape (frames, height, width, spp, dims), whose entry
-    [f, y, x, i, d] is dimension d of sample i of pixel (x, y) in frame f. A pure function
-    of (seed, pixel, frame, index, dimension): the bytes equal ``samplab pixels`` with the
-    same arguments. A sample count the family does not take (ZSobol asked for 3 spp)
-    raises ``samplab.Error`` naming the nearest that work.
+    """Every value a pixel sampler gives a film.
+
+    A pure function of (seed, pixel, frame, index, dimension): the bytes equal
+    ``samplab pixels`` with the same arguments.
+
+    Parameters
+    ----------
+    spec : str
+        The pixel sampler, e.g. ``"zsobol"`` (``pixel_samplers()`` lists them).
+    res : (int, int)
+        The film's (width, height) in pixels.
+    spp : int
+        Samples per pixel.
+    dims : int, default 2
+        Dimensions per sample.
+    frames : int, default 1
+        Frames.
+    seed : int, optional
+        The seed (``DEFAULT_SEED`` when omitted).
+
+    Returns
+    -------
+    numpy.ndarray
+        float64 of shape (frames, height, width, spp, dims): entry [f, y, x, i, d] is
+        dimension d of sample i of pixel (x, y) in frame f.
+
+    Raises
+    ------
+    samplab.Error
+        A sample count the family does not take (ZSobol asked for 3 spp), naming the
+        nearest that work.
+
+    Examples
+    --------
+    >>> v = samplab.pixels("zsobol", res=(8, 4), spp=4, dims=2)
+    >>> v.shape
+    (1, 4, 8, 4, 2)
+    >>> bool(((v >= 0) & (v < 1)).all())
+    True
     """
     try:
         if isinstance(res, (str, bytes)):
@@ -224,29 +368,72 @@ def pixels(
 
 
 def blue_noise_mask(size: int = 64, channels: int = 1, seed: Optional[int] = None) -> np.ndarray:
-    """A tileable blue-noise mask by void-and-cluster (Ulichney 1993): a float64 array of
-    shape (size, size, channels), each channel an independent ranking of the pixels as
-    (rank + 1/2) / size^2; the masks of the ``dither`` and ``pmj02.bn`` pixel samplers, and
-    the bytes of ``samplab mask -o FILE.npy``. ``size`` is 4 to 256, ``channels`` 1 to 4."""
+    """A tileable blue-noise mask by void-and-cluster (Ulichney 1993).
+
+    The masks of the ``dither`` and ``pmj02.bn`` pixel samplers, and the bytes of
+    ``samplab mask -o FILE.npy``.
+
+    Parameters
+    ----------
+    size : int, default 64
+        Pixels per side, 4 to 256.
+    channels : int, default 1
+        Independent rankings, 1 to 4.
+    seed : int, optional
+        The seed (``DEFAULT_SEED`` when omitted).
+
+    Returns
+    -------
+    numpy.ndarray
+        float64 of shape (size, size, channels): each channel a ranking of the pixels as
+        (rank + 1/2) / size^2.
+
+    Examples
+    --------
+    >>> m = samplab.blue_noise_mask(size=8)
+    >>> m.shape
+    (8, 8, 1)
+    >>> bool(np.allclose(np.sort(m.ravel()), (np.arange(64) + 0.5) / 64))   # a permutation of the ranks
+    True
+    """
     return _samplab.blue_noise_mask(_count("size", size), _count("channels", channels), _seed(seed))
 
 
 def image_metrics(
     image: Any, reference: Any = None, sigma: Sequence[float] = (0, 1, 2, 4), spp: Optional[Sequence[float]] = None
 ) -> dict:
-    """How an image's error is spread over the screen, as ``samplab image-metrics --json``
-    reports it: RMSE, the RMSE after Gaussian blurs of ``sigma`` pixels beside white noise's
-    of the same standard deviation, the low-frequency energy (power below 1/16 cycle per
-    pixel over the variance: 1 for white noise), and the radial power spectrum.
+    """How an image's error is spread over the screen, as ``samplab image-metrics --json``.
 
-    ``image`` is (height, width) values, (height, width, 3) linear RGB (taken as Rec. 709
-    luminance), or a stack of frames of either; ``reference`` (same shape, or one frame for
-    every frame) is subtracted first (without it, ``image`` is the error). One frame gives
-    one dict; several give ``{"frames": [dict, ...], "flicker": f}``, f the RMS of the
-    frame-to-frame change of the error over its RMS (independent frames: sqrt(2), static: 0);
-    with ``spp`` (one count per image, increasing) the images are a convergence series and
-    ``"convergence"`` replaces the flicker: slopes of ln(error) against ln(spp) for the RMSE
-    (with its 95% interval), each blurred RMSE, and the per-pixel quartiles.
+    Parameters
+    ----------
+    image : array_like
+        (height, width) values, (height, width, 3) linear RGB (taken as Rec. 709
+        luminance), or a stack of frames of either.
+    reference : array_like, optional
+        Subtracted first (same shape, or one frame for every frame); without it, ``image``
+        is the error.
+    sigma : sequence of float, default (0, 1, 2, 4)
+        Widths in pixels of the Gaussian blurs.
+    spp : sequence of float, optional
+        One sample count per image, increasing: the images are then a convergence series.
+
+    Returns
+    -------
+    dict
+        For one frame: the RMSE, the RMSE after each blur beside white noise's of the same
+        standard deviation, the low-frequency energy (power below 1/16 cycle per pixel over
+        the variance: 1 for white noise) and the radial power spectrum. For several:
+        ``{"frames": [dict, ...], "flicker": f}``, f the RMS of the frame-to-frame change of
+        the error over its RMS (independent frames: sqrt(2), static: 0). With ``spp``,
+        ``"convergence"`` replaces the flicker: slopes of ln(error) against ln(spp) for the
+        RMSE (with its 95% interval), each blurred RMSE, and the per-pixel quartiles.
+
+    Examples
+    --------
+    >>> err = np.random.default_rng(1).normal(size=(64, 64))
+    >>> m = samplab.image_metrics(err)
+    >>> bool(abs(m["rmse"] - np.sqrt((err ** 2).mean())) < 1e-12)
+    True
     """
 
     def luminance(a: np.ndarray, name: str) -> np.ndarray:
@@ -271,43 +458,172 @@ def image_metrics(
 
 
 def is_sequence(spec: str) -> bool:
-    """Whether ``spec`` is a progressive sequence (Sobol', Halton): extensible, with random
-    access."""
+    """Whether a sampler is a progressive sequence (Sobol', Halton): extensible, with
+    random access.
+
+    Parameters
+    ----------
+    spec : str
+        The sampler's spec.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> samplab.is_sequence("sobol.owen"), samplab.is_sequence("jitter")
+    (True, False)
+    """
     return _samplab.is_sequence(spec)
 
 
 def sequence_points(spec: str, start: int, n: int, d: int = 2, seed: Optional[int] = None) -> np.ndarray:
-    """Points ``start .. start + n`` of the sequence ``spec``, randomized as
-    ``generate(spec, ..., seed=seed)``: ``start = 0`` gives the same points."""
+    """Points ``start .. start + n`` of a sequence, randomized as
+    ``generate(spec, ..., seed=seed)``.
+
+    Parameters
+    ----------
+    spec : str
+        A sequence's spec (``is_sequence(spec)``).
+    start : int
+        The index of the first point.
+    n : int
+        How many points.
+    d : int, default 2
+        Dimensions.
+    seed : int, optional
+        The seed (``DEFAULT_SEED`` when omitted).
+
+    Returns
+    -------
+    numpy.ndarray
+        float64 of shape (n, d).
+
+    Examples
+    --------
+    >>> whole = samplab.generate("sobol.owen", n=64, seed=3)
+    >>> bool((samplab.sequence_points("sobol.owen", 16, 48, seed=3) == whole[16:]).all())
+    True
+    """
     return _samplab.sequence_points(spec, _count("start", start), _count("n", n), _count("d", d), _seed(seed))
 
 
 def warp(name: str, points: Any) -> np.ndarray:
-    """Warp an (n, d) array of points in [0, 1)^d (``"disk.concentric"``, ``"tent"``,
-    ``"hemisphere.cosine"``, ...); rejection warps drop points."""
+    """Warp points of [0, 1)^d to another domain.
+
+    Parameters
+    ----------
+    name : str
+        The warp: ``"disk.concentric"``, ``"tent"``, ``"hemisphere.cosine"``, ...
+        (``warps()`` lists them).
+    points : array_like
+        An (n, d) array in [0, 1)^d.
+
+    Returns
+    -------
+    numpy.ndarray
+        The warped points; rejection warps drop points.
+
+    Examples
+    --------
+    >>> disk = samplab.warp("disk.concentric", samplab.generate("jitter", n=64))
+    >>> bool((np.hypot(disk[:, 0], disk[:, 1]) <= 1).all())
+    True
+    """
     return _samplab.warp(name, _points(points, stack=False))
 
 
 def save(path: str, points: Any, format: Optional[str] = None, header: Optional[Sequence[str]] = None) -> None:
-    """Write an (n, d) set or a (sets, n, d) stack to ``path`` in ``format`` (``"text"``,
-    ``"csv"``, ``"npy"``, ``"json"``; by default from the extension), atomically, as
-    ``samplab generate -o`` does. ``header`` lines go into text comments or JSON metadata."""
+    """Write point sets to a file, atomically, as ``samplab generate -o`` does.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file.
+    points : array_like
+        An (n, d) set or a (sets, n, d) stack.
+    format : str, optional
+        ``"text"``, ``"csv"``, ``"npy"`` or ``"json"``; by default from the extension.
+    header : sequence of str, optional
+        Lines for text comments or JSON metadata.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> path = os.path.join(tempfile.mkdtemp(), "pts.npy")
+    >>> samplab.save(path, samplab.generate("random", n=8, sets=2))
+    >>> [s.shape for s in samplab.load(path)]
+    [(8, 2), (8, 2)]
+    """
     _samplab.save(str(path), _points(points, stack=True), format, None if header is None else list(header))
 
 
 def load(path: str, format: Optional[str] = None) -> List[np.ndarray]:
-    """Every set of a point file as a list of (n, d) float64 arrays (the formats of
-    ``formats()``; by default from the extension). Malformed or non-finite data raises
-    ``samplab.Error`` naming the file and line."""
+    """Every set of a point file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file, in one of the formats of ``formats()``.
+    format : str, optional
+        The format; by default from the extension.
+
+    Returns
+    -------
+    list of numpy.ndarray
+        One (n, d) float64 array per set.
+
+    Raises
+    ------
+    samplab.FileError
+        A file that cannot be read.
+    samplab.Error
+        Malformed or non-finite data, naming the file and line.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> path = os.path.join(tempfile.mkdtemp(), "pts.txt")
+    >>> with open(path, "w") as f:
+    ...     _ = f.write("0.25 0.5\\n0.75 nan\\n")
+    >>> samplab.load(path)
+    Traceback (most recent call last):
+    ...
+    samplab.Error: ...pts.txt:2: coordinate 2 is not finite: 'nan'
+    """
     return _samplab.load(str(path), format)
 
 
 def discrepancy(metric: str, points: Any, max_work: Optional[float] = None) -> Union[float, np.ndarray]:
-    """The discrepancy ``metric`` (``"star"``, ``"extreme"``, ``"l2-star"``, ``"centered"``,
-    ``"wraparound"``, ``"mixture"``, ``"projected:angle=30"``, ...) of an (n, d) set, or of
-    each set of a (sets, n, d) stack. Values are never squared (scipy squares CD, WD and
-    MD). Points must lie in [0, 1]^d; exact algorithms whose cost would exceed ``max_work``
-    steps are refused before any work.
+    """A discrepancy of a point set, or of each set of a stack.
+
+    Parameters
+    ----------
+    metric : str
+        ``"star"``, ``"extreme"``, ``"l2-star"``, ``"centered"``, ``"wraparound"``,
+        ``"mixture"``, ``"projected:angle=30"``, ... (``metrics()`` lists them). Values are
+        never squared (scipy squares CD, WD and MD).
+    points : array_like
+        An (n, d) set or a (sets, n, d) stack, in [0, 1]^d.
+    max_work : float, optional
+        Exact algorithms whose cost would exceed this many steps are refused before any
+        work (``WorkLimitError``).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        One value for a set, one per set for a stack.
+
+    Examples
+    --------
+    One point at the centre of the square: the anchored box [0, 1/2]^2 holds all of it and
+    a quarter of the area, so the star discrepancy is 3/4.
+
+    >>> samplab.discrepancy("star", np.array([[0.5, 0.5]]))
+    0.75
+    >>> samplab.discrepancy("l2-star", samplab.generate("jitter", n=16, sets=4)).shape
+    (4,)
     """
     a = _points(points, stack=True)
     v = np.asarray(_samplab.discrepancy(metric, a, None if max_work is None else float(max_work)))
@@ -315,24 +631,90 @@ def discrepancy(metric: str, points: Any, max_work: Optional[float] = None) -> U
 
 
 def discrepancy_flags(metric: str) -> Dict[str, Any]:
-    """The canonical spec of ``metric`` and its flags: squared, l2_closed_form,
-    toroidal_shift_invariant, lower_bound (as ``samplab discrepancy --json``)."""
+    """The canonical spec of a metric and its flags, as ``samplab discrepancy --json``.
+
+    Parameters
+    ----------
+    metric : str
+        The metric's spec.
+
+    Returns
+    -------
+    dict
+        ``metric`` (canonical spec), ``squared``, ``l2_closed_form``,
+        ``toroidal_shift_invariant``, ``lower_bound``.
+
+    Examples
+    --------
+    >>> samplab.discrepancy_flags("wraparound")["toroidal_shift_invariant"]
+    True
+    """
     return json.loads(_samplab.metric_flags(metric))
 
 
 def spectrum(points: Any, res: int = 128, direct: bool = False, tolerance: float = 1e-9) -> Dict[str, np.ndarray]:
-    """Periodogram, amplitude of the expected spectrum and variance of the spectrum of a
-    (sets, n, d) stack (at least two sets), each an R^d array with DC at index R/2, and
-    their radial averages (``*_radial``) and anisotropies in dB (``*_anisotropy_db``). The fast path
-    (a non-uniform FFT) holds ``tolerance`` relative to DC; ``direct=True`` is the exact DFT.
+    """Periodogram, amplitude of the expected spectrum and variance of the spectrum of
+    a stack of point sets (Subr & Kautz 2013).
+
+    Parameters
+    ----------
+    points : array_like
+        A (sets, n, d) stack, at least two sets, d 1 or 2.
+    res : int, default 128
+        Frequencies per axis R (even; DC at index R/2).
+    direct : bool, default False
+        The exact DFT instead of the fast path.
+    tolerance : float, default 1e-9
+        The fast path's (a non-uniform FFT) error bound, relative to DC.
+
+    Returns
+    -------
+    dict of numpy.ndarray
+        ``periodogram``, ``expected`` and ``variance``, each an R^d array; their radial
+        averages (``*_radial``) and anisotropies in dB (``*_anisotropy_db``).
+        S(w) = (1/n) sum exp(-2 pi i w.x), so DC is 1 and white noise's periodogram 1/n.
+
+    Examples
+    --------
+    >>> spec = samplab.spectrum(samplab.generate("random", n=256, sets=20), res=32)
+    >>> spec["periodogram"].shape
+    (32, 32)
+    >>> round(float(spec["periodogram"][16, 16]), 9)   # DC
+    1.0
+    >>> bool(0.5 < 256 * spec["periodogram_radial"].mean() < 1.5)   # white noise: 1/n
+    True
     """
     return _samplab.spectrum(_points(points, stack=True), _count("res", res), bool(direct), float(tolerance))
 
 
 def reference(f: Any, d: int) -> float:
-    """The integral of your function ``f`` over [0, 1]^d for reference, where you do not know
-    it: ``cubature`` to a relative 1e-9 (at most 2^22 points x 16 randomizations), or an
-    error saying how far it got (then give ``exact=`` yourself)."""
+    """The integral of your function over [0, 1]^d, for reference, where you do not know it.
+
+    Computed by ``cubature`` to a relative 1e-9 (at most 2^22 points x 16
+    randomizations).
+
+    Parameters
+    ----------
+    f : callable
+        Vectorized: ``f(x)`` with x of shape (m, d) returns m values.
+    d : int
+        Dimensions.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    samplab.Error
+        When it cannot reach the accuracy, saying how far it got (then give ``exact=``
+        yourself).
+
+    Examples
+    --------
+    >>> round(samplab.reference(lambda x: x[:, 0] * x[:, 1], d=2), 9)
+    0.25
+    """
     return float(_samplab.reference(f, _count("d", d)))
 
 
@@ -362,16 +744,48 @@ def integrate(
     exact: Optional[float] = None,
     columns: bool = False,
 ) -> Dict[str, List[Dict[str, Any]]]:
-    """Bias, variance and convergence of samplers on an integrand family, as ``samplab
-    integrate --json``: ``{"rows": [...], "fits": [...]}`` (a row per sampler and count:
-    relative mean, relative variance, RMSE, N^2 MSE and the closed form where one applies;
-    a fit per sampler: the convergence exponent and its 95% interval).
+    """Bias, variance and convergence of samplers on an integrand, as ``samplab
+    integrate --json``.
 
-    ``integrand`` is a family spec (``"quad"``, ``"keister:d=3"``) or your own vectorized
-    function ``f(x)``, x of shape (n, d), returning n values: give its dimension ``d`` and
-    its integral ``exact`` if you know it (otherwise ``samplab.reference`` computes it to a
-    relative 1e-9); it is one function, so ``instances`` does not apply. ``columns=True``: x of shape (d, n), scipy's
-    convention."""
+    Parameters
+    ----------
+    samplers : str or sequence of str
+        Sampler specs.
+    integrand : str or callable
+        A family spec (``"quad"``, ``"keister:d=3"``) or your own vectorized function
+        ``f(x)``, x of shape (m, d), returning m values (it is one function, so
+        ``instances`` does not apply).
+    n : int or sequence of int
+        The counts.
+    sets : int, default 50
+        Realizations per instance and count.
+    instances : int, default 10
+        Instances of a family.
+    seed : int, optional
+        The seed (``DEFAULT_SEED`` when omitted).
+    d : int, optional
+        A callable's dimension (required for one).
+    exact : float, optional
+        A callable's integral; ``reference`` computes it to a relative 1e-9 otherwise.
+    columns : bool, default False
+        The callable takes x of shape (d, m), scipy's convention.
+
+    Returns
+    -------
+    dict
+        ``{"rows": [...], "fits": [...]}``: a row per sampler and count (relative mean,
+        relative variance, RMSE, N^2 MSE, and the closed form where one applies); a fit per
+        sampler (the convergence exponent and its 95% interval).
+
+    Examples
+    --------
+    >>> r = samplab.integrate(["random", "jitter"], "quad", [16, 64, 256], sets=20, instances=4)
+    >>> len(r["rows"]), [f["sampler"] for f in r["fits"]]
+    (6, ['random', 'jitter'])
+    >>> r = samplab.integrate("sobol.owen", lambda x: x.sum(axis=1), [64, 256], sets=8, d=3, exact=1.5)
+    >>> r["rows"][0]["integrand"]
+    '<lambda>'
+    """
     names = [samplers] if isinstance(samplers, str) else list(samplers)
     integrand = _by_columns(integrand, columns)
     if callable(integrand):
@@ -409,22 +823,56 @@ def cubature(
     exact: Optional[float] = None,
     columns: bool = False,
 ) -> Dict[str, Any]:
-    """The integral of ``integrand`` over [0, 1]^d to a tolerance, as ``samplab cubature
-    --json``: ``{"estimate", "bound", "kind", "converged", "n", "evaluations", "steps",
-    "seconds", "integrand", "exact"}``.
+    """The integral of an integrand over [0, 1]^d to a tolerance, as ``samplab cubature --json``.
 
-    ``integrand`` is a family spec (``"keister:d=8"``) or a vectorized callable ``f(x)``, x of
-    shape (n, d), returning n values (give ``d``, and ``exact`` when the integral is known);
-    ``columns=True`` passes x of shape (d, n) instead, as ``scipy.integrate.qmc_quad`` does.
-    The points per randomization are doubled from ``min_n`` (256; 1024 for the guaranteed
-    rules) until the bound is at most ``max(abs_tol, rel_tol |estimate|)`` (1e-3, 0) or
-    ``max_n`` (2^20) is reached (``converged`` says which); a sequence's earlier points are
-    kept. ``rule`` picks the bound: ``"replicated"`` (the default; probabilistic, Student's
-    t interval at ``level`` (0.99) over ``replications`` (16) randomizations of
-    ``sampler``, ``sobol.owen`` by default), ``"net"`` or ``"lattice"`` (guaranteed for
-    integrands in the cone of Hickernell & Jimenez Rugama 2016, on one randomized digital
-    net, ``net.lms``, or shifted lattice sequence with the baker's transform). Unset
-    keywords take the library's defaults."""
+    The points per randomization are doubled from ``min_n`` until the bound is at most
+    ``max(abs_tol, rel_tol |estimate|)`` or ``max_n`` is reached (``converged`` says
+    which); a sequence's earlier points are kept.
+
+    Parameters
+    ----------
+    integrand : str or callable
+        A family spec (``"keister:d=8"``) or a vectorized callable ``f(x)``, x of shape
+        (m, d), returning m values.
+    d : int, optional
+        A callable's dimension (required for one).
+    abs_tol, rel_tol : float, optional
+        The tolerances (defaults 1e-3 and 0).
+    rule : str, optional
+        ``"replicated"`` (the default; probabilistic: Student's t interval at ``level``
+        over ``replications`` randomizations of ``sampler``), ``"net"`` or ``"lattice"``
+        (guaranteed for integrands in the cone of Hickernell & Jimenez Rugama 2016, on one
+        randomized digital net, ``net.lms``, or shifted lattice sequence with the baker's
+        transform).
+    sampler : str, optional
+        The replicated rule's sampler (``sobol.owen``).
+    level : float, optional
+        The replicated interval's level (0.99).
+    replications : int, optional
+        The replicated rule's randomizations (16).
+    min_n, max_n : int, optional
+        The first and the largest count per randomization (256, or 1024 for the guaranteed
+        rules; 2^20).
+    seed : int, optional
+        The seed.
+    exact : float, optional
+        The integral, when known (reported beside the estimate).
+    columns : bool, default False
+        The callable takes x of shape (d, m), as ``scipy.integrate.qmc_quad`` does.
+
+    Returns
+    -------
+    dict
+        ``estimate``, ``bound``, ``kind`` (guaranteed or probabilistic, with its level),
+        ``converged``, ``n``, ``evaluations``, ``steps``, ``seconds``, ``integrand``,
+        ``exact``.
+
+    Examples
+    --------
+    >>> r = samplab.cubature(lambda x: (x ** 2).sum(axis=1), d=3, abs_tol=1e-4)
+    >>> r["converged"], abs(r["estimate"] - 1.0) <= 1e-4
+    (True, True)
+    """
     if callable(integrand) and d is None:
         raise Error("d: give the dimension of a callable integrand")
     integrand = _by_columns(integrand, columns)
@@ -457,24 +905,56 @@ def predict(
     exact: Union[None, float, Sequence[float]] = None,
     cache: bool = True,
 ) -> Dict[str, Any]:
-    """The variance of each sampler on one or more integrands predicted from spectra, as
-    ``samplab predict --json``: ``{"integrands", "rows", "ranking", "rates", "skipped"}``
-    (a row per integrand, sampler and count: the predicted variance of the estimator over a
-    random toroidal shift of each set and its standard error, the radial form of the same,
-    where the sampler's spectrum comes from, and the measured mean squared error over
-    ``measure`` realizations when given, shifted when ``shift``; the ranking per integrand
-    by predicted variance at the largest count with the fitted exponents; per sampler the
-    small-frequency exponent of its spectrum with the best- and worst-case convergence
-    exponents it implies).
+    """The variance of samplers on integrands, predicted from their spectra
+    (Pilleboue et al. 2015), as ``samplab predict --json``.
 
-    ``integrand`` is a spec (``"disk:r=0.3"``), a 2D float array (values on a grid over the
-    unit square, row 0 at y = 0, box lookups: an image), a vectorized callable ``f(x)``
-    taking an (m, d) array and returning m values (``d`` 1 or 2; its spectrum is the FFT of
-    its values at the midpoints of a fine grid, the error of that estimate stated), or a
-    list of these. ``exact``: the integral of each callable, in order, needed to measure.
-    ``samplers=None`` ranks every registered sampler of the integrands' dimension.
-    ``cache``: read and keep measured sampler spectra in the user's cache (``$SAMPLAB_CACHE``,
-    else ``$XDG_CACHE_HOME/samplab``, else ``~/.cache/samplab``)."""
+    Parameters
+    ----------
+    integrand : str, array_like, callable, or a list of these
+        A spec (``"disk:r=0.3"``), a 2D float array (values on a grid over the unit square,
+        row 0 at y = 0, box lookups: an image), or a vectorized callable ``f(x)`` taking an
+        (m, d) array and returning m values (``d`` 1 or 2; its spectrum is the FFT of its
+        values at the midpoints of a fine grid, the error of that estimate stated).
+    samplers : str or sequence of str, optional
+        The samplers; every registered sampler of the integrands' dimension when omitted.
+    n : int or sequence of int, default (16, 64, 256, 1024)
+        The counts.
+    res : int, default 128
+        Frequencies per axis of the spectra.
+    sets : int, default 16
+        Realizations per sampler spectrum.
+    measure : int, optional
+        Also measure the mean squared error over this many realizations (shifted when
+        ``shift``).
+    shift : bool, default False
+        Measure over random toroidal shifts of each set.
+    seed : int, optional
+        The seed.
+    d : int, default 2
+        The callables' dimension.
+    exact : float or sequence of float, optional
+        The integral of each callable, in order, needed to measure.
+    cache : bool, default True
+        Read and keep measured sampler spectra in the user's cache (``$SAMPLAB_CACHE``,
+        else ``$XDG_CACHE_HOME/samplab``, else ``~/.cache/samplab``).
+
+    Returns
+    -------
+    dict
+        ``{"integrands", "rows", "ranking", "rates", "skipped"}``: a row per integrand,
+        sampler and count (the predicted variance over a random toroidal shift of each set
+        and its standard error, the radial form of the same, where the sampler's spectrum
+        comes from, and the measured mean squared error when asked); the ranking per
+        integrand by predicted variance at the largest count with the fitted exponents; per
+        sampler the small-frequency exponent of its spectrum and the best- and worst-case
+        convergence exponents it implies.
+
+    Examples
+    --------
+    >>> r = samplab.predict("disk:r=0.3", ["random", "jitter"], n=[64, 256], res=64, sets=8, cache=False)
+    >>> sorted({row["sampler"] for row in r["rows"]})
+    ['jitter', 'random']
+    """
     names = [] if samplers is None else [samplers] if isinstance(samplers, str) else list(samplers)
     given = list(integrand) if isinstance(integrand, (list, tuple)) else [integrand]
     given = [np.ascontiguousarray(g, dtype=np.float64) if isinstance(g, np.ndarray) else g for g in given]
@@ -497,8 +977,30 @@ def predict(
 
 
 def integrand(spec: str, points: Any, instance: int = 0, seed: Optional[int] = None) -> "tuple[np.ndarray, float]":
-    """Instance ``instance`` of the integrand family ``spec`` (as a study with ``seed``
-    draws it): its values at the rows of an (n, d) array, and its exact integral."""
+    """An instance of an integrand family: its values at points and its exact integral.
+
+    Parameters
+    ----------
+    spec : str
+        The family (``integrands()`` lists them).
+    points : array_like
+        An (n, d) array.
+    instance : int, default 0
+        Which instance, as a study with ``seed`` draws it.
+    seed : int, optional
+        The seed.
+
+    Returns
+    -------
+    (numpy.ndarray, float)
+        The values at the rows of ``points``, and the exact integral.
+
+    Examples
+    --------
+    >>> values, exact = samplab.integrand("keister:d=2", samplab.generate("sobol.owen", n=4096, seed=5))
+    >>> bool(abs(values.mean() - exact) < 1e-3)
+    True
+    """
     values, exact = _samplab.integrand_eval(spec, _count("instance", instance), _seed(seed), _points(points, stack=False))
     return values, exact
 
@@ -511,15 +1013,40 @@ def reproduce(
     force: bool = False,
     progress: Optional[Callable[[str, str, int, int], Any]] = None,
 ) -> List[Dict[str, str]]:
-    """Reproduce the papers into the folder ``out`` (replaced only when the run completes),
-    as ``samplab reproduce``; returns each claim's paper, id and verdict. An existing ``out``
-    that holds files samplab did not write is refused unless ``force`` (as ``--force``).
+    """Reproduce the papers into a folder, as ``samplab reproduce``.
 
-    Nothing is drawn on the terminal: ``progress(paper, experiment, done, total)``, when
-    given, is called as each experiment starts (``done`` 0), learns its length, advances (at
-    most once per percent) and finishes (``done == total``), from any thread: experiments run
-    side by side, so the calls of several interleave. An exception it raises stops the run
-    and is raised here."""
+    Nothing is drawn on the terminal; ``progress`` hears of the run instead.
+
+    Parameters
+    ----------
+    out : str, default "report"
+        The folder, replaced only when the run completes.
+    full : bool, default False
+        The papers' own scales (slower).
+    only : str or sequence of str, optional
+        Only these papers' keys.
+    seed : int, optional
+        The run's seed.
+    force : bool, default False
+        Replace an ``out`` that holds files samplab did not write (as ``--force``).
+    progress : callable, optional
+        ``progress(paper, experiment, done, total)``, called as each experiment starts
+        (``done`` 0), learns its length, advances (at most once per percent) and finishes
+        (``done == total``), from any thread: experiments run side by side, so the calls of
+        several interleave. An exception it raises stops the run and is raised here.
+
+    Returns
+    -------
+    list of dict
+        Each claim's paper, id and verdict.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> claims = samplab.reproduce(os.path.join(tempfile.mkdtemp(), "r"), only=["shirley1991"])  # doctest: +SKIP
+    >>> {c["verdict"] for c in claims} <= {"reproduced", "checked", "not reproduced", "undecided"}  # doctest: +SKIP
+    True
+    """
     if progress is not None and not callable(progress):
         raise Error(f"progress: {progress!r} is not callable")
     keys = None if only is None else [only] if isinstance(only, str) else list(only)
@@ -527,21 +1054,38 @@ def reproduce(
 
 
 def render(scene: str, light: Optional[str] = None, reference_samples: Optional[int] = None, allow_paths_outside_scene: bool = False, **settings: Any) -> Dict[str, Any]:
-    """Render ``scene`` (a built-in scene, see ``scenes()``, or a Mitsuba 3 XML file),
-    lit by ``light`` (``"square"``, ``"disk"``, ``"linear"``, ``"gaussian"``) if given.
+    """Render a scene with any sampler, as ``samplab render``.
 
-    Keywords are the CLI's flags, with the CLI's defaults: ``sampler`` (light strategy,
-    ``"jitter"``), ``n`` (16), ``spp`` (1), ``mode`` (``"visibility"``, ``"direct"``,
-    ``"obscurance"``, ``"path"``), ``max_depth`` (path mode's most segments, 5), ``pixel``
-    (``"center"``, ``"area"``), ``pixel_sampler``,
-    ``lens_sampler``, ``time_sampler``, ``gloss_sampler`` (``"sobol.owen"``), ``pattern``
-    (``"estimate"``, ``"pixel"``), ``disk_map``, ``range``, ``interleave`` ((w, h)), ``res``
-    ((width, height)), ``seed``. With ``reference_samples``, the converged reference the
-    CLI renders for these settings instead. A Mitsuba scene may name meshes only inside its
-    own folder unless ``allow_paths_outside_scene`` (for scenes you trust).
+    Parameters
+    ----------
+    scene : str
+        A built-in scene (``scenes()``) or a Mitsuba 3 XML file.
+    light : str, optional
+        ``"square"``, ``"disk"``, ``"linear"`` or ``"gaussian"``.
+    reference_samples : int, optional
+        Render the converged reference the CLI renders for these settings instead.
+    allow_paths_outside_scene : bool, default False
+        Let a Mitsuba scene name meshes outside its own folder (for scenes you trust).
+    **settings
+        The CLI's flags, with its defaults: ``sampler`` (light strategy, ``"jitter"``),
+        ``n`` (16), ``spp`` (1), ``mode`` (``"visibility"``, ``"direct"``,
+        ``"obscurance"``, ``"path"``), ``max_depth`` (5), ``pixel`` (``"center"``,
+        ``"area"``), ``pixel_sampler``, ``lens_sampler``, ``time_sampler``,
+        ``gloss_sampler`` (``"sobol.owen"``), ``pattern`` (``"estimate"``, ``"pixel"``),
+        ``disk_map``, ``range``, ``interleave`` ((w, h)), ``res`` ((width, height)),
+        ``seed``.
 
-    Returns ``{"rgb": (h, w, 3) float32, "visibility": (h, w) float32, "camera_rays",
-    "shadow_rays"}``: the same numbers ``samplab render -o x.exr`` writes.
+    Returns
+    -------
+    dict
+        ``{"rgb": (h, w, 3) float32, "visibility": (h, w) float32, "camera_rays",
+        "shadow_rays"}``: the numbers ``samplab render -o x.exr`` writes.
+
+    Examples
+    --------
+    >>> img = samplab.render("sphere-box", res=(32, 24), n=4)
+    >>> img["rgb"].shape, img["visibility"].dtype.name
+    ((24, 32, 3), 'float32')
     """
     if "seed" in settings:
         settings["seed"] = _seed(settings["seed"])
@@ -557,10 +1101,29 @@ def _image(a: Any, what: str, ndim: int) -> np.ndarray:
 
 
 def image_errors(image: Any, reference: Any, penumbra: bool = False) -> Dict[str, float]:
-    """Errors of ``image`` against ``reference`` on luminance (as ``samplab render --json``):
-    pixels, mse, rmse, relative, mean_abs, sd_abs, max_abs, bias. Each argument is a
-    ``render()`` result or an (h, w, 3) array; ``penumbra`` restricts the comparison to the
-    reference's 0 < V < 1 (it needs the reference's visibility)."""
+    """Errors of an image against a reference, on luminance (as ``samplab render --json``).
+
+    Parameters
+    ----------
+    image, reference : dict or array_like
+        ``render()`` results or (h, w, 3) arrays.
+    penumbra : bool, default False
+        Compare only where the reference's visibility is strictly between 0 and 1 (it needs
+        the reference's visibility).
+
+    Returns
+    -------
+    dict
+        ``pixels``, ``mse``, ``rmse``, ``relative`` (the RMSE over the reference's mean, None
+        where that is 0), ``mean_abs``, ``sd_abs``, ``max_abs``, ``mean_signed`` (the bias).
+
+    Examples
+    --------
+    >>> a = np.zeros((4, 4, 3), dtype=np.float32)
+    >>> e = samplab.image_errors(a + 1, a)
+    >>> e["rmse"], e["mean_signed"], e["relative"]
+    (1.0, 1.0, None)
+    """
     def parts(x: Any, what: str):
         if isinstance(x, dict):
             v = x.get("visibility")
@@ -573,8 +1136,23 @@ def image_errors(image: Any, reference: Any, penumbra: bool = False) -> Dict[str
 
 
 def read_exr(path: str) -> Dict[str, Any]:
-    """An OpenEXR image as ``samplab render`` writes it: ``{"rgb": (h, w, 3), "visibility":
-    (h, w) or None}``, float32."""
+    """An OpenEXR image as ``samplab render`` writes it.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file.
+
+    Returns
+    -------
+    dict
+        ``{"rgb": (h, w, 3), "visibility": (h, w) or None}``, float32.
+
+    Raises
+    ------
+    samplab.FileError
+        A file that cannot be read.
+    """
     return _samplab.read_exr(str(path))
 
 

@@ -11,7 +11,7 @@
 //! entries [2^(m-r-1), 2^(m-r)), the error is at most fudge(m) S for every integrand in the
 //! papers' cone (coefficients that do not grow from level to level faster than the cone
 //! allows), with fudge(m) = 5 2^-m, QMCPy's default. Outside the cone (a spike the first
-//! points miss) the bound is wrong; the README shows such a case.
+//! points miss) the bound is wrong; docs/guide/integrate.md shows such a case.
 //!
 //! On doubling, the points already evaluated are kept; the map keeps its lower levels and
 //! re-sorts the top r levels, as the papers' algorithms do.

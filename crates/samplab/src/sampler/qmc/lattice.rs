@@ -369,7 +369,7 @@ const VECTOR: ParamSpec = ParamSpec {
     name: "vector",
     kind: Kind::Path,
     default: Default::Auto("the embedded fast CBC for 2^20 points (weights gamma j^-decay)"),
-    doc: "a generating vector in the LDData lattice format (README: Lattices)",
+    doc: "a generating vector in the LDData lattice format (docs/guide/cli.md: lattice generating vectors)",
 };
 
 fn cbc_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Construction>> {

@@ -790,7 +790,7 @@ const MATRICES: ParamSpec = ParamSpec {
     name: "matrices",
     kind: Kind::Path,
     default: Default::Auto("the Sobol' matrices of Joe & Kuo, 1024 dimensions x 32 bits"),
-    doc: "generating matrices in the LDData dnet format (README: Digital nets)",
+    doc: "generating matrices in the LDData dnet format (docs/guide/cli.md: generating matrices)",
 };
 
 /// Niederreiter's base.
