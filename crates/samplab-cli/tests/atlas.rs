@@ -121,3 +121,12 @@ fn an_unknown_sampler_is_refused_and_nothing_is_written() {
     assert!(err.contains("sobl") && err.contains("did you mean sobol"), "{err}");
     assert!(!t.join("a").exists());
 }
+
+#[test]
+fn a_sampler_named_twice_has_one_page() {
+    let t = Temp::new("atlas", "twice");
+    let out = t.join("a");
+    samplab(&["atlas", "--only", "jitter,jittered,JITTER", "--out", out.to_str().unwrap()], "2");
+    let pages: Vec<String> = files(&out.join("samplers")).into_iter().map(|f| f.0).collect();
+    assert_eq!(pages, ["jitter.html", "jitter.json"]);
+}

@@ -214,11 +214,14 @@ fn stem(entry: &SamplerEntry) -> &'static str {
 /// target folder is then left as it was.
 pub fn build(options: &Options, stop: &AtomicBool, progress: &Progress) -> Result<usize, Error> {
     samplab::io::check_folder(&options.run.out, options.run.replace)?;
-    let entries: Vec<&'static SamplerEntry> = if options.only.is_empty() {
+    let mut entries: Vec<&'static SamplerEntry> = if options.only.is_empty() {
         SAMPLERS.iter().collect()
     } else {
         options.only.iter().map(|name| SAMPLERS.lookup(name)).collect::<Result<_, _>>()?
     };
+    // a sampler named twice (by two of its names) has one page
+    let mut seen = Vec::new();
+    entries.retain(|e| !seen.contains(&e.about.name) && (seen.push(e.about.name), true).1);
     let speeds = if options.measure_speed { measure_speeds(&entries, stop)? } else { recorded_speeds() };
     let report_uses = match &options.report {
         Some(dir) => uses_in_report(dir)?,
@@ -434,10 +437,10 @@ fn measure_speeds(entries: &[&'static SamplerEntry], stop: &AtomicBool) -> Resul
     Ok(Speeds { measured, samplers })
 }
 
-/// The experiments of a reproduction report (`DIR/PAPER.html`) that use each sampler: an
-/// experiment uses the samplers whose canonical name or alias is the text of one of its
-/// table cells or of a legend label in one of its SVG figures (up to the spec's first ':'
-/// or space).
+/// The experiments of a reproduction report (`DIR/PAPER.html`, for the papers it has) that
+/// use each sampler: an experiment uses the samplers whose canonical name or alias is the
+/// text of one of its table cells or of a legend label in one of its SVG figures (up to the
+/// spec's first ':' or space).
 fn uses_in_report(dir: &Path) -> Result<Vec<(Vec<&'static str>, Use)>, Error> {
     let read = |p: &Path| {
         std::fs::read_to_string(p).map_err(|e| Error::Io { path: p.display().to_string(), reason: e.to_string() })
@@ -445,6 +448,10 @@ fn uses_in_report(dir: &Path) -> Result<Vec<(Vec<&'static str>, Use)>, Error> {
     let mut out = Vec::new();
     for paper in crate::paper::all() {
         let path = dir.join(format!("{}.html", paper.key));
+        // a report of some papers (`--only`) has no page for the others
+        if !path.is_file() {
+            continue;
+        }
         let html = read(&path)?;
         for e in &paper.experiments {
             let start = format!("<h2 id=\"{}\">", e.id);
