@@ -70,9 +70,42 @@ def _constructor(kind: str) -> Any:
         return cls(kind, params, [list(c) for c in chunks], feeds, function)
 
     make.__name__ = make.__qualname__ = kind
-    make.__doc__ = info["doc"].replace("`", "``")
+    make.__doc__ = _numpydoc(info)
     make.__signature__ = inspect.Signature(signature)  # type: ignore[attr-defined]
     return classmethod(make)
+
+
+#: The Python types of the library's parameter kinds (``samplab_render::study``).
+_TYPES = {
+    "counts": "int or sequence of int",
+    "names": "str or sequence of str",
+    "name": "str",
+    "name?": "str, optional",
+    "float": "float",
+    "float?": "float, optional",
+    "count": "int",
+    "count?": "int, optional",
+    "seed": "int, optional",
+    "bool": "bool",
+}
+
+
+def _numpydoc(info: Dict[str, Any]) -> str:
+    """The library's documentation of a study kind, with a numpy-style Parameters section
+    made from its declared parameters (their types and defaults)."""
+    lines = [info["doc"].replace("`", "``"), "", "Parameters", "----------"]
+    for p in info["parameters"]:
+        value = None if p["default"] is None else json.loads(p["default"])
+        default = "" if value is None else f", default {value!r}"
+        # an integration study's integrand may be a function (``_function`` takes it out)
+        of = "str or callable" if p["name"] == "integrand" else _TYPES.get(p["of"], p["of"])
+        lines.append(f"{p['name']} : {of}{default}")
+    name, default = info["per_chunk"]
+    lines += [f"{name} : int, default {default}", "    Units per chunk: aim for chunks of a second or more."]
+    if info["rest"]:
+        lines += [f"**{info['rest']}", "    Settings passed through to the library, by name."]
+    lines += ["", "Returns", "-------", "Study", "    The study's chunks, computed by ``run``."]
+    return "\n".join(lines)
 
 
 def _function(arguments: Dict[str, Any]) -> Any:
