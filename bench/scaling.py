@@ -9,7 +9,7 @@ the speed-up at 2 threads and the serial fraction Amdahl's law gives from the 1-
 compared across thread counts: a row whose bytes differ is marked.
 
 Usage: bench/compare scaling [--rounds K] [ROW...]   (rows: render integrate extreme
-spectrum elimination l2 reproduce; all by default; K = 3)
+spectrum elimination elimination.tiled l2 reproduce; all by default; K = 3)
 """
 import hashlib
 import os
@@ -21,7 +21,7 @@ import tempfile
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SAMPLAB = os.path.join(ROOT, "target", "release", "samplab")
+SAMPLAB = os.environ.get("SAMPLAB_BIN", os.path.join(ROOT, "target", "release", "samplab"))
 
 # (name, label, arguments; OUT is replaced by a fresh path, its content hashed)
 ROWS = [
@@ -36,6 +36,8 @@ ROWS = [
      ["spectrum", "--sampler", "random", "-n", "65536", "--sets", "64", "--res", "1024", "-o", "OUT"]),
     ("elimination", "generate elimination 10^5",
      ["generate", "elimination", "-n", "100000", "-o", "OUT.npy"]),
+    ("elimination.tiled", "generate elimination.tiled 10^5 (in tiles, other points)",
+     ["generate", "elimination.tiled", "-n", "100000", "-o", "OUT.npy"]),
     ("l2", "L2-star + centered of 10^6 random points",
      ["discrepancy", "l2-star", "centered", "--sampler", "random", "-n", "1000000", "--json"]),
     ("reproduce", "samplab reproduce (fast)", ["reproduce", "--out", "OUT"]),

@@ -59,7 +59,7 @@ pub(crate) struct Grid {
 impl Grid {
     fn new(points: &[f64], dims: usize, k: usize) -> Grid {
         let n = points.len() / dims;
-        let cells: Vec<usize> = points.chunks_exact(dims).map(|p| Grid::cell(k, p)).collect();
+        let cells: Vec<usize> = points.par_chunks_exact(dims).map(|p| Grid::cell(k, p)).collect();
         let mut start = vec![0usize; k.pow(dims as u32) + 1];
         for &c in &cells {
             start[c + 1] += 1;
@@ -73,8 +73,10 @@ impl Grid {
             ids[fill[c]] = i as u32;
             fill[c] += 1;
         }
-        let coords =
-            ids.iter().flat_map(|&i| points[i as usize * dims..(i as usize + 1) * dims].iter().copied()).collect();
+        let mut coords = vec![0.0; n * dims];
+        coords.par_chunks_exact_mut(dims).zip(&ids).for_each(|(c, &i)| {
+            c.copy_from_slice(&points[i as usize * dims..(i as usize + 1) * dims]);
+        });
         Grid { dims, k, coords, ids, start }
     }
 

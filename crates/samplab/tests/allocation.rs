@@ -57,6 +57,7 @@ const SEARCHING: &[&str] = &[
     "poisson.fast",
     "poisson.maximal",
     "elimination",
+    "elimination.tiled",
     "lloyd",
     "ccvt",
     "sot",

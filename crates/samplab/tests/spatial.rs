@@ -214,30 +214,92 @@ fn diaphony_is_its_fourier_sum_and_a_lattice_s_p2() {
     }
 }
 
+/// The place in `alive` of the heaviest point of `alive` for which `within` holds (ties:
+/// the lower index), every weight summed over every pair with the other points of `alive`.
+fn heaviest(
+    points: &[f64],
+    dims: usize,
+    alive: &[usize],
+    (r_min, r_max): (f64, f64),
+    torus: bool,
+    within: impl Fn(usize) -> bool,
+) -> usize {
+    let point = |i: usize| &points[i * dims..(i + 1) * dims];
+    let weight = |i: usize| -> u64 {
+        alive
+            .iter()
+            .filter(|&&j| j != i)
+            .map(|&j| distance(point(i), point(j), torus))
+            .filter(|&d| d < 2.0 * r_max)
+            .map(|d| samplab::sampler::blue_noise::elimination::pair_weight(d, r_min, 2.0 * r_max))
+            .sum()
+    };
+    let (k, _) = alive.iter().enumerate().filter(|&(_, &i)| within(i)).fold((0, None), |best, (k, &i)| {
+        let w = weight(i);
+        if best.1.is_none_or(|b| w > b) { (k, Some(w)) } else { best }
+    });
+    k
+}
+
+/// Yuksel's r_min and r_max for m candidates and `target` survivors.
+fn radii(m: usize, dims: usize, target: usize) -> (f64, f64) {
+    let r_max = spatial::packing_radius(target, dims).unwrap();
+    (r_max * (1.0 - (target as f64 / m as f64).powf(1.5)) * 0.65, r_max)
+}
+
 /// Sample elimination by its definition: every step recomputes every remaining point's
 /// weight over all pairs and removes the largest (ties: the lower index).
 fn eliminate_naive(points: &[f64], dims: usize, target: usize) -> Vec<usize> {
     let m = points.len() / dims;
-    let r_max = spatial::packing_radius(target, dims).unwrap();
-    let r_min = r_max * (1.0 - (target as f64 / m as f64).powf(1.5)) * 0.65;
-    let point = |i: usize| &points[i * dims..(i + 1) * dims];
     let mut alive: Vec<usize> = (0..m).collect();
     let mut gone = Vec::new();
     while alive.len() > target {
-        let weight = |i: usize| -> u64 {
-            alive
-                .iter()
-                .filter(|&&j| j != i)
-                .map(|&j| distance(point(i), point(j), true))
-                .filter(|&d| d < 2.0 * r_max)
-                .map(|d| samplab::sampler::blue_noise::elimination::pair_weight(d, r_min, 2.0 * r_max))
-                .sum()
-        };
-        let (k, _) = alive.iter().enumerate().fold((0, None), |best, (k, &i)| {
-            let w = weight(i);
-            if best.1.is_none_or(|b| w > b) { (k, Some(w)) } else { best }
-        });
+        let k = heaviest(points, dims, &alive, radii(m, dims, target), true, |_| true);
         gone.push(alive.remove(k));
+    }
+    gone
+}
+
+/// The tiled elimination by its definition (the `elimination` module's docs): `tiles` per
+/// axis, each with its quota of the survivors (equal shares capped by its candidates, one
+/// more to the tiles with room, most candidates first); in round r, the colours (the
+/// parities of a tile's coordinates, as a number c) in the order c = r, r + 1, ... mod 2^d,
+/// and the tiles of each colour one after the other in index order, each
+/// removing its heaviest point (every weight recomputed over all remaining points) until
+/// it is down to its share of the round.
+fn eliminate_tiled_naive(points: &[f64], dims: usize, target: usize, torus: bool, tiles: usize) -> Vec<usize> {
+    use samplab::sampler::blue_noise::elimination::ROUNDS;
+    let m = points.len() / dims;
+    let tile = |i: usize| {
+        (0..dims).rev().fold(0, |t, a| t * tiles + ((points[i * dims + a] * tiles as f64) as usize).min(tiles - 1))
+    };
+    let count = tiles.pow(dims as u32);
+    let colour = |t: usize| (0..dims).map(|a| (t / tiles.pow(a as u32) % 2) << a).sum::<usize>();
+    let counts: Vec<usize> = (0..count).map(|t| (0..m).filter(|&i| tile(i) == t).count()).collect();
+    let mut level = 0;
+    while counts.iter().map(|&c| c.min(level + 1)).sum::<usize>() <= target {
+        level += 1;
+    }
+    let mut quota: Vec<usize> = counts.iter().map(|&c| c.min(level)).collect();
+    let mut room: Vec<usize> = (0..count).filter(|&t| counts[t] > level).collect();
+    room.sort_by_key(|&t| (std::cmp::Reverse(counts[t]), t));
+    let spare = target - quota.iter().sum::<usize>();
+    for &t in &room[..spare] {
+        quota[t] += 1;
+    }
+    let mut alive: Vec<usize> = (0..m).collect();
+    let mut gone = Vec::new();
+    for round in 1..=ROUNDS {
+        for turn in 0..1 << dims {
+            let hue = (round + turn) % (1 << dims);
+            for t in (0..count).filter(|&t| colour(t) == hue) {
+                let share = quota[t] + (counts[t] - quota[t]) * (ROUNDS - round) / ROUNDS;
+                while alive.iter().filter(|&&i| tile(i) == t).count() > share {
+                    let k = heaviest(points, dims, &alive, radii(m, dims, target), torus, |i| tile(i) == t);
+                    gone.push(alive.remove(k));
+                }
+            }
+        }
     }
     gone
 }
@@ -259,20 +321,58 @@ fn sample_elimination_removes_the_heaviest_point_each_step() {
 }
 
 #[test]
+fn tiled_elimination_follows_its_definition() {
+    // the same removals in the same order as the definition run one tile at a time: tiles
+    // of one colour share no pair, so running them side by side changes nothing
+    let mut rng = Seed(9).rng();
+    for trial in 0..12 {
+        let dims = 1 + trial % 3;
+        let tiles = if dims == 3 { 2 } else { 2 + 2 * (trial % 2) };
+        let torus = trial % 4 < 2;
+        let target = 40 + below(&mut rng, 40) as usize;
+        let m = target * (2 + below(&mut rng, 4) as usize);
+        let points: Vec<f64> = (0..m * dims).map(|_| uniform(&mut rng)).collect();
+        // every tile at least d_max wide: the library keeps this many tiles
+        assert!(1.0 / tiles as f64 >= 2.0 * spatial::packing_radius(target, dims).unwrap());
+        let (kept, gone) =
+            samplab::sampler::blue_noise::elimination::eliminate_in_tiles(&points, dims, target, torus, tiles).unwrap();
+        let naive = eliminate_tiled_naive(&points, dims, target, torus, tiles);
+        assert_eq!(gone, naive, "trial {trial}: {m} to {target} in {dims}D, {tiles} tiles per axis");
+        assert_eq!(kept.len(), target);
+    }
+}
+
+#[test]
+fn tiled_elimination_is_the_same_on_any_thread_count() {
+    let set = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| sampler::build("elimination.tiled").unwrap().generate(20_000, 2, Seed(4)).unwrap())
+    };
+    let one = set(1);
+    for threads in [2, 3, 8] {
+        assert!(one.as_slice() == set(threads).as_slice(), "{threads} threads");
+    }
+}
+
+#[test]
 fn eliminated_sets_and_their_prefixes_are_blue_noise() {
     // every prefix of n / 2^k points is a stage's survivors: spread far beyond white noise
     // (whose relative radius at these n is about 0.02-0.1) and above 0.5
+    // (the tiled variant in 4 tiles per axis at 4096 points)
     let n = 4096;
-    let set = sampler::build("elimination").unwrap().generate(n, 2, Seed(5)).unwrap();
-    for k in [4096usize, 1024, 256, 64] {
-        let prefix = PointSet::new(2, set.as_slice()[..2 * k].to_vec()).unwrap();
-        let rho = spatial::relative_radius(&prefix).unwrap();
-        assert!(rho > 0.5, "first {k}: relative radius {rho}");
+    for name in ["elimination", "elimination.tiled"] {
+        let set = sampler::build(name).unwrap().generate(n, 2, Seed(5)).unwrap();
+        for k in [4096usize, 1024, 256, 64] {
+            let prefix = PointSet::new(2, set.as_slice()[..2 * k].to_vec()).unwrap();
+            let rho = spatial::relative_radius(&prefix).unwrap();
+            assert!(rho > 0.5, "{name}, first {k}: relative radius {rho}");
+        }
+        // its low frequencies: the PCF below half the packing distance is near 0 (no close
+        // pairs)
+        let d_max = 2.0 * spatial::packing_radius(n, 2).unwrap();
+        let g = spatial::pcf(&set, &[0.4 * d_max], 0.05 * d_max).unwrap();
+        assert!(g[0] < 0.05, "{name}: PCF at 0.4 d_max: {}", g[0]);
     }
-    // its low frequencies: the PCF below half the packing distance is near 0 (no close pairs)
-    let d_max = 2.0 * spatial::packing_radius(n, 2).unwrap();
-    let g = spatial::pcf(&set, &[0.4 * d_max], 0.05 * d_max).unwrap();
-    assert!(g[0] < 0.05, "PCF at 0.4 d_max: {}", g[0]);
 }
 
 /// Voronoi centroids and the quantization energy sum_i integral_(cell i) |x - p_i|^2 by
@@ -536,4 +636,17 @@ fn kdm_langevin_steps_sample_the_gibbs_distribution() {
         "(relative radius, oscillation) by temperature: {runs:?}"
     );
     assert!(runs[0].0 > 0.7 && runs[3].0 < 0.3, "{runs:?}");
+}
+
+#[test]
+fn pair_weights_are_the_rounded_definition() {
+    // (1 - max(d, 2 r_min) / d_max)^8 in units of 2^-40, rounded half away from zero
+    let mut rng = Seed(10).rng();
+    let (r_min, d_max) = (0.013, 0.07);
+    let mut ds: Vec<f64> = (0..100_000).map(|_| uniform(&mut rng) * d_max).collect();
+    ds.extend([0.0, 2.0 * r_min, d_max, d_max * (1.0 - 1e-9)]);
+    for d in ds {
+        let exact = ((1.0 - d.max(2.0 * r_min) / d_max).powi(8) * (1u64 << 40) as f64).round() as u64;
+        assert_eq!(samplab::sampler::blue_noise::elimination::pair_weight(d, r_min, d_max), exact, "d = {d}");
+    }
 }

@@ -8,6 +8,23 @@
 //! eliminated again to n/2 (with the radius of n/2 points), those to n/4, ... to one
 //! point; the points are output in the reverse order of their elimination, so every
 //! prefix of n / 2^k points is a stage's survivors, a blue-noise set of its own.
+//!
+//! `elimination.tiled` (samplab's variant, not Yuksel's) eliminates in parallel: the unit
+//! cube is cut into T^d tiles of side 1/T >= d_max (T even, about [`TILE_POINTS`] target
+//! points per tile; below two tiles per axis, the serial algorithm), coloured by the
+//! parities of their coordinates, so two tiles of one colour are a tile apart and share no
+//! pair closer than d_max. Each tile keeps a quota of the n survivors (equal shares, capped
+//! by its candidates, the remainder to the tiles with most candidates). In R = [`ROUNDS`]
+//! rounds the colours take turns (colour r mod 2^d first in round r), every tile of the
+//! colour on its own thread bringing its candidates down to its share of the round (its
+//! quota plus (R - r) / R of its surplus) with its own heap, its removals lowering the
+//! weights of its neighbours in the adjacent tiles (integer weights: the same sums in any
+//! order). The points depend on T, not on the thread count; the elimination order is the
+//! phases', tiles by index within one. The rounds keep neighbouring tiles at nearly the
+//! same density: with 4 rounds in a fixed colour order, the expected power spectrum of
+//! 65536 points (16 tiles per axis) had a peak at frequency 8, the colours' period, 4.7
+//! times the low-frequency floor; with 16 rounds and the order turning, 1.7 times
+//! (measured 2026-11-28, 8 sets).
 
 use std::ops::RangeInclusive;
 
@@ -27,11 +44,20 @@ use rayon::prelude::*;
 pub struct Elimination {
     ratio: f64,
     torus: bool,
+    /// In tiles, in parallel (module docs), or by one heap.
+    tiled: bool,
 }
 
 /// The start of the optimizers that need a set whose long wavelengths are already settled
 /// (`kdm`, `step`, `single-peak`): elimination from 5n candidates on the torus.
-pub(crate) const SETTLED: Elimination = Elimination { ratio: 5.0, torus: true };
+pub(crate) const SETTLED: Elimination = Elimination { ratio: 5.0, torus: true, tiled: false };
+
+/// Target points per tile of the tiled variant: T = 2 floor((n / TILE_POINTS)^(1/d) / 2).
+pub const TILE_POINTS: usize = 256;
+
+/// Rounds of the tiled variant: each tile comes down to its quota in this many steps, so
+/// that neighbouring tiles thin out together (module docs).
+pub const ROUNDS: usize = 16;
 
 /// The weight exponent alpha and the weight-limiting constants beta and gamma (Yuksel 2015).
 const ALPHA: i32 = 8;
@@ -41,15 +67,92 @@ const GAMMA: f64 = 1.5;
 /// The weight of a pair at distance d, in units of 2^-40 (exact sums and differences: the
 /// weights a point's lost neighbours leave do not depend on the order they went in).
 pub fn pair_weight(d: f64, r_min: f64, d_max: f64) -> u64 {
-    ((1.0 - d.max(2.0 * r_min) / d_max).powi(ALPHA) * (1u64 << 40) as f64).round() as u64
+    let x = (1.0 - d.max(2.0 * r_min) / d_max).powi(ALPHA) * (1u64 << 40) as f64;
+    // x rounded half away from zero, as f64::round (a call into libm, 6% of a tiled run):
+    // x is in [0, 2^40], its fraction x - trunc(x) exact
+    let whole = x as u64;
+    whole + u64::from(x - whole as f64 >= 0.5)
 }
 
-/// Points per unit of parallel work in the weights' first sums.
+/// Points per unit of parallel work in the neighbour lists.
 const CHUNK: usize = 1024;
 
-/// One chunk's neighbour lists: each point's end in the pairs, and the (position, weight)
-/// pairs.
-type Lists = (Vec<u32>, Vec<(u32, u64)>);
+/// The pairs closer than d_max, their weights computed when needed (lists with the
+/// weights were 144 MB at 5 x 10^5 candidates, written and read at the memory's pace).
+/// Each position's neighbours are listed for the one-heap elimination, whose removals are
+/// serial (reading a list is faster there than searching the grid: 1.24 s against 1.65 s
+/// for 10^5 points, measured 2026-11-28), and searched in the grid by the tiled one, whose
+/// removals run in parallel (1.83x on two threads against 1.62x with lists).
+struct Pairs<'g> {
+    grid: &'g Grid,
+    torus: bool,
+    r_min: f64,
+    d_max: f64,
+    /// Per chunk of positions: each one's end in the neighbours, and the neighbours.
+    lists: Option<Vec<(Vec<u32>, Vec<u32>)>>,
+}
+
+impl<'g> Pairs<'g> {
+    /// The pairs of the grid's points closer than d_max (`listed` or not), and each point's
+    /// weight.
+    fn new(grid: &'g Grid, torus: bool, (r_min, d_max): (f64, f64), listed: bool) -> (Pairs<'g>, Vec<u64>) {
+        let mut pairs = Pairs { grid, torus, r_min, d_max, lists: None };
+        let m = grid.len();
+        let (lists, weights): (Vec<_>, Vec<Vec<u64>>) = (0..m.div_ceil(CHUNK))
+            .into_par_iter()
+            .map(|c| {
+                let (mut ends, mut near, mut weights) = (Vec::new(), Vec::new(), Vec::new());
+                for q in c * CHUNK..((c + 1) * CHUNK).min(m) {
+                    let mut sum = 0;
+                    pairs.search(q, |r, w| {
+                        if listed {
+                            near.push(r as u32);
+                        }
+                        sum += w;
+                    });
+                    ends.push(near.len() as u32);
+                    weights.push(sum);
+                }
+                ((ends, near), weights)
+            })
+            .unzip();
+        pairs.lists = listed.then_some(lists);
+        (pairs, weights.concat())
+    }
+
+    /// The weight of the pair of point p and position r, if closer than d_max.
+    #[inline]
+    fn weight(&self, p: &[f64], r: usize) -> Option<u64> {
+        let d2 = distance2(p, self.grid.point(r), self.torus);
+        (d2 < self.d_max * self.d_max).then(|| pair_weight(d2.sqrt(), self.r_min, self.d_max))
+    }
+
+    /// `visit(r, weight)` for every position r closer than d_max to position q, found in
+    /// the grid.
+    #[inline]
+    fn search(&self, q: usize, mut visit: impl FnMut(usize, u64)) {
+        let p = self.grid.point(q);
+        self.grid.near(q, 1, self.torus, |cell| {
+            for r in cell.filter(|&r| r != q) {
+                if let Some(w) = self.weight(p, r) {
+                    visit(r, w);
+                }
+            }
+        });
+    }
+
+    /// `visit(r, weight)` for every position r closer than d_max to position q.
+    #[inline]
+    fn each(&self, q: usize, mut visit: impl FnMut(usize, u64)) {
+        let Some(lists) = &self.lists else { return self.search(q, visit) };
+        let (ends, near) = &lists[q / CHUNK];
+        let k = q % CHUNK;
+        let p = self.grid.point(q);
+        for &r in &near[if k == 0 { 0 } else { ends[k - 1] as usize }..ends[k] as usize] {
+            visit(r as usize, self.weight(p, r as usize).unwrap_or_default());
+        }
+    }
+}
 
 /// Eliminate `points` (m of them, `dims` coordinates) down to `target`: the survivors'
 /// indices in increasing order and the eliminated ones in elimination order.
@@ -57,6 +160,21 @@ type Lists = (Vec<u32>, Vec<(u32, u64)>);
 /// # Errors
 /// Dimensions outside 1..=8 (no packing radius).
 pub fn eliminate(points: &[f64], dims: usize, target: usize, torus: bool) -> Result<(Vec<usize>, Vec<usize>)> {
+    eliminate_in_tiles(points, dims, target, torus, 0)
+}
+
+/// As [`eliminate`], in `tiles` tiles per axis (module docs; made even and at most 1/d_max;
+/// under 2, one heap as [`eliminate`]).
+///
+/// # Errors
+/// As [`eliminate`].
+pub fn eliminate_in_tiles(
+    points: &[f64],
+    dims: usize,
+    target: usize,
+    torus: bool,
+    tiles: usize,
+) -> Result<(Vec<usize>, Vec<usize>)> {
     let m = points.len() / dims;
     if target >= m {
         return Ok(((0..m).collect(), Vec::new()));
@@ -64,53 +182,140 @@ pub fn eliminate(points: &[f64], dims: usize, target: usize, torus: bool) -> Res
     let r_max = packing_radius(target.max(1), dims)?;
     let d_max = 2.0 * r_max;
     let r_min = r_max * (1.0 - (target as f64 / m as f64).powf(GAMMA)) * BETA;
-    let weight = |d2: f64| pair_weight(d2.sqrt(), r_min, d_max);
     // positions in the grid's cell order, ids[q] the candidate at position q
     let grid = Grid::covering(points, dims, d_max);
-    // every point's neighbours closer than d_max with their weights, by chunk (fixed order)
-    let lists: Vec<Lists> = (0..m.div_ceil(CHUNK))
-        .into_par_iter()
-        .map(|c| {
-            let (mut ends, mut pairs) = (Vec::new(), Vec::new());
-            for q in c * CHUNK..((c + 1) * CHUNK).min(m) {
-                let p = grid.point(q);
-                grid.near(q, 1, torus, |cell| {
-                    for r in cell.filter(|&r| r != q) {
-                        let d2 = distance2(p, grid.point(r), torus);
-                        if d2 < d_max * d_max {
-                            pairs.push((r as u32, weight(d2)));
-                        }
-                    }
-                });
-                ends.push(pairs.len() as u32);
-            }
-            (ends, pairs)
-        })
-        .collect();
-    // position q's neighbours, read in its chunk's lists (not gathered into one list: that
-    // copy was a sixth of a run, on one thread)
-    let near = |q: usize| -> &[(u32, u64)] {
-        let (ends, pairs) = &lists[q / CHUNK];
-        let k = q % CHUNK;
-        &pairs[if k == 0 { 0 } else { ends[k - 1] as usize }..ends[k] as usize]
+    // tiles per axis: even, each at least d_max wide
+    let tiles = (tiles.min((1.0 / d_max).floor() as usize)) / 2 * 2;
+    let (pairs, weights) = Pairs::new(&grid, torus, (r_min, d_max), tiles < 2);
+    let (alive, gone) = if tiles < 2 {
+        by_one_heap(weights, target, &pairs)
+    } else {
+        by_tiles(weights, tiles, target, &pairs)
     };
-    let weights = (0..m).into_par_iter().map(|q| near(q).iter().map(|&(_, w)| w).sum()).collect();
-    let mut heap = Heap::new(weights, &grid.ids);
+    let gone = gone.into_iter().map(|q| grid.ids[q] as usize).collect();
+    let mut kept: Vec<usize> = (0..m).filter(|&q| alive[q]).map(|q| grid.ids[q] as usize).collect();
+    kept.sort_unstable();
+    Ok((kept, gone))
+}
+
+/// Yuksel's elimination by one heap: which positions are left, and the removed ones in
+/// order.
+fn by_one_heap(weights: Vec<u64>, target: usize, pairs: &Pairs) -> (Vec<bool>, Vec<usize>) {
+    let m = weights.len();
+    let mut heap = Heap::new(weights, &pairs.grid.ids, (0..m as u32).collect());
     let mut alive = vec![true; m];
     let mut gone = Vec::with_capacity(m - target);
     while gone.len() < m - target {
         let q = heap.pop();
         alive[q] = false;
-        gone.push(grid.ids[q] as usize);
-        for &(r, w) in near(q) {
-            if alive[r as usize] {
-                heap.lower(r as usize, w);
+        gone.push(q);
+        pairs.each(q, |r, w| {
+            if alive[r] {
+                heap.lower(r, w);
             }
+        });
+    }
+    (alive, gone)
+}
+
+/// Each tile's share of `target` survivors: equal shares capped by its candidates
+/// (`counts`), one more to the tiles with room, most candidates first (ties: the lower
+/// tile).
+fn quotas(counts: &[usize], target: usize) -> Vec<usize> {
+    let kept = |level: usize| counts.iter().map(|&c| c.min(level)).sum::<usize>();
+    // the largest level whose capped shares fit (kept(0) = 0 <= target <= kept(max))
+    let (mut low, mut high) = (0, counts.iter().copied().max().unwrap_or(0));
+    while low < high {
+        let mid = (low + high).div_ceil(2);
+        if kept(mid) <= target { low = mid } else { high = mid - 1 }
+    }
+    let mut share: Vec<usize> = counts.iter().map(|&c| c.min(low)).collect();
+    let mut room: Vec<usize> = (0..counts.len()).filter(|&t| counts[t] > low).collect();
+    room.sort_by_key(|&t| (std::cmp::Reverse(counts[t]), t));
+    for &t in &room[..target - kept(low)] {
+        share[t] += 1;
+    }
+    share
+}
+
+/// The tiled elimination (module docs): which positions are left, and the removed ones in
+/// order.
+fn by_tiles(weights: Vec<u64>, tiles: usize, target: usize, pairs: &Pairs) -> (Vec<bool>, Vec<usize>) {
+    use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+    let grid = pairs.grid;
+    let (m, dims) = (weights.len(), grid.point(0).len());
+    let tile_of = |q: usize| {
+        grid.point(q).iter().rev().fold(0, |t, &x| t * tiles + ((x * tiles as f64) as usize).min(tiles - 1))
+    };
+    let colour = |t: usize| (0..dims).fold((0, t), |(c, rest), axis| (c | (rest % tiles % 2) << axis, rest / tiles)).0;
+    // each tile's positions, increasing; each position's tile and place among its tile's
+    let mut members = vec![Vec::new(); tiles.pow(dims as u32)];
+    let (mut owner, mut place) = (vec![0u32; m], vec![0u32; m]);
+    for q in 0..m {
+        let t = tile_of(q);
+        (owner[q], place[q]) = (t as u32, members[t].len() as u32);
+        members[t].push(q as u32);
+    }
+    let quota = quotas(&members.iter().map(Vec::len).collect::<Vec<_>>(), target);
+    let ids: Vec<Vec<u32>> = members.iter().map(|ms| ms.iter().map(|&q| grid.ids[q as usize]).collect()).collect();
+    // per tile: its heap and which of its members are alive, by place
+    let mut state: Vec<(Heap, Vec<bool>)> = members
+        .iter()
+        .zip(&ids)
+        .map(|(ms, ids)| {
+            let own = ms.iter().map(|&q| weights[q as usize]).collect();
+            (Heap::new(own, ids, (0..ms.len() as u32).collect()), vec![true; ms.len()])
+        })
+        .collect();
+    // the weight each position has lost to the removals of other tiles, not yet in its heap
+    let lost: Vec<AtomicU64> = (0..m).map(|_| AtomicU64::new(0)).collect();
+    let mut gone = Vec::with_capacity(m - target);
+    for round in 1..=ROUNDS {
+        // the colours take turns, a different one first in each round
+        for turn in 0..1 << dims {
+            let hue = (round + turn) % (1 << dims);
+            let removed: Vec<Vec<usize>> = state
+                .par_iter_mut()
+                .enumerate()
+                .filter(|(t, _)| colour(*t) == hue)
+                .map(|(t, (heap, alive))| {
+                    let surplus = members[t].len() - quota[t];
+                    let share = quota[t] + surplus * (ROUNDS - round) / ROUNDS;
+                    for (k, &q) in members[t].iter().enumerate() {
+                        let by = lost[q as usize].load(Relaxed);
+                        if by > 0 && alive[k] {
+                            lost[q as usize].store(0, Relaxed);
+                            heap.lower(k, by);
+                        }
+                    }
+                    let mut removed = Vec::new();
+                    while heap.len() > share {
+                        let k = heap.pop();
+                        alive[k] = false;
+                        let q = members[t][k] as usize;
+                        removed.push(q);
+                        pairs.each(q, |r, w| {
+                            if owner[r] as usize != t {
+                                // an adjacent tile's point, resting in this phase
+                                lost[r].fetch_add(w, Relaxed);
+                            } else if alive[place[r] as usize] {
+                                heap.lower(place[r] as usize, w);
+                            }
+                        });
+                    }
+                    removed
+                })
+                .collect();
+            gone.extend(removed.into_iter().flatten());
         }
     }
-    let mut kept: Vec<usize> = (0..m).filter(|&q| alive[q]).map(|q| grid.ids[q] as usize).collect();
-    kept.sort_unstable();
-    Ok((kept, gone))
+    let mut kept = vec![false; m];
+    for (t, (_, alive)) in state.iter().enumerate() {
+        for (k, &a) in alive.iter().enumerate() {
+            kept[members[t][k] as usize] = a;
+        }
+    }
+    (kept, gone)
 }
 
 /// A max-heap of grid positions by weight (ties: the lower candidate index first) whose
@@ -125,10 +330,14 @@ struct Heap<'a> {
 }
 
 impl<'a> Heap<'a> {
-    fn new(weight: Vec<u64>, ids: &'a [u32]) -> Heap<'a> {
-        let m = weight.len();
-        let mut h = Heap { weight, ids, heap: (0..m as u32).collect(), at: (0..m as u32).collect() };
-        for k in (0..m / 2).rev() {
+    /// The heap of the positions `entries` (of `weight.len()`).
+    fn new(weight: Vec<u64>, ids: &'a [u32], entries: Vec<u32>) -> Heap<'a> {
+        let mut at = vec![u32::MAX; weight.len()];
+        for (k, &q) in entries.iter().enumerate() {
+            at[q as usize] = k as u32;
+        }
+        let mut h = Heap { weight, ids, heap: entries, at };
+        for k in (0..h.heap.len() / 2).rev() {
             h.down(k);
         }
         h
@@ -161,6 +370,11 @@ impl<'a> Heap<'a> {
         self.at[item as usize] = k as u32;
     }
 
+    /// How many positions it holds.
+    fn len(&self) -> usize {
+        self.heap.len()
+    }
+
     /// Remove and return the first position.
     fn pop(&mut self) -> usize {
         let first = self.heap[0] as usize;
@@ -184,13 +398,17 @@ impl<'a> Heap<'a> {
 ///
 /// # Errors
 /// As [`eliminate`].
-pub fn progressive(points: &[f64], dims: usize, n: usize, torus: bool) -> Result<Vec<usize>> {
-    let (mut alive, _) = eliminate(points, dims, n, torus)?;
+pub fn progressive(points: &[f64], dims: usize, n: usize, torus: bool, tiled: bool) -> Result<Vec<usize>> {
+    // the tiled variant's tiles per axis for a target count (module docs)
+    let tiles = |target: usize| {
+        if tiled { 2 * ((target as f64 / TILE_POINTS as f64).powf(1.0 / dims as f64) / 2.0).floor() as usize } else { 0 }
+    };
+    let (mut alive, _) = eliminate_in_tiles(points, dims, n, torus, tiles(n))?;
     let mut later = Vec::with_capacity(n);
     while alive.len() > 1 {
         let target = alive.len() / 2;
         let subset: Vec<f64> = alive.iter().flat_map(|&i| points[i * dims..(i + 1) * dims].iter().copied()).collect();
-        let (kept, gone) = eliminate(&subset, dims, target, torus)?;
+        let (kept, gone) = eliminate_in_tiles(&subset, dims, target, torus, tiles(target))?;
         later.extend(gone.iter().map(|&k| alive[k]));
         alive = kept.iter().map(|&k| alive[k]).collect();
     }
@@ -222,8 +440,6 @@ impl Construction for Elimination {
 }
 
 impl Elimination {
-
-
     pub(crate) fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         if n == 0 {
             return Ok(());
@@ -234,7 +450,7 @@ impl Elimination {
         crate::memory::check(|| format!("elimination from {m} candidates"), m as u128 * (640 + 8 * dims as u128))?;
         let mut candidates = vec![0.0; m * dims];
         Random::draw(seed, &mut candidates);
-        for (p, i) in out.chunks_exact_mut(dims).zip(progressive(&candidates, dims, n, self.torus)?) {
+        for (p, i) in out.chunks_exact_mut(dims).zip(progressive(&candidates, dims, n, self.torus, self.tiled)?) {
             p.copy_from_slice(&candidates[i * dims..(i + 1) * dims]);
         }
         Ok(())
@@ -242,21 +458,38 @@ impl Elimination {
 }
 
 /// The samplers this file registers.
-pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
-    about: About::new("elimination", "weighted sample elimination of uniform candidates to n, progressive")
-        .aliases(&["sample-elimination", "yuksel"])
-        .params(&[
-            ParamSpec {
-                name: "ratio",
-                kind: Kind::Real { min: 1.0, max: 64.0 },
-                default: Default::Number(5.0),
-                doc: "candidates per output point",
-            },
-            EDGE,
-        ])
+pub(crate) static ENTRIES: &[SamplerEntry] = &[
+    SamplerEntry {
+        about: About::new("elimination", "weighted sample elimination of uniform candidates to n, progressive")
+            .aliases(&["sample-elimination", "yuksel"])
+            .params(PARAMS)
+            .cite(&["yuksel2015"]),
+        counts: ANY,
+        randomized: true,
+        dims: "1..=4",
+        build: |p| Ok(Box::new(Elimination { ratio: p.real("ratio"), torus: edge_is_torus(p.word("edge")), tiled: false })),
+    },
+    SamplerEntry {
+        about: About::new(
+            "elimination.tiled",
+            "sample elimination in tiles of about 256 points, eliminated in parallel (samplab's variant: other points than elimination's)",
+        )
+        .params(PARAMS)
         .cite(&["yuksel2015"]),
-    counts: ANY,
-    randomized: true,
-    dims: "1..=4",
-    build: |p| Ok(Box::new(Elimination { ratio: p.real("ratio"), torus: edge_is_torus(p.word("edge")) })),
-}];
+        counts: ANY,
+        randomized: true,
+        dims: "1..=4",
+        build: |p| Ok(Box::new(Elimination { ratio: p.real("ratio"), torus: edge_is_torus(p.word("edge")), tiled: true })),
+    },
+];
+
+/// The parameters of both entries.
+const PARAMS: &[ParamSpec] = &[
+    ParamSpec {
+        name: "ratio",
+        kind: Kind::Real { min: 1.0, max: 64.0 },
+        default: Default::Number(5.0),
+        doc: "candidates per output point",
+    },
+    EDGE,
+];
