@@ -446,8 +446,9 @@ impl Elimination {
         }
         let m = ((n as f64 * self.ratio).ceil() as usize).max(n);
         // the candidates, their neighbour lists, the heap and the halvings' copies: the peak
-        // was 0.30 GB for 5 * 10^5 candidates in 2D (measured, 2026-11-26), 600 bytes each
-        crate::memory::check(|| format!("elimination from {m} candidates"), m as u128 * (640 + 8 * dims as u128))?;
+        // for 5 * 10^5 candidates was 80 MB in 2D and 156 MB in 4D (tiled: 54 and 68 MB;
+        // measured, 2026-11-28), up to 320 bytes each
+        crate::memory::check(|| format!("elimination from {m} candidates"), m as u128 * (320 + 8 * dims as u128))?;
         let mut candidates = vec![0.0; m * dims];
         Random::draw(seed, &mut candidates);
         for (p, i) in out.chunks_exact_mut(dims).zip(progressive(&candidates, dims, n, self.torus, self.tiled)?) {
