@@ -34,7 +34,7 @@ use samplab::sampler::{Counts, SAMPLERS, SamplerEntry};
 use samplab::{PointSet, Sampler, Seed, spatial, spectrum, warp};
 use serde::{Deserialize, Serialize};
 
-use crate::html::{STYLE, escape};
+use crate::html::{STYLE, escape, write};
 use crate::plot::{self, HeatMap, LineChart, Scatter, Series};
 use crate::{Error, Scale};
 
@@ -442,9 +442,7 @@ fn measure_speeds(entries: &[&'static SamplerEntry], stop: &AtomicBool) -> Resul
 /// text of one of its table cells or of a legend label in one of its SVG figures (up to the
 /// spec's first ':' or space).
 fn uses_in_report(dir: &Path) -> Result<Vec<(Vec<&'static str>, Use)>, Error> {
-    let read = |p: &Path| {
-        std::fs::read_to_string(p).map_err(|e| Error::Io { path: p.display().to_string(), reason: e.to_string() })
-    };
+    let read = |p: &Path| std::fs::read_to_string(p).map_err(|e| crate::io_error(p, e));
     let mut out = Vec::new();
     for paper in crate::paper::all() {
         let path = dir.join(format!("{}.html", paper.key));
@@ -644,10 +642,6 @@ fn page(title: &str, root: &str, body: &str) -> String {
     )
 }
 
-fn write(path: &Path, bytes: &[u8]) -> Result<(), Error> {
-    std::fs::write(path, bytes).map_err(|e| Error::Io { path: path.display().to_string(), reason: e.to_string() })
-}
-
 fn speed_text(speed: Option<&Speed>) -> String {
     speed.map_or("not measured".into(), |s| {
         format!("{:.3e} points/s (one set of {} points in {:.4} s)", s.n as f64 / s.seconds, s.n, s.seconds)
@@ -657,8 +651,7 @@ fn speed_text(speed: Option<&Speed>) -> String {
 /// Every file of the atlas.
 fn write_atlas(dir: &Path, pages: &[Page], speeds: &Speeds, options: &Options) -> Result<(), Error> {
     for sub in ["samplers", "figures"] {
-        std::fs::create_dir_all(dir.join(sub))
-            .map_err(|e| Error::Io { path: dir.display().to_string(), reason: e.to_string() })?;
+        std::fs::create_dir_all(dir.join(sub)).map_err(|e| crate::io_error(dir, e))?;
     }
     write(&dir.join("style.css"), format!("{STYLE}{ATLAS_STYLE}").as_bytes())?;
     write(&dir.join("speed.json"), serde_json::to_string_pretty(speeds).expect("plain data").as_bytes())?;

@@ -352,7 +352,8 @@ pub struct Done {
     pub output: Output,
 }
 
-fn io_error(p: &Path, e: std::io::Error) -> Error {
+/// An I/O error on `p`, as the report's error.
+pub(crate) fn io_error(p: &Path, e: std::io::Error) -> Error {
     Error::Io { path: p.display().to_string(), reason: e.to_string() }
 }
 

@@ -468,7 +468,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         counts: ANY,
         randomized: true,
         dims: "1..=4",
-        build: |p| Ok(Box::new(Elimination { ratio: p.real("ratio"), torus: edge_is_torus(p.word("edge")), tiled: false })),
+        build: |p| build(p, false),
     },
     SamplerEntry {
         about: About::new(
@@ -480,9 +480,14 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
         counts: ANY,
         randomized: true,
         dims: "1..=4",
-        build: |p| Ok(Box::new(Elimination { ratio: p.real("ratio"), torus: edge_is_torus(p.word("edge")), tiled: true })),
+        build: |p| build(p, true),
     },
 ];
+
+/// Either entry's sampler from its parameters.
+fn build(p: &crate::spec::Params, tiled: bool) -> Result<Box<dyn Construction>> {
+    Ok(Box::new(Elimination { ratio: p.real("ratio"), torus: edge_is_torus(p.word("edge")), tiled }))
+}
 
 /// The parameters of both entries.
 const PARAMS: &[ParamSpec] = &[
