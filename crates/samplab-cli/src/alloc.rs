@@ -77,8 +77,34 @@ impl Checked {
             Checked::give(size);
             refuse(size, "the system refused a block of");
         }
+        huge_pages(ptr, size);
         ptr
     }
+}
+
+/// Blocks from this size ask for transparent huge pages.
+const HUGE: usize = 4 << 20;
+
+/// Ask the kernel to back the whole 2 MiB pages inside a block of at least [`HUGE`] bytes
+/// with huge pages (where it allows them on request, as most Linux systems do): a 16 MiB
+/// grid then costs 8 page faults instead of 4096, and freeing it one TLB invalidation per
+/// 2 MiB on the other cores instead of one per 4 KiB (measured: on two threads, the faults
+/// and invalidations of the spectra's buffers took more system time than the transforms).
+/// Memory contents and results are unchanged; a refusal is harmless and ignored.
+fn huge_pages(ptr: *mut u8, size: usize) {
+    #[cfg(target_os = "linux")]
+    if size >= HUGE {
+        const PAGE: usize = 2 << 20;
+        let start = (ptr as usize).next_multiple_of(PAGE);
+        let end = (ptr as usize + size) / PAGE * PAGE;
+        if end > start {
+            // SAFETY: advice on whole pages inside a block this process holds; it changes
+            // no contents, and its failure is ignored.
+            unsafe { libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_HUGEPAGE) };
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = (ptr, size);
 }
 
 // SAFETY: every call goes to the system allocator with the caller's layout; the wrapper

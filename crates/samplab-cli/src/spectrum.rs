@@ -3,7 +3,9 @@
 
 use std::path::PathBuf;
 
-use anyhow::bail;
+use std::io::Write;
+
+use anyhow::{Context as _, bail};
 use rayon::prelude::*;
 use samplab::PointSet;
 use samplab::spectrum::{self, Statistics};
@@ -72,11 +74,13 @@ fn theory_for(spec: &str, set: &PointSet) -> Option<(String, Vec<f64>)> {
     Some((theory.label, curve))
 }
 
-/// A file of the output folder: its name and a way to make its bytes.
-type File<'a> = (String, Box<dyn Fn() -> anyhow::Result<Vec<u8>> + Send + Sync + 'a>);
+/// A file of the output folder: its name and a way to write its bytes.
+type File<'a> = (String, Box<dyn Fn(&mut dyn Write) -> anyhow::Result<()> + Send + Sync + 'a>);
 
-/// Write the output folder's files, their bytes made in parallel (the formatting of a
-/// 1024^2 grid's numbers is most of a run's serial time) and written in a fixed order.
+/// Write the output folder's files, each in its own parallel task (the formatting of a
+/// 1024^2 grid's numbers is most of a run's serial time), streamed through a buffer (a
+/// whole file's text in memory cost more in page faults than its formatting, on two
+/// threads).
 fn write(
     dir: &std::path::Path,
     st: &Statistics,
@@ -85,9 +89,9 @@ fn write(
     theory: Option<&(String, Vec<f64>)>,
 ) -> anyhow::Result<()> {
     let names: Vec<&str> = a.stat.iter().map(String::as_str).collect();
+    let curves = spectrum::radials(st, &names);
     let mut series = Vec::new();
-    for name in &a.stat {
-        let (radial, _) = spectrum::radial(st.values(name), st.res, st.dims);
+    for (name, (radial, _)) in a.stat.iter().zip(&curves) {
         series.push(Series {
             colour_key: Some(name.clone()),
             ..Series::line(name.clone(), radial.iter().enumerate().map(|(i, &y)| ((i + 1) as f64, y)).collect())
@@ -115,10 +119,10 @@ fn write(
     };
     let mut files: Vec<File> = vec![(
         "spectrum.json".into(),
-        Box::new(|| {
+        Box::new(|w| {
             // the keys in sorted order, as a serde_json map prints them
             #[derive(serde::Serialize)]
-            struct SpectrumJson<'a> {
+            struct SpectrumJson<'a, S> {
                 dims: usize,
                 layout: &'a str,
                 n: usize,
@@ -126,31 +130,36 @@ fn write(
                 res: usize,
                 sets: usize,
                 source: &'a str,
-                statistics: Box<serde_json::value::RawValue>,
+                statistics: S,
             }
-            Ok(serde_json::to_vec(&SpectrumJson {
-                dims: st.dims,
-                layout: "row-major; index (R/2, R/2) is DC; frequency = index - R/2 on each axis",
-                n: st.n,
-                normalization: "S(w) = (1/N) sum exp(-2 pi i w.x); variance divides by M - 1; radial bins r = 1..R/2-1 by rounded |w|, DC excluded",
-                res: st.res,
-                sets: st.sets,
-                source,
-                statistics: spectrum::json(st, &names),
-            })?)
+            Ok(serde_json::to_writer(
+                w,
+                &SpectrumJson {
+                    dims: st.dims,
+                    layout: "row-major; index (R/2, R/2) is DC; frequency = index - R/2 on each axis",
+                    n: st.n,
+                    normalization: "S(w) = (1/N) sum exp(-2 pi i w.x); variance divides by M - 1; radial bins r = 1..R/2-1 by rounded |w|, DC excluded",
+                    res: st.res,
+                    sets: st.sets,
+                    source,
+                    statistics: spectrum::json(st, &names, &curves),
+                },
+            )?)
         }),
     )];
     for name in &a.stat {
         let v = st.values(name);
         files.push((
             format!("{name}.csv"),
-            Box::new(move || {
-                let mut csv = String::new();
+            Box::new(move |w| {
                 for row in v.chunks(if st.dims == 2 { st.res } else { v.len() }) {
-                    csv += &row.iter().map(|x| format!("{x:?}")).collect::<Vec<_>>().join(",");
-                    csv.push('\n');
+                    for (i, x) in row.iter().enumerate() {
+                        let sep = if i == 0 { "" } else { "," };
+                        write!(w, "{sep}{x:?}")?;
+                    }
+                    writeln!(w)?;
                 }
-                Ok(csv.into_bytes())
+                Ok(())
             }),
         ));
         if st.dims == 2 {
@@ -161,19 +170,25 @@ fn write(
             };
             files.push((
                 format!("{name}.png"),
-                Box::new(move || {
+                Box::new(move |w| {
                     let map = HeatMap::centred(format!("{name} — {source}"), label.into(), v.to_vec(), st.res);
-                    Ok(draw::png(&map, (820, 700))?)
+                    Ok(w.write_all(&draw::png(&map, (820, 700))?)?)
                 }),
             ));
         }
     }
-    files.push(("radial.csv".into(), Box::new(|| Ok(spectrum::radial_csv(st, &names).into_bytes()))));
-    files.push(("radial.png".into(), Box::new(|| Ok(draw::png(&chart, (900, 560))?))));
-    files.push(("radial.svg".into(), Box::new(|| Ok(draw::svg(&chart, (900, 560))?.into_bytes()))));
-    let made = files.par_iter().map(|(_, make)| make()).collect::<anyhow::Result<Vec<_>>>()?;
-    for ((name, _), bytes) in files.iter().zip(made) {
-        std::fs::write(dir.join(name), bytes)?;
-    }
-    Ok(())
+    files.push((
+        "radial.csv".into(),
+        Box::new(|w| Ok(w.write_all(spectrum::radial_csv(st, &names, &curves).as_bytes())?)),
+    ));
+    files.push(("radial.png".into(), Box::new(|w| Ok(w.write_all(&draw::png(&chart, (900, 560))?)?))));
+    files.push(("radial.svg".into(), Box::new(|w| Ok(w.write_all(draw::svg(&chart, (900, 560))?.as_bytes())?))));
+    // the folder is a staging one, renamed into place once complete
+    files.par_iter().try_for_each(|(name, make)| {
+        let path = dir.join(name);
+        let file = std::fs::File::create(&path).with_context(|| format!("cannot write '{}'", path.display()))?;
+        let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
+        make(&mut w)?;
+        w.flush().with_context(|| format!("cannot write '{}'", path.display()))
+    })
 }

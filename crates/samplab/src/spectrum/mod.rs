@@ -144,45 +144,43 @@ impl Statistics {
     }
 }
 
-/// `{name: {"anisotropy_db", "grid", "radial"}}` for the statistics `names`, keys in
-/// sorted order (as a `serde_json::Value` prints them): the `statistics` of `samplab
-/// spectrum`'s `spectrum.json`, each statistic's text made in parallel (a 1024^2 grid is
-/// a million numbers to format). Non-finite numbers are written as `null`.
-///
-/// # Panics
-/// Never: plain numbers always serialize.
-pub fn json(st: &Statistics, names: &[&str]) -> Box<serde_json::value::RawValue> {
+/// A statistic's radial curves: its average and its anisotropy in dB per radial bin
+/// (1 .. R/2 - 1), as [`radial`] gives them.
+pub type Radial = (Vec<f64>, Vec<f64>);
+
+/// The radial curves of the statistics `names`, in parallel (one per statistic).
+pub fn radials(st: &Statistics, names: &[&str]) -> Vec<Radial> {
+    names.par_iter().map(|n| radial(st.values(n), st.res, st.dims)).collect()
+}
+
+/// `{name: {"anisotropy_db", "grid", "radial"}}` for the statistics `names` with their
+/// `curves` (from [`radials`]), keys in sorted order: the `statistics` of `samplab
+/// spectrum`'s `spectrum.json`, to serialize (serde_json writes non-finite numbers as
+/// `null`), straight into a file where it is one.
+pub fn json<'a>(st: &'a Statistics, names: &[&'a str], curves: &'a [Radial]) -> impl serde::Serialize + 'a {
     #[derive(serde::Serialize)]
     struct Statistic<'a> {
-        anisotropy_db: Vec<f64>,
+        anisotropy_db: &'a [f64],
         grid: &'a [f64],
-        radial: Vec<f64>,
+        radial: &'a [f64],
     }
-    let mut sorted = names.to_vec();
-    sorted.sort_unstable();
-    sorted.dedup();
-    let parts: Vec<String> = sorted
-        .par_iter()
-        .map(|&name| {
-            let grid = st.values(name);
-            let (radial, anisotropy_db) = radial(grid, st.res, st.dims);
-            let text = serde_json::to_string(&Statistic { anisotropy_db, grid, radial }).expect("numbers serialize");
-            format!("{}:{text}", serde_json::Value::from(name))
-        })
-        .collect();
-    serde_json::value::RawValue::from_string(format!("{{{}}}", parts.join(","))).expect("the parts are JSON")
+    names
+        .iter()
+        .zip(curves)
+        .map(|(&name, (radial, anisotropy_db))| (name, Statistic { anisotropy_db, grid: st.values(name), radial }))
+        .collect::<std::collections::BTreeMap<_, _>>()
 }
 
 /// `radial.csv` of `samplab spectrum`: per radial bin (1 .. R/2 - 1), each statistic's
-/// radial average and anisotropy in dB (numbers as Rust prints them).
-pub fn radial_csv(st: &Statistics, names: &[&str]) -> String {
-    let columns: Vec<(Vec<f64>, Vec<f64>)> = names.iter().map(|n| radial(st.values(n), st.res, st.dims)).collect();
+/// radial average and anisotropy in dB (numbers as Rust prints them), from `curves` (from
+/// [`radials`]).
+pub fn radial_csv(st: &Statistics, names: &[&str], curves: &[Radial]) -> String {
     let header = std::iter::once("frequency".to_string())
         .chain(names.iter().flat_map(|n| [n.to_string(), format!("{n}_anisotropy_db")]));
     let mut csv = crate::io::csv_line(header);
     for b in 0..st.res / 2 - 1 {
         let row = std::iter::once(format!("{}", b + 1))
-            .chain(columns.iter().flat_map(|(r, a)| [format!("{:?}", r[b]), format!("{:?}", a[b])]));
+            .chain(curves.iter().flat_map(|(r, a)| [format!("{:?}", r[b]), format!("{:?}", a[b])]));
         csv += &crate::io::csv_line(row);
     }
     csv
@@ -282,11 +280,13 @@ pub fn radial(values: &[f64], res: usize, dims: usize) -> (Vec<f64>, Vec<f64>) {
     let (mut sum, mut sq, mut count) = (vec![0.0; bins], vec![0.0; bins], vec![0usize; bins]);
     let half = (res / 2) as f64;
     for (idx, &v) in values.iter().enumerate() {
+        // i^2 + j^2 is an exact integer, so its square root is |w| correctly rounded, which
+        // no bin boundary k + 1/2 is near (its square is no integer): the same bins as hypot
         let r = if dims == 1 {
             (idx as f64 - half).abs()
         } else {
             let (i, j) = ((idx / res) as f64 - half, (idx % res) as f64 - half);
-            i.hypot(j)
+            (i * i + j * j).sqrt()
         };
         let b = r.round() as usize;
         if b >= 1 && b < bins {

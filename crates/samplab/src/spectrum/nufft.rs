@@ -27,6 +27,10 @@ use crate::points::PointSet;
 /// FFT task.
 const TILE: usize = 16;
 
+/// The real rows of a band of the 2D grid: a band's 8 complex rows (256 KiB at R = 1024)
+/// stay in a core's cache from spreading to FFT.
+const BAND: usize = 16;
+
 /// A planned transform for one resolution and tolerance (reusable across sets).
 pub struct Nufft {
     res: usize,
@@ -45,12 +49,21 @@ pub struct Nufft {
     scratch: std::sync::Mutex<Vec<Scratch>>,
 }
 
-/// The buffers of one transform: the real grid, the complex rows and the kept columns.
+/// The buffers of one transform: the real grid (1D), the complex rows, the kept columns
+/// and the bands' lists of points (2D).
 #[derive(Default)]
 struct Scratch {
     real: Vec<f64>,
     rows: Vec<C64<f64>>,
     cols: Vec<C64<f64>>,
+    bands: Bands,
+}
+
+/// The points met by each band of rows: band b's are `members[start[b]..start[b + 1]]`.
+#[derive(Default)]
+struct Bands {
+    start: Vec<u32>,
+    members: Vec<u32>,
 }
 
 impl std::fmt::Debug for Nufft {
@@ -140,102 +153,105 @@ impl Nufft {
     /// # Errors
     /// The set's dimension is not the planned one, or the weights do not match the points.
     pub fn transform_weighted(&self, points: &PointSet, weights: Option<&[f64]>) -> Result<Vec<Complex>> {
+        let mut out = Vec::new();
+        self.transform_into(points, weights, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Nufft::transform_weighted`] into `out`, whose memory is reused when it is of the
+    /// right size (a fresh 16 MiB buffer per set costs its page faults, which on several
+    /// threads serialize on the process's page tables).
+    pub(crate) fn transform_into(
+        &self,
+        points: &PointSet,
+        weights: Option<&[f64]>,
+        out: &mut Vec<Complex>,
+    ) -> Result<()> {
         if weights.is_some_and(|w| w.len() != points.len()) {
             return Err(Error::Invalid("one weight per point is needed".into()));
+        }
+        if let Some(j) = weights.and_then(|w| w.iter().position(|c| !c.is_finite())) {
+            return Err(Error::Invalid(format!("weight {j} is not a finite number")));
         }
         if points.dims() != self.dims {
             return Err(Error::Invalid(format!("planned for {}D points, got {}D", self.dims, points.dims())));
         }
-        // the real grid, and as much again for the transform's complex rows and output
+        // the complex rows, as much again for the kept columns, and the output
         let (g, cells) = (self.grid, (self.grid as u128).pow(self.dims as u32));
         crate::memory::check(|| format!("a non-uniform FFT on a {g}^{} grid", self.dims), 16 * cells)?;
         let mut scratch = self.scratch.lock().map(|mut pool| pool.pop()).ok().flatten().unwrap_or_default();
-        let out = self.spread_and_transform(points, weights, &mut scratch);
+        self.spread_and_transform(points, weights, &mut scratch, out);
         if let Ok(mut pool) = self.scratch.lock() {
             pool.push(scratch);
         }
-        Ok(out)
+        Ok(())
     }
 
-    /// The body of [`Nufft::transform_weighted`], in the buffers of `scratch`.
-    fn spread_and_transform(&self, points: &PointSet, weights: Option<&[f64]>, scratch: &mut Scratch) -> Vec<Complex> {
-        let (g, w) = (self.grid, self.width);
+    /// The grid index of the first of the w cells a point at x spreads onto.
+    #[inline(always)]
+    fn first(&self, x: f64) -> f64 {
+        (x * self.grid as f64 - self.width as f64 / 2.0).ceil()
+    }
+
+    /// The body of [`Nufft::transform_weighted`], in the buffers of `scratch`, into `out`.
+    fn spread_and_transform(
+        &self,
+        points: &PointSet,
+        weights: Option<&[f64]>,
+        scratch: &mut Scratch,
+        out: &mut Vec<Complex>,
+    ) {
+        let g = self.grid;
         let wrap = |i: i64| i.rem_euclid(g as i64) as usize;
-        // spread into a real grid: 16 values from each first index (the last 16 - w zero)
-        // where they fit, index by index around the torus near its seam
-        let Scratch { real, rows, cols } = scratch;
-        real.clear();
-        real.resize(g.pow(self.dims as u32), 0.0);
-        let inner = |f: i64| f >= 0 && f as usize + 16 <= g;
-        crate::simd::wide(
-            #[inline(always)]
-            || {
-                // a local slice and kernel values by value: no aliasing for the vectorizer to fear
-                let real = real.as_mut_slice();
-                for (j, p) in points.iter().enumerate() {
-                    let c = weights.map_or(1.0, |wt| wt[j]);
-                    let (fx, wx) = self.weights(p[0]);
-                    if self.dims == 1 {
-                        if inner(fx)
+        let Scratch { real, rows, cols, bands } = scratch;
+        let inv = 1.0 / points.len() as f64;
+        let half = (self.res / 2) as i64;
+        let at = |k: usize| wrap(k as i64 - half);
+        if self.dims == 1 {
+            // spread into a real grid: 16 values from each first index (the last 16 - w
+            // zero) where they fit, index by index around the torus near its seam
+            real.clear();
+            real.resize(g, 0.0);
+            crate::simd::wide(
+                #[inline(always)]
+                || {
+                    let real = real.as_mut_slice();
+                    for (j, p) in points.iter().enumerate() {
+                        let c = weights.map_or(1.0, |wt| wt[j]);
+                        let (fx, wx) = self.weights(p[0]);
+                        if fx >= 0
+                            && fx as usize + 16 <= g
                             && let Some(cells) = real[fx as usize..].first_chunk_mut::<16>()
                         {
                             for (cell, &u) in cells.iter_mut().zip(&wx) {
                                 *cell += c * u;
                             }
                         } else {
-                            for (a, &u) in wx[..w].iter().enumerate() {
+                            for (a, &u) in wx[..self.width].iter().enumerate() {
                                 real[wrap(fx + a as i64)] += c * u;
                             }
                         }
-                        continue;
                     }
-                    let (fy, wy) = self.weights(p[1]);
-                    for (a, &u) in wx[..w].iter().enumerate() {
-                        let (cu, row) = (c * u, wrap(fx + a as i64) * g);
-                        if inner(fy)
-                            && let Some(cells) = real[row + fy as usize..].first_chunk_mut::<16>()
-                        {
-                            for (cell, &v) in cells.iter_mut().zip(&wy) {
-                                *cell += cu * v;
-                            }
-                        } else {
-                            for (b, &v) in wy[..w].iter().enumerate() {
-                                real[row + wrap(fy + b as i64)] += cu * v;
-                            }
-                        }
-                    }
-                }
-            },
-        );
-        let inv = 1.0 / points.len() as f64;
-        let half = (self.res / 2) as i64;
-        let at = |k: usize| wrap(k as i64 - half);
-        if self.dims == 1 {
+                },
+            );
             rows.clear();
             rows.extend(real.iter().map(|&v| C64::new(v, 0.0)));
             self.ffts(rows);
-            return (0..self.res)
-                .map(|i| {
-                    let v = rows[at(i)] * (self.correction[i] * inv);
-                    [v.re, v.im]
-                })
-                .collect();
+            out.clear();
+            out.extend((0..self.res).map(|i| {
+                let v = rows[at(i)] * (self.correction[i] * inv);
+                [v.re, v.im]
+            }));
+            return;
         }
-        // the rows are real: rows 2p and 2p + 1 go through one complex FFT as z = a + i b,
-        // and A_k = (Z_k + conj Z_-k) / 2, B_k = (Z_k - conj Z_-k) / 2i are unpacked for the
-        // R kept columns only
-        rows.clear();
-        rows.extend(
-            real.chunks_exact(2 * g).flat_map(|pair| pair[..g].iter().zip(&pair[g..]).map(|(&a, &b)| C64::new(a, b))),
-        );
-        self.ffts(rows);
+        self.spread_rows(points, weights, rows, bands);
         let z = &*rows;
         // the second pass on the kept columns: gather each into a contiguous row, transform
         // them together, and read the result transposed
         // both transposes go tile by tile (TILE x TILE entries), so that each cache line and
         // page read is used for a whole tile rather than once per entry
         // (each tile of TILE columns, or of TILE output rows, a parallel task)
-        cols.clear();
+        // every entry is written below: a buffer of the right size is reused as it is
         cols.resize(self.res * g, C64::new(0.0, 0.0));
         cols.par_chunks_mut(TILE * g).enumerate().for_each(|(t, tile)| {
             let j0 = t * TILE;
@@ -251,7 +267,7 @@ impl Nufft {
             }
         });
         self.ffts(cols);
-        let mut out = vec![[0.0; 2]; self.res * self.res];
+        out.resize(self.res * self.res, [0.0; 2]);
         let cols = &*cols;
         out.par_chunks_mut(TILE * self.res).enumerate().for_each(|(t, tile)| {
             let i0 = t * TILE;
@@ -265,8 +281,122 @@ impl Nufft {
                 }
             }
         });
-        out
     }
+
+    /// The 2D grid's rows after their FFT, into `rows`. The grid is real: real rows 2p and
+    /// 2p + 1 are the real and imaginary parts of complex row p, which goes through one
+    /// complex FFT (A_k = (Z_k + conj Z_-k) / 2 and B_k = (Z_k - conj Z_-k) / 2i are
+    /// unpacked later, for the R kept columns only).
+    ///
+    /// The grid is made band by band (BAND real rows, a parallel task each): the points
+    /// whose w rows meet the band are listed in index order (a counting sort), spread onto
+    /// the band's complex rows (each point's 16 values y-wise as one contiguous update of
+    /// 16 complex cells, zero in the other part, where they do not cross the seam), and
+    /// the band's rows are transformed while they are still in the core's cache. Every
+    /// cell gets the same additions in the same order as from a whole grid filled point by
+    /// point (adding a zero leaves a sum that starts at +0 unchanged), so the bits do not
+    /// depend on the bands nor the threads.
+    fn spread_rows(&self, points: &PointSet, weights: Option<&[f64]>, rows: &mut Vec<C64<f64>>, bands: &mut Bands) {
+        let (g, w) = (self.grid, self.width);
+        let band = BAND.min(g);
+        let wrap = |i: i64| i.rem_euclid(g as i64) as usize;
+        // the bands met by each point's rows: at most two, as a band is at least w rows
+        // (or the whole grid)
+        let met = |p: &[f64]| {
+            let fx = self.first(p[0]) as i64;
+            let (b0, b1) = (wrap(fx) / band, wrap(fx + w as i64 - 1) / band);
+            (b0, (b1 != b0).then_some(b1))
+        };
+        let Bands { start, members } = bands;
+        start.clear();
+        start.resize(g / band + 1, 0);
+        for p in points.iter() {
+            let (b0, b1) = met(p);
+            start[b0 + 1] += 1;
+            if let Some(b1) = b1 {
+                start[b1 + 1] += 1;
+            }
+        }
+        for b in 1..start.len() {
+            start[b] += start[b - 1];
+        }
+        members.clear();
+        members.resize(start[g / band] as usize, 0);
+        let mut next = start.clone();
+        for (j, p) in points.iter().enumerate() {
+            let (b0, b1) = met(p);
+            for b in std::iter::once(b0).chain(b1) {
+                members[next[b] as usize] = j as u32;
+                next[b] += 1;
+            }
+        }
+        let (start, members) = (&*start, &*members);
+        // each band clears its own rows, in cache
+        rows.resize(g / 2 * g, C64::new(0.0, 0.0));
+        let scratch_len = self.fft.get_inplace_scratch_len();
+        rows.par_chunks_mut(band / 2 * g).enumerate().for_each_init(
+            || vec![C64::new(0.0, 0.0); scratch_len],
+            |scratch, (b, chunk)| {
+                chunk.fill(C64::new(0.0, 0.0));
+                let r0 = (b * band) as i64;
+                let list = &members[start[b] as usize..start[b + 1] as usize];
+                crate::simd::wide(
+                    #[inline(always)]
+                    || {
+                        for &j in list {
+                            let j = j as usize;
+                            let p = points.point(j);
+                            let c = weights.map_or(1.0, |wt| wt[j]);
+                            let (fx, wx) = self.weights(p[0]);
+                            let (fy, wy) = self.weights(p[1]);
+                            // the 16 values in the real (even rows) or imaginary (odd rows)
+                            // parts of 16 complex cells
+                            let mut parts = [[0.0f64; 32]; 2];
+                            for (k, &v) in wy.iter().enumerate() {
+                                parts[0][2 * k] = v;
+                                parts[1][2 * k + 1] = v;
+                            }
+                            let inner = fy >= 0 && fy as usize + 16 <= g;
+                            for (a, &u) in wx[..w].iter().enumerate() {
+                                let r = wrap(fx + a as i64) as i64 - r0;
+                                if !(0..band as i64).contains(&r) {
+                                    continue;
+                                }
+                                let (cu, r) = (c * u, r as usize);
+                                let row = &mut chunk[r / 2 * g..(r / 2 + 1) * g];
+                                if inner {
+                                    let cells = as_reals(&mut row[fy as usize..fy as usize + 16]);
+                                    for (cell, &v) in cells.iter_mut().zip(&parts[r % 2]) {
+                                        *cell += cu * v;
+                                    }
+                                } else {
+                                    for (k, &v) in wy[..w].iter().enumerate() {
+                                        let cell = &mut row[wrap(fy + k as i64)];
+                                        if r % 2 == 0 {
+                                            cell.re += cu * v;
+                                        } else {
+                                            cell.im += cu * v;
+                                        }
+                                    }
+                                }
+                            }
+                        }
+                    },
+                );
+                self.fft.process_with_scratch(chunk, scratch);
+            },
+        );
+    }
+}
+
+/// 16 complex cells as 32 reals (real and imaginary parts interleaved, as `Complex<f64>`
+/// lays them out).
+#[inline(always)]
+fn as_reals(cells: &mut [C64<f64>]) -> &mut [f64; 32] {
+    let cells: &mut [C64<f64>; 16] = cells.try_into().expect("16 cells");
+    // SAFETY: Complex<f64> is repr(C) { re, im }: 16 of them are 32 f64 in that order,
+    // with the same alignment
+    unsafe { &mut *(cells as *mut [C64<f64>; 16]).cast::<[f64; 32]>() }
 }
 
 /// The kernel's values at the w grid indices around a point, as polynomials in the point's
@@ -333,4 +463,71 @@ fn chebyshev_powers(f: impl Fn(f64) -> f64, degree: usize) -> Vec<f64> {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The rows after their FFT as the definition makes them: one whole real grid, filled
+    /// point by point (each of a point's w x w cells gets (c u_a) v_b), rows 2p and 2p + 1
+    /// packed into complex row p, each row transformed.
+    fn whole_grid_rows(plan: &Nufft, points: &PointSet, weights: Option<&[f64]>) -> Vec<C64<f64>> {
+        let (g, w) = (plan.grid, plan.width);
+        let wrap = |i: i64| i.rem_euclid(g as i64) as usize;
+        let mut real = vec![0.0; g * g];
+        for (j, p) in points.iter().enumerate() {
+            let c = weights.map_or(1.0, |wt| wt[j]);
+            let ((fx, wx), (fy, wy)) = (plan.weights(p[0]), plan.weights(p[1]));
+            for a in 0..w {
+                for b in 0..w {
+                    real[wrap(fx + a as i64) * g + wrap(fy + b as i64)] += c * wx[a] * wy[b];
+                }
+            }
+        }
+        let mut rows: Vec<C64<f64>> =
+            real.chunks_exact(2 * g).flat_map(|pair| (0..g).map(move |k| C64::new(pair[k], pair[g + k]))).collect();
+        for row in rows.chunks_exact_mut(g) {
+            plan.fft.process(row);
+        }
+        rows
+    }
+
+    #[test]
+    fn bands_give_the_bits_of_one_whole_grid() {
+        // points everywhere, and on both seams and band borders; widths 4 to 16; grids of
+        // one band (g = 8, 16) to many (g = 256)
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for (res, tol) in [(2, 1e-1), (4, 1e-3), (8, 1e-9), (16, 1e-12), (100, 1e-9), (128, 1e-14)] {
+            let plan = Nufft::new(res, 2, tol).unwrap();
+            let g = plan.grid as f64;
+            let mut data = Vec::new();
+            for k in 0..300 {
+                let edge = [0.0, 1.0 - 1e-12, 0.5 / g, 1.0 - 3.0 / g, 16.0 / g, 15.5 / g];
+                let (x, y) = if k < 36 { (edge[k % 6], edge[k / 6]) } else { (next(), next()) };
+                data.extend([x, y]);
+            }
+            let points = PointSet::new(2, data).unwrap();
+            let weights: Vec<f64> = (0..points.len()).map(|_| next() * 2.0 - 1.0).collect();
+            for weights in [None, Some(weights.as_slice())] {
+                let mut rows = Vec::new();
+                plan.spread_rows(&points, weights, &mut rows, &mut Bands::default());
+                let reference = whole_grid_rows(&plan, &points, weights);
+                assert_eq!(rows.len(), reference.len());
+                for (i, (a, b)) in rows.iter().zip(&reference).enumerate() {
+                    assert!(
+                        a.re.to_bits() == b.re.to_bits() && a.im.to_bits() == b.im.to_bits(),
+                        "R = {res}, tol {tol}, weighted {}: cell {i}: {a} against {b}",
+                        weights.is_some()
+                    );
+                }
+            }
+        }
+    }
 }

@@ -95,17 +95,29 @@ pub struct Partial {
 }
 
 impl Partial {
-    /// Welford's update over `spectra`, in order (each frequency's own sequence of
-    /// operations, so the frequencies go in parallel by chunks with the same bits).
-    fn leaf(spectra: &[Vec<Complex>]) -> Partial {
-        let cells = spectra[0].len();
-        let mut mean = vec![[0.0f64; 2]; cells];
-        let mut m2 = vec![0.0f64; cells];
-        let mut power = vec![0.0f64; cells];
+    /// No sets yet, over `cells` frequencies, in the memory of `old` where there is one.
+    fn empty(cells: usize, old: Option<Partial>) -> Partial {
+        let mut p = old.unwrap_or_else(|| Partial { sets: 0, mean: Vec::new(), m2: Vec::new(), power: Vec::new() });
+        p.sets = 0;
+        for v in [&mut p.m2, &mut p.power] {
+            v.clear();
+            v.resize(cells, 0.0);
+        }
+        p.mean.clear();
+        p.mean.resize(cells, [0.0; 2]);
+        p
+    }
+
+    /// Welford's update with `spectra`, the next sets in order (each frequency's own
+    /// sequence of operations, so the frequencies go in parallel by chunks with the same
+    /// bits, and a leaf folded a few sets at a time equals one folded all at once).
+    fn fold(&mut self, spectra: &[Vec<Complex>]) {
+        let done = self.sets as usize;
+        let Partial { mean, m2, power, .. } = self;
         mean.par_chunks_mut(CELLS).zip(m2.par_chunks_mut(CELLS)).zip(power.par_chunks_mut(CELLS)).enumerate().for_each(
             |(c, ((mean, m2), power))| {
                 for (k, spec) in spectra.iter().enumerate() {
-                    let kf = (k + 1) as f64;
+                    let kf = (done + k + 1) as f64;
                     let spec = &spec[c * CELLS..c * CELLS + mean.len()];
                     for ((m, q), (s, p)) in mean.iter_mut().zip(m2.iter_mut()).zip(spec.iter().zip(power.iter_mut())) {
                         let delta = [s[0] - m[0], s[1] - m[1]];
@@ -117,7 +129,7 @@ impl Partial {
                 }
             },
         );
-        Partial { sets: spectra.len() as u64, mean, m2, power }
+        self.sets += spectra.len() as u64;
     }
 
     /// The statistics of both runs (`self` first): the pairwise update of Chan et al.
@@ -245,6 +257,11 @@ pub struct Spectra {
     res: usize,
     dims: usize,
     fast: Option<nufft::Nufft>,
+    /// The spectra buffers of finished waves, taken by the next ones, and the partials
+    /// merged into others, taken by the next leaves (fresh memory costs its page faults,
+    /// which on several threads serialize on the process's page tables).
+    buffers: std::sync::Mutex<Vec<Vec<Complex>>>,
+    partials: std::sync::Mutex<Vec<Partial>>,
 }
 
 impl Spectra {
@@ -265,7 +282,7 @@ impl Spectra {
             Method::Direct => None,
             Method::Fast { tol } => Some(nufft::Nufft::new(res, dims, tol)?),
         };
-        Ok(Spectra { res, dims, fast })
+        Ok(Spectra { res, dims, fast, buffers: Default::default(), partials: Default::default() })
     }
 
     /// The partial statistics of node (`level`, `index`) of `sets`, its children computed
@@ -284,26 +301,41 @@ impl Spectra {
             return Err(Error::Invalid(format!("{d}D sets for {}D spectra", self.dims)));
         }
         if level == 0 {
+            // a wave of sets per thread at a time: their spectra are folded into the leaf in
+            // order before the next wave, so only a wave's spectra are held (16 MiB each at
+            // R = 1024), in buffers reused from wave to wave
             let cells = self.res.pow(self.dims as u32);
-            let k = range.len();
+            let wave = rayon::current_num_threads().clamp(1, BLOCK);
             crate::memory::check(
-                || format!("the spectra of {k} sets at {}^{}", self.res, self.dims),
-                (k as u128 + 2) * 16 * cells as u128,
+                || format!("the spectra of {wave} sets at {}^{}", self.res, self.dims),
+                (wave as u128 + 2) * 16 * cells as u128,
             )?;
-            let spectra: Vec<Vec<Complex>> = range
-                .into_par_iter()
-                .map(|k| {
-                    progress.check()?;
-                    let set = sets.get(k)?;
-                    let spectrum = match &self.fast {
-                        Some(plan) => plan.transform(&set)?,
-                        None => direct_dft(&set, self.res)?,
-                    };
-                    progress.advance(1)?;
-                    Ok(spectrum)
-                })
-                .collect::<Result<_>>()?;
-            return Ok(Partial::leaf(&spectra));
+            let mut leaf = Partial::empty(cells, self.partials.lock().ok().and_then(|mut pool| pool.pop()));
+            for first in range.clone().step_by(wave) {
+                let spectra: Vec<Vec<Complex>> = (first..(first + wave).min(range.end))
+                    .into_par_iter()
+                    .map(|k| {
+                        progress.check()?;
+                        let set = sets.get(k)?;
+                        let spectrum = match &self.fast {
+                            Some(plan) => {
+                                let mut out =
+                                    self.buffers.lock().ok().and_then(|mut pool| pool.pop()).unwrap_or_default();
+                                plan.transform_into(&set, None, &mut out)?;
+                                out
+                            }
+                            None => direct_dft(&set, self.res)?,
+                        };
+                        progress.advance(1)?;
+                        Ok(spectrum)
+                    })
+                    .collect::<Result<_>>()?;
+                leaf.fold(&spectra);
+                if let Ok(mut pool) = self.buffers.lock() {
+                    pool.extend(spectra);
+                }
+            }
+            return Ok(leaf);
         }
         let right = 2 * index + 1;
         if node_sets(sets.len(), level - 1, right).is_empty() {
@@ -313,7 +345,12 @@ impl Spectra {
             || self.node(sets, level - 1, 2 * index, progress),
             || self.node(sets, level - 1, right, progress),
         );
-        Ok(a?.merge(&b?))
+        let (a, b) = (a?, b?);
+        let merged = a.merge(&b);
+        if let Ok(mut pool) = self.partials.lock() {
+            pool.push(b);
+        }
+        Ok(merged)
     }
 }
 

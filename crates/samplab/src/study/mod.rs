@@ -430,11 +430,11 @@ impl Description {
                 let partials = parts.iter().map(|b| Partial::from_bytes(b)).collect::<Result<Vec<_>>>()?;
                 let st = merge_up(partials)?.finish(*res, *d, *n)?;
                 let names = crate::spectrum::STATISTICS;
-                Ok(Merged {
-                    json: crate::spectrum::json(&st, &names).get().to_owned(),
-                    csv: crate::spectrum::radial_csv(&st, &names),
-                    statistics: Some(st),
-                })
+                let curves = crate::spectrum::radials(&st, &names);
+                let json = serde_json::to_string(&crate::spectrum::json(&st, &names, &curves))
+                    .map_err(|e| invalid(format!("the merged spectrum: {e}")))?;
+                let csv = crate::spectrum::radial_csv(&st, &names, &curves);
+                Ok(Merged { json, csv, statistics: Some(st) })
             }
             Description::Discrepancy { metrics, sampler, n, d, sets, seed, .. } => {
                 let k = metrics.len();
