@@ -80,8 +80,8 @@ impl Grid {
         Grid { dims, k, coords, ids, start }
     }
 
-    /// The cell of a point.
-    fn cell(k: usize, p: &[f64]) -> usize {
+    /// The cell of a point among k^d cells of side 1/k (row-major, the last axis slowest).
+    pub(crate) fn cell(k: usize, p: &[f64]) -> usize {
         p.iter().rev().fold(0, |c, &x| c * k + ((x * k as f64) as usize).min(k - 1))
     }
 

@@ -23,10 +23,19 @@ impl Construction for Random {
 }
 
 impl Random {
-    /// Fill `out` with independent uniform draws for `seed`.
+    /// Fill `out` with independent uniform draws for `seed`: draw i is the i-th of the
+    /// seed's stream. Chunks go in parallel, each from the stream jumped ahead to its
+    /// first draw (`advance`, the exact jump of PCG's underlying LCG, Brown 1994), so the
+    /// bits are those of one sequence on any thread count.
     pub(crate) fn draw(seed: Seed, out: &mut [f64]) {
-        let mut rng = seed.rng();
-        out.iter_mut().for_each(|x| *x = uniform(&mut rng));
+        use rayon::prelude::*;
+        const CHUNK: usize = 1 << 15;
+        let rng = seed.rng();
+        out.par_chunks_mut(CHUNK).enumerate().for_each(|(c, chunk)| {
+            let mut rng = rng.clone();
+            rng.advance((c * CHUNK) as u128);
+            chunk.iter_mut().for_each(|x| *x = uniform(&mut rng));
+        });
     }
 }
 
@@ -60,3 +69,23 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
     dims: "any d",
     build: |_| Ok(Box::new(Random)),
 }];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parallel_draws_are_the_sequence() {
+        // around the chunk boundaries, and on one and three threads
+        for len in [0, 1, (1 << 15) - 1, 1 << 15, (1 << 15) + 1, 3 * (1 << 15) + 7] {
+            let mut rng = Seed(9).rng();
+            let sequence: Vec<u64> = (0..len).map(|_| uniform(&mut rng).to_bits()).collect();
+            for threads in [1, 3] {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                let mut out = vec![0.0; len];
+                pool.install(|| Random::draw(Seed(9), &mut out));
+                assert!(out.iter().map(|x| x.to_bits()).eq(sequence.iter().copied()), "{len} draws, {threads} threads");
+            }
+        }
+    }
+}

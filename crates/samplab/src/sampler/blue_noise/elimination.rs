@@ -194,7 +194,7 @@ pub fn eliminate_in_tiles(
     };
     let gone = gone.into_iter().map(|q| grid.ids[q] as usize).collect();
     let mut kept: Vec<usize> = (0..m).filter(|&q| alive[q]).map(|q| grid.ids[q] as usize).collect();
-    kept.sort_unstable();
+    kept.par_sort_unstable();
     Ok((kept, gone))
 }
 
@@ -244,23 +244,20 @@ fn by_tiles(weights: Vec<u64>, tiles: usize, target: usize, pairs: &Pairs) -> (V
     use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
     let grid = pairs.grid;
     let (m, dims) = (weights.len(), grid.point(0).len());
-    let tile_of = |q: usize| {
-        grid.point(q).iter().rev().fold(0, |t, &x| t * tiles + ((x * tiles as f64) as usize).min(tiles - 1))
-    };
     let colour = |t: usize| (0..dims).fold((0, t), |(c, rest), axis| (c | (rest % tiles % 2) << axis, rest / tiles)).0;
     // each tile's positions, increasing; each position's tile and place among its tile's
     let mut members = vec![Vec::new(); tiles.pow(dims as u32)];
     let (mut owner, mut place) = (vec![0u32; m], vec![0u32; m]);
     for q in 0..m {
-        let t = tile_of(q);
+        let t = Grid::cell(tiles, grid.point(q));
         (owner[q], place[q]) = (t as u32, members[t].len() as u32);
         members[t].push(q as u32);
     }
     let quota = quotas(&members.iter().map(Vec::len).collect::<Vec<_>>(), target);
-    let ids: Vec<Vec<u32>> = members.iter().map(|ms| ms.iter().map(|&q| grid.ids[q as usize]).collect()).collect();
+    let ids: Vec<Vec<u32>> = members.par_iter().map(|ms| ms.iter().map(|&q| grid.ids[q as usize]).collect()).collect();
     // per tile: its heap and which of its members are alive, by place
     let mut state: Vec<(Heap, Vec<bool>)> = members
-        .iter()
+        .par_iter()
         .zip(&ids)
         .map(|(ms, ids)| {
             let own = ms.iter().map(|&q| weights[q as usize]).collect();
