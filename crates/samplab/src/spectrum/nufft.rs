@@ -49,15 +49,34 @@ pub struct Nufft {
     scratch: std::sync::Mutex<Vec<Scratch>>,
 }
 
-/// The buffers of one transform: the real grid (1D), the complex rows, the kept columns
-/// and the bands' lists of points (2D).
+/// The buffers of one transform: the real grid (1D), the complex rows and the bands'
+/// lists of points (2D).
 #[derive(Default)]
 struct Scratch {
     real: Vec<f64>,
     rows: Vec<C64<f64>>,
-    cols: Vec<C64<f64>>,
     bands: Bands,
 }
+
+/// The output of a 2D transform, written column tile by column tile from parallel tasks.
+#[derive(Clone, Copy)]
+struct Columns(*mut Complex);
+
+impl Columns {
+    /// Write entry k.
+    ///
+    /// # Safety
+    /// k is inside the output, and no other task writes or reads entry k meanwhile.
+    unsafe fn write(&self, k: usize, v: Complex) {
+        // SAFETY: as the caller guarantees.
+        unsafe { self.0.add(k).write(v) }
+    }
+}
+
+// SAFETY: the tasks that share it write disjoint entries (their own columns).
+unsafe impl Send for Columns {}
+// SAFETY: as Send: no entry is written by two tasks, none read while they run.
+unsafe impl Sync for Columns {}
 
 /// The points met by each band of rows: band b's are `members[start[b]..start[b + 1]]`.
 #[derive(Default)]
@@ -203,7 +222,7 @@ impl Nufft {
     ) {
         let g = self.grid;
         let wrap = |i: i64| i.rem_euclid(g as i64) as usize;
-        let Scratch { real, rows, cols, bands } = scratch;
+        let Scratch { real, rows, bands } = scratch;
         let inv = 1.0 / points.len() as f64;
         let half = (self.res / 2) as i64;
         let at = |k: usize| wrap(k as i64 - half);
@@ -246,41 +265,41 @@ impl Nufft {
         }
         self.spread_rows(points, weights, rows, bands);
         let z = &*rows;
-        // the second pass on the kept columns: gather each into a contiguous row, transform
-        // them together, and read the result transposed
-        // both transposes go tile by tile (TILE x TILE entries), so that each cache line and
-        // page read is used for a whole tile rather than once per entry
-        // (each tile of TILE columns, or of TILE output rows, a parallel task)
-        // every entry is written below: a buffer of the right size is reused as it is
-        cols.resize(self.res * g, C64::new(0.0, 0.0));
-        cols.par_chunks_mut(TILE * g).enumerate().for_each(|(t, tile)| {
-            let j0 = t * TILE;
-            for p0 in (0..g / 2).step_by(TILE) {
-                for (dj, col) in tile.chunks_exact_mut(g).enumerate() {
-                    let (k, minus) = (at(j0 + dj), (g - at(j0 + dj)) % g);
-                    for p in p0..(p0 + TILE).min(g / 2) {
-                        let (zk, zm) = (z[p * g + k], z[p * g + minus].conj());
-                        col[2 * p] = (zk + zm) * 0.5;
-                        col[2 * p + 1] = (zk - zm) * C64::new(0.0, -0.5);
-                    }
-                }
-            }
-        });
-        self.ffts(cols);
+        // the second pass, TILE kept columns at a time (a parallel task each): gather them
+        // into contiguous rows, transform them while they are in the core's cache, and
+        // write them transposed into the output (TILE x 16 bytes contiguous per row)
         out.resize(self.res * self.res, [0.0; 2]);
-        let cols = &*cols;
-        out.par_chunks_mut(TILE * self.res).enumerate().for_each(|(t, tile)| {
-            let i0 = t * TILE;
-            for j0 in (0..self.res).step_by(TILE) {
-                for j in j0..(j0 + TILE).min(self.res) {
-                    for (di, row) in tile.chunks_exact_mut(self.res).enumerate() {
-                        let i = i0 + di;
-                        let v = cols[j * g + at(i)] * (self.correction[i] * self.correction[j] * inv);
-                        row[j] = [v.re, v.im];
+        let res = self.res;
+        let target = Columns(out.as_mut_ptr());
+        let scratch_len = self.fft.get_inplace_scratch_len();
+        (0..res.div_ceil(TILE)).into_par_iter().for_each_init(
+            || (vec![C64::new(0.0, 0.0); TILE * g], vec![C64::new(0.0, 0.0); scratch_len]),
+            |(tile, scratch), t| {
+                let j0 = t * TILE;
+                let tile = &mut tile[..TILE.min(res - j0) * g];
+                // each cache line of z read serves a whole tile of TILE x TILE entries
+                for p0 in (0..g / 2).step_by(TILE) {
+                    for (dj, col) in tile.chunks_exact_mut(g).enumerate() {
+                        let (k, minus) = (at(j0 + dj), (g - at(j0 + dj)) % g);
+                        for p in p0..(p0 + TILE).min(g / 2) {
+                            let (zk, zm) = (z[p * g + k], z[p * g + minus].conj());
+                            col[2 * p] = (zk + zm) * 0.5;
+                            col[2 * p + 1] = (zk - zm) * C64::new(0.0, -0.5);
+                        }
                     }
                 }
-            }
-        });
+                self.fft.process_with_scratch(tile, scratch);
+                for i in 0..res {
+                    for (dj, col) in tile.chunks_exact(g).enumerate() {
+                        let j = j0 + dj;
+                        let v = col[at(i)] * (self.correction[i] * self.correction[j] * inv);
+                        // SAFETY: i * res + j is inside `out` (i, j < res), and the tasks
+                        // write disjoint columns j; `out` outlives the parallel loop
+                        unsafe { target.write(i * res + j, [v.re, v.im]) };
+                    }
+                }
+            },
+        );
     }
 
     /// The 2D grid's rows after their FFT, into `rows`. The grid is real: real rows 2p and
