@@ -186,9 +186,9 @@ fn write(
     // the folder is a staging one, renamed into place once complete
     files.par_iter().try_for_each(|(name, make)| {
         let path = dir.join(name);
-        let file = std::fs::File::create(&path).with_context(|| format!("cannot write '{}'", path.display()))?;
-        let mut w = std::io::BufWriter::with_capacity(1 << 16, file);
-        make(&mut w)?;
-        w.flush().with_context(|| format!("cannot write '{}'", path.display()))
+        let context = || format!("cannot write '{}'", path.display());
+        let mut w = std::io::BufWriter::with_capacity(1 << 16, std::fs::File::create(&path).with_context(context)?);
+        make(&mut w).with_context(context)?;
+        w.flush().with_context(context)
     })
 }

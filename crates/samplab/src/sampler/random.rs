@@ -24,18 +24,24 @@ impl Construction for Random {
 
 impl Random {
     /// Fill `out` with independent uniform draws for `seed`: draw i is the i-th of the
-    /// seed's stream. Chunks go in parallel, each from the stream jumped ahead to its
-    /// first draw (`advance`, the exact jump of PCG's underlying LCG, Brown 1994), so the
-    /// bits are those of one sequence on any thread count.
+    /// seed's stream. Beyond one chunk, chunks go in parallel, each from the stream jumped
+    /// ahead to its first draw (`advance`, the exact jump of PCG's underlying LCG, Brown
+    /// 1994), so the bits are those of one sequence on any thread count; a fill of one
+    /// chunk or less stays on the caller's thread (no dispatch, no allocation).
     pub(crate) fn draw(seed: Seed, out: &mut [f64]) {
         use rayon::prelude::*;
         const CHUNK: usize = 1 << 15;
         let rng = seed.rng();
-        out.par_chunks_mut(CHUNK).enumerate().for_each(|(c, chunk)| {
+        let fill = |c: usize, chunk: &mut [f64]| {
             let mut rng = rng.clone();
             rng.advance((c * CHUNK) as u128);
             chunk.iter_mut().for_each(|x| *x = uniform(&mut rng));
-        });
+        };
+        if out.len() <= CHUNK {
+            fill(0, out);
+        } else {
+            out.par_chunks_mut(CHUNK).enumerate().for_each(|(c, chunk)| fill(c, chunk));
+        }
     }
 }
 

@@ -81,8 +81,8 @@ unsafe impl Sync for Columns {}
 /// The points met by each band of rows: band b's are `members[start[b]..start[b + 1]]`.
 #[derive(Default)]
 struct Bands {
-    start: Vec<u32>,
-    members: Vec<u32>,
+    start: Vec<usize>,
+    members: Vec<usize>,
 }
 
 impl std::fmt::Debug for Nufft {
@@ -170,7 +170,8 @@ impl Nufft {
     /// (1/N) sum_j c_j exp(-2 pi i w.x_j) with weights c_j (all 1 when None).
     ///
     /// # Errors
-    /// The set's dimension is not the planned one, or the weights do not match the points.
+    /// The set's dimension is not the planned one, or the weights do not match the points
+    /// or are not all finite.
     pub fn transform_weighted(&self, points: &PointSet, weights: Option<&[f64]>) -> Result<Vec<Complex>> {
         let mut out = Vec::new();
         self.transform_into(points, weights, &mut out)?;
@@ -195,7 +196,7 @@ impl Nufft {
         if points.dims() != self.dims {
             return Err(Error::Invalid(format!("planned for {}D points, got {}D", self.dims, points.dims())));
         }
-        // the complex rows, as much again for the kept columns, and the output
+        // the complex rows (8 bytes a grid cell) and the output (at most 4), with room
         let (g, cells) = (self.grid, (self.grid as u128).pow(self.dims as u32));
         crate::memory::check(|| format!("a non-uniform FFT on a {g}^{} grid", self.dims), 16 * cells)?;
         let mut scratch = self.scratch.lock().map(|mut pool| pool.pop()).ok().flatten().unwrap_or_default();
@@ -340,12 +341,12 @@ impl Nufft {
             start[b] += start[b - 1];
         }
         members.clear();
-        members.resize(start[g / band] as usize, 0);
+        members.resize(start[g / band], 0);
         let mut next = start.clone();
         for (j, p) in points.iter().enumerate() {
             let (b0, b1) = met(p);
             for b in std::iter::once(b0).chain(b1) {
-                members[next[b] as usize] = j as u32;
+                members[next[b]] = j;
                 next[b] += 1;
             }
         }
@@ -358,12 +359,11 @@ impl Nufft {
             |scratch, (b, chunk)| {
                 chunk.fill(C64::new(0.0, 0.0));
                 let r0 = (b * band) as i64;
-                let list = &members[start[b] as usize..start[b + 1] as usize];
+                let list = &members[start[b]..start[b + 1]];
                 crate::simd::wide(
                     #[inline(always)]
                     || {
                         for &j in list {
-                            let j = j as usize;
                             let p = points.point(j);
                             let c = weights.map_or(1.0, |wt| wt[j]);
                             let (fx, wx) = self.weights(p[0]);
@@ -510,6 +510,17 @@ mod tests {
             plan.fft.process(row);
         }
         rows
+    }
+
+    #[test]
+    fn weights_must_be_finite() {
+        let plan = Nufft::new(8, 2, 1e-6).unwrap();
+        let points = PointSet::new(2, vec![0.1, 0.2, 0.3, 0.4]).unwrap();
+        for bad in [f64::NAN, f64::INFINITY] {
+            let err = plan.transform_weighted(&points, Some(&[1.0, bad])).unwrap_err().to_string();
+            assert!(err.contains("weight 1 is not a finite number"), "{err}");
+        }
+        assert!(plan.transform_weighted(&points, Some(&[1.0, -2.0])).is_ok());
     }
 
     #[test]
