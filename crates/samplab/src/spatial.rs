@@ -18,6 +18,29 @@ use crate::points::PointSet;
 /// Points per unit of parallel work (fixed: the sums' order depends on it alone).
 const CHUNK: usize = 512;
 
+/// Indices per block of [`buckets`].
+pub(crate) const SORTED: usize = 1 << 15;
+
+/// The first pass of a stable counting sort in parallel: per block of [`SORTED`] indices
+/// into `keys`, the block's indices whose key is in each of `count` buckets
+/// (`bucket(key)`), increasing.
+pub(crate) fn buckets<K: Copy + Sync>(
+    keys: &[K],
+    count: usize,
+    bucket: impl Fn(K) -> usize + Sync,
+) -> Vec<Vec<Vec<u32>>> {
+    keys.par_chunks(SORTED)
+        .enumerate()
+        .map(|(b, block)| {
+            let mut lists = vec![Vec::new(); count];
+            for (i, &key) in (b * SORTED..).zip(block) {
+                lists[bucket(key)].push(i as u32);
+            }
+            lists
+        })
+        .collect()
+}
+
 /// x - y for coordinates in [0, 1] on the circle of length 1: the signed gap in [-1/2, 1/2].
 #[inline]
 pub(crate) fn torus_gap(x: f64, y: f64) -> f64 {
@@ -60,18 +83,46 @@ impl Grid {
     fn new(points: &[f64], dims: usize, k: usize) -> Grid {
         let n = points.len() / dims;
         let cells: Vec<usize> = points.par_chunks_exact(dims).map(|p| Grid::cell(k, p)).collect();
-        let mut start = vec![0usize; k.pow(dims as u32) + 1];
-        for &c in &cells {
-            start[c + 1] += 1;
-        }
-        for c in 1..start.len() {
-            start[c] += start[c - 1];
-        }
-        let mut fill = start.clone();
+        let total = k.pow(dims as u32);
+        // a stable counting sort in parallel: the points go by blocks of the input into
+        // `ranges` runs of cells, then each run is sorted by cell on its own
+        let ranges = (n / SORTED).clamp(1, 64);
+        let lists = buckets(&cells, ranges, |c| c * ranges / total);
         let mut ids = vec![0u32; n];
-        for (i, &c) in cells.iter().enumerate() {
-            ids[fill[c]] = i as u32;
-            fill[c] += 1;
+        let mut parts = Vec::with_capacity(ranges);
+        let mut rest = &mut ids[..];
+        for r in 0..ranges {
+            let (part, tail) = rest.split_at_mut(lists.iter().map(|l| l[r].len()).sum());
+            parts.push(part);
+            rest = tail;
+        }
+        // per run, its cells' counts
+        let counts: Vec<Vec<usize>> = parts
+            .into_par_iter()
+            .enumerate()
+            .map(|(r, part)| {
+                let first = (r * total).div_ceil(ranges);
+                let mut at = vec![0usize; ((r + 1) * total).div_ceil(ranges) - first + 1];
+                let members = || lists.iter().flat_map(|l| l[r].iter().copied());
+                for i in members() {
+                    at[cells[i as usize] - first + 1] += 1;
+                }
+                for c in 1..at.len() {
+                    at[c] += at[c - 1];
+                }
+                let count = at.windows(2).map(|w| w[1] - w[0]).collect();
+                for i in members() {
+                    let c = cells[i as usize] - first;
+                    part[at[c]] = i;
+                    at[c] += 1;
+                }
+                count
+            })
+            .collect();
+        let mut start = Vec::with_capacity(total + 1);
+        start.push(0);
+        for c in counts.into_iter().flatten() {
+            start.push(start.last().copied().unwrap_or_default() + c);
         }
         let mut coords = vec![0.0; n * dims];
         coords.par_chunks_exact_mut(dims).zip(&ids).for_each(|(c, &i)| {

@@ -327,16 +327,23 @@ impl Tree {
     /// The strips' best boxes, closed and open, by `strip(lo, hi, open)` for the nodes of up
     /// to STRIPS sides (infinite, so never used, above).
     fn strips(&self, strip: impl Fn(usize, usize, bool) -> f64 + Sync) -> (Vec<f64>, Vec<f64>) {
-        let of = |open: bool| -> Vec<f64> {
-            (0..self.lo.len())
-                .into_par_iter()
-                .map(|k| {
-                    let (a, b) = (self.lo[k] as usize, self.hi[k] as usize);
-                    if b > a && b - a <= STRIPS { strip(a, b, open) } else { f64::INFINITY }
-                })
-                .collect()
-        };
-        (of(false), of(true))
+        // one task per node, the largest first: the few large nodes, O(k^2) each, sit
+        // together at the top of the tree and would fall to one thread in index order
+        let mut nodes: Vec<usize> = (0..self.lo.len()).filter(|&k| (1..=STRIPS).contains(&self.len(k as u32))).collect();
+        nodes.sort_by_key(|&k| std::cmp::Reverse(self.len(k as u32)));
+        let best: Vec<(f64, f64)> = nodes
+            .par_iter()
+            .with_max_len(1)
+            .map(|&k| {
+                let (a, b) = (self.lo[k] as usize, self.hi[k] as usize);
+                (strip(a, b, false), strip(a, b, true))
+            })
+            .collect();
+        let (mut closed, mut open) = (vec![f64::INFINITY; self.lo.len()], vec![f64::INFINITY; self.lo.len()]);
+        for (&k, (c, o)) in nodes.iter().zip(best) {
+            (closed[k], open[k]) = (c, o);
+        }
+        (closed, open)
     }
 }
 
@@ -393,18 +400,24 @@ impl Sides {
             ys: by_y.iter().map(|&p| points[2 * p + 1]).collect(),
             words: n.div_ceil(64),
         };
-        // the strip left of c1 = the node's last left side: [c, c1) closed, (c, c1] open
-        let (closed, open) = sides.lefts.strips(|i0, i1, open| {
-            let (c1, from) = (sides.left[i1 - 1], if open { &sides.from_open } else { &sides.from_closed });
-            sides.strip_best((i0..i1 - 1).rev().map(|i| (from[i]..from[i + 1], c1 - sides.left[i])), open)
-        });
-        (sides.lefts.closed, sides.lefts.open) = (closed, open);
-        // the strip right of a0 = the node's first right side: (a0, a] closed, [a0, a) open
-        let (closed, open) = sides.rights.strips(|j0, j1, open| {
-            let (a0, to) = (sides.right[j0], if open { &sides.to_open } else { &sides.to_closed });
-            sides.strip_best((j0 + 1..j1).map(|j| (to[j - 1]..to[j], sides.right[j] - a0)), open)
-        });
-        (sides.rights.closed, sides.rights.open) = (closed, open);
+        let s = &sides;
+        let (lefts, rights) = rayon::join(
+            // the strip left of c1 = the node's last left side: [c, c1) closed, (c, c1] open
+            || {
+                s.lefts.strips(|i0, i1, open| {
+                    let (c1, from) = (s.left[i1 - 1], if open { &s.from_open } else { &s.from_closed });
+                    s.strip_best((i0..i1 - 1).rev().map(|i| (from[i]..from[i + 1], c1 - s.left[i])), open)
+                })
+            },
+            // the strip right of a0 = the node's first right side: (a0, a] closed, [a0, a) open
+            || {
+                s.rights.strips(|j0, j1, open| {
+                    let (a0, to) = (s.right[j0], if open { &s.to_open } else { &s.to_closed });
+                    s.strip_best((j0 + 1..j1).map(|j| (to[j - 1]..to[j], s.right[j] - a0)), open)
+                })
+            },
+        );
+        ((sides.lefts.closed, sides.lefts.open), (sides.rights.closed, sides.rights.open)) = (lefts, rights);
         sides
     }
 

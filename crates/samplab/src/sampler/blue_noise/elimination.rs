@@ -19,7 +19,11 @@
 //! colour on its own thread bringing its candidates down to its share of the round (its
 //! quota plus (R - r) / R of its surplus) with its own heap, its removals lowering the
 //! weights of its neighbours in the adjacent tiles (integer weights: the same sums in any
-//! order). The points depend on T, not on the thread count; the elimination order is the
+//! order). A tile's turn runs as soon as its adjacent tiles have had their turns of the
+//! earlier phases, with no barrier between phases (a barrier idled a thread at the end of
+//! each of the 64 phases per halving); adjacent tiles never run together and meet each
+//! other's removals phase by phase, so the points are those of one phase after another.
+//! The points depend on T, not on the thread count; the elimination order is the
 //! phases', tiles by index within one. The rounds keep neighbouring tiles at nearly the
 //! same density: with 4 rounds in a fixed colour order, the expected power spectrum of
 //! 65536 points (16 tiles per axis) had a peak at frequency 8, the colours' period, 4.7
@@ -35,9 +39,11 @@ use crate::error::{Error, Result};
 use crate::registry::About;
 use crate::sampler::random::Random;
 use crate::seed::Seed;
-use crate::spatial::{Grid, distance2, packing_radius};
+use crate::spatial::{Grid, SORTED, buckets, distance2, packing_radius};
 use crate::spec::{Default, Kind, ParamSpec};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering::Relaxed, Ordering::SeqCst};
+use std::sync::{Mutex, PoisonError};
 
 /// Sample elimination with `ratio` x n candidates.
 #[derive(Debug, Clone, Copy)]
@@ -187,20 +193,18 @@ pub fn eliminate_in_tiles(
     // tiles per axis: even, each at least d_max wide
     let tiles = (tiles.min((1.0 / d_max).floor() as usize)) / 2 * 2;
     let (pairs, weights) = Pairs::new(&grid, torus, (r_min, d_max), tiles < 2);
-    let (alive, gone) = if tiles < 2 {
+    let (mut kept, gone) = if tiles < 2 {
         by_one_heap(weights, target, &pairs)
     } else {
         by_tiles(weights, tiles, target, &pairs)
     };
-    let gone = gone.into_iter().map(|q| grid.ids[q] as usize).collect();
-    let mut kept: Vec<usize> = (0..m).filter(|&q| alive[q]).map(|q| grid.ids[q] as usize).collect();
     kept.par_sort_unstable();
-    Ok((kept, gone))
+    Ok((kept, gone.par_iter().map(|&q| grid.ids[q] as usize).collect()))
 }
 
-/// Yuksel's elimination by one heap: which positions are left, and the removed ones in
+/// Yuksel's elimination by one heap: the candidates left, and the positions removed in
 /// order.
-fn by_one_heap(weights: Vec<u64>, target: usize, pairs: &Pairs) -> (Vec<bool>, Vec<usize>) {
+fn by_one_heap(weights: Vec<u64>, target: usize, pairs: &Pairs) -> (Vec<usize>, Vec<usize>) {
     let m = weights.len();
     let mut heap = Heap::new(weights, &pairs.grid.ids, (0..m as u32).collect());
     let mut alive = vec![true; m];
@@ -215,7 +219,7 @@ fn by_one_heap(weights: Vec<u64>, target: usize, pairs: &Pairs) -> (Vec<bool>, V
             }
         });
     }
-    (alive, gone)
+    ((0..m).filter(|&q| alive[q]).map(|q| pairs.grid.ids[q] as usize).collect(), gone)
 }
 
 /// Each tile's share of `target` survivors: equal shares capped by its candidates
@@ -238,81 +242,200 @@ fn quotas(counts: &[usize], target: usize) -> Vec<usize> {
     share
 }
 
-/// The tiled elimination (module docs): which positions are left, and the removed ones in
+/// The tiled elimination (module docs): the candidates left, and the positions removed in
 /// order.
-fn by_tiles(weights: Vec<u64>, tiles: usize, target: usize, pairs: &Pairs) -> (Vec<bool>, Vec<usize>) {
-    use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+fn by_tiles(weights: Vec<u64>, tiles: usize, target: usize, pairs: &Pairs) -> (Vec<usize>, Vec<usize>) {
     let grid = pairs.grid;
     let (m, dims) = (weights.len(), grid.point(0).len());
     let colour = |t: usize| (0..dims).fold((0, t), |(c, rest), axis| (c | (rest % tiles % 2) << axis, rest / tiles)).0;
-    // each tile's positions, increasing; each position's tile and place among its tile's
-    let mut members = vec![Vec::new(); tiles.pow(dims as u32)];
-    let (mut owner, mut place) = (vec![0u32; m], vec![0u32; m]);
-    for q in 0..m {
-        let t = Grid::cell(tiles, grid.point(q));
-        (owner[q], place[q]) = (t as u32, members[t].len() as u32);
-        members[t].push(q as u32);
-    }
+    // each position's tile; each tile's positions, increasing, and each position's place
+    // among its tile's
+    let owner: Vec<u32> = (0..m).into_par_iter().map(|q| Grid::cell(tiles, grid.point(q)) as u32).collect();
+    let count = tiles.pow(dims as u32);
+    // per block of positions, each tile's positions in it
+    let blocks = buckets(&owner, count, |t| t as usize);
+    let members: Vec<Vec<u32>> =
+        (0..count).into_par_iter().map(|t| blocks.iter().flat_map(|lists| lists[t].iter().copied()).collect()).collect();
+    // each position's place among its tile's: its tile's positions in earlier blocks, then
+    // its place in its block's list
+    let mut place = vec![0u32; m];
+    place.par_chunks_mut(SORTED).enumerate().for_each(|(b, place)| {
+        let mut next: Vec<u32> = (0..count).map(|t| blocks[..b].iter().map(|lists| lists[t].len() as u32).sum()).collect();
+        for (p, &t) in place.iter_mut().zip(&owner[b * SORTED..]) {
+            *p = next[t as usize];
+            next[t as usize] += 1;
+        }
+    });
     let quota = quotas(&members.iter().map(Vec::len).collect::<Vec<_>>(), target);
     let ids: Vec<Vec<u32>> = members.par_iter().map(|ms| ms.iter().map(|&q| grid.ids[q as usize]).collect()).collect();
-    // per tile: its heap and which of its members are alive, by place
-    let mut state: Vec<(Heap, Vec<bool>)> = members
-        .par_iter()
-        .zip(&ids)
-        .map(|(ms, ids)| {
-            let own = ms.iter().map(|&q| weights[q as usize]).collect();
-            (Heap::new(own, ids, (0..ms.len() as u32).collect()), vec![true; ms.len()])
-        })
-        .collect();
-    // the weight each position has lost to the removals of other tiles, not yet in its heap
-    let lost: Vec<AtomicU64> = (0..m).map(|_| AtomicU64::new(0)).collect();
+    let colours = 1 << dims;
+    let turns = Turns {
+        pairs,
+        members: &members,
+        owner: &owner,
+        place: &place,
+        quota: &quota,
+        colours,
+        colour: (0..count).map(colour).collect(),
+        near: (0..count).map(|t| adjacent(t, tiles, dims)).collect(),
+        // the weight each position has lost to the removals of other tiles, not yet in its
+        // heap
+        lost: (0..m).into_par_iter().map(|_| AtomicU64::new(0)).collect(),
+        state: members
+            .par_iter()
+            .zip(&ids)
+            .map(|(ms, ids)| {
+                let own = ms.iter().map(|&q| weights[q as usize]).collect();
+                let heap = Heap::new(own, ids, (0..ms.len() as u32).collect());
+                Mutex::new(Tile { heap, alive: vec![true; ms.len()], removed: Vec::with_capacity(ROUNDS) })
+            })
+            .collect(),
+        next: (0..count).map(|_| AtomicUsize::new(1)).collect(),
+        held: (0..count).map(|_| AtomicBool::new(false)).collect(),
+    };
+    rayon::scope(|scope| (0..count).for_each(|t| turns.start(scope, t)));
+    let state: Vec<Tile> = turns.state.into_iter().map(|s| s.into_inner().unwrap_or_else(PoisonError::into_inner)).collect();
+    // the removals in the order of the phases, the tiles by index within one
     let mut gone = Vec::with_capacity(m - target);
     for round in 1..=ROUNDS {
-        // the colours take turns, a different one first in each round
-        for turn in 0..1 << dims {
-            let hue = (round + turn) % (1 << dims);
-            let removed: Vec<Vec<usize>> = state
-                .par_iter_mut()
-                .enumerate()
-                .filter(|(t, _)| colour(*t) == hue)
-                .map(|(t, (heap, alive))| {
-                    let surplus = members[t].len() - quota[t];
-                    let share = quota[t] + surplus * (ROUNDS - round) / ROUNDS;
-                    for (k, &q) in members[t].iter().enumerate() {
-                        let by = lost[q as usize].load(Relaxed);
-                        if by > 0 && alive[k] {
-                            lost[q as usize].store(0, Relaxed);
-                            heap.lower(k, by);
-                        }
-                    }
-                    let mut removed = Vec::new();
-                    while heap.len() > share {
-                        let k = heap.pop();
-                        alive[k] = false;
-                        let q = members[t][k] as usize;
-                        removed.push(q);
-                        pairs.each(q, |r, w| {
-                            if owner[r] as usize != t {
-                                // an adjacent tile's point, resting in this phase
-                                lost[r].fetch_add(w, Relaxed);
-                            } else if alive[place[r] as usize] {
-                                heap.lower(place[r] as usize, w);
-                            }
-                        });
-                    }
-                    removed
-                })
-                .collect();
-            gone.extend(removed.into_iter().flatten());
+        for turn in 0..colours {
+            let hue = (round + turn) % colours;
+            for (_, tile) in state.iter().enumerate().filter(|(t, _)| turns.colour[*t] == hue) {
+                gone.extend_from_slice(&tile.removed[round - 1]);
+            }
         }
     }
-    let mut kept = vec![false; m];
-    for (t, (_, alive)) in state.iter().enumerate() {
-        for (k, &a) in alive.iter().enumerate() {
-            kept[members[t][k] as usize] = a;
-        }
-    }
+    let kept = state
+        .par_iter()
+        .zip(&ids)
+        .flat_map_iter(|(tile, ids)| ids.iter().zip(&tile.alive).filter(|(_, a)| **a).map(|(&id, _)| id as usize))
+        .collect();
     (kept, gone)
+}
+
+/// The tiles within one tile of tile t along every axis, around the torus (t excluded).
+fn adjacent(t: usize, tiles: usize, dims: usize) -> Vec<u32> {
+    let mut near: Vec<u32> = (0..3usize.pow(dims as u32))
+        .map(|offsets| {
+            let (mut u, mut scale, mut rest, mut o) = (0, 1, t, offsets);
+            for _ in 0..dims {
+                u += (rest % tiles + tiles + o % 3 - 1) % tiles * scale;
+                (scale, rest, o) = (scale * tiles, rest / tiles, o / 3);
+            }
+            u as u32
+        })
+        .filter(|&u| u as usize != t)
+        .collect();
+    near.sort_unstable();
+    near.dedup();
+    near
+}
+
+/// One tile of the tiled elimination: its heap, which of its members are alive (by place),
+/// and the positions it removed in each round so far.
+struct Tile<'a> {
+    heap: Heap<'a>,
+    alive: Vec<bool>,
+    removed: Vec<Vec<usize>>,
+}
+
+/// The turns of the tiled elimination's tiles. Phase (round - 1) C + turn is colour
+/// (round + turn) mod C's, C = 2^d colours; a tile's turn in a phase runs as soon as its
+/// adjacent tiles have had their turns of the earlier phases, with no barrier between
+/// phases: two adjacent tiles never run together, and each meets the other's removals in
+/// the order of the phases, so the points are those of phase after phase.
+struct Turns<'a> {
+    pairs: &'a Pairs<'a>,
+    members: &'a [Vec<u32>],
+    owner: &'a [u32],
+    place: &'a [u32],
+    quota: &'a [usize],
+    colours: usize,
+    colour: Vec<usize>,
+    near: Vec<Vec<u32>>,
+    lost: Vec<AtomicU64>,
+    state: Vec<Mutex<Tile<'a>>>,
+    /// Each tile's round of its next turn (past ROUNDS when done).
+    next: Vec<AtomicUsize>,
+    /// Whether a task holds the tile.
+    held: Vec<AtomicBool>,
+}
+
+impl<'a> Turns<'a> {
+    /// The phase of tile t's turn in `round`.
+    fn phase(&self, t: usize, round: usize) -> usize {
+        (round - 1) * self.colours + (self.colour[t] + self.colours - round % self.colours) % self.colours
+    }
+
+    /// The phase of tile t's next turn (usize::MAX when it is done).
+    fn upcoming(&self, t: usize) -> usize {
+        let round = self.next[t].load(SeqCst);
+        if round > ROUNDS { usize::MAX } else { self.phase(t, round) }
+    }
+
+    /// Whether tile t's next turn may run: its adjacent tiles' turns before it are done.
+    fn ready(&self, t: usize) -> bool {
+        let phase = self.upcoming(t);
+        phase < usize::MAX && self.near[t].iter().all(|&u| self.upcoming(u as usize) > phase)
+    }
+
+    /// Start tile t's next turn as a task if it may run and no task holds the tile; the
+    /// task starts whatever its turn lets run next.
+    fn start<'s>(&'s self, scope: &rayon::Scope<'s>, t: usize) {
+        while self.ready(t) {
+            if self.held[t].swap(true, SeqCst) {
+                // its holder looks again when it lets go
+                return;
+            }
+            if self.ready(t) {
+                scope.spawn(move |scope| {
+                    let round = self.next[t].load(SeqCst);
+                    self.turn(t, round);
+                    self.next[t].store(round + 1, SeqCst);
+                    self.held[t].store(false, SeqCst);
+                    self.start(scope, t);
+                    for &u in &self.near[t] {
+                        self.start(scope, u as usize);
+                    }
+                });
+                return;
+            }
+            // a tile that moved on while this one was held found it held: look again
+            self.held[t].store(false, SeqCst);
+        }
+    }
+
+    /// Tile t's turn in `round`: down to its share of the round, its quota plus (R - r) / R
+    /// of its surplus.
+    fn turn(&self, t: usize, round: usize) {
+        let mut tile = self.state[t].lock().unwrap_or_else(PoisonError::into_inner);
+        let Tile { heap, alive, removed } = &mut *tile;
+        let members = &self.members[t];
+        let share = self.quota[t] + (members.len() - self.quota[t]) * (ROUNDS - round) / ROUNDS;
+        for (k, &q) in members.iter().enumerate() {
+            let by = self.lost[q as usize].load(Relaxed);
+            if by > 0 && alive[k] {
+                self.lost[q as usize].store(0, Relaxed);
+                heap.lower(k, by);
+            }
+        }
+        let mut gone = Vec::new();
+        while heap.len() > share {
+            let k = heap.pop();
+            alive[k] = false;
+            let q = members[k] as usize;
+            gone.push(q);
+            self.pairs.each(q, |r, w| {
+                if self.owner[r] as usize != t {
+                    // an adjacent tile's point, resting meanwhile
+                    self.lost[r].fetch_add(w, Relaxed);
+                } else if alive[self.place[r] as usize] {
+                    heap.lower(self.place[r] as usize, w);
+                }
+            });
+        }
+        removed.push(gone);
+    }
 }
 
 /// A max-heap of grid positions by weight (ties: the lower candidate index first) whose
