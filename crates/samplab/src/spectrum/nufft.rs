@@ -20,6 +20,7 @@ use rustfft::num_complex::Complex as C64;
 
 use super::Complex;
 use crate::error::{Error, Result};
+use crate::memory::Pool;
 use crate::numeric::quadrature::gauss_legendre;
 use crate::points::PointSet;
 
@@ -43,10 +44,8 @@ pub struct Nufft {
     /// 1 / (kernel's Fourier transform) at each output frequency k - R/2.
     correction: Vec<f64>,
     fft: std::sync::Arc<dyn rustfft::Fft<f64>>,
-    /// Work buffers of finished transforms, taken by the next ones: a fresh grid of this
-    /// size costs a page fault per 4 KiB on first write, and with several threads each fault
-    /// is a TLB shootdown on every core (measured: more system time than the transform).
-    scratch: std::sync::Mutex<Vec<Scratch>>,
+    /// Work buffers of finished transforms, taken by the next ones.
+    scratch: Pool<Scratch>,
 }
 
 /// The buffers of one transform: the real grid (1D), the complex rows and the bands'
@@ -131,16 +130,6 @@ impl Nufft {
         Ok(Nufft { res, dims, grid, width, kernel, correction, fft, scratch: Default::default() })
     }
 
-    /// The FFT of each grid-long row of `rows`, TILE rows to a parallel task (the rows are
-    /// independent: the same bits on any thread count).
-    fn ffts(&self, rows: &mut [C64<f64>]) {
-        let g = self.grid;
-        rows.par_chunks_mut(TILE * g).for_each(|chunk| {
-            let mut scratch = vec![C64::new(0.0, 0.0); self.fft.get_inplace_scratch_len()];
-            self.fft.process_with_scratch(chunk, &mut scratch);
-        });
-    }
-
     /// The kernel weights of a point at x on the grid: the first grid index and 16 values
     /// (the first w the kernel's, the rest 0).
     #[inline(always)]
@@ -199,11 +188,9 @@ impl Nufft {
         // the complex rows (8 bytes a grid cell) and the output (at most 4), with room
         let (g, cells) = (self.grid, (self.grid as u128).pow(self.dims as u32));
         crate::memory::check(|| format!("a non-uniform FFT on a {g}^{} grid", self.dims), 16 * cells)?;
-        let mut scratch = self.scratch.lock().map(|mut pool| pool.pop()).ok().flatten().unwrap_or_default();
+        let mut scratch = self.scratch.take().unwrap_or_default();
         self.spread_and_transform(points, weights, &mut scratch, out);
-        if let Ok(mut pool) = self.scratch.lock() {
-            pool.push(scratch);
-        }
+        self.scratch.give([scratch]);
         Ok(())
     }
 
@@ -256,7 +243,7 @@ impl Nufft {
             );
             rows.clear();
             rows.extend(real.iter().map(|&v| C64::new(v, 0.0)));
-            self.ffts(rows);
+            self.fft.process(rows);
             out.clear();
             out.extend((0..self.res).map(|i| {
                 let v = rows[at(i)] * (self.correction[i] * inv);

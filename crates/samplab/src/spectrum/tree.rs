@@ -16,6 +16,7 @@ use rayon::prelude::*;
 
 use super::{Complex, Method, Statistics, direct_dft, nufft};
 use crate::error::{Error, Result};
+use crate::memory::Pool;
 use crate::points::PointSet;
 use crate::progress::Progress;
 use crate::sampler::Plan;
@@ -257,11 +258,10 @@ pub struct Spectra {
     res: usize,
     dims: usize,
     fast: Option<nufft::Nufft>,
-    /// The spectra buffers of finished waves, taken by the next ones, and the partials
-    /// merged into others, taken by the next leaves (fresh memory costs its page faults,
-    /// which on several threads serialize on the process's page tables).
-    buffers: std::sync::Mutex<Vec<Vec<Complex>>>,
-    partials: std::sync::Mutex<Vec<Partial>>,
+    /// The fast path's spectra buffers of finished waves, taken by the next ones, and the
+    /// partials merged into others, taken by the next leaves.
+    buffers: Pool<Vec<Complex>>,
+    partials: Pool<Partial>,
 }
 
 impl Spectra {
@@ -310,7 +310,7 @@ impl Spectra {
                 || format!("the spectra of {wave} sets at {}^{}", self.res, self.dims),
                 (wave as u128 + 2) * 16 * cells as u128,
             )?;
-            let mut leaf = Partial::empty(cells, self.partials.lock().ok().and_then(|mut pool| pool.pop()));
+            let mut leaf = Partial::empty(cells, self.partials.take());
             for first in range.clone().step_by(wave) {
                 let spectra: Vec<Vec<Complex>> = (first..(first + wave).min(range.end))
                     .into_par_iter()
@@ -319,8 +319,7 @@ impl Spectra {
                         let set = sets.get(k)?;
                         let spectrum = match &self.fast {
                             Some(plan) => {
-                                let mut out =
-                                    self.buffers.lock().ok().and_then(|mut pool| pool.pop()).unwrap_or_default();
+                                let mut out = self.buffers.take().unwrap_or_default();
                                 plan.transform_into(&set, None, &mut out)?;
                                 out
                             }
@@ -331,8 +330,8 @@ impl Spectra {
                     })
                     .collect::<Result<_>>()?;
                 leaf.fold(&spectra);
-                if let Ok(mut pool) = self.buffers.lock() {
-                    pool.extend(spectra);
+                if self.fast.is_some() {
+                    self.buffers.give(spectra);
                 }
             }
             return Ok(leaf);
@@ -347,9 +346,7 @@ impl Spectra {
         );
         let (a, b) = (a?, b?);
         let merged = a.merge(&b);
-        if let Ok(mut pool) = self.partials.lock() {
-            pool.push(b);
-        }
+        self.partials.give([b]);
         Ok(merged)
     }
 }
