@@ -258,10 +258,17 @@ fn by_tiles(weights: Vec<u64>, tiles: usize, target: usize, pairs: &Pairs) -> (V
         (0..count).into_par_iter().map(|t| blocks.iter().flat_map(|lists| lists[t].iter().copied()).collect()).collect();
     // each position's place among its tile's: its tile's positions in earlier blocks, then
     // its place in its block's list
+    let before: Vec<Vec<u32>> = blocks
+        .iter()
+        .scan(vec![0u32; count], |sum, lists| {
+            let start = sum.clone();
+            sum.iter_mut().zip(lists).for_each(|(s, list)| *s += list.len() as u32);
+            Some(start)
+        })
+        .collect();
     let mut place = vec![0u32; m];
-    place.par_chunks_mut(SORTED).enumerate().for_each(|(b, place)| {
-        let mut next: Vec<u32> = (0..count).map(|t| blocks[..b].iter().map(|lists| lists[t].len() as u32).sum()).collect();
-        for (p, &t) in place.iter_mut().zip(&owner[b * SORTED..]) {
+    place.par_chunks_mut(SORTED).zip(owner.par_chunks(SORTED)).zip(before).for_each(|((place, owners), mut next)| {
+        for (p, &t) in place.iter_mut().zip(owners) {
             *p = next[t as usize];
             next[t as usize] += 1;
         }
@@ -300,7 +307,7 @@ fn by_tiles(weights: Vec<u64>, tiles: usize, target: usize, pairs: &Pairs) -> (V
     for round in 1..=ROUNDS {
         for turn in 0..colours {
             let hue = (round + turn) % colours;
-            for (_, tile) in state.iter().enumerate().filter(|(t, _)| turns.colour[*t] == hue) {
+            for (tile, _) in state.iter().zip(&turns.colour).filter(|(_, c)| **c == hue) {
                 gone.extend_from_slice(&tile.removed[round - 1]);
             }
         }
