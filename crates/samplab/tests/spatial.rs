@@ -320,6 +320,60 @@ fn sample_elimination_removes_the_heaviest_point_each_step() {
     }
 }
 
+/// Sample elimination by one heap with stale entries skipped (an independent serial
+/// reference for sets too large for [`eliminate_naive`]): the removals in order.
+fn eliminate_by_heap(points: &[f64], dims: usize, target: usize, torus: bool) -> Vec<usize> {
+    use std::cmp::Reverse;
+    let m = points.len() / dims;
+    let (r_min, r_max) = radii(m, dims, target);
+    let point = |i: usize| &points[i * dims..(i + 1) * dims];
+    let near: Vec<Vec<(usize, u64)>> = (0..m)
+        .map(|i| {
+            (0..m)
+                .filter(|&j| j != i)
+                .map(|j| (j, distance(point(i), point(j), torus)))
+                .filter(|&(_, d)| d < 2.0 * r_max)
+                .map(|(j, d)| (j, samplab::sampler::blue_noise::elimination::pair_weight(d, r_min, 2.0 * r_max)))
+                .collect()
+        })
+        .collect();
+    let mut weight: Vec<u64> = near.iter().map(|list| list.iter().map(|&(_, w)| w).sum()).collect();
+    let mut heap: std::collections::BinaryHeap<(u64, Reverse<usize>)> =
+        (0..m).map(|i| (weight[i], Reverse(i))).collect();
+    let mut alive = vec![true; m];
+    let mut gone = Vec::new();
+    while gone.len() < m - target {
+        let (w, Reverse(i)) = heap.pop().unwrap();
+        if alive[i] && w == weight[i] {
+            alive[i] = false;
+            gone.push(i);
+            for &(j, wj) in &near[i] {
+                if alive[j] {
+                    weight[j] -= wj;
+                    heap.push((weight[j], Reverse(j)));
+                }
+            }
+        }
+    }
+    gone
+}
+
+#[test]
+fn sample_elimination_of_many_points_follows_one_heap() {
+    // over 2 x 8192 candidates, each batch's threshold comes from a sample of the live
+    // points (and the last batch may remove more than needed): the order must still be
+    // one heap's
+    for (dims, m, target, torus) in [(2, 21_000, 18_000, true), (2, 20_000, 2500, false), (3, 18_000, 9000, true)] {
+        let mut rng = Seed(m as u64).rng();
+        let points: Vec<f64> = (0..m * dims).map(|_| uniform(&mut rng)).collect();
+        let (kept, gone) = samplab::sampler::blue_noise::elimination::eliminate(&points, dims, target, torus).unwrap();
+        assert!(gone == eliminate_by_heap(&points, dims, target, torus), "{m} to {target} in {dims}D");
+        let mut all: Vec<usize> = kept.iter().chain(&gone).copied().collect();
+        all.sort_unstable();
+        assert!(all.iter().copied().eq(0..m) && kept.len() == target, "{m} to {target} in {dims}D");
+    }
+}
+
 #[test]
 fn tiled_elimination_follows_its_definition() {
     // the same removals in the same order as the definition run one tile at a time: tiles
@@ -343,14 +397,16 @@ fn tiled_elimination_follows_its_definition() {
 }
 
 #[test]
-fn tiled_elimination_is_the_same_on_any_thread_count() {
-    let set = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| sampler::build("elimination.tiled").unwrap().generate(20_000, 2, Seed(4)).unwrap())
-    };
-    let one = set(1);
-    for threads in [2, 3, 8] {
-        assert!(one.as_slice() == set(threads).as_slice(), "{threads} threads");
+fn elimination_is_the_same_on_any_thread_count() {
+    for name in ["elimination", "elimination.tiled"] {
+        let set = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| sampler::build(name).unwrap().generate(20_000, 2, Seed(4)).unwrap())
+        };
+        let one = set(1);
+        for threads in [2, 3, 8] {
+            assert!(one.as_slice() == set(threads).as_slice(), "{name} on {threads} threads");
+        }
     }
 }
 

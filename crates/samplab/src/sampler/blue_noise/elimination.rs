@@ -3,15 +3,17 @@
 //! neighbours closer than d_max = 2 r_max (r_max the packing radius of the target count,
 //! [`crate::spatial::packing_radius`]) of (1 - d^/d_max)^8, d^ = max(d, 2 r_min) with
 //! Yuksel's weight limiting r_min = r_max (1 - (n / m)^1.5) 0.65 for m candidates; removing
-//! a point lowers its neighbours' weights, kept in an indexed max-heap (ties: the lower
-//! candidate index goes first). Progressive order as Yuksel's: the n survivors are
+//! a point lowers its neighbours' weights (ties: the lower candidate index goes first).
+//! samplab removes the points in parallel, each one as soon as its weight is above its
+//! live neighbours', with the same points in the same order as Yuksel's one max-heap
+//! (`by_local_maxima` says why). Progressive order as Yuksel's: the n survivors are
 //! eliminated again to n/2 (with the radius of n/2 points), those to n/4, ... to one
 //! point; the points are output in the reverse order of their elimination, so every
 //! prefix of n / 2^k points is a stage's survivors, a blue-noise set of its own.
 //!
 //! `elimination.tiled` (samplab's variant, not Yuksel's) eliminates in parallel: the unit
 //! cube is cut into T^d tiles of side 1/T >= d_max (T even, about [`TILE_POINTS`] target
-//! points per tile; below two tiles per axis, the serial algorithm), coloured by the
+//! points per tile; below two tiles per axis, the one-heap algorithm), coloured by the
 //! parities of their coordinates, so two tiles of one colour are a tile apart and share no
 //! pair closer than d_max. Each tile keeps a quota of the n survivors (equal shares, capped
 //! by its candidates, the remainder to the tiles with most candidates). In R = [`ROUNDS`]
@@ -41,6 +43,7 @@ use crate::sampler::random::Random;
 use crate::seed::Seed;
 use crate::spatial::{Grid, SORTED, buckets, distance2, packing_radius};
 use crate::spec::{Default, Kind, ParamSpec};
+use rayon::iter::Either;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering::Relaxed, Ordering::SeqCst};
 use std::sync::{Mutex, PoisonError};
@@ -83,19 +86,34 @@ pub fn pair_weight(d: f64, r_min: f64, d_max: f64) -> u64 {
 /// Points per unit of parallel work in the neighbour lists.
 const CHUNK: usize = 1024;
 
+/// Live points sampled for each batch's threshold in the one-heap elimination (by local
+/// maxima).
+const SAMPLE: usize = 8192;
+
 /// The pairs closer than d_max, their weights computed when needed (lists with the
 /// weights were 144 MB at 5 x 10^5 candidates, written and read at the memory's pace).
-/// Each position's neighbours are listed for the one-heap elimination, whose removals are
-/// serial (reading a list is faster there than searching the grid: 1.24 s against 1.65 s
-/// for 10^5 points, measured 2026-11-28), and searched in the grid by the tiled one, whose
-/// removals run in parallel (1.83x on two threads against 1.62x with lists).
+/// Each position's neighbours are listed for the one-heap elimination, which reads them in
+/// every round a point waits for a heavier neighbour, and searched in the grid by the
+/// tiled one (1.83x on two threads against 1.62x with lists, measured 2026-11-28).
 struct Pairs<'g> {
     grid: &'g Grid,
     torus: bool,
     r_min: f64,
     d_max: f64,
-    /// Per chunk of positions: each one's end in the neighbours, and the neighbours.
-    lists: Option<Vec<(Vec<u32>, Vec<u32>)>>,
+    lists: Option<Lists>,
+}
+
+/// Per chunk of positions: each one's end in the neighbours, and the neighbours.
+struct Lists(Vec<(Vec<u32>, Vec<u32>)>);
+
+impl Lists {
+    /// The positions closer than d_max to position q.
+    #[inline]
+    fn of(&self, q: usize) -> &[u32] {
+        let (ends, near) = &self.0[q / CHUNK];
+        let k = q % CHUNK;
+        &near[if k == 0 { 0 } else { ends[k - 1] as usize }..ends[k] as usize]
+    }
 }
 
 impl<'g> Pairs<'g> {
@@ -122,7 +140,7 @@ impl<'g> Pairs<'g> {
                 ((ends, near), weights)
             })
             .unzip();
-        pairs.lists = listed.then_some(lists);
+        pairs.lists = listed.then_some(Lists(lists));
         (pairs, weights.concat())
     }
 
@@ -151,10 +169,8 @@ impl<'g> Pairs<'g> {
     #[inline]
     fn each(&self, q: usize, mut visit: impl FnMut(usize, u64)) {
         let Some(lists) = &self.lists else { return self.search(q, visit) };
-        let (ends, near) = &lists[q / CHUNK];
-        let k = q % CHUNK;
         let p = self.grid.point(q);
-        for &r in &near[if k == 0 { 0 } else { ends[k - 1] as usize }..ends[k] as usize] {
+        for &r in lists.of(q) {
             visit(r as usize, self.weight(p, r as usize).unwrap_or_default());
         }
     }
@@ -193,33 +209,78 @@ pub fn eliminate_in_tiles(
     // tiles per axis: even, each at least d_max wide
     let tiles = (tiles.min((1.0 / d_max).floor() as usize)) / 2 * 2;
     let (pairs, weights) = Pairs::new(&grid, torus, (r_min, d_max), tiles < 2);
-    let (mut kept, gone) = if tiles < 2 {
-        by_one_heap(weights, target, &pairs)
-    } else {
-        by_tiles(weights, tiles, target, &pairs)
+    // listed exactly when under two tiles
+    let (mut kept, gone) = match &pairs.lists {
+        Some(lists) => by_local_maxima(weights, target, &pairs, lists),
+        None => by_tiles(weights, tiles, target, &pairs),
     };
     kept.par_sort_unstable();
     Ok((kept, gone.par_iter().map(|&q| grid.ids[q] as usize).collect()))
 }
 
-/// Yuksel's elimination by one heap: the candidates left, and the positions removed in
-/// order.
-fn by_one_heap(weights: Vec<u64>, target: usize, pairs: &Pairs) -> (Vec<usize>, Vec<usize>) {
+/// Yuksel's elimination, its removals in parallel with the points and order of one heap:
+/// the candidates left, and the positions removed in order.
+///
+/// A point whose key (weight, then the lower candidate index) is above every live
+/// neighbour's is a local maximum. Removing one only lowers its neighbours' weights, so the
+/// others stay local maxima, two of them are never neighbours, and the removals commute:
+/// every order of removing local maxima removes each point at the same weight (a diamond
+/// argument; one heap removes the global maximum, a local one). The keys one heap removes
+/// only fall, so its order is the removals' by key, and its first k removals are the k
+/// largest keys of any complete run of removals down to a threshold theta at or below the
+/// k-th one's. Batch by batch, theta is the key of the rank of the points left to remove
+/// among a sample of [`SAMPLE`] live points, and every local maximum at or above theta
+/// goes, in rounds (the largest such key is always a local maximum, so each round removes
+/// one or more), until none is left at or above theta; the batches go on until enough are
+/// removed, and the ones past the count (theta below the last needed key) are kept.
+fn by_local_maxima(weights: Vec<u64>, target: usize, pairs: &Pairs, lists: &Lists) -> (Vec<usize>, Vec<usize>) {
+    use std::cmp::Reverse;
     let m = weights.len();
-    let mut heap = Heap::new(weights, &pairs.grid.ids, (0..m as u32).collect());
-    let mut alive = vec![true; m];
-    let mut gone = Vec::with_capacity(m - target);
-    while gone.len() < m - target {
-        let q = heap.pop();
-        alive[q] = false;
-        gone.push(q);
-        pairs.each(q, |r, w| {
-            if alive[r] {
-                heap.lower(r, w);
-            }
-        });
+    let ids = &pairs.grid.ids;
+    let weight: Vec<AtomicU64> = weights.into_par_iter().map(AtomicU64::new).collect();
+    let alive: Vec<AtomicBool> = (0..m).into_par_iter().map(|_| AtomicBool::new(true)).collect();
+    // larger keys go first
+    let key = |q: u32| (weight[q as usize].load(Relaxed), Reverse(ids[q as usize]));
+    let mut live: Vec<u32> = (0..m as u32).into_par_iter().collect();
+    // (weight, candidate) when removed, as sorted in one heap's order, and the position
+    let mut removed: Vec<((Reverse<u64>, u32), u32)> = Vec::with_capacity(m - target);
+    while removed.len() < m - target {
+        let rest = m - target - removed.len();
+        let mut sample: Vec<_> = live.iter().step_by((live.len() / SAMPLE).max(1)).map(|&q| key(q)).collect();
+        let rank = (rest * sample.len()).div_ceil(live.len()).min(sample.len());
+        let theta = *sample.select_nth_unstable_by(rank - 1, |a, b| b.cmp(a)).1;
+        let mut active: Vec<u32> = live.par_iter().copied().filter(|&q| key(q) >= theta).collect();
+        while !active.is_empty() {
+            // the local maxima, and the others still at or above theta
+            let (ready, wait): (Vec<_>, Vec<_>) = active.par_iter().partition_map(|&q| {
+                let k = key(q);
+                if lists.of(q as usize).iter().all(|&r| !alive[r as usize].load(Relaxed) || key(r) < k) {
+                    Either::Left(((Reverse(k.0), k.1 .0), q))
+                } else {
+                    Either::Right(q)
+                }
+            });
+            // no two of them are neighbours: each one's removal leaves the others' weights
+            ready.par_iter().for_each(|&(_, q)| {
+                alive[q as usize].store(false, Relaxed);
+                pairs.each(q as usize, |r, w| {
+                    if alive[r].load(Relaxed) {
+                        weight[r].fetch_sub(w, Relaxed);
+                    }
+                });
+            });
+            removed.par_extend(ready);
+            active = wait.into_par_iter().filter(|&q| key(q) >= theta).collect();
+        }
+        live = live.into_par_iter().filter(|&q| alive[q as usize].load(Relaxed)).collect();
     }
-    ((0..m).filter(|&q| alive[q]).map(|q| pairs.grid.ids[q] as usize).collect(), gone)
+    removed.par_sort();
+    let past = removed.split_off(m - target);
+    live.par_extend(past.into_par_iter().map(|(_, q)| q));
+    (
+        live.into_par_iter().map(|q| ids[q as usize] as usize).collect(),
+        removed.into_par_iter().map(|(_, q)| q as usize).collect(),
+    )
 }
 
 /// Each tile's share of `target` survivors: equal shares capped by its candidates
