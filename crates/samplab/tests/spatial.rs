@@ -397,11 +397,11 @@ fn tiled_elimination_follows_its_definition() {
 }
 
 #[test]
-fn elimination_is_the_same_on_any_thread_count() {
-    for name in ["elimination", "elimination.tiled"] {
+fn parallel_constructions_are_the_same_on_any_thread_count() {
+    for (name, n) in [("elimination", 20_000), ("elimination.tiled", 20_000), ("ccvt:iterations=5", 2000)] {
         let set = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-            pool.install(|| sampler::build(name).unwrap().generate(20_000, 2, Seed(4)).unwrap())
+            pool.install(|| sampler::build(name).unwrap().generate(n, 2, Seed(4)).unwrap())
         };
         let one = set(1);
         for threads in [2, 3, 8] {
@@ -589,6 +589,76 @@ fn gaussian_blue_noise_descends_its_energy() {
     let set = sampler::build("gbn").unwrap().generate(1024, 2, Seed(2)).unwrap();
     let rho = spatial::relative_radius(&set).unwrap();
     assert!(rho > 0.7, "gbn: relative radius {rho}");
+}
+
+/// One CCVT iteration by its definition (the `ccvt` module's docs), one pair after
+/// another: every pair of sites closer than 2 n^(-1/d) on the torus, in increasing order
+/// (i, j), swaps the point of i gaining most by moving to j with the point of j gaining most
+/// by moving to i while the two gains sum above zero (each swapped point taking the other's
+/// place in its new site's list); then each site moves by the mean of its points' torus
+/// offsets, summed in list order.
+fn ccvt_iteration_naive(dims: usize, sites: &mut [f64], points: &[f64], members: &mut [Vec<usize>]) {
+    let n = members.len();
+    let site = |sites: &[f64], s: usize| sites[s * dims..(s + 1) * dims].to_vec();
+    let point = |k: usize| &points[k * dims..(k + 1) * dims];
+    let d2 = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| (x - y) - (x - y).round()).map(|t| t * t).sum::<f64>();
+    let reach = 2.0 * (n as f64).powf(-1.0 / dims as f64);
+    for i in 0..n {
+        for j in i + 1..n {
+            let (si, sj) = (site(sites, i), site(sites, j));
+            if d2(&si, &sj) >= reach * reach {
+                continue;
+            }
+            // (gain, slot) of each point of a moving to b, largest gain first
+            let gains = |a: &[usize], from: &[f64], to: &[f64]| {
+                let mut g: Vec<(f64, usize)> =
+                    a.iter().enumerate().map(|(slot, &k)| (d2(point(k), from) - d2(point(k), to), slot)).collect();
+                g.sort_by(|x, y| y.0.total_cmp(&x.0));
+                g
+            };
+            let (from_i, from_j) = (gains(&members[i], &si, &sj), gains(&members[j], &sj, &si));
+            for (&(gi, a), &(gj, b)) in from_i.iter().zip(&from_j) {
+                if gi + gj <= 0.0 {
+                    break;
+                }
+                let (ki, kj) = (members[i][a], members[j][b]);
+                (members[i][a], members[j][b]) = (kj, ki);
+            }
+        }
+    }
+    for (s, list) in members.iter().enumerate() {
+        let mut mean = vec![0.0; dims];
+        for &k in list {
+            for (axis, m) in mean.iter_mut().enumerate() {
+                let gap = point(k)[axis] - sites[s * dims + axis];
+                *m += gap - gap.round();
+            }
+        }
+        for (axis, m) in mean.into_iter().enumerate() {
+            let x = sites[s * dims + axis] + m / list.len() as f64;
+            sites[s * dims + axis] = x - x.floor();
+        }
+    }
+}
+
+#[test]
+fn ccvt_iterations_follow_the_definition_one_pair_after_another() {
+    // the library swaps the pairs of one level side by side: the sites must be those of
+    // one pair after another, to the bit
+    use samplab::sampler::blue_noise::ccvt::State;
+    let mut rng = Seed(12).rng();
+    for (dims, n, capacity) in [(2, 300, 16), (3, 120, 8), (1, 50, 4)] {
+        let sites: Vec<f64> = (0..n * dims).map(|_| uniform(&mut rng)).collect();
+        let points: Vec<f64> = (0..n * capacity * dims).map(|_| uniform(&mut rng)).collect();
+        let mut state = State::from_points(dims, sites.clone(), points.clone());
+        let mut naive = sites;
+        let mut members: Vec<Vec<usize>> = (0..n).map(|s| (s * capacity..(s + 1) * capacity).collect()).collect();
+        for round in 0..6 {
+            state.iterate();
+            ccvt_iteration_naive(dims, &mut naive, &points, &mut members);
+            assert!(state.sites == naive, "{dims}D, {n} sites: round {round}");
+        }
+    }
 }
 
 #[test]

@@ -7,7 +7,8 @@
 //! zero; then every site moves to the centroid of its points. It stops when an iteration
 //! swaps nothing, or after `iterations`. Each site keeps its capacity throughout, so the
 //! cells have equal areas (to the points' resolution) while Lloyd's drift to hexagons is
-//! resisted.
+//! resisted. Pairs that share no site swap in parallel, with the sites of one pair after
+//! another ([`State::iterate`]).
 
 use std::ops::RangeInclusive;
 
@@ -20,6 +21,8 @@ use crate::registry::About;
 use crate::seed::{Seed, wrap01};
 use crate::spatial::{Grid, distance2, torus_gap};
 use crate::spec::{Default, Kind, ParamSpec};
+use rayon::prelude::*;
+use std::mem::take;
 
 /// Capacity-constrained Voronoi tessellation.
 #[derive(Debug, Clone, Copy)]
@@ -46,12 +49,21 @@ impl State {
     pub fn new(n: usize, dims: usize, capacity: usize, seed: Seed) -> Result<State> {
         let mut sites = vec![0.0; n * dims];
         Random::draw(seed, &mut sites);
-        let m = n * capacity;
-        let mut points = vec![0.0; m * dims];
+        let mut points = vec![0.0; n * capacity * dims];
         Random::draw(seed.derive(1), &mut points);
         // the points are independent of the sites: owning them in blocks is a random assignment
+        Ok(State::from_points(dims, sites, points))
+    }
+
+    /// The sites (`dims` coordinates each, in [0, 1)) and points given, site s owning points
+    /// s c, ..., (s + 1) c - 1 for c points per site (the points' count over the sites'
+    /// count, rounded down; the rest belong to no site).
+    #[must_use]
+    pub fn from_points(dims: usize, sites: Vec<f64>, points: Vec<f64>) -> State {
+        let n = sites.len() / dims;
+        let capacity = (points.len() / dims).checked_div(n).unwrap_or(0);
         let members = (0..n).map(|s| (s * capacity..(s + 1) * capacity).map(|k| k as u32).collect()).collect();
-        Ok(State { dims, sites, points, members })
+        State { dims, sites, points, members }
     }
 
     fn site(&self, s: usize) -> &[f64] {
@@ -74,41 +86,78 @@ impl State {
 
     /// One iteration: swaps over every pair of neighbouring sites, then the sites to their
     /// centroids. Returns how many swaps it made.
+    ///
+    /// The pairs go in increasing order (i, j), each seeing its two sites' points as the
+    /// pairs before it left them. A pair's level is one more than the latest level among
+    /// the earlier pairs that share a site with it: the pairs of one level share no site and
+    /// swap side by side, and each site meets its pairs in the same order, with the same
+    /// points, as one pair after another.
     pub fn iterate(&mut self) -> usize {
         self.regroup();
         let n = self.members.len();
         let reach = 2.0 * (n as f64).powf(-1.0 / self.dims as f64);
         let grid = Grid::covering(&self.sites, self.dims, reach.min(0.5));
-        let mut pairs = Vec::new();
-        for q in 0..grid.len() {
-            let i = grid.ids[q] as usize;
-            grid.near(q, 1, true, |cell| {
-                for r in cell {
-                    let j = grid.ids[r] as usize;
-                    if i < j && distance2(self.site(i), self.site(j), true) < reach * reach {
-                        pairs.push((i, j));
+        let mut pairs: Vec<(usize, usize)> = (0..grid.len())
+            .into_par_iter()
+            .flat_map_iter(|q| {
+                let i = grid.ids[q] as usize;
+                let mut near = Vec::new();
+                grid.near(q, 1, true, |cell| {
+                    for r in cell {
+                        let j = grid.ids[r] as usize;
+                        if i < j && distance2(self.site(i), self.site(j), true) < reach * reach {
+                            near.push((i, j));
+                        }
+                    }
+                });
+                near
+            })
+            .collect();
+        pairs.par_sort_unstable();
+        pairs.dedup();
+        let mut levels: Vec<Vec<(usize, usize)>> = Vec::new();
+        // per site, one more than the level of its latest pair
+        let mut after = vec![0; n];
+        for (i, j) in pairs {
+            let level = after[i].max(after[j]);
+            if level == levels.len() {
+                levels.push(Vec::new());
+            }
+            levels[level].push((i, j));
+            (after[i], after[j]) = (level + 1, level + 1);
+        }
+        // from a worker of the pool: hundreds of short parallel steps, each of which a
+        // thread outside the pool would wait for asleep
+        let swaps = rayon::scope(|_| {
+            let mut swaps = 0;
+            for level in levels {
+                let mut work: Vec<_> =
+                    level.iter().map(|&(i, j)| (take(&mut self.members[i]), take(&mut self.members[j]))).collect();
+                swaps +=
+                    work.par_iter_mut().zip(&level).map(|((mi, mj), &(i, j))| self.swap((i, mi), (j, mj))).sum::<usize>();
+                for ((mi, mj), &(i, j)) in work.into_iter().zip(&level) {
+                    (self.members[i], self.members[j]) = (mi, mj);
+                }
+            }
+            swaps
+        });
+        let dims = self.dims;
+        let moved: Vec<f64> = self
+            .members
+            .par_iter()
+            .enumerate()
+            .flat_map_iter(|(s, members)| {
+                let mut mean = vec![0.0; dims];
+                for &k in members {
+                    for ((m, &x), &c) in mean.iter_mut().zip(self.point(k)).zip(self.site(s)) {
+                        *m += torus_gap(x, c);
                     }
                 }
-            });
-        }
-        pairs.sort_unstable();
-        pairs.dedup();
-        let mut swaps = 0;
-        for (i, j) in pairs {
-            swaps += self.swap(i, j);
-        }
-        for s in 0..n {
-            let mut mean = vec![0.0; self.dims];
-            for &k in &self.members[s] {
-                for ((m, &x), &c) in mean.iter_mut().zip(self.point(k)).zip(self.site(s)) {
-                    *m += torus_gap(x, c);
-                }
-            }
-            let count = self.members[s].len() as f64;
-            for (d, m) in mean.into_iter().enumerate() {
-                self.sites[s * self.dims + d] = wrap01(self.sites[s * self.dims + d] + m / count);
-            }
-        }
+                let count = members.len() as f64;
+                mean.into_iter().zip(self.site(s)).map(move |(m, &c)| wrap01(c + m / count))
+            })
+            .collect();
+        self.sites = moved;
         swaps
     }
 
@@ -127,17 +176,17 @@ impl State {
         self.points = points;
     }
 
-    /// Swap points between sites i and j while the swap lowers the energy.
-    fn swap(&mut self, i: usize, j: usize) -> usize {
-        // the gain of moving each point of a to b
-        let gains = |a: usize, b: usize| -> Vec<(f64, u32, usize)> {
-            self.members[a]
-                .iter()
+    /// Swap points between sites i and j (their points `mi` and `mj`) while the swap lowers
+    /// the energy.
+    fn swap(&self, (i, mi): (usize, &mut [u32]), (j, mj): (usize, &mut [u32])) -> usize {
+        // the gain of moving each point of a (its points `ma`) to b
+        let gains = |a: usize, ma: &[u32], b: usize| -> Vec<(f64, u32, usize)> {
+            ma.iter()
                 .enumerate()
                 .map(|(slot, &k)| (distance2(self.point(k), self.site(a), true) - distance2(self.point(k), self.site(b), true), k, slot))
                 .collect()
         };
-        let (mut from_i, mut from_j) = (gains(i, j), gains(j, i));
+        let (mut from_i, mut from_j) = (gains(i, mi, j), gains(j, mj, i));
         let best = |g: &[(f64, u32, usize)]| g.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.0));
         let (best_i, best_j) = (best(&from_i), best(&from_j));
         if best_i + best_j <= 0.0 {
@@ -156,9 +205,7 @@ impl State {
             if gi + gj <= 0.0 {
                 break;
             }
-            let (ki, kj) = (self.members[i][si], self.members[j][sj]);
-            self.members[i][si] = kj;
-            self.members[j][sj] = ki;
+            std::mem::swap(&mut mi[si], &mut mj[sj]);
             count += 1;
         }
         count
