@@ -398,7 +398,9 @@ fn tiled_elimination_follows_its_definition() {
 
 #[test]
 fn parallel_constructions_are_the_same_on_any_thread_count() {
-    for (name, n) in [("elimination", 20_000), ("elimination.tiled", 20_000), ("ccvt:iterations=5", 2000)] {
+    for (name, n) in
+        [("elimination", 20_000), ("elimination.tiled", 20_000), ("ccvt:iterations=5", 2000), ("poisson.maximal", 1000)]
+    {
         let set = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
             pool.install(|| sampler::build(name).unwrap().generate(n, 2, Seed(4)).unwrap())

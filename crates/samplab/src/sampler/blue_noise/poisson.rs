@@ -28,6 +28,7 @@ use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Rng, Seed, below, shuffle, uniform, wrap01};
 use crate::spec::{Default, Kind, ParamSpec};
+use rayon::prelude::*;
 
 /// d_max: the largest possible minimum distance of n points in the unit torus, the
 /// diameter of the densest known packing's balls ([`crate::spatial::packing_radius`]).
@@ -691,25 +692,33 @@ fn maximal_set(r: f64, torus: bool, seed: Seed, capacity: usize) -> DiskGrid {
     let mut side = 1.0 / base as f64;
     let mut cells: Vec<(f64, f64)> =
         (0..base * base).map(|c| ((c / base) as f64 * side, (c % base) as f64 * side)).collect();
+    // the cells no disk of the grid covers (in parallel, in order)
+    let uncovered = |cells: Vec<(f64, f64)>, grid: &DiskGrid, side: f64| -> Vec<(f64, f64)> {
+        cells.into_par_iter().filter(|&(x, y)| !grid.covers_square(x, y, side)).collect()
+    };
     for _depth in 0..24 {
-        cells.retain(|&(x, y)| !grid.covers_square(x, y, side));
+        cells = uncovered(cells, &grid, side);
         if cells.is_empty() {
             break;
         }
-        // one dart per uncovered cell, in random order
+        // one dart per uncovered cell, in random order, kept when inside and clear of the
+        // points before it: first checked against the points so far in parallel, then, in
+        // order, the darts that passed against the darts kept before them
         shuffle(&mut rng, &mut cells);
-        for &(x, y) in &cells {
-            let p = [x + side * uniform(&mut rng), y + side * uniform(&mut rng)];
-            let inside = torus || (p[0] < 1.0 && p[1] < 1.0);
-            if inside && !grid.conflict(&p) {
-                grid.insert(&p);
+        let darts: Vec<[f64; 2]> =
+            cells.iter().map(|&(x, y)| [x + side * uniform(&mut rng), y + side * uniform(&mut rng)]).collect();
+        let clear: Vec<bool> =
+            darts.par_iter().map(|p| (torus || (p[0] < 1.0 && p[1] < 1.0)) && !grid.conflict(p)).collect();
+        for (p, clear) in darts.iter().zip(clear) {
+            if clear && !grid.conflict(p) {
+                grid.insert(p);
             }
         }
-        cells.retain(|&(x, y)| !grid.covers_square(x, y, side));
+        cells = uncovered(cells, &grid, side);
         side /= 2.0;
         cells = cells
-            .iter()
-            .flat_map(|&(x, y)| [(x, y), (x + side, y), (x, y + side), (x + side, y + side)])
+            .into_par_iter()
+            .flat_map_iter(|(x, y)| [(x, y), (x + side, y), (x, y + side), (x + side, y + side)])
             .filter(|&(x, y)| x < 1.0 && y < 1.0)
             .collect();
     }
