@@ -9,7 +9,8 @@ the speed-up at 2 threads and the serial fraction Amdahl's law gives from the 1-
 compared across thread counts: a row whose bytes differ is marked.
 
 Usage: bench/compare scaling [--rounds K] [ROW...]   (rows: render integrate extreme
-spectrum elimination elimination.tiled l2 reproduce; all by default; K = 3)
+spectrum elimination elimination.tiled ccvt poisson.maximal l2 reproduce; all by default;
+K = 3)
 """
 import hashlib
 import os
@@ -38,6 +39,10 @@ ROWS = [
      ["generate", "elimination", "-n", "100000", "-o", "OUT.npy"]),
     ("elimination.tiled", "generate elimination.tiled 10^5 (in tiles, other points)",
      ["generate", "elimination.tiled", "-n", "100000", "-o", "OUT.npy"]),
+    ("ccvt", "generate ccvt 4096 (capacity 64, up to 50 iterations)",
+     ["generate", "ccvt", "-n", "4096", "-o", "OUT.npy"]),
+    ("poisson.maximal", "generate poisson.maximal 2x10^4 (radius bisected to exactly n)",
+     ["generate", "poisson.maximal", "-n", "20000", "-o", "OUT.npy"]),
     ("l2", "L2-star + centered of 10^6 random points",
      ["discrepancy", "l2-star", "centered", "--sampler", "random", "-n", "1000000", "--json"]),
     ("reproduce", "samplab reproduce (fast)", ["reproduce", "--out", "OUT"]),
