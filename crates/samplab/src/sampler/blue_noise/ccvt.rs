@@ -102,32 +102,27 @@ impl State {
         let n = self.members.len();
         let reach = 2.0 * (n as f64).powf(-1.0 / self.dims as f64);
         let grid = Grid::covering(&self.sites, self.dims, reach.min(0.5));
-        let mut pairs: Vec<(usize, usize)> = (0..grid.len())
+        // each site i's pairs (i, j), j increasing, as one task (its grid position's
+        // neighbours; a small torus grid can meet one cell twice)
+        let mut tasks: Vec<(usize, Vec<usize>)> = (0..grid.len())
             .into_par_iter()
-            .flat_map_iter(|q| {
+            .filter_map(|q| {
                 let i = grid.ids[q] as usize;
-                let mut near = Vec::new();
+                let mut js = Vec::new();
                 grid.near(q, 1, true, |cell| {
                     for r in cell {
                         let j = grid.ids[r] as usize;
                         if i < j && distance2(self.site(i), self.site(j), true) < reach * reach {
-                            near.push((i, j));
+                            js.push(j);
                         }
                     }
                 });
-                near
+                js.sort_unstable();
+                js.dedup();
+                (!js.is_empty()).then_some((i, js))
             })
             .collect();
-        pairs.par_sort_unstable();
-        pairs.dedup();
-        // each site i's pairs (i, j), j increasing, as one task
-        let mut tasks: Vec<(usize, Vec<usize>)> = Vec::new();
-        for (i, j) in pairs {
-            match tasks.last_mut() {
-                Some((last, js)) if *last == i => js.push(j),
-                _ => tasks.push((i, vec![j])),
-            }
-        }
+        tasks.par_sort_unstable_by_key(|&(i, _)| i);
         // per task, how many earlier tasks (the latest of each of its sites) it waits for,
         // and the later tasks that wait for it
         let mut waits = Vec::with_capacity(tasks.len());
