@@ -645,20 +645,30 @@ fn ccvt_iteration_naive(dims: usize, sites: &mut [f64], points: &[f64], members:
 
 #[test]
 fn ccvt_iterations_follow_the_definition_one_pair_after_another() {
-    // the library swaps the pairs of one level side by side: the sites must be those of
-    // one pair after another, to the bit
+    // the library swaps the pairs of many sites side by side: the sites must be those of
+    // one pair after another, to the bit, on any number of threads (16 threads on a few
+    // cores preempt the one that starts the first tasks: a version that scanned the
+    // tasks' counts while the first tasks ran started some tasks twice)
     use samplab::sampler::blue_noise::ccvt::State;
     let mut rng = Seed(12).rng();
-    for (dims, n, capacity) in [(2, 300, 16), (3, 120, 8), (1, 50, 4)] {
+    for (dims, n, capacity) in [(2, 2000, 16), (3, 120, 8), (1, 50, 4)] {
         let sites: Vec<f64> = (0..n * dims).map(|_| uniform(&mut rng)).collect();
         let points: Vec<f64> = (0..n * capacity * dims).map(|_| uniform(&mut rng)).collect();
-        let mut state = State::from_points(dims, sites.clone(), points.clone());
-        let mut naive = sites;
+        let mut naive = sites.clone();
         let mut members: Vec<Vec<usize>> = (0..n).map(|s| (s * capacity..(s + 1) * capacity).collect()).collect();
-        for round in 0..6 {
-            state.iterate();
+        let mut states: Vec<_> = [1, 2, 16]
+            .map(|threads| {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                (threads, pool, State::from_points(dims, sites.clone(), points.clone()))
+            })
+            .into_iter()
+            .collect();
+        for round in 0..10 {
             ccvt_iteration_naive(dims, &mut naive, &points, &mut members);
-            assert!(state.sites == naive, "{dims}D, {n} sites: round {round}");
+            for (threads, pool, state) in &mut states {
+                pool.install(|| state.iterate());
+                assert!(state.sites == naive, "{dims}D, {n} sites, {threads} threads: round {round}");
+            }
         }
     }
 }

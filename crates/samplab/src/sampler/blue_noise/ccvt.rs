@@ -140,11 +140,15 @@ impl State {
                 latest[s] = Some(t);
             }
         }
+        // the tasks that wait for none, listed before any runs: once one runs, it may bring
+        // a later task's count to zero and start it itself, and a scan of the counts then
+        // would start that task a second time
+        let ready: Vec<usize> = (0..tasks.len()).filter(|&t| waits[t].load(Relaxed) == 0).collect();
         let members = take(&mut self.members).into_iter().map(Mutex::new).collect();
         let flow = Flow { state: &*self, members, tasks: &tasks, waits, next, swaps: AtomicUsize::new(0) };
         rayon::scope(|scope| {
             let flow = &flow;
-            for t in (0..tasks.len()).filter(|&t| flow.waits[t].load(Relaxed) == 0) {
+            for t in ready {
                 scope.spawn(move |scope| flow.run(scope, t));
             }
         });
