@@ -9,8 +9,8 @@ the speed-up at 2 threads and the serial fraction Amdahl's law gives from the 1-
 compared across thread counts: a row whose bytes differ is marked.
 
 Usage: bench/compare scaling [--rounds K] [ROW...]   (rows: render integrate extreme
-spectrum elimination elimination.tiled ccvt poisson.maximal l2 reproduce; all by default;
-K = 3)
+spectrum elimination elimination.tiled ccvt poisson poisson.maximal l2 reproduce; all by
+default; K = 3)
 """
 import hashlib
 import os
@@ -41,6 +41,8 @@ ROWS = [
      ["generate", "elimination.tiled", "-n", "100000", "-o", "OUT.npy"]),
     ("ccvt", "generate ccvt 4096 (capacity 64, up to 50 iterations)",
      ["generate", "ccvt", "-n", "4096", "-o", "OUT.npy"]),
+    ("poisson", "generate poisson 10^6 (dart throwing)",
+     ["generate", "poisson", "-n", "1000000", "-o", "OUT.npy"]),
     ("poisson.maximal", "generate poisson.maximal 2x10^4 (radius bisected to exactly n)",
      ["generate", "poisson.maximal", "-n", "20000", "-o", "OUT.npy"]),
     ("l2", "L2-star + centered of 10^6 random points",

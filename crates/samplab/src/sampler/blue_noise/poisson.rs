@@ -330,7 +330,31 @@ impl Occupancy for DiskGrid {
     }
     #[inline]
     fn conflict(&self, p: &[f64]) -> bool {
-        let (x, y) = (p[0], p[1]);
+        self.conflict_at(p[0], p[1])
+    }
+    fn points(&self) -> &[f64] {
+        &self.points
+    }
+    fn clear(&mut self) {
+        self.slots.fill([f64::NAN; 2]);
+        self.points.clear();
+    }
+    #[inline]
+    fn prefetch(&self, p: &[f64]) {
+        // the five rows of the 5 x 5 neighbourhood, each 80 bytes: its two ends
+        let (rows, c) = (self.around(self.cell(p[0])), self.cell(p[1]));
+        let (lo, hi) = (c.saturating_sub(2), (c + 2).min(self.g - 1));
+        for r in rows.into_iter().filter(|&r| r != usize::MAX) {
+            crate::simd::prefetch(&self.slots[r * self.g + lo]);
+            crate::simd::prefetch(&self.slots[r * self.g + hi]);
+        }
+    }
+}
+
+impl DiskGrid {
+    /// Whether a point of the set lies closer than the radius to (x, y).
+    #[inline]
+    fn conflict_at(&self, x: f64, y: f64) -> bool {
         let (rows, cols) = (self.around(self.cell(x)), self.around(self.cell(y)));
         // a neighbour reached across the torus's seam is moved by one period instead of
         // taking min(d, 1 - d) per cell; all 25 cells, without early exit: no
@@ -364,23 +388,6 @@ impl Occupancy for DiskGrid {
             }
         }
         hit
-    }
-    fn points(&self) -> &[f64] {
-        &self.points
-    }
-    fn clear(&mut self) {
-        self.slots.fill([f64::NAN; 2]);
-        self.points.clear();
-    }
-    #[inline]
-    fn prefetch(&self, p: &[f64]) {
-        // the five rows of the 5 x 5 neighbourhood, each 80 bytes: its two ends
-        let (rows, c) = (self.around(self.cell(p[0])), self.cell(p[1]));
-        let (lo, hi) = (c.saturating_sub(2), (c + 2).min(self.g - 1));
-        for r in rows.into_iter().filter(|&r| r != usize::MAX) {
-            crate::simd::prefetch(&self.slots[r * self.g + lo]);
-            crate::simd::prefetch(&self.slots[r * self.g + hi]);
-        }
     }
 }
 
@@ -419,53 +426,57 @@ impl DartThrowing {
 
 const TRIES: u64 = 16;
 
-/// How many candidates dart throwing draws ahead of the one it tests.
+/// How far ahead of the candidate it tests dart throwing starts loading the grid cells
+/// another candidate will read (on large grids a test would otherwise wait for about ten
+/// cache misses).
 const AHEAD: usize = 16;
+
+/// How many candidates dart throwing on several threads draws and checks together (for n
+/// from BATCH / 2), and how many of those one task takes (32 tasks a batch, whatever the
+/// thread count).
+const BATCH: usize = 1 << 14;
+const CHUNK: usize = BATCH / 32;
+
+/// The buffers of a batch: its candidates, whether each passed the parallel check, and
+/// the indices of those that did.
+struct Batch {
+    candidates: Vec<[f64; MAX_DIMS]>,
+    clear: Vec<bool>,
+    passing: Vec<usize>,
+}
 
 impl DartThrowing {
     /// Up to [`TRIES`] tries of dart throwing; the points land in `out` when one succeeds.
     /// Returns the largest count placed. Stops when `progress` says so (checked every
-    /// 2^16 candidates: a few milliseconds).
+    /// 2^14 candidates or more often: about a millisecond).
+    ///
+    /// A try is the serial definition: candidate k (draws k d .. k d + d - 1 of the try's
+    /// random stream) is kept when no point kept before it lies within the radius, until
+    /// n are kept or more than `attempts` candidates in a row are not. One thread runs it
+    /// candidate after candidate; several run it in batches ([`DartThrowing::try_in_batches`]),
+    /// with the same points.
     fn throw(
         &self,
-        grid: &mut impl Occupancy,
+        grid: &mut (impl Occupancy + Sync),
         (n, dims): (usize, usize),
         seed: Seed,
         out: &mut [f64],
         progress: &Progress,
     ) -> Result<usize> {
+        // batches pay off from several batches a try (about 11 candidates a point at the
+        // default radius); below, and on one thread, candidate after candidate
+        let mut batch = (rayon::current_num_threads() > 1 && n >= BATCH / 2).then(|| Batch {
+            candidates: vec![[0.0; MAX_DIMS]; BATCH],
+            clear: vec![false; BATCH],
+            passing: Vec::with_capacity(BATCH),
+        });
         let mut best = 0;
         for t in 0..TRIES {
-            let mut rng = seed.derive(t).rng();
+            let stream = seed.derive(t).rng();
             grid.clear();
-            // the candidates are drawn AHEAD before they are tested, in the same order, so
-            // that the grid cells each will read are on their way from memory (on large
-            // grids each test would otherwise wait for about ten cache misses); a try ends
-            // with up to AHEAD candidates drawn and unused, which changes nothing
-            let mut ahead = [[0.0; MAX_DIMS]; AHEAD];
-            for c in &mut ahead {
-                c[..dims].iter_mut().for_each(|x| *x = uniform(&mut rng));
-                grid.prefetch(&c[..dims]);
-            }
-            let mut misses = 0;
-            for k in 0usize.. {
-                if grid.len() == n || misses > self.attempts {
-                    break;
-                }
-                if k % (1 << 16) == 0 {
-                    progress.check()?;
-                }
-                let slot = &mut ahead[k % AHEAD];
-                let cand = *slot;
-                slot[..dims].iter_mut().for_each(|x| *x = uniform(&mut rng));
-                grid.prefetch(&slot[..dims]);
-                let cand = &cand[..dims];
-                if grid.conflict(cand) {
-                    misses += 1;
-                } else {
-                    grid.insert(cand);
-                    misses = 0;
-                }
+            match &mut batch {
+                Some(batch) => self.try_in_batches(grid, (n, dims), &stream, batch, progress)?,
+                None => self.try_one_by_one(grid, (n, dims), stream, progress)?,
             }
             if grid.len() == n {
                 out.copy_from_slice(grid.points());
@@ -474,6 +485,112 @@ impl DartThrowing {
             best = best.max(grid.len());
         }
         Ok(best)
+    }
+
+    /// One try, candidate after candidate. The candidates are drawn [`AHEAD`] before they
+    /// are tested, in the same order, so that the cells each will read are on their way
+    /// from memory; a try ends with up to AHEAD candidates drawn and unused, which changes
+    /// nothing.
+    fn try_one_by_one(
+        &self,
+        grid: &mut (impl Occupancy + ?Sized),
+        (n, dims): (usize, usize),
+        mut rng: Rng,
+        progress: &Progress,
+    ) -> Result<()> {
+        let mut ahead = [[0.0; MAX_DIMS]; AHEAD];
+        for c in &mut ahead {
+            c[..dims].iter_mut().for_each(|x| *x = uniform(&mut rng));
+            grid.prefetch(&c[..dims]);
+        }
+        let mut misses = 0;
+        for k in 0usize.. {
+            if grid.len() == n || misses > self.attempts {
+                break;
+            }
+            if k % BATCH == 0 {
+                progress.check()?;
+            }
+            let slot = &mut ahead[k % AHEAD];
+            let cand = *slot;
+            slot[..dims].iter_mut().for_each(|x| *x = uniform(&mut rng));
+            grid.prefetch(&slot[..dims]);
+            let cand = &cand[..dims];
+            if grid.conflict(cand) {
+                misses += 1;
+            } else {
+                grid.insert(cand);
+                misses = 0;
+            }
+        }
+        Ok(())
+    }
+
+    /// One try in batches of [`BATCH`] candidates. Every candidate of a batch is drawn
+    /// (from the stream advanced to it) and checked against the points kept before the
+    /// batch, in parallel; then, in order, each candidate that passed is checked again
+    /// against the grid as it is by then, which adds only the batch's points kept before
+    /// it. A candidate that failed the first check fails the second too (the points only
+    /// grow), so the points are those of [`DartThrowing::try_one_by_one`]; candidates
+    /// drawn past the end of the try change nothing. Only the second check of the
+    /// candidates that passed, and the insertions, are serial; at the default radius a
+    /// try draws about 11 candidates a point, most of them rejected by the first check.
+    fn try_in_batches(
+        &self,
+        grid: &mut (impl Occupancy + Sync + ?Sized),
+        (n, dims): (usize, usize),
+        stream: &Rng,
+        batch: &mut Batch,
+        progress: &Progress,
+    ) -> Result<()> {
+        let Batch { candidates, clear, passing } = batch;
+        let (mut misses, mut first) = (0, 0u64);
+        loop {
+            progress.check()?;
+            let shared = &*grid;
+            candidates.par_chunks_mut(CHUNK).zip(clear.par_chunks_mut(CHUNK)).enumerate().for_each(
+                |(c, (cands, clear))| {
+                    let mut rng = stream.clone();
+                    rng.advance(u128::from(first + (c * CHUNK) as u64) * dims as u128);
+                    for cand in cands.iter_mut() {
+                        cand[..dims].iter_mut().for_each(|x| *x = uniform(&mut rng));
+                    }
+                    cands[..AHEAD].iter().for_each(|c| shared.prefetch(&c[..dims]));
+                    for (k, (cand, clear)) in cands.iter().zip(clear.iter_mut()).enumerate() {
+                        if let Some(ahead) = cands.get(k + AHEAD) {
+                            shared.prefetch(&ahead[..dims]);
+                        }
+                        *clear = !shared.conflict(&cand[..dims]);
+                    }
+                },
+            );
+            // in order, the candidates that passed; each one between them is a miss
+            passing.clear();
+            passing.extend((0..BATCH).filter(|&k| clear[k]));
+            let mut next = 0;
+            for (j, &k) in passing.iter().enumerate() {
+                misses += (k - next) as u64;
+                if grid.len() == n || misses > self.attempts {
+                    return Ok(());
+                }
+                if let Some(&ahead) = passing.get(j + AHEAD) {
+                    grid.prefetch(&candidates[ahead][..dims]);
+                }
+                let cand = &candidates[k][..dims];
+                if grid.conflict(cand) {
+                    misses += 1;
+                } else {
+                    grid.insert(cand);
+                    misses = 0;
+                }
+                next = k + 1;
+            }
+            misses += (BATCH - next) as u64;
+            if grid.len() == n || misses > self.attempts {
+                return Ok(());
+            }
+            first += BATCH as u64;
+        }
     }
 }
 
@@ -512,11 +629,15 @@ impl DartThrowing {
         let r = self.radius.unwrap_or(AUTO_RELATIVE * packing_distance(n, dims)?);
         // the one-point-per-cell grid has (sqrt 2 / r)^2 cells: for tiny radii the linked
         // grid (capped at 2^22 cells, several points each) stands in
-        let best = if dims == 2 && DiskGrid::cells(r) <= MAX_GRID_CELLS {
-            self.throw(&mut DiskGrid::new(r, self.torus, n), (n, dims), seed, out, progress)?
-        } else {
-            self.throw(&mut NeighbourGrid::new(dims, r, self.torus, n), (n, dims), seed, out, progress)?
-        };
+        // on a pool thread: from outside the pool, each batch's parallel step would put the
+        // calling thread to sleep and wake it again
+        let best = rayon::scope(|_| {
+            if dims == 2 && DiskGrid::cells(r) <= MAX_GRID_CELLS {
+                self.throw(&mut DiskGrid::new(r, self.torus, n), (n, dims), seed, out, progress)
+            } else {
+                self.throw(&mut NeighbourGrid::new(dims, r, self.torus, n), (n, dims), seed, out, progress)
+            }
+        })?;
         if best == n {
             return progress.advance(1);
         }
@@ -586,7 +707,7 @@ fn bridson(r: f64, torus: bool, k: u32, rng: &mut Rng, grid: &mut DiskGrid) {
             } else if !(0.0..1.0).contains(&x) || !(0.0..1.0).contains(&y) {
                 continue;
             }
-            if !grid.conflict(&[x, y]) {
+            if !grid.conflict_at(x, y) {
                 grid.insert(&[x, y]);
                 active.push((grid.len() - 1) as u32);
                 placed = true;
@@ -907,5 +1028,81 @@ mod tests {
         });
         let out = finished.recv_timeout(std::time::Duration::from_secs(30)).expect("the search still runs after 30 s");
         assert!(out.unwrap().iter().all(|x| (0.0..1.0).contains(x)));
+    }
+
+    /// One try of dart throwing by its definition, brute force: candidate after candidate
+    /// from the try's stream, kept when no kept point lies within r, until n are kept or
+    /// more than `attempts` in a row are not.
+    fn definition(n: usize, dims: usize, r: f64, torus: bool, attempts: u64, mut rng: Rng) -> Vec<f64> {
+        let axis = |a: f64, b: f64| {
+            let d = (a - b).abs();
+            if torus { d.min(1.0 - d) } else { d }
+        };
+        let (mut points, mut misses) = (Vec::new(), 0);
+        while points.len() < n * dims && misses <= attempts {
+            let c: Vec<f64> = (0..dims).map(|_| uniform(&mut rng)).collect();
+            if points.chunks_exact(dims).any(|q| c.iter().zip(q).map(|(&a, &b)| axis(a, b).powi(2)).sum::<f64>() < r * r) {
+                misses += 1;
+            } else {
+                points.extend(c);
+                misses = 0;
+            }
+        }
+        points
+    }
+
+    #[test]
+    fn dart_throwing_in_batches_gives_the_points_of_the_definition() {
+        // tries that end with n points and tries that end with a run of misses, over
+        // several batches (about 11 candidates a point at the default radius), on the
+        // one-point-per-cell grid (2D) and the linked one (1D, 3D)
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(3).build().unwrap();
+        let mut batch =
+            Batch { candidates: vec![[0.0; MAX_DIMS]; BATCH], clear: vec![false; BATCH], passing: Vec::new() };
+        let mut ended_by_misses = 0;
+        // (n, dimensions, torus, attempts, radius relative to n's packing distance, seeds);
+        // the last case fills the square with a few hundred points (never 4000) and ends
+        // with a run of misses longer than a batch
+        for (n, dims, torus, attempts, relative, seeds) in [
+            (3000, 2, true, 100_000, AUTO_RELATIVE, 1),
+            (2500, 2, false, 100_000, AUTO_RELATIVE, 1),
+            (1500, 3, true, 100_000, AUTO_RELATIVE, 1),
+            (400, 1, false, 100_000, AUTO_RELATIVE, 1),
+            (3000, 2, true, 30, AUTO_RELATIVE, 12),
+            (2000, 3, false, 40, AUTO_RELATIVE, 6),
+            (4000, 2, true, 3 * BATCH as u64 / 2, 3.0, 1),
+        ] {
+            let r = relative * packing_distance(n, dims).unwrap();
+            let darts = DartThrowing::new(Some(r), torus, attempts);
+            for s in 0..seeds {
+                let stream = Seed(40 + s).derive(0).rng();
+                let expected = definition(n, dims, r, torus, attempts, stream.clone());
+                ended_by_misses += usize::from(expected.len() < n * dims);
+                // one try each way, on a grid of each kind
+                let mut both = |grid: &mut (dyn Occupancy + Send + Sync)| {
+                    darts.try_one_by_one(grid, (n, dims), stream.clone(), &Progress::SILENT).unwrap();
+                    let one = grid.points().to_vec();
+                    grid.clear();
+                    pool.install(|| darts.try_in_batches(grid, (n, dims), &stream, &mut batch, &Progress::SILENT))
+                        .unwrap();
+                    (one, grid.points().to_vec())
+                };
+                let (one, many) = if dims == 2 {
+                    both(&mut DiskGrid::new(r, torus, n))
+                } else {
+                    both(&mut NeighbourGrid::new(dims, r, torus, n))
+                };
+                for (got, how) in [(one, "one by one"), (many, "in batches")] {
+                    let differ = got.iter().zip(&expected).position(|(a, b)| a != b);
+                    assert!(
+                        got == expected,
+                        "{n} points in {dims}D (torus {torus}, attempts {attempts}), {how}: {} coordinates against the definition's {}, first difference at {differ:?}",
+                        got.len(),
+                        expected.len()
+                    );
+                }
+            }
+        }
+        assert!(ended_by_misses >= 10, "only {ended_by_misses} tries ended by a run of misses");
     }
 }
