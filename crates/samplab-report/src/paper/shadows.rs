@@ -127,7 +127,7 @@ pub(crate) fn scene(name: &str, kind: Option<LightKind>) -> Result<Scene, Error>
 }
 
 /// A renderer's error as the report's (a stop stays a stop).
-fn render_error(e: samplab_render::Error) -> Error {
+pub(crate) fn render_error(e: samplab_render::Error) -> Error {
     match e {
         samplab_render::Error::Samplab(e) => Error::Samplab(e),
         e => Error::Invalid(e.to_string()),

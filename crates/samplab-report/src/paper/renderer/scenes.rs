@@ -11,6 +11,7 @@ use samplab_render::{Footprint, Image, Mode, Options, Scene, render};
 
 use super::{fades, families, look};
 use crate::criteria::{self, Estimate};
+use crate::paper::shadows::render_error;
 use crate::plot::{LineChart, Series};
 use crate::{Cell, Claim, Ctx, Error, Figure, Output, Table};
 
@@ -45,10 +46,6 @@ fn cases() -> Result<Vec<Case>, Error> {
     ])
 }
 
-fn render_error(e: samplab_render::Error) -> Error {
-    Error::Invalid(e.to_string())
-}
-
 /// The dimensions every sampler is prepared for: path mode's, which cover direct mode's.
 fn dims() -> u32 {
     samplab_render::path::dims(DEPTH as usize) as u32
@@ -72,8 +69,8 @@ fn prepared(name: &str, size: usize, spp: usize, seed: samplab::Seed) -> Result<
 }
 
 /// Render `case` with every dimension from `pixels` at `frame`; the image, and the sampler
-/// back.
-fn render_with(case: &Case, pixels: Pixels, frame: u32) -> Result<(Image, Pixels), Error> {
+/// back. A stop of the run stops the render (a reference at full scale takes seconds).
+fn render_with(ctx: &Ctx, case: &Case, pixels: Pixels, frame: u32) -> Result<(Image, Pixels), Error> {
     let film = pixels.film();
     let (w, h) = (film.width as usize, film.height as usize);
     let mut o = Options {
@@ -84,7 +81,7 @@ fn render_with(case: &Case, pixels: Pixels, frame: u32) -> Result<(Image, Pixels
         frame,
         ..Options::new("random", 1, w, h).map_err(render_error)?
     };
-    let image = render(&case.scene, &o, &Progress::SILENT).map_err(render_error)?.image;
+    let image = render(&case.scene, &o, &Progress::until(ctx.stop)).map_err(render_error)?.image;
     Ok((image, o.pixels.take().expect("set above")))
 }
 
@@ -100,7 +97,7 @@ fn references(ctx: &Ctx, cases: &[Case], size: usize, spp: usize) -> Result<Vec<
         .iter()
         .map(|c| {
             let p = prepared("sobol", size, spp, ctx.seed.derive_str("reference"))?.expect("sobol takes any count");
-            let (img, _) = render_with(c, p, 0)?;
+            let (img, _) = render_with(ctx, c, p, 0)?;
             ctx.advance(1)?;
             let lum = img.luminance();
             Ok((img, lum))
@@ -184,13 +181,13 @@ fn measure(
             let seed = ctx.seed.derive_str(name).derive(spp as u64);
             if let Some(mut p) = prepared(&spec(ctx, name), size, spp, seed)? {
                 for (c, case) in cases.iter().enumerate() {
-                    let (img, back) = render_with(case, p, 0)?;
+                    let (img, back) = render_with(ctx, case, p, 0)?;
                     p = back;
                     let plane = error_plane(&img, &refs[c].1)?;
                     if spp == TARGET_SPP {
                         let mut frames = vec![plane.clone()];
                         for frame in 1..LF_FRAMES {
-                            let (img, back) = render_with(case, p, frame)?;
+                            let (img, back) = render_with(ctx, case, p, frame)?;
                             p = back;
                             frames.push(error_plane(&img, &refs[c].1)?);
                         }
