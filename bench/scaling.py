@@ -8,9 +8,15 @@ the speed-up at 2 threads and the serial fraction Amdahl's law gives from the 1-
 2-thread medians, f = 2 T2 / T1 - 1 (T(p) = T1 (f + (1 - f) / p)). Each command's output is
 compared across thread counts: a row whose bytes differ is marked.
 
-Usage: bench/compare scaling [--rounds K] [ROW...]   (rows: render integrate extreme
-spectrum elimination elimination.tiled ccvt poisson poisson.maximal l2 reproduce; all by
-default; K = 3)
+With --ceiling, each round also runs two copies of the one-thread command at once (p copies
+for each further column p): what the machine itself gives to p independent processes that
+share nothing but its caches, memory bus and host. The ceiling column is p T1 / Tc, Tc the
+median time of a copy run beside the others: a row's speed-up can only reach the ceiling,
+and a speed-up close to it has no serial part left that threads could remove.
+
+Usage: bench/compare scaling [--rounds K] [--ceiling] [ROW...]   (rows: render integrate
+extreme spectrum elimination elimination.tiled ccvt poisson poisson.maximal l2 reproduce;
+all by default; K = 3)
 """
 import hashlib
 import os
@@ -72,24 +78,47 @@ def digest(path):
     return h.hexdigest()
 
 
-def run(args, threads, tmp):
-    out = os.path.join(tmp, "out%d" % threads)
+def launch(args, threads, out):
+    """Starts one run writing under the path `out`; returns what `finish` needs."""
     argv = [a.replace("OUT", out) for a in args]
     target = next((a for a in argv if a.startswith(out)), None)
     if target and os.path.isdir(target):
         shutil.rmtree(target)
     env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
-    start = time.perf_counter()
-    done = subprocess.run([SAMPLAB] + argv, env=env, capture_output=True)
-    seconds = time.perf_counter() - start
+    done = subprocess.Popen([SAMPLAB] + argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    return done, argv, target
+
+
+def finish(started):
+    """Waits for a run; returns its output's digest."""
+    done, argv, target = started
+    stdout, stderr = done.communicate()
     if done.returncode != 0:
-        sys.exit("samplab %s: exit %d: %s" % (" ".join(argv), done.returncode, done.stderr.decode()[-400:]))
-    return seconds, digest(target) if target else hashlib.sha256(done.stdout).hexdigest()
+        sys.exit("samplab %s: exit %d: %s" % (" ".join(argv), done.returncode, stderr.decode()[-400:]))
+    return digest(target) if target else hashlib.sha256(stdout).hexdigest()
+
+
+def run(args, threads, tmp):
+    """One run on `threads` threads: (seconds, digest of its output)."""
+    start = time.perf_counter()
+    d = finish(launch(args, threads, os.path.join(tmp, "out%d" % threads)))
+    return time.perf_counter() - start, d
+
+
+def copies(args, p, tmp):
+    """p one-thread runs at once: the seconds until the last is done, and their digests."""
+    start = time.perf_counter()
+    started = [launch(args, 1, os.path.join(tmp, "copy%d" % i)) for i in range(p)]
+    digests = [finish(s) for s in started]
+    return time.perf_counter() - start, digests
 
 
 def main():
     args = sys.argv[1:]
     rounds = 3
+    ceiling = "--ceiling" in args
+    if ceiling:
+        args.remove("--ceiling")
     if "--rounds" in args:
         i = args.index("--rounds")
         rounds = int(args[i + 1])
@@ -101,23 +130,32 @@ def main():
           % (time.strftime("%Y-%m-%d"), cores, rounds, SAMPLAB))
     header = "| work | " + " | ".join("%d thread%s" % (p, "" if p == 1 else "s") for p in columns) + \
              " | speed-up at 2 | serial fraction | bytes |"
+    many = [p for p in columns if p > 1] if ceiling else []
+    header += "".join(" ceiling at %d |" % p for p in many)
     print(header)
-    print("|" + "---|" * (len(columns) + 4))
+    print("|" + "---|" * (len(columns) + 4 + len(many)))
     with tempfile.TemporaryDirectory() as tmp:
         for name, label, argv in rows:
             times = {p: [] for p in columns}
+            beside = {p: [] for p in many}
             digests = set()
             for _ in range(rounds):
                 for p in columns:
                     seconds, d = run(argv, p, tmp)
                     times[p].append(seconds)
                     digests.add(d)
+                for p in many:
+                    seconds, ds = copies(argv, p, tmp)
+                    beside[p].append(seconds)
+                    digests.update(ds)
             med = {p: statistics.median(times[p]) for p in columns}
             speedup = med[1] / med[2] if 2 in med else float("nan")
             serial = 2.0 / speedup - 1.0
             cells = " | ".join("%.2f s" % med[p] for p in columns)
-            print("| %s | %s | %.2fx | %.1f%% | %s |" % (label, cells, speedup, 100 * serial,
-                                                        "same" if len(digests) == 1 else "DIFFER"), flush=True)
+            tops = "".join(" %.2fx |" % (p * med[1] / statistics.median(beside[p])) for p in many)
+            print("| %s | %s | %.2fx | %.1f%% | %s |%s" % (label, cells, speedup, 100 * serial,
+                                                          "same" if len(digests) == 1 else "DIFFER", tops),
+                  flush=True)
 
 
 if __name__ == "__main__":

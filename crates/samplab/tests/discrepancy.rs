@@ -373,6 +373,18 @@ fn bad_input_errors() {
     let outside = PointSet::new(2, vec![0.5, 1.5]).unwrap();
     let e = discrepancy::compute(&Metric::parse("star").unwrap(), &outside, Limits::default()).unwrap_err().to_string();
     assert!(e.contains("point 0 coordinate 1 is 1.5"), "{e}");
+    // the first coordinate outside is named, whatever the threads scanning a large set
+    let mut xs = vec![0.5; 3 * 300_000];
+    for (at, x) in [(3 * 299_000 + 1, -0.25), (3 * 123_456 + 2, 1.5), (3 * 200_000, 2.0)] {
+        xs[at] = x;
+    }
+    let set = PointSet::new(3, xs).unwrap();
+    for threads in [1, 2, 16] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let e = pool.install(|| discrepancy::compute(&Metric::parse("l2-star").unwrap(), &set, Limits::default()));
+        let e = e.unwrap_err().to_string();
+        assert!(e.contains("point 123456 coordinate 2 is 1.5 (outside [0, 1])"), "{threads} threads: {e}");
+    }
     // refused before any work, as a work-limit error (the CLI names its flag)
     let big = sampler::build("random").unwrap().generate(200_000, 3, Seed(0)).unwrap();
     let e = discrepancy::compute(&Metric::parse("star").unwrap(), &big, Limits::default()).unwrap_err();

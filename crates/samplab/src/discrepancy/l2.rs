@@ -284,7 +284,9 @@ impl Form {
     /// for these in general d, Heinrich 1996's O(n log^d n) for L2-star aside).
     pub fn squared(&self, points: &[f64], dims: usize) -> f64 {
         if dims == 2 {
-            self.finish(self.single(points, dims), (self.sweep)(points), dims, points.len() / dims)
+            // the single sum is one serial loop: it runs beside the sweep
+            let (single, pair) = rayon::join(|| self.single(points, dims), || (self.sweep)(points));
+            self.finish(single, pair, dims, points.len() / dims)
         } else {
             self.squared_quadratic(points, dims)
         }
@@ -456,7 +458,7 @@ fn pair_sum_2d_in_runs<const R: usize>(
     split: impl Fn(f64) -> ([f64; R], [f64; R]) + Copy + Sync,
     run: usize,
 ) -> f64 {
-    let pts: Vec<Point> = points.chunks_exact(2).map(|p| Point { x: p[0], y: p[1], inner: 0.0 }).collect();
+    let pts: Vec<Point> = points.par_chunks_exact(2).map(|p| Point { x: p[0], y: p[1], inner: 0.0 }).collect();
     let n = pts.len();
     let (mut pts, mut spare) = radix_sort_x(pts);
     // blocks of BLOCK points in x order: their pairs directly, then sorted by y (compiled
@@ -587,7 +589,8 @@ const RADIX_FROM: usize = 4096;
 /// sorted pieces merged pairwise, each merge in parallel runs ([`merge_by_x`]).
 fn radix_sort_x(mut pts: Vec<Point>) -> (Vec<Point>, Vec<Point>) {
     let n = pts.len();
-    let mut spare = pts.clone();
+    // scratch, its first touch shared among the threads
+    let mut spare: Vec<Point> = pts.par_iter().copied().collect();
     if n < RADIX_FROM {
         pts.sort_unstable_by_key(|p| order_key(p.x));
         return (pts, spare);
