@@ -29,6 +29,7 @@
 
 pub mod bibliography;
 pub mod cubature;
+pub(crate) mod dataflow;
 pub mod discrepancy;
 pub mod error;
 pub mod experiment;

@@ -45,7 +45,7 @@ use crate::spatial::{Grid, SORTED, buckets, distance2, packing_radius};
 use crate::spec::{Default, Kind, ParamSpec};
 use rayon::iter::Either;
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering::Relaxed, Ordering::SeqCst};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering::Relaxed};
 use std::sync::{Mutex, PoisonError};
 
 /// Sample elimination with `ratio` x n candidates.
@@ -308,7 +308,7 @@ fn quotas(counts: &[usize], target: usize) -> Vec<usize> {
 fn by_tiles(weights: Vec<u64>, tiles: usize, target: usize, pairs: &Pairs) -> (Vec<usize>, Vec<usize>) {
     let grid = pairs.grid;
     let (m, dims) = (weights.len(), grid.point(0).len());
-    let colour = |t: usize| (0..dims).fold((0, t), |(c, rest), axis| (c | (rest % tiles % 2) << axis, rest / tiles)).0;
+    let colour_of = |t: usize| (0..dims).fold((0, t), |(c, rest), axis| (c | (rest % tiles % 2) << axis, rest / tiles)).0;
     // each position's tile; each tile's positions, increasing, and each position's place
     // among its tile's
     let owner: Vec<u32> = (0..m).into_par_iter().map(|q| Grid::cell(tiles, grid.point(q)) as u32).collect();
@@ -337,15 +337,27 @@ fn by_tiles(weights: Vec<u64>, tiles: usize, target: usize, pairs: &Pairs) -> (V
     let quota = quotas(&members.iter().map(Vec::len).collect::<Vec<_>>(), target);
     let ids: Vec<Vec<u32>> = members.par_iter().map(|ms| ms.iter().map(|&q| grid.ids[q as usize]).collect()).collect();
     let colours = 1 << dims;
+    let colour: &Vec<usize> = &(0..count).map(colour_of).collect();
+    // the turns in the order of the phases, the tiles by index within one: phase
+    // (round - 1) C + turn is colour (round + turn) mod C's, C = 2^d colours
+    let order: Vec<(usize, usize)> = (1..=ROUNDS)
+        .flat_map(|round| (0..colours).map(move |turn| (round, (round + turn) % colours)))
+        .flat_map(|(round, hue)| (0..count).filter(move |&t| colour[t] == hue).map(move |t| (t, round)))
+        .collect();
+    // a turn runs as soon as its tile's and its adjacent tiles' turns before it are done:
+    // two adjacent tiles never run together, and each meets the other's removals in the
+    // order of the phases, so the points are those of phase after phase
+    let near: Vec<Vec<u32>> = (0..count).map(|t| adjacent(t, tiles, dims)).collect();
+    let mut graph = crate::dataflow::Graph::new(count);
+    for &(t, _) in &order {
+        graph.push(std::iter::once(t).chain(near[t].iter().map(|&u| u as usize)), [t]);
+    }
     let turns = Turns {
         pairs,
         members: &members,
         owner: &owner,
         place: &place,
         quota: &quota,
-        colours,
-        colour: (0..count).map(colour).collect(),
-        near: (0..count).map(|t| adjacent(t, tiles, dims)).collect(),
         // the weight each position has lost to the removals of other tiles, not yet in its
         // heap
         lost: (0..m).into_par_iter().map(|_| AtomicU64::new(0)).collect(),
@@ -358,20 +370,13 @@ fn by_tiles(weights: Vec<u64>, tiles: usize, target: usize, pairs: &Pairs) -> (V
                 Mutex::new(Tile { heap, alive: vec![true; ms.len()], removed: Vec::with_capacity(ROUNDS) })
             })
             .collect(),
-        next: (0..count).map(|_| AtomicUsize::new(1)).collect(),
-        held: (0..count).map(|_| AtomicBool::new(false)).collect(),
     };
-    rayon::scope(|scope| (0..count).for_each(|t| turns.start(scope, t)));
+    graph.run(|k| turns.turn(order[k].0, order[k].1));
     let state: Vec<Tile> = turns.state.into_iter().map(|s| s.into_inner().unwrap_or_else(PoisonError::into_inner)).collect();
-    // the removals in the order of the phases, the tiles by index within one
+    // the removals in the order of the phases
     let mut gone = Vec::with_capacity(m - target);
-    for round in 1..=ROUNDS {
-        for turn in 0..colours {
-            let hue = (round + turn) % colours;
-            for (tile, _) in state.iter().zip(&turns.colour).filter(|(_, c)| **c == hue) {
-                gone.extend_from_slice(&tile.removed[round - 1]);
-            }
-        }
+    for &(t, round) in &order {
+        gone.extend_from_slice(&state[t].removed[round - 1]);
     }
     let kept = state
         .par_iter()
@@ -407,72 +412,19 @@ struct Tile<'a> {
     removed: Vec<Vec<usize>>,
 }
 
-/// The turns of the tiled elimination's tiles. Phase (round - 1) C + turn is colour
-/// (round + turn) mod C's, C = 2^d colours; a tile's turn in a phase runs as soon as its
-/// adjacent tiles have had their turns of the earlier phases, with no barrier between
-/// phases: two adjacent tiles never run together, and each meets the other's removals in
-/// the order of the phases, so the points are those of phase after phase.
+/// What the tiled elimination's turns share: each tile's state, and the weight each
+/// position has lost to other tiles' removals.
 struct Turns<'a> {
     pairs: &'a Pairs<'a>,
     members: &'a [Vec<u32>],
     owner: &'a [u32],
     place: &'a [u32],
     quota: &'a [usize],
-    colours: usize,
-    colour: Vec<usize>,
-    near: Vec<Vec<u32>>,
     lost: Vec<AtomicU64>,
     state: Vec<Mutex<Tile<'a>>>,
-    /// Each tile's round of its next turn (past ROUNDS when done).
-    next: Vec<AtomicUsize>,
-    /// Whether a task holds the tile.
-    held: Vec<AtomicBool>,
 }
 
 impl<'a> Turns<'a> {
-    /// The phase of tile t's turn in `round`.
-    fn phase(&self, t: usize, round: usize) -> usize {
-        (round - 1) * self.colours + (self.colour[t] + self.colours - round % self.colours) % self.colours
-    }
-
-    /// The phase of tile t's next turn (usize::MAX when it is done).
-    fn upcoming(&self, t: usize) -> usize {
-        let round = self.next[t].load(SeqCst);
-        if round > ROUNDS { usize::MAX } else { self.phase(t, round) }
-    }
-
-    /// Whether tile t's next turn may run: its adjacent tiles' turns before it are done.
-    fn ready(&self, t: usize) -> bool {
-        let phase = self.upcoming(t);
-        phase < usize::MAX && self.near[t].iter().all(|&u| self.upcoming(u as usize) > phase)
-    }
-
-    /// Start tile t's next turn as a task if it may run and no task holds the tile; the
-    /// task starts whatever its turn lets run next.
-    fn start<'s>(&'s self, scope: &rayon::Scope<'s>, t: usize) {
-        while self.ready(t) {
-            if self.held[t].swap(true, SeqCst) {
-                // its holder looks again when it lets go
-                return;
-            }
-            if self.ready(t) {
-                scope.spawn(move |scope| {
-                    let round = self.next[t].load(SeqCst);
-                    self.turn(t, round);
-                    self.next[t].store(round + 1, SeqCst);
-                    self.held[t].store(false, SeqCst);
-                    self.start(scope, t);
-                    for &u in &self.near[t] {
-                        self.start(scope, u as usize);
-                    }
-                });
-                return;
-            }
-            // a tile that moved on while this one was held found it held: look again
-            self.held[t].store(false, SeqCst);
-        }
-    }
-
     /// Tile t's turn in `round`: down to its share of the round, its quota plus (R - r) / R
     /// of its surplus.
     fn turn(&self, t: usize, round: usize) {
