@@ -93,10 +93,11 @@ impl State {
     /// pairs before it left them. Site i's pairs (i, j) are one task of a dataflow (the
     /// crate's `dataflow` module), which runs as soon as the latest earlier task of each of
     /// its sites is done: tasks that run together share no site, and each site meets its
-    /// pairs in the same order, with the same points, as one pair after another. (A task per site keeps its points in the core's cache, where
-    /// a task per pair did not; and levels of tasks with a barrier after each, 49 per
-    /// iteration at 4096 sites, were about 5% slower on two threads than this dataflow:
-    /// medians 1.17 s against 1.11 s, six runs each, 2026-11-28.)
+    /// pairs in the same order, with the same points, as one pair after another. (A task
+    /// per site keeps its points in the core's cache, where a task per pair did not; and
+    /// levels of tasks with a barrier after each, 49 per iteration at 4096 sites, were
+    /// about 5% slower on two threads than this dataflow: medians 1.17 s against 1.11 s,
+    /// six runs each, 2026-11-28.)
     pub fn iterate(&mut self) -> usize {
         self.regroup();
         let n = self.members.len();
