@@ -10,9 +10,10 @@ fixed seed; some with ties and coordinates 0 and 1) with scipy.stats.qmc.discrep
 for methods CD, WD, MD and L2-star, as scipy returns them (CD, WD and MD squared,
 L2-star unsquared).
 
-Writes the QMC constructions fixtures too (see the end of the file).
+Writes the QMC constructions fixtures too, and normal_quantile.json: the standard normal
+quantile from mpmath at 1706 points (see the end of the file).
 
-Usage: apt-get install libgsl-dev && pip install scipy==1.17.1 qmcpy==2.4 && python3 scripts/make_fixtures.py
+Usage: apt-get install libgsl-dev && pip install scipy==1.17.1 qmcpy==2.4 mpmath==1.4.1 && python3 scripts/make_fixtures.py
 """
 import json
 import os
@@ -93,4 +94,25 @@ with open(os.path.join(here, "lattice_vector.txt"), "w") as f:
 out["lattice_radical_inverse"] = qmcpy.Lattice(5, randomize=False, generating_vector=z, m_max=10, order="RADICAL INVERSE")(1024, warn=False).tolist()
 with open(os.path.join(here, "qmc_constructions.json"), "w") as f:
     json.dump(out, f)
+    f.write("\n")
+
+# The standard normal quantile at points over (0, 1) and deep into both tails, from mpmath's
+# erfinv at enough digits that 2p - 1 keeps p's every digit; each exact value rounded to 25
+# significant digits (more than a double holds, so a test can count ulps).
+import random
+
+import mpmath
+
+pick = random.Random(20261128)
+ps = [pick.random() for _ in range(1000)]
+ps += [10.0 ** -pick.uniform(1, 307) for _ in range(500)]
+ps += [1.0 - 10.0 ** -pick.uniform(1, 16) for _ in range(200)]
+ps += [0.075, 0.925, 0.5, 0.975, 1e-300, 2.2250738585072014e-308]  # AS 241's region edges, the extremes
+rows = []
+for p in ps:
+    with mpmath.workdps(60 + int(-mpmath.log10(p))):
+        rows.append([p, mpmath.nstr(mpmath.sqrt(2) * mpmath.erfinv(2 * mpmath.mpf(p) - 1), 25)])
+with open(os.path.join(here, "normal_quantile.json"), "w") as f:
+    json.dump({"source": "mpmath %s: sqrt(2) erfinv(2p - 1), 25 significant digits" % mpmath.__version__,
+               "p_and_quantile": rows}, f)
     f.write("\n")
