@@ -14,10 +14,9 @@ share nothing but its caches, memory bus and host. The ceiling column is p T1 / 
 median time of a copy run beside the others: a row's speed-up can only reach the ceiling,
 and a speed-up close to it has no serial part left that threads could remove.
 
-Usage: bench/compare scaling [--rounds K] [--ceiling] [ROW...]   (rows: render integrate
-extreme spectrum elimination elimination.tiled ccvt poisson poisson.maximal l2 reproduce;
-all by default; K = 3)
+Usage: bench/compare scaling [--rounds K] [--ceiling] [ROW...]   (--help lists the rows)
 """
+import argparse
 import hashlib
 import os
 import shutil
@@ -114,16 +113,26 @@ def copies(args, p, tmp):
 
 
 def main():
-    args = sys.argv[1:]
-    rounds = 3
-    ceiling = "--ceiling" in args
-    if ceiling:
-        args.remove("--ceiling")
-    if "--rounds" in args:
-        i = args.index("--rounds")
-        rounds = int(args[i + 1])
-        del args[i:i + 2]
-    rows = [r for r in ROWS if not args or r[0] in args]
+    parser = argparse.ArgumentParser(
+        prog="bench/compare scaling",
+        description="samplab's heavy commands on 1, 2, 4, 8, 16 threads (as many as the machine "
+                    "has): median wall times, the speed-up at 2 threads, Amdahl's serial fraction "
+                    "and whether the output bytes agree.")
+    parser.add_argument("rows", nargs="*", metavar="ROW",
+                        help="rows to run (default: all): " + ", ".join(r[0] for r in ROWS))
+    parser.add_argument("--rounds", type=int, default=3, metavar="K",
+                        help="runs per column; the median is reported (default 3)")
+    parser.add_argument("--ceiling", action="store_true",
+                        help="also run p one-thread copies at once per column p: the machine's "
+                             "own limit for p independent processes")
+    opts = parser.parse_args()
+    if opts.rounds < 1:
+        parser.error("--rounds must be at least 1, not %d" % opts.rounds)
+    unknown = [r for r in opts.rows if r not in [row[0] for row in ROWS]]
+    if unknown:
+        parser.error("unknown row %r (rows: %s)" % (unknown[0], ", ".join(r[0] for r in ROWS)))
+    rounds, ceiling = opts.rounds, opts.ceiling
+    rows = [r for r in ROWS if not opts.rows or r[0] in opts.rows]
     cores = os.cpu_count() or 1
     columns = [p for p in (1, 2, 4, 8, 16) if p <= cores]
     print("samplab scaling, %s, %d cores, %d rounds, medians of wall time (%s)"
