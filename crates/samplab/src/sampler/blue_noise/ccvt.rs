@@ -22,6 +22,7 @@ use crate::seed::{Seed, wrap01};
 use crate::spatial::{Grid, distance2, torus_gap};
 use crate::spec::{Default, Kind, ParamSpec};
 use rayon::prelude::*;
+use std::collections::BinaryHeap;
 use std::mem::take;
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 use std::sync::{Mutex, PoisonError};
@@ -40,7 +41,17 @@ pub struct State {
     pub sites: Vec<f64>,
     points: Vec<f64>,
     /// The points of each site.
-    members: Vec<Vec<u32>>,
+    members: Vec<Vec<Member>>,
+}
+
+/// A point of a site: its index and, during the swaps, its squared distance to the site
+/// (the sites stay put while their points swap, so each distance is computed once per
+/// iteration, and again only for a point that moves: the distance to its new site, which
+/// its gain already computed).
+#[derive(Clone, Copy)]
+struct Member {
+    k: u32,
+    own: f64,
 }
 
 impl State {
@@ -48,6 +59,9 @@ impl State {
     ///
     /// # Errors
     /// None in practice (the random sampler's own checks).
+    ///
+    /// # Panics
+    /// As [`State::from_points`].
     pub fn new(n: usize, dims: usize, capacity: usize, seed: Seed) -> Result<State> {
         let mut sites = vec![0.0; n * dims];
         Random::draw(seed, &mut sites);
@@ -60,11 +74,16 @@ impl State {
     /// The sites (`dims` coordinates each, in [0, 1)) and points given, site s owning points
     /// s c, ..., (s + 1) c - 1 for c points per site (the points' count over the sites'
     /// count, rounded down; the rest belong to no site).
+    ///
+    /// # Panics
+    /// `dims` outside 1..=4 (the sampler's dimensions).
     #[must_use]
     pub fn from_points(dims: usize, sites: Vec<f64>, points: Vec<f64>) -> State {
+        assert!((1..=4).contains(&dims), "CCVT in {dims} dimensions: 1 to 4 are made");
         let n = sites.len() / dims;
         let capacity = (points.len() / dims).checked_div(n).unwrap_or(0);
-        let members = (0..n).map(|s| (s * capacity..(s + 1) * capacity).map(|k| k as u32).collect()).collect();
+        let members =
+            (0..n).map(|s| (s * capacity..(s + 1) * capacity).map(|k| Member { k: k as u32, own: 0.0 }).collect()).collect();
         State { dims, sites, points, members }
     }
 
@@ -78,7 +97,7 @@ impl State {
 
     /// The energy sum over points of the squared distance to their site.
     pub fn energy(&self) -> f64 {
-        self.members.iter().enumerate().map(|(s, m)| m.iter().map(|&k| distance2(self.point(k), self.site(s), true)).sum::<f64>()).sum()
+        self.members.iter().enumerate().map(|(s, m)| m.iter().map(|p| distance2(self.point(p.k), self.site(s), true)).sum::<f64>()).sum()
     }
 
     /// How many points each site owns.
@@ -100,7 +119,18 @@ impl State {
     /// six runs each, 2026-11-28.)
     pub fn iterate(&mut self) -> usize {
         self.regroup();
-        let n = self.members.len();
+        let members = take(&mut self.members);
+        let members: Vec<Mutex<Vec<Member>>> = members
+            .into_par_iter()
+            .enumerate()
+            .map(|(s, mut list)| {
+                for p in &mut list {
+                    p.own = distance2(self.point(p.k), self.site(s), true);
+                }
+                Mutex::new(list)
+            })
+            .collect();
+        let n = members.len();
         let reach = 2.0 * (n as f64).powf(-1.0 / self.dims as f64);
         let grid = Grid::covering(&self.sites, self.dims, reach.min(0.5));
         // each site i's pairs (i, j), j increasing, as one task (its grid position's
@@ -130,7 +160,6 @@ impl State {
             let sites = || std::iter::once(*i).chain(js.iter().copied());
             graph.push(sites(), sites());
         }
-        let members: Vec<Mutex<Vec<u32>>> = take(&mut self.members).into_iter().map(Mutex::new).collect();
         let swaps = AtomicUsize::new(0);
         let state = &*self;
         graph.run(|t| {
@@ -138,7 +167,14 @@ impl State {
             let lock = |s: usize| members[s].lock().unwrap_or_else(PoisonError::into_inner);
             let (i, js) = &tasks[t];
             let mut mi = lock(*i);
-            let count: usize = js.iter().map(|&j| state.swap((*i, &mut mi), (j, &mut lock(j)))).sum();
+            let swap = match state.dims {
+                1 => State::swap::<1>,
+                2 => State::swap::<2>,
+                3 => State::swap::<3>,
+                _ => State::swap::<4>, // from_points admits 1..=4
+            };
+            let mut scratch = [Vec::new(), Vec::new()];
+            let count: usize = js.iter().map(|&j| swap(state, (*i, &mut mi), (j, &mut lock(j)), &mut scratch)).sum();
             swaps.fetch_add(count, Relaxed);
         });
         self.members = members.into_iter().map(|m| m.into_inner().unwrap_or_else(PoisonError::into_inner)).collect();
@@ -150,8 +186,8 @@ impl State {
             .enumerate()
             .flat_map_iter(|(s, members)| {
                 let mut mean = vec![0.0; dims];
-                for &k in members {
-                    for ((m, &x), &c) in mean.iter_mut().zip(self.point(k)).zip(self.site(s)) {
+                for p in members {
+                    for ((m, &x), &c) in mean.iter_mut().zip(self.point(p.k)).zip(self.site(s)) {
                         *m += torus_gap(x, c);
                     }
                 }
@@ -166,12 +202,13 @@ impl State {
     /// Store each site's points together, in site order (the swaps scatter them; a site's
     /// points are then read from one stretch of memory).
     fn regroup(&mut self) {
+        let d = self.dims;
         let mut points = Vec::with_capacity(self.points.len());
         let mut k = 0u32;
         for members in &mut self.members {
-            for id in members.iter_mut() {
-                points.extend_from_slice(&self.points[*id as usize * self.dims..(*id as usize + 1) * self.dims]);
-                *id = k;
+            for p in members.iter_mut() {
+                points.extend_from_slice(&self.points[p.k as usize * d..(p.k as usize + 1) * d]);
+                p.k = k;
                 k += 1;
             }
         }
@@ -179,40 +216,83 @@ impl State {
     }
 
     /// Swap points between sites i and j (their points `mi` and `mj`) while the swap lowers
-    /// the energy.
-    fn swap(&self, (i, mi): (usize, &mut [u32]), (j, mj): (usize, &mut [u32])) -> usize {
-        // the gain of moving each point of a (its points `ma`) to b
-        let gains = |a: usize, ma: &[u32], b: usize| -> Vec<(f64, u32, usize)> {
-            ma.iter()
-                .enumerate()
-                .map(|(slot, &k)| (distance2(self.point(k), self.site(a), true) - distance2(self.point(k), self.site(b), true), k, slot))
-                .collect()
+    /// the energy; D is the dimension (so that the distances unroll), `scratch` the two
+    /// sides' lists of moves, reused from pair to pair.
+    fn swap<const D: usize>(
+        &self,
+        (i, mi): (usize, &mut [Member]),
+        (j, mj): (usize, &mut [Member]),
+        scratch: &mut [Vec<Move>; 2],
+    ) -> usize {
+        // each point of a (its points `ma`) moving to b: its cached distance to a less its
+        // distance to b; returns the best gain
+        let moves = |list: &mut Vec<Move>, ma: &[Member], b: usize| -> f64 {
+            let site: &[f64; D] = self.site(b).try_into().expect("D coordinates");
+            list.clear();
+            list.extend(ma.iter().enumerate().map(|(slot, p)| {
+                let point: &[f64; D] = self.point(p.k).try_into().expect("D coordinates");
+                let to = distance2(point, site, true);
+                Move { gain: p.own - to, k: p.k, slot: slot as u32, to }
+            }));
+            list.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.gain))
         };
-        let (mut from_i, mut from_j) = (gains(i, mi, j), gains(j, mj, i));
-        let best = |g: &[(f64, u32, usize)]| g.iter().fold(f64::NEG_INFINITY, |m, x| m.max(x.0));
-        let (best_i, best_j) = (best(&from_i), best(&from_j));
+        let [from_i, from_j] = scratch;
+        let (best_i, best_j) = (moves(from_i, mi, j), moves(from_j, mj, i));
         if best_i + best_j <= 0.0 {
             return 0;
         }
         // only a point whose gain beats the other side's best loss can take part; largest
-        // gain first (ties: the lower point index)
-        let order = |g: &mut Vec<(f64, u32, usize)>, other: f64| {
-            g.retain(|x| x.0 + other > 0.0);
-            g.sort_by(|x, y| y.0.total_cmp(&x.0).then(x.1.cmp(&y.1)));
-        };
-        order(&mut from_i, best_j);
-        order(&mut from_j, best_i);
+        // gain first (ties: the lower point index), taken from a heap as they are needed
+        from_i.retain(|x| x.gain + best_j > 0.0);
+        from_j.retain(|x| x.gain + best_i > 0.0);
+        let (mut hi, mut hj) = (BinaryHeap::from(take(from_i)), BinaryHeap::from(take(from_j)));
         let mut count = 0;
-        for (&(gi, _, si), &(gj, _, sj)) in from_i.iter().zip(&from_j) {
-            if gi + gj <= 0.0 {
+        while let (Some(a), Some(b)) = (hi.peek(), hj.peek()) {
+            if a.gain + b.gain <= 0.0 {
                 break;
             }
-            std::mem::swap(&mut mi[si], &mut mj[sj]);
+            mi[a.slot as usize] = Member { k: b.k, own: b.to };
+            mj[b.slot as usize] = Member { k: a.k, own: a.to };
+            hi.pop();
+            hj.pop();
             count += 1;
         }
+        (*from_i, *from_j) = (hi.into_vec(), hj.into_vec());
         count
     }
 }
+
+/// A point of one site moving to another: what it gains (its squared distance to the one
+/// less that to the other), its index, its slot in the first site's list and its squared
+/// distance to the other. Ordered by gain, then by the lower index first: no two points of
+/// a site compare equal.
+#[derive(Clone, Copy)]
+struct Move {
+    gain: f64,
+    k: u32,
+    slot: u32,
+    to: f64,
+}
+
+impl Ord for Move {
+    fn cmp(&self, other: &Move) -> std::cmp::Ordering {
+        self.gain.total_cmp(&other.gain).then(other.k.cmp(&self.k))
+    }
+}
+
+impl PartialOrd for Move {
+    fn partial_cmp(&self, other: &Move) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl PartialEq for Move {
+    fn eq(&self, other: &Move) -> bool {
+        self.cmp(other).is_eq()
+    }
+}
+
+impl Eq for Move {}
 
 impl Construction for Ccvt {
     fn dims(&self) -> RangeInclusive<usize> {
