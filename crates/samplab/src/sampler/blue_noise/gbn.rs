@@ -61,16 +61,31 @@ pub fn energy(points: &[f64], dims: usize, sigma: f64) -> f64 {
 
 /// One descent step: every point moved by `step` sigma^2 times the energy's negative
 /// gradient, on the torus.
+///
+/// # Panics
+/// `dims` outside 1..=4 (the samplers' dimensions).
 pub fn descend(points: &mut [f64], dims: usize, sigma: f64, step: f64) {
-    let grid = Grid::covering(points, dims, CUT * sigma);
-    let moves: Vec<(u32, Vec<f64>)> = (0..grid.len())
+    match dims {
+        1 => descend_in::<1>(points, sigma, step),
+        2 => descend_in::<2>(points, sigma, step),
+        3 => descend_in::<3>(points, sigma, step),
+        4 => descend_in::<4>(points, sigma, step),
+        _ => panic!("a descent in {dims} dimensions: 1 to 4 are made"),
+    }
+}
+
+/// [`descend`] in D dimensions (so that the distances and moves unroll).
+fn descend_in<const D: usize>(points: &mut [f64], sigma: f64, step: f64) {
+    let grid = Grid::covering(points, D, CUT * sigma);
+    let at = |q: usize| -> &[f64; D] { grid.point(q).try_into().expect("D coordinates") };
+    let moves: Vec<(u32, [f64; D])> = (0..grid.len())
         .into_par_iter()
         .map(|q| {
-            let p = grid.point(q);
-            let mut push = vec![0.0; dims];
+            let p = at(q);
+            let mut push = [0.0; D];
             grid.near(q, 1, true, |cell| {
                 for r in cell.filter(|&r| r != q) {
-                    let o = grid.point(r);
+                    let o = at(r);
                     let d2 = distance2(p, o, true);
                     if d2 < (CUT * sigma).powi(2) {
                         let w = (-d2 / (2.0 * sigma * sigma)).exp();
@@ -84,7 +99,7 @@ pub fn descend(points: &mut [f64], dims: usize, sigma: f64, step: f64) {
         })
         .collect();
     for (i, push) in moves {
-        for (x, m) in points[i as usize * dims..(i as usize + 1) * dims].iter_mut().zip(push) {
+        for (x, m) in points[i as usize * D..(i as usize + 1) * D].iter_mut().zip(push) {
             *x = wrap01(*x + m);
         }
     }
@@ -93,6 +108,9 @@ pub fn descend(points: &mut [f64], dims: usize, sigma: f64, step: f64) {
 /// One Langevin step at temperature `temperature` (module doc): [`descend`], then normal
 /// noise of standard deviation sqrt(2 `step` `temperature`) sigma per coordinate, drawn from
 /// `rng` in point order.
+///
+/// # Panics
+/// As [`descend`].
 pub fn langevin(points: &mut [f64], dims: usize, sigma: f64, step: f64, temperature: f64, rng: &mut Rng) {
     descend(points, dims, sigma, step);
     let spread = (2.0 * step * temperature).sqrt() * sigma;
