@@ -200,18 +200,25 @@ impl State {
     }
 
     /// Store each site's points together, in site order (the swaps scatter them; a site's
-    /// points are then read from one stretch of memory).
+    /// points are then read from one stretch of memory), the sites in parallel.
     fn regroup(&mut self) {
         let d = self.dims;
-        let mut points = Vec::with_capacity(self.points.len());
-        let mut k = 0u32;
-        for members in &mut self.members {
-            for p in members.iter_mut() {
-                points.extend_from_slice(&self.points[p.k as usize * d..(p.k as usize + 1) * d]);
-                p.k = k;
-                k += 1;
-            }
+        let mut points = vec![0.0; self.members.iter().map(Vec::len).sum::<usize>() * d];
+        // each site's stretch of the new points, and the index of its first point
+        let mut stretches = Vec::with_capacity(self.members.len());
+        let (mut rest, mut first) = (points.as_mut_slice(), 0u32);
+        for members in &self.members {
+            let (mine, after) = rest.split_at_mut(members.len() * d);
+            stretches.push((mine, first));
+            (rest, first) = (after, first + members.len() as u32);
         }
+        let old = &self.points;
+        self.members.par_iter_mut().zip(stretches).for_each(|(members, (stretch, first))| {
+            for ((p, to), k) in members.iter_mut().zip(stretch.chunks_exact_mut(d)).zip(first..) {
+                to.copy_from_slice(&old[p.k as usize * d..(p.k as usize + 1) * d]);
+                p.k = k;
+            }
+        });
         self.points = points;
     }
 
