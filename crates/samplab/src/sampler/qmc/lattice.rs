@@ -88,8 +88,9 @@ pub fn p2(z: &[u64], n: usize) -> f64 {
     let b2 = |x: f64| x * x - x + 1.0 / 6.0;
     let c = 2.0 * std::f64::consts::PI * std::f64::consts::PI;
     let m = n as u64;
-    // i z_j mod n, stepped from one i to the next by z_j mod n (no products, no division)
-    let step: Vec<u64> = z.iter().map(|&zj| zj % m).collect();
+    // i z_j mod n, stepped from one i to the next by z_j mod n (no products, no division;
+    // n = 0 sums nothing)
+    let step: Vec<u64> = z.iter().map(|&zj| zj.checked_rem(m).unwrap_or(0)).collect();
     let mut r = vec![0u64; z.len()];
     let sum: f64 = (0..n)
         .map(|_| {
