@@ -210,23 +210,20 @@ impl Rank1 {
 
 impl Prepared for Rank1 {
     fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
-        // the shifts first, dimension by dimension; then point by point, one pass over the
-        // output (a pass per dimension, each writing one coordinate of every point, made d
-        // passes over memory)
+        // dimension by dimension, each drawing its shift in turn: no buffer for the shifts
         let dims = self.z.len();
         if let Order::Float(n) = self.order {
             let mut rng = seed.rng();
-            let shifts: Vec<f64> = self.z.iter().map(|_| if self.shift { uniform(&mut rng) } else { 0.0 }).collect();
-            for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-                for ((x, &zj), &u) in p.iter_mut().zip(&self.z).zip(&shifts) {
-                    *x = wrap((i as u128 * u128::from(zj) % n as u128) as f64 / n as f64 + u);
+            for (d, &zj) in self.z.iter().enumerate() {
+                let u = if self.shift { uniform(&mut rng) } else { 0.0 };
+                for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+                    p[d] = wrap((i as u128 * u128::from(zj) % n as u128) as f64 / n as f64 + u);
                 }
             }
         } else {
-            let shifts: Vec<u64> = fixed_shifts(seed, dims, self.shift).collect();
-            for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-                for ((x, &zj), &shift) in p.iter_mut().zip(&self.z).zip(&shifts) {
-                    *x = finish(self.fixed(i as u64, zj), shift, self.tent);
+            for (d, (&zj, shift)) in self.z.iter().zip(fixed_shifts(seed, dims, self.shift)).enumerate() {
+                for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+                    p[d] = finish(self.fixed(i as u64, zj), shift, self.tent);
                 }
             }
         }
