@@ -222,9 +222,10 @@ fn slow_tier() -> bool {
 /// The papers on one thread, run once and shared by the tests: all of them in the slow
 /// tier; otherwise Subr & Kautz's renders, most of the fast run's time, are left out. They
 /// run in two groups of about the same expected time (`data/timings.json`), side by side,
-/// each on a one-thread pool of its own, beside the two-thread run: one run of every paper
-/// on one thread was the longest part of this test by a minute, with one core idle.
-/// Returns each group's report.
+/// each on a one-thread pool of its own, beside the two-thread run. (Run as one, the
+/// one-thread reproduction outlasted the two-thread run with a core idle: the test took
+/// 179 s at 161% CPU, against 151 s at 195% in two groups, 2026-11-29.) Returns each
+/// group's report.
 static ONE_THREAD_RUNS: LazyLock<Vec<PathBuf>> = LazyLock::new(|| {
     let seconds = samplab_report::expected_seconds(Scale::Fast);
     let cost = |p: &Paper| p.experiments.iter().map(|e| seconds[&format!("{}/{}", p.key, e.id)]).sum::<f64>();
