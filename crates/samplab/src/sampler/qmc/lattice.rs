@@ -210,20 +210,33 @@ impl Rank1 {
 
 impl Prepared for Rank1 {
     fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
-        // dimension by dimension, each drawing its shift in turn: no buffer for the shifts
+        // point by point over a block of up to BLOCK dimensions at a time, each block's
+        // shifts drawn in turn into the stack: one pass over the output per block, where a
+        // pass per dimension went d times over memory, and no buffer on the heap
+        const BLOCK: usize = 64;
         let dims = self.z.len();
-        if let Order::Float(n) = self.order {
-            let mut rng = seed.rng();
-            for (d, &zj) in self.z.iter().enumerate() {
-                let u = if self.shift { uniform(&mut rng) } else { 0.0 };
-                for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-                    p[d] = wrap((i as u128 * u128::from(zj) % n as u128) as f64 / n as f64 + u);
+        let mut rng = seed.rng();
+        for (b, zs) in self.z.chunks(BLOCK).enumerate() {
+            let first = b * BLOCK;
+            if let Order::Float(n) = self.order {
+                let mut shifts = [0.0; BLOCK];
+                for u in &mut shifts[..zs.len()] {
+                    *u = if self.shift { uniform(&mut rng) } else { 0.0 };
                 }
-            }
-        } else {
-            for (d, (&zj, shift)) in self.z.iter().zip(fixed_shifts(seed, dims, self.shift)).enumerate() {
                 for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-                    p[d] = finish(self.fixed(i as u64, zj), shift, self.tent);
+                    for ((x, &zj), &u) in p[first..first + zs.len()].iter_mut().zip(zs).zip(&shifts) {
+                        *x = wrap((i as u128 * u128::from(zj) % n as u128) as f64 / n as f64 + u);
+                    }
+                }
+            } else {
+                let mut shifts = [0u64; BLOCK];
+                for s in &mut shifts[..zs.len()] {
+                    *s = if self.shift { rand_core::Rng::next_u64(&mut rng) } else { 0 };
+                }
+                for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+                    for ((x, &zj), &shift) in p[first..first + zs.len()].iter_mut().zip(zs).zip(&shifts) {
+                        *x = finish(self.fixed(i as u64, zj), shift, self.tent);
+                    }
                 }
             }
         }
