@@ -9,39 +9,61 @@
 //! as every key a task changes is one it owns, or is owned by every task that reads it later
 //! and also reads one of this task's own keys (the tiles' turns: adjacency is symmetric).
 
-use std::sync::atomic::{AtomicUsize, Ordering::AcqRel};
+use std::sync::atomic::{
+    AtomicUsize,
+    Ordering::{AcqRel, Relaxed},
+};
+
+use rayon::prelude::*;
 
 /// A list of tasks and what each waits for.
 pub(crate) struct Graph {
     /// Per task, how many earlier tasks it waits for.
-    waits: Vec<usize>,
-    /// Per task, the later tasks that wait for it.
-    next: Vec<Vec<usize>>,
-    /// Per key, its latest owner so far.
-    latest: Vec<Option<usize>>,
+    waits: Vec<AtomicUsize>,
+    /// The later tasks that wait for task t: `next[first[t]..first[t + 1]]`, increasing.
+    first: Vec<usize>,
+    next: Vec<usize>,
 }
 
 impl Graph {
-    /// No task yet, over keys 0..keys.
-    pub(crate) fn new(keys: usize) -> Graph {
-        Graph { waits: Vec::new(), next: Vec::new(), latest: vec![None; keys] }
-    }
-
-    /// The next task: it waits for the latest owner so far of each key of `reads`, then owns
-    /// each key of `owns` (which `reads` should hold too).
-    pub(crate) fn push(&mut self, reads: impl IntoIterator<Item = usize>, owns: impl IntoIterator<Item = usize>) {
-        let task = self.waits.len();
-        let mut before: Vec<usize> = reads.into_iter().filter_map(|k| self.latest[k]).collect();
-        before.sort_unstable();
-        before.dedup();
-        self.waits.push(before.len());
-        for b in before {
-            self.next[b].push(task);
-        }
-        self.next.push(Vec::new());
-        for k in owns {
-            self.latest[k] = Some(task);
-        }
+    /// Tasks 0..tasks over keys 0..keys: task t waits for the latest earlier owner of each
+    /// key of `reads(t)`, then owns each key of `owns(t)` (which `reads(t)` should hold
+    /// too). Built in parallel, from each key's owners in task order: the latest owner
+    /// before t is found by bisection, so no task's list waits for the one before it.
+    pub(crate) fn new<R, O>(
+        keys: usize,
+        tasks: usize,
+        reads: impl Fn(usize) -> R + Sync,
+        owns: impl Fn(usize) -> O + Sync,
+    ) -> Graph
+    where
+        R: IntoIterator<Item = usize>,
+        O: IntoIterator<Item = usize>,
+    {
+        // (key, task) for every key a task owns, by key then task: each key's owners in order
+        let mut owned: Vec<(usize, usize)> =
+            (0..tasks).into_par_iter().flat_map_iter(|t| owns(t).into_iter().map(move |k| (k, t))).collect();
+        owned.par_sort_unstable();
+        let by_key: Vec<usize> = (0..=keys).into_par_iter().map(|k| owned.partition_point(|&(j, _)| j < k)).collect();
+        // (earlier task, task) for each key read: its latest owner before the task
+        let mut edges: Vec<(usize, usize)> = (0..tasks)
+            .into_par_iter()
+            .flat_map_iter(|t| {
+                let (owned, by_key) = (&owned, &by_key);
+                reads(t).into_iter().filter_map(move |k| {
+                    let owners = &owned[by_key[k]..by_key[k + 1]];
+                    owners[..owners.partition_point(|&(_, u)| u < t)].last().map(|&(_, u)| (u, t))
+                })
+            })
+            .collect();
+        edges.par_sort_unstable();
+        edges.dedup();
+        let waits: Vec<AtomicUsize> = (0..tasks).map(|_| AtomicUsize::new(0)).collect();
+        edges.par_iter().for_each(|&(_, t)| {
+            waits[t].fetch_add(1, Relaxed);
+        });
+        let first = (0..=tasks).into_par_iter().map(|t| edges.partition_point(|&(u, _)| u < t)).collect();
+        Graph { waits, first, next: edges.into_iter().map(|(_, t)| t).collect() }
     }
 
     /// Run `task` on every task, each once, as soon as the tasks it waits for are done.
@@ -49,8 +71,8 @@ impl Graph {
         // the tasks that wait for none, listed before any runs: once one runs, it may bring
         // a later task's count to zero and start it itself, and a scan of the counts then
         // would start that task a second time
-        let ready: Vec<usize> = (0..self.waits.len()).filter(|&t| self.waits[t] == 0).collect();
-        let flow = Flow { waits: self.waits.into_iter().map(AtomicUsize::new).collect(), next: self.next, task };
+        let ready: Vec<usize> = (0..self.waits.len()).filter(|&t| self.waits[t].load(Relaxed) == 0).collect();
+        let flow = Flow { graph: self, task };
         rayon::scope(|scope| {
             let flow = &flow;
             for t in ready {
@@ -62,8 +84,7 @@ impl Graph {
 
 /// A graph being run.
 struct Flow<F> {
-    waits: Vec<AtomicUsize>,
-    next: Vec<Vec<usize>>,
+    graph: Graph,
     task: F,
 }
 
@@ -72,8 +93,9 @@ impl<F: Fn(usize) + Sync> Flow<F> {
     /// each count's decrements form one release sequence, which the last one acquires).
     fn run<'s>(&'s self, scope: &rayon::Scope<'s>, t: usize) {
         (self.task)(t);
-        for &u in &self.next[t] {
-            if self.waits[u].fetch_sub(1, AcqRel) == 1 {
+        let graph = &self.graph;
+        for &u in &graph.next[graph.first[t]..graph.first[t + 1]] {
+            if graph.waits[u].fetch_sub(1, AcqRel) == 1 {
                 scope.spawn(move |scope| self.run(scope, u));
             }
         }
@@ -85,6 +107,15 @@ mod tests {
     use super::*;
     use std::sync::Mutex;
 
+    /// `tasks` lists of 1 to `most` keys below `keys`, drawn from a fixed LCG stream.
+    fn random_tasks(tasks: usize, keys: usize, most: usize, mut state: u64) -> Vec<Vec<usize>> {
+        let mut draw = |below: usize| {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (state >> 33) as usize % below
+        };
+        (0..tasks).map(|_| (0..1 + draw(most)).map(|_| draw(keys)).collect()).collect()
+    }
+
     /// Tasks on random keys, each appending its index to the log of every key it reads: on
     /// any pool, each key's log is the list's order of the tasks that read it, and every
     /// task ran once. (A scan of the counts while the first tasks already ran, CCVT's bug
@@ -93,12 +124,7 @@ mod tests {
     #[test]
     fn tasks_that_share_a_key_run_in_the_list_order_and_each_runs_once() {
         let keys = 2000;
-        let mut state = 12345u64;
-        let mut draw = |below: usize| {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (state >> 33) as usize % below
-        };
-        let tasks: Vec<Vec<usize>> = (0..20_000).map(|_| (0..1 + draw(3)).map(|_| draw(keys)).collect()).collect();
+        let tasks = random_tasks(20_000, keys, 3, 12345);
         let mut expected = vec![Vec::new(); keys];
         for (t, ks) in tasks.iter().enumerate() {
             let mut ks = ks.clone();
@@ -110,10 +136,7 @@ mod tests {
         }
         // a race detector: the scan's bug was caught in about one run of three at 16 threads
         for threads in [1, 2, 2, 2, 16, 16, 16, 16, 16, 16, 16, 16] {
-            let mut graph = Graph::new(keys);
-            for ks in &tasks {
-                graph.push(ks.iter().copied(), ks.iter().copied());
-            }
+            let graph = Graph::new(keys, tasks.len(), |t| tasks[t].iter().copied(), |t| tasks[t].iter().copied());
             let logs: Vec<Mutex<Vec<usize>>> = (0..keys).map(|_| Mutex::new(Vec::new())).collect();
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
             pool.install(|| {
@@ -128,6 +151,43 @@ mod tests {
             });
             let logs: Vec<Vec<usize>> = logs.into_iter().map(|l| l.into_inner().unwrap()).collect();
             assert_eq!(logs, expected, "{threads} threads");
+        }
+    }
+
+    /// The graph built in parallel is the serial definition's: task by task, each waiting
+    /// for the latest earlier owner of each key it reads, then owning its own keys. Each
+    /// task owns one key of those it reads (the tiled elimination's turns own their tile and
+    /// read its neighbours').
+    #[test]
+    fn the_graph_is_the_serial_definitions_on_any_pool() {
+        let keys = 500;
+        let tasks = random_tasks(5000, keys, 4, 987);
+        // the serial definition: the latest owner so far of each key
+        let mut latest: Vec<Option<usize>> = vec![None; keys];
+        let mut next = vec![Vec::new(); tasks.len()];
+        let mut waits = Vec::new();
+        for (t, ks) in tasks.iter().enumerate() {
+            let mut before: Vec<usize> = ks.iter().filter_map(|&k| latest[k]).collect();
+            before.sort_unstable();
+            before.dedup();
+            waits.push(before.len());
+            for b in before {
+                next[b].push(t);
+            }
+            latest[ks[0]] = Some(t);
+        }
+        for threads in [1, 2, 16] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let graph = pool.install(|| Graph::new(keys, tasks.len(), |t| tasks[t].iter().copied(), |t| [tasks[t][0]]));
+            let got: Vec<usize> = graph.waits.iter().map(|w| w.load(Relaxed)).collect();
+            assert_eq!(got, waits, "{threads} threads");
+            for (t, expected) in next.iter().enumerate() {
+                assert_eq!(
+                    &graph.next[graph.first[t]..graph.first[t + 1]],
+                    expected.as_slice(),
+                    "task {t}, {threads} threads"
+                );
+            }
         }
     }
 }

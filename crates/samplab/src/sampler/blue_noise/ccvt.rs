@@ -42,6 +42,9 @@ pub struct State {
     points: Vec<f64>,
     /// The points of each site.
     members: Vec<Vec<Member>>,
+    /// The points' buffer of the iteration before, which the next regrouping fills (a
+    /// fresh one was zeroed on one thread, freed on one, and its pages faulted in anew).
+    spare: Vec<f64>,
 }
 
 /// A point of a site: its index and, during the swaps, its squared distance to the site
@@ -83,8 +86,8 @@ impl State {
         let n = sites.len() / dims;
         let capacity = (points.len() / dims).checked_div(n).unwrap_or(0);
         let members =
-            (0..n).map(|s| (s * capacity..(s + 1) * capacity).map(|k| Member { k: k as u32, own: 0.0 }).collect()).collect();
-        State { dims, sites, points, members }
+            (0..n).into_par_iter().map(|s| (s * capacity..(s + 1) * capacity).map(|k| Member { k: k as u32, own: 0.0 }).collect()).collect();
+        State { dims, sites, points, members, spare: Vec::new() }
     }
 
     fn site(&self, s: usize) -> &[f64] {
@@ -155,11 +158,8 @@ impl State {
             .collect();
         tasks.par_sort_unstable_by_key(|&(i, _)| i);
         // each task waits for the latest earlier task of each of its sites
-        let mut graph = crate::dataflow::Graph::new(n);
-        for (i, js) in &tasks {
-            let sites = || std::iter::once(*i).chain(js.iter().copied());
-            graph.push(sites(), sites());
-        }
+        let sites = |t: usize| std::iter::once(tasks[t].0).chain(tasks[t].1.iter().copied());
+        let graph = crate::dataflow::Graph::new(n, tasks.len(), sites, sites);
         let swaps = AtomicUsize::new(0);
         let state = &*self;
         graph.run(|t| {
@@ -203,7 +203,8 @@ impl State {
     /// points are then read from one stretch of memory), the sites in parallel.
     fn regroup(&mut self) {
         let d = self.dims;
-        let mut points = vec![0.0; self.members.iter().map(Vec::len).sum::<usize>() * d];
+        let mut points = take(&mut self.spare);
+        points.resize(self.members.iter().map(Vec::len).sum::<usize>() * d, 0.0);
         // each site's stretch of the new points, and the index of its first point
         let mut stretches = Vec::with_capacity(self.members.len());
         let (mut rest, mut first) = (points.as_mut_slice(), 0u32);
@@ -219,7 +220,7 @@ impl State {
                 p.k = k;
             }
         });
-        self.points = points;
+        self.spare = std::mem::replace(&mut self.points, points);
     }
 
     /// Swap points between sites i and j (their points `mi` and `mj`) while the swap lowers

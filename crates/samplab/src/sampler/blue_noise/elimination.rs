@@ -348,10 +348,12 @@ fn by_tiles(weights: Vec<u64>, tiles: usize, target: usize, pairs: &Pairs) -> (V
     // two adjacent tiles never run together, and each meets the other's removals in the
     // order of the phases, so the points are those of phase after phase
     let near: Vec<Vec<u32>> = (0..count).map(|t| adjacent(t, tiles, dims)).collect();
-    let mut graph = crate::dataflow::Graph::new(count);
-    for &(t, _) in &order {
-        graph.push(std::iter::once(t).chain(near[t].iter().map(|&u| u as usize)), [t]);
-    }
+    let graph = crate::dataflow::Graph::new(
+        count,
+        order.len(),
+        |k| std::iter::once(order[k].0).chain(near[order[k].0].iter().map(|&u| u as usize)),
+        |k| [order[k].0],
+    );
     let turns = Turns {
         pairs,
         members: &members,
