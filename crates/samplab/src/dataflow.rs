@@ -28,8 +28,9 @@ pub(crate) struct Graph {
 impl Graph {
     /// Tasks 0..tasks over keys 0..keys: task t waits for the latest earlier owner of each
     /// key of `reads(t)`, then owns each key of `owns(t)` (which `reads(t)` should hold
-    /// too). Built in parallel, from each key's owners in task order: the latest owner
-    /// before t is found by bisection, so no task's list waits for the one before it.
+    /// too). Each key's owners are listed in task order, and each task finds the latest
+    /// before it by bisection, the tasks in parallel; the lists themselves are counting
+    /// sorts, linear in the keys and tasks.
     pub(crate) fn new<R, O>(
         keys: usize,
         tasks: usize,
@@ -40,30 +41,26 @@ impl Graph {
         R: IntoIterator<Item = usize>,
         O: IntoIterator<Item = usize>,
     {
-        // (key, task) for every key a task owns, by key then task: each key's owners in order
-        let mut owned: Vec<(usize, usize)> =
-            (0..tasks).into_par_iter().flat_map_iter(|t| owns(t).into_iter().map(move |k| (k, t))).collect();
-        owned.par_sort_unstable();
-        let by_key: Vec<usize> = (0..=keys).into_par_iter().map(|k| owned.partition_point(|&(j, _)| j < k)).collect();
-        // (earlier task, task) for each key read: its latest owner before the task
-        let mut edges: Vec<(usize, usize)> = (0..tasks)
+        let (by_key, owners) = lists(keys, || (0..tasks).flat_map(|t| owns(t).into_iter().map(move |k| (k, t))));
+        // per task, the latest owner before it of each key it reads, once each
+        let before: Vec<Vec<usize>> = (0..tasks)
             .into_par_iter()
-            .flat_map_iter(|t| {
-                let (owned, by_key) = (&owned, &by_key);
-                reads(t).into_iter().filter_map(move |k| {
-                    let owners = &owned[by_key[k]..by_key[k + 1]];
-                    owners[..owners.partition_point(|&(_, u)| u < t)].last().map(|&(_, u)| (u, t))
-                })
+            .map(|t| {
+                let mut before: Vec<usize> = reads(t)
+                    .into_iter()
+                    .filter_map(|k| {
+                        let owners = &owners[by_key[k]..by_key[k + 1]];
+                        owners[..owners.partition_point(|&u| u < t)].last().copied()
+                    })
+                    .collect();
+                before.sort_unstable();
+                before.dedup();
+                before
             })
             .collect();
-        edges.par_sort_unstable();
-        edges.dedup();
-        let waits: Vec<AtomicUsize> = (0..tasks).map(|_| AtomicUsize::new(0)).collect();
-        edges.par_iter().for_each(|&(_, t)| {
-            waits[t].fetch_add(1, Relaxed);
-        });
-        let first = (0..=tasks).into_par_iter().map(|t| edges.partition_point(|&(u, _)| u < t)).collect();
-        Graph { waits, first, next: edges.into_iter().map(|(_, t)| t).collect() }
+        let (first, next) =
+            lists(tasks, || before.iter().enumerate().flat_map(|(t, b)| b.iter().map(move |&u| (u, t))));
+        Graph { waits: before.iter().map(|b| AtomicUsize::new(b.len())).collect(), first, next }
     }
 
     /// Run `task` on every task, each once, as soon as the tasks it waits for are done.
@@ -80,6 +77,26 @@ impl Graph {
             }
         });
     }
+}
+
+/// The values of `pairs()`'s (list, value) pairs, list by list, each list's in the order
+/// given, and where each list starts (a counting sort over `count` lists; `pairs` is
+/// called twice).
+fn lists<I: Iterator<Item = (usize, usize)>>(count: usize, pairs: impl Fn() -> I) -> (Vec<usize>, Vec<usize>) {
+    let mut first = vec![0; count + 1];
+    for (list, _) in pairs() {
+        first[list + 1] += 1;
+    }
+    for l in 0..count {
+        first[l + 1] += first[l];
+    }
+    let mut at = first.clone();
+    let mut values = vec![0; first[count]];
+    for (list, value) in pairs() {
+        values[at[list]] = value;
+        at[list] += 1;
+    }
+    (first, values)
 }
 
 /// A graph being run.

@@ -204,7 +204,10 @@ impl State {
     fn regroup(&mut self) {
         let d = self.dims;
         let mut points = take(&mut self.spare);
-        points.resize(self.members.iter().map(Vec::len).sum::<usize>() * d, 0.0);
+        let len = self.members.iter().map(Vec::len).sum::<usize>() * d;
+        points.truncate(len);
+        // the first time, its pages zeroed and faulted in by every thread
+        points.par_extend(rayon::iter::repeat_n(0.0, len - points.len()));
         // each site's stretch of the new points, and the index of its first point
         let mut stretches = Vec::with_capacity(self.members.len());
         let (mut rest, mut first) = (points.as_mut_slice(), 0u32);
