@@ -215,7 +215,9 @@ impl Prepared for Rank1 {
         // pass per dimension went d times over memory, and no buffer on the heap
         const BLOCK: usize = 64;
         let dims = self.z.len();
+        // the seed's one stream: a uniform per dimension (Float) or its 64 bits (fixed point)
         let mut rng = seed.rng();
+        let mut fixed = fixed_shifts(seed, dims, self.shift);
         for (b, zs) in self.z.chunks(BLOCK).enumerate() {
             let first = b * BLOCK;
             if let Order::Float(n) = self.order {
@@ -230,8 +232,8 @@ impl Prepared for Rank1 {
                 }
             } else {
                 let mut shifts = [0u64; BLOCK];
-                for s in &mut shifts[..zs.len()] {
-                    *s = if self.shift { rand_core::Rng::next_u64(&mut rng) } else { 0 };
+                for (s, draw) in shifts.iter_mut().zip(fixed.by_ref().take(zs.len())) {
+                    *s = draw;
                 }
                 for (i, p) in out.chunks_exact_mut(dims).enumerate() {
                     for ((x, &zj), &shift) in p[first..first + zs.len()].iter_mut().zip(zs).zip(&shifts) {
