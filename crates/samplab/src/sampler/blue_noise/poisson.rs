@@ -64,14 +64,16 @@ impl NeighbourGrid {
             cells,
             torus,
             radius2: radius * radius,
-            heads: vec![u32::MAX; cells.pow(dims as u32)],
+            heads: filled(cells.pow(dims as u32), u32::MAX),
             next: Vec::with_capacity(capacity),
-            points: Vec::with_capacity(capacity * dims),
+            points: reserved(capacity * dims),
         }
     }
 
     fn clear(&mut self) {
-        self.heads.fill(u32::MAX);
+        if !self.next.is_empty() {
+            refill(&mut self.heads, u32::MAX);
+        }
         self.next.clear();
         self.points.clear();
     }
@@ -235,8 +237,8 @@ impl DiskGrid {
             torus,
             radius2: radius * radius,
             // one more slot, always empty, stands for the cells off a plain square
-            slots: vec![[f64::NAN; 2]; g * g + 1],
-            points: Vec::with_capacity(2 * capacity),
+            slots: filled(g * g + 1, [f64::NAN; 2]),
+            points: reserved(2 * capacity),
         }
     }
 
@@ -336,7 +338,9 @@ impl Occupancy for DiskGrid {
         &self.points
     }
     fn clear(&mut self) {
-        self.slots.fill([f64::NAN; 2]);
+        if !self.points.is_empty() {
+            refill(&mut self.slots, [f64::NAN; 2]);
+        }
         self.points.clear();
     }
     #[inline]
@@ -391,6 +395,53 @@ impl DiskGrid {
     }
 }
 
+/// From how many elements a grid's buffers are written in parallel: their first writes
+/// fault their pages in, which on one thread takes about as long as a whole try at 10^6
+/// points; below, one thread is quicker than waking the others.
+const FAULT_IN: usize = 1 << 20;
+
+/// The elements one task writes of such a buffer.
+const FAULT_CHUNK: usize = 1 << 16;
+
+/// `len` copies of `value` (written in parallel from [`FAULT_IN`]).
+fn filled<T: Copy + Send + Sync>(len: usize, value: T) -> Vec<T> {
+    if len < FAULT_IN {
+        return vec![value; len];
+    }
+    let mut v = Vec::with_capacity(len);
+    v.par_extend(rayon::iter::repeat_n(value, len));
+    v
+}
+
+/// Every element set to `value` (in parallel from [`FAULT_IN`]).
+fn refill<T: Copy + Send + Sync>(v: &mut [T], value: T) {
+    if v.len() < FAULT_IN {
+        return v.fill(value);
+    }
+    v.par_chunks_mut(FAULT_CHUNK).for_each(|c| c.fill(value));
+}
+
+/// An empty vector with room for `capacity` numbers; from [`FAULT_IN`], its pages are
+/// faulted in in parallel, so that the insertions, one after another, do not take the
+/// faults.
+fn reserved(capacity: usize) -> Vec<f64> {
+    if capacity < FAULT_IN {
+        return Vec::with_capacity(capacity);
+    }
+    let mut v = filled(capacity, 0.0);
+    v.clear();
+    v
+}
+
+/// `points` copied into `out` (in parallel from [`FAULT_IN`]: the output's first writes
+/// fault its pages in).
+fn copy_out(points: &[f64], out: &mut [f64]) {
+    if out.len() < FAULT_IN {
+        return out.copy_from_slice(points);
+    }
+    out.par_chunks_mut(FAULT_CHUNK).zip(points.par_chunks(FAULT_CHUNK)).for_each(|(o, p)| o.copy_from_slice(p));
+}
+
 /// Whether an `edge` parameter word means toroidal distance.
 pub(crate) fn edge_is_torus(word: &str) -> bool {
     word == "torus"
@@ -434,7 +485,7 @@ const AHEAD: usize = 16;
 /// How many candidates dart throwing on several threads draws and checks together (for n
 /// from BATCH / 2), and how many of those one task takes (32 tasks a batch, whatever the
 /// thread count).
-const BATCH: usize = 1 << 14;
+const BATCH: usize = 1 << 16;
 const CHUNK: usize = BATCH / 32;
 
 /// The buffers of a batch: its candidates, whether each passed the parallel check, and
@@ -448,7 +499,7 @@ struct Batch {
 impl DartThrowing {
     /// Up to [`TRIES`] tries of dart throwing; the points land in `out` when one succeeds.
     /// Returns the largest count placed. Stops when `progress` says so (checked every
-    /// 2^14 candidates or more often: about a millisecond).
+    /// 2^16 candidates or more often: a few milliseconds).
     ///
     /// A try is the serial definition: candidate k (draws k d .. k d + d - 1 of the try's
     /// random stream) is kept when no point kept before it lies within the radius, until
@@ -479,7 +530,7 @@ impl DartThrowing {
                 None => self.try_one_by_one(grid, (n, dims), stream, progress)?,
             }
             if grid.len() == n {
-                out.copy_from_slice(grid.points());
+                copy_out(grid.points(), out);
                 return Ok(n);
             }
             best = best.max(grid.len());
@@ -871,7 +922,7 @@ impl Maximal {
                 let grid = maximal_set(r, self.torus, s, n + n / 4);
                 match grid.len().cmp(&n) {
                     std::cmp::Ordering::Equal => {
-                        out.copy_from_slice(grid.points());
+                        copy_out(grid.points(), out);
                         return progress.advance(1);
                     }
                     std::cmp::Ordering::Greater => lo = r,
