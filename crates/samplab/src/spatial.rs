@@ -153,6 +153,11 @@ impl Grid {
         Grid::new(points, dims, fine.min(coarse))
     }
 
+    /// Cells per axis.
+    pub(crate) fn cells(&self) -> usize {
+        self.k
+    }
+
     /// How many points.
     pub(crate) fn len(&self) -> usize {
         self.ids.len()

@@ -2,6 +2,7 @@
 //! grid's PCF peak, white noise's PCF of 1) and the diaphony's Fourier definition.
 
 use samplab::discrepancy::{self, Limits, Metric};
+use samplab::sampler::blue_noise::lloyd::{self, Cells};
 use samplab::seed::{Rng, Seed, below, uniform};
 use samplab::{PointSet, sampler, spatial};
 
@@ -462,7 +463,7 @@ fn lloyd_moves_points_to_their_cells_centroids_and_lowers_the_energy() {
     for torus in [true, false] {
         for (n, seed) in [(1usize, 1u64), (2, 2), (5, 3), (40, 4)] {
             let p = random_set(n, 2, seed);
-            let ours = samplab::sampler::blue_noise::lloyd::centroids(p.as_slice(), torus).unwrap();
+            let ours = lloyd::centroids(p.as_slice(), torus, Cells::Delaunay).unwrap();
             let (want, _) = voronoi_by_quadrature(p.as_slice(), torus, 600);
             for (k, (a, b)) in ours.iter().zip(&want).enumerate() {
                 let gap = if torus { (a - b) - (a - b).round() } else { a - b };
@@ -473,7 +474,7 @@ fn lloyd_moves_points_to_their_cells_centroids_and_lowers_the_energy() {
         let mut points = random_set(32, 2, 9).as_slice().to_vec();
         let mut last = voronoi_by_quadrature(&points, torus, 300).1;
         for step in 0..6 {
-            points = samplab::sampler::blue_noise::lloyd::centroids(&points, torus).unwrap();
+            points = lloyd::centroids(&points, torus, Cells::Delaunay).unwrap();
             let e = voronoi_by_quadrature(&points, torus, 300).1;
             assert!(e < last, "torus {torus}, step {step}: energy {e} after {last}");
             last = e;
@@ -483,6 +484,33 @@ fn lloyd_moves_points_to_their_cells_centroids_and_lowers_the_energy() {
     let set = sampler::build("lloyd").unwrap().generate(1024, 2, Seed(3)).unwrap();
     let rho = spatial::relative_radius(&set).unwrap();
     assert!(rho > 0.7, "lloyd: relative radius {rho}");
+}
+
+#[test]
+fn clipped_cells_are_the_triangulation_s() {
+    // each cell clipped on its own gives the triangulation's centroids to rounding, on the
+    // torus and in the square, for random sets (irregular cells, some needing wider rings)
+    // and relaxed ones, and for sets too small to clip (the fallback); whatever the threads
+    for torus in [true, false] {
+        for (n, seed) in [(3usize, 1u64), (17, 2), (300, 3), (5000, 4)] {
+            let mut points = random_set(n, 2, seed).as_slice().to_vec();
+            for step in 0..3 {
+                let want = lloyd::centroids(&points, torus, Cells::Delaunay).unwrap();
+                for threads in [1, 3] {
+                    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                    let got = pool.install(|| lloyd::centroids(&points, torus, Cells::Clipped)).unwrap();
+                    for (k, (a, b)) in got.iter().zip(&want).enumerate() {
+                        let gap = if torus { (a - b) - (a - b).round() } else { a - b };
+                        assert!(gap.abs() < 1e-12, "torus {torus}, n = {n}, step {step}, coordinate {k}: {a} vs {b}");
+                    }
+                }
+                points = want;
+            }
+        }
+    }
+    // coincident points: an error either way
+    let twice = [0.25, 0.5, 0.25, 0.5, 0.75, 0.75];
+    assert!(lloyd::centroids(&twice, true, Cells::Clipped).is_err());
 }
 
 #[test]
