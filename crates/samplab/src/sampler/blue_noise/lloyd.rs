@@ -12,11 +12,13 @@
 //!   doubles and the iteration starts again, so the cells are exact for any set. The
 //!   triangulation is built on one thread.
 //! - `clipped`: each cell on its own, in parallel: the square around the point (the torus's
-//!   period, or the unit square) cut by the bisectors of its neighbours from a grid, nearest
-//!   first, until the next neighbour is farther than twice the cell's farthest corner (no
+//!   period, or the unit square) cut by the bisectors of the neighbours a grid gathers
+//!   around it, each neighbour nearer than twice the cell's farthest corner so far (no
 //!   point beyond can cut it: the security radius of Voronoi cells by clipping, as in Lévy
-//!   and Bonneel 2012). A cell the neighbours gathered cannot certify gathers a wider ring; a set
-//!   whose cells reach half the torus falls back to the triangulation.
+//!   and Bonneel 2012). The cell is certified when every point that near lies among those
+//!   gathered; otherwise a wider ring is gathered, and a set with a cell that reaches a
+//!   quarter of the torus (or that eight rings cannot certify) falls back to the
+//!   triangulation.
 
 use std::ops::RangeInclusive;
 
@@ -158,8 +160,9 @@ fn moved(p: [f64; 2], corners: &[(f64, f64)], torus: bool) -> (f64, f64) {
 }
 
 /// The centroids with each cell clipped on its own, in parallel ([`Cells::Clipped`]); None
-/// when a cell reaches so far that the nearest copy of each neighbour no longer suffices
-/// (a quarter of the torus), for the triangulation to take over.
+/// when a cell cannot be certified: its farthest corner a quarter of the torus away (the
+/// nearest copy of each neighbour no longer suffices), or past the widest ring; the
+/// triangulation then takes over.
 fn clipped_centroids(points: &[f64], torus: bool) -> Result<Option<Vec<f64>>> {
     let n = points.len() / 2;
     // cells of the grid hold about three points: one ring around a point's cell holds the
