@@ -14,9 +14,24 @@ share nothing but its caches, memory bus and host. The ceiling column is p T1 / 
 median time of a copy run beside the others: a row's speed-up can only reach the ceiling,
 and a speed-up close to it has no serial part left that threads could remove.
 
-Usage: bench/compare scaling [--rounds K] [--ceiling] [ROW...]   (--help lists the rows)
+With --profile, each row is also run K times (--rounds) on all the machine's p threads under
+`perf record` (the cpu-clock at 1 kHz: a thread on a core is sampled once a millisecond, so
+a window of w ms holds w samples per busy thread), each run cut into 4 ms windows. A
+window's work is its samples, counted as at least one thread's worth (a window with fewer
+is a wait, serial too: it lasts as long on one thread) and at most p threads' worth;
+Amdahl's law over the windows gives the serial fraction the profile measures,
+f = (p T_p / T_1 - 1) / (p - 1), T_p the run's windows and T_1 their work in windows, and
+the run of median f is printed. A core the host takes away shows as a thread off the
+processor, so this f is an upper bound on the run's own serial part; unlike the wall-clock
+one it does not depend on how fast the second core is in that spell, but it counts a
+thread as working while rayon's idle loop spins (briefly) before it sleeps, and it cannot
+see two threads slowing each other down through the memory they share. The profile also
+names the functions a lone thread was in while the others waited: where the serial part is.
+
+Usage: bench/compare scaling [--rounds K] [--ceiling] [--profile] [ROW...]   (--help lists the rows)
 """
 import argparse
+import collections
 import hashlib
 import os
 import shutil
@@ -112,6 +127,69 @@ def copies(args, p, tmp):
     return time.perf_counter() - start, digests
 
 
+# the profile: sampling rate (Hz) and window (seconds)
+PROFILE_HZ = 1000
+WINDOW = 0.004
+
+
+def short(symbol):
+    """A function's name without its generic arguments and crate path: `poisson::bridson`."""
+    depth, plain = 0, []
+    for c in symbol:
+        depth += c == "<"
+        if depth == 0:
+            plain.append(c)
+        depth -= c == ">" and depth > 0
+    parts = [p for p in "".join(plain).split("::") if p and p != "{{closure}}"]
+    return "::".join(parts[-2:]) or symbol
+
+
+def profile(args, p, tmp):
+    """One run on p threads under perf: its `windows`."""
+    data = os.path.join(tmp, "perf.data")
+    out = os.path.join(tmp, "profiled")
+    argv = [a.replace("OUT", out) for a in args]
+    target = next((a for a in argv if a.startswith(out)), None)
+    if target and os.path.isdir(target):
+        shutil.rmtree(target)
+    env = dict(os.environ, RAYON_NUM_THREADS=str(p))
+    rec = subprocess.run(["perf", "record", "-q", "-F", str(PROFILE_HZ), "-e", "cpu-clock", "-o", data, "--",
+                          SAMPLAB] + argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    if rec.returncode != 0:
+        sys.exit("perf record samplab %s: exit %d: %s" % (" ".join(argv), rec.returncode,
+                                                          rec.stderr.decode()[-400:]))
+    text = subprocess.run(["perf", "script", "-i", data, "-F", "tid,time,ip,sym"], capture_output=True,
+                          check=True).stdout.decode(errors="replace")
+    return windows(text, p)
+
+
+def windows(text, p):
+    """The windows of a run's samples (`perf script -F tid,time,ip,sym` lines) on p
+    threads: (its windows, the windows in which one thread ran, the serial fraction, and
+    that lone thread's three commonest functions as (share, name))."""
+    per = PROFILE_HZ * WINDOW  # samples of one busy thread in a window
+    samples = collections.Counter()
+    tids = collections.defaultdict(set)
+    where = collections.defaultdict(list)
+    for line in text.splitlines():
+        fields = line.split(None, 3)
+        if len(fields) < 3:
+            continue
+        tid, at = int(fields[0]), float(fields[1].rstrip(":"))
+        w = int(at / WINDOW)
+        samples[w] += 1
+        tids[w].add(tid)
+        where[w].append(short(fields[3]) if len(fields) > 3 else fields[2])
+    first, last = min(samples), max(samples)
+    span = last - first + 1
+    work = sum(min(max(samples[w], per), p * per) for w in range(first, last + 1)) / per
+    serial = (p * span / work - 1) / (p - 1)
+    lone = [w for w in tids if len(tids[w]) == 1]
+    alone = collections.Counter(f for w in lone for f in where[w])
+    total = sum(alone.values()) or 1
+    return span, len(lone), serial, [(c / total, f) for f, c in alone.most_common(3)]
+
+
 def main():
     parser = argparse.ArgumentParser(
         prog="bench/compare scaling",
@@ -125,12 +203,20 @@ def main():
     parser.add_argument("--ceiling", action="store_true",
                         help="also run p one-thread copies at once per column p: the machine's "
                              "own limit for p independent processes")
+    parser.add_argument("--profile", action="store_true",
+                        help="also profile one run per row on all threads with perf (Debian's "
+                             "linux-perf): the serial fraction of its busy-thread windows and the "
+                             "functions the lone busy thread was in")
     opts = parser.parse_args()
     if opts.rounds < 1:
         parser.error("--rounds must be at least 1, not %d" % opts.rounds)
     unknown = [r for r in opts.rows if r not in [row[0] for row in ROWS]]
     if unknown:
         parser.error("unknown row %r (rows: %s)" % (unknown[0], ", ".join(r[0] for r in ROWS)))
+    if opts.profile and shutil.which("perf") is None:
+        parser.error("--profile needs perf on the PATH (Debian: apt-get install linux-perf)")
+    if opts.profile and (os.cpu_count() or 1) < 2:
+        parser.error("--profile needs at least two cores: a serial fraction compares threads")
     rounds, ceiling = opts.rounds, opts.ceiling
     rows = [r for r in ROWS if not opts.rows or r[0] in opts.rows]
     cores = os.cpu_count() or 1
@@ -165,7 +251,17 @@ def main():
             print("| %s | %s | %.2fx | %.1f%% | %s |%s" % (label, cells, speedup, 100 * serial,
                                                           "same" if len(digests) == 1 else "DIFFER", tops),
                   flush=True)
-
+        if opts.profile:
+            p = columns[-1]
+            print("\nProfile: %d runs per row on %d threads, perf's cpu-clock at %d Hz, %d ms windows; "
+                  "the run of median serial fraction" % (rounds, p, PROFILE_HZ, WINDOW * 1000))
+            print("| work | windows | with one thread busy | serial fraction | the lone busy thread's functions |")
+            print("|---|---|---|---|---|")
+            for name, label, argv in rows:
+                runs = sorted((profile(argv, p, tmp) for _ in range(rounds)), key=lambda r: r[2])
+                span, lone, serial, alone = runs[len(runs) // 2]
+                funcs = ", ".join("%s %.0f%%" % (f, 100 * share) for share, f in alone)
+                print("| %s | %d | %d | %.1f%% | %s |" % (label, span, lone, 100 * serial, funcs), flush=True)
 
 if __name__ == "__main__":
     main()

@@ -1,0 +1,60 @@
+"""The benchmark scripts' own arithmetic, on made-up inputs whose answers are known."""
+
+import importlib.util
+
+import pytest
+
+from conftest import ROOT
+
+
+def load(name):
+    spec = importlib.util.spec_from_file_location(name, ROOT / "bench" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+scaling = load("scaling")
+
+
+def trace(runs):
+    """`perf script -F tid,time,ip,sym` lines: for each (tid, start ms, end ms, function),
+    one sample a millisecond while the thread runs."""
+    lines = []
+    for tid, start, end, function in runs:
+        for ms in range(start, end):
+            lines.append(f"{tid} {ms / 1000 + 0.0005:.6f}: 5555 {function}")
+    return "\n".join(sorted(lines, key=lambda line: float(line.split()[1].rstrip(":"))))
+
+
+def test_a_serial_start_then_both_threads_is_amdahls_fraction():
+    # 100 ms on one thread, then 200 ms on two: T1 = 100 + 400, f = 100 / 500
+    text = trace([(1, 0, 100, "samplab::grid::build"), (1, 100, 300, "work"), (2, 100, 300, "work")])
+    span, lone, serial, where = scaling.windows(text, 2)
+    assert span == 75
+    assert lone == 25
+    assert serial == pytest.approx(0.2)
+    assert where == [(1.0, "grid::build")]
+
+
+def test_a_wait_counts_as_serial_and_a_third_thread_as_no_more_than_two():
+    # 40 ms of both threads, 40 ms with no thread on a core (a wait), 40 ms of three
+    # threads sharing two cores: T2 = 120 ms, T1 = 80 + 40 + 80 = 200, f = 2 * 120 / 200 - 1
+    text = trace([(1, 0, 40, "a"), (2, 0, 40, "a"), (1, 80, 120, "b"), (2, 80, 120, "b"), (3, 80, 120, "b")])
+    span, lone, serial, _ = scaling.windows(text, 2)
+    assert span == 30
+    assert lone == 0
+    assert serial == pytest.approx(0.2)
+
+
+def test_two_threads_busy_throughout_have_no_serial_part():
+    _, lone, serial, where = scaling.windows(trace([(7, 0, 400, "x"), (8, 0, 400, "y")]), 2)
+    assert (lone, serial, where) == (0, 0.0, [])
+
+
+def test_names_lose_their_crate_path_and_generic_arguments():
+    assert scaling.short("samplab::sampler::blue_noise::poisson::bridson") == "poisson::bridson"
+    assert scaling.short("<alloc::vec::Vec<T> as core::ops::Drop>::drop") == "drop"
+    assert scaling.short("rayon::iter::plumbing::bridge_producer_consumer::helper::{{closure}}") == \
+        "bridge_producer_consumer::helper"
+    assert scaling.short("clear_page_erms") == "clear_page_erms"
