@@ -92,13 +92,19 @@ def digest(path):
     return h.hexdigest()
 
 
-def launch(args, threads, out):
-    """Starts one run writing under the path `out`; returns what `finish` needs."""
+def prepare(args, threads, out):
+    """A row's arguments with OUT replaced by the path `out` (the output, if any, removed
+    from an earlier run), the path it writes, and the environment for `threads` threads."""
     argv = [a.replace("OUT", out) for a in args]
     target = next((a for a in argv if a.startswith(out)), None)
     if target and os.path.isdir(target):
         shutil.rmtree(target)
-    env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
+    return argv, target, dict(os.environ, RAYON_NUM_THREADS=str(threads))
+
+
+def launch(args, threads, out):
+    """Starts one run writing under the path `out`; returns what `finish` needs."""
+    argv, target, env = prepare(args, threads, out)
     done = subprocess.Popen([SAMPLAB] + argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     return done, argv, target
 
@@ -147,12 +153,7 @@ def short(symbol):
 def profile(args, p, tmp):
     """One run on p threads under perf: its `windows`."""
     data = os.path.join(tmp, "perf.data")
-    out = os.path.join(tmp, "profiled")
-    argv = [a.replace("OUT", out) for a in args]
-    target = next((a for a in argv if a.startswith(out)), None)
-    if target and os.path.isdir(target):
-        shutil.rmtree(target)
-    env = dict(os.environ, RAYON_NUM_THREADS=str(p))
+    argv, _, env = prepare(args, p, os.path.join(tmp, "profiled"))
     rec = subprocess.run(["perf", "record", "-q", "-F", str(PROFILE_HZ), "-e", "cpu-clock", "-o", data, "--",
                           SAMPLAB] + argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     if rec.returncode != 0:
@@ -204,9 +205,9 @@ def main():
                         help="also run p one-thread copies at once per column p: the machine's "
                              "own limit for p independent processes")
     parser.add_argument("--profile", action="store_true",
-                        help="also profile one run per row on all threads with perf (Debian's "
-                             "linux-perf): the serial fraction of its busy-thread windows and the "
-                             "functions the lone busy thread was in")
+                        help="also profile K runs per row on all threads with perf (Debian's "
+                             "linux-perf): the serial fraction of their busy-thread windows and "
+                             "the functions a lone busy thread was in")
     opts = parser.parse_args()
     if opts.rounds < 1:
         parser.error("--rounds must be at least 1, not %d" % opts.rounds)
@@ -262,6 +263,7 @@ def main():
                 span, lone, serial, alone = runs[len(runs) // 2]
                 funcs = ", ".join("%s %.0f%%" % (f, 100 * share) for share, f in alone)
                 print("| %s | %d | %d | %.1f%% | %s |" % (label, span, lone, 100 * serial, funcs), flush=True)
+
 
 if __name__ == "__main__":
     main()
