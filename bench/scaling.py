@@ -21,12 +21,13 @@ window's work is its samples, counted as at least one thread's worth (a window w
 is a wait, serial too: it lasts as long on one thread) and at most p threads' worth;
 Amdahl's law over the windows gives the serial fraction the profile measures,
 f = (p T_p / T_1 - 1) / (p - 1), T_p the run's windows and T_1 their work in windows, and
-the run of median f is printed. A core the host takes away shows as a thread off the
-processor, so this f is an upper bound on the run's own serial part; unlike the wall-clock
-one it does not depend on how fast the second core is in that spell, but it counts a
-thread as working while rayon's idle loop spins (briefly) before it sleeps, and it cannot
-see two threads slowing each other down through the memory they share. The profile also
-names the functions a lone thread was in while the others waited: where the serial part is.
+the run of median f is printed. A core the host (or another process: run it on an
+otherwise idle machine) takes away shows as a thread off the processor, so this f is an
+upper bound on the run's own serial part; unlike the wall-clock one it does not depend on
+how fast the second core is in that spell, but it counts a thread as working while rayon's
+idle loop spins (briefly) before it sleeps, and it cannot see two threads slowing each
+other down through the memory they share. The profile also names the functions a lone
+thread was in while the others waited: where the serial part is.
 
 Usage: bench/compare scaling [--rounds K] [--ceiling] [--profile] [ROW...]   (--help lists the rows)
 """
