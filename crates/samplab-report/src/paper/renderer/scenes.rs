@@ -3,6 +3,7 @@
 //! beside white noise's, its low-frequency energy and radial spectrum, the images; and the
 //! error's flicker over 16 frames.
 
+use rayon::prelude::*;
 use samplab::pixel::{Film, Pixels, prepare};
 use samplab::progress::Progress;
 use samplab::screen::{LOW_FREQUENCY_CUTOFF, Metrics, Plane, convergence, flicker as flicker_of};
@@ -150,7 +151,17 @@ pub(super) fn scenes(ctx: &Ctx) -> Result<Output, Error> {
 /// Per case, the families' images shown in its mosaic.
 type Pictures = Vec<Vec<(&'static str, Image)>>;
 
-/// Every family's errors on every case (per case, per family), and the images shown.
+/// One family at one count on every case: per case, the error plane and its measures, and
+/// at [`TARGET_SPP`] the low-frequency energy of each frame, the flicker, and the image.
+struct Run {
+    planes: Vec<(Plane, Metrics)>,
+    frames: Vec<Option<(Vec<f64>, f64, Image)>>,
+}
+
+/// Every family's errors on every case (per case, per family), and the images shown. Each
+/// (family, count) is a task of its own, run side by side: preparing a family (a blue-noise
+/// mask, a lattice search, an optimization) is serial, and a 64 x 64 render is too short to
+/// keep many threads busy alone; the tasks' results are gathered in the serial order.
 fn measure(
     ctx: &Ctx,
     cases: &[Case],
@@ -159,6 +170,19 @@ fn measure(
     size: usize,
     refs: &[(Image, Vec<f64>)],
 ) -> Result<(Vec<Vec<Errors>>, Pictures), Error> {
+    let tasks: Vec<(usize, usize)> = (0..names.len()).flat_map(|f| spps.iter().map(move |&spp| (f, spp))).collect();
+    let runs: Vec<Option<Run>> = tasks
+        .par_iter()
+        .map(|&(f, spp)| {
+            let seed = ctx.seed.derive_str(names[f]).derive(spp as u64);
+            let run = match prepared(&spec(ctx, names[f]), size, spp, seed)? {
+                Some(p) => Some(run_cases(ctx, cases, refs, p, spp)?),
+                None => None,
+            };
+            ctx.advance(1)?;
+            Ok(run)
+        })
+        .collect::<Result<_, Error>>()?;
     // per case, per family
     let mut measured: Vec<Vec<Errors>> = cases
         .iter()
@@ -176,38 +200,49 @@ fn measure(
         })
         .collect();
     let mut pictures: Pictures = cases.iter().map(|_| Vec::new()).collect();
-    for (f, name) in names.iter().enumerate() {
-        for &spp in spps {
-            let seed = ctx.seed.derive_str(name).derive(spp as u64);
-            if let Some(mut p) = prepared(&spec(ctx, name), size, spp, seed)? {
-                for (c, case) in cases.iter().enumerate() {
-                    let (img, back) = render_with(ctx, case, p, 0)?;
-                    p = back;
-                    let plane = error_plane(&img, &refs[c].1)?;
-                    if spp == TARGET_SPP {
-                        let mut frames = vec![plane.clone()];
-                        for frame in 1..LF_FRAMES {
-                            let (img, back) = render_with(ctx, case, p, frame)?;
-                            p = back;
-                            frames.push(error_plane(&img, &refs[c].1)?);
-                        }
-                        let energy = frames.iter().map(|e| e.low_frequency(LOW_FREQUENCY_CUTOFF));
-                        measured[c][f].energy = energy.collect::<Result<_, _>>()?;
-                        measured[c][f].flicker = Some(flicker_of(&frames)?);
-                    }
-                    let s = &mut measured[c][f];
-                    s.metrics.push(plane.metrics(&[SIGMA])?);
-                    s.planes.push(plane);
-                    s.spp.push(spp);
-                    if spp == TARGET_SPP && SHOWN.contains(name) {
-                        pictures[c].push((name, img));
-                    }
+    for (&(f, spp), run) in tasks.iter().zip(runs) {
+        let Some(run) = run else { continue };
+        for (c, ((plane, metrics), frames)) in run.planes.into_iter().zip(run.frames).enumerate() {
+            let s = &mut measured[c][f];
+            if let Some((energy, flicker, img)) = frames {
+                s.energy = energy;
+                s.flicker = Some(flicker);
+                if SHOWN.contains(&names[f]) {
+                    pictures[c].push((names[f], img));
                 }
             }
-            ctx.advance(1)?;
+            s.metrics.push(metrics);
+            s.planes.push(plane);
+            s.spp.push(spp);
         }
     }
     Ok((measured, pictures))
+}
+
+/// The cases rendered with `pixels` (prepared at `spp`): frame 0 of each, and at
+/// [`TARGET_SPP`] frames 1.. [`LF_FRAMES`] as well.
+fn run_cases(ctx: &Ctx, cases: &[Case], refs: &[(Image, Vec<f64>)], mut p: Pixels, spp: usize) -> Result<Run, Error> {
+    let mut run = Run { planes: Vec::new(), frames: Vec::new() };
+    for (case, (_, reference)) in cases.iter().zip(refs) {
+        let (img, back) = render_with(ctx, case, p, 0)?;
+        p = back;
+        let plane = error_plane(&img, reference)?;
+        let mut frames = None;
+        if spp == TARGET_SPP {
+            let mut planes = vec![plane.clone()];
+            for frame in 1..LF_FRAMES {
+                let (img, back) = render_with(ctx, case, p, frame)?;
+                p = back;
+                planes.push(error_plane(&img, reference)?);
+            }
+            let energy = planes.iter().map(|e| e.low_frequency(LOW_FREQUENCY_CUTOFF)).collect::<Result<_, _>>()?;
+            frames = Some((energy, flicker_of(&planes)?, img));
+        }
+        let metrics = plane.metrics(&[SIGMA])?;
+        run.planes.push((plane, metrics));
+        run.frames.push(frames);
+    }
+    Ok(run)
 }
 
 /// A case's table: per family, RMSE per spp, the slopes, and the low-frequency energy and
