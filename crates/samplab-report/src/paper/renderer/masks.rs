@@ -2,6 +2,7 @@
 //! low-frequency energy, the pair (0, 1) as a renderer uses it, and the flicker and x-t
 //! slice of dimension 0 over 16 frames ([`samplab::screen::mask_measures`]).
 
+use rayon::prelude::*;
 use samplab::pixel::{Film, prepare};
 use samplab::screen::{MaskMeasures, mask_measures};
 
@@ -37,22 +38,32 @@ pub(super) fn masks(ctx: &Ctx) -> Result<Output, Error> {
     let side = ctx.pick(128, 256);
     let names = families();
     ctx.set_length(names.len() as u64);
-    let mut rows = Vec::new();
-    let mut measured: Vec<(&str, Vec<MaskMeasures>)> = Vec::new();
-    for name in &names {
-        let film = Film { width: side, height: side, spp: 1, dims: DIMS };
-        let p = prepare(&super::scenes::spec(ctx, name), film, ctx.seed.derive_str(name))?;
-        // the frames for dimension 0's flicker and x-t slice only
-        let m =
-            (0..DIMS).map(|d| mask_measures(&p, d, if d == 0 { FRAMES } else { 1 })).collect::<Result<Vec<_>, _>>()?;
-        let mut row = vec![Cell::Text(super::scenes::spec(ctx, name))];
-        row.extend(m.iter().map(|d| Cell::num(d.low_frequency, 3)));
-        let opt = |v: Option<f64>| v.map_or(Cell::Text("-".into()), |x| Cell::num(x, 3));
-        row.extend([opt(m[0].pair_low_frequency), opt(m[0].flicker), opt(m[0].xt_low_frequency)]);
-        rows.push(row);
-        measured.push((name, m));
-        ctx.advance(1)?;
-    }
+    // the families side by side (preparing one, a mask or an optimization, is serial), and
+    // each family's dimensions
+    let measured: Vec<(&str, Vec<MaskMeasures>)> = names
+        .par_iter()
+        .map(|&name| {
+            let film = Film { width: side, height: side, spp: 1, dims: DIMS };
+            let p = prepare(&super::scenes::spec(ctx, name), film, ctx.seed.derive_str(name))?;
+            // the frames for dimension 0's flicker and x-t slice only
+            let m = (0..DIMS)
+                .into_par_iter()
+                .map(|d| mask_measures(&p, d, if d == 0 { FRAMES } else { 1 }))
+                .collect::<Result<Vec<_>, _>>()?;
+            ctx.advance(1)?;
+            Ok((name, m))
+        })
+        .collect::<Result<_, Error>>()?;
+    let rows = measured
+        .iter()
+        .map(|(name, m)| {
+            let mut row = vec![Cell::Text(super::scenes::spec(ctx, name))];
+            row.extend(m.iter().map(|d| Cell::num(d.low_frequency, 3)));
+            let opt = |v: Option<f64>| v.map_or(Cell::Text("-".into()), |x| Cell::num(x, 3));
+            row.extend([opt(m[0].pair_low_frequency), opt(m[0].flicker), opt(m[0].xt_low_frequency)]);
+            row
+        })
+        .collect();
     let claims = claims(&measured, side);
     let mut columns = vec!["family".to_string()];
     columns.extend((0..DIMS).map(|d| format!("d{d}")));
