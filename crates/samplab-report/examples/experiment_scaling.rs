@@ -22,13 +22,18 @@ use samplab_report::{Ctx, Scale, UNWATCHED, paper};
 /// The threads of the large machine the prediction is for.
 const LARGE: f64 = 16.0;
 
-fn usage(why: &str) -> ! {
-    eprintln!("experiment_scaling: {why}");
-    eprintln!(
-        "usage: experiment_scaling [--rounds K] [--full] [--threads 1,2,..] [PAGE[/EXPERIMENT]...]   (pages: {})",
+/// The usage line after `why` (on stdout and exit code 0 for --help, else stderr and 2).
+fn usage(why: &str, code: i32) -> ! {
+    let text = format!(
+        "experiment_scaling: {why}\nusage: experiment_scaling [--rounds K] [--full] [--threads 1,2,..] [PAGE[/EXPERIMENT]...]   (pages: {})",
         paper::keys().join(", ")
     );
-    std::process::exit(2)
+    if code == 0 {
+        println!("{text}");
+    } else {
+        eprintln!("{text}");
+    }
+    std::process::exit(code)
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -44,19 +49,19 @@ fn main() {
             "--rounds" => {
                 rounds = match args.next().and_then(|k| k.parse().ok()) {
                     Some(k) if k >= 1 => k,
-                    _ => usage("--rounds takes a whole number of at least 1"),
+                    _ => usage("--rounds takes a whole number of at least 1", 2),
                 }
             }
             "--full" => scale = Scale::Full,
             "--threads" => {
                 threads = args.next().and_then(|list| list.split(',').map(|t| t.parse().ok()).collect());
                 if threads.as_ref().is_none_or(|t| t.is_empty() || t.contains(&0)) {
-                    usage("--threads takes a list of thread counts, such as 2 or 1,2,4");
+                    usage("--threads takes a list of thread counts, such as 2 or 1,2,4", 2);
                 }
             }
-            "-h" | "--help" => usage("each experiment alone on 1, 2, .. threads"),
+            "-h" | "--help" => usage("each experiment alone on 1, 2, .. threads", 0),
             key if paper::keys().contains(&key.split('/').next().unwrap_or_default()) => pages.push(key.to_string()),
-            other => usage(&format!("unknown argument or page '{other}'")),
+            other => usage(&format!("unknown argument or page '{other}'"), 2),
         }
     }
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
@@ -71,8 +76,10 @@ fn main() {
         .flat_map(|p| p.experiments.iter().map(move |e| (format!("{}/{}", p.key, e.id), e)))
         .filter(|(name, _)| pages.is_empty() || pages.iter().any(|k| name == k || name.starts_with(&format!("{k}/"))))
         .collect();
-    if experiments.is_empty() {
-        usage("no experiment of that name");
+    if let Some(k) =
+        pages.iter().find(|k| !experiments.iter().any(|(name, _)| name == *k || name.starts_with(&format!("{k}/"))))
+    {
+        usage(&format!("no experiment '{k}'"), 2);
     }
     let stop = AtomicBool::new(false);
     let mut seconds = vec![vec![Vec::new(); counts.len()]; experiments.len()];
