@@ -8,6 +8,13 @@ the speed-up at 2 threads and the serial fraction Amdahl's law gives from the 1-
 2-thread medians, f = 2 T2 / T1 - 1 (T(p) = T1 (f + (1 - f) / p)). Each command's output is
 compared across thread counts: a row whose bytes differ is marked.
 
+A run of a row lasts from half a second to minutes, and this machine's second core is
+slower in some spells than in others, so a median of K rounds of a short row rests on a
+few seconds of the machine's life. With --seconds S a row runs as many rounds as it takes
+to spend S seconds (judged from its first round; K at least), and every row prints the
+quartiles of its rounds' own speed-ups (T1 / T2 of one round, minutes apart at most): the
+spread that a single median hides.
+
 With --ceiling, each round also runs two copies of the one-thread command at once (p copies
 for each further column p): what the machine itself gives to p independent processes that
 share nothing but its caches, memory bus and host. The ceiling column is p T1 / Tc, Tc the
@@ -29,11 +36,12 @@ idle loop spins (briefly) before it sleeps, and it cannot see two threads slowin
 other down through the memory they share. The profile also names the functions a lone
 thread was in while the others waited: where the serial part is.
 
-Usage: bench/compare scaling [--rounds K] [--ceiling] [--profile] [ROW...]   (--help lists the rows)
+Usage: bench/compare scaling [--rounds K] [--seconds S] [--ceiling] [--profile] [ROW...]   (--help lists the rows)
 """
 import argparse
 import collections
 import hashlib
+import math
 import os
 import shutil
 import statistics
@@ -134,6 +142,22 @@ def copies(args, p, tmp):
     return time.perf_counter() - start, digests
 
 
+def rounds_for(first, k, seconds):
+    """The rounds of a row whose first round took `first` seconds: at least k, and as many
+    as spend `seconds`."""
+    return max(k, math.ceil(seconds / first))
+
+
+def quartiles(one, two):
+    """The lower and upper quartiles of the rounds' own speed-ups, one[i] / two[i] (each
+    round's runs are at most minutes apart); the one speed-up when there is one round."""
+    ratios = [a / b for a, b in zip(one, two)]
+    if len(ratios) == 1:
+        return ratios[0], ratios[0]
+    q = statistics.quantiles(ratios, n=4, method="inclusive")
+    return q[0], q[2]
+
+
 # the profile: sampling rate (Hz) and window (seconds)
 PROFILE_HZ = 1000
 WINDOW = 0.004
@@ -202,6 +226,9 @@ def main():
                         help="rows to run (default: all): " + ", ".join(r[0] for r in ROWS))
     parser.add_argument("--rounds", type=int, default=3, metavar="K",
                         help="runs per column; the median is reported (default 3)")
+    parser.add_argument("--seconds", type=float, default=0.0, metavar="S",
+                        help="more rounds for short rows: as many as make S seconds, judged from "
+                             "the first round (default 0: K rounds)")
     parser.add_argument("--ceiling", action="store_true",
                         help="also run p one-thread copies at once per column p: the machine's "
                              "own limit for p independent processes")
@@ -212,6 +239,8 @@ def main():
     opts = parser.parse_args()
     if opts.rounds < 1:
         parser.error("--rounds must be at least 1, not %d" % opts.rounds)
+    if not opts.seconds >= 0 or math.isinf(opts.seconds):
+        parser.error("--seconds must be a finite number of seconds, at least 0, not %s" % opts.seconds)
     unknown = [r for r in opts.rows if r not in [row[0] for row in ROWS]]
     if unknown:
         parser.error("unknown row %r (rows: %s)" % (unknown[0], ", ".join(r[0] for r in ROWS)))
@@ -223,20 +252,25 @@ def main():
     rows = [r for r in ROWS if not opts.rows or r[0] in opts.rows]
     cores = os.cpu_count() or 1
     columns = [p for p in (1, 2, 4, 8, 16) if p <= cores]
-    print("samplab scaling, %s, %d cores, %d rounds, medians of wall time (%s)"
-          % (time.strftime("%Y-%m-%d"), cores, rounds, SAMPLAB))
-    header = "| work | " + " | ".join("%d thread%s" % (p, "" if p == 1 else "s") for p in columns) + \
-             " | speed-up at 2 | serial fraction | bytes |"
+    print("samplab scaling, %s, %d cores, at least %d rounds%s, medians of wall time (%s)"
+          % (time.strftime("%Y-%m-%d"), cores, rounds,
+             " or %g seconds a row" % opts.seconds if opts.seconds > 0 else "", SAMPLAB))
+    header = "| work | rounds | " + " | ".join("%d thread%s" % (p, "" if p == 1 else "s") for p in columns) + \
+             " | speed-up at 2 | rounds' speed-ups (quartiles) | serial fraction | bytes |"
     many = [p for p in columns if p > 1] if ceiling else []
     header += "".join(" ceiling at %d |" % p for p in many)
     print(header)
-    print("|" + "---|" * (len(columns) + 4 + len(many)))
+    print("|" + "---|" * (len(columns) + 6 + len(many)))
     with tempfile.TemporaryDirectory() as tmp:
         for name, label, argv in rows:
             times = {p: [] for p in columns}
             beside = {p: [] for p in many}
             digests = set()
-            for _ in range(rounds):
+            # at least K rounds, and as many more as fit in --seconds (from the first
+            # round's time): a short row's median then rests on as many runs as it needs
+            wanted, k = rounds, 0
+            while k < wanted:
+                began = time.perf_counter()
                 for p in columns:
                     seconds, d = run(argv, p, tmp)
                     times[p].append(seconds)
@@ -245,13 +279,18 @@ def main():
                     seconds, ds = copies(argv, p, tmp)
                     beside[p].append(seconds)
                     digests.update(ds)
+                if k == 0:
+                    wanted = rounds_for(time.perf_counter() - began, rounds, opts.seconds)
+                k += 1
             med = {p: statistics.median(times[p]) for p in columns}
             speedup = med[1] / med[2] if 2 in med else float("nan")
             serial = 2.0 / speedup - 1.0
+            low, high = quartiles(times[1], times[2]) if 2 in med else (speedup, speedup)
+            spread = "%.2f-%.2fx" % (low, high)
             cells = " | ".join("%.2f s" % med[p] for p in columns)
             tops = "".join(" %.2fx |" % (p * med[1] / statistics.median(beside[p])) for p in many)
-            print("| %s | %s | %.2fx | %.1f%% | %s |%s" % (label, cells, speedup, 100 * serial,
-                                                          "same" if len(digests) == 1 else "DIFFER", tops),
+            print("| %s | %d | %s | %.2fx | %s | %.1f%% | %s |%s"
+                  % (label, k, cells, speedup, spread, 100 * serial, "same" if len(digests) == 1 else "DIFFER", tops),
                   flush=True)
         if opts.profile:
             p = columns[-1]

@@ -52,6 +52,22 @@ def test_two_threads_busy_throughout_have_no_serial_part():
     assert (lone, serial, where) == (0, 0.0, [])
 
 
+def test_a_short_row_gets_the_rounds_that_fill_its_seconds_and_a_long_one_k():
+    assert scaling.rounds_for(1.5, 5, 30) == 20
+    assert scaling.rounds_for(1.4, 5, 30) == 22
+    assert scaling.rounds_for(200.0, 3, 30) == 3
+    assert scaling.rounds_for(2.0, 3, 0) == 3
+
+
+def test_the_spread_is_the_quartiles_of_each_rounds_own_speed_up():
+    # speed-ups 1.6, 1.8, 2.0, 2.0, 2.2 (the two columns' medians alone would give 2.0)
+    one = [1.6, 3.6, 2.0, 4.0, 2.2]
+    two = [1.0, 2.0, 1.0, 2.0, 1.0]
+    low, high = scaling.quartiles(one, two)
+    assert (low, high) == (pytest.approx(1.8), pytest.approx(2.0))
+    assert scaling.quartiles([3.0], [2.0]) == (1.5, 1.5)
+
+
 def test_names_lose_their_crate_path_and_generic_arguments():
     assert scaling.short("samplab::sampler::blue_noise::poisson::bridson") == "poisson::bridson"
     assert scaling.short("<alloc::vec::Vec<T> as core::ops::Drop>::drop") == "drop"
