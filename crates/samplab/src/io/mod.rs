@@ -170,9 +170,33 @@ pub fn npy_header(shape: &[usize]) -> Vec<u8> {
     out
 }
 
-/// Points (row-major, `dims` per point) in text, CSV (`set` first when given) or npy.
+/// Points per parallel task of [`rows`]: text spends about 150 ns a coordinate on its
+/// shortest round-trip digits, so 10^6 2D points took 0.35 s on one thread.
+const ROWS_CHUNK: usize = 1 << 13;
+
+/// Points (row-major, `dims` per point) in text, CSV (`set` first when given) or npy; in
+/// parallel, chunk by chunk of [`ROWS_CHUNK`] points, the chunks' bytes joined in order.
 fn rows(out: &mut Vec<u8>, format: Format, points: &[f64], dims: usize, set: Option<usize>) {
+    use rayon::prelude::*;
+    if points.len() <= ROWS_CHUNK * dims {
+        return rows_of(out, format, points, dims, set);
+    }
+    let parts: Vec<Vec<u8>> = points
+        .par_chunks(ROWS_CHUNK * dims)
+        .map(|chunk| {
+            let mut part = Vec::new();
+            rows_of(&mut part, format, chunk, dims, set);
+            part
+        })
+        .collect();
+    out.reserve(parts.iter().map(Vec::len).sum());
+    parts.iter().for_each(|part| out.extend_from_slice(part));
+}
+
+/// The body of [`rows`] on one thread.
+fn rows_of(out: &mut Vec<u8>, format: Format, points: &[f64], dims: usize, set: Option<usize>) {
     if format == Format::Npy {
+        out.reserve(8 * points.len());
         points.iter().for_each(|x| out.extend_from_slice(&x.to_le_bytes()));
         return;
     }
@@ -541,6 +565,44 @@ mod tests {
             assert_eq!(back, sets(), "{f:?}");
             let one = encode(&sets()[..1], f, &[]).unwrap();
             assert_eq!(decode(&one, f, "mem").unwrap(), sets()[..1].to_vec(), "{f:?} single");
+        }
+    }
+
+    #[test]
+    fn sets_of_many_chunks_are_the_bytes_of_one_point_after_another() {
+        // two sets of 2.5 chunks of `rows` in 3D: each point's line (or npy's 24 bytes)
+        // made here on its own, the body after the prologue compared, on 1 and 3 threads
+        let random = crate::sampler::build("random").unwrap();
+        let n = 5 * ROWS_CHUNK / 2;
+        let sets: Vec<PointSet> = (0..2).map(|k| random.generate(n, 3, Seed(10 + k)).unwrap()).collect();
+        for format in [Format::Text, Format::Csv, Format::Npy] {
+            let mut expected = prologue(format, &[], 2, n, 3);
+            for (k, set) in sets.iter().enumerate() {
+                if k > 0 && format == Format::Text {
+                    expected.extend_from_slice(b"#\n");
+                }
+                for p in set.iter() {
+                    let line = match format {
+                        Format::Npy => {
+                            expected.extend(p.iter().flat_map(|x| x.to_le_bytes()));
+                            continue;
+                        }
+                        Format::Csv => format!("{k},{:?},{:?},{:?}\n", p[0], p[1], p[2]),
+                        _ => format!("{:?} {:?} {:?}\n", p[0], p[1], p[2]),
+                    };
+                    expected.extend_from_slice(line.as_bytes());
+                }
+            }
+            for threads in [1, 3] {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                let got = pool.install(|| encode(&sets, format, &[])).unwrap();
+                assert!(
+                    got == expected,
+                    "{format:?} on {threads} threads: {} bytes against {}",
+                    got.len(),
+                    expected.len()
+                );
+            }
         }
     }
 
