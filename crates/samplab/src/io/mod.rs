@@ -175,29 +175,35 @@ pub fn npy_header(shape: &[usize]) -> Vec<u8> {
 /// shortest round-trip digits, so 10^6 2D points took 0.35 s on one thread.
 const ROWS_CHUNK: usize = 1 << 13;
 
-/// Points (row-major, `dims` per point) in text, CSV (`set` first when given) or npy; in
-/// parallel, chunk by chunk of [`ROWS_CHUNK`] points, the chunks' bytes joined in order.
+/// Points (row-major, `dims` per point) in text, CSV (`set` first when given) or npy, onto
+/// `out`: the parts of [`row_parts`] joined.
 fn rows(out: &mut Vec<u8>, format: Format, points: &[f64], dims: usize, set: Option<usize>) {
-    use rayon::prelude::*;
     if points.len() <= ROWS_CHUNK * dims {
         return rows_of(out, format, points, dims, set);
     }
-    let parts: Vec<Vec<u8>> = points
+    let parts = row_parts(format, points, dims, set);
+    out.reserve_exact(parts.iter().map(Vec::len).sum());
+    parts.iter().for_each(|part| out.extend_from_slice(part));
+}
+
+/// The bytes of [`rows`], made in parallel chunk by chunk of [`ROWS_CHUNK`] points: the
+/// chunks' bytes, in order.
+fn row_parts(format: Format, points: &[f64], dims: usize, set: Option<usize>) -> Vec<Vec<u8>> {
+    use rayon::prelude::*;
+    points
         .par_chunks(ROWS_CHUNK * dims)
         .map(|chunk| {
             let mut part = Vec::new();
             rows_of(&mut part, format, chunk, dims, set);
             part
         })
-        .collect();
-    out.reserve(parts.iter().map(Vec::len).sum());
-    parts.iter().for_each(|part| out.extend_from_slice(part));
+        .collect()
 }
 
 /// The body of [`rows`] on one thread.
 fn rows_of(out: &mut Vec<u8>, format: Format, points: &[f64], dims: usize, set: Option<usize>) {
     if format == Format::Npy {
-        out.reserve(8 * points.len());
+        out.reserve_exact(8 * points.len());
         points.iter().for_each(|x| out.extend_from_slice(&x.to_le_bytes()));
         return;
     }
@@ -260,15 +266,14 @@ pub fn write_stream(
         let io = |e: std::io::Error| Error::Io { path: path.display().to_string(), reason: e.to_string() };
         file.write_all(&prologue(format, header, 1, n, dims)).map_err(io)?;
         let mut points = vec![0.0; STREAM_CHUNK * dims];
-        let mut bytes = Vec::new();
         let mut done = 0;
         while done < n {
             progress.check()?;
             let k = STREAM_CHUNK.min(n - done);
             fill(&mut points[..k * dims])?;
-            bytes.clear();
-            rows(&mut bytes, format, &points[..k * dims], dims, None);
-            file.write_all(&bytes).map_err(io)?;
+            for part in row_parts(format, &points[..k * dims], dims, None) {
+                file.write_all(&part).map_err(io)?;
+            }
             done += k;
             progress.advance(1)?;
         }
