@@ -59,26 +59,14 @@ pub(super) fn decode(bytes: &[u8], csv: bool, name: &str, domain: &RangeInclusiv
     let (header, set_column) =
         if csv { header(&blocks).map_err(|(line, reason)| at(line, reason))? } else { (None, false) };
     let newlines: Vec<usize> = blocks.par_iter().map(|b| b.bytes().filter(|&c| c == b'\n').count()).collect();
-    let firsts = newlines.iter().scan(1, |line, n| {
-        let first = *line;
-        *line += n;
-        Some(first)
-    });
     let parsed: Vec<Block> = blocks
         .par_iter()
-        .zip(firsts.collect::<Vec<_>>())
+        .zip(starts(1, newlines))
         .map(|(block, first)| parse(block, first, (csv, set_column, header), domain))
         .collect();
     // the events in order, as one line after another: the sets' ranges in the blocks'
     // coordinates one after another
-    let offsets: Vec<usize> = parsed
-        .iter()
-        .scan(0, |sum, b| {
-            let first = *sum;
-            *sum += b.values.len();
-            Some(first)
-        })
-        .collect();
+    let offsets = starts(0, parsed.iter().map(|b| b.values.len()));
     let mut ranges: Vec<std::ops::Range<usize>> = Vec::new();
     let (mut start, mut dims, mut current_set): (usize, usize, Option<&str>) = (0, 0, None);
     let finish = |start: &mut usize, upto: usize, ranges: &mut Vec<std::ops::Range<usize>>| {
@@ -130,6 +118,12 @@ pub(super) fn decode(bytes: &[u8], csv: bool, name: &str, domain: &RangeInclusiv
     }
     pieces.into_par_iter().for_each(|(to, from)| to.copy_from_slice(from));
     Ok(sets.into_iter().map(|values| PointSet::from_raw(dims, values)).collect())
+}
+
+/// The running sums of `counts` from `first`, each taken before its count is added (a
+/// block's first line, its first coordinate).
+fn starts(first: usize, counts: impl IntoIterator<Item = usize>) -> Vec<usize> {
+    counts.into_iter().scan(first, |sum, n| Some(std::mem::replace(sum, *sum + n))).collect()
 }
 
 /// A CSV file's header, read from its first line that is neither blank nor a comment: its
