@@ -8,6 +8,7 @@ use std::io::Write;
 use anyhow::{Context as _, bail};
 use rayon::prelude::*;
 use samplab::PointSet;
+use samplab::io::text::{self, JsonObject};
 use samplab::spectrum::{self, Statistics};
 use samplab_report::plot::{self as draw, HeatMap, LineChart, Series};
 
@@ -77,10 +78,10 @@ fn theory_for(spec: &str, set: &PointSet) -> Option<(String, Vec<f64>)> {
 /// A file of the output folder: its name and a way to write its bytes.
 type File<'a> = (String, Box<dyn Fn(&mut dyn Write) -> anyhow::Result<()> + Send + Sync + 'a>);
 
-/// Write the output folder's files, each in its own parallel task (the formatting of a
-/// 1024^2 grid's numbers is most of a run's serial time), streamed through a buffer (a
-/// whole file's text in memory cost more in page faults than its formatting, on two
-/// threads).
+/// Write the output folder's files, each in its own parallel task, its grids formatted
+/// part by part on every thread too (a 1024^2 grid's numbers were most of a run's serial
+/// time), streamed through a buffer (a whole file's text in memory cost more in page
+/// faults than its formatting, on two threads).
 fn write(
     dir: &std::path::Path,
     st: &Statistics,
@@ -121,47 +122,22 @@ fn write(
         "spectrum.json".into(),
         Box::new(|w| {
             // the keys in sorted order, as a serde_json map prints them
-            #[derive(serde::Serialize)]
-            struct SpectrumJson<'a, S> {
-                dims: usize,
-                layout: &'a str,
-                n: usize,
-                normalization: &'a str,
-                res: usize,
-                sets: usize,
-                source: &'a str,
-                statistics: S,
-            }
-            Ok(serde_json::to_writer(
-                w,
-                &SpectrumJson {
-                    dims: st.dims,
-                    layout: "row-major; index (R/2, R/2) is DC; frequency = index - R/2 on each axis",
-                    n: st.n,
-                    normalization: "S(w) = (1/N) sum exp(-2 pi i w.x); variance divides by M - 1; radial bins r = 1..R/2-1 by rounded |w|, DC excluded",
-                    res: st.res,
-                    sets: st.sets,
-                    source,
-                    statistics: spectrum::json(st, &names, &curves),
-                },
-            )?)
+            let mut object = JsonObject::new(w)?;
+            object.field("dims", &st.dims)?;
+            object.field("layout", &"row-major; index (R/2, R/2) is DC; frequency = index - R/2 on each axis")?;
+            object.field("n", &st.n)?;
+            object.field("normalization", &"S(w) = (1/N) sum exp(-2 pi i w.x); variance divides by M - 1; radial bins r = 1..R/2-1 by rounded |w|, DC excluded")?;
+            object.field("res", &st.res)?;
+            object.field("sets", &st.sets)?;
+            object.field("source", &source)?;
+            object.field_with("statistics", |w| spectrum::write_json(w, st, &names, &curves))?;
+            Ok(object.end()?)
         }),
     )];
     for name in &a.stat {
         let v = st.values(name);
-        files.push((
-            format!("{name}.csv"),
-            Box::new(move |w| {
-                for row in v.chunks(if st.dims == 2 { st.res } else { v.len() }) {
-                    for (i, x) in row.iter().enumerate() {
-                        let sep = if i == 0 { "" } else { "," };
-                        write!(w, "{sep}{x:?}")?;
-                    }
-                    writeln!(w)?;
-                }
-                Ok(())
-            }),
-        ));
+        let row = if st.dims == 2 { st.res } else { v.len() };
+        files.push((format!("{name}.csv"), Box::new(move |w| Ok(text::write_csv_rows(w, v, row)?))));
         if st.dims == 2 {
             let label = match name.as_str() {
                 "periodogram" => "<|S|^2>",

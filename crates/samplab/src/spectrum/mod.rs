@@ -18,6 +18,7 @@
 use rayon::prelude::*;
 
 use crate::error::{Error, Result};
+use crate::io::text::JsonObject;
 use crate::points::PointSet;
 use crate::progress::Progress;
 
@@ -154,21 +155,33 @@ pub fn radials(st: &Statistics, names: &[&str]) -> Vec<Radial> {
 }
 
 /// `{name: {"anisotropy_db", "grid", "radial"}}` for the statistics `names` with their
-/// `curves` (from [`radials`]), keys in sorted order: the `statistics` of `samplab
-/// spectrum`'s `spectrum.json`, to serialize (serde_json writes non-finite numbers as
-/// `null`), straight into a file where it is one.
-pub fn json<'a>(st: &'a Statistics, names: &[&'a str], curves: &'a [Radial]) -> impl serde::Serialize + 'a {
-    #[derive(serde::Serialize)]
-    struct Statistic<'a> {
-        anisotropy_db: &'a [f64],
-        grid: &'a [f64],
-        radial: &'a [f64],
+/// `curves` (from [`radials`]), names in sorted order, onto `w`: the `statistics` of
+/// `samplab spectrum`'s `spectrum.json`, with the bytes serde_json writes for that map
+/// (non-finite numbers as `null`), each grid formatted on every thread
+/// ([`crate::io::text::write_json_array`]).
+///
+/// # Errors
+/// The writer's.
+pub fn write_json(
+    w: &mut dyn std::io::Write,
+    st: &Statistics,
+    names: &[&str],
+    curves: &[Radial],
+) -> std::io::Result<()> {
+    let mut sorted: Vec<(&str, &Radial)> = names.iter().copied().zip(curves).collect();
+    sorted.sort_by_key(|&(name, _)| name);
+    sorted.dedup_by_key(|&mut (name, _)| name);
+    let mut object = JsonObject::new(w)?;
+    for (name, (radial, anisotropy_db)) in sorted {
+        object.field_with(name, |w| {
+            let mut statistic = JsonObject::new(w)?;
+            statistic.field("anisotropy_db", anisotropy_db)?;
+            statistic.field_with("grid", |w| crate::io::text::write_json_array(w, st.values(name)))?;
+            statistic.field("radial", radial)?;
+            statistic.end()
+        })?;
     }
-    names
-        .iter()
-        .zip(curves)
-        .map(|(&name, (radial, anisotropy_db))| (name, Statistic { anisotropy_db, grid: st.values(name), radial }))
-        .collect::<std::collections::BTreeMap<_, _>>()
+    object.end()
 }
 
 /// `radial.csv` of `samplab spectrum`: per radial bin (1 .. R/2 - 1), each statistic's

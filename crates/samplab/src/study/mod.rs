@@ -431,8 +431,10 @@ impl Description {
                 let st = merge_up(partials)?.finish(*res, *d, *n)?;
                 let names = crate::spectrum::STATISTICS;
                 let curves = crate::spectrum::radials(&st, &names);
-                let json = serde_json::to_string(&crate::spectrum::json(&st, &names, &curves))
+                let mut json = Vec::new();
+                crate::spectrum::write_json(&mut json, &st, &names, &curves)
                     .map_err(|e| invalid(format!("the merged spectrum: {e}")))?;
+                let json = String::from_utf8(json).map_err(|e| invalid(format!("the merged spectrum: {e}")))?;
                 let csv = crate::spectrum::radial_csv(&st, &names, &curves);
                 Ok(Merged { json, csv, statistics: Some(st) })
             }
