@@ -88,42 +88,43 @@ impl Grid {
         // `ranges` runs of cells, then each run is sorted by cell on its own
         let ranges = (n / SORTED).clamp(1, 64);
         let lists = buckets(&cells, ranges, |c| c * ranges / total);
+        // run r's positions in `ids` (from `offset`, in run order) and its cells' entries in
+        // `start` (from its first cell on)
+        let first = |r: usize| (r * total).div_ceil(ranges);
         let mut ids = vec![0u32; n];
-        let mut parts = Vec::with_capacity(ranges);
-        let mut rest = &mut ids[..];
+        let mut start = vec![0usize; total + 1];
+        start[total] = n;
+        let mut runs = Vec::with_capacity(ranges);
+        let (mut rest, mut starts, mut offset) = (&mut ids[..], &mut start[..total], 0);
         for r in 0..ranges {
-            let (part, tail) = rest.split_at_mut(lists.iter().map(|l| l[r].len()).sum());
-            parts.push(part);
-            rest = tail;
+            let size = lists.iter().map(|l| l[r].len()).sum();
+            let (part, tail) = rest.split_at_mut(size);
+            let (cells_of_run, later) = starts.split_at_mut(first(r + 1) - first(r));
+            runs.push((r, part, cells_of_run, offset));
+            (rest, starts, offset) = (tail, later, offset + size);
         }
-        // per run, its cells' counts
-        let counts: Vec<Vec<usize>> = parts
-            .into_par_iter()
-            .enumerate()
-            .map(|(r, part)| {
-                let first = (r * total).div_ceil(ranges);
-                let mut at = vec![0usize; ((r + 1) * total).div_ceil(ranges) - first + 1];
-                let members = || lists.iter().flat_map(|l| l[r].iter().copied());
-                for i in members() {
-                    at[cells[i as usize] - first + 1] += 1;
-                }
-                for c in 1..at.len() {
-                    at[c] += at[c - 1];
-                }
-                let count = at.windows(2).map(|w| w[1] - w[0]).collect();
-                for i in members() {
-                    let c = cells[i as usize] - first;
-                    part[at[c]] = i;
-                    at[c] += 1;
-                }
-                count
-            })
-            .collect();
-        let mut start = Vec::with_capacity(total + 1);
-        start.push(0);
-        for c in counts.into_iter().flatten() {
-            start.push(start.last().copied().unwrap_or_default() + c);
-        }
+        // per run, on its own: its cells' counts, their running sums (the first position of
+        // each cell: points in earlier runs, then in the run's earlier cells), and its points
+        // placed cell by cell
+        runs.into_par_iter().for_each(|(r, part, cells_of_run, offset)| {
+            let first = first(r);
+            let mut at = vec![0usize; cells_of_run.len() + 1];
+            let members = || lists.iter().flat_map(|l| l[r].iter().copied());
+            for i in members() {
+                at[cells[i as usize] - first + 1] += 1;
+            }
+            for c in 1..at.len() {
+                at[c] += at[c - 1];
+            }
+            for (s, &a) in cells_of_run.iter_mut().zip(&at) {
+                *s = offset + a;
+            }
+            for i in members() {
+                let c = cells[i as usize] - first;
+                part[at[c]] = i;
+                at[c] += 1;
+            }
+        });
         let mut coords = vec![0.0; n * dims];
         coords.par_chunks_exact_mut(dims).zip(&ids).for_each(|(c, &i)| {
             c.copy_from_slice(&points[i as usize * dims..(i as usize + 1) * dims]);
@@ -467,4 +468,35 @@ pub fn rdf(points: &PointSet, edges: &[f64]) -> Result<Vec<f64>> {
             2.0 * count as f64 / (n * (n - 1.0) * ball * (w[1].powi(dims) - w[0].powi(dims)))
         })
         .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The grid of a parallel counting sort in runs against one stable sort of the
+    /// indices by cell: positions, cell starts and coordinates, on 1 and 3 threads.
+    #[test]
+    fn grids_are_one_stable_sort_by_cell() {
+        for (dims, n, k) in [(2, 3 * SORTED + 17, 300), (3, 2 * SORTED + 5, 37), (1, SORTED / 3, 1000), (2, 5, 1)] {
+            let points = crate::sampler::build("random").unwrap().generate(n, dims, crate::Seed(n as u64)).unwrap();
+            let points = points.as_slice();
+            let cells: Vec<usize> = points.chunks_exact(dims).map(|p| Grid::cell(k, p)).collect();
+            let mut order: Vec<u32> = (0..n as u32).collect();
+            order.sort_by_key(|&i| cells[i as usize]);
+            let total = k.pow(dims as u32);
+            let mut start = vec![0; total + 1];
+            cells.iter().for_each(|&c| start[c + 1] += 1);
+            (1..=total).for_each(|c| start[c] += start[c - 1]);
+            for threads in [1, 3] {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                let grid = pool.install(|| Grid::new(points, dims, k));
+                assert_eq!(grid.ids, order, "{dims}D, {n} points, {threads} threads");
+                assert_eq!(grid.start, start, "{dims}D, {n} points, {threads} threads");
+                for (q, &i) in order.iter().enumerate() {
+                    assert_eq!(grid.point(q), &points[i as usize * dims..(i as usize + 1) * dims]);
+                }
+            }
+        }
+    }
 }

@@ -549,10 +549,11 @@ pub fn progressive(points: &[f64], dims: usize, n: usize, torus: bool, tiled: bo
     let mut later = Vec::with_capacity(n);
     while alive.len() > 1 {
         let target = alive.len() / 2;
-        let subset: Vec<f64> = alive.iter().flat_map(|&i| points[i * dims..(i + 1) * dims].iter().copied()).collect();
+        let mut subset = vec![0.0; alive.len() * dims];
+        subset.par_chunks_exact_mut(dims).zip(&alive).for_each(|(p, &i)| p.copy_from_slice(&points[i * dims..(i + 1) * dims]));
         let (kept, gone) = eliminate_in_tiles(&subset, dims, target, torus, tiles(target))?;
-        later.extend(gone.iter().map(|&k| alive[k]));
-        alive = kept.iter().map(|&k| alive[k]).collect();
+        later.par_extend(gone.par_iter().map(|&k| alive[k]));
+        alive = kept.par_iter().map(|&k| alive[k]).collect();
     }
     later.extend(alive);
     later.reverse();
