@@ -172,7 +172,7 @@ pub fn npy_header(shape: &[usize]) -> Vec<u8> {
     out
 }
 
-/// Points per parallel task of [`rows`]: text spends about 40 ns a coordinate on its
+/// Points per parallel task of [`rows`]: text spends about 60 ns a coordinate on its
 /// shortest round-trip digits ([`text::push_f64`]).
 const ROWS_CHUNK: usize = 1 << 13;
 
