@@ -208,18 +208,12 @@ fn rows_of(out: &mut Vec<u8>, format: Format, points: &[f64], dims: usize, set: 
         points.iter().for_each(|x| out.extend_from_slice(&x.to_le_bytes()));
         return;
     }
-    let sep = if format == Format::Csv { "," } else { " " };
+    let sep = if format == Format::Csv { b',' } else { b' ' };
     for p in points.chunks_exact(dims) {
         if let Some(k) = set {
             write!(out, "{k},").unwrap();
         }
-        for (d, x) in p.iter().enumerate() {
-            if d > 0 {
-                out.extend_from_slice(sep.as_bytes());
-            }
-            text::push_f64(out, *x);
-        }
-        out.push(b'\n');
+        text::push_line(out, p, sep);
     }
 }
 

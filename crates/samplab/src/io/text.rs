@@ -167,16 +167,19 @@ fn write_parts(
 pub fn write_csv_rows(w: &mut dyn Write, values: &[f64], row: usize) -> io::Result<()> {
     let row = row.max(1);
     write_parts(w, values.len(), row, b"", |range, out| {
-        for line in values[range].chunks(row) {
-            for (i, &x) in line.iter().enumerate() {
-                if i > 0 {
-                    out.push(b',');
-                }
-                push_f64(out, x);
-            }
-            out.push(b'\n');
-        }
+        values[range].chunks(row).for_each(|line| push_line(out, line, b','));
     })
+}
+
+/// `values` as [`push_f64`] writes them, `separator` between two, and a newline.
+pub(crate) fn push_line(out: &mut Vec<u8>, values: &[f64], separator: u8) {
+    for (i, &x) in values.iter().enumerate() {
+        if i > 0 {
+            out.push(separator);
+        }
+        push_f64(out, x);
+    }
+    out.push(b'\n');
 }
 
 /// `values` as the JSON array serde_json writes for them (`[` and `]`, no spaces,

@@ -432,9 +432,9 @@ impl Description {
                 let names = crate::spectrum::STATISTICS;
                 let curves = crate::spectrum::radials(&st, &names);
                 let mut json = Vec::new();
-                crate::spectrum::write_json(&mut json, &st, &names, &curves)
-                    .map_err(|e| invalid(format!("the merged spectrum: {e}")))?;
-                let json = String::from_utf8(json).map_err(|e| invalid(format!("the merged spectrum: {e}")))?;
+                let bad = |e: &dyn std::fmt::Display| invalid(format!("the merged spectrum: {e}"));
+                crate::spectrum::write_json(&mut json, &st, &names, &curves).map_err(|e| bad(&e))?;
+                let json = String::from_utf8(json).map_err(|e| bad(&e))?;
                 let csv = crate::spectrum::radial_csv(&st, &names, &curves);
                 Ok(Merged { json, csv, statistics: Some(st) })
             }
