@@ -82,10 +82,11 @@ fn conductors_are_mirrors_and_rough_ones_glossy() {
     assert!(scene.glossy());
 }
 
-/// A scene in a fresh folder whose one mesh is `filename`; the folder's path.
+/// A scene in a fresh folder whose one mesh is `filename`; the folder's path (under cargo's
+/// scratch folder for integration tests, emptied here by the next run).
 #[cfg(unix)]
 fn scene_naming(name: &str, filename: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("samplab-confined-{}-{name}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("confined-{name}"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(dir.join("scene")).unwrap();
     let xml = std::fs::read_to_string("tests/scenes/sphere-box.xml").unwrap();

@@ -9,8 +9,11 @@ use samplab::Seed;
 use samplab::io::Replace;
 use samplab_report::{Error, Experiment, Options, Paper, Scale, paper, reproduce};
 
+/// A fresh folder `name` under cargo's scratch folder for integration tests (in the target
+/// folder, emptied here by the next run: a run leaves nothing in the system's temporary
+/// folder).
 fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("samplab-report-{}-{name}", std::process::id()));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("report-{name}"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
