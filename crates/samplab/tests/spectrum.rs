@@ -179,6 +179,25 @@ fn pixel_light_banding_frequencies() {
 }
 
 #[test]
+fn the_statistics_are_the_same_bits_on_one_three_and_more_threads_than_a_leafs_sets() {
+    // up to BLOCK threads a node's two children go one after the other, on more side by
+    // side: 70 sets are five leaves, three levels of merges
+    use samplab::spectrum::tree::BLOCK;
+    let given = sets("random", 300, 70, 5);
+    let on = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| spectrum::statistics(&given, 32, Method::Fast { tol: 1e-9 }).unwrap())
+    };
+    let one = on(1);
+    for threads in [3, BLOCK + 4] {
+        let other = on(threads);
+        assert!(other.periodogram == one.periodogram, "periodogram on {threads} threads");
+        assert!(other.expected == one.expected, "expected on {threads} threads");
+        assert!(other.variance == one.variance, "variance on {threads} threads");
+    }
+}
+
+#[test]
 fn the_merge_tree_gives_the_same_bits_however_the_sets_are_split_and_matches_two_pass_statistics() {
     use samplab::progress::Progress;
     use samplab::spectrum::tree::{self, Partial};

@@ -286,7 +286,8 @@ impl Spectra {
     }
 
     /// The partial statistics of node (`level`, `index`) of `sets`, its children computed
-    /// in parallel; `progress` advances by one per set transformed.
+    /// one after the other (each in parallel), or side by side on more than [`BLOCK`]
+    /// threads; `progress` advances by one per set transformed.
     ///
     /// # Errors
     /// An empty node, sets of another shape, a sampler's fill, a stop, or memory: a
@@ -340,11 +341,19 @@ impl Spectra {
         if node_sets(sets.len(), level - 1, right).is_empty() {
             return self.node(sets, level - 1, 2 * index, progress);
         }
-        let (a, b) = rayon::join(
-            || self.node(sets, level - 1, 2 * index, progress),
-            || self.node(sets, level - 1, right, progress),
-        );
-        let (a, b) = (a?, b?);
+        let first = || self.node(sets, level - 1, 2 * index, progress);
+        let second = || self.node(sets, level - 1, right, progress);
+        // a leaf's wave holds a set per thread up to BLOCK: with no more threads than that,
+        // one leaf at a time keeps them all busy, and the spectra in memory are one wave's,
+        // not a wave for every leaf at once (each a 16 MiB buffer at R = 1024, first touched
+        // and at the end freed on one process's page tables)
+        let (a, b) = if rayon::current_num_threads() <= BLOCK {
+            let a = first()?;
+            (a, second()?)
+        } else {
+            let (a, b) = rayon::join(first, second);
+            (a?, b?)
+        };
         let merged = a.merge(&b);
         self.partials.give([b]);
         Ok(merged)
