@@ -36,7 +36,20 @@ idle loop spins (briefly) before it sleeps, and it cannot see two threads slowin
 other down through the memory they share. The profile also names the functions a lone
 thread was in while the others waited: where the serial part is.
 
-Usage: bench/compare scaling [--rounds K] [--seconds S] [--ceiling] [--profile] [ROW...]   (--help lists the rows)
+With --timeline, each row is also run K times on all the machine's threads while a loop
+reads its threads' CPU times (Linux's /proc/PID/task/TID/schedstat) every 2 ms: the same
+windowed serial fraction as --profile's, with no perf needed (a machine lent without it),
+and a strip of the threads busy in each fiftieth of the run, which shows where the run is
+serial (its start, a phase between two parallel ones, its end). The loop itself takes part
+of one core.
+
+With --threads P,Q,.. only those thread counts are run (a long row such as the reproduction
+on 1 and 16 threads alone). Where the top column is more than 2 threads, the table also
+gives the speed-up there and the serial fraction it implies, f = (p T_p / T_1 - 1) / (p - 1).
+
+Usage: bench/compare scaling [--rounds K] [--seconds S] [--threads P,..] [--ceiling] [--timeline] [--profile]
+       [ROW...]
+(--help lists the rows)
 """
 import argparse
 import collections
@@ -142,6 +155,26 @@ def copies(args, p, tmp):
     return time.perf_counter() - start, digests
 
 
+def thread_counts(text, cores):
+    """The columns `--threads` asks for ("1,16"), or by default 1, 2, 4, 8, 16 up to the
+    machine's cores; None when the text is not a list of distinct counts that holds 1 (every
+    speed-up is against one thread)."""
+    if text is None:
+        return [p for p in (1, 2, 4, 8, 16) if p <= cores]
+    try:
+        counts = [int(t) for t in text.split(",")]
+    except ValueError:
+        return None
+    if 1 not in counts or min(counts) < 1 or len(set(counts)) != len(counts):
+        return None
+    return sorted(counts)
+
+
+def amdahl(t1, tp, p):
+    """Amdahl's serial fraction from the times on 1 and p threads: T_p = T_1 (f + (1 - f) / p)."""
+    return (p * tp / t1 - 1.0) / (p - 1.0)
+
+
 def rounds_for(first, k, seconds):
     """The rounds of a row whose first round took `first` seconds: at least k, and as many
     as spend `seconds`."""
@@ -189,6 +222,89 @@ def profile(args, p, tmp):
     return windows(text, p)
 
 
+def windowed_serial(windows, p):
+    """Amdahl's serial fraction of a run on p threads cut into windows (width, threads
+    busy): a window's work is its busy threads, counted as at least one (a window with
+    fewer is a wait, serial too: it lasts as long on one thread) and at most p."""
+    span = sum(width for width, _ in windows)
+    work = sum(width * min(max(busy, 1.0), p) for width, busy in windows)
+    return amdahl(work, span, p)
+
+
+def cpu_times(pid):
+    """Each thread's CPU time so far, in nanoseconds (the first field of Linux's
+    /proc/PID/task/TID/schedstat), by thread id; threads gone meanwhile are left out."""
+    base = "/proc/%d/task" % pid
+    try:
+        tids = os.listdir(base)
+    except OSError:
+        return {}
+    times = {}
+    for tid in tids:
+        try:
+            with open("%s/%s/schedstat" % (base, tid)) as fh:
+                times[tid] = int(fh.read().split()[0])
+        except (OSError, ValueError, IndexError):
+            pass
+    return times
+
+
+def busy_between(samples):
+    """The windows between successive samples (time in seconds, CPU nanoseconds by thread):
+    (width, threads busy), a thread first seen counted from zero."""
+    out = []
+    for (t0, c0), (t1, c1) in zip(samples, samples[1:]):
+        ns = sum(v - c0.get(tid, 0) for tid, v in c1.items())
+        out.append((t1 - t0, ns / 1e9 / (t1 - t0)))
+    return out
+
+
+# the timeline: how often the threads' CPU times are read (seconds), and its parts
+PERIOD = 0.002
+PARTS = 50
+DIGITS = "0123456789abcdefghijklmnopqrstuvwxyz"
+
+
+def strip(windows, parts):
+    """The mean threads busy in each of `parts` equal stretches of the run's windows, as one
+    character each (0-9, then a = 10 .. z = 35)."""
+    span = sum(width for width, _ in windows)
+    work, at = [0.0] * parts, 0.0
+    for width, busy in windows:
+        # a window's work goes to the stretches it overlaps, by overlap
+        a, b = at, at + width
+        for k in range(min(int(a / span * parts), parts - 1), min(int(b / span * parts), parts - 1) + 1):
+            overlap = min(b, (k + 1) * span / parts) - max(a, k * span / parts)
+            work[k] += max(overlap, 0.0) * busy
+        at = b
+    return "".join(DIGITS[min(int(round(w * parts / span)), len(DIGITS) - 1)] for w in work)
+
+
+def timeline(args, p, tmp):
+    """One run on p threads, its threads' CPU times read every PERIOD seconds (no perf
+    needed): (seconds, serial fraction by windows, share of the time with under 1.5 threads
+    busy, the timeline strip)."""
+    argv, _, env = prepare(args, p, os.path.join(tmp, "sampled"))
+    start = time.perf_counter()
+    # stderr to a file: a pipe nobody reads while the run goes on could fill and stop it
+    log = tempfile.TemporaryFile()
+    proc = subprocess.Popen([SAMPLAB] + argv, env=env, stdout=subprocess.DEVNULL, stderr=log)
+    samples = [(start, {})]
+    while proc.poll() is None:
+        times = cpu_times(proc.pid)
+        samples.append((time.perf_counter(), times))
+        time.sleep(PERIOD)
+    seconds = time.perf_counter() - start
+    log.seek(0)
+    stderr = log.read()
+    if proc.returncode != 0:
+        sys.exit("samplab %s: exit %d: %s" % (" ".join(argv), proc.returncode, stderr.decode()[-400:]))
+    got = [(t, c) for t, c in samples if c] or samples
+    windows = busy_between([samples[0]] + got)
+    lone = sum(width for width, busy in windows if busy < 1.5) / max(sum(w for w, _ in windows), 1e-9)
+    return seconds, windowed_serial(windows, p), lone, strip(windows, PARTS)
+
+
 def windows(text, p):
     """The windows of a run's samples (`perf script -F tid,time,ip,sym` lines) on p
     threads: (its windows, the windows in which one thread ran, the serial fraction, and
@@ -208,8 +324,7 @@ def windows(text, p):
         where[w].append(short(fields[3]) if len(fields) > 3 else fields[2])
     first, last = min(samples), max(samples)
     span = last - first + 1
-    work = sum(min(max(samples[w], per), p * per) for w in range(first, last + 1)) / per
-    serial = (p * span / work - 1) / (p - 1)
+    serial = windowed_serial([(1.0, samples[w] / per) for w in range(first, last + 1)], p)
     lone = [w for w in tids if len(tids[w]) == 1]
     alone = collections.Counter(f for w in lone for f in where[w])
     total = sum(alone.values()) or 1
@@ -229,9 +344,17 @@ def main():
     parser.add_argument("--seconds", type=float, default=0.0, metavar="S",
                         help="more rounds for short rows: as many as make S seconds, judged from "
                              "the first round (default 0: K rounds)")
+    parser.add_argument("--threads", metavar="P,..",
+                        help="the thread counts to run, e.g. 1,16 (default: 1, 2, 4, 8, 16 up to "
+                             "the machine's cores)")
     parser.add_argument("--ceiling", action="store_true",
                         help="also run p one-thread copies at once per column p: the machine's "
                              "own limit for p independent processes")
+    parser.add_argument("--timeline", action="store_true",
+                        help="also run each row K times on all the machine's threads, reading "
+                             "its threads' CPU times every 2 ms from /proc (Linux, no perf): the "
+                             "serial fraction by windows and a strip of the threads busy over "
+                             "the run")
     parser.add_argument("--profile", action="store_true",
                         help="also profile K runs per row on all threads with perf (Debian's "
                              "linux-perf): the serial fraction of their busy-thread windows and "
@@ -251,7 +374,11 @@ def main():
     rounds, ceiling = opts.rounds, opts.ceiling
     rows = [r for r in ROWS if not opts.rows or r[0] in opts.rows]
     cores = os.cpu_count() or 1
-    columns = [p for p in (1, 2, 4, 8, 16) if p <= cores]
+    columns = thread_counts(opts.threads, cores)
+    if columns is None:
+        parser.error("--threads must be distinct thread counts, 1 among them, separated by commas, not %r"
+                     % opts.threads)
+    top = columns[-1] if columns[-1] > 2 else None
     print("samplab scaling, %s, %d cores, at least %d rounds%s, medians of wall time (%s)"
           % (time.strftime("%Y-%m-%d"), cores, rounds,
              " or %g seconds a row" % opts.seconds if opts.seconds > 0 else "", SAMPLAB))
@@ -259,8 +386,10 @@ def main():
              " | speed-up at 2 | rounds' speed-ups (quartiles) | serial fraction | bytes |"
     many = [p for p in columns if p > 1] if ceiling else []
     header += "".join(" ceiling at %d |" % p for p in many)
+    if top:
+        header += " speed-up at %d | serial fraction at %d |" % (top, top)
     print(header)
-    print("|" + "---|" * (len(columns) + 6 + len(many)))
+    print("|" + "---|" * (len(columns) + 6 + len(many) + (2 if top else 0)))
     with tempfile.TemporaryDirectory() as tmp:
         for name, label, argv in rows:
             times = {p: [] for p in columns}
@@ -283,15 +412,30 @@ def main():
                     wanted = rounds_for(time.perf_counter() - began, rounds, opts.seconds)
                 k += 1
             med = {p: statistics.median(times[p]) for p in columns}
-            speedup = med[1] / med[2] if 2 in med else float("nan")
-            serial = 2.0 / speedup - 1.0
-            low, high = quartiles(times[1], times[2]) if 2 in med else (speedup, speedup)
-            spread = "%.2f-%.2fx" % (low, high)
+            if 2 in med:
+                low, high = quartiles(times[1], times[2])
+                at2 = "%.2fx | %.2f-%.2fx | %.1f%%" % (med[1] / med[2], low, high, 100 * amdahl(med[1], med[2], 2))
+            else:
+                at2 = "- | - | -"
             cells = " | ".join("%.2f s" % med[p] for p in columns)
             tops = "".join(" %.2fx |" % (p * med[1] / statistics.median(beside[p])) for p in many)
-            print("| %s | %d | %s | %.2fx | %s | %.1f%% | %s |%s"
-                  % (label, k, cells, speedup, spread, 100 * serial, "same" if len(digests) == 1 else "DIFFER", tops),
+            if top:
+                tops += " %.2fx | %.1f%% |" % (med[1] / med[top], 100 * amdahl(med[1], med[top], top))
+            print("| %s | %d | %s | %s | %s |%s"
+                  % (label, k, cells, at2, "same" if len(digests) == 1 else "DIFFER", tops),
                   flush=True)
+        if opts.timeline:
+            p = columns[-1]
+            print("\nTimeline: %d runs per row on %d threads, the threads' CPU times read every %g ms; "
+                  "the run of median serial fraction; the strip gives the threads busy in each fiftieth "
+                  "of the run (0-9, then a = 10, g = 16)" % (rounds, p, PERIOD * 1000))
+            print("| work | seconds | serial fraction | under 1.5 threads busy | threads busy over the run |")
+            print("|---|---|---|---|---|")
+            for name, label, argv in rows:
+                runs = sorted((timeline(argv, p, tmp) for _ in range(rounds)), key=lambda r: r[1])
+                seconds, serial, lone, line = runs[len(runs) // 2]
+                print("| %s | %.2f s | %.1f%% | %.0f%% | `%s` |" % (label, seconds, 100 * serial, 100 * lone, line),
+                      flush=True)
         if opts.profile:
             p = columns[-1]
             print("\nProfile: %d runs per row on %d threads, perf's cpu-clock at %d Hz, %d ms windows; "

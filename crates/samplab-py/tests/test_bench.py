@@ -74,3 +74,49 @@ def test_names_lose_their_crate_path_and_generic_arguments():
     assert scaling.short("rayon::iter::plumbing::bridge_producer_consumer::helper::{{closure}}") == \
         "bridge_producer_consumer::helper"
     assert scaling.short("clear_page_erms") == "clear_page_erms"
+
+
+def test_the_columns_default_to_powers_of_two_up_to_the_cores_and_threads_picks_others():
+    assert scaling.thread_counts(None, 2) == [1, 2]
+    assert scaling.thread_counts(None, 12) == [1, 2, 4, 8]
+    assert scaling.thread_counts("16,1", 2) == [1, 16]
+    for bad in ("2,4", "1,1", "1,x", "0,1", ""):
+        assert scaling.thread_counts(bad, 16) is None
+
+
+def test_amdahls_fraction_from_two_times_gives_back_the_law_it_inverts():
+    # T_p = T_1 (f + (1 - f) / p) with f = 0.05: on 16 threads 10 s becomes 0.96875 s
+    assert scaling.amdahl(10.0, 10.0 * (0.05 + 0.95 / 16), 16) == pytest.approx(0.05)
+    assert scaling.amdahl(10.0, 5.0, 2) == pytest.approx(0.0)
+    assert scaling.amdahl(10.0, 10.0, 8) == pytest.approx(1.0)
+
+
+def test_windows_of_any_width_weigh_by_their_width():
+    # 0.1 s of one thread, then 0.4 s of two: T1 = 0.1 + 0.8, T2 = 0.5, f = 2 * 0.5 / 0.9 - 1
+    assert scaling.windowed_serial([(0.1, 1.0), (0.4, 2.0)], 2) == pytest.approx(1.0 / 9.0)
+    # a wait (no thread busy) counts as one thread's time, more than p threads as p
+    assert scaling.windowed_serial([(0.1, 0.0), (0.1, 3.0)], 2) == pytest.approx(2 * 0.2 / 0.3 - 1)
+
+
+def test_cpu_times_between_samples_are_threads_busy():
+    # two threads: one busy throughout, one started after the first sample and busy half the time
+    samples = [(0.0, {"1": 0}), (0.01, {"1": 10_000_000, "2": 5_000_000}), (0.02, {"1": 20_000_000, "2": 5_000_000})]
+    windows = scaling.busy_between(samples)
+    assert [w for w, _ in windows] == [pytest.approx(0.01), pytest.approx(0.01)]
+    assert [b for _, b in windows] == [pytest.approx(1.5), pytest.approx(1.0)]
+
+
+def test_cpu_times_of_this_process_grow_with_work():
+    import os
+
+    before = scaling.cpu_times(os.getpid())
+    sum(i * i for i in range(200_000))
+    after = scaling.cpu_times(os.getpid())
+    assert before and sum(after.values()) > sum(before.values())
+
+
+def test_the_strip_spreads_each_windows_work_over_the_stretches_it_overlaps():
+    # 1 s of one thread then 1 s of sixteen, in windows that straddle the stretches' edges
+    windows = [(0.3, 1.0)] * 3 + [(0.1, 1.0), (0.1, 16.0)] + [(0.3, 16.0)] * 3
+    assert scaling.strip(windows, 4) == "11gg"
+    assert scaling.strip([(1.0, 4.0)], 3) == "444"
