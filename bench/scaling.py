@@ -21,7 +21,7 @@ share nothing but its caches, memory bus and host. The ceiling column is p T1 / 
 median time of a copy run beside the others: a row's speed-up can only reach the ceiling,
 and a speed-up close to it has no serial part left that threads could remove.
 
-With --profile, each row is also run K times (--rounds) on all the machine's p threads under
+With --profile, each row is also run K times (--rounds) on the top column's p threads under
 `perf record` (the cpu-clock at 1 kHz: a thread on a core is sampled once a millisecond, so
 a window of w ms holds w samples per busy thread), each run cut into 4 ms windows. A
 window's work is its samples, counted as at least one thread's worth (a window with fewer
@@ -36,12 +36,14 @@ idle loop spins (briefly) before it sleeps, and it cannot see two threads slowin
 other down through the memory they share. The profile also names the functions a lone
 thread was in while the others waited: where the serial part is.
 
-With --timeline, each row is also run K times on all the machine's threads while a loop
+With --timeline, each row is also run K times on the top column's threads while a loop
 reads its threads' CPU times (Linux's /proc/PID/task/TID/schedstat) every 2 ms: the same
 windowed serial fraction as --profile's, with no perf needed (a machine lent without it),
 and a strip of the threads busy in each fiftieth of the run, which shows where the run is
 serial (its start, a phase between two parallel ones, its end). The loop itself takes part
-of one core.
+of one core, and a thread's clock may move only at the kernel's tick or when it stops, so a
+2 ms window can read no work and the next twice its share: the fraction by windows is an
+upper bound, and the strip, averaged over longer stretches, is the steadier reading.
 
 With --threads P,Q,.. only those thread counts are run (a long row such as the reproduction
 on 1 and 16 threads alone). Where the top column is more than 2 threads, the table also
@@ -351,12 +353,12 @@ def main():
                         help="also run p one-thread copies at once per column p: the machine's "
                              "own limit for p independent processes")
     parser.add_argument("--timeline", action="store_true",
-                        help="also run each row K times on all the machine's threads, reading "
+                        help="also run each row K times on the top column's threads, reading "
                              "its threads' CPU times every 2 ms from /proc (Linux, no perf): the "
                              "serial fraction by windows and a strip of the threads busy over "
                              "the run")
     parser.add_argument("--profile", action="store_true",
-                        help="also profile K runs per row on all threads with perf (Debian's "
+                        help="also profile K runs per row on the top column's threads with perf (Debian's "
                              "linux-perf): the serial fraction of their busy-thread windows and "
                              "the functions a lone busy thread was in")
     opts = parser.parse_args()
