@@ -21,14 +21,16 @@ distributed = pytest.importorskip("distributed")
 
 
 @pytest.fixture(scope="module")
-def client():
-    """Two worker processes, one thread each (rayon uses one thread per worker too)."""
+def client(tmp_path_factory):
+    """Two worker processes, one thread each (rayon uses one thread per worker too); their
+    scratch space in pytest's temporary folders, not /tmp/dask-scratch-space."""
     cluster = distributed.LocalCluster(
         n_workers=2,
         threads_per_worker=1,
         processes=True,
         dashboard_address=None,
         env={"RAYON_NUM_THREADS": "1"},
+        local_directory=str(tmp_path_factory.mktemp("dask")),
     )
     with distributed.Client(cluster) as c:
         yield c

@@ -551,10 +551,12 @@ def save(path: str, points: Any, format: Optional[str] = None, header: Optional[
     Examples
     --------
     >>> import os, tempfile
-    >>> path = os.path.join(tempfile.mkdtemp(), "pts.npy")
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> path = os.path.join(folder.name, "pts.npy")
     >>> samplab.save(path, samplab.generate("random", n=8, sets=2))
     >>> [s.shape for s in samplab.load(path)]
     [(8, 2), (8, 2)]
+    >>> folder.cleanup()
     """
     _samplab.save(str(path), _points(points, stack=True), format, None if header is None else list(header))
 
@@ -584,13 +586,15 @@ def load(path: str, format: Optional[str] = None) -> List[np.ndarray]:
     Examples
     --------
     >>> import os, tempfile
-    >>> path = os.path.join(tempfile.mkdtemp(), "pts.txt")
+    >>> folder = tempfile.TemporaryDirectory()
+    >>> path = os.path.join(folder.name, "pts.txt")
     >>> with open(path, "w") as f:
     ...     _ = f.write("0.25 0.5\\n0.75 nan\\n")
     >>> samplab.load(path)
     Traceback (most recent call last):
     ...
     samplab.Error: ...pts.txt:2: coordinate 2 is not finite: 'nan'
+    >>> folder.cleanup()
     """
     return _samplab.load(str(path), format)
 
