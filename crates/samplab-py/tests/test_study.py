@@ -22,19 +22,23 @@ distributed = pytest.importorskip("distributed")
 
 @pytest.fixture(scope="module")
 def client(tmp_path_factory):
-    """Two worker processes, one thread each (rayon uses one thread per worker too); their
-    scratch space in pytest's temporary folders, not /tmp/dask-scratch-space."""
-    cluster = distributed.LocalCluster(
-        n_workers=2,
-        threads_per_worker=1,
-        processes=True,
-        dashboard_address=None,
-        env={"RAYON_NUM_THREADS": "1"},
-        local_directory=str(tmp_path_factory.mktemp("dask")),
-    )
-    with distributed.Client(cluster) as c:
-        yield c
-    cluster.close()
+    """Two worker processes, one thread each (rayon uses one thread per worker too); the
+    scheduler's and the workers' scratch space in pytest's temporary folders, not
+    /tmp/dask-scratch-space."""
+    import dask
+
+    scratch = str(tmp_path_factory.mktemp("dask"))
+    with dask.config.set({"temporary-directory": scratch}):
+        cluster = distributed.LocalCluster(
+            n_workers=2,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            env={"RAYON_NUM_THREADS": "1"},
+        )
+        with distributed.Client(cluster) as c:
+            yield c
+        cluster.close()
 
 
 def test_integration_study_local_dask_and_cli_agree(client, cli):
@@ -203,9 +207,13 @@ def test_bad_studies_are_refused_before_any_work():
 
 def test_the_readme_example_runs(tmp_path):
     example = os.path.join(os.path.dirname(__file__), "..", "examples", "study.py")
-    run = subprocess.run([sys.executable, example, str(tmp_path), "--quick"], capture_output=True, text=True, timeout=300)
+    out = tmp_path / "out"
+    # its LocalCluster's scratch space in pytest's folder too (Dask's default is /tmp)
+    env = dict(os.environ, DASK_TEMPORARY_DIRECTORY=str(tmp_path / "dask"))
+    run = subprocess.run([sys.executable, example, str(out), "--quick"], capture_output=True, text=True, timeout=300,
+                         env=env)
     assert run.returncode == 0, run.stderr[-2000:]
-    assert sorted(os.listdir(tmp_path)) == ["fig6.ckpt", "fig6.csv", "fig6.png"]
+    assert sorted(os.listdir(out)) == ["fig6.ckpt", "fig6.csv", "fig6.png"]
 
 
 def test_constructors_are_generated_from_the_library_kinds():
