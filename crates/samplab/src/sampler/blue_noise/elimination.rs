@@ -43,7 +43,6 @@ use crate::sampler::random::Random;
 use crate::seed::Seed;
 use crate::spatial::{Grid, SORTED, buckets, distance2, packing_radius};
 use crate::spec::{Default, Kind, ParamSpec};
-use rayon::iter::Either;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering::Relaxed};
 use std::sync::{Mutex, PoisonError};
@@ -233,6 +232,14 @@ pub fn eliminate_in_tiles(
 /// goes, in rounds (the largest such key is always a local maximum, so each round removes
 /// one or more), until none is left at or above theta; the batches go on until enough are
 /// removed, and the ones past the count (theta below the last needed key) are kept.
+///
+/// A round is two parallel passes over the points at or above theta, by blocks of
+/// [`GRAIN`]: each point's turn, then the waiting points written in order to the next
+/// round's list and the local maxima removed, each block at offsets from the blocks' counts.
+/// Rayon's `partition_map` and `filter().collect()`, which this replaces, built and joined
+/// lists of pieces in every round: with them, 16 threads on the two-core machine took 1.18x
+/// the CPU time of 2 threads; with the blocks, 1.04x (10^5 points, medians of 9,
+/// 2026-11-30).
 fn by_local_maxima(weights: Vec<u64>, target: usize, pairs: &Pairs, lists: &Lists) -> (Vec<usize>, Vec<usize>) {
     use std::cmp::Reverse;
     let m = weights.len();
@@ -244,43 +251,123 @@ fn by_local_maxima(weights: Vec<u64>, target: usize, pairs: &Pairs, lists: &List
     let mut live: Vec<u32> = (0..m as u32).into_par_iter().collect();
     // (weight, candidate) when removed, as sorted in one heap's order, and the position
     let mut removed: Vec<((Reverse<u64>, u32), u32)> = Vec::with_capacity(m - target);
+    // the points at or above theta, the next round's, and each one's turn in this round
+    let (mut active, mut next, mut turns) = (Vec::new(), Vec::new(), Vec::new());
     while removed.len() < m - target {
         let rest = m - target - removed.len();
         let mut sample: Vec<_> = live.iter().step_by((live.len() / SAMPLE).max(1)).map(|&q| key(q)).collect();
         let rank = (rest * sample.len()).div_ceil(live.len()).min(sample.len());
         let theta = *sample.select_nth_unstable_by(rank - 1, |a, b| b.cmp(a)).1;
-        let mut active: Vec<u32> = live.par_iter().copied().filter(|&q| key(q) >= theta).collect();
+        keep_in_order(&live, &mut active, |q| key(q) >= theta);
         while !active.is_empty() {
-            // the local maxima, and the others still at or above theta
-            let (ready, wait): (Vec<_>, Vec<_>) = active.par_iter().partition_map(|&q| {
-                let k = key(q);
-                if lists.of(q as usize).iter().all(|&r| !alive[r as usize].load(Relaxed) || key(r) < k) {
-                    Either::Left(((Reverse(k.0), k.1 .0), q))
-                } else {
-                    Either::Right(q)
-                }
-            });
-            // no two of them are neighbours: each one's removal leaves the others' weights
-            ready.par_iter().for_each(|&(_, q)| {
-                alive[q as usize].store(false, Relaxed);
-                pairs.each(q as usize, |r, w| {
-                    if alive[r].load(Relaxed) {
-                        weight[r].fetch_sub(w, Relaxed);
+            // each point's turn (weights only fall: one below theta stays below), and per
+            // block how many wait and how many go
+            turns.resize(active.len(), Turn::Below);
+            let counts: Vec<[usize; 2]> = active
+                .par_chunks(GRAIN)
+                .zip(turns.par_chunks_mut(GRAIN))
+                .map(|(block, turns)| {
+                    let mut count = [0; 2];
+                    for (&q, turn) in block.iter().zip(turns) {
+                        let k = key(q);
+                        *turn = if k < theta {
+                            Turn::Below
+                        } else if lists.of(q as usize).iter().all(|&r| !alive[r as usize].load(Relaxed) || key(r) < k) {
+                            Turn::Go
+                        } else {
+                            Turn::Wait
+                        };
+                        if *turn != Turn::Below {
+                            count[(*turn == Turn::Go) as usize] += 1;
+                        }
                     }
-                });
-            });
-            removed.par_extend(ready);
-            active = wait.into_par_iter().filter(|&q| key(q) >= theta).collect();
+                    count
+                })
+                .collect();
+            // the waiting ones to the next round and the local maxima out, each block at its
+            // offsets; no two local maxima are neighbours, so each one's removal leaves the
+            // others' weights (read again here) and turns as they were
+            next.clear();
+            next.resize(counts.iter().map(|c| c[0]).sum(), 0);
+            let done = removed.len();
+            removed.resize(done + counts.iter().map(|c| c[1]).sum::<usize>(), ((Reverse(0), 0), 0));
+            let waits = split(&mut next, counts.iter().map(|c| c[0]));
+            let goes = split(&mut removed[done..], counts.iter().map(|c| c[1]));
+            waits.into_par_iter().zip(goes).zip(active.par_chunks(GRAIN).zip(turns.par_chunks(GRAIN))).for_each(
+                |((waits, goes), (block, turns))| {
+                    let (mut waiting, mut going) = (waits.iter_mut(), goes.iter_mut());
+                    for (&q, &turn) in block.iter().zip(turns) {
+                        match turn {
+                            Turn::Below => {}
+                            Turn::Wait => *waiting.next().expect("counted") = q,
+                            Turn::Go => {
+                                let (w, Reverse(id)) = key(q);
+                                *going.next().expect("counted") = ((Reverse(w), id), q);
+                                alive[q as usize].store(false, Relaxed);
+                                pairs.each(q as usize, |r, w| {
+                                    if alive[r].load(Relaxed) {
+                                        weight[r].fetch_sub(w, Relaxed);
+                                    }
+                                });
+                            }
+                        }
+                    }
+                },
+            );
+            std::mem::swap(&mut active, &mut next);
         }
-        live = live.into_par_iter().filter(|&q| alive[q as usize].load(Relaxed)).collect();
+        keep_in_order(&live, &mut next, |q| alive[q as usize].load(Relaxed));
+        std::mem::swap(&mut live, &mut next);
     }
-    removed.par_sort();
+    // every key is unique (the candidate), so an unstable sort gives the one order
+    removed.par_sort_unstable();
     let past = removed.split_off(m - target);
     live.par_extend(past.into_par_iter().map(|(_, q)| q));
     (
         live.into_par_iter().map(|q| ids[q as usize] as usize).collect(),
         removed.into_par_iter().map(|(_, q)| q as usize).collect(),
     )
+}
+
+/// Points per block of the parallel passes of [`by_local_maxima`]: a round of fewer runs on
+/// one thread.
+const GRAIN: usize = 4096;
+
+/// A point's turn in a round of [`by_local_maxima`].
+#[derive(Clone, Copy, PartialEq)]
+enum Turn {
+    /// Its key fell below theta: out of the batch.
+    Below,
+    /// A live neighbour has a larger key.
+    Wait,
+    /// A local maximum: removed.
+    Go,
+}
+
+/// The items of `from` that `keep`, in order, into `into` (replacing its contents): in
+/// parallel by blocks of [`GRAIN`], each block's count first, then its items at its offset
+/// (no lists of pieces to join, no allocation beyond `into`'s).
+fn keep_in_order(from: &[u32], into: &mut Vec<u32>, keep: impl Fn(u32) -> bool + Sync) {
+    let counts: Vec<usize> = from.par_chunks(GRAIN).map(|block| block.iter().filter(|&&q| keep(q)).count()).collect();
+    into.clear();
+    into.resize(counts.iter().sum(), 0);
+    split(into, counts).into_par_iter().zip(from.par_chunks(GRAIN)).for_each(|(part, block)| {
+        for (slot, &q) in part.iter_mut().zip(block.iter().filter(|&&q| keep(q))) {
+            *slot = q;
+        }
+    });
+}
+
+/// `items` cut into consecutive parts of the given lengths.
+fn split<T>(mut items: &mut [T], lengths: impl IntoIterator<Item = usize>) -> Vec<&mut [T]> {
+    lengths
+        .into_iter()
+        .map(|len| {
+            let (part, rest) = std::mem::take(&mut items).split_at_mut(len);
+            items = rest;
+            part
+        })
+        .collect()
 }
 
 /// Each tile's share of `target` survivors: equal shares capped by its candidates
@@ -642,3 +729,23 @@ const PARAMS: &[ParamSpec] = &[
     },
     EDGE,
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::{GRAIN, keep_in_order};
+
+    #[test]
+    fn keeping_in_order_by_blocks_is_retain() {
+        // lengths around the blocks' edges, none kept, all kept, every third
+        for len in [0, 1, GRAIN - 1, GRAIN, GRAIN + 1, 3 * GRAIN + 17] {
+            let from: Vec<u32> = (0..len as u32).map(|i| i.wrapping_mul(2_654_435_761) >> 7).collect();
+            for keep in [|_: u32| false, |_: u32| true, |q: u32| q % 3 == 1] {
+                let mut into = vec![7; 5];
+                keep_in_order(&from, &mut into, keep);
+                let mut want = from.clone();
+                want.retain(|&q| keep(q));
+                assert_eq!(into, want, "{len} items");
+            }
+        }
+    }
+}
