@@ -238,8 +238,8 @@ pub fn eliminate_in_tiles(
 /// round's list and the local maxima removed, each block at offsets from the blocks' counts.
 /// Rayon's `partition_map` and `filter().collect()`, which this replaces, built and joined
 /// lists of pieces in every round: with them, 16 threads on the two-core machine took 1.18x
-/// the CPU time of 2 threads; with the blocks, 1.04x (10^5 points, medians of 9,
-/// 2026-11-30).
+/// and 1.28x the CPU time of 2 threads in two runs; with the blocks, 1.04x and 1.11x (10^5
+/// points, medians of 9, 2026-11-30; docs/performance.md, "Sixteen cores").
 fn by_local_maxima(weights: Vec<u64>, target: usize, pairs: &Pairs, lists: &Lists) -> (Vec<usize>, Vec<usize>) {
     use std::cmp::Reverse;
     let m = weights.len();
