@@ -11,6 +11,8 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use rayon::prelude::*;
+
 use crate::{Error, Result};
 
 /// Buffers of finished work, taken by the next: a fresh large buffer costs a page fault
@@ -98,6 +100,32 @@ pub fn check(what: impl FnOnce() -> String, bytes: u128) -> Result<()> {
         return Err(Error::Memory { what: what(), need: bytes, available });
     }
     Ok(())
+}
+
+/// From how many elements a buffer is written in parallel ([`filled`], [`refill`]): its
+/// first writes fault its pages in, which on one thread took about as long as a whole try of
+/// dart throwing at 10^6 points; below, one thread is quicker than waking the others.
+pub(crate) const FAULT_IN: usize = 1 << 20;
+
+/// The elements one task writes of such a buffer.
+pub(crate) const FAULT_CHUNK: usize = 1 << 16;
+
+/// `len` copies of `value` (written in parallel from [`FAULT_IN`]).
+pub(crate) fn filled<T: Copy + Send + Sync>(len: usize, value: T) -> Vec<T> {
+    if len < FAULT_IN {
+        return vec![value; len];
+    }
+    let mut v = Vec::with_capacity(len);
+    v.par_extend(rayon::iter::repeat_n(value, len));
+    v
+}
+
+/// Every element set to `value` (in parallel from [`FAULT_IN`]).
+pub(crate) fn refill<T: Copy + Send + Sync>(v: &mut [T], value: T) {
+    if v.len() < FAULT_IN {
+        return v.fill(value);
+    }
+    v.par_chunks_mut(FAULT_CHUNK).for_each(|c| c.fill(value));
 }
 
 /// `len` zeros (default values) for `what`, after [`check`]. Numbers come from the

@@ -16,7 +16,7 @@ use rayon::prelude::*;
 
 use super::{Complex, Method, Statistics, direct_dft, nufft};
 use crate::error::{Error, Result};
-use crate::memory::Pool;
+use crate::memory::{Pool, filled, refill};
 use crate::points::PointSet;
 use crate::progress::Progress;
 use crate::sampler::Plan;
@@ -96,17 +96,20 @@ pub struct Partial {
 }
 
 impl Partial {
-    /// No sets yet, over `cells` frequencies, in the memory of `old` where there is one.
+    /// No sets yet, over `cells` frequencies, in the memory of `old` where there is one;
+    /// zeroed on every thread ([`filled`], [`refill`]: 32 MiB at R = 1024, and zeroed on one
+    /// thread each leaf began with a serial stretch, its fresh pages faulted in one by one).
     fn empty(cells: usize, old: Option<Partial>) -> Partial {
-        let mut p = old.unwrap_or_else(|| Partial { sets: 0, mean: Vec::new(), m2: Vec::new(), power: Vec::new() });
-        p.sets = 0;
-        for v in [&mut p.m2, &mut p.power] {
-            v.clear();
-            v.resize(cells, 0.0);
+        match old {
+            Some(mut p) if p.mean.len() == cells => {
+                p.sets = 0;
+                refill(&mut p.mean, [0.0; 2]);
+                refill(&mut p.m2, 0.0);
+                refill(&mut p.power, 0.0);
+                p
+            }
+            _ => Partial { sets: 0, mean: filled(cells, [0.0; 2]), m2: filled(cells, 0.0), power: filled(cells, 0.0) },
         }
-        p.mean.clear();
-        p.mean.resize(cells, [0.0; 2]);
-        p
     }
 
     /// Welford's update with `spectra`, the next sets in order (each frequency's own

@@ -24,6 +24,7 @@ use rand_core::Rng as _;
 use crate::sampler::registry::{ANY, EDGE, SamplerEntry};
 use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};
+use crate::memory::{FAULT_CHUNK, FAULT_IN, filled, refill};
 use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Rng, Seed, below, shuffle, uniform, wrap01};
@@ -393,32 +394,6 @@ impl DiskGrid {
         }
         hit
     }
-}
-
-/// From how many elements a grid's buffers are written in parallel: their first writes
-/// fault their pages in, which on one thread takes about as long as a whole try at 10^6
-/// points; below, one thread is quicker than waking the others.
-const FAULT_IN: usize = 1 << 20;
-
-/// The elements one task writes of such a buffer.
-const FAULT_CHUNK: usize = 1 << 16;
-
-/// `len` copies of `value` (written in parallel from [`FAULT_IN`]).
-fn filled<T: Copy + Send + Sync>(len: usize, value: T) -> Vec<T> {
-    if len < FAULT_IN {
-        return vec![value; len];
-    }
-    let mut v = Vec::with_capacity(len);
-    v.par_extend(rayon::iter::repeat_n(value, len));
-    v
-}
-
-/// Every element set to `value` (in parallel from [`FAULT_IN`]).
-fn refill<T: Copy + Send + Sync>(v: &mut [T], value: T) {
-    if v.len() < FAULT_IN {
-        return v.fill(value);
-    }
-    v.par_chunks_mut(FAULT_CHUNK).for_each(|c| c.fill(value));
 }
 
 /// An empty vector with room for `capacity` numbers; from [`FAULT_IN`], its pages are
