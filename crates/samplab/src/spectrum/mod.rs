@@ -287,42 +287,104 @@ pub fn statistics_of(sets: Sets, res: usize, method: Method, progress: &Progress
 }
 
 /// Radial average (bins 1..=R/2-1 by rounded |w|, DC excluded) and anisotropy in dB of
-/// a statistic on the centred grid.
+/// a statistic on the centred grid. The bins are summed in parallel, each one's values in
+/// index order, so the bits are those of one pass over the grid adding each value to its
+/// bin (which took about 7 ms a statistic at R = 1024, on one thread each while the others
+/// waited: 0.36% of a two-thread `samplab spectrum`'s samples for three statistics).
 pub fn radial(values: &[f64], res: usize, dims: usize) -> (Vec<f64>, Vec<f64>) {
-    let bins = res / 2;
-    let (mut sum, mut sq, mut count) = (vec![0.0; bins], vec![0.0; bins], vec![0usize; bins]);
-    let half = (res / 2) as f64;
-    for (idx, &v) in values.iter().enumerate() {
-        // i^2 + j^2 is an exact integer, so its square root is |w| correctly rounded, which
-        // no bin boundary k + 1/2 is near (its square is no integer): the same bins as hypot
-        let r = if dims == 1 {
-            (idx as f64 - half).abs()
-        } else {
-            let (i, j) = ((idx / res) as f64 - half, (idx % res) as f64 - half);
-            (i * i + j * j).sqrt()
-        };
-        let b = r.round() as usize;
-        if b >= 1 && b < bins {
-            sum[b] += v;
-            sq[b] += v * v;
-            count[b] += 1;
+    (1..res / 2)
+        .into_par_iter()
+        .map(|b| {
+            let (mut sum, mut sq, mut count) = (0.0, 0.0, 0usize);
+            ring(b, res, dims, |idx| {
+                let v = values[idx];
+                sum += v;
+                sq += v * v;
+                count += 1;
+            });
+            let c = count.max(1) as f64;
+            let mu = sum / c;
+            let var = (sq / c - mu * mu).max(0.0);
+            (mu, if mu > 0.0 && count > 1 { 10.0 * (var / (mu * mu)).max(1e-30).log10() } else { f64::NAN })
+        })
+        .unzip()
+}
+
+/// `visit(idx)` for each index of the centred grid (`res` a side, `dims` 1 or 2, index
+/// res/2 the zero frequency) whose |w| rounds to `b`, in increasing order.
+fn ring(b: usize, res: usize, dims: usize, mut visit: impl FnMut(usize)) {
+    let (b, half) = (b as i64, (res / 2) as i64);
+    let top = res as i64 - 1 - half;
+    let at = |f: i64| (f + half) as usize;
+    if dims == 1 {
+        for f in [-b, b].into_iter().filter(|f| (-half..=top).contains(f)) {
+            visit(at(f));
+        }
+        return;
+    }
+    // |w|^2 = s is an integer, and round(sqrt(s)) = b exactly when b (b - 1) < s <= b (b + 1)
+    // (no bin boundary k + 1/2 has an integer square, nor is any correctly rounded square
+    // root near one)
+    let cols = |from: i64, to: i64| from.max(-half)..=to.min(top);
+    for i in (-b).max(-half)..=b.min(top) {
+        let (inner, outer) = (b * (b - 1) - i * i, b * (b + 1) - i * i);
+        let (low, high) = (if inner < 0 { 0 } else { inner.isqrt() + 1 }, outer.isqrt());
+        if low > high {
+            continue;
+        }
+        let row = at(i) * res;
+        let (left, right) =
+            if low == 0 { (cols(-high, high), cols(1, 0)) } else { (cols(-high, -low), cols(low, high)) };
+        for j in left.chain(right) {
+            visit(row + at(j));
         }
     }
-    let mut mean = Vec::with_capacity(bins - 1);
-    let mut aniso = Vec::with_capacity(bins - 1);
-    for b in 1..bins {
-        let c = count[b].max(1) as f64;
-        let mu = sum[b] / c;
-        let var = (sq[b] / c - mu * mu).max(0.0);
-        mean.push(mu);
-        aniso.push(if mu > 0.0 && count[b] > 1 { 10.0 * (var / (mu * mu)).max(1e-30).log10() } else { f64::NAN });
-    }
-    (mean, aniso)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn radial_bins_are_one_pass_over_the_grid() {
+        // the definition: one pass in index order, each value added to the bin of its
+        // rounded |w| (hypot, independently of the integer bounds of `ring`)
+        fn one_pass(values: &[f64], res: usize, dims: usize) -> (Vec<f64>, Vec<f64>) {
+            let bins = res / 2;
+            let (mut sum, mut sq, mut count) = (vec![0.0; bins], vec![0.0; bins], vec![0usize; bins]);
+            let half = (res / 2) as f64;
+            for (idx, &v) in values.iter().enumerate() {
+                let r = if dims == 1 {
+                    (idx as f64 - half).abs()
+                } else {
+                    ((idx / res) as f64 - half).hypot((idx % res) as f64 - half)
+                };
+                let b = r.round() as usize;
+                if b >= 1 && b < bins {
+                    sum[b] += v;
+                    sq[b] += v * v;
+                    count[b] += 1;
+                }
+            }
+            (1..bins)
+                .map(|b| {
+                    let c = count[b].max(1) as f64;
+                    let mu = sum[b] / c;
+                    let var = (sq[b] / c - mu * mu).max(0.0);
+                    (mu, if mu > 0.0 && count[b] > 1 { 10.0 * (var / (mu * mu)).max(1e-30).log10() } else { f64::NAN })
+                })
+                .unzip()
+        }
+        let mut rng = crate::seed::Seed(3).rng();
+        for dims in [1, 2] {
+            for res in [2usize, 3, 4, 5, 8, 31, 64, 255, 1024] {
+                let values: Vec<f64> =
+                    (0..res.pow(dims as u32)).map(|_| crate::seed::uniform(&mut rng) * 1e3).collect();
+                let bits = |(m, a): (Vec<f64>, Vec<f64>)| m.iter().chain(&a).map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(radial(&values, res, dims)), bits(one_pass(&values, res, dims)), "{dims}D, R = {res}");
+            }
+        }
+    }
 
     #[test]
     fn dc_is_one_and_single_points_have_unit_modulus() {
