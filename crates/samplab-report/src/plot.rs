@@ -836,10 +836,9 @@ impl HeatMap {
         }
     }
 
-    /// [`Drawable::draw`], leaving out the cells whose edges meet on one pixel column or
-    /// row when `bitmap`.
-    fn draw_cells<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>, bitmap: bool) -> Result<(), String> {
-        root.fill(&WHITE).map_err(err)?;
+    /// The values on the colour scale (log10 when `log`, NaN where a value has none) and
+    /// the scale's range.
+    fn scaled(&self) -> (Vec<f64>, (f64, f64)) {
         let scaled: Vec<f64> = self
             .values
             .iter()
@@ -864,6 +863,14 @@ impl HeatMap {
         } else {
             (lo, hi.max(lo + 1e-12))
         };
+        (scaled, (lo, hi))
+    }
+
+    /// [`Drawable::draw`], leaving out the cells whose edges meet on one pixel column or
+    /// row when `bitmap`.
+    fn draw_cells<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>, bitmap: bool) -> Result<(), String> {
+        root.fill(&WHITE).map_err(err)?;
+        let (scaled, (lo, hi)) = self.scaled();
         let (w, _) = root.dim_in_pixel();
         let (map, bar) = root.split_horizontally(w - 110);
         let (x0, x1) = self.x_range;
