@@ -44,7 +44,7 @@ pub struct Args {
     /// Warp the points, e.g. disk.concentric, tent, hemisphere.cosine
     #[arg(long)]
     warp: Option<String>,
-    /// Output file (stdout when omitted); written atomically
+    /// Output file (stdout when omitted or `-`); written atomically
     #[arg(short, long)]
     output: Option<PathBuf>,
     /// text, csv, npy or json (default: from the output's extension, else text)
@@ -55,14 +55,16 @@ pub struct Args {
 pub fn run(a: &Args) -> anyhow::Result<()> {
     let s = sampler::build(&a.spec)?;
     let w = a.warp.as_deref().map(warp::lookup).transpose()?;
+    // `-o -` is standard output, as when -o is omitted (the command-line convention)
+    let output = a.output.as_deref().filter(|p| p.as_os_str() != "-");
     let format = match &a.format {
         Some(f) => Format::from_name(f)?,
-        None => a.output.as_deref().map_or(Format::Text, Format::from_path),
+        None => output.map_or(Format::Text, Format::from_path),
     };
     if a.sets == 0 {
         anyhow::bail!("--sets must be at least 1");
     }
-    if format == Format::Npy && a.output.is_none() {
+    if format == Format::Npy && output.is_none() {
         anyhow::bail!("--format npy is binary: give an output file with -o");
     }
     let plan = s.plan(a.n, a.dims)?;
@@ -82,7 +84,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     let need = 8 * points * a.dims as u128 + io::encoded_size(format, points as usize, a.dims);
     let what = || format!("{} {}D points and their {} file", points, a.dims, io::format_name(format));
     if need > u128::from(samplab::memory::available())
-        && let (Some(path), 1, None) = (&a.output, a.sets, w)
+        && let (Some(path), 1, None) = (output, a.sets, w)
         && format != Format::Json
         && let Some(mut stream) = plan.stream(seed.derive(0))
     {
@@ -101,5 +103,5 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         None => sets,
     };
     let bytes = io::encode(&sets, format, &header)?;
-    crate::emit(a.output.as_deref(), &bytes).with_context(|| "writing the points")
+    crate::emit(output, &bytes).with_context(|| "writing the points")
 }

@@ -102,6 +102,28 @@ fn folders_samplab_did_not_write_survive_every_folder_output() {
 }
 
 #[test]
+fn dash_is_standard_output_or_refused_never_a_file_named_dash() {
+    let dir = temp("dash");
+    let (to_dash, _) = sh(&dir, "$S generate jitter -n 4 -o -", SECOND * 60);
+    let (plain, _) = sh(&dir, "$S generate jitter -n 4", SECOND * 60);
+    assert!(to_dash.status.success(), "{}", String::from_utf8_lossy(&to_dash.stderr));
+    assert_eq!(to_dash.stdout, plain.stdout, "-o - is not what stdout gets without -o");
+    for (cmd, what) in [
+        ("$S spectrum --sampler jitter -n 16 --sets 2 --res 8 -o -", "-: means standard output"),
+        ("$S reproduce --only subr2013 --out -", "-: means standard output"),
+        ("$S atlas --only jitter --out -", "-: means standard output"),
+        ("$S generate jitter -n 4 -o - --format npy", "binary"),
+        ("$S render spheres --res 8x8 -n 1 -o -", ".exr or .png"),
+        ("$S mask --size 8 -o -", ".npy or .png"),
+    ] {
+        let (out, took) = sh(&dir, cmd, SECOND * 60);
+        refused(&out, cmd, what);
+        assert!(took < Duration::from_secs(5), "{cmd}: refused only after {took:?}");
+    }
+    assert!(listing(&dir).is_empty(), "left behind: {:?}", listing(&dir));
+}
+
+#[test]
 fn devices_and_fifos_are_written_through_never_replaced() {
     let dir = temp("devices");
     std::os::unix::fs::symlink("/dev/null", dir.join("null")).unwrap();

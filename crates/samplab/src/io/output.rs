@@ -11,6 +11,9 @@
 //! - Several outputs of one command are staged first and renamed together ([`Staged`]), so
 //!   they appear together or not at all.
 //!
+//! - A target named `-` is refused: by the command-line convention it is standard output,
+//!   which a front end writes itself; made as a file or folder it would be a stray `-`.
+//!
 //! Every temporary path is registered while it exists, so that a front end stopping the
 //! process at once (a second signal, a watchdog) can remove them first ([`abandon`]).
 
@@ -57,6 +60,17 @@ pub fn abandon(code: i32) -> ! {
 
 fn io_error(path: &Path, e: &std::io::Error) -> Error {
     Error::Io { path: path.display().to_string(), reason: e.to_string() }
+}
+
+/// Refuse the target `-` (module docs): `what` is a file or a folder.
+fn refuse_dash(path: &Path, what: &str) -> Result<()> {
+    if path.as_os_str() == "-" {
+        return Err(Error::Io {
+            path: "-".into(),
+            reason: format!("means standard output, which cannot hold a {what}; name a {what}"),
+        });
+    }
+    Ok(())
 }
 
 /// What is at `path` now (following links).
@@ -147,6 +161,7 @@ impl Staged {
         path: &Path,
         write: &mut dyn FnMut(&mut dyn std::io::Write) -> Result<()>,
     ) -> Result<()> {
+        refuse_dash(path, "file")?;
         match existing(path) {
             Existing::Folder => {
                 return Err(Error::Io {
@@ -304,6 +319,7 @@ fn entries(dir: &Path) -> Result<Vec<String>> {
 /// # Errors
 /// [`Error::Io`] saying why not, in one line.
 pub fn check_folder(out: &Path, replace: Replace) -> Result<()> {
+    refuse_dash(out, "folder")?;
     let refuse = |reason: String| Err(Error::Io { path: out.display().to_string(), reason });
     if let Some(what) = protected(out) {
         return refuse(format!("is {what}; samplab never writes its output there (name a new folder)"));
