@@ -151,9 +151,17 @@ fn refuse(e: &clap::Error) -> ExitCode {
             ExitCode::from(2)
         }
         _ => {
+            // clap's first paragraph, its lines joined: the message and, for a missing
+            // argument, the arguments it names
             let text = e.render().to_string();
-            let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("invalid arguments");
-            say!("samplab: error: {}; see --help", first.trim().trim_start_matches("error: "));
+            let first: Vec<&str> = text
+                .lines()
+                .skip_while(|l| l.trim().is_empty())
+                .take_while(|l| !l.trim().is_empty())
+                .map(str::trim)
+                .collect();
+            let first = if first.is_empty() { "invalid arguments".to_string() } else { first.join(" ") };
+            say!("samplab: error: {}; see --help", first.trim_start_matches("error: "));
             ExitCode::from(2)
         }
     }

@@ -16,19 +16,19 @@ pub struct SetSource {
     #[arg(long)]
     sampler: Option<String>,
     /// Points per set (with --sampler)
-    #[arg(short, long)]
+    #[arg(short, long, requires = "sampler")]
     n: Option<usize>,
     /// Dimensions (with --sampler)
-    #[arg(short, long, default_value_t = 2)]
+    #[arg(short, long, default_value_t = 2, requires = "sampler")]
     dims: usize,
     /// Number of sets (with --sampler; default 1 for discrepancy, 20 for spectrum)
-    #[arg(long)]
+    #[arg(long, requires = "sampler")]
     sets: Option<usize>,
     /// Seed (with --sampler)
-    #[arg(long, default_value_t = Seed::DEFAULT.0)]
+    #[arg(long, default_value_t = Seed::DEFAULT.0, requires = "sampler")]
     seed: u64,
     /// Input format (default: from the file's extension)
-    #[arg(long)]
+    #[arg(long, conflicts_with = "sampler")]
     format: Option<String>,
 }
 

@@ -403,8 +403,17 @@ fn argument_errors_are_one_line() {
     for (cmd, expect) in [
         ("$S generate jitter -n -1", "invalid value '-1' for '--n <N>'"),
         ("$S generate jitter -n 16 --bogus", "unexpected argument '--bogus'"),
-        ("$S generate", "required"),
-        ("$S spectrum --sampler jitter", "required"),
+        ("$S generate", "required arguments were not provided: --n <N> <SPEC>"),
+        ("$S spectrum --sampler jitter", "required arguments were not provided: --output <OUTPUT>"),
+        // the sampler's settings with a point file would be ignored
+        ("$S generate jitter -n 4 -o p.txt && $S discrepancy star p.txt -n 2", "not provided: --sampler <SAMPLER>"),
+        ("$S discrepancy star p.txt --seed 3", "not provided: --sampler <SAMPLER>"),
+        ("$S discrepancy star p.txt --sets 2", "not provided: --sampler <SAMPLER>"),
+        ("$S spectrum p.txt -d 3 -o s", "not provided: --sampler <SAMPLER>"),
+        (
+            "$S discrepancy star --sampler jitter -n 4 --format csv",
+            "'--sampler <SAMPLER>' cannot be used with '--format",
+        ),
         ("$S --max-memory 8X list", "not a size"),
         ("$S discrepancy star --sampler random -n 1 -d 50000", "up to 1000 dimensions"),
     ] {

@@ -56,6 +56,9 @@ def test_reference_and_errors_equal_the_cli(cli, tmp_path):
         (lambda: samplab.render("spheres", res=(0, 10)), "width 0"),
         (lambda: samplab.render("glossy-box", mode="path", max_depth=0), "max_depth = 0: the most segments"),
         (lambda: samplab.render("glossy-box", mode="path", pixel_sampler="jitter"), "draws every dimension from a pixel sampler"),
+        # a setting the render would not read
+        (lambda: samplab.render("spheres", max_depth=3), "max_depth = 3: read in path mode only"),
+        (lambda: samplab.render("glossy-box", mode="path", n=4), "n = 4: not read: the pixel sampler sobol"),
         (lambda: samplab.image_errors(np.zeros((2, 2, 3)), np.zeros((3, 2, 3))), "but the reference is"),
     ],
 )

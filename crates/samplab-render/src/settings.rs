@@ -169,14 +169,49 @@ impl Settings {
         })?))
     }
 
+    /// Refuse a setting moved from its default where the render would not read it: the
+    /// depth outside path mode, the range outside obscurance, and where a pixel sampler
+    /// draws every dimension (`pixels`, its spec), the strategies it replaces and, in path
+    /// mode, the light samples' count. (A setting left at its default is not looked at.)
+    fn unread(&self, mode: Mode, pixels: Option<&str>) -> samplab::Result<()> {
+        let path = matches!(mode, Mode::Path { .. });
+        let refuse =
+            |name: &'static str, value: String, reason: String| Err(samplab::Error::Setting { name, value, reason });
+        if !path && self.max_depth != MAX_DEPTH {
+            let reason = format!("read in path mode only (this render's mode is {})", self.mode);
+            return refuse("max_depth", self.max_depth.to_string(), reason);
+        }
+        if mode != Mode::Obscurance && self.range.to_bits() != 1f64.to_bits() {
+            let reason = format!("read in obscurance mode only (this render's mode is {})", self.mode);
+            return refuse("range", self.range.to_string(), reason);
+        }
+        let Some(spec) = pixels else { return Ok(()) };
+        let drawn = format!("not read: the pixel sampler {spec} draws every dimension");
+        for (name, value, default) in [
+            ("sampler", &self.sampler, SAMPLER),
+            ("lens_sampler", &self.lens_sampler, SECONDARY),
+            ("time_sampler", &self.time_sampler, SECONDARY),
+            ("gloss_sampler", &self.gloss_sampler, SECONDARY),
+        ] {
+            if value != default {
+                return refuse(name, value.clone(), drawn.clone());
+            }
+        }
+        if path && self.n != N {
+            return refuse("n", self.n.to_string(), format!("{drawn}, as many as the path's length needs"));
+        }
+        Ok(())
+    }
+
     /// The options for rendering `scene` with these settings, every count checked.
     ///
     /// # Errors
-    /// An unknown word, a sampler spec that does not parse, or counts and sizes that
-    /// [`Options::check`] refuses.
+    /// An unknown word, a sampler spec that does not parse, a setting the render would not
+    /// read, or counts and sizes that [`Options::check`] refuses.
     pub fn options(&self, scene: &Scene) -> Result<Options> {
         let (width, height) = self.res.unwrap_or(scene.resolution);
         let pixels = self.pixels(scene, width, height)?;
+        self.unread(self.mode()?, pixels.as_ref().map(samplab::pixel::Pixels::spec))?;
         let options = Options {
             light: sampler("sampler", &self.sampler)?,
             n: self.n,
@@ -222,4 +257,50 @@ pub fn load_scene(name: &str, light: Option<&str>, paths: Paths) -> Result<Scene
         return crate::mitsuba::load(Path::new(name), paths);
     }
     builtin(name, kind)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The setting `options` refuses for `s` on the spheres scene, if any.
+    fn refused(s: &Settings) -> Option<&'static str> {
+        let scene = load_scene("spheres", None, Paths::InsideScene).unwrap();
+        match s.options(&scene) {
+            Ok(_) => None,
+            Err(crate::Error::Samplab(samplab::Error::Setting { name, .. })) => Some(name),
+            Err(e) => panic!("{s:?}: not a setting error: {e}"),
+        }
+    }
+
+    #[test]
+    fn a_setting_the_render_would_not_read_is_refused_and_read_where_it_applies() {
+        let d = || Settings { res: Some((4, 3)), ..Settings::default() };
+        let path = || Settings { mode: "path".into(), ..d() };
+        let zsobol = || Settings { pixel_sampler: "zsobol".into(), ..d() };
+        for (s, unread) in [
+            (Settings { max_depth: 3, ..d() }, "max_depth"),
+            (Settings { mode: "direct".into(), range: 2.0, ..d() }, "range"),
+            (Settings { range: 0.0, ..path() }, "range"),
+            (Settings { n: 4, ..path() }, "n"),
+            (Settings { sampler: "halton".into(), ..path() }, "sampler"),
+            (Settings { gloss_sampler: "random".into(), ..path() }, "gloss_sampler"),
+            (Settings { lens_sampler: "random".into(), ..zsobol() }, "lens_sampler"),
+            (Settings { time_sampler: "random".into(), ..zsobol() }, "time_sampler"),
+        ] {
+            assert_eq!(refused(&s), Some(unread), "{s:?}");
+        }
+        for s in [
+            d(),
+            path(),
+            zsobol(),
+            Settings { max_depth: 3, ..path() },
+            Settings { mode: "obscurance".into(), range: 2.0, ..d() },
+            Settings { n: 4, sampler: "halton".into(), lens_sampler: "random".into(), ..d() },
+            Settings { n: 4, ..zsobol() },
+            Settings { disk_map: Some("polar".into()), ..path() },
+        ] {
+            assert_eq!(refused(&s), None, "{s:?}");
+        }
+    }
 }

@@ -1077,7 +1077,10 @@ def render(scene: str, light: Optional[str] = None, reference_samples: Optional[
         ``"area"``), ``pixel_sampler``, ``lens_sampler``, ``time_sampler``,
         ``gloss_sampler`` (``"sobol.owen"``), ``pattern`` (``"estimate"``, ``"pixel"``),
         ``disk_map``, ``range``, ``interleave`` ((w, h)), ``res`` ((width, height)),
-        ``seed``.
+        ``seed``. A setting moved from its default that the render would not read
+        (``max_depth`` outside path mode, ``range`` outside obscurance, the strategies
+        and, in path mode, ``n`` where a pixel sampler draws every dimension) raises
+        ``samplab.Error``.
 
     Returns
     -------
