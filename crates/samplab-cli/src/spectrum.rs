@@ -31,7 +31,7 @@ pub struct Args {
     #[arg(long, value_delimiter = ',', default_value = "periodogram,expected,variance")]
     stat: Vec<String>,
     /// Tolerance of the fast path (non-uniform FFT), relative to DC
-    #[arg(long, default_value_t = 1e-9)]
+    #[arg(long, default_value_t = 1e-9, conflicts_with = "direct")]
     tolerance: f64,
     /// Use the direct DFT (the reference, O(N R^2)) instead of the fast path
     #[arg(long)]
@@ -58,11 +58,18 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     let replace = if a.force { samplab::io::Replace::Force } else { samplab::io::Replace::IfOurs };
     samplab::io::check_folder(&a.output, replace)?;
     let crate::sets::Loaded { sets, source, spec } = a.source.load(a.file.as_deref(), 20, &samplab::io::ANY)?;
+    // the closed form, before the spectra: a --theory that has none is refused, not dropped
+    let theory_curves = match (a.theory, spec.as_deref()) {
+        (false, _) => None,
+        (true, None) => bail!("--theory needs --sampler: a file's sets have no closed form"),
+        (true, Some(s)) => Some(theory_for(s, &sets[0]).with_context(|| {
+            format!("--theory: {s} has no closed-form spectrum here (jitter.gaussian and jitter.box have)")
+        })?),
+    };
     let method = spectrum::Method::of(a.direct, a.tolerance);
     let bar = Bar::new(sets.len() as u64, "spectra");
     let st = spectrum::statistics_with_progress(&sets, a.res, method, &bar.progress())?;
     drop(bar);
-    let theory_curves = if a.theory { spec.as_deref().and_then(|s| theory_for(s, &sets[0])) } else { None };
     samplab::io::write_folder(&a.output, replace, |dir| write(dir, &st, a, &source, theory_curves.as_ref()))?;
     crate::say!("spectrum of {} sets of {} points at {}^{}: {}", st.sets, st.n, st.res, st.dims, a.output.display());
     Ok(())

@@ -414,6 +414,14 @@ fn argument_errors_are_one_line() {
             "$S discrepancy star --sampler jitter -n 4 --format csv",
             "'--sampler <SAMPLER>' cannot be used with '--format",
         ),
+        ("$S spectrum --sampler random -n 16 --sets 2 --res 8 --theory -o s", "--theory: random has no closed-form"),
+        ("$S spectrum p.txt --theory -o s", "--theory needs --sampler"),
+        (
+            "$S spectrum --sampler random -n 16 --direct --tolerance 1e-3 -o s",
+            "'--direct' cannot be used with '--tolerance",
+        ),
+        ("$S render spheres --res 8x8 --max-depth 3 -o r.png", "--max-depth 3: read in path mode only"),
+        ("$S render spheres --res 8x8 --mode path -n 4 -o r.png", "-n 4: not read: the pixel sampler sobol"),
         ("$S --max-memory 8X list", "not a size"),
         ("$S discrepancy star --sampler random -n 1 -d 50000", "up to 1000 dimensions"),
     ] {
