@@ -10,7 +10,6 @@
 //!   folder, any folder above it, the home folder and `/` are never an output folder.
 //! - Several outputs of one command are staged first and renamed together ([`Staged`]), so
 //!   they appear together or not at all.
-//!
 //! - A target named `-` is refused: by the command-line convention it is standard output,
 //!   which a front end writes itself; made as a file or folder it would be a stray `-`.
 //!
