@@ -146,6 +146,19 @@ def test_every_format_round_trips_and_matches_the_cli(cli, tmp_path):
         assert out["metrics"][0]["values"] == samplab.discrepancy("l2-star", stack).tolist(), name
 
 
+def test_numpy_files_of_float32_or_big_endian_read_as_their_float64_values(cli, tmp_path):
+    stack = samplab.generate("sobol.owen", n=20, d=3, sets=2, seed=4)
+    for dtype in ("<f4", ">f4", ">f8"):
+        path = tmp_path / f"p_{'be' if dtype[0] == '>' else 'le'}{dtype[2]}.npy"
+        saved = stack.astype(dtype)
+        np.save(path, saved)  # numpy writes the file
+        widened = saved.astype("<f8")
+        back = samplab.load(path)
+        assert all(b.tobytes() == w.tobytes() for b, w in zip(back, widened)), dtype
+        out = json.loads(cli("discrepancy", "l2-star", path, "--json"))
+        assert out["metrics"][0]["values"] == samplab.discrepancy("l2-star", widened).tolist(), dtype
+
+
 def test_bad_files_raise(tmp_path):
     bad = tmp_path / "bad.txt"
     bad.write_text("0.1 0.2\n0.3\n")

@@ -6,7 +6,8 @@
 //! - **csv**: a header row `x0,x1,...` (with a leading `set` column when the file holds
 //!   several sets), then one point per row.
 //! - **npy**: little-endian f64, C order; shape (n, d) for one set, (m, n, d) for several
-//!   sets of the same size.
+//!   sets of the same size. Read also as big-endian f64 and as f32 in either byte order
+//!   (widened to f64 exactly).
 //! - **json**: `{"sets": [[[x, y], ...], ...], ...metadata}`; a bare array of points is
 //!   read as one set.
 //!
@@ -81,7 +82,10 @@ static FORMAT_ENTRIES: &[FormatEntry] = &[
         format: Format::Text,
     },
     FormatEntry { about: About::new("csv", "comma separated with a header row x0,x1,..."), format: Format::Csv },
-    FormatEntry { about: About::new("npy", "NumPy f64 array, (n, d) or (m, n, d)"), format: Format::Npy },
+    FormatEntry {
+        about: About::new("npy", "NumPy f64 array, (n, d) or (m, n, d); f32 and big-endian ones read too"),
+        format: Format::Npy,
+    },
     FormatEntry { about: About::new("json", "{\"sets\": [[[x, y], ...], ...]} with metadata"), format: Format::Json },
 ];
 
@@ -409,12 +413,19 @@ fn decode_npy(bytes: &[u8], name: &str, domain: &RangeInclusive<f64>) -> Result<
         Some(header[i..].trim_start().trim_start_matches(':').trim_start())
     };
     let descr = field("descr").ok_or_else(|| bad("header has no descr".into()))?;
-    if !descr.starts_with("'<f8'") {
-        return Err(bad(format!(
-            "dtype {} is not little-endian float64 ('<f8')",
-            descr.split(',').next().unwrap_or("")
-        )));
-    }
+    // float64 or float32 in either byte order, each value widened exactly to f64
+    let (width, value): (usize, fn(&[u8]) -> f64) = match descr.get(..5) {
+        Some("'<f8'") => (8, |c| f64::from_le_bytes(c.try_into().expect("8 bytes"))),
+        Some("'>f8'") => (8, |c| f64::from_be_bytes(c.try_into().expect("8 bytes"))),
+        Some("'<f4'") => (4, |c| f64::from(f32::from_le_bytes(c.try_into().expect("4 bytes")))),
+        Some("'>f4'") => (4, |c| f64::from(f32::from_be_bytes(c.try_into().expect("4 bytes")))),
+        _ => {
+            return Err(bad(format!(
+                "dtype {} is not float64 or float32 ('<f8', '>f8', '<f4', '>f4')",
+                crate::error::excerpt(descr.split(',').next().unwrap_or("").trim().trim_matches('\''))
+            )));
+        }
+    };
     if field("fortran_order").is_some_and(|v| v.starts_with("True")) {
         return Err(bad("Fortran-order arrays are not supported; save with C order".into()));
     }
@@ -438,7 +449,7 @@ fn decode_npy(bytes: &[u8], name: &str, domain: &RangeInclusive<f64>) -> Result<
     };
     // the data bytes, checked: a shape whose byte count passes 2^64 once wrapped to match
     // a short file (found by fuzzing)
-    let size = m.checked_mul(n).and_then(|x| x.checked_mul(d)).and_then(|x| x.checked_mul(8));
+    let size = m.checked_mul(n).and_then(|x| x.checked_mul(d)).and_then(|x| x.checked_mul(width));
     let size = size.ok_or_else(|| bad(format!("shape ({inner}) is too large")))?;
     let body = &bytes[start + header_len..];
     if d == 0 || body.len() != size {
@@ -446,7 +457,7 @@ fn decode_npy(bytes: &[u8], name: &str, domain: &RangeInclusive<f64>) -> Result<
     }
     // in parallel: the values, the first refused one, the sets
     use rayon::prelude::*;
-    let data: Vec<f64> = body.par_chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect();
+    let data: Vec<f64> = body.par_chunks_exact(width).map(value).collect();
     if let Some((i, why)) = data.par_iter().enumerate().find_map_first(|(i, &x)| refuse(x, domain).map(|why| (i, why)))
     {
         return Err(bad(format!("element {i} (set {}, point {}, coordinate {}) {why}", i / (n * d), i / d % n, i % d)));
@@ -573,6 +584,35 @@ mod tests {
         bytes[8..10].copy_from_slice(&(forged.len() as u16).to_le_bytes());
         let e = decode(&bytes, Format::Npy, "forged.npy").unwrap_err().to_string();
         assert!(e.contains("too large"), "{e}");
+    }
+
+    /// An npy file of `descr` with the given body, by hand.
+    fn npy_of(descr: &str, shape: &str, body: &[u8]) -> Vec<u8> {
+        let dict = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}\n");
+        let mut out = b"\x93NUMPY\x01\x00".to_vec();
+        out.extend_from_slice(&(dict.len() as u16).to_le_bytes());
+        out.extend_from_slice(dict.as_bytes());
+        out.extend_from_slice(body);
+        out
+    }
+
+    #[test]
+    fn npy_of_either_byte_order_and_of_f32_reads_as_the_widened_values() {
+        let values = [0.1f32, 0.7, 1.0 / 3.0, 0.0, 0.999_999_94, 0.25];
+        let wide: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
+        let le4: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+        let be4: Vec<u8> = values.iter().flat_map(|v| v.to_be_bytes()).collect();
+        let be8: Vec<u8> = wide.iter().flat_map(|v| v.to_be_bytes()).collect();
+        for (descr, body) in [("<f4", le4), (">f4", be4), (">f8", be8)] {
+            let sets = decode(&npy_of(descr, "(3, 2)", &body), Format::Npy, "mem").unwrap();
+            assert_eq!(sets, vec![PointSet::from_raw(2, wide.clone())], "{descr}");
+            // a body sized for the other width is refused
+            assert!(decode(&npy_of(descr, "(3, 4)", &body), Format::Npy, "mem").is_err(), "{descr}");
+        }
+        for descr in ["<i8", "<f2", "|u1", "<c16"] {
+            let err = decode(&npy_of(descr, "(3, 2)", &[0; 48]), Format::Npy, "mem").unwrap_err().to_string();
+            assert!(err.contains("is not float64 or float32"), "{descr}: {err}");
+        }
     }
 
     #[test]
