@@ -54,6 +54,13 @@ fn refused(out: &Output, what: &str, expect: &str) {
     assert!(err.starts_with("samplab: error: ") && err.contains(expect), "{what}: '{expect}' not in {err}");
 }
 
+/// [`refused`], within 5 seconds: `cmd` run by [`sh`] in `dir`.
+fn refused_at_once(dir: &Path, cmd: &str, expect: &str) {
+    let (out, took) = sh(dir, cmd, SECOND * 60);
+    refused(&out, cmd, expect);
+    assert!(took < Duration::from_secs(5), "{cmd}: refused only after {took:?}");
+}
+
 fn listing(dir: &Path) -> Vec<String> {
     let mut v: Vec<_> =
         std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
@@ -87,9 +94,7 @@ fn folders_samplab_did_not_write_survive_every_folder_output() {
         (format!("{spectrum} -o / --force"), "the root folder"),
         (format!("HOME=\"$PWD/d\" {spectrum} -o d --force"), "the home folder"),
     ] {
-        let (out, took) = sh(&dir, &cmd, Duration::from_secs(60));
-        refused(&out, &cmd, what);
-        assert!(took < Duration::from_secs(5), "{cmd}: refused only after {took:?}");
+        refused_at_once(&dir, &cmd, what);
     }
     assert_eq!(std::fs::read(dir.join("d/precious.txt")).unwrap(), b"mine");
     assert_eq!(std::fs::read(dir.join("file")).unwrap(), b"mine");
@@ -116,9 +121,7 @@ fn dash_is_standard_output_or_refused_never_a_file_named_dash() {
         ("$S render spheres --res 8x8 -n 1 -o -", ".exr or .png"),
         ("$S mask --size 8 -o -", ".npy or .png"),
     ] {
-        let (out, took) = sh(&dir, cmd, SECOND * 60);
-        refused(&out, cmd, what);
-        assert!(took < Duration::from_secs(5), "{cmd}: refused only after {took:?}");
+        refused_at_once(&dir, cmd, what);
     }
     assert!(listing(&dir).is_empty(), "left behind: {:?}", listing(&dir));
 }
