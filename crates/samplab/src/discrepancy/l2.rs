@@ -7,6 +7,7 @@
 
 use super::{Limits, MetricEntry};
 use crate::error::{Error, Result};
+use crate::numeric::order_key;
 use crate::points::PointSet;
 use crate::registry::About;
 use crate::spec::Params;
@@ -676,13 +677,6 @@ fn merge_by_x(from: &[Point], width: usize, to: &mut [Point]) {
             j += usize::from(!take_left);
         }
     });
-}
-
-/// A coordinate's place in `f64::total_cmp`'s order, as an integer (sorts faster).
-#[inline(always)]
-fn order_key(v: f64) -> i64 {
-    let bits = v.to_bits() as i64;
-    bits ^ (((bits >> 63) as u64) >> 1) as i64
 }
 
 /// The sweep's leaves: blocks whose pairs are summed directly (fewer, longer merges).

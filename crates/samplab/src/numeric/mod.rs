@@ -8,6 +8,14 @@ pub mod quadrature;
 /// clamped here, so that every coordinate stays in [0, 1).
 pub const BELOW_ONE: f64 = 1.0 - f64::EPSILON / 2.0;
 
+/// A double's place in `f64::total_cmp`'s order, as an integer: integers compare (and
+/// sort) faster than `total_cmp` does.
+#[inline(always)]
+pub fn order_key(v: f64) -> i64 {
+    let bits = v.to_bits() as i64;
+    bits ^ (((bits >> 63) as u64) >> 1) as i64
+}
+
 /// The standard normal distribution function Phi(x) = erfc(-x / sqrt 2) / 2.
 pub fn normal_cdf(x: f64) -> f64 {
     0.5 * libm::erfc(-x / std::f64::consts::SQRT_2)
