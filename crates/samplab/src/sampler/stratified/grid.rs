@@ -145,12 +145,20 @@ impl Grid {
                 _ => {}
             }
         }
-        for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-            let mut rest = i;
+        // point i's cells are i's digits in base k, the last axis's the lowest: counted up
+        // digit by digit, not divided out (with two integer divisions per coordinate, this
+        // function had 18% of the samples of `render spheres --spp 64`, 13% without)
+        let mut cells = [0usize; MAX_DIMS];
+        for p in out.chunks_exact_mut(dims) {
             for d in (0..dims).rev() {
-                let cell = (rest % k) as f64;
-                rest /= k;
-                p[d] = self.place(cell, shared[d], inv, &mut rng);
+                p[d] = self.place(cells[d] as f64, shared[d], inv, &mut rng);
+            }
+            for c in cells[..dims].iter_mut().rev() {
+                *c += 1;
+                if *c < k {
+                    break;
+                }
+                *c = 0;
             }
         }
         Ok(())
