@@ -333,11 +333,14 @@ impl DiskGrid {
         // corners on its right and top edges stay there (wrapped to 0 they were never covered,
         // and the search for a maximal set subdivided the edge cells to its last level)
         let fold = |v: f64| if self.torus { wrap01(v) } else { v };
-        let corners = [(x0, y0), (x0 + s, y0), (x0, y0 + s), (x0 + s, y0 + s)].map(|(x, y)| (fold(x), fold(y)));
+        let (xs, ys) = ([fold(x0), fold(x0 + s)], [fold(y0), fold(y0 + s)]);
+        // every corner is inside when the farthest is: its axis distances are each axis's
+        // larger one, and squares and sums round monotonically, so the farthest corner's
+        // computed distance is the largest of the four computed ones
+        let farthest = |v: [f64; 2], q: f64| self.axis(v[0], q).max(self.axis(v[1], q));
         self.neighbourhood(wrap01(x0 + s / 2.0), wrap01(y0 + s / 2.0)).any(|c| {
             let q = self.slots[c];
-            !q[0].is_nan()
-                && corners.iter().all(|&(x, y)| self.axis(x, q[0]).powi(2) + self.axis(y, q[1]).powi(2) < self.radius2)
+            !q[0].is_nan() && farthest(xs, q[0]).powi(2) + farthest(ys, q[1]).powi(2) < self.radius2
         })
     }
 }
