@@ -35,6 +35,7 @@
 use std::ops::RangeInclusive;
 
 use super::poisson::edge_is_torus;
+use super::{select_in_order, split};
 use crate::sampler::registry::{ANY, EDGE, SamplerEntry};
 use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};
@@ -258,7 +259,7 @@ fn by_local_maxima(weights: Vec<u64>, target: usize, pairs: &Pairs, lists: &List
         let mut sample: Vec<_> = live.iter().step_by((live.len() / SAMPLE).max(1)).map(|&q| key(q)).collect();
         let rank = (rest * sample.len()).div_ceil(live.len()).min(sample.len());
         let theta = *sample.select_nth_unstable_by(rank - 1, |a, b| b.cmp(a)).1;
-        keep_in_order(&live, &mut active, |q| key(q) >= theta);
+        select_in_order(live.len(), GRAIN, |i| Some(live[i]).filter(|&q| key(q) >= theta), &mut active);
         while !active.is_empty() {
             // each point's turn (weights only fall: one below theta stays below), and per
             // block how many wait and how many go
@@ -316,7 +317,7 @@ fn by_local_maxima(weights: Vec<u64>, target: usize, pairs: &Pairs, lists: &List
             );
             std::mem::swap(&mut active, &mut next);
         }
-        keep_in_order(&live, &mut next, |q| alive[q as usize].load(Relaxed));
+        select_in_order(live.len(), GRAIN, |i| Some(live[i]).filter(|&q| alive[q as usize].load(Relaxed)), &mut next);
         std::mem::swap(&mut live, &mut next);
     }
     // every key is unique (the candidate), so an unstable sort gives the one order
@@ -346,32 +347,6 @@ enum Turn {
     Wait,
     /// A local maximum: removed.
     Go,
-}
-
-/// The items of `from` that `keep`, in order, into `into` (replacing its contents): in
-/// parallel by blocks of [`GRAIN`], each block's count first, then its items at its offset
-/// (no lists of pieces to join, no allocation beyond `into`'s).
-fn keep_in_order(from: &[u32], into: &mut Vec<u32>, keep: impl Fn(u32) -> bool + Sync) {
-    let counts: Vec<usize> = from.par_chunks(GRAIN).map(|block| block.iter().filter(|&&q| keep(q)).count()).collect();
-    into.clear();
-    into.resize(counts.iter().sum(), 0);
-    split(into, counts).into_par_iter().zip(from.par_chunks(GRAIN)).for_each(|(part, block)| {
-        for (slot, &q) in part.iter_mut().zip(block.iter().filter(|&&q| keep(q))) {
-            *slot = q;
-        }
-    });
-}
-
-/// `items` cut into consecutive parts of the given lengths.
-fn split<T>(mut items: &mut [T], lengths: impl IntoIterator<Item = usize>) -> Vec<&mut [T]> {
-    lengths
-        .into_iter()
-        .map(|len| {
-            let (part, rest) = std::mem::take(&mut items).split_at_mut(len);
-            items = rest;
-            part
-        })
-        .collect()
 }
 
 /// Each tile's share of `target` survivors: equal shares capped by its candidates
@@ -733,23 +708,3 @@ const PARAMS: &[ParamSpec] = &[
     },
     EDGE,
 ];
-
-#[cfg(test)]
-mod tests {
-    use super::{GRAIN, keep_in_order};
-
-    #[test]
-    fn keeping_in_order_by_blocks_is_retain() {
-        // lengths around the blocks' edges, none kept, all kept, every third
-        for len in [0, 1, GRAIN - 1, GRAIN, GRAIN + 1, 3 * GRAIN + 17] {
-            let from: Vec<u32> = (0..len as u32).map(|i| i.wrapping_mul(2_654_435_761) >> 7).collect();
-            for keep in [|_: u32| false, |_: u32| true, |q: u32| q % 3 == 1] {
-                let mut into = vec![7; 5];
-                keep_in_order(&from, &mut into, keep);
-                let mut want = from.clone();
-                want.retain(|&q| keep(q));
-                assert_eq!(into, want, "{len} items");
-            }
-        }
-    }
-}

@@ -22,6 +22,7 @@ use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
 use rand_core::Rng as _;
 
+use super::select_in_order;
 use crate::sampler::registry::{ANY, EDGE, SamplerEntry};
 use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};
@@ -657,8 +658,7 @@ impl DartThrowing {
                 },
             );
             // in order, the candidates that passed; each one between them is a miss
-            passing.clear();
-            passing.par_extend((0..BATCH).into_par_iter().filter(|&k| clear[k]));
+            select_in_order(BATCH, CHUNK, |k| clear[k].then_some(k), passing);
             let conflicts = self.earlier_conflicts(shared, dims, batch);
             let Batch { candidates, passing, kept, .. } = batch;
             kept.clear();
