@@ -171,7 +171,10 @@ impl Grid {
     }
 
     /// Every cell within `ring` cells of the cell of the point at position q along each
-    /// axis, each once (wrapping around on the torus), as its range of positions.
+    /// axis, each once (wrapping around on the torus), as ranges of positions, in the order
+    /// of the cells (the first axis fastest): the cells that follow one another along the
+    /// first axis are consecutive in the positions too, so each such run of cells (one, or
+    /// two where the torus wraps) is one range.
     pub(crate) fn near(&self, q: usize, ring: usize, torus: bool, mut visit: impl FnMut(std::ops::Range<usize>)) {
         let k = self.k;
         // per axis: the first cell and how many follow it (mod k on the torus); on the stack
@@ -196,10 +199,18 @@ impl Grid {
                 (first, (c + ring).min(k - 1) + 1 - first)
             };
         }
+        // the first axis's cells as runs of consecutive cells: [first, end) and, where the
+        // torus wraps, [0, rest)
+        let (first, count) = axes[0];
+        let runs =
+            if first + count <= k { [(first, first + count), (0, 0)] } else { [(first, k), (0, first + count - k)] };
         loop {
-            let cell = axes.iter().zip(at.iter()).rev().fold(0, |c, (&(first, _), &a)| c * k + (first + a) % k);
-            visit(self.start[cell]..self.start[cell + 1]);
-            let mut axis = 0;
+            // the cells' index but for the first axis's part
+            let row = axes[1..].iter().zip(&at[1..]).rev().fold(0, |c, (&(first, _), &a)| c * k + (first + a) % k) * k;
+            for &(from, to) in runs.iter().filter(|(from, to)| from < to) {
+                visit(self.start[row + from]..self.start[row + to]);
+            }
+            let mut axis = 1;
             loop {
                 if axis == self.dims {
                     return;
