@@ -328,16 +328,18 @@ fn eliminate_by_heap(points: &[f64], dims: usize, target: usize, torus: bool) ->
     let m = points.len() / dims;
     let (r_min, r_max) = radii(m, dims, target);
     let point = |i: usize| &points[i * dims..(i + 1) * dims];
-    let near: Vec<Vec<(usize, u64)>> = (0..m)
-        .map(|i| {
-            (0..m)
-                .filter(|&j| j != i)
-                .map(|j| (j, distance(point(i), point(j), torus)))
-                .filter(|&(_, d)| d < 2.0 * r_max)
-                .map(|(j, d)| (j, samplab::sampler::blue_noise::elimination::pair_weight(d, r_min, 2.0 * r_max)))
-                .collect()
-        })
-        .collect();
+    // every pair once, listed on both sides, each list in increasing j
+    let mut near: Vec<Vec<(usize, u64)>> = vec![Vec::new(); m];
+    for i in 0..m {
+        for j in i + 1..m {
+            let d = distance(point(i), point(j), torus);
+            if d < 2.0 * r_max {
+                let w = samplab::sampler::blue_noise::elimination::pair_weight(d, r_min, 2.0 * r_max);
+                near[i].push((j, w));
+                near[j].push((i, w));
+            }
+        }
+    }
     let mut weight: Vec<u64> = near.iter().map(|list| list.iter().map(|&(_, w)| w).sum()).collect();
     let mut heap: std::collections::BinaryHeap<(u64, Reverse<usize>)> =
         (0..m).map(|i| (weight[i], Reverse(i))).collect();
@@ -768,13 +770,15 @@ fn kdm_langevin_steps_sample_the_gibbs_distribution() {
     use samplab::sampler::blue_noise::gbn;
     // two points on a circle: their gap d follows Langevin dynamics for E(d) = exp(-d^2 /
     // (2 sigma^2)) at temperature T, whose stationary density is exp(-E(d) / T); the share of
-    // time spent at |d| < sigma against that density's, by quadrature (within 20%: the
-    // chain's statistical error and Euler's step bias are a few percent here, while halving or
-    // doubling the temperature moves the share by a factor of 2 or more)
+    // time spent at |d| < sigma against that density's, by quadrature (within 20%: this
+    // chain's share is 8% above the density's after 10^5 steps, 4% after 2 x 10^5 and 12%
+    // after 4 x 10^5, its statistical error and Euler's step bias, while halving or doubling
+    // the temperature moves the density's share by a factor of 19 or 4.4; measured
+    // 2026-11-30)
     let (sigma, t, step) = (0.1, 0.25, 0.1);
     let mut rng = Seed(9).rng();
     let mut points = vec![0.1, 0.6];
-    let (mut near, total) = (0usize, 400_000usize);
+    let (mut near, total) = (0usize, 100_000usize);
     for _ in 0..total {
         gbn::langevin(&mut points, 1, sigma, step, t, &mut rng);
         let d = (points[0] - points[1]) - (points[0] - points[1]).round();
