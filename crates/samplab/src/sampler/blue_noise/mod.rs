@@ -17,13 +17,13 @@
 //!
 //! The optimizers report progress once per iteration and stop between iterations.
 
+use rayon::prelude::*;
+
 crate::registry::registry_files! {
     /// The files of this family, in listing order.
     pub(crate) static FILES: Family<crate::sampler::SamplerEntry> =
         [poisson, elimination, lloyd, ccvt, sot, gbn, kdm, step, force_matrix];
 }
-
-use rayon::prelude::*;
 
 /// The items `item(i)` gives for i in `0..len`, in order, into `into` (replacing its
 /// contents): in parallel by blocks of `block` indices, each block's count first, then its
@@ -31,7 +31,7 @@ use rayon::prelude::*;
 /// joins them, allocating in every call, and on more threads in more pieces; this allocates
 /// nothing beyond `into`. `item` is called twice per index, so it must give the same answer
 /// both times.
-pub(crate) fn select_in_order<T: Copy + Default + Send + Sync>(
+fn select_in_order<T: Copy + Default + Send + Sync>(
     len: usize,
     block: usize,
     item: impl Fn(usize) -> Option<T> + Sync,
@@ -51,7 +51,7 @@ pub(crate) fn select_in_order<T: Copy + Default + Send + Sync>(
 }
 
 /// `items` cut into consecutive parts of the given lengths.
-pub(crate) fn split<T>(mut items: &mut [T], lengths: impl IntoIterator<Item = usize>) -> Vec<&mut [T]> {
+fn split<T>(mut items: &mut [T], lengths: impl IntoIterator<Item = usize>) -> Vec<&mut [T]> {
     lengths
         .into_iter()
         .map(|len| {
