@@ -53,8 +53,8 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
             })
             .collect();
         let side = a.size as u32;
-        let img = image::RgbImage::from_raw(side, side, rgb).context("a mask image of size^2 pixels")?;
-        samplab_render::image::png_bytes(&img)?
+        let img = samplab_render::image::Srgb8::from_raw(side, side, rgb).context("a mask image of size^2 pixels")?;
+        img.png()?
     };
     crate::emit(Some(&a.output), &bytes).with_context(|| "writing the mask")
 }

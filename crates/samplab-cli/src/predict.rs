@@ -211,14 +211,13 @@ fn image_integrand(path: &std::path::Path) -> anyhow::Result<Grid> {
         let image = samplab_render::Image::read_exr(path)?;
         (image.width, image.height, image.luminance())
     } else {
-        let image = image::open(path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?.to_rgb32f();
-        let linear = |c: f32| {
-            let c = f64::from(c);
-            if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
-        };
-        let values =
-            image.pixels().map(|p| 0.2126 * linear(p[0]) + 0.7152 * linear(p[1]) + 0.0722 * linear(p[2])).collect();
-        (image.width() as usize, image.height() as usize, values)
+        let (width, height, encoded) = samplab_render::image::read_png(path)?;
+        let linear = |c: f32| samplab_render::image::srgb_to_linear(f64::from(c));
+        let values = encoded
+            .chunks_exact(3)
+            .map(|p| 0.2126 * linear(p[0]) + 0.7152 * linear(p[1]) + 0.0722 * linear(p[2]))
+            .collect();
+        (width, height, values)
     };
     Grid::new(width, height, luminance).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
 }

@@ -65,6 +65,14 @@ fn cli_equals_library() {
     }
 }
 
+/// Write an 8-bit PNG of `size` (width, height) with the png crate's own encoder.
+fn write_png(path: &std::path::Path, (w, h): (u32, u32), color: png::ColorType, bytes: &[u8]) {
+    let mut encoder = png::Encoder::new(std::fs::File::create(path).unwrap(), w, h);
+    encoder.set_color(color);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder.write_header().unwrap().write_image_data(bytes).unwrap();
+}
+
 fn assert_bad_input(args: &[&str], expect: &[&str]) {
     let out = samplab(args);
     let err = String::from_utf8_lossy(&out.stderr);
@@ -364,7 +372,7 @@ fn cubature_of_a_formula_and_of_an_image() {
     let dir = temp("image-integrand");
     let png = dir.join("grey.png");
     let grey: Vec<u8> = vec![0, 64, 128, 255, 32, 96, 160, 224];
-    image::GrayImage::from_raw(4, 2, grey.clone()).unwrap().save(&png).unwrap();
+    write_png(&png, (4, 2), png::ColorType::Grayscale, &grey);
     let linear = |g: u8| {
         let v = f64::from(g) / 255.0;
         if v <= 0.04045 { v / 12.92 } else { ((v + 0.055) / 1.055).powf(2.4) }
@@ -714,9 +722,8 @@ fn predict_takes_an_image_as_an_integrand() {
     // a 4 x 2 image, white on its left half: Var = 1/4 in linear luminance (sRGB 255 is 1.0)
     let dir = temp("predict-image");
     let path = dir.join("half.png");
-    let img =
-        image::RgbImage::from_fn(4, 2, |x, _| if x < 2 { image::Rgb([255, 255, 255]) } else { image::Rgb([0, 0, 0]) });
-    img.save(&path).unwrap();
+    let rgb: Vec<u8> = (0..8).flat_map(|p| [if p % 4 < 2 { 255 } else { 0 }; 3]).collect();
+    write_png(&path, (4, 2), png::ColorType::Rgb, &rgb);
     let out = samplab(&[
         "predict",
         "--image",

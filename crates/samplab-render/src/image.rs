@@ -1,5 +1,6 @@
 //! Linear float images: OpenEXR in and out (RGB plus an optional visibility channel `V`),
-//! sRGB PNG out, error metrics against a reference and signed error images.
+//! sRGB PNG in and out, error metrics against a reference and signed error images; and
+//! [`Srgb8`], the 8-bit pictures every PNG of samplab is written from.
 
 use std::io::Cursor;
 use std::path::Path;
@@ -51,7 +52,7 @@ fn luminance(rgb: &[f32]) -> f64 {
 
 /// The sRGB transfer function's inverse (IEC 61966-2-1): an encoded value in [0, 1] to
 /// linear.
-fn srgb_to_linear(v: f64) -> f64 {
+pub fn srgb_to_linear(v: f64) -> f64 {
     if v <= 0.04045 { v / 12.92 } else { ((v + 0.055) / 1.055).powf(2.4) }
 }
 
@@ -163,26 +164,18 @@ impl Image {
     ///
     /// # Errors
     /// Different sizes.
-    pub fn error_image(&self, reference: &Image, scale: f64) -> Result<image::RgbImage> {
+    pub fn error_image(&self, reference: &Image, scale: f64) -> Result<Srgb8> {
         self.errors(reference, false)?;
         let (a, b) = (self.luminance(), reference.luminance());
-        let mut out = image::RgbImage::new(self.width as u32, self.height as u32);
-        for (i, px) in out.pixels_mut().enumerate() {
-            let e = (a[i] - b[i]) * scale;
-            let to8 = |v: f64| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
-            *px = image::Rgb([to8(e), to8(-e), 0]);
-        }
-        Ok(out)
+        let to8 = |v: f64| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+        let bytes = a.iter().zip(&b).flat_map(|(a, b)| [to8((a - b) * scale), to8((b - a) * scale), 0]).collect();
+        Ok(Srgb8 { width: self.width as u32, height: self.height as u32, bytes })
     }
 
     /// The image as 8-bit sRGB (clamped to [0, 1]).
-    ///
-    /// # Panics
-    /// When the image's buffer does not hold three channels per pixel (an invariant of
-    /// [`Image`]).
-    pub fn to_srgb(&self) -> image::RgbImage {
+    pub fn to_srgb(&self) -> Srgb8 {
         let bytes = self.rgb.iter().map(|&c| srgb8(f64::from(c))).collect();
-        image::RgbImage::from_raw(self.width as u32, self.height as u32, bytes).expect("3 channels per pixel")
+        Srgb8 { width: self.width as u32, height: self.height as u32, bytes }
     }
 
     /// Stage an OpenEXR file (32-bit float R, G, B and V when known) for `path`.
@@ -216,10 +209,8 @@ impl Image {
         match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
             Some("exr") => Image::read_exr(path),
             Some("png") => {
-                let decoded = image::open(path).map_err(|e| fail(e.to_string()))?.into_rgb32f();
-                let (width, height) = (decoded.width() as usize, decoded.height() as usize);
-                // into_rgb32f scales the stored (sRGB-encoded) values to [0, 1]
-                let rgb = decoded.into_raw().into_iter().map(|v| srgb_to_linear(f64::from(v)) as f32).collect();
+                let (width, height, encoded) = read_png(path)?;
+                let rgb = encoded.into_iter().map(|v| srgb_to_linear(f64::from(v)) as f32).collect();
                 Ok(Image { width, height, rgb, visibility: None })
             }
             _ => Err(fail("unknown image format (use .exr or .png)".into())),
@@ -289,23 +280,120 @@ impl Image {
     }
 }
 
-/// Stage an 8-bit RGB image as PNG for `path`.
+/// Stage an 8-bit RGB picture as PNG for `path`.
 ///
 /// # Errors
 /// The file cannot be written.
-pub fn stage_png(img: &image::RgbImage, out: &mut Staged, path: &Path) -> Result<()> {
+pub fn stage_png(img: &Srgb8, out: &mut Staged, path: &Path) -> Result<()> {
     let fail = |m: String| Error::Image { path: path.display().to_string(), message: m };
-    out.file(path, &png_bytes(img).map_err(|e| fail(e.to_string()))?).map_err(|e| fail(e.to_string()))
+    out.file(path, &img.png().map_err(|e| fail(e.to_string()))?).map_err(|e| fail(e.to_string()))
 }
 
-/// Encode an 8-bit RGB image as PNG bytes.
+/// An 8-bit sRGB picture: R, G, B per pixel, row-major from the top left.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Srgb8 {
+    width: u32,
+    height: u32,
+    bytes: Vec<u8>,
+}
+
+impl Srgb8 {
+    /// A `width` x `height` picture of one colour.
+    pub fn filled(width: u32, height: u32, colour: [u8; 3]) -> Srgb8 {
+        Srgb8 { width, height, bytes: colour.repeat(width as usize * height as usize) }
+    }
+
+    /// The picture whose pixels are `bytes` (R, G, B each); `None` unless they are three
+    /// per pixel.
+    pub fn from_raw(width: u32, height: u32, bytes: Vec<u8>) -> Option<Srgb8> {
+        (bytes.len() as u128 == 3 * u128::from(width) * u128::from(height)).then_some(Srgb8 { width, height, bytes })
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    fn at(&self, x: u32, y: u32) -> usize {
+        assert!(x < self.width && y < self.height, "pixel ({x}, {y}) outside {}x{}", self.width, self.height);
+        3 * (y as usize * self.width as usize + x as usize)
+    }
+
+    /// The pixel at column `x`, row `y`.
+    ///
+    /// # Panics
+    /// Outside the picture.
+    pub fn pixel(&self, x: u32, y: u32) -> [u8; 3] {
+        let i = self.at(x, y);
+        [self.bytes[i], self.bytes[i + 1], self.bytes[i + 2]]
+    }
+
+    /// Set the pixel at column `x`, row `y`.
+    ///
+    /// # Panics
+    /// Outside the picture.
+    pub fn set(&mut self, x: u32, y: u32, rgb: [u8; 3]) {
+        let i = self.at(x, y);
+        self.bytes[i..i + 3].copy_from_slice(&rgb);
+    }
+
+    /// The picture as a PNG file's bytes: 8-bit RGB, the png crate's fast deflate, each
+    /// row's filter chosen adaptively (the bytes the `image` crate wrote before, 2026-11-30).
+    ///
+    /// # Errors
+    /// The encoder fails.
+    pub fn png(&self) -> std::result::Result<Vec<u8>, png::EncodingError> {
+        let mut bytes = Vec::new();
+        let mut encoder = png::Encoder::new(&mut bytes, self.width, self.height);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_compression(png::Compression::Fast);
+        encoder.set_filter(png::Filter::Adaptive);
+        encoder.write_header()?.write_image_data(&self.bytes)?;
+        Ok(bytes)
+    }
+}
+
+/// A PNG file's pixels as stored (sRGB-encoded), scaled to [0, 1]: R, G, B per pixel,
+/// row-major from the top, with the width and height. Palettes and bit depths under 8 are
+/// expanded, grey is repeated in R, G and B, 16-bit values are divided by 65535, and alpha
+/// is ignored.
 ///
 /// # Errors
-/// The encoder fails.
-pub fn png_bytes(img: &image::RgbImage) -> std::result::Result<Vec<u8>, image::ImageError> {
-    let mut bytes = Cursor::new(Vec::new());
-    img.write_to(&mut bytes, image::ImageFormat::Png)?;
-    Ok(bytes.into_inner())
+/// An unreadable or malformed file, or one too large for the memory.
+pub fn read_png(path: &Path) -> Result<(usize, usize, Vec<f32>)> {
+    let fail = |m: String| Error::Image { path: path.display().to_string(), message: m };
+    let file = std::fs::File::open(path).map_err(|e| fail(e.to_string()))?;
+    let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
+    decoder.set_transformations(png::Transformations::EXPAND);
+    let mut reader = decoder.read_info().map_err(|e| fail(e.to_string()))?;
+    let size = reader.output_buffer_size().ok_or_else(|| fail("too large to decode".into()))?;
+    let pixels = u128::from(reader.info().width) * u128::from(reader.info().height);
+    // the decoded bytes, then three f32 per pixel
+    samplab::memory::check(|| format!("{}'s pixels", path.display()), size as u128 + 12 * pixels)?;
+    let mut buffer = vec![0; size];
+    let frame = reader.next_frame(&mut buffer).map_err(|e| fail(e.to_string()))?;
+    let (width, height) = (frame.width as usize, frame.height as usize);
+    let channels = frame.color_type.samples();
+    let value: Box<dyn Fn(usize) -> f32> = if frame.bit_depth == png::BitDepth::Sixteen {
+        Box::new(|i| f32::from(u16::from_be_bytes([buffer[2 * i], buffer[2 * i + 1]])) / 65535.0)
+    } else {
+        Box::new(|i| f32::from(buffer[i]) / 255.0)
+    };
+    let rgb = (0..width * height)
+        .flat_map(|p| {
+            let first = p * channels;
+            // grey (with or without alpha) has one value; colour three, then perhaps alpha
+            let step = usize::from(channels >= 3);
+            [value(first), value(first + step), value(first + 2 * step)]
+        })
+        .collect();
+    Ok((width, height, rgb))
 }
 
 #[cfg(test)]
@@ -350,6 +438,80 @@ mod tests {
         };
         img.write(&path).unwrap();
         assert_eq!(Image::read_exr(&path).unwrap(), img);
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    /// A temporary folder of this test process.
+    fn scratch(name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("samplab-{name}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    #[test]
+    fn pictures_written_as_png_decode_to_their_bytes() {
+        let bytes: Vec<u8> = (0..5 * 3 * 3).map(|i| (i * 37 % 256) as u8).collect();
+        let mut picture = Srgb8::from_raw(5, 3, bytes.clone()).unwrap();
+        assert!(Srgb8::from_raw(5, 3, bytes[1..].to_vec()).is_none());
+        picture.set(4, 2, [1, 2, 3]);
+        assert_eq!(picture.pixel(4, 2), [1, 2, 3]);
+        let mut expected = bytes;
+        expected[42..45].copy_from_slice(&[1, 2, 3]);
+        let file = picture.png().unwrap();
+        // the png crate's own decoder
+        let mut reader = png::Decoder::new(Cursor::new(&file)).read_info().unwrap();
+        let mut decoded = vec![0; reader.output_buffer_size().unwrap()];
+        let frame = reader.next_frame(&mut decoded).unwrap();
+        assert_eq!((frame.width, frame.height, frame.color_type), (5, 3, png::ColorType::Rgb));
+        assert_eq!(decoded, expected);
+        // and ours
+        let dir = scratch("png-rgb");
+        std::fs::write(dir.join("a.png"), &file).unwrap();
+        let (w, h, values) = read_png(&dir.join("a.png")).unwrap();
+        assert_eq!((w, h), (5, 3));
+        assert_eq!(values, expected.iter().map(|&b| f32::from(b) / 255.0).collect::<Vec<_>>());
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    #[test]
+    fn every_kind_of_png_reads_as_rgb_in_the_unit_range() {
+        use png::{BitDepth, ColorType};
+        let dir = scratch("png-kinds");
+        let path = dir.join("k.png");
+        // 2 x 1 pixels of each kind, written by the png crate, and the values expected
+        let palette = vec![10, 20, 30, 200, 150, 100];
+        let kinds: [(ColorType, BitDepth, Vec<u8>, [f32; 6]); 6] = [
+            (ColorType::Grayscale, BitDepth::Eight, vec![51, 255], [0.2, 0.2, 0.2, 1.0, 1.0, 1.0]),
+            (ColorType::GrayscaleAlpha, BitDepth::Eight, vec![0, 9, 102, 0], [0.0, 0.0, 0.0, 0.4, 0.4, 0.4]),
+            (ColorType::Rgba, BitDepth::Eight, vec![255, 0, 51, 7, 0, 102, 255, 0], [1.0, 0.0, 0.2, 0.0, 0.4, 1.0]),
+            // 16-bit values are stored big-endian: 0x8000 and 0xffff
+            (ColorType::Grayscale, BitDepth::Sixteen, vec![0x80, 0, 0xff, 0xff], {
+                let half = 32768.0 / 65535.0;
+                [half, half, half, 1.0, 1.0, 1.0]
+            }),
+            (
+                ColorType::Indexed,
+                BitDepth::Eight,
+                vec![1, 0],
+                [200.0 / 255.0, 150.0 / 255.0, 100.0 / 255.0, 10.0 / 255.0, 20.0 / 255.0, 30.0 / 255.0],
+            ),
+            // one bit per pixel: 0b10 in the row's first byte's high bits
+            (ColorType::Grayscale, BitDepth::One, vec![0b1000_0000], [1.0, 1.0, 1.0, 0.0, 0.0, 0.0]),
+        ];
+        for (color, depth, data, expected) in kinds {
+            let mut encoder = png::Encoder::new(std::fs::File::create(&path).unwrap(), 2, 1);
+            encoder.set_color(color);
+            encoder.set_depth(depth);
+            if color == ColorType::Indexed {
+                encoder.set_palette(palette.clone());
+            }
+            encoder.write_header().unwrap().write_image_data(&data).unwrap();
+            let (w, h, values) = read_png(&path).unwrap();
+            assert_eq!((w, h), (2, 1), "{color:?} {depth:?}");
+            assert_eq!(values, expected, "{color:?} {depth:?}");
+        }
+        std::fs::write(&path, b"not a png").unwrap();
+        assert!(read_png(&path).unwrap_err().to_string().starts_with(&path.display().to_string()));
         std::fs::remove_dir_all(dir).unwrap();
     }
 }

@@ -63,10 +63,9 @@ pub fn png(d: &impl Drawable, (w, h): (u32, u32)) -> Result<Vec<u8>, Error> {
     register_fonts()?;
     let mut buf = vec![255u8; (w * h * 3) as usize];
     d.draw_bitmap(BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area()).map_err(Error::Plot)?;
-    let img = image::RgbImage::from_raw(w, h, buf).ok_or_else(|| Error::Plot("image buffer size".into()))?;
-    let mut out = std::io::Cursor::new(Vec::new());
-    img.write_to(&mut out, image::ImageFormat::Png).map_err(|e| Error::Plot(e.to_string()))?;
-    Ok(out.into_inner())
+    let img =
+        samplab_render::image::Srgb8::from_raw(w, h, buf).ok_or_else(|| Error::Plot("image buffer size".into()))?;
+    img.png().map_err(|e| Error::Plot(e.to_string()))
 }
 
 /// The colour of a strategy, the same in every figure: a fixed table (tab20 colours)

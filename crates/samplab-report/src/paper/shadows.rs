@@ -154,8 +154,8 @@ pub(crate) fn mean(all: &[Errors]) -> Errors {
     }
 }
 
-fn png(img: &image::RgbImage) -> Result<Vec<u8>, Error> {
-    samplab_render::image::png_bytes(img).map_err(|e| Error::Plot(e.to_string()))
+fn png(img: &samplab_render::image::Srgb8) -> Result<Vec<u8>, Error> {
+    img.png().map_err(|e| Error::Plot(e.to_string()))
 }
 
 /// A rendered image as a figure (sRGB PNG).

@@ -7,6 +7,7 @@ use rayon::prelude::*;
 use samplab::pixel::{Film, Pixels, prepare};
 use samplab::progress::Progress;
 use samplab::screen::{LOW_FREQUENCY_CUTOFF, Metrics, Plane, convergence, flicker as flicker_of};
+use samplab_render::image::Srgb8;
 use samplab_render::scenes::builtin;
 use samplab_render::{Footprint, Image, Mode, Options, Scene, render};
 
@@ -425,24 +426,20 @@ fn spectrum_chart(case: &Case, names: &[&str], measured: &[Errors]) -> Result<Fi
 /// drawn as 2 x 2 (nearest neighbour, never blurred).
 fn mosaic(case: &Case, reference: &Image, shown: &[(&str, Image)]) -> Result<Figure, Error> {
     const SCALE: u32 = 2;
-    let tiles: Vec<image::RgbImage> =
+    let tiles: Vec<Srgb8> =
         std::iter::once(reference).chain(shown.iter().map(|(_, i)| i)).map(Image::to_srgb).collect();
     let (w, h) = (tiles[0].width(), tiles[0].height());
     let gap = 4;
-    let mut out = image::RgbImage::from_pixel(
-        tiles.len() as u32 * (w * SCALE + gap) - gap,
-        h * SCALE,
-        image::Rgb([255, 255, 255]),
-    );
+    let mut out = Srgb8::filled(tiles.len() as u32 * (w * SCALE + gap) - gap, h * SCALE, [255, 255, 255]);
     for (t, tile) in tiles.iter().enumerate() {
         let x0 = t as u32 * (w * SCALE + gap);
-        for (x, y, p) in tile.enumerate_pixels() {
+        for (x, y) in (0..h).flat_map(|y| (0..w).map(move |x| (x, y))) {
             for (dx, dy) in (0..SCALE * SCALE).map(|k| (k % SCALE, k / SCALE)) {
-                out.put_pixel(x0 + x * SCALE + dx, y * SCALE + dy, *p);
+                out.set(x0 + x * SCALE + dx, y * SCALE + dy, tile.pixel(x, y));
             }
         }
     }
-    let png = samplab_render::image::png_bytes(&out).map_err(|e| Error::Plot(e.to_string()))?;
+    let png = out.png().map_err(|e| Error::Plot(e.to_string()))?;
     let order: Vec<&str> = shown.iter().map(|(n, _)| *n).collect();
     Ok(Figure::picture(
         &format!("renderer-{}-images", case.name),
