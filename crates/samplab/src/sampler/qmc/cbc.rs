@@ -23,6 +23,8 @@
 
 use std::sync::Arc;
 
+use rayon::prelude::*;
+
 use rustfft::FftPlanner;
 use rustfft::num_complex::Complex;
 
@@ -217,7 +219,9 @@ impl Search {
             return vec![row];
         }
         let m = self.n.trailing_zeros();
-        let mut levels = self.levels.iter().peekable();
+        // the levels' correlations are independent: computed side by side, added in order
+        let correlations: Vec<(u32, Vec<f64>)> = self.levels.par_iter().map(|l| (l.level, l.correlate(q))).collect();
+        let mut levels = correlations.into_iter().peekable();
         let mut rows: Vec<Vec<f64>> = Vec::with_capacity(m as usize + 1);
         for k in 0..=m {
             let len = ((1usize << k) / 4).max(1);
@@ -225,8 +229,8 @@ impl Search {
             let mut row: Vec<f64> = (0..len).map(|c| previous.map_or(0.0, |p| p[c % p.len()])).collect();
             let c = constant(k);
             row.iter_mut().for_each(|s| *s += c);
-            if let Some(level) = levels.next_if(|l| l.level == k) {
-                for (s, x) in row.iter_mut().zip(level.correlate(q)) {
+            if let Some((_, correlation)) = levels.next_if(|l| l.0 == k) {
+                for (s, x) in row.iter_mut().zip(correlation) {
                     *s += x;
                 }
             }
@@ -264,23 +268,34 @@ pub fn construct(n: usize, dims: usize, weights: Weights, embedded: bool) -> Res
                 // e_k^2 = -1 + 2^-k (sum of q over the prefix + gamma * sums[k]); the sum of q
                 // over each prefix is the same for every candidate
                 let qsum: Vec<f64> = (0..=full).map(|k| (0..n).step_by(n >> k).map(|i| q[i]).sum()).collect();
-                let error =
-                    |k: usize, c: usize| (qsum[k] + gamma * sums[k][c % sums[k].len()]) / (1u64 << k) as f64 - 1.0;
-                let best: Vec<f64> = (1..=full)
-                    .map(|k| (0..search.candidates.len()).map(|c| error(k, c)).fold(f64::INFINITY, f64::min))
+                // row k holds 2^(k-2) values (at least one), candidate c's at c mod its length:
+                // e_k^2 and its ratio to the best are computed once per value (every value
+                // is some candidate's, so a row's minimum is the candidates'; minima and
+                // maxima are exact in any order)
+                let ratios: Vec<Vec<f64>> = (1..=full)
+                    .map(|k| {
+                        let error: Vec<f64> =
+                            sums[k].iter().map(|&s| (qsum[k] + gamma * s) / (1u64 << k) as f64 - 1.0).collect();
+                        let best = error.iter().copied().fold(f64::INFINITY, f64::min);
+                        error.into_iter().map(|e| e / best).collect()
+                    })
                     .collect();
-                let worst = |c: usize| (1..=full).map(|k| error(k, c) / best[k - 1]).fold(0.0, f64::max);
-                argmin((0..search.candidates.len()).map(worst))
+                let worst: Vec<f64> = (0..search.candidates.len())
+                    .into_par_iter()
+                    .map(|c| ratios.iter().map(|row| row[c & (row.len() - 1)]).fold(0.0, f64::max))
+                    .collect();
+                argmin(worst.into_iter())
             } else {
                 argmin(sums[full].iter().copied())
             };
             search.candidates[pick]
         };
         let gamma = weights.gamma(j);
-        // n <= 2^24: i z < 2^48 fits a u64
-        for (i, qi) in q.iter_mut().take(n).enumerate() {
-            *qi *= 1.0 + gamma * omega((i as u64 * zj % n as u64) as f64 / n as f64);
-        }
+        // n <= 2^24: i z < 2^48 fits a u64; a power of 2 reduces by a mask, not a division
+        let reduce = |x: u64| if n.is_power_of_two() { x & (n as u64 - 1) } else { x % n as u64 };
+        q[..n].par_iter_mut().enumerate().with_min_len(1 << 12).for_each(|(i, qi)| {
+            *qi *= 1.0 + gamma * omega(reduce(i as u64 * zj) as f64 / n as f64);
+        });
         z.push(zj);
     }
     Ok(z)
