@@ -380,10 +380,14 @@ pub fn read_png(path: &Path) -> Result<(usize, usize, Vec<f32>)> {
     let frame = reader.next_frame(&mut buffer).map_err(|e| fail(e.to_string()))?;
     let (width, height) = (frame.width as usize, frame.height as usize);
     let channels = frame.color_type.samples();
-    let value: Box<dyn Fn(usize) -> f32> = if frame.bit_depth == png::BitDepth::Sixteen {
-        Box::new(|i| f32::from(u16::from_be_bytes([buffer[2 * i], buffer[2 * i + 1]])) / 65535.0)
-    } else {
-        Box::new(|i| f32::from(buffer[i]) / 255.0)
+    let wide = frame.bit_depth == png::BitDepth::Sixteen;
+    // sample i of the frame in [0, 1] (EXPAND leaves 8 or 16 bits, big-endian)
+    let value = |i: usize| {
+        if wide {
+            f32::from(u16::from_be_bytes([buffer[2 * i], buffer[2 * i + 1]])) / 65535.0
+        } else {
+            f32::from(buffer[i]) / 255.0
+        }
     };
     let rgb = (0..width * height)
         .flat_map(|p| {
