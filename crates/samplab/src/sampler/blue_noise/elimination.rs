@@ -45,7 +45,7 @@ use crate::seed::Seed;
 use crate::spatial::{Grid, SORTED, buckets, distance2, packing_radius};
 use crate::spec::{Default, Kind, ParamSpec};
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering::Relaxed};
+use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 use std::sync::{Mutex, PoisonError};
 
 /// Sample elimination with `ratio` x n candidates.
@@ -253,10 +253,23 @@ fn by_local_maxima(weights: Vec<u64>, target: usize, pairs: &Pairs, lists: &List
     use std::cmp::Reverse;
     let m = weights.len();
     let ids = &pairs.grid.ids;
-    let weight: Vec<AtomicU64> = weights.into_par_iter().map(AtomicU64::new).collect();
-    let alive: Vec<AtomicBool> = (0..m).into_par_iter().map(|_| AtomicBool::new(true)).collect();
-    // larger keys go first
+    // a live point's word is LIVE plus its weight, a removed point's 0 (one load tells a
+    // neighbour's liveness and key: the turns read both for every neighbour)
+    let weight: Vec<AtomicU64> = weights
+        .into_par_iter()
+        .map(|w| {
+            debug_assert!(w < LIVE);
+            AtomicU64::new(LIVE | w)
+        })
+        .collect();
+    let alive = |q: usize| weight[q].load(Relaxed) & LIVE != 0;
+    // larger keys go first; a removed point's is below every live one's
     let key = |q: u32| (weight[q as usize].load(Relaxed), Reverse(ids[q as usize]));
+    // key(r) < k, reading r's candidate index only on a tie of weights
+    let below = |r: u32, (w, Reverse(id)): (u64, Reverse<u32>)| {
+        let v = weight[r as usize].load(Relaxed);
+        v < w || (v == w && ids[r as usize] > id)
+    };
     let mut live: Vec<u32> = (0..m as u32).into_par_iter().collect();
     // (weight, candidate) when removed, as sorted in one heap's order, and the position
     let mut removed: Vec<((Reverse<u64>, u32), u32)> = Vec::with_capacity(m - target);
@@ -287,7 +300,7 @@ fn by_local_maxima(weights: Vec<u64>, target: usize, pairs: &Pairs, lists: &List
                         let k = key(q);
                         *turn = if k < theta {
                             Turn::Below
-                        } else if lists.of(q as usize).iter().all(|&r| !alive[r as usize].load(Relaxed) || key(r) < k) {
+                        } else if lists.of(q as usize).iter().all(|&r| below(r, k)) {
                             Turn::Go
                         } else {
                             Turn::Wait
@@ -317,10 +330,10 @@ fn by_local_maxima(weights: Vec<u64>, target: usize, pairs: &Pairs, lists: &List
                             Turn::Wait => *waiting.next().expect("counted") = q,
                             Turn::Go => {
                                 let (w, Reverse(id)) = key(q);
-                                *going.next().expect("counted") = ((Reverse(w), id), q);
-                                alive[q as usize].store(false, Relaxed);
+                                *going.next().expect("counted") = ((Reverse(w & !LIVE), id), q);
+                                weight[q as usize].store(0, Relaxed);
                                 pairs.each(q as usize, |r, w| {
-                                    if alive[r].load(Relaxed) {
+                                    if alive(r) {
                                         weight[r].fetch_sub(w, Relaxed);
                                     }
                                 });
@@ -334,7 +347,7 @@ fn by_local_maxima(weights: Vec<u64>, target: usize, pairs: &Pairs, lists: &List
         if first_active > 0 {
             share = ((removed.len() - first_removed) as f64 / first_active as f64).max(0.25);
         }
-        select_in_order(live.len(), GRAIN, |i| Some(live[i]).filter(|&q| alive[q as usize].load(Relaxed)), &mut next);
+        select_in_order(live.len(), GRAIN, |i| Some(live[i]).filter(|&q| alive(q as usize)), &mut next);
         std::mem::swap(&mut live, &mut next);
     }
     // every key is unique (the candidate), so an unstable sort gives the one order
@@ -346,6 +359,10 @@ fn by_local_maxima(weights: Vec<u64>, target: usize, pairs: &Pairs, lists: &List
         removed.into_par_iter().map(|(_, q)| q as usize).collect(),
     )
 }
+
+/// The bit of a live point's word in [`by_local_maxima`], above every weight: at most 2^40
+/// per neighbour, and a point has a few dozen neighbours (2^23 would reach it).
+const LIVE: u64 = 1 << 63;
 
 /// Points per block of the parallel passes of [`by_local_maxima`]: a round of fewer runs on
 /// one thread. Most of the 367 rounds of `generate elimination -n 100000` (500000
