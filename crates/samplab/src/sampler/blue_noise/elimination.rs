@@ -164,16 +164,6 @@ impl<'g> Pairs<'g> {
             }
         });
     }
-
-    /// `visit(r, weight)` for every position r closer than d_max to position q.
-    #[inline]
-    fn each(&self, q: usize, mut visit: impl FnMut(usize, u64)) {
-        let Some(lists) = &self.lists else { return self.search(q, visit) };
-        let p = self.grid.point(q);
-        for &r in lists.of(q) {
-            visit(r as usize, self.weight(p, r as usize).unwrap_or_default());
-        }
-    }
 }
 
 /// Eliminate `points` (m of them, `dims` coordinates) down to `target`: the survivors'
@@ -332,11 +322,15 @@ fn by_local_maxima(weights: Vec<u64>, target: usize, pairs: &Pairs, lists: &List
                                 let (w, Reverse(id)) = key(q);
                                 *going.next().expect("counted") = ((Reverse(w & !LIVE), id), q);
                                 weight[q as usize].store(0, Relaxed);
-                                pairs.each(q as usize, |r, w| {
-                                    if alive(r) {
-                                        weight[r].fetch_sub(w, Relaxed);
+                                // the live neighbours lose their pair's weight (computed for
+                                // them alone: most of a late round's neighbours are gone)
+                                let p = pairs.grid.point(q as usize);
+                                for &r in lists.of(q as usize) {
+                                    if alive(r as usize) {
+                                        let w = pairs.weight(p, r as usize).unwrap_or_default();
+                                        weight[r as usize].fetch_sub(w, Relaxed);
                                     }
-                                });
+                                }
                             }
                         }
                     }
@@ -547,7 +541,7 @@ impl<'a> Turns<'a> {
             alive[k] = false;
             let q = members[k] as usize;
             gone.push(q);
-            self.pairs.each(q, |r, w| {
+            self.pairs.search(q, |r, w| {
                 if self.owner[r] as usize != t {
                     // an adjacent tile's point, resting meanwhile
                     self.lost[r].fetch_add(w, Relaxed);
