@@ -499,10 +499,13 @@ const TRIES: u64 = 16;
 const AHEAD: usize = 16;
 
 /// How many candidates dart throwing on several threads draws and checks together (for n
-/// from BATCH / 2); one task takes a 32nd of a batch, whatever the thread count.
+/// from BATCH / 2), in [`TASKS`] tasks whatever the thread count.
 const BATCH: usize = 1 << 16;
 
-/// The buffers of a batch (its size: candidates drawn together, 32 tasks of at least
+/// The tasks a batch is cut into.
+const TASKS: usize = 32;
+
+/// The buffers of a batch (its size: candidates drawn together, [`TASKS`] tasks of at least
 /// [`AHEAD`]; the tests also run smaller ones than [`BATCH`]): its candidates, whether each passed the first check, the
 /// indices of those that did, the coarse grid of [`DartThrowing::earlier_conflicts`]
 /// (each cell's first passing candidate, each one's next in its cell; [`NONE`] ends a
@@ -519,7 +522,7 @@ struct Batch {
 
 impl Batch {
     fn new(size: usize) -> Batch {
-        assert!(size.is_multiple_of(32) && size / 32 >= AHEAD, "a batch of {size} candidates");
+        assert!(size.is_multiple_of(TASKS) && size / TASKS >= AHEAD, "a batch of {size} candidates");
         Batch {
             size,
             candidates: vec![[0.0; MAX_DIMS]; size],
@@ -533,7 +536,7 @@ impl Batch {
 
     /// The candidates one task takes.
     fn chunk(&self) -> usize {
-        self.size / 32
+        self.size / TASKS
     }
 }
 
@@ -1286,7 +1289,7 @@ mod tests {
             (400, 1, false, 100_000, AUTO_RELATIVE, 1, SMALL),
             (3000, 2, true, 30, AUTO_RELATIVE, 12, SMALL),
             // tries that end in runs of misses longer than a batch, while points still fit
-            (4000, 2, true, 700, 3.0, 6, 32 * AHEAD),
+            (4000, 2, true, 700, 3.0, 6, TASKS * AHEAD),
             (2000, 3, false, 40, AUTO_RELATIVE, 6, SMALL),
             (4000, 2, true, 3 * SMALL as u64 / 2, 3.0, 1, SMALL),
         ] {
