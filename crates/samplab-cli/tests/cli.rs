@@ -316,6 +316,10 @@ fn cubature_reaches_the_tolerance_and_refuses_bad_settings() {
     assert_bad_input(&["cubature", "--integrand", "keister:d=2", "--replications", "1"], &["--replications 1"]);
     assert_bad_input(&["cubature", "--integrand", "keister:d=2", "--sampler", "sobol"], &["deterministic"]);
     assert_bad_input(&["cubature", "--integrand", "keister:d=2", "--min-n", "0"], &["--min-n 0"]);
+    assert_bad_input(
+        &["cubature", "--integrand", "keister:d=2", "--rule", "net", "--max-n", "512"],
+        &["--min-n 1024 (the net rule's default)"],
+    );
     assert_bad_input(&["cubature", "--integrand", "keister:d=2", "--rule", "nett"], &["--rule nett", "replicated"]);
     assert_bad_input(
         &["cubature", "--integrand", "keister:d=2", "--rule", "net", "--sampler", "sobol.owen"],

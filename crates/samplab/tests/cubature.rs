@@ -158,4 +158,10 @@ fn the_guaranteed_rules_refuse_what_they_cannot_use() {
     let lattice = Settings { rule: Rule::Lattice, sampler: Some("net.lms".into()), ..Settings::default() };
     assert!(run(lattice).contains("lattice.shift"));
     assert!(run(Settings { rule: Rule::Net, min_n: Some(1000), ..Settings::default() }).contains("power of two"));
+    // a first n the user did not set is named as the rule's default
+    let unset = run(Settings { rule: Rule::Net, max_n: 512, ..Settings::default() });
+    assert!(unset.contains("1024 (the net rule's default)"), "{unset}");
+    for rule in ["replicated", "net", "lattice"] {
+        assert_eq!(Rule::parse(rule).unwrap().name(), rule);
+    }
 }

@@ -51,15 +51,17 @@ impl Rule {
     /// # Errors
     /// Another name.
     pub fn parse(name: &str) -> Result<Rule> {
-        match name {
-            "replicated" => Ok(Rule::Replicated),
-            "net" => Ok(Rule::Net),
-            "lattice" => Ok(Rule::Lattice),
-            _ => Err(Error::Setting {
-                name: "rule",
-                value: name.into(),
-                reason: "must be replicated, net or lattice".into(),
-            }),
+        [Rule::Replicated, Rule::Net, Rule::Lattice].into_iter().find(|r| r.name() == name).ok_or_else(|| {
+            Error::Setting { name: "rule", value: name.into(), reason: "must be replicated, net or lattice".into() }
+        })
+    }
+
+    /// Its name, as [`Rule::parse`] reads it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Rule::Replicated => "replicated",
+            Rule::Net => "net",
+            Rule::Lattice => "lattice",
         }
     }
 
@@ -192,11 +194,16 @@ impl Settings {
             return setting("replications", self.replications.to_string(), "must be at least 2 (a spread needs two)");
         }
         let min_n = self.min_n();
+        // a value the user did not set is named as the rule's default
+        let shown = match self.min_n {
+            Some(_) => min_n.to_string(),
+            None => format!("{min_n} (the {} rule's default)", self.rule.name()),
+        };
         if min_n == 0 || min_n > self.max_n {
-            return setting("min_n", min_n.to_string(), &format!("must be in 1..={} (max_n)", self.max_n));
+            return setting("min_n", shown, &format!("must be in 1..={} (max_n)", self.max_n));
         }
         if self.rule != Rule::Replicated && (!min_n.is_power_of_two() || min_n < 32) {
-            return setting("min_n", min_n.to_string(), "the guaranteed rules need a power of two, at least 32");
+            return setting("min_n", shown, "the guaranteed rules need a power of two, at least 32");
         }
         Ok(())
     }
