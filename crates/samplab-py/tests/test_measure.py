@@ -78,7 +78,8 @@ def test_every_metric_and_warp_runs():
     "call,message",
     [
         (lambda: samplab.discrepancy("star", [[0.5, 1.5]]), "point 0 coordinate 1 is 1.5"),
-        (lambda: samplab.discrepancy("star", [[0.5, np.nan]]), "not finite"),
+        (lambda: samplab.discrepancy("star", [[0.5, np.nan]]), r"^points\[0, 1\] is nan \(not finite\)$"),
+        (lambda: samplab.discrepancy("star", [[[0.5, 0.5]], [[np.inf, 0.5]]]), r"^points\[1, 0, 0\] is inf "),
         (lambda: samplab.discrepancy("star", [0.5, 0.2]), "shape"),
         (lambda: samplab.discrepancy("star", [["a", "b"]]), "dtype"),
         (lambda: samplab.discrepancy("stra", [[0.5, 0.5]]), "did you mean star"),

@@ -127,6 +127,7 @@ def _points(points: Any, what: str = "points", *, stack: bool) -> np.ndarray:
     if a.dtype.kind not in "fiu":
         raise Error(f"{what}: expected numbers, got dtype {a.dtype}")
     a = np.ascontiguousarray(a, dtype=np.float64)
+    given = a.ndim
     if stack and a.ndim == 2:
         a = a[np.newaxis]
     want = 3 if stack else 2
@@ -137,8 +138,10 @@ def _points(points: Any, what: str = "points", *, stack: bool) -> np.ndarray:
         raise Error(f"{what}: empty (shape {a.shape}); give at least one set of one point")
     bad = np.flatnonzero(~np.isfinite(a))
     if bad.size:
-        index = np.unravel_index(bad[0], a.shape)
-        raise Error(f"{what}{list(index)} is {a[index]} (not finite)")
+        # the index in the caller's shape, as plain integers (numpy's repr of its own
+        # integers would read points[np.int64(0), ...])
+        index = [int(i) for i in np.unravel_index(bad[0], a.shape)][a.ndim - given :]
+        raise Error(f"{what}{index} is {a.flat[bad[0]]} (not finite)")
     return a
 
 
