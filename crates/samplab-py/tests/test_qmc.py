@@ -30,6 +30,15 @@ def test_whole_set_engines_refuse_to_extend():
     assert isinstance(e, qmc.QMCEngine)
 
 
+@pytest.mark.parametrize("call", [lambda e: e.random(-1), lambda e: e.fast_forward(-1), lambda e: e.random(2.5)])
+def test_negative_or_fractional_counts_are_refused_by_name(call):
+    # a ValueError, as scipy's engines raise, and the count's position left as it was
+    e = Engine("sobol.owen", d=2)
+    with pytest.raises(ValueError, match="^n = "):
+        call(e)
+    assert e.num_generated == 0
+
+
 def test_generator_seeds_are_deterministic():
     a = Engine("halton.owen", d=2, seed=np.random.default_rng(3)).random(8)
     b = Engine("halton.owen", d=2, seed=np.random.default_rng(3)).random(8)

@@ -29,7 +29,7 @@ from typing import Any, Optional
 import numpy as np
 from scipy.stats import qmc as _qmc
 
-from . import DEFAULT_SEED, Error, _samplab, _seed, cubature
+from . import DEFAULT_SEED, Error, _count, _samplab, _seed, cubature
 
 #: ``qmc_quad``'s result, with the fields of scipy's ``QMCQuadResult``.
 QMCQuadResult = namedtuple("QMCQuadResult", ["integral", "standard_error"])
@@ -76,16 +76,17 @@ class Engine(_qmc.QMCEngine):
         self._init_quad = {"spec": spec, "d": int(d), "optimization": optimization}
 
     def _random(self, n: int = 1, *, workers: int = 1) -> np.ndarray:
+        n = _count("n", n)
         if n == 0 or self.d == 0:
-            return np.empty((int(n), self.d))
+            return np.empty((n, self.d))
         if self.sequence and self.num_generated:
-            return _samplab.sequence_points(self.spec, self.num_generated, int(n), self.d, self.samplab_seed)
+            return _samplab.sequence_points(self.spec, self.num_generated, n, self.d, self.samplab_seed)
         if self.num_generated and not self.sequence:
             raise Error(
                 f"{self.spec} makes whole sets, not a sequence: it cannot extend the {self.num_generated} "
                 "points already drawn (call reset(), or draw all points at once)"
             )
-        return _samplab.generate(self.spec, int(n), self.d, self.samplab_seed, 1)[0]
+        return _samplab.generate(self.spec, n, self.d, self.samplab_seed, 1)[0]
 
     def reset(self) -> "Engine":
         """Start again from the first point (the same points as before)."""
@@ -94,9 +95,10 @@ class Engine(_qmc.QMCEngine):
 
     def fast_forward(self, n: int) -> "Engine":
         """Skip ``n`` points of a sequence; other samplers cannot skip."""
+        n = _count("n", n)
         if not self.sequence:
             raise Error(f"{self.spec} makes whole sets, not a sequence: it cannot fast-forward")
-        self.num_generated += int(n)
+        self.num_generated += n
         return self
 
 
