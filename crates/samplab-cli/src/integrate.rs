@@ -13,10 +13,10 @@ use crate::bar::Bar;
 /// The examples and the integrands (from the integrand registry).
 fn after_help() -> String {
     format!(
-        "Examples:\n  samplab integrate --sampler random --sampler jitter --integrand quad -n 16,64,256,1024 --sets 50 \
-         --instances 10\n  samplab integrate --sampler regular --sampler jitter --sampler jitter.uniform --integrand box \
-         -n 256 --sets 2 --instances 1000 --json\n  samplab integrate --sampler sobol.owen --sampler random \
-         --integrand 'expr:exp(-x0*x0-x1*x1)' -n 64,256,1024\n\nIntegrands: {} (1D ones take 1D samplers). \
+        "Examples:\n  samplab integrate --sampler random --sampler jitter --integrand quad -n 16,64,256,1024 \\\n      \
+         --sets 50 --instances 10\n  samplab integrate --sampler regular --sampler jitter --sampler jitter.uniform \\\n      \
+         --integrand box -n 256 --sets 2 --instances 1000 --json\n  samplab integrate --sampler sobol.owen \
+         --sampler random \\\n      --integrand 'expr:exp(-x0*x0-x1*x1)' -n 64,256,1024\n\nIntegrands: {} (1D ones take 1D samplers). \
          `samplab list integrands` lists them with their parameters. {}",
         samplab::integrand::INTEGRANDS.names(),
         crate::own::HELP

@@ -17,11 +17,12 @@ fn after_help() -> String {
     let scenes: String =
         scenes::SCENES.iter().map(|b| format!("  {:<16}{}\n", b.about.name, b.about.summary)).collect();
     format!(
-        "Examples:\n  samplab render spheres --light disk --sampler jitter.uniform -n 25 --disk-map reject -o uj.exr \
-         --reference ref.exr --error-image err.png\n  samplab render grids --light linear --sampler jitter -n 16 -o strat.png\n  \
+        "Examples:\n  samplab render spheres --light disk --sampler jitter.uniform -n 25 --disk-map reject \\\n      \
+         -o uj.exr --reference ref.exr --error-image err.png\n  samplab render grids --light linear --sampler jitter -n 16 -o strat.png\n  \
          samplab render scene.xml --sampler sobol.owen -n 4 --spp 16 --pixel area --mode direct -o out.exr\n  \
          samplab render sphere-box --mode obscurance --range 0.5 --sampler systematic -n 16 -o ao.png\n  \
-         samplab render checker-45 --pixel area --spp 16 --pixel-sampler halton.shift --interleave 4x1 -o il.png\n\n\
+         samplab render checker-45 --pixel area --spp 16 --pixel-sampler halton.shift --interleave 4x1 \\\n      \
+         -o il.png\n\n\
          SCENE is a built-in scene or a Mitsuba 3 XML file. Built-in scenes:\n{scenes}\n\
          A missing --reference file is rendered (sobol.owen, --reference-samples light samples, 64 pixel \
          samples in area mode) and kept for the next run."
