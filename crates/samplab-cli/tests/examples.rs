@@ -3,7 +3,8 @@
 //! a shell in the order given, one folder per page or command, succeeds. The files a reader
 //! would bring (a point file, a Mitsuba scene, renders to compare) are made first, by
 //! samplab, where a line reads one that no earlier line wrote. A `--help` example must also
-//! fit the help's width: one that clap wraps pastes as two commands.
+//! fit the help's width: one that clap wraps pastes as two commands. (The pages' Python
+//! examples are run by crates/samplab-py/tests/test_examples.py.)
 
 mod common;
 use common::Temp;

@@ -191,6 +191,16 @@ def test_corrupted_and_foreign_checkpoint_files_are_refused(tmp_path):
         study.run(checkpoint=str(box), progress=False)
 
 
+def test_ranges_and_numpy_arrays_are_read_as_lists():
+    # the guide's example gives a render study's seeds as range(64)
+    plain = Study.render("spheres", [5, 6, 7], sampler="jitter", n=4)
+    for seeds in (range(5, 8), np.arange(5, 8)):
+        study = Study.render("spheres", seeds, sampler="jitter", n=4)
+        assert (study.params, study.chunks, study.fingerprint) == (plain.params, plain.chunks, plain.fingerprint)
+    with pytest.raises(samplab.Error, match="not a number, a name or a list"):
+        Study.render("spheres", {5, 6, 7}, sampler="jitter", n=4)
+
+
 def test_bad_studies_are_refused_before_any_work():
     with pytest.raises(samplab.Error, match="16 times a power of two"):
         Study.spectrum("jitter", 64, sets=100, res=16, sets_per_chunk=48)

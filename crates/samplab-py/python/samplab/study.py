@@ -44,9 +44,12 @@ def _canonical(value: Any) -> str:
 
 
 def _plain(value: Any) -> Any:
-    """numpy scalars and arrays as JSON (the library reads each argument by its type)."""
+    """numpy scalars and arrays, and ranges, as JSON (the library reads each argument by its
+    type)."""
     if isinstance(value, (np.generic, np.ndarray)):
         return value.tolist()
+    if isinstance(value, range):
+        return list(value)
     raise Error(f"{value!r}: not a number, a name or a list of them")
 
 
