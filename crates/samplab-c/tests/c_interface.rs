@@ -39,12 +39,13 @@ fn library_dir() -> PathBuf {
         .to_path_buf()
 }
 
-fn compile(out: &Path) {
+/// Compile the C program `source` into `out`, against the header and the library.
+fn compile(source: &Path, out: &Path) {
     let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
     let status = Command::new(&cc)
         .args(["-std=c99", "-Wall", "-Wextra", "-Werror", "-o"])
         .arg(out)
-        .arg(crate_dir().join("tests/example.c"))
+        .arg(source)
         .arg("-I")
         .arg(crate_dir().join("include"))
         .arg("-L")
@@ -52,7 +53,12 @@ fn compile(out: &Path) {
         .args(["-lsamplab_c", "-lm"])
         .output()
         .unwrap_or_else(|e| panic!("running the C compiler {cc}: {e}"));
-    assert!(status.status.success(), "the C example does not compile: {}", String::from_utf8_lossy(&status.stderr));
+    assert!(
+        status.status.success(),
+        "{} does not compile: {}",
+        source.display(),
+        String::from_utf8_lossy(&status.stderr)
+    );
 }
 
 #[test]
@@ -60,7 +66,7 @@ fn a_c_program_gets_the_librarys_values() {
     let dir = std::env::temp_dir().join(format!("samplab-c-test-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let exe = dir.join("example");
-    compile(&exe);
+    compile(&crate_dir().join("tests/example.c"), &exe);
     for e in PIXEL_SAMPLERS.iter() {
         let name = e.about.name;
         let out = Command::new(&exe).arg(name).env("LD_LIBRARY_PATH", library_dir()).output().unwrap();
@@ -82,6 +88,26 @@ fn a_c_program_gets_the_librarys_values() {
         }
     }
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The guide's C example (docs/guide/pixels.md) compiles as it is printed and prints the
+/// library's values.
+#[test]
+fn the_guides_c_example_runs() {
+    let page = std::fs::read_to_string(crate_dir().join("../../docs/guide/pixels.md")).unwrap();
+    let code = page.split("```c\n").nth(1).and_then(|rest| rest.split("```").next()).expect("a C block in pixels.md");
+    let dir = std::env::temp_dir().join(format!("samplab-c-guide-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (source, exe) = (dir.join("app.c"), dir.join("app"));
+    std::fs::write(&source, code).unwrap();
+    compile(&source, &exe);
+    let out = Command::new(&exe).env("LD_LIBRARY_PATH", library_dir()).output().unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(out.status.success(), "the guide's C example: {}", String::from_utf8_lossy(&out.stderr));
+    let values: Vec<f64> =
+        String::from_utf8(out.stdout).unwrap().split_whitespace().map(|w| w.parse().unwrap()).collect();
+    let zsobol = prepare("zsobol", Film { width: 1920, height: 1080, spp: 64, dims: 32 }, Seed(7)).unwrap();
+    assert_eq!(values, [zsobol.sample([640, 360], 0, 5, 2), zsobol.sample([640, 360], 0, 5, 4)]);
 }
 
 /// A C99 hexadecimal float (`%a`: 0x1.8p-1, 0x0p+0) as f64, exactly.
