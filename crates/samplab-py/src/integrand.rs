@@ -104,7 +104,7 @@ impl Given {
         }
         if value.is_callable() {
             if dims == 0 {
-                return Err(err("d 0: a callable integrand needs at least one dimension".to_string()));
+                return Err(err("d = 0: a callable integrand needs at least one dimension".to_string()));
             }
             let name =
                 value.getattr("__name__").and_then(|n| n.extract::<String>()).unwrap_or_else(|_| "callable".into());

@@ -623,7 +623,7 @@ fn predict(
     let mut given = Vec::new();
     for value in &integrands {
         if value.is_callable() && !(1..=2).contains(&dims) {
-            return Err(err(format!("d {dims}: a callable integrand is 1D or 2D here")));
+            return Err(err(format!("d = {dims}: a callable integrand is 1D or 2D here")));
         }
         let known = if value.is_callable() { exact.next() } else { None };
         given.push(integrand::Given::from_python(value, seed, dims, known)?);

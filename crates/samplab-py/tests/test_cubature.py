@@ -38,6 +38,8 @@ def test_a_family_gives_the_cli_numbers():
 def test_errors_name_what_is_wrong():
     with pytest.raises(samplab.Error, match="give the dimension"):
         samplab.cubature(lambda x: x[:, 0])
+    with pytest.raises(samplab.Error, match=r"^d = 0: a callable integrand needs at least one dimension$"):
+        samplab.cubature(lambda x: x[:, 0], 0)
     with pytest.raises(samplab.Error, match="replications = 1"):
         samplab.cubature("keister:d=2", replications=1)
     with pytest.raises(samplab.Error, match="min_n must be a whole number|min_n = 2.5"):

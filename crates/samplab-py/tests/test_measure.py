@@ -195,6 +195,8 @@ def test_predict_takes_callables_and_arrays_with_their_errors():
         samplab.predict(lambda x: np.full(len(x), np.nan), "random", 64, res=16, sets=8)
     with pytest.raises(samplab.Error, match="pass exact="):
         samplab.predict(step, "random", 64, res=16, sets=8, measure=10)
+    with pytest.raises(samplab.Error, match=r"^d = 3: a callable integrand is 1D or 2D here$"):
+        samplab.predict(step, "random", 64, d=3)
     with pytest.raises(samplab.Error, match="cell"):
         samplab.predict(np.array([[1.0, np.inf]]), "random", 64, res=16, sets=8)
     with pytest.raises(samplab.Error, match="expected a spec string"):
