@@ -130,15 +130,23 @@ fn star_exact_equals_naive_in_3d_4d_and_5d() {
 
 #[test]
 fn star_dem_equals_the_recursive_sweep_on_larger_sets() {
-    // many slabs per axis, so the cuts, the knapsack and the parallel first axis all work
+    // many slabs per axis, so the cuts, the knapsack and the parallel first two axes all
+    // work; on 1, 3 and 8 threads (other schedules, other pruning), the same bits
+    let pools: Vec<rayon::ThreadPool> =
+        [1, 3, 8].map(|t| rayon::ThreadPoolBuilder::new().num_threads(t).build().unwrap()).into();
+    let dem = |x: &[f64], d: usize| {
+        let values: Vec<u64> = pools.iter().map(|pool| pool.install(|| star::star_dem(x, d)).to_bits()).collect();
+        assert!(values.iter().all(|&v| v == values[0]), "star_dem on 1, 3 and 8 threads: {values:?}");
+        f64::from_bits(values[0])
+    };
     for (spec, n, d) in [("random", 300, 3), ("sobol", 256, 3), ("halton", 200, 3), ("random", 60, 4), ("sobol", 64, 4)]
     {
         let p = sampler::build(spec).unwrap().generate(n, d, Seed(3)).unwrap();
         let x = p.as_slice();
-        assert_close(star::star_dem(x, d), star::star_exact(x, d), &format!("{spec} n = {n}, {d}D"));
+        assert_close(dem(x, d), star::star_exact(x, d), &format!("{spec} n = {n}, {d}D"));
         // ties: the coordinates rounded to a coarse grid
         let q: Vec<f64> = x.iter().map(|v| (v * 8.0).round() / 8.0).collect();
-        assert_close(star::star_dem(&q, d), star::star_exact(&q, d), &format!("{spec} n = {n}, {d}D, ties"));
+        assert_close(dem(&q, d), star::star_exact(&q, d), &format!("{spec} n = {n}, {d}D, ties"));
     }
 }
 

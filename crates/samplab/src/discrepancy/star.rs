@@ -259,7 +259,6 @@ pub fn star_exact(points: &[f64], dims: usize) -> f64 {
 /// per slab. The count is then separable, inside + sum_k #{partial on axis k, a_k <= c_k},
 /// and the best corner of a cell follows from a product knapsack over the axes: for each
 /// total count, the largest (open boxes) or smallest (closed) volume.
-#[derive(Clone)]
 struct Dem<'a> {
     axes: &'a [Vec<f64>],
     /// Row-major keys, `dims` per point.
@@ -268,7 +267,10 @@ struct Dem<'a> {
     n: f64,
     /// +1: maximise volume - count / n (open boxes); -1: count / n - volume (closed).
     sign: f64,
+    /// The best found by this worker, and by every worker of both kinds of boxes (read when
+    /// a worker starts, raised when it ends: a higher best prunes more).
     best: f64,
+    shared: &'a AtomicU64,
     slab: usize,
     lo: Vec<u32>,
     hi: Vec<u32>,
@@ -294,7 +296,48 @@ struct Slab {
     new: usize,
 }
 
-impl Dem<'_> {
+impl<'a> Dem<'a> {
+    /// A worker for one kind of boxes (`sign`), its points' `keys`, with empty scratch.
+    fn new(axes: &'a [Vec<f64>], keys: &'a [u32], sign: f64, shared: &'a AtomicU64) -> Dem<'a> {
+        let dims = axes.len();
+        let n = keys.len() / dims;
+        Dem {
+            axes,
+            keys,
+            dims,
+            n: n as f64,
+            sign,
+            best: f64::from_bits(shared.load(Ordering::Relaxed)),
+            shared,
+            slab: ((n as f64).sqrt().ceil() as usize).max(1),
+            lo: vec![0; dims],
+            hi: vec![0; dims],
+            levels: vec![(Vec::new(), Vec::new()); dims + 1],
+            lists: vec![Vec::new(); dims],
+            table: Vec::new(),
+            next: Vec::new(),
+            packed: Vec::new(),
+        }
+    }
+
+    /// Solve one slab of axis j of `self`'s on `own`, a worker of the same kind with scratch
+    /// of its own (reused from slab to slab: fresh scratch for each of the second axis's
+    /// thousands of slabs cost 3-5% on one thread), from `self`'s cut so far and the best
+    /// known now; make its best known.
+    fn visit_on(&self, own: &mut Dem<'a>, j: usize, slab: Slab, inside: &[u32], partial: &[u32]) -> f64 {
+        own.lo.copy_from_slice(&self.lo);
+        own.hi.copy_from_slice(&self.hi);
+        own.best = own.best.max(self.best).max(f64::from_bits(self.shared.load(Ordering::Relaxed)));
+        own.visit(j, slab, inside, partial);
+        self.shared.fetch_max(own.best.to_bits(), Ordering::Relaxed);
+        own.best
+    }
+
+    /// A worker of the same kind, with empty scratch.
+    fn worker(&self) -> Dem<'a> {
+        Dem::new(self.axes, self.keys, self.sign, self.shared)
+    }
+
     fn key(&self, p: u32, axis: usize) -> u32 {
         self.keys[p as usize * self.dims + axis]
     }
@@ -349,11 +392,23 @@ impl Dem<'_> {
         }
     }
 
-    /// Solve the cells of every slab of axis j (level j's points are taken and restored).
+    /// Solve the cells of every slab of axis j (level j's points are taken and restored);
+    /// the second axis's slabs in parallel, on workers with scratch of their own, so that the first
+    /// axis's slabs, about sqrt(n) tasks of unequal work, are not the only ones to share.
     fn cut(&mut self, j: usize) {
         let (mut inside, mut partial) = std::mem::take(&mut self.levels[j]);
-        for slab in self.slabs(j, &mut inside, &mut partial) {
-            self.visit(j, slab, &inside, &partial);
+        let slabs = self.slabs(j, &mut inside, &mut partial);
+        if j == 1 {
+            let this = &*self;
+            let best = slabs
+                .into_par_iter()
+                .map_init(|| this.worker(), |own, slab| this.visit_on(own, j, slab, &inside, &partial))
+                .reduce(|| 0.0, f64::max);
+            self.best = self.best.max(best);
+        } else {
+            for slab in slabs {
+                self.visit(j, slab, &inside, &partial);
+            }
         }
         self.levels[j] = (inside, partial);
     }
@@ -485,7 +540,11 @@ pub fn star_dem_work(n: usize, dims: usize) -> f64 {
 /// each, O(n^(1 + d/2)) in all for fixed d, and far less where a cell's bound cannot beat
 /// the best box found so far. The slabs of the first axis are solved in parallel; the
 /// result does not depend on their order (every value compared is an exact local
-/// discrepancy, computed the same way wherever it is met).
+/// discrepancy, computed the same way wherever it is met). The slabs of both kinds of boxes
+/// (open, then closed) are handed out from one list, and each slab's slabs of the second
+/// axis are tasks too: a schedule of their one-thread times bounds 16 threads at 15x for
+/// d = 5, 400 points, where the first axis's slabs alone bounded it at 7.2x
+/// (docs/performance.md, 2026-12-01).
 ///
 /// # Panics
 /// When a coordinate is NaN (every value must rank among the critical values; callers
@@ -498,33 +557,28 @@ pub fn star_dem(points: &[f64], dims: usize) -> f64 {
     let best = AtomicU64::new(0.0f64.to_bits());
     // open boxes [0, q): a point counts when its rank is below the corner's (key rank + 1);
     // closed boxes [0, q]: when at or below it (key rank)
-    for (shift, sign) in [(1u32, 1.0), (0, -1.0)] {
-        let keys: Vec<u32> = points.iter().enumerate().map(|(i, &x)| rank(i % dims, x) + shift).collect();
-        let mut dem = Dem {
-            axes: &axes,
-            keys: &keys,
-            dims,
-            n: n as f64,
-            sign,
-            best: 0.0,
-            slab: ((n as f64).sqrt().ceil() as usize).max(1),
-            lo: vec![0; dims],
-            hi: vec![0; dims],
-            levels: vec![(Vec::new(), Vec::new()); dims + 1],
-            lists: vec![Vec::new(); dims],
-            table: Vec::new(),
-            next: Vec::new(),
-            packed: Vec::new(),
-        };
-        let mut all: Vec<u32> = (0..n as u32).collect();
-        let slabs = dem.slabs(0, &mut all, &mut []);
-        slabs.into_par_iter().for_each(|slab| {
-            let mut own = dem.clone();
-            own.best = f64::from_bits(best.load(Ordering::Relaxed));
-            own.visit(0, slab, &all, &[]);
-            best.fetch_max(own.best.to_bits(), Ordering::Relaxed);
-        });
-    }
+    let kinds: Vec<(Vec<u32>, f64)> = [(1u32, 1.0), (0, -1.0)]
+        .into_iter()
+        .map(|(shift, sign)| (points.iter().enumerate().map(|(i, &x)| rank(i % dims, x) + shift).collect(), sign))
+        .collect();
+    // each kind's slabs of the first axis, with every point inside none of them yet
+    let roots: Vec<(Dem, Vec<u32>, Vec<Slab>)> = kinds
+        .iter()
+        .map(|(keys, sign)| {
+            let mut dem = Dem::new(&axes, keys, *sign, &best);
+            let mut all: Vec<u32> = (0..n as u32).collect();
+            let slabs = dem.slabs(0, &mut all, &mut []);
+            (dem, all, slabs)
+        })
+        .collect();
+    let tasks: Vec<(usize, Slab)> =
+        roots.iter().enumerate().flat_map(|(k, (_, _, slabs))| slabs.iter().map(move |&s| (k, s))).collect();
+    // handed out in order (the open boxes' first): the closed boxes' slabs start as the open
+    // ones run out, with the best those found to prune by, and fill their tail
+    tasks.into_iter().par_bridge().for_each(|(k, slab)| {
+        let (dem, all, _) = &roots[k];
+        dem.visit_on(&mut dem.worker(), 0, slab, all, &[]);
+    });
     f64::from_bits(best.into_inner())
 }
 
