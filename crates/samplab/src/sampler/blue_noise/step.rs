@@ -63,6 +63,7 @@ use crate::registry::About;
 use crate::seed::{Seed, wrap01};
 use crate::spatial::{self, Grid, torus_gap};
 use crate::spec::{Default, Kind, ParamSpec, Params, Value};
+use rayon::prelude::*;
 
 /// A target radial power spectrum (frequencies in units of sqrt(n)).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -122,11 +123,11 @@ impl Shape {
     }
 
     /// The smallest peak power that keeps g >= 0 on rho in [0, 12], or None when no power
-    /// does.
+    /// does (the quadratures at the 601 radii in parallel, then taken in order).
     pub fn least_power(nu: f64, width: f64) -> Option<f64> {
         let (mut low, mut high) = (0.0f64, f64::INFINITY);
-        for rho in (0..=600).map(|i| i as f64 * 0.02) {
-            let (step, peak) = Shape::parts(nu, width, rho);
+        let parts: Vec<(f64, f64)> = RADII.into_par_iter().map(|i| Shape::parts(nu, width, rho(i))).collect();
+        for (step, peak) in parts {
             let base = 1.0 + step;
             if peak > 1e-12 {
                 low = low.max(-base / peak);
@@ -141,8 +142,15 @@ impl Shape {
 
     /// The first rho in [0, 12] (steps of 0.02) where g < -1e-9, if any.
     fn negative_at(&self) -> Option<f64> {
-        (0..=600).map(|i| i as f64 * 0.02).find(|&rho| self.pcf(rho) < -1e-9)
+        RADII.into_par_iter().map(rho).find_first(|&rho| self.pcf(rho) < -1e-9)
     }
+}
+
+/// The radii at which a target PCF is checked: rho(i) = 0.02 i, i in `RADII`.
+const RADII: RangeInclusive<u32> = 0..=600;
+
+fn rho(i: u32) -> f64 {
+    f64::from(i) * 0.02
 }
 
 /// Points matched to a target PCF by gradient descent.
@@ -187,9 +195,10 @@ impl Matching {
             .map(|m| Matching::radius_node(m) as f64 * sigma / NODES as f64)
             .take_while(|&r| r <= last)
             .collect();
-        // the target smoothed by the estimator's kernel: int g(t) k(r - t) t / r dt
+        // the target smoothed by the estimator's kernel: int g(t) k(r - t) t / r dt (each
+        // radius's quadratures, of the target's own, on a thread of their own)
         let target = radii
-            .iter()
+            .par_iter()
             .map(|&r| {
                 let (from, to) = ((r - 5.0 * sigma).max(0.0), r + 5.0 * sigma);
                 let smoothed = |t: f64| shape.pcf(t / s) * (-((r - t) / sigma).powi(2)).exp() * t;
