@@ -40,7 +40,7 @@ pub fn star_1d(x: &[f64]) -> f64 {
 pub(crate) fn critical(v: impl Iterator<Item = f64>) -> Vec<f64> {
     let mut c: Vec<f64> = v.collect();
     c.push(1.0);
-    c.sort_by(f64::total_cmp);
+    c.par_sort_unstable_by(f64::total_cmp);
     c.dedup();
     c
 }
@@ -80,10 +80,10 @@ pub fn star_naive(points: &[f64], dims: usize) -> f64 {
 fn sweep_order(points: &[f64]) -> (Vec<(f64, usize)>, Vec<f64>) {
     let ys = critical(points.iter().skip(1).step_by(2).copied());
     let mut order: Vec<(f64, usize)> = points
-        .chunks_exact(2)
+        .par_chunks_exact(2)
         .map(|p| (p[0], ys.binary_search_by(|c| c.total_cmp(&p[1])).expect("y is a critical value")))
         .collect();
-    order.sort_by(|a, b| a.0.total_cmp(&b.0));
+    order.par_sort_by(|a, b| a.0.total_cmp(&b.0));
     (order, ys)
 }
 
@@ -147,25 +147,41 @@ pub fn star_2d_sweep(points: &[f64]) -> f64 {
     s.worst
 }
 
-/// The local discrepancies as lines in a, in two kinetic segment trees.
+/// The local discrepancies of one kind of boxes (open or closed) as lines in a, in a
+/// kinetic segment tree.
 struct KineticSweep {
     m: usize,
-    open: KineticTree,
-    closed: KineticTree,
-    open_max: f64,
-    closed_max: f64,
+    open: bool,
+    tree: KineticTree,
+    max: f64,
+}
+
+impl KineticSweep {
+    /// The largest local discrepancy of the open or the closed boxes: lines of `slopes` (the
+    /// negated ones for closed boxes) rising by `step` per point counted.
+    fn run(order: &[(f64, usize)], slopes: &[f64], step: f64, open: bool) -> f64 {
+        let (slopes, step): (Vec<f64>, f64) =
+            if open { (slopes.to_vec(), -step) } else { (slopes.iter().map(|s| -s).collect(), step) };
+        let tree = KineticTree::new(&slopes, step, 0.0);
+        let mut s = KineticSweep { m: slopes.len(), open, tree, max: f64::NEG_INFINITY };
+        sweep(order, &mut s);
+        s.max
+    }
 }
 
 impl Sweeper for KineticSweep {
     fn insert(&mut self, k: usize) {
-        self.open.add(k + 1, self.m, 1);
-        self.closed.add(k, self.m, 1);
+        self.tree.add(k + usize::from(self.open), self.m, 1);
     }
     fn open(&mut self, a: f64) {
-        self.open_max = self.open_max.max(self.open.max_at(a));
+        if self.open {
+            self.max = self.max.max(self.tree.max_at(a));
+        }
     }
     fn closed(&mut self, a: f64) {
-        self.closed_max = self.closed_max.max(self.closed.max_at(a));
+        if !self.open {
+            self.max = self.max.max(self.tree.max_at(a));
+        }
     }
 }
 
@@ -194,16 +210,11 @@ fn weighted(points: &[f64], dims: usize, w: f64, total: f64) -> (f64, f64) {
         2 => {
             let (order, ys) = sweep_order(points);
             let slopes: Vec<f64> = ys.iter().map(|b| w * b).collect();
-            let neg: Vec<f64> = slopes.iter().map(|s| -s).collect();
-            let mut s = KineticSweep {
-                m: ys.len(),
-                open: KineticTree::new(&slopes, -1.0 / total, 0.0),
-                closed: KineticTree::new(&neg, 1.0 / total, 0.0),
-                open_max: f64::NEG_INFINITY,
-                closed_max: f64::NEG_INFINITY,
-            };
-            sweep(&order, &mut s);
-            (s.open_max, s.closed_max)
+            // the two kinds of boxes share nothing but the order: one sweep each, side by side
+            rayon::join(
+                || KineticSweep::run(&order, &slopes, 1.0 / total, true),
+                || KineticSweep::run(&order, &slopes, 1.0 / total, false),
+            )
         }
         _ => {
             // sweep the last coordinate c; the boxes below it are a (d-1)-D problem with
