@@ -114,6 +114,17 @@ struct Energy {
 /// No pixel.
 const NONE: usize = usize::MAX;
 
+/// The candidates a row keeps: its tightest cluster (a set pixel) and its largest void (an
+/// empty one).
+const CLUSTER: usize = 0;
+const VOID: usize = 1;
+
+/// Whether energy a beats b for the candidates `k`: a cluster by being higher, a void by
+/// being lower.
+fn beats(k: usize, a: f64, b: f64) -> bool {
+    if k == CLUSTER { a > b } else { a < b }
+}
+
 impl Energy {
     fn new(size: usize) -> Energy {
         let half = RADIUS.min((size - 1) / 2);
@@ -140,8 +151,8 @@ impl Energy {
     fn rescan(&mut self, y: usize) {
         let mut best = [NONE; 2];
         for p in y * self.size..(y + 1) * self.size {
-            let (k, e) = (usize::from(!self.on[p]), self.energy[p]);
-            if best[k] == NONE || if k == 0 { e > self.energy[best[0]] } else { e < self.energy[best[1]] } {
+            let k = if self.on[p] { CLUSTER } else { VOID };
+            if best[k] == NONE || beats(k, self.energy[p], self.energy[best[k]]) {
                 best[k] = p;
             }
         }
@@ -165,19 +176,19 @@ impl Energy {
 
     /// The set pixel of highest energy (the first on ties).
     fn tightest_cluster(&self) -> usize {
-        self.extreme(0, |a, b| a > b)
+        self.extreme(CLUSTER)
     }
 
     /// The empty pixel of lowest energy (the first on ties).
     fn largest_void(&self) -> usize {
-        self.extreme(1, |a, b| a < b)
+        self.extreme(VOID)
     }
 
     /// The best of the rows' candidates `k`, rows in order (the first on ties).
-    fn extreme(&self, k: usize, better: impl Fn(f64, f64) -> bool) -> usize {
+    fn extreme(&self, k: usize) -> usize {
         let mut best = NONE;
         for p in self.rows.iter().map(|r| r[k]).filter(|&p| p != NONE) {
-            if best == NONE || better(self.energy[p], self.energy[best]) {
+            if best == NONE || beats(k, self.energy[p], self.energy[best]) {
                 best = p;
             }
         }
@@ -302,9 +313,9 @@ mod tests {
                 assert_eq!(e.largest_void(), scan(&e, false, |a, b| a < b), "size {size}, step {step}");
             }
         }
-        // ties: two copies of one pattern, half a torus apart, have equal energies
+        // ties: two copies of one pattern, half a torus apart along x, have equal energies
         let mut e = Energy::new(16);
-        for p in [0, 3, 17, 40] {
+        for p in [0, 3, 17, 36] {
             e.toggle(p, true);
             e.toggle(p + 8, true);
         }
