@@ -55,6 +55,9 @@ pub mod theory;
 pub mod warp;
 
 pub use error::{Error, Result};
+pub use points::PointSet;
+pub use sampler::{Access, Sampler};
+pub use seed::Seed;
 
 /// The guide's Rust examples, compiled and run as doctests (`cargo test --doc`), so that
 /// what a reader copies from docs/guide builds. The pages' shell and Python examples are run
@@ -63,6 +66,3 @@ pub use error::{Error, Result};
 #[doc = include_str!("../../../docs/guide/library.md")]
 #[doc = include_str!("../../../docs/guide/pixels.md")]
 struct Guide;
-pub use points::PointSet;
-pub use sampler::{Access, Sampler};
-pub use seed::Seed;

@@ -160,9 +160,11 @@ impl KineticSweep {
     /// The largest local discrepancy of the open or the closed boxes: lines of `slopes` (the
     /// negated ones for closed boxes) rising by `step` per point counted.
     fn run(order: &[(f64, usize)], slopes: &[f64], step: f64, open: bool) -> f64 {
-        let (slopes, step): (Vec<f64>, f64) =
-            if open { (slopes.to_vec(), -step) } else { (slopes.iter().map(|s| -s).collect(), step) };
-        let tree = KineticTree::new(&slopes, step, 0.0);
+        let tree = if open {
+            KineticTree::new(slopes, -step, 0.0)
+        } else {
+            KineticTree::new(&slopes.iter().map(|s| -s).collect::<Vec<_>>(), step, 0.0)
+        };
         let mut s = KineticSweep { m: slopes.len(), open, tree, max: f64::NEG_INFINITY };
         sweep(order, &mut s);
         s.max
