@@ -80,6 +80,45 @@ fn bad_formulas_get_one_line_errors_with_their_column() {
     }
 }
 
+#[test]
+fn nesting_is_limited_with_an_error_not_a_stack_overflow() {
+    use samplab::integrand::MAX_NESTING;
+    // a right-nested difference as deep as allowed: x0 - (x1 - (x0 - ... x1)), evaluated
+    // against the same alternation summed in Rust
+    let levels = MAX_NESTING - 1;
+    let text = (0..levels).map(|k| format!("x{} - (", k % 2)).collect::<String>() + "x1" + &")".repeat(levels);
+    let f = Expr::parse(&text, None).unwrap();
+    let x = [0.375, 0.0625];
+    let want = (0..=levels).rev().fold(0.0, |inner, k| if k == levels { x[1] } else { x[k % 2] - inner });
+    assert_eq!(f.eval(&x), want);
+    // one level more, and far more of each kind of nesting: a one-line error at the
+    // token that would open level MAX_NESTING + 1
+    let deep = 100_000;
+    for (text, column) in [
+        ("(".repeat(MAX_NESTING) + "x0" + &")".repeat(MAX_NESTING), MAX_NESTING + 1),
+        ("(".repeat(deep) + "x0" + &")".repeat(deep), MAX_NESTING + 1),
+        ("-".repeat(deep) + "x0", MAX_NESTING + 1),
+        ("x0^".repeat(deep) + "x0", 3 * (MAX_NESTING + 1) - 2),
+        ("exp(".repeat(deep) + "x0" + &")".repeat(deep), 4 * (MAX_NESTING + 1) - 3),
+    ] {
+        let err = Expr::parse(&text, None).unwrap_err().to_string();
+        assert!(err.contains(&format!("column {column}: nested more than {MAX_NESTING} levels")), "{err}");
+        // the expression cut to the 40 characters either side of the column
+        let shown = &text[column - 41..column + 40];
+        assert!(err.contains(&format!("`...{shown}...` ({} characters)", text.len())), "{err}");
+    }
+}
+
+#[test]
+fn a_long_flat_formula_sums_as_rust_does() {
+    // 20000 terms, 80000 operations on a stack of at most three values
+    let text = (0..20_000).map(|k| format!("{}*x{}", k % 7, k % 3)).collect::<Vec<_>>().join(" + ");
+    let f = Expr::parse(&text, None).unwrap();
+    let x = [0.5, 0.25, 0.125];
+    let want = (0..20_000).fold(0.0, |sum, k| sum + (k % 7) as f64 * x[k % 3]);
+    assert_eq!(f.eval(&x), want);
+}
+
 /// The midpoint rule on a grid of k x k cells.
 fn midpoint(f: &dyn Integrand, k: usize) -> f64 {
     let mut sum = 0.0;

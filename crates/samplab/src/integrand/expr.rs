@@ -50,8 +50,9 @@ const UNARY: &[(&str, Unary)] = &[
 /// Functions of two arguments, by name.
 const BINARY: &[(&str, Binary)] = &[("min", f64::min), ("max", f64::max), ("pow", f64::powf), ("atan2", f64::atan2)];
 
-/// One operation of the tape: slot i holds operation i's values; operands name earlier
-/// slots.
+/// One operation of the tape: operands name the earlier operations whose values they take
+/// (used while parsing, to fold constants). The tape is in postorder, every operation's
+/// operands the values computed just before it, so it is evaluated on a stack.
 #[derive(Debug, Clone, Copy)]
 enum Op {
     Var(usize),
@@ -88,7 +89,17 @@ impl Op {
             Op::Add(a, b) | Op::Sub(a, b) | Op::Mul(a, b) | Op::Div(a, b) | Op::Binary(_, a, b) => [Some(a), Some(b)],
         }
     }
+
+    /// How many values it takes from the stack (it leaves one).
+    fn arity(self) -> usize {
+        self.operands().iter().flatten().count()
+    }
 }
+
+/// How deep parentheses, signs, powers and function calls may nest: the parser recurses
+/// once per level, and a formula nested 10^5 deep overflowed the stack (an abort, not an
+/// error).
+pub const MAX_NESTING: usize = 256;
 
 /// An integrand given as a formula; its exact integral is unknown unless the caller states
 /// it ([`Expr::with_exact`]).
@@ -105,6 +116,8 @@ impl Op {
 pub struct Expr {
     text: String,
     tape: Vec<Op>,
+    /// The most values on the stack at once.
+    height: usize,
     dims: usize,
     exact: f64,
 }
@@ -118,7 +131,7 @@ impl Expr {
     /// or above `dims`.
     pub fn parse(text: &str, dims: Option<usize>) -> Result<Expr> {
         let tokens = tokenize(text)?;
-        let mut parser = Parser { text, tokens: &tokens, at: 0, tape: Vec::new() };
+        let mut parser = Parser { text, tokens: &tokens, at: 0, tape: Vec::new(), depth: 0 };
         parser.sum()?;
         if let Some(token) = tokens.get(parser.at) {
             return Err(parser.error(token.column, &format!("unexpected {}", token.kind.describe())));
@@ -137,7 +150,16 @@ impl Expr {
             (Some(d), _) => d,
             (None, u) => u.unwrap_or(1),
         };
-        Ok(Expr { text: text.to_string(), tape: parser.tape, dims, exact: f64::NAN })
+        let height = parser
+            .tape
+            .iter()
+            .scan(0, |h, op| {
+                *h = *h + 1 - op.arity();
+                Some(*h)
+            })
+            .max()
+            .unwrap_or(1);
+        Ok(Expr { text: text.to_string(), tape: parser.tape, height, dims, exact: f64::NAN })
     }
 
     /// The same integrand with its exact integral stated.
@@ -152,32 +174,38 @@ impl Expr {
         &self.text
     }
 
-    /// Values of one block of at most [`BLOCK`] points into `out`, `slots` as scratch.
-    fn block(&self, points: &[f64], out: &mut [f64], slots: &mut [[f64; BLOCK]]) {
+    /// Values of one block of at most [`BLOCK`] points into `out`, `stack` as scratch:
+    /// each operation replaces its operands on the stack by its value.
+    fn block(&self, points: &[f64], out: &mut [f64], stack: &mut [[f64; BLOCK]]) {
         let m = out.len();
-        for (i, op) in self.tape.iter().enumerate() {
-            let (done, rest) = slots.split_at_mut(i);
-            let dst = &mut rest[0][..m];
-            let src = |a: usize| &done[a][..m];
+        let mut h = 0;
+        for op in &self.tape {
+            let (below, top) = stack.split_at_mut(h);
             match *op {
                 Op::Var(k) => {
-                    for (v, x) in dst.iter_mut().zip(points.chunks_exact(self.dims)) {
+                    for (v, x) in top[0][..m].iter_mut().zip(points.chunks_exact(self.dims)) {
                         *v = x[k];
                     }
                 }
-                Op::Const(c) => dst.fill(c),
-                Op::Neg(a) => dst.iter_mut().zip(src(a)).for_each(|(v, a)| *v = -a),
-                Op::Add(a, b) => dst.iter_mut().zip(src(a).iter().zip(src(b))).for_each(|(v, (a, b))| *v = a + b),
-                Op::Sub(a, b) => dst.iter_mut().zip(src(a).iter().zip(src(b))).for_each(|(v, (a, b))| *v = a - b),
-                Op::Mul(a, b) => dst.iter_mut().zip(src(a).iter().zip(src(b))).for_each(|(v, (a, b))| *v = a * b),
-                Op::Div(a, b) => dst.iter_mut().zip(src(a).iter().zip(src(b))).for_each(|(v, (a, b))| *v = a / b),
-                Op::Unary(f, a) => dst.iter_mut().zip(src(a)).for_each(|(v, a)| *v = f(*a)),
-                Op::Binary(f, a, b) => {
-                    dst.iter_mut().zip(src(a).iter().zip(src(b))).for_each(|(v, (a, b))| *v = f(*a, *b));
+                Op::Const(c) => top[0][..m].fill(c),
+                Op::Neg(_) => below[h - 1][..m].iter_mut().for_each(|v| *v = -*v),
+                Op::Unary(f, _) => below[h - 1][..m].iter_mut().for_each(|v| *v = f(*v)),
+                Op::Add(..) | Op::Sub(..) | Op::Mul(..) | Op::Div(..) | Op::Binary(..) => {
+                    let (a, b) = below.split_at_mut(h - 1);
+                    let pairs = a[h - 2][..m].iter_mut().zip(&b[0][..m]);
+                    match *op {
+                        Op::Add(..) => pairs.for_each(|(a, b)| *a += b),
+                        Op::Sub(..) => pairs.for_each(|(a, b)| *a -= b),
+                        Op::Mul(..) => pairs.for_each(|(a, b)| *a *= b),
+                        Op::Div(..) => pairs.for_each(|(a, b)| *a /= b),
+                        Op::Binary(f, ..) => pairs.for_each(|(a, b)| *a = f(*a, *b)),
+                        _ => unreachable!("a binary operation"),
+                    }
                 }
             }
+            h = h + 1 - op.arity();
         }
-        out.copy_from_slice(&slots[self.tape.len() - 1][..m]);
+        out.copy_from_slice(&stack[0][..m]);
     }
 }
 
@@ -191,9 +219,9 @@ impl Integrand for Expr {
         out[0]
     }
     fn eval_many(&self, points: &[f64], out: &mut [f64]) {
-        let mut slots = vec![[0.0; BLOCK]; self.tape.len()];
+        let mut stack = vec![[0.0; BLOCK]; self.height];
         for (p, o) in points.chunks(BLOCK * self.dims).zip(out.chunks_mut(BLOCK)) {
-            self.block(p, o, &mut slots);
+            self.block(p, o, &mut stack);
         }
     }
     fn exact(&self) -> f64 {
@@ -225,14 +253,32 @@ struct Token {
     column: usize,
 }
 
+/// Where an error is: the expression and the column, the expression cut to the
+/// [`SHOWN`] characters either side of the column when longer.
+fn at_column(text: &str, column: usize) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    if chars.len() <= 2 * SHOWN {
+        return format!("expression `{text}` column {column}");
+    }
+    let (from, to) = (column.saturating_sub(SHOWN + 1), (column + SHOWN).min(chars.len()));
+    let cut = |on: bool| if on { "..." } else { "" };
+    let excerpt: String = chars[from..to].iter().collect();
+    format!(
+        "expression `{}{excerpt}{}` ({} characters) column {column}",
+        cut(from > 0),
+        cut(to < chars.len()),
+        chars.len()
+    )
+}
+
+/// Characters shown either side of an error's column in a long expression.
+const SHOWN: usize = 40;
+
 fn tokenize(text: &str) -> Result<Vec<Token>> {
     let chars: Vec<char> = text.chars().collect();
     let mut tokens = Vec::new();
     let mut i = 0;
-    let fail = |column: usize, reason: String| Error::Parse {
-        location: format!("expression `{text}` column {column}"),
-        reason,
-    };
+    let fail = |column: usize, reason: String| Error::Parse { location: at_column(text, column), reason };
     while i < chars.len() {
         let c = chars[i];
         let column = i + 1;
@@ -291,11 +337,13 @@ struct Parser<'a> {
     tokens: &'a [Token],
     at: usize,
     tape: Vec<Op>,
+    /// The levels of nesting open at the token being read.
+    depth: usize,
 }
 
 impl Parser<'_> {
     fn error(&self, column: usize, reason: &str) -> Error {
-        Error::Parse { location: format!("expression `{}` column {column}", self.text), reason: reason.to_string() }
+        Error::Parse { location: at_column(self.text, column), reason: reason.to_string() }
     }
 
     /// The column just past the end, for "the expression ended" errors.
@@ -366,7 +414,23 @@ impl Parser<'_> {
         Ok(left)
     }
 
+    /// Every level of nesting passes here: a sign, a power's exponent, a parenthesis and a
+    /// function's argument each parse a unary first.
     fn unary(&mut self) -> Result<usize> {
+        self.depth += 1;
+        if self.depth > MAX_NESTING {
+            let column = self.tokens.get(self.at).map_or_else(|| self.end(), |t| t.column);
+            return Err(self.error(
+                column,
+                &format!("nested more than {MAX_NESTING} levels deep (signs, powers, parentheses, function calls)"),
+            ));
+        }
+        let value = self.signed();
+        self.depth -= 1;
+        value
+    }
+
+    fn signed(&mut self) -> Result<usize> {
         match self.peek_symbol(&["-", "+"]) {
             Some("-") => {
                 self.at += 1;

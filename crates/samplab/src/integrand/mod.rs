@@ -22,7 +22,7 @@ mod texture;
 use crate::numeric::quadrature;
 
 pub use delaunay::Delaunay;
-pub use expr::Expr;
+pub use expr::{Expr, MAX_NESTING};
 pub use grid::Grid;
 pub use high::{BlinnPhong, GaussianD, Genz, HalfSpace, Ishigami, Keister, genz_instance};
 pub use texture::{Lookup, Texture};
