@@ -406,7 +406,7 @@ impl Reader<'_, '_> {
                 ("string", "filename") => filename = Some(self.attr(c, "filename").or_else(|_| self.attr(c, "value"))?),
                 ("boolean", "flip_normals") => flip = self.attr(c, "value")? == "true",
                 ("boolean", "face_normals") => {}
-                _ => return Err(self.unsupported(c, &format!("not supported in a {kind} shape"))),
+                _ => return Err(self.unsupported(c, &format!("not supported in <shape type=\"{kind}\">"))),
             }
         }
         let affine = DAffine3::from_mat4(to_world);

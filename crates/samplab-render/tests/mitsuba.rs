@@ -48,6 +48,10 @@ fn unsupported_or_malformed_scenes_name_the_element_and_line() {
         ),
         (format!("{sensor}\n<shape type=\"ply\"/>"), "s.xml:3: <shape type=\"ply\">"),
         (
+            format!("{sensor}\n<shape type=\"obj\"><shape type=\"obj\"/></shape>"),
+            "s.xml:3: <shape type=\"obj\">: not supported in <shape type=\"obj\">",
+        ),
+        (
             format!(
                 "{sensor}\n<shape type=\"sphere\"><emitter type=\"area\"><rgb name=\"radiance\" value=\"1\"/></emitter></shape>"
             ),
