@@ -18,6 +18,9 @@ CASES = {
     "force-matrix": "samplab.generate('force-matrix', n=100000)",
     "dart-throwing": "samplab.generate('poisson', n=3000000)",
     "maximal-poisson": "samplab.generate('poisson.maximal', n=300000)",
+    # a small set whose making is long: 2048 values, which alone once decided that the
+    # call ran unwatched (then finished after minutes, or raised a PanicException)
+    "lloyd-small": "samplab.generate('lloyd:iterations=100000', n=1024)",
     "reproduce": "samplab.reproduce(out, full=True)",
 }
 
