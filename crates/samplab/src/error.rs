@@ -28,7 +28,7 @@ pub enum Error {
         supported: String,
     },
     /// A name that no registry knows.
-    #[error("unknown {kind} '{name}'{}", suggest(.suggestions))]
+    #[error("unknown {kind} {}{}", quoted(.name, NAME_SHOWN), suggest(.suggestions))]
     UnknownName {
         /// "sampler", "warp", "format", ...
         kind: &'static str,
@@ -156,15 +156,25 @@ fn edit_distance(a: &str, b: &str) -> usize {
 /// token through this, never a whole line: the file may not be one the user meant to show
 /// (a scene naming `/etc/shadow`, a point file that is `/proc/self/environ`).
 pub fn excerpt(text: &str) -> String {
-    let mut out: String = text.chars().take(EXCERPT).map(|c| if c.is_control() { '?' } else { c }).collect();
-    if text.chars().nth(EXCERPT).is_some() {
-        out.push('…');
-    }
-    format!("'{out}'")
+    quoted(text, EXCERPT)
 }
 
 /// The most characters of a file's content that [`excerpt`] quotes.
 pub const EXCERPT: usize = 16;
+
+/// The most characters of an unknown name that its error quotes (a name of 10^5 characters
+/// made a line of as many).
+const NAME_SHOWN: usize = 64;
+
+/// `text` quoted: at most `most` characters of it (an ellipsis marks a cut), control
+/// characters as `?`.
+fn quoted(text: &str, most: usize) -> String {
+    let mut out: String = text.chars().take(most).map(|c| if c.is_control() { '?' } else { c }).collect();
+    if text.chars().nth(most).is_some() {
+        out.push('…');
+    }
+    format!("'{out}'")
+}
 
 #[cfg(test)]
 mod tests {
@@ -190,5 +200,14 @@ mod tests {
         assert_eq!(excerpt("abc"), "'abc'");
         assert_eq!(excerpt("root:*:19000:0:99999:7:::"), "'root:*:19000:0:9…'");
         assert_eq!(excerpt("a\u{1b}[2Jb"), "'a?[2Jb'");
+    }
+
+    #[test]
+    fn unknown_names_are_quoted_whole_up_to_64_characters() {
+        let unknown = |name: String| Error::UnknownName { kind: "sampler", name, suggestions: vec![] }.to_string();
+        let name = "x".repeat(NAME_SHOWN);
+        assert_eq!(unknown(name.clone()), format!("unknown sampler '{name}'"));
+        assert_eq!(unknown("x".repeat(100_000)), format!("unknown sampler '{name}…'"));
+        assert_eq!(unknown("a\nb".into()), "unknown sampler 'a?b'");
     }
 }
