@@ -63,7 +63,8 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
                 .enumerate()
                 .map(|(k, s)| {
                     progress.check()?;
-                    let v = discrepancy::compute(m, s, limits).with_context(|| format!("set {k}"))?;
+                    let v =
+                        discrepancy::compute(m, s, limits.stopped_by(progress)).with_context(|| format!("set {k}"))?;
                     progress.advance(1)?;
                     Ok(v)
                 })

@@ -434,7 +434,7 @@ fn discrepancy(
             .enumerate()
             .map(|(k, s)| {
                 progress.check().map_err(|e| e.to_string())?;
-                samplab::discrepancy::compute(&m, s, limits).map_err(|e| match e {
+                samplab::discrepancy::compute(&m, s, limits.stopped_by(progress)).map_err(|e| match e {
                     samplab::Error::WorkLimit { .. } => format!("set {k}: {e}; raise it with max_work"),
                     e => format!("set {k}: {e}"),
                 })

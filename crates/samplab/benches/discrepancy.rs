@@ -15,7 +15,7 @@ fn set(spec: &str, n: usize, d: usize) -> PointSet {
 
 fn bench(c: &mut Criterion, group: &str, metric: &str, cases: &[(&str, usize, usize)]) {
     let metric = Metric::parse(metric).unwrap();
-    let limits = Limits { max_work: f64::INFINITY };
+    let limits = Limits { max_work: f64::INFINITY, ..Limits::default() };
     let mut g = c.benchmark_group(group);
     g.sample_size(10);
     for &(spec, n, d) in cases {

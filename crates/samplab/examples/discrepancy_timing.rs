@@ -17,7 +17,7 @@ fn main() {
         let (n, d): (usize, usize) = (n.parse().unwrap(), d.parse().unwrap());
         let metric = Metric::parse(name).unwrap_or_else(|e| panic!("{e}"));
         let set = sampler::build(spec).unwrap().generate(n, d, Seed(1)).unwrap();
-        let limits = Limits { max_work: f64::INFINITY };
+        let limits = Limits { max_work: f64::INFINITY, ..Limits::default() };
         let mut times = Vec::new();
         let mut value = 0.0;
         let start = Instant::now();

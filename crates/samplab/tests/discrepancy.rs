@@ -3,8 +3,12 @@
 //! integrals and scipy, known values, and the paper's claims.
 
 use samplab::discrepancy::{self, Limits, Metric, extreme, l2, star};
+use samplab::progress::Progress;
 use samplab::seed::{Rng, Seed, below, uniform};
 use samplab::{PointSet, sampler};
+
+/// No progress reports, never stopped.
+const SILENT: Progress = Progress::SILENT;
 
 /// A random set whose coordinates are drawn from a coarse lattice (ties) mixed with
 /// uniform values, 0 and 1.
@@ -78,7 +82,7 @@ fn extreme_fast_equals_naive_1d_2d() {
         assert_close(extreme::extreme_1d(&x), extreme_1d_naive(&x), &format!("1D trial {trial}: {x:?}"));
         let p = nasty(&mut rng, n, 2);
         let naive = extreme::extreme_2d_naive(&p);
-        assert_close(extreme::extreme_2d(&p), naive, &format!("2D trial {trial}: {p:?}"));
+        assert_close(extreme::extreme_2d(&p, SILENT).unwrap(), naive, &format!("2D trial {trial}: {p:?}"));
         assert_close(extreme::extreme_2d_sweep(&p), naive, &format!("2D sweep, trial {trial}: {p:?}"));
     }
 }
@@ -100,12 +104,16 @@ fn extreme_branch_and_bound_equals_the_sweep_on_larger_sets() {
     ] {
         let p = sampler::build(spec).unwrap().generate(n, 2, Seed(5)).unwrap();
         let x = p.as_slice();
-        assert_close(extreme::extreme_2d(x), extreme::extreme_2d_sweep(x), &format!("{spec} n = {n}"));
+        assert_close(extreme::extreme_2d(x, SILENT).unwrap(), extreme::extreme_2d_sweep(x), &format!("{spec} n = {n}"));
     }
     let mut rng = Seed(6).rng();
     for n in [200, 600] {
         let q = nasty(&mut rng, n, 2);
-        assert_close(extreme::extreme_2d(&q), extreme::extreme_2d_sweep(&q), &format!("ties, n = {n}"));
+        assert_close(
+            extreme::extreme_2d(&q, SILENT).unwrap(),
+            extreme::extreme_2d_sweep(&q),
+            &format!("ties, n = {n}"),
+        );
     }
 }
 
@@ -124,7 +132,7 @@ fn star_exact_equals_naive_in_3d_4d_and_5d() {
         let p = nasty(&mut rng, n, d);
         let naive = star::star_naive(&p, d);
         assert_close(star::star_exact(&p, d), naive, &format!("{d}D trial {trial}: {p:?}"));
-        assert_close(star::star_dem(&p, d), naive, &format!("{d}D DEM, trial {trial}: {p:?}"));
+        assert_close(star::star_dem(&p, d, SILENT).unwrap(), naive, &format!("{d}D DEM, trial {trial}: {p:?}"));
     }
 }
 
@@ -135,7 +143,8 @@ fn star_dem_equals_the_recursive_sweep_on_larger_sets() {
     let pools: Vec<rayon::ThreadPool> =
         [1, 3, 8].map(|t| rayon::ThreadPoolBuilder::new().num_threads(t).build().unwrap()).into();
     let dem = |x: &[f64], d: usize| {
-        let values: Vec<u64> = pools.iter().map(|pool| pool.install(|| star::star_dem(x, d)).to_bits()).collect();
+        let values: Vec<u64> =
+            pools.iter().map(|pool| pool.install(|| star::star_dem(x, d, SILENT).unwrap()).to_bits()).collect();
         assert!(values.iter().all(|&v| v == values[0]), "star_dem on 1, 3 and 8 threads: {values:?}");
         f64::from_bits(values[0])
     };
@@ -178,7 +187,11 @@ fn every_l2_sweep_equals_its_pair_by_pair_sum() {
         for trial in 0..600 {
             let n = 1 + below(&mut rng, 64) as usize;
             let p = nasty(&mut rng, n, 2);
-            assert_close(form.squared(&p, 2), form.squared_quadratic(&p, 2), &format!("{name} trial {trial}"));
+            assert_close(
+                form.squared(&p, 2, SILENT).unwrap(),
+                form.squared_quadratic(&p, 2, SILENT).unwrap(),
+                &format!("{name} trial {trial}"),
+            );
         }
         // and a large Sobol' set, where the squared discrepancy (L2-extreme: 7e-9) is the
         // difference of terms a million times larger (floating-point sums in the sweep were
@@ -186,7 +199,8 @@ fn every_l2_sweep_equals_its_pair_by_pair_sum() {
         let p = sampler::build("sobol.owen").unwrap().generate(1 << 13, 2, Seed(3)).unwrap();
         // 1e-5; the diaphony's kernel dips below zero (1 - pi^2 / 6) and its separable terms
         // reach 4 pi^2, so its sweep is held to 1e-12 absolute, 1e-13 of its largest pair term)
-        let (fast, slow) = (form.squared(p.as_slice(), 2), form.squared_quadratic(p.as_slice(), 2));
+        let (fast, slow) =
+            (form.squared(p.as_slice(), 2, SILENT).unwrap(), form.squared_quadratic(p.as_slice(), 2, SILENT).unwrap());
         let tolerance = if name == "diaphony" { 1e-12 } else { 1e-11 * slow.abs() };
         assert!((fast - slow).abs() <= tolerance, "{name} 2^13 Sobol': {fast} vs {slow}");
     }
@@ -222,8 +236,8 @@ fn warnock_equals_the_defining_integral() {
         let n = 1 + below(&mut rng, 20) as usize;
         let p = nasty(&mut rng, n, 2);
         let exact = l2_star_sq_by_integration(&p);
-        assert!((l2::STAR.squared_quadratic(&p, 2) - exact).abs() < 1e-13);
-        assert!((l2::STAR.squared(&p, 2) - exact).abs() < 1e-13);
+        assert!((l2::STAR.squared_quadratic(&p, 2, SILENT).unwrap() - exact).abs() < 1e-13);
+        assert!((l2::STAR.squared(&p, 2, SILENT).unwrap() - exact).abs() < 1e-13);
     }
 }
 
@@ -243,9 +257,9 @@ fn l2_extreme_of_one_point_in_1d_by_integration() {
         }
         let integral = s * h * h;
         assert!(
-            (l2::EXTREME.squared(&[x], 1) - integral).abs() < 2e-3,
+            (l2::EXTREME.squared(&[x], 1, SILENT).unwrap() - integral).abs() < 2e-3,
             "x = {x}: {} vs {integral}",
-            l2::EXTREME.squared(&[x], 1)
+            l2::EXTREME.squared(&[x], 1, SILENT).unwrap()
         );
     }
 }
@@ -270,8 +284,8 @@ fn equal_scipy_on_stored_fixtures() {
         // scipy returns CD, WD, MD squared and L2-star unsquared
         for (form, key) in [(l2::CENTERED, "CD"), (l2::WRAPAROUND, "WD"), (l2::MIXTURE, "MD")] {
             // the 2D sweep (d = 2) and the pair-by-pair sum both
-            rel(form.squared(&pts, d), s[key].as_f64().unwrap(), key);
-            rel(form.squared_quadratic(&pts, d), s[key].as_f64().unwrap(), key);
+            rel(form.squared(&pts, d, SILENT).unwrap(), s[key].as_f64().unwrap(), key);
+            rel(form.squared_quadratic(&pts, d, SILENT).unwrap(), s[key].as_f64().unwrap(), key);
         }
         let set = PointSet::new(d, pts.clone()).unwrap();
         rel(
@@ -398,7 +412,8 @@ fn bad_input_errors() {
     let e = discrepancy::compute(&Metric::parse("star").unwrap(), &big, Limits::default()).unwrap_err();
     assert!(matches!(e, samplab::Error::WorkLimit { limit: 2e10, .. }), "{e}");
     let five = sampler::build("random").unwrap().generate(400, 5, Seed(0)).unwrap();
-    let e = discrepancy::compute(&Metric::parse("star").unwrap(), &five, Limits { max_work: 1e5 }).unwrap_err();
+    let e = discrepancy::compute(&Metric::parse("star").unwrap(), &five, Limits { max_work: 1e5, ..Limits::default() })
+        .unwrap_err();
     assert!(e.to_string().contains("over the work limit 1.0e5") && e.to_string().contains("5D"), "{e}");
     // a whole-number parameter past 2^53 stays exact (it used to be stored as an f64 and
     // run as 2^53)
@@ -458,8 +473,8 @@ fn l2_forms_in_thousands_of_dimensions() {
     // the scaled sums against the plain ones, at 60 dimensions
     let set = sampler::build("random").unwrap().generate(40, 60, Seed(3)).unwrap();
     for (name, form) in forms {
-        let plain = form.squared(set.as_slice(), 60);
-        let (bracket, log) = form.squared_scaled(set.as_slice(), 60);
+        let plain = form.squared(set.as_slice(), 60, SILENT).unwrap();
+        let (bracket, log) = form.squared_scaled(set.as_slice(), 60, SILENT).unwrap();
         let scaled = bracket * log.exp();
         assert!((plain - scaled).abs() <= 1e-9 * plain.abs(), "{name}: {plain} vs {scaled}");
     }
@@ -484,4 +499,33 @@ fn l2_forms_in_thousands_of_dimensions() {
     // one point at (1, ..., 1): L2-star D^2 = 3^-d, below the double range at d = 1500
     let err = value("l2-star", &vec![1.0; 1500]).unwrap_err().to_string();
     assert!(err.contains("10^-357.8") && err.contains("outside the double-precision range"), "{err}");
+}
+
+/// The long exact computations stop soon after their stop flag is raised, with
+/// `Interrupted` (no value): each of these takes tens of seconds to minutes whole.
+#[test]
+fn long_exact_computations_stop_when_told() {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::time::{Duration, Instant};
+    let set = |spec: &str, n: usize, d: usize| sampler::build(spec).unwrap().generate(n, d, Seed(3)).unwrap();
+    for (metric, points) in [
+        // the Hammersley set is the branch and bound's worst case (22 s at 4096 points)
+        ("extreme", set("hammersley", 8192, 2)),
+        ("star", set("random", 2000, 6)),
+        ("l2-star", set("random", 400_000, 3)),
+        ("centered", set("random", 100_000, 80)),
+    ] {
+        let stop = AtomicBool::new(false);
+        let limits = Limits { max_work: f64::INFINITY, ..Limits::default() }.stopped_by(Progress::until(&stop));
+        let start = Instant::now();
+        let got = std::thread::scope(|scope| {
+            scope.spawn(|| {
+                std::thread::sleep(Duration::from_millis(300));
+                stop.store(true, Ordering::Relaxed);
+            });
+            discrepancy::compute(&Metric::parse(metric).unwrap(), &points, limits)
+        });
+        assert_eq!(got, Err(samplab::Error::Interrupted), "{metric}");
+        assert!(start.elapsed() < Duration::from_secs(10), "{metric}: stopped after {:?}", start.elapsed());
+    }
 }

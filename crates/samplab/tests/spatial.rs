@@ -2,6 +2,7 @@
 //! grid's PCF peak, white noise's PCF of 1) and the diaphony's Fourier definition.
 
 use samplab::discrepancy::{self, Limits, Metric};
+use samplab::progress::Progress;
 use samplab::sampler::blue_noise::lloyd::{self, Cells};
 use samplab::seed::{Rng, Seed, below, uniform};
 use samplab::{PointSet, sampler, spatial};
@@ -181,7 +182,7 @@ fn diaphony_is_its_fourier_sum_and_a_lattice_s_p2() {
     // the Fourier definition, truncated at |h_k| <= H: the tail sum_(|h| > H) 1/h^2 < 2/H
     // per axis bounds the gap
     let mut rng = Seed(6).rng();
-    let form = |p: &PointSet| discrepancy::l2::DIAPHONY.squared(p.as_slice(), p.dims());
+    let form = |p: &PointSet| discrepancy::l2::DIAPHONY.squared(p.as_slice(), p.dims(), Progress::SILENT).unwrap();
     for trial in 0..5 {
         let n = 1 + below(&mut rng, 12) as usize;
         let p = nasty(&mut rng, n, 2);

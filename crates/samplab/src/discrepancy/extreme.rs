@@ -13,6 +13,7 @@ use super::star::critical;
 use super::{Limits, MetricEntry};
 use crate::error::{Error, Result};
 use crate::points::PointSet;
+use crate::progress::Progress;
 use crate::registry::About;
 use crate::spec::Params;
 
@@ -202,8 +203,11 @@ fn slab(ys: impl Iterator<Item = f64>, w: f64, inv: f64, open: bool) -> f64 {
 /// Hammersley set, a (0, 12, 2)-net whose boxes come within a point of the maximum
 /// almost everywhere, takes 22 s (4% of the pairs evaluated exactly, two O(n) slab passes
 /// each; at n = 2048, 70% of the bounds computed were of larger blocks, two to four passes
-/// each).
-pub fn extreme_2d(points: &[f64]) -> f64 {
+/// each). Each worker checks `progress` before each block it takes.
+///
+/// # Errors
+/// [`Error::Interrupted`] once `progress` says stop.
+pub fn extreme_2d(points: &[f64], progress: Progress) -> Result<f64> {
     use std::sync::atomic::{AtomicU64, Ordering};
     let sides = Sides::new(points);
     let root = sides.bound(Block { i: 1, j: 1, ub: 0.0 }, &mut vec![0; sides.words]);
@@ -222,6 +226,9 @@ pub fn extreme_2d(points: &[f64]) -> f64 {
     let worker = || {
         let mut bits = vec![0u64; sides.words];
         loop {
+            if progress.check().is_err() {
+                return;
+            }
             let taken = {
                 let mut guard = lock();
                 let (heap, busy) = &mut *guard;
@@ -258,7 +265,8 @@ pub fn extreme_2d(points: &[f64]) -> f64 {
             scope.spawn(|_| worker());
         }
     });
-    f64::from_bits(best.into_inner())
+    progress.check()?;
+    Ok(f64::from_bits(best.into_inner()))
 }
 
 /// Strips up to this many sides get their own best boxes precomputed (O(k^2) each).
@@ -512,7 +520,7 @@ fn extreme(_: &Params, points: &PointSet, limits: Limits) -> Result<f64> {
             // a nominal n^2 log2 n: the branch and bound's work depends on the set (at worst n^3)
             let n = points.len() as f64;
             limits.allow("the exact extreme discrepancy", points, n * n * n.log2().max(1.0))?;
-            Ok(extreme_2d(x))
+            extreme_2d(x, limits.progress)
         }
         d => Err(Error::Invalid(format!("the exact extreme discrepancy is implemented in 1D and 2D, not {d}D"))),
     }

@@ -9,6 +9,7 @@ use super::{Limits, MetricEntry};
 use crate::error::{Error, Result};
 use crate::numeric::order_key;
 use crate::points::PointSet;
+use crate::progress::Progress;
 use crate::registry::About;
 use crate::spec::Params;
 use rayon::prelude::*;
@@ -47,13 +48,20 @@ const CHUNK: usize = 64;
 
 /// (1/N) sum_i prod_k f(x_ik) and (1/N^2) sum_i sum_j prod_k g(x_ik, x_jk), g symmetric:
 /// every closed form here is a product over coordinates.
-fn sums(points: &[f64], dims: usize, f: impl Fn(f64) -> f64 + Sync, g: impl Fn(f64, f64) -> f64 + Sync) -> (f64, f64) {
+fn sums(
+    points: &[f64],
+    dims: usize,
+    f: impl Fn(f64) -> f64 + Sync,
+    g: impl Fn(f64, f64) -> f64 + Sync,
+    progress: Progress,
+) -> Result<(f64, f64)> {
     let n = points.len() / dims;
     let columns: Vec<Vec<f64>> = (0..dims).map(|k| points.iter().skip(k).step_by(dims).copied().collect()).collect();
     let parts: Vec<(Sum, Sum)> = (0..n)
         .into_par_iter()
         .step_by(CHUNK)
         .map(|start| {
+            progress.check()?;
             let (mut single, mut pair) = (Sum::default(), Sum::default());
             for i in start..(start + CHUNK).min(n) {
                 let p = &points[i * dims..(i + 1) * dims];
@@ -61,15 +69,15 @@ fn sums(points: &[f64], dims: usize, f: impl Fn(f64) -> f64 + Sync, g: impl Fn(f
                 pair.add(p.iter().map(|&x| g(x, x)).product());
                 pair.add(2.0 * row_sum(p, &columns, i + 1, &g));
             }
-            (single, pair)
+            Ok((single, pair))
         })
-        .collect();
+        .collect::<Result<_>>()?;
     let (mut single, mut pair) = (Sum::default(), Sum::default());
     for (s, p) in parts {
         single.merge(s);
         pair.merge(p);
     }
-    (single.value() / n as f64, pair.value() / (n * n) as f64)
+    Ok((single.value() / n as f64, pair.value() / (n * n) as f64))
 }
 
 /// Independent compensated accumulators: enough of them (16 for a row of pairs) that the
@@ -155,6 +163,10 @@ fn row_sum_any(p: &[f64], columns: &[Vec<f64>], from: usize, g: &impl Fn(f64, f6
     total.value()
 }
 
+/// (1/N) sum_i prod_k f and (1/N^2) sum_ij prod_k g of points with `dims` coordinates,
+/// stoppable ([`sums`]).
+type PairSums = fn(&[f64], usize, Progress) -> Result<(f64, f64)>;
+
 /// One L2 discrepancy's closed form: D^2 = sign base^d - (2/N) sum_i prod_k f(x_ik) +
 /// (1/N^2) sum_ij prod_k g(x_ik, x_jk), the kernel g symmetric and, for u >= v, a sum of a
 /// few separable terms sum_r a_r(u) b_r(v), which is what lets the 2D pair sum be swept in
@@ -167,7 +179,7 @@ pub struct Form {
     g: fn(f64, f64) -> f64,
     /// [`sums`] with f and g inlined (monomorphized: a call through `f` and `g` per pair
     /// would not vectorize).
-    quadratic: fn(&[f64], usize) -> (f64, f64),
+    quadratic: PairSums,
     /// [`pair_sum_2d`] with g and its split inlined.
     sweep: fn(&[f64]) -> f64,
 }
@@ -181,7 +193,7 @@ macro_rules! form {
             sign: $sign,
             f: $f,
             g: $g,
-            quadratic: |p, d| sums(p, d, $f, $g),
+            quadratic: |p, d, progress| sums(p, d, $f, $g, progress),
             sweep: |p| pair_sum_2d(p, $g, $split),
         }
     };
@@ -283,20 +295,26 @@ impl Form {
     /// The squared discrepancy of `points` (`dims` coordinates each): the pair sum swept in
     /// O(n log n) in 2D, else formed pair by pair (O(n^2 d); no better bound is known to us
     /// for these in general d, Heinrich 1996's O(n log^d n) for L2-star aside).
-    pub fn squared(&self, points: &[f64], dims: usize) -> f64 {
+    ///
+    /// # Errors
+    /// [`Error::Interrupted`] once `progress` says stop (checked between chunks of pairs).
+    pub fn squared(&self, points: &[f64], dims: usize, progress: Progress) -> Result<f64> {
         if dims == 2 {
             // the single sum is one serial loop: it runs beside the sweep
             let (single, pair) = rayon::join(|| self.single(points, dims), || (self.sweep)(points));
-            self.finish(single, pair, dims, points.len() / dims)
+            Ok(self.finish(single, pair, dims, points.len() / dims))
         } else {
-            self.squared_quadratic(points, dims)
+            self.squared_quadratic(points, dims, progress)
         }
     }
 
     /// The same, every pair's kernel formed (the oracle of the sweep).
-    pub fn squared_quadratic(&self, points: &[f64], dims: usize) -> f64 {
-        let (a, b) = (self.quadratic)(points, dims);
-        self.sign * self.base.powi(dims as i32) - 2.0 * a + b
+    ///
+    /// # Errors
+    /// As [`Form::squared`].
+    pub fn squared_quadratic(&self, points: &[f64], dims: usize, progress: Progress) -> Result<f64> {
+        let (a, b) = (self.quadratic)(points, dims, progress)?;
+        Ok(self.sign * self.base.powi(dims as i32) - 2.0 * a + b)
     }
 
     /// sum_i prod_k f(x_ik), compensated.
@@ -320,12 +338,12 @@ impl Form {
     ///
     /// # Errors
     /// A value outside the double range (about 10^-308 to 10^308), which is stated, never
-    /// rounded to 0 or infinity.
-    pub fn value(&self, points: &[f64], dims: usize) -> Result<f64> {
+    /// rounded to 0 or infinity; [`Error::Interrupted`] as [`Form::squared`].
+    pub fn value(&self, points: &[f64], dims: usize, progress: Progress) -> Result<f64> {
         if dims <= PLAIN_DIMS {
-            return Ok(self.squared(points, dims).max(0.0).sqrt());
+            return Ok(self.squared(points, dims, progress)?.max(0.0).sqrt());
         }
-        let (bracket, log_scale) = self.squared_scaled(points, dims);
+        let (bracket, log_scale) = self.squared_scaled(points, dims, progress)?;
         if bracket <= 0.0 {
             return Ok(0.0);
         }
@@ -345,7 +363,10 @@ impl Form {
     /// factors is summed as sign e^(sum of log |factor| - M), M the largest such sum (kept
     /// as the sums go, the partial sums rescaled when it grows), so no product over- or
     /// underflows. O(n^2 d) logarithms.
-    pub fn squared_scaled(&self, points: &[f64], dims: usize) -> (f64, f64) {
+    ///
+    /// # Errors
+    /// As [`Form::squared`].
+    pub fn squared_scaled(&self, points: &[f64], dims: usize, progress: Progress) -> Result<(f64, f64)> {
         let n = points.len() / dims;
         // the logarithms summed compensated: a plain sum of 1000 of them loses 10 bits
         let log_product = |values: &mut dyn Iterator<Item = f64>| {
@@ -362,6 +383,7 @@ impl Form {
         let rows: Vec<ScaledSum> = (0..n)
             .into_par_iter()
             .map(|i| {
+                progress.check()?;
                 let p = &points[i * dims..(i + 1) * dims];
                 let mut row = ScaledSum::default();
                 let (log, sign) = log_product(&mut p.iter().map(|&x| (self.f)(x)));
@@ -373,15 +395,15 @@ impl Form {
                     let (log, sign) = log_product(&mut p.iter().zip(q).map(|(&x, &y)| (self.g)(x, y)));
                     row.add(2.0 * sign / (n * n) as f64, log);
                 }
-                row
+                Ok(row)
             })
-            .collect();
+            .collect::<Result<_>>()?;
         let mut total = ScaledSum::default();
         total.add(self.sign, dims as f64 * self.base.ln());
         for row in rows {
             total.merge(row);
         }
-        (total.sum.value(), total.log)
+        Ok((total.sum.value(), total.log))
     }
 }
 
@@ -807,32 +829,32 @@ pub(crate) static ENTRIES: &[MetricEntry] = &[
         About::new("l2-star", "root mean square over anchored boxes (Shirley's S), Warnock's formula")
             .aliases(&["rms", "s", "warnock"])
             .cite(&["shirley1991"]),
-        |_, p, _| STAR.value(p.as_slice(), p.dims()),
+        |_, p, limits| STAR.value(p.as_slice(), p.dims(), limits.progress),
     ),
     l2_entry(
         About::new("l2-extreme", "root mean square over all boxes").aliases(&["l2-unanchored"]).cite(&["shirley1991"]),
-        |_, p, _| EXTREME.value(p.as_slice(), p.dims()),
+        |_, p, limits| EXTREME.value(p.as_slice(), p.dims(), limits.progress),
     ),
-    l2_entry(About::new("centered", "centered L2 discrepancy (Hickernell)").aliases(&["cd"]), |_, p, _| {
-        CENTERED.value(p.as_slice(), p.dims())
+    l2_entry(About::new("centered", "centered L2 discrepancy (Hickernell)").aliases(&["cd"]), |_, p, limits| {
+        CENTERED.value(p.as_slice(), p.dims(), limits.progress)
     }),
     MetricEntry {
         shift_invariant: true,
         ..l2_entry(
             About::new("wraparound", "wrap-around L2 discrepancy (Hickernell); toroidal-shift invariant")
                 .aliases(&["wd", "wrap-around"]),
-            |_, p, _| WRAPAROUND.value(p.as_slice(), p.dims()),
+            |_, p, limits| WRAPAROUND.value(p.as_slice(), p.dims(), limits.progress),
         )
     },
-    l2_entry(About::new("mixture", "mixture L2 discrepancy").aliases(&["md"]), |_, p, _| {
-        MIXTURE.value(p.as_slice(), p.dims())
+    l2_entry(About::new("mixture", "mixture L2 discrepancy").aliases(&["md"]), |_, p, limits| {
+        MIXTURE.value(p.as_slice(), p.dims(), limits.progress)
     }),
     MetricEntry {
         shift_invariant: true,
         ..l2_entry(
             About::new("diaphony", "Zinterhof's diaphony: the Fourier coefficients' weighted energy")
                 .cite(&["zinterhof1976"]),
-            |_, p, _| DIAPHONY.value(p.as_slice(), p.dims()),
+            |_, p, limits| DIAPHONY.value(p.as_slice(), p.dims(), limits.progress),
         )
     },
 ];

@@ -25,6 +25,7 @@
 
 use crate::error::{Error, Result};
 use crate::points::PointSet;
+use crate::progress::Progress;
 use crate::registry::{About, Entry, canonical};
 use crate::spec::Params;
 
@@ -179,34 +180,44 @@ pub fn csv(metrics: &[Metric], values: &[Vec<f64>]) -> String {
 
 /// Limits on the exact algorithms whose cost grows fastest.
 #[derive(Debug, Clone, Copy)]
-pub struct Limits {
+pub struct Limits<'a> {
     /// The largest number of elementary steps an exact algorithm may take, estimated before
     /// the work: n^(1 + d/2) for the d-D star discrepancy (d >= 3), n^2 log2 n for the 2D
     /// extreme (a nominal figure: its branch and bound's work depends on the set).
     pub max_work: f64,
+    /// Checked between the tasks of the algorithms that can run long (the exact d-D star
+    /// and 2D extreme discrepancies, the pair sums of the L2 family beyond 2D): once it says
+    /// stop, they end with [`Error::Interrupted`].
+    pub progress: Progress<'a>,
 }
 
-impl std::default::Default for Limits {
+impl std::default::Default for Limits<'_> {
     fn default() -> Self {
-        Limits { max_work: 2e10 }
+        Limits { max_work: 2e10, progress: Progress::SILENT }
     }
 }
 
-impl Limits {
-    /// The limits with `max_work` steps at most (the default when none).
+impl<'a> Limits<'a> {
+    /// The limits with `max_work` steps at most (the default when none), never stopped.
     ///
     /// # Errors
     /// [`Error::Setting`] `max_work` when it is not a positive number.
-    pub fn new(max_work: Option<f64>) -> Result<Limits> {
+    pub fn new(max_work: Option<f64>) -> Result<Limits<'static>> {
         match max_work {
             Some(w) if w.is_nan() || w <= 0.0 => Err(Error::Setting {
                 name: "max_work",
                 value: w.to_string(),
                 reason: "must be a positive number".into(),
             }),
-            Some(w) => Ok(Limits { max_work: w }),
+            Some(w) => Ok(Limits { max_work: w, progress: Progress::SILENT }),
             None => Ok(Limits::default()),
         }
+    }
+
+    /// The same limits, stopped by `progress`.
+    #[must_use]
+    pub fn stopped_by<'b>(self, progress: Progress<'b>) -> Limits<'b> {
+        Limits { max_work: self.max_work, progress }
     }
 
     /// Refuse `work` steps of `what` over the limit, before doing any of it.

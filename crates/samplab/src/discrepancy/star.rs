@@ -14,6 +14,7 @@ use super::kinetic::KineticTree;
 use super::{Limits, MetricEntry};
 use crate::error::{Error, Result};
 use crate::points::PointSet;
+use crate::progress::Progress;
 use crate::registry::About;
 use crate::spec::Params;
 
@@ -284,6 +285,8 @@ struct Dem<'a> {
     /// a worker starts, raised when it ends: a higher best prunes more).
     best: f64,
     shared: &'a AtomicU64,
+    /// Checked before each slab task: once it says stop, the tasks left are skipped.
+    progress: Progress<'a>,
     slab: usize,
     lo: Vec<u32>,
     hi: Vec<u32>,
@@ -311,7 +314,7 @@ struct Slab {
 
 impl<'a> Dem<'a> {
     /// A worker for one kind of boxes (`sign`), its points' `keys`, with empty scratch.
-    fn new(axes: &'a [Vec<f64>], keys: &'a [u32], sign: f64, shared: &'a AtomicU64) -> Dem<'a> {
+    fn new(axes: &'a [Vec<f64>], keys: &'a [u32], sign: f64, shared: &'a AtomicU64, progress: Progress<'a>) -> Dem<'a> {
         let dims = axes.len();
         let n = keys.len() / dims;
         Dem {
@@ -322,6 +325,7 @@ impl<'a> Dem<'a> {
             sign,
             best: f64::from_bits(shared.load(Ordering::Relaxed)),
             shared,
+            progress,
             slab: ((n as f64).sqrt().ceil() as usize).max(1),
             lo: vec![0; dims],
             hi: vec![0; dims],
@@ -338,6 +342,9 @@ impl<'a> Dem<'a> {
     /// thousands of slabs cost 3-5% on one thread), from `self`'s cut so far and the best
     /// known now; make its best known.
     fn visit_on(&self, own: &mut Dem<'a>, j: usize, slab: Slab, inside: &[u32], partial: &[u32]) -> f64 {
+        if self.progress.check().is_err() {
+            return own.best;
+        }
         own.lo.copy_from_slice(&self.lo);
         own.hi.copy_from_slice(&self.hi);
         own.best = own.best.max(self.best).max(f64::from_bits(self.shared.load(Ordering::Relaxed)));
@@ -348,7 +355,7 @@ impl<'a> Dem<'a> {
 
     /// A worker of the same kind, with empty scratch.
     fn worker(&self) -> Dem<'a> {
-        Dem::new(self.axes, self.keys, self.sign, self.shared)
+        Dem::new(self.axes, self.keys, self.sign, self.shared, self.progress)
     }
 
     fn key(&self, p: u32, axis: usize) -> u32 {
@@ -559,10 +566,13 @@ pub fn star_dem_work(n: usize, dims: usize) -> f64 {
 /// d = 5, 400 points, where the first axis's slabs alone bounded it at 7.2x
 /// (docs/performance.md, 2026-12-01).
 ///
+/// # Errors
+/// [`crate::Error::Interrupted`] once `progress` says stop (checked before each slab task).
+///
 /// # Panics
 /// When a coordinate is NaN (every value must rank among the critical values; callers
 /// check the unit cube first, as [`super::compute`] does).
-pub fn star_dem(points: &[f64], dims: usize) -> f64 {
+pub fn star_dem(points: &[f64], dims: usize, progress: Progress) -> Result<f64> {
     let n = points.len() / dims;
     let axes: Vec<Vec<f64>> = (0..dims).map(|d| critical(points.iter().skip(d).step_by(dims).copied())).collect();
     let rank = |k: usize, x: f64| axes[k].binary_search_by(|c| c.total_cmp(&x)).expect("a critical value") as u32;
@@ -578,7 +588,7 @@ pub fn star_dem(points: &[f64], dims: usize) -> f64 {
     let roots: Vec<(Dem, Vec<u32>, Vec<Slab>)> = kinds
         .iter()
         .map(|(keys, sign)| {
-            let mut dem = Dem::new(&axes, keys, *sign, &best);
+            let mut dem = Dem::new(&axes, keys, *sign, &best, progress);
             let mut all: Vec<u32> = (0..n as u32).collect();
             let slabs = dem.slabs(0, &mut all, &mut []);
             (dem, all, slabs)
@@ -592,7 +602,8 @@ pub fn star_dem(points: &[f64], dims: usize) -> f64 {
         let (dem, all, _) = &roots[k];
         dem.visit_on(&mut dem.worker(), 0, slab, all, &[]);
     });
-    f64::from_bits(best.into_inner())
+    progress.check()?;
+    Ok(f64::from_bits(best.into_inner()))
 }
 
 /// The metric this file registers.
@@ -618,7 +629,7 @@ fn star(_: &Params, points: &PointSet, limits: Limits) -> Result<f64> {
         }
         _ => {
             limits.allow("the exact star discrepancy", points, star_dem_work(points.len(), d))?;
-            star_dem(x, d)
+            star_dem(x, d, limits.progress)?
         }
     })
 }

@@ -364,7 +364,8 @@ impl Description {
                         .enumerate()
                         .map(|(k, s)| {
                             progress.check()?;
-                            crate::discrepancy::compute(&m, s, limits).map_err(|e| match e {
+                            crate::discrepancy::compute(&m, s, limits.stopped_by(*progress)).map_err(|e| match e {
+                                Error::Interrupted => e,
                                 Error::WorkLimit { .. } => {
                                     invalid(format!("set {}: {e}; raise it with max_work", first + k as u64))
                                 }
