@@ -22,7 +22,7 @@ CASES = {
     # call ran unwatched (then finished after minutes, or raised a PanicException)
     "lloyd-small": "samplab.generate('lloyd:iterations=100000', n=1024)",
     "reproduce": "samplab.reproduce(out, full=True)",
-    # one set's exact discrepancy (the branch and bound's worst case: over a minute whole),
+    # one set's exact discrepancy (the branch and bound's worst case: more than 30 s whole),
     # stopped within the computation
     "extreme-discrepancy": "samplab.discrepancy('extreme', samplab.generate('hammersley', n=8192))",
 }
