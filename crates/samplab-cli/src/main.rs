@@ -179,8 +179,8 @@ fn main() -> ExitCode {
     // the command runs on a thread of rayon's pool, so that each parallel call in it starts
     // on that thread's own queue instead of being handed from the main thread to the pool
     // and back (a sleep and a wake-up per call: `generate elimination -n 100000` on two
-    // threads made 1525 context switches from the main thread, 337 from the pool); its
-    // threads get the main thread's stack size, as the command's recursion did
+    // threads made 1525 context switches run from the main thread, 337 run in the pool);
+    // its threads get the main thread's stack size, as the command's recursion did
     let _ = rayon::ThreadPoolBuilder::new().stack_size(STACK).build_global();
     // a panic is a bug: one line asking for a report and exit code 70 (the hook printed it)
     std::panic::catch_unwind(|| rayon::scope(|_| run(cli))).unwrap_or(ExitCode::from(BUG))
