@@ -31,6 +31,9 @@ pub(crate) fn buckets<K: Copy + Sync>(
 ) -> Vec<Vec<Vec<u32>>> {
     keys.par_chunks(SORTED)
         .enumerate()
+        // a task a block (and a run, and a chunk, below): rayon's own split leaves a thread
+        // runs of several blocks, which the others cannot share once they are done
+        .with_max_len(1)
         .map(|(b, block)| {
             let mut lists = vec![Vec::new(); count];
             for (i, &key) in (b * SORTED..).zip(block) {
@@ -106,7 +109,7 @@ impl Grid {
         // per run, on its own: its cells' counts, their running sums (the first position of
         // each cell: points in earlier runs, then in the run's earlier cells), and its points
         // placed cell by cell
-        runs.into_par_iter().for_each(|(r, part, cells_of_run, offset)| {
+        runs.into_par_iter().with_max_len(1).for_each(|(r, part, cells_of_run, offset)| {
             let first = first(r);
             let mut at = vec![0usize; cells_of_run.len() + 1];
             let members = || lists.iter().flat_map(|l| l[r].iter().copied());
@@ -256,6 +259,7 @@ pub(crate) fn indexed_pairs<A: Send>(
     let n = grid.len();
     (0..n.div_ceil(chunk))
         .into_par_iter()
+        .with_max_len(1)
         .map(|c| {
             let mut acc = init();
             for q in c * chunk..((c + 1) * chunk).min(n) {

@@ -487,7 +487,7 @@ fn pair_sum_2d_in_runs<const R: usize>(
     // blocks of BLOCK points in x order: their pairs directly, then sorted by y (compiled
     // for the widest vector instructions: the sums are independent lanes, the same bits on
     // every instruction set)
-    pts.par_chunks_mut(BLOCK * 64).for_each(|blocks| {
+    pts.par_chunks_mut(BLOCK * 64).with_max_len(1).for_each(|blocks| {
         crate::simd::wide(
             #[inline(always)]
             || {
