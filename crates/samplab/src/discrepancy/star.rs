@@ -96,12 +96,19 @@ trait Sweeper {
     fn open(&mut self, a: f64);
     /// Closed boxes [0,a] x [0,b]: the points with x <= a are in.
     fn closed(&mut self, a: f64);
+    /// Whether to go on to the next distinct x.
+    fn go_on(&mut self) -> bool {
+        true
+    }
 }
 
-/// Visit every distinct x in increasing order (and finally 1).
+/// Visit every distinct x in increasing order (and finally 1), while the sweeper goes on.
 fn sweep(order: &[(f64, usize)], s: &mut impl Sweeper) {
     let mut i = 0;
     while i < order.len() {
+        if !s.go_on() {
+            return;
+        }
         let a = order[i].0;
         s.open(a);
         while i < order.len() && order[i].0 == a {
@@ -150,29 +157,40 @@ pub fn star_2d_sweep(points: &[f64]) -> f64 {
 
 /// The local discrepancies of one kind of boxes (open or closed) as lines in a, in a
 /// kinetic segment tree.
-struct KineticSweep {
+struct KineticSweep<'a> {
     m: usize,
     open: bool,
     tree: KineticTree,
     max: f64,
+    /// Checked every [`SWEEP_CHECK`] distinct x (10^6 points take seconds).
+    progress: Progress<'a>,
+    steps: usize,
+    stopped: bool,
 }
 
-impl KineticSweep {
+/// Distinct x values a 2D sweep passes between two looks at its stop flag.
+const SWEEP_CHECK: usize = 1 << 12;
+
+impl<'a> KineticSweep<'a> {
     /// The largest local discrepancy of the open or the closed boxes: lines of `slopes` (the
     /// negated ones for closed boxes) rising by `step` per point counted.
-    fn run(order: &[(f64, usize)], slopes: &[f64], step: f64, open: bool) -> f64 {
+    ///
+    /// # Errors
+    /// [`Error::Interrupted`] once `progress` says stop.
+    fn run(order: &[(f64, usize)], slopes: &[f64], step: f64, open: bool, progress: Progress<'a>) -> Result<f64> {
         let tree = if open {
             KineticTree::new(slopes, -step, 0.0)
         } else {
             KineticTree::new(&slopes.iter().map(|s| -s).collect::<Vec<_>>(), step, 0.0)
         };
-        let mut s = KineticSweep { m: slopes.len(), open, tree, max: f64::NEG_INFINITY };
+        let mut s =
+            KineticSweep { m: slopes.len(), open, tree, max: f64::NEG_INFINITY, progress, steps: 0, stopped: false };
         sweep(order, &mut s);
-        s.max
+        if s.stopped { Err(Error::Interrupted) } else { Ok(s.max) }
     }
 }
 
-impl Sweeper for KineticSweep {
+impl Sweeper for KineticSweep<'_> {
     fn insert(&mut self, k: usize) {
         self.tree.add(k + usize::from(self.open), self.m, 1);
     }
@@ -186,13 +204,23 @@ impl Sweeper for KineticSweep {
             self.max = self.max.max(self.tree.max_at(a));
         }
     }
+    fn go_on(&mut self) -> bool {
+        self.steps += 1;
+        if self.steps.is_multiple_of(SWEEP_CHECK) {
+            self.stopped = self.progress.check().is_err();
+        }
+        !self.stopped
+    }
 }
 
 /// The largest open and closed local discrepancies, max over boxes of w vol - open/N and
 /// closed/N - w vol, for `points` (row-major, `dims` coordinates) counted against a
 /// total of `total` points. The building block of the exact d-D star discrepancy.
-fn weighted(points: &[f64], dims: usize, w: f64, total: f64) -> (f64, f64) {
-    match dims {
+///
+/// # Errors
+/// [`Error::Interrupted`] once `progress` says stop.
+fn weighted(points: &[f64], dims: usize, w: f64, total: f64, progress: Progress) -> Result<(f64, f64)> {
+    Ok(match dims {
         1 => {
             let mut v = points.to_vec();
             v.sort_by(f64::total_cmp);
@@ -214,10 +242,11 @@ fn weighted(points: &[f64], dims: usize, w: f64, total: f64) -> (f64, f64) {
             let (order, ys) = sweep_order(points);
             let slopes: Vec<f64> = ys.iter().map(|b| w * b).collect();
             // the two kinds of boxes share nothing but the order: one sweep each, side by side
-            rayon::join(
-                || KineticSweep::run(&order, &slopes, 1.0 / total, true),
-                || KineticSweep::run(&order, &slopes, 1.0 / total, false),
-            )
+            let (open, closed) = rayon::join(
+                || KineticSweep::run(&order, &slopes, 1.0 / total, true, progress),
+                || KineticSweep::run(&order, &slopes, 1.0 / total, false, progress),
+            );
+            (open?, closed?)
         }
         _ => {
             // sweep the last coordinate c; the boxes below it are a (d-1)-D problem with
@@ -228,37 +257,45 @@ fn weighted(points: &[f64], dims: usize, w: f64, total: f64) -> (f64, f64) {
             let (mut open, mut closed) = (f64::NEG_INFINITY, f64::NEG_INFINITY);
             let mut i = 0;
             while i < rows.len() {
+                progress.check()?;
                 let c = rows[i][dims - 1];
-                open = open.max(weighted(&inside, dims - 1, w * c, total).0);
+                open = open.max(weighted(&inside, dims - 1, w * c, total, progress)?.0);
                 while i < rows.len() && rows[i][dims - 1] == c {
                     inside.extend_from_slice(&rows[i][..dims - 1]);
                     i += 1;
                 }
-                closed = closed.max(weighted(&inside, dims - 1, w * c, total).1);
+                closed = closed.max(weighted(&inside, dims - 1, w * c, total, progress)?.1);
             }
             if rows.last().is_none_or(|r| r[dims - 1] < 1.0) {
-                open = open.max(weighted(&inside, dims - 1, w, total).0);
+                open = open.max(weighted(&inside, dims - 1, w, total, progress)?.0);
             }
             (open, closed)
         }
-    }
+    })
 }
 
 /// Exact 2D star discrepancy in O(n log^2 n): sweep x; keep the local discrepancies
 /// a*b_j - c_j/N (open boxes) and c_j/N - a*b_j (closed boxes) of every critical y value
 /// b_j as lines in a, in two kinetic segment trees: a new point adds one to the counts of
 /// a suffix of the b_j, and a only increases.
-pub fn star_2d(points: &[f64]) -> f64 {
-    star_exact(points, 2)
+///
+/// # Errors
+/// [`Error::Interrupted`] once `progress` says stop (checked every [`SWEEP_CHECK`]
+/// distinct x).
+pub fn star_2d(points: &[f64], progress: Progress) -> Result<f64> {
+    star_exact(points, 2, progress)
 }
 
 /// Exact star discrepancy in d dimensions in O(n^(d-1) log^2 n) (d >= 2): sweep the last
 /// coordinate, solving the (d-1)-D problem with the volume weighted by it over the points
 /// passed, down to the 2D kinetic sweep. What `star_2d` runs; for d >= 3 [`star_dem`] is
 /// faster, and this stays as its independent cross-check.
-pub fn star_exact(points: &[f64], dims: usize) -> f64 {
-    let (open, closed) = weighted(points, dims, 1.0, (points.len() / dims) as f64);
-    open.max(closed).max(0.0)
+///
+/// # Errors
+/// [`Error::Interrupted`] once `progress` says stop.
+pub fn star_exact(points: &[f64], dims: usize, progress: Progress) -> Result<f64> {
+    let (open, closed) = weighted(points, dims, 1.0, (points.len() / dims) as f64, progress)?;
+    Ok(open.max(closed).max(0.0))
 }
 
 /// One side of the d-D star discrepancy on the integer grid of critical corners, solved by
@@ -620,7 +657,7 @@ fn star(_: &Params, points: &PointSet, limits: Limits) -> Result<f64> {
     let (x, d) = (points.as_slice(), points.dims());
     Ok(match d {
         1 => star_1d(x),
-        2 => star_2d(x),
+        2 => star_2d(x, limits.progress)?,
         _ if d > DEM_DIMS => {
             return Err(Error::Invalid(format!(
                 "the exact star discrepancy is computed up to {DEM_DIMS} dimensions (its recursion goes one level \
