@@ -280,7 +280,7 @@ fn weighted(points: &[f64], dims: usize, w: f64, total: f64, progress: Progress)
 /// a suffix of the b_j, and a only increases.
 ///
 /// # Errors
-/// [`Error::Interrupted`] once `progress` says stop (checked every [`SWEEP_CHECK`]
+/// [`Error::Interrupted`] once `progress` says stop (checked every 4096
 /// distinct x).
 pub fn star_2d(points: &[f64], progress: Progress) -> Result<f64> {
     star_exact(points, 2, progress)
