@@ -459,8 +459,8 @@ impl ScaledSum {
 /// earlier point j has x_j <= x_i, so g(x_i, x_j) = sum_r a_r(x_i) b_r(x_j); by y order,
 /// g(y_i, y_j) = sum_s a_s(y_i) b_s(y_j) when y_j <= y_i, else sum_s b_s(y_i) a_s(y_j). The
 /// sums over earlier j of b_r(x_j) b_s(y_j) (y_j <= y_i) and b_r(x_j) a_s(y_j) (y_j > y_i)
-/// are formed by a bottom-up merge sort on y over the x order (divide and conquer: the
-/// pairs split between two halves are met while merging them), with compensated running
+/// are formed by a merge sort on y over the x order (divide and conquer: the pairs split
+/// between two halves are met while merging them, `sweep`), with compensated running
 /// sums; memory O(n), sequential access. Ties on either axis fall in either case alike (g
 /// is continuous).
 pub fn pair_sum_2d<const R: usize>(
@@ -471,7 +471,7 @@ pub fn pair_sum_2d<const R: usize>(
     pair_sum_2d_in_runs(points, g, split, RUN)
 }
 
-/// Outputs per task of a merge (the bits do not depend on it: see [`merge_runs`]).
+/// Outputs per task of a merge (the bits do not depend on it: see [`merge_halves`]).
 const RUN: usize = 1 << 14;
 
 /// [`pair_sum_2d`], each merge cut into tasks of about `run` outputs.
@@ -484,34 +484,17 @@ fn pair_sum_2d_in_runs<const R: usize>(
     let pts: Vec<Point> = points.par_chunks_exact(2).map(|p| Point { x: p[0], y: p[1], inner: 0.0 }).collect();
     let n = pts.len();
     let (mut pts, mut spare) = radix_sort_x(pts);
-    // blocks of BLOCK points in x order: their pairs directly, then sorted by y (compiled
-    // for the widest vector instructions: the sums are independent lanes, the same bits on
-    // every instruction set)
-    pts.par_chunks_mut(BLOCK * 64).with_max_len(1).for_each(|blocks| {
-        crate::simd::wide(
-            #[inline(always)]
-            || {
-                for block in blocks.chunks_mut(BLOCK) {
-                    block_pairs(&g, block);
-                    block.sort_unstable_by_key(|p| order_key(p.y));
-                }
-            },
-        )
-    });
-    // then the merges, each level from one buffer into the other
-    let (mut from, mut to) = (&mut pts, &mut spare);
-    let mut width = BLOCK;
-    while width < n {
-        // RR = R^2 products, W >= 2 RR running sums padded to whole vectors
-        match R {
-            1 => merge_runs::<R, 1, 8>(split, from, to, width, run),
-            2 => merge_runs::<R, 4, 8>(split, from, to, width, run),
-            3 => merge_runs::<R, 9, 24>(split, from, to, width, run),
-            _ => unreachable!("the closed forms here have kernels of rank 1 to 3"),
-        }
-        std::mem::swap(&mut from, &mut to);
-        width *= 2;
+    // merge levels above the blocks, from one buffer into the other: the whole ends in
+    // `pts` after an even number of them
+    let levels = (0..).find(|&l| BLOCK << l >= n).unwrap_or(0);
+    // RR = R^2 products, W >= 2 RR running sums padded to whole vectors
+    match R {
+        1 => sweep::<R, 1, 8>(&g, split, &mut pts, &mut spare, levels, run),
+        2 => sweep::<R, 4, 8>(&g, split, &mut pts, &mut spare, levels, run),
+        3 => sweep::<R, 9, 24>(&g, split, &mut pts, &mut spare, levels, run),
+        _ => unreachable!("the closed forms here have kernels of rank 1 to 3"),
     }
+    let from = if levels % 2 == 0 { &pts } else { &spare };
     // the terms' compensated sums by fixed chunks of RUN points in parallel, merged in order
     // (a serial pass over 10^6 points took 4-5 ms, after which the other threads idle)
     let parts: Vec<Sum> = from
@@ -528,6 +511,65 @@ fn pair_sum_2d_in_runs<const R: usize>(
     pair.value()
 }
 
+/// Nodes of at most this many points are swept on one thread (no task per half).
+const SERIAL: usize = 64 * BLOCK;
+
+/// One node of the merge sort on y, depth first: the points of `a` (at most BLOCK 2^level,
+/// in x order) sorted by y into `a` after an even level, into `b` after an odd one (each
+/// the other's scratch), every point given its pairs with the node's earlier points. A
+/// block's pairs are summed directly ([`block_pairs`]); a larger node sweeps its halves,
+/// in parallel above [`SERIAL`] points, then merges them ([`merge_halves`]). The earlier
+/// half's running sums ([`Marks`]) are made on the thread that sorted it while the later
+/// half may still be sorting on others: made after both, as in the merge sort by levels
+/// this replaced, they kept one thread alone for 2-3.4 ms at the top merge of 10^6 points
+/// (timers, 2026-12-01), and every level ended by waiting for its last merges. The nodes
+/// and merges are those of the merge sort by levels (node k of a level the points from k
+/// BLOCK 2^level on), and so are the bits.
+fn sweep<const R: usize, const RR: usize, const W: usize>(
+    g: &(impl Fn(f64, f64) -> f64 + Sync),
+    split: impl Fn(f64) -> ([f64; R], [f64; R]) + Copy + Sync,
+    a: &mut [Point],
+    b: &mut [Point],
+    level: u32,
+    run: usize,
+) {
+    if a.is_empty() {
+        return;
+    }
+    if level == 0 {
+        // (compiled for the widest vector instructions: the sums are independent lanes,
+        // the same bits on every instruction set)
+        return crate::simd::wide(
+            #[inline(always)]
+            || {
+                block_pairs(g, a);
+                a.sort_unstable_by_key(|p| order_key(p.y));
+            },
+        );
+    }
+    let (width, cut, parallel) = (BLOCK << (level - 1), a.len() > run, a.len() > SERIAL);
+    let (early, late) = a.split_at_mut(width.min(a.len()));
+    let (early_b, late_b) = b.split_at_mut(width.min(b.len()));
+    // (the halves' tasks hold a reference: `split` is Sync, not necessarily Send)
+    let split_ref = &split;
+    let mut earlier_half = move || {
+        sweep::<R, RR, W>(g, *split_ref, early, early_b, level - 1, run);
+        let sorted = if level % 2 == 1 { &*early } else { &*early_b };
+        // marks where the merge may be cut into runs, else the total alone
+        Marks::new::<R, RR>(*split_ref, sorted, if cut { MARK } else { usize::MAX })
+    };
+    let mut later_half = move || sweep::<R, RR, W>(g, *split_ref, late, late_b, level - 1, run);
+    let marks = if parallel {
+        rayon::join(earlier_half, later_half).0
+    } else {
+        let marks = earlier_half();
+        later_half();
+        marks
+    };
+    let (from, to) = if level % 2 == 1 { (&*a, b) } else { (&*b, a) };
+    merge_halves::<R, RR, W>(split, from, to, width, &marks, run);
+}
+
 /// Where a merge of `left` earlier and `right` later items is cut into `pieces` runs: at
 /// later items j_k = k right / pieces, each with `before(j_k)`, the earlier items the
 /// serial merge has output before later item j_k; from (0, 0) to (left, right).
@@ -541,6 +583,57 @@ fn cuts(left: usize, right: usize, pieces: usize, before: impl Fn(usize) -> usiz
         .collect()
 }
 
+/// Earlier points between running-sum marks of a merge cut into runs.
+const MARK: usize = 1024;
+
+/// An earlier half's running sums over its points' terms ([`earlier`]), in its y order:
+/// before every `every`-th point, and over all of them.
+struct Marks<const W: usize> {
+    every: usize,
+    before: Vec<Lanes<W>>,
+    total: Lanes<W>,
+}
+
+impl<const W: usize> Marks<W> {
+    fn new<const R: usize, const RR: usize>(
+        split: impl Fn(f64) -> ([f64; R], [f64; R]),
+        left: &[Point],
+        every: usize,
+    ) -> Marks<W> {
+        crate::simd::wide(
+            #[inline(always)]
+            || {
+                let mut sums = Lanes::<W>::new();
+                let mut before = Vec::with_capacity(left.len().div_ceil(every));
+                for chunk in left.chunks(every) {
+                    before.push(sums);
+                    for q in chunk {
+                        sums.add(earlier::<R, RR, W>(&split, q, 1.0));
+                    }
+                }
+                Marks { every, before, total: sums }
+            },
+        )
+    }
+
+    /// The running sums over `left[..i]`, on from the last mark at or before i: the same
+    /// additions in the same order as from the first point, so the same bits.
+    #[inline(always)]
+    fn at<const R: usize, const RR: usize>(
+        &self,
+        split: &impl Fn(f64) -> ([f64; R], [f64; R]),
+        left: &[Point],
+        i: usize,
+    ) -> Lanes<W> {
+        let Some(&mark) = self.before.get(i / self.every) else { return self.total };
+        let mut sums = mark;
+        for q in &left[i / self.every * self.every..i] {
+            sums.add(earlier::<R, RR, W>(split, q, 1.0));
+        }
+        sums
+    }
+}
+
 /// One run of a merge: the earlier half's points `left` and the later half's `right` that
 /// it outputs, and the running sums over the earlier half's points before `left`.
 struct Run<'a, const W: usize> {
@@ -550,65 +643,50 @@ struct Run<'a, const W: usize> {
     total: Lanes<W>,
 }
 
-/// One merge level: each pair of y-sorted runs of `width` points in `from` merged into `to`,
-/// every later point given its pairs with the earlier half ([`merge`]), the merges in
-/// parallel. A merge of more than `run` points is cut into runs of about `run` outputs at
-/// later points j_k, with the earlier points i_k the serial merge has output before j_k
+/// A node's merge: its y-sorted halves `from[..width]` (earlier) and `from[width..]`
+/// (later) merged into `to`, every later point given its pairs with the earlier half
+/// ([`merge`]). A merge of more than `run` points is cut into runs of about `run` outputs
+/// at later points j_k, with the earlier points i_k the serial merge has output before j_k
 /// (those with y <= y_(j_k)); a run starts from the earlier half's running sums over its
 /// first i_k points, which are the sums the serial merge holds there (its steps that take
 /// a later point add zeros, which leave the sums' bits as they are). So every run gives the
-/// serial merge's bits, and the runs of one merge go in parallel too.
-fn merge_runs<const R: usize, const RR: usize, const W: usize>(
+/// serial merge's bits, and the runs go in parallel.
+fn merge_halves<const R: usize, const RR: usize, const W: usize>(
     split: impl Fn(f64) -> ([f64; R], [f64; R]) + Copy + Sync,
     from: &[Point],
     to: &mut [Point],
     width: usize,
+    marks: &Marks<W>,
     run: usize,
 ) {
-    from.par_chunks(2 * width).zip(to.par_chunks_mut(2 * width)).for_each(|(from, to)| {
-        let (left, right) = from.split_at(width.min(from.len()));
-        let pieces = from.len().div_ceil(run.max(1)).min(right.len()).max(1);
-        let cuts = cuts(left.len(), right.len(), pieces, |j| left.partition_point(|q| q.y <= right[j].y));
+    let (left, right) = from.split_at(width.min(from.len()));
+    let pieces = from.len().div_ceil(run.max(1)).min(right.len()).max(1);
+    let total = marks.total;
+    if pieces == 1 {
+        // (a plain call: an iterator's fold here would not be compiled wide)
+        return crate::simd::wide(
+            #[inline(always)]
+            || merge::<R, RR, W>(&split, Run { left, right, below: Lanes::new(), total }, to),
+        );
+    }
+    let cuts = cuts(left.len(), right.len(), pieces, |j| left.partition_point(|q| q.y <= right[j].y));
+    let mut tasks = Vec::with_capacity(pieces);
+    let mut rest = to;
+    for c in cuts.windows(2) {
+        let ((i0, j0), (i1, j1)) = (c[0], c[1]);
+        let (out, tail) = rest.split_at_mut(i1 - i0 + j1 - j0);
+        tasks.push((i0, &left[i0..i1], &right[j0..j1], out));
+        rest = tail;
+    }
+    // a task a run: rayon's own split handed a thread a quarter of a merge's runs in one
+    // piece, which the other thread could not share (one thread alone for the last 5 ms of
+    // the top merge in a profile on two threads)
+    tasks.into_par_iter().with_max_len(1).for_each(|(i0, l, r, out)| {
         crate::simd::wide(
             #[inline(always)]
             || {
-                // the earlier half's running sums at each cut, and over all of it
-                let mut sums = Lanes::<W>::new();
-                let mut at = Vec::with_capacity(pieces);
-                let mut done = 0;
-                for &(i, _) in &cuts[..pieces] {
-                    for q in &left[done..i] {
-                        sums.add(earlier::<R, RR, W>(&split, q, 1.0));
-                    }
-                    done = i;
-                    at.push(sums);
-                }
-                for q in &left[done..] {
-                    sums.add(earlier::<R, RR, W>(&split, q, 1.0));
-                }
-                if pieces == 1 {
-                    // (a plain call: an iterator's fold here would not be compiled wide)
-                    let total = sums;
-                    merge::<R, RR, W>(&split, Run { left, right, below: at[0], total }, to);
-                    return;
-                }
-                let mut tasks = Vec::with_capacity(pieces);
-                let mut rest = to;
-                for (c, below) in cuts.windows(2).zip(at) {
-                    let r = Run { left: &left[c[0].0..c[1].0], right: &right[c[0].1..c[1].1], below, total: sums };
-                    let (out, tail) = rest.split_at_mut(r.left.len() + r.right.len());
-                    tasks.push((r, out));
-                    rest = tail;
-                }
-                // a task a run: rayon's own split handed a thread a quarter of a merge's
-                // runs in one piece, which the other thread could not share (one thread
-                // alone for the last 5 ms of the top merge in a profile on two threads)
-                tasks.into_par_iter().with_max_len(1).for_each(|(r, out)| {
-                    crate::simd::wide(
-                        #[inline(always)]
-                        || merge::<R, RR, W>(&split, r, out),
-                    )
-                });
+                let below = marks.at::<R, RR>(&split, left, i0);
+                merge::<R, RR, W>(&split, Run { left: l, right: r, below, total }, out)
             },
         )
     });
