@@ -15,6 +15,28 @@ use rayon::prelude::*;
 
 use crate::{Error, Result};
 
+/// A buffer written from parallel tasks at entries no two of them share (a spectrum's
+/// columns, a sort's scattered outputs), where the entries of one task are not one
+/// contiguous slice.
+#[derive(Clone, Copy)]
+pub(crate) struct Disjoint<T>(pub(crate) *mut T);
+
+impl<T> Disjoint<T> {
+    /// Write entry k.
+    ///
+    /// # Safety
+    /// k is inside the buffer, and no other task writes or reads entry k meanwhile.
+    pub(crate) unsafe fn write(&self, k: usize, v: T) {
+        // SAFETY: as the caller guarantees.
+        unsafe { self.0.add(k).write(v) }
+    }
+}
+
+// SAFETY: the tasks that share it write disjoint entries.
+unsafe impl<T: Send> Send for Disjoint<T> {}
+// SAFETY: as Send: no entry is written by two tasks, none read while they run.
+unsafe impl<T: Send> Sync for Disjoint<T> {}
+
 /// Buffers of finished work, taken by the next: a fresh large buffer costs a page fault
 /// per 4 KiB on its first writes, and with several threads each fault is a TLB shootdown on
 /// every core (measured in the spectra: more system time than the transforms).

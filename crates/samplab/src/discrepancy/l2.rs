@@ -483,7 +483,7 @@ fn pair_sum_2d_in_runs<const R: usize>(
 ) -> f64 {
     let pts: Vec<Point> = points.par_chunks_exact(2).map(|p| Point { x: p[0], y: p[1], inner: 0.0 }).collect();
     let n = pts.len();
-    let (mut pts, mut spare) = radix_sort_x(pts);
+    let (mut pts, mut spare) = bucket_sort_x(pts);
     // merge levels above the blocks, from one buffer into the other: the whole ends in
     // `pts` after an even number of them
     let levels = (0..).find(|&l| BLOCK << l >= n).unwrap_or(0);
@@ -692,103 +692,100 @@ fn merge_halves<const R: usize, const RR: usize, const W: usize>(
     });
 }
 
-/// Below this many points a comparison sort is faster than the radix sort's histograms.
-const RADIX_FROM: usize = 4096;
+/// Below this many points a comparison sort is faster than the bucket sort's passes.
+const BUCKETS_FROM: usize = 4096;
+
+/// Points per bucket of [`bucket_sort_x`], on average.
+const PER_BUCKET: usize = 16;
+
+/// Groups of buckets in [`bucket_sort_x`]'s first pass.
+const GROUPS: usize = 256;
 
 /// The points in x order (`f64::total_cmp`'s), and a spare buffer of the same length: a
-/// comparison sort below [`RADIX_FROM`] points, else a stable sort, which has one result
-/// however it is made: the set cut into one piece per thread (a power of two of them),
-/// each sorted by a least-significant-digit radix sort on the bits ([`radix_sort`]), the
-/// sorted pieces merged pairwise, each merge in parallel runs ([`merge_by_x`]).
-fn radix_sort_x(mut pts: Vec<Point>) -> (Vec<Point>, Vec<Point>) {
+/// comparison sort below [`BUCKETS_FROM`] points, else a stable sort, which has one result
+/// however it is made. Each point goes to one of about n / [`PER_BUCKET`] buckets by its x
+/// between the finite extremes (a function of x that never decreases in the order, NaNs
+/// and infinities in the end buckets), in two stable counting passes: by groups of
+/// buckets, the points cut into blocks that each write their own places (one pass over the
+/// points, in parallel), then each group on its own, in the cache, by bucket, each bucket
+/// then sorted stably by x. The least-significant-digit radix sort this replaced made six
+/// passes over the points and, on more than one thread, a merge of sorted pieces.
+fn bucket_sort_x(mut pts: Vec<Point>) -> (Vec<Point>, Vec<Point>) {
+    const BLOCK_POINTS: usize = 1 << 14;
     let n = pts.len();
     // scratch, its first touch shared among the threads
     let mut spare: Vec<Point> = pts.par_iter().copied().collect();
-    if n < RADIX_FROM {
+    if n < BUCKETS_FROM {
         pts.sort_unstable_by_key(|p| order_key(p.x));
         return (pts, spare);
     }
-    let mut pieces = rayon::current_num_threads().next_power_of_two();
-    while pieces > 1 && n / pieces < RADIX_FROM {
-        pieces /= 2;
-    }
-    let piece = n.div_ceil(pieces);
-    pts.par_chunks_mut(piece).zip(spare.par_chunks_mut(piece)).for_each(|(p, s)| radix_sort(p, s));
-    let (mut from, mut to) = (&mut pts, &mut spare);
-    let (mut width, mut swapped) = (piece, false);
-    while width < n {
-        from.par_chunks(2 * width).zip(to.par_chunks_mut(2 * width)).for_each(|(f, t)| merge_by_x(f, width, t));
-        std::mem::swap(&mut from, &mut to);
-        (width, swapped) = (2 * width, !swapped);
-    }
-    if swapped { (spare, pts) } else { (pts, spare) }
-}
-
-/// Sort `pts` by x, stably, by a least-significant-digit radix sort on the bits (11 at a
-/// time, a pass skipped where every key has the same digit), `spare` its scratch.
-fn radix_sort(pts: &mut [Point], spare: &mut [Point]) {
-    const BITS: usize = 11;
-    const PASSES: usize = 64_usize.div_ceil(BITS);
-    let key = |p: &Point| (order_key(p.x) as u64) ^ (1 << 63);
-    let digit = |k: u64, pass: usize| (k >> (BITS * pass)) as usize & ((1 << BITS) - 1);
-    let mut counts = vec![[0usize; 1 << BITS]; PASSES];
-    for p in pts.iter() {
-        let k = key(p);
-        for (pass, count) in counts.iter_mut().enumerate() {
-            count[digit(k, pass)] += 1;
+    let buckets = (n / PER_BUCKET).next_power_of_two().max(GROUPS);
+    let per_group = buckets / GROUPS;
+    let finite = |p: &Point| p.x.is_finite().then_some(p.x);
+    let lo = pts.par_iter().filter_map(finite).reduce(|| f64::INFINITY, f64::min);
+    let hi = pts.par_iter().filter_map(finite).reduce(|| f64::NEG_INFINITY, f64::max);
+    let scale = if hi > lo { buckets as f64 / (hi - lo) } else { 0.0 };
+    let scale = if scale.is_finite() { scale } else { 0.0 };
+    // (a float cast saturates, and a NaN casts to 0: the positive NaNs, last in the order,
+    // go to the last bucket)
+    let bucket = |x: f64| {
+        if x.is_nan() && x.is_sign_positive() { buckets - 1 } else { (((x - lo) * scale) as usize).min(buckets - 1) }
+    };
+    // each block's count of points per group, then its first place in each group
+    let mut places: Vec<Vec<usize>> = pts
+        .par_chunks(BLOCK_POINTS)
+        .map(|block| {
+            let mut count = vec![0; GROUPS];
+            block.iter().for_each(|p| count[bucket(p.x) / per_group] += 1);
+            count
+        })
+        .collect();
+    let mut starts = Vec::with_capacity(GROUPS + 1);
+    let mut at = 0;
+    for group in 0..GROUPS {
+        starts.push(at);
+        for block in places.iter_mut() {
+            (block[group], at) = (at, at + block[group]);
         }
     }
-    let (mut from, mut to) = (pts, spare);
-    let mut swapped = false;
-    for (pass, count) in counts.iter_mut().enumerate() {
-        if count.contains(&from.len()) {
-            continue;
-        }
-        let mut start = 0;
-        for c in count.iter_mut() {
-            (*c, start) = (start, start + *c);
-        }
-        for p in from.iter() {
-            let d = digit(key(p), pass);
-            to[count[d]] = *p;
-            count[d] += 1;
-        }
-        std::mem::swap(&mut from, &mut to);
-        swapped = !swapped;
-    }
-    if swapped {
-        // the sorted points are in the scratch: back into place
-        to.copy_from_slice(from);
-    }
-}
-
-/// Merge the x-sorted `from[..width]` and `from[width..]` into `to`, stably (the first
-/// half's point first on equal x), in runs of about [`RUN`] outputs in parallel: a run
-/// starts at a point j_k of the second half and at the first half's points with x <= its x,
-/// where the serial merge is at that point.
-fn merge_by_x(from: &[Point], width: usize, to: &mut [Point]) {
-    let (left, right) = from.split_at(width.min(from.len()));
-    let pieces = from.len().div_ceil(RUN).min(right.len()).max(1);
-    let cuts = cuts(left.len(), right.len(), pieces, |j| {
-        left.partition_point(|q| order_key(q.x) <= order_key(right[j].x))
-    });
-    let mut runs = Vec::with_capacity(pieces);
-    let mut rest = to;
-    for c in cuts.windows(2) {
-        let (l, r) = (&left[c[0].0..c[1].0], &right[c[0].1..c[1].1]);
-        let (out, tail) = rest.split_at_mut(l.len() + r.len());
-        runs.push((l, r, out));
-        rest = tail;
-    }
-    runs.into_par_iter().with_max_len(1).for_each(|(l, r, out)| {
-        let (mut i, mut j) = (0, 0);
-        for o in out.iter_mut() {
-            let take_left = j == r.len() || (i < l.len() && order_key(l[i].x) <= order_key(r[j].x));
-            *o = if take_left { l[i] } else { r[j] };
-            i += usize::from(take_left);
-            j += usize::from(!take_left);
+    starts.push(at);
+    let out = crate::memory::Disjoint(spare.as_mut_ptr());
+    pts.par_chunks(BLOCK_POINTS).zip(places).for_each(|(block, mut place)| {
+        for p in block {
+            let group = bucket(p.x) / per_group;
+            // SAFETY: the blocks' places are disjoint (counted above) and inside `spare`,
+            // which no one else touches during the loop
+            unsafe { out.write(place[group], *p) };
+            place[group] += 1;
         }
     });
+    // each group by bucket, back into `pts`, each bucket then sorted
+    let mut groups = Vec::with_capacity(GROUPS);
+    let (mut from, mut to) = (spare.as_slice(), pts.as_mut_slice());
+    for w in starts.windows(2) {
+        let (f, f_rest) = from.split_at(w[1] - w[0]);
+        let (t, t_rest) = std::mem::take(&mut to).split_at_mut(w[1] - w[0]);
+        groups.push((f, t));
+        (from, to) = (f_rest, t_rest);
+    }
+    groups.into_par_iter().enumerate().with_max_len(1).for_each(|(group, (from, to))| {
+        let first = group * per_group;
+        let mut start = vec![0usize; per_group + 1];
+        from.iter().for_each(|p| start[bucket(p.x) - first + 1] += 1);
+        for k in 1..=per_group {
+            start[k] += start[k - 1];
+        }
+        let mut next = start.clone();
+        for p in from {
+            let k = bucket(p.x) - first;
+            to[next[k]] = *p;
+            next[k] += 1;
+        }
+        for k in 0..per_group {
+            to[start[k]..start[k + 1]].sort_by_key(|p| order_key(p.x));
+        }
+    });
+    (pts, spare)
 }
 
 /// The sweep's leaves: blocks whose pairs are summed directly (fewer, longer merges).
@@ -954,9 +951,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn radix_sort_gives_total_cmp_order() {
+    fn bucket_sort_gives_total_cmp_order() {
         let mut rng = crate::Seed(12).rng();
-        let special = [0.0, -0.0, 1.0, 0.5, f64::MIN_POSITIVE, 1e-310, 0.25, 0.75];
+        let special = [0.0, -0.0, 1.0, 0.5, f64::MIN_POSITIVE, 1e-310, 0.25, 0.75, -2.0, 3.0, f64::INFINITY, f64::NEG_INFINITY, f64::NAN, -f64::NAN];
         for n in [1, 2, 7, 64, 1000, 5000, 20000, 70001] {
             let coords: Vec<f64> = (0..2 * n)
                 .map(|k| match k % 5 {
@@ -973,11 +970,11 @@ mod tests {
             stable.sort_by(|a, b| a.x.total_cmp(&b.x));
             for threads in [1, 2, 3, 8] {
                 let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-                let (sorted, spare) = pool.install(|| radix_sort_x(pts.clone()));
+                let (sorted, spare) = pool.install(|| bucket_sort_x(pts.clone()));
                 assert_eq!(spare.len(), n);
                 let got: Vec<u64> = sorted.iter().map(|p| p.x.to_bits()).collect();
                 assert_eq!(got, want.iter().map(|x| x.to_bits()).collect::<Vec<_>>(), "n = {n}, {threads} threads");
-                if n >= RADIX_FROM {
+                if n >= BUCKETS_FROM {
                     let ys = |v: &[Point]| v.iter().map(|p| p.y.to_bits()).collect::<Vec<_>>();
                     assert_eq!(ys(&sorted), ys(&stable), "n = {n}, {threads} threads: not stable");
                 }

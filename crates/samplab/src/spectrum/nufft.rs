@@ -57,26 +57,6 @@ struct Scratch {
     bands: Bands,
 }
 
-/// The output of a 2D transform, written column tile by column tile from parallel tasks.
-#[derive(Clone, Copy)]
-struct Columns(*mut Complex);
-
-impl Columns {
-    /// Write entry k.
-    ///
-    /// # Safety
-    /// k is inside the output, and no other task writes or reads entry k meanwhile.
-    unsafe fn write(&self, k: usize, v: Complex) {
-        // SAFETY: as the caller guarantees.
-        unsafe { self.0.add(k).write(v) }
-    }
-}
-
-// SAFETY: the tasks that share it write disjoint entries (their own columns).
-unsafe impl Send for Columns {}
-// SAFETY: as Send: no entry is written by two tasks, none read while they run.
-unsafe impl Sync for Columns {}
-
 /// The points met by each band of rows: band b's are `members[start[b]..start[b + 1]]`.
 #[derive(Default)]
 struct Bands {
@@ -258,7 +238,7 @@ impl Nufft {
         // write them transposed into the output (TILE x 16 bytes contiguous per row)
         out.resize(self.res * self.res, [0.0; 2]);
         let res = self.res;
-        let target = Columns(out.as_mut_ptr());
+        let target = crate::memory::Disjoint(out.as_mut_ptr());
         let scratch_len = self.fft.get_inplace_scratch_len();
         (0..res.div_ceil(TILE)).into_par_iter().for_each_init(
             || (vec![C64::new(0.0, 0.0); TILE * g], vec![C64::new(0.0, 0.0); scratch_len]),
