@@ -721,9 +721,12 @@ fn bucket_sort_x(mut pts: Vec<Point>) -> (Vec<Point>, Vec<Point>) {
     }
     let buckets = (n / PER_BUCKET).next_power_of_two().max(GROUPS);
     let per_group = buckets / GROUPS;
-    let finite = |p: &Point| p.x.is_finite().then_some(p.x);
-    let lo = pts.par_iter().filter_map(finite).reduce(|| f64::INFINITY, f64::min);
-    let hi = pts.par_iter().filter_map(finite).reduce(|| f64::NEG_INFINITY, f64::max);
+    // the finite extremes, in one pass
+    let (lo, hi) = pts
+        .par_iter()
+        .filter(|p| p.x.is_finite())
+        .map(|p| (p.x, p.x))
+        .reduce(|| (f64::INFINITY, f64::NEG_INFINITY), |a, b| (a.0.min(b.0), a.1.max(b.1)));
     let scale = if hi > lo { buckets as f64 / (hi - lo) } else { 0.0 };
     let scale = if scale.is_finite() { scale } else { 0.0 };
     // (a float cast saturates, and a NaN casts to 0: the positive NaNs, last in the order,
@@ -761,12 +764,11 @@ fn bucket_sort_x(mut pts: Vec<Point>) -> (Vec<Point>, Vec<Point>) {
     });
     // each group by bucket, back into `pts`, each bucket then sorted
     let mut groups = Vec::with_capacity(GROUPS);
-    let (mut from, mut to) = (spare.as_slice(), pts.as_mut_slice());
+    let mut to = pts.as_mut_slice();
     for w in starts.windows(2) {
-        let (f, f_rest) = from.split_at(w[1] - w[0]);
-        let (t, t_rest) = std::mem::take(&mut to).split_at_mut(w[1] - w[0]);
-        groups.push((f, t));
-        (from, to) = (f_rest, t_rest);
+        let (t, rest) = std::mem::take(&mut to).split_at_mut(w[1] - w[0]);
+        groups.push((&spare[w[0]..w[1]], t));
+        to = rest;
     }
     groups.into_par_iter().enumerate().with_max_len(1).for_each(|(group, (from, to))| {
         let first = group * per_group;
