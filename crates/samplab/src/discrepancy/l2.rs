@@ -701,6 +701,10 @@ const PER_BUCKET: usize = 16;
 /// Groups of buckets in [`bucket_sort_x`]'s first pass.
 const GROUPS: usize = 256;
 
+/// A group of more than 1 / CROWDED of the points (16 times its share) turns
+/// [`bucket_sort_x`] into a parallel merge sort.
+const CROWDED: usize = GROUPS / 16;
+
 /// The points in x order (`f64::total_cmp`'s), and a spare buffer of the same length: a
 /// comparison sort below [`BUCKETS_FROM`] points, else a stable sort, which has one result
 /// however it is made. Each point goes to one of about n / [`PER_BUCKET`] buckets by its x
@@ -709,7 +713,9 @@ const GROUPS: usize = 256;
 /// buckets, the points cut into blocks that each write their own places (one pass over the
 /// points, in parallel), then each group on its own, in the cache, by bucket, each bucket
 /// then sorted stably by x. The least-significant-digit radix sort this replaced made six
-/// passes over the points and, on more than one thread, a merge of sorted pieces.
+/// passes over the points and, on more than one thread, a merge of sorted pieces. Where
+/// one group would hold more than 16 times its share of the points, a parallel stable
+/// merge sort does the whole instead.
 fn bucket_sort_x(mut pts: Vec<Point>) -> (Vec<Point>, Vec<Point>) {
     const BLOCK_POINTS: usize = 1 << 14;
     let n = pts.len();
@@ -752,6 +758,13 @@ fn bucket_sort_x(mut pts: Vec<Point>) -> (Vec<Point>, Vec<Point>) {
         }
     }
     starts.push(at);
+    // x crowded into a few buckets (a cluster beside a far outlier, say): the groups' own
+    // passes would leave one thread sorting most of the points, so a parallel stable sort,
+    // which gives the same order
+    if starts.windows(2).any(|w| w[1] - w[0] > n / CROWDED) {
+        pts.par_sort_by_key(|p| order_key(p.x));
+        return (pts, spare);
+    }
     let out = crate::memory::Disjoint(spare.as_mut_ptr());
     pts.par_chunks(BLOCK_POINTS).zip(places).for_each(|(block, mut place)| {
         for p in block {
@@ -981,6 +994,25 @@ mod tests {
                     assert_eq!(ys(&sorted), ys(&stable), "n = {n}, {threads} threads: not stable");
                 }
             }
+        }
+    }
+
+    #[test]
+    fn crowded_x_keeps_the_stable_order() {
+        // all but one point within 10^-8 (one bucket of 2^12): the merge sort's path
+        let mut rng = crate::Seed(14).rng();
+        let n = 50000;
+        let mut pts: Vec<Point> = (0..n)
+            .map(|k| Point { x: 0.3 + (k % 4000) as f64 * 2e-12, y: crate::seed::uniform(&mut rng), inner: 0.0 })
+            .collect();
+        pts[n / 2].x = 1.0;
+        let mut want = pts.clone();
+        want.sort_by(|a, b| a.x.total_cmp(&b.x));
+        let bits = |v: &[Point]| v.iter().map(|p| (p.x.to_bits(), p.y.to_bits())).collect::<Vec<_>>();
+        for threads in [1, 3] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let (sorted, _) = pool.install(|| bucket_sort_x(pts.clone()));
+            assert!(bits(&sorted) == bits(&want), "{threads} threads");
         }
     }
 
