@@ -633,18 +633,8 @@ impl<'a> Heap<'a> {
     }
 }
 
-/// A halving of fewer than this many points per thread runs on one thread of its own. Its
-/// dozens of parallel passes (each batch's sampled threshold, the rounds, the lists) then
-/// cost more in hand-offs between threads than they share: timers in a build for the
-/// purpose (not kept) put a halving of 781 points at 0.75 ms on one thread and 0.77 ms on
-/// two, of 3125 at 2.9 and 2.3 ms (10^5 points, medians of 3, 2026-12-02), and on sixteen
-/// cores the removals alone of 3125 points at 1.0 ms on one thread and 1.8 ms on sixteen
-/// (2026-11-30, docs/performance.md). Which thread runs a step changes no bits.
-const SOLO_POINTS: usize = 512;
-
 /// The candidates' progressive order of elimination: m = `points.len() / dims` candidates
 /// to n, then halving to one point (module docs); the n kept indices, first kept first.
-/// The halvings of fewer than [`SOLO_POINTS`] points per thread go on one thread.
 ///
 /// # Errors
 /// As [`eliminate`].
@@ -655,24 +645,11 @@ pub fn progressive(points: &[f64], dims: usize, n: usize, torus: bool, tiled: bo
     };
     let (mut alive, _) = eliminate_in_tiles(points, dims, n, torus, tiles(n))?;
     let mut later = Vec::with_capacity(n);
-    let threads = rayon::current_num_threads();
-    // a one-thread pool for the small halvings, made when the first is met (none if it
-    // cannot be: they then run on all threads, as the larger ones)
-    let mut solo: Option<Option<rayon::ThreadPool>> = None;
     while alive.len() > 1 {
         let target = alive.len() / 2;
         let mut subset = vec![0.0; alive.len() * dims];
         subset.par_chunks_exact_mut(dims).zip(&alive).for_each(|(p, &i)| p.copy_from_slice(&points[i * dims..(i + 1) * dims]));
-        let halve = || eliminate_in_tiles(&subset, dims, target, torus, tiles(target));
-        let pool = if alive.len() < SOLO_POINTS * threads && threads > 1 {
-            solo.get_or_insert_with(|| rayon::ThreadPoolBuilder::new().num_threads(1).build().ok()).as_ref()
-        } else {
-            None
-        };
-        let (kept, gone) = match pool {
-            Some(pool) => pool.install(halve)?,
-            None => halve()?,
-        };
+        let (kept, gone) = eliminate_in_tiles(&subset, dims, target, torus, tiles(target))?;
         later.par_extend(gone.par_iter().map(|&k| alive[k]));
         alive = kept.par_iter().map(|&k| alive[k]).collect();
     }
