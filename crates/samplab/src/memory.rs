@@ -37,6 +37,19 @@ unsafe impl<T: Send> Send for Disjoint<T> {}
 // SAFETY: as Send: no entry is written by two tasks, none read while they run.
 unsafe impl<T: Send> Sync for Disjoint<T> {}
 
+/// `items` cut into consecutive parts of the given lengths (each a parallel task's own
+/// output, say).
+pub(crate) fn split<T>(mut items: &mut [T], lengths: impl IntoIterator<Item = usize>) -> Vec<&mut [T]> {
+    lengths
+        .into_iter()
+        .map(|len| {
+            let (part, rest) = std::mem::take(&mut items).split_at_mut(len);
+            items = rest;
+            part
+        })
+        .collect()
+}
+
 /// Buffers of finished work, taken by the next: a fresh large buffer costs a page fault
 /// per 4 KiB on its first writes, and with several threads each fault is a TLB shootdown on
 /// every core (measured in the spectra: more system time than the transforms).

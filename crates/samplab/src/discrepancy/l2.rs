@@ -670,14 +670,9 @@ fn merge_halves<const R: usize, const RR: usize, const W: usize>(
         );
     }
     let cuts = cuts(left.len(), right.len(), pieces, |j| left.partition_point(|q| q.y <= right[j].y));
-    let mut tasks = Vec::with_capacity(pieces);
-    let mut rest = to;
-    for c in cuts.windows(2) {
-        let ((i0, j0), (i1, j1)) = (c[0], c[1]);
-        let (out, tail) = rest.split_at_mut(i1 - i0 + j1 - j0);
-        tasks.push((i0, &left[i0..i1], &right[j0..j1], out));
-        rest = tail;
-    }
+    let outs = crate::memory::split(to, cuts.windows(2).map(|c| c[1].0 - c[0].0 + c[1].1 - c[0].1));
+    let tasks: Vec<_> =
+        cuts.windows(2).zip(outs).map(|(c, out)| (c[0].0, &left[c[0].0..c[1].0], &right[c[0].1..c[1].1], out)).collect();
     // a task a run: rayon's own split handed a thread a quarter of a merge's runs in one
     // piece, which the other thread could not share (one thread alone for the last 5 ms of
     // the top merge in a profile on two threads)
@@ -776,13 +771,8 @@ fn bucket_sort_x(mut pts: Vec<Point>) -> (Vec<Point>, Vec<Point>) {
         }
     });
     // each group by bucket, back into `pts`, each bucket then sorted
-    let mut groups = Vec::with_capacity(GROUPS);
-    let mut to = pts.as_mut_slice();
-    for w in starts.windows(2) {
-        let (t, rest) = std::mem::take(&mut to).split_at_mut(w[1] - w[0]);
-        groups.push((&spare[w[0]..w[1]], t));
-        to = rest;
-    }
+    let tos = crate::memory::split(&mut pts, starts.windows(2).map(|w| w[1] - w[0]));
+    let groups: Vec<_> = starts.windows(2).map(|w| &spare[w[0]..w[1]]).zip(tos).collect();
     groups.into_par_iter().enumerate().with_max_len(1).for_each(|(group, (from, to))| {
         let first = group * per_group;
         let mut start = vec![0usize; per_group + 1];

@@ -35,7 +35,8 @@
 use std::ops::RangeInclusive;
 
 use super::poisson::edge_is_torus;
-use super::{select_in_order, split};
+use super::select_in_order;
+use crate::memory::split;
 use crate::sampler::registry::{ANY, EDGE, SamplerEntry};
 use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};

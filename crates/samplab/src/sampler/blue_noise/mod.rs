@@ -43,23 +43,11 @@ fn select_in_order<T: Copy + Default + Send + Sync>(
         (0..blocks).into_par_iter().map(|b| range(b).filter(|&i| item(i).is_some()).count()).collect();
     into.clear();
     into.resize(counts.iter().sum(), T::default());
-    split(into, counts).into_par_iter().enumerate().for_each(|(b, part)| {
+    crate::memory::split(into, counts).into_par_iter().enumerate().for_each(|(b, part)| {
         for (slot, x) in part.iter_mut().zip(range(b).filter_map(&item)) {
             *slot = x;
         }
     });
-}
-
-/// `items` cut into consecutive parts of the given lengths.
-fn split<T>(mut items: &mut [T], lengths: impl IntoIterator<Item = usize>) -> Vec<&mut [T]> {
-    lengths
-        .into_iter()
-        .map(|len| {
-            let (part, rest) = std::mem::take(&mut items).split_at_mut(len);
-            items = rest;
-            part
-        })
-        .collect()
 }
 
 #[cfg(test)]
