@@ -9,7 +9,32 @@
 
 use std::fmt::Write as _;
 
+/// A digest (FNV-1a, 64 bits) of every file under `src/` and `data/`, paths and contents in
+/// sorted order: what a measured value depends on, for keys of values kept between runs.
+fn source_digest() -> String {
+    let mut files = Vec::new();
+    let mut stack = vec![std::path::PathBuf::from("src"), std::path::PathBuf::from("data")];
+    while let Some(dir) = stack.pop() {
+        for entry in std::fs::read_dir(&dir).expect("reading the sources").map(|e| e.expect("a source entry")) {
+            let path = entry.path();
+            if path.is_dir() { stack.push(path) } else { files.push(path) }
+        }
+    }
+    files.sort();
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for path in &files {
+        let bytes = std::fs::read(path).expect("reading a source file");
+        for b in path.to_string_lossy().bytes().chain([0]).chain(bytes) {
+            h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+    format!("{h:016x}")
+}
+
 fn main() {
+    println!("cargo::rerun-if-changed=src");
+    println!("cargo::rerun-if-changed=data");
+    println!("cargo::rustc-env=SAMPLAB_SOURCE_DIGEST={}", source_digest());
     let src = "data/new-joe-kuo-6.1024.txt";
     println!("cargo::rerun-if-changed={src}");
     let text = std::fs::read_to_string(src).expect("reading the direction-number file");

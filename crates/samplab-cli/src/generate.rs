@@ -57,6 +57,9 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     let w = a.warp.as_deref().map(warp::lookup).transpose()?;
     // `-o -` is standard output, as when -o is omitted (the command-line convention)
     let output = a.output.as_deref().filter(|p| p.as_os_str() != "-");
+    if let Some(p) = output {
+        samplab::io::check_file(p)?;
+    }
     let format = match &a.format {
         Some(f) => Format::from_name(f)?,
         None => output.map_or(Format::Text, Format::from_path),

@@ -59,6 +59,9 @@ pub struct Args {
 }
 
 pub fn run(a: &Args) -> anyhow::Result<()> {
+    if let Some(p) = &a.plot {
+        samplab::io::check_file(p)?;
+    }
     let own = crate::own::parse(&a.integrand, a.exact, true)?;
     let family = match &own {
         Some(_) => None,

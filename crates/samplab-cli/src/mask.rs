@@ -32,6 +32,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     if !matches!(ext.as_deref(), Some("npy" | "png")) {
         anyhow::bail!("-o {}: a mask is written as .npy or .png", a.output.display());
     }
+    samplab::io::check_file(&a.output)?;
     if ext.as_deref() == Some("png") && a.channels > 3 {
         anyhow::bail!("--channels {}: a .png shows at most 3 channels; write .npy", a.channels);
     }

@@ -20,6 +20,9 @@ pub const HELP: &str = "Your own integrand: 'expr:exp(-x0*x0-x1*x1)' (a formula 
 /// A malformed formula (with the column), an unreadable image, a reference that did not
 /// reach its accuracy.
 pub fn parse(text: &str, exact: Option<f64>, reference: bool) -> anyhow::Result<Option<Box<dyn Integrand>>> {
+    if let Some(e) = exact.filter(|e| !e.is_finite()) {
+        anyhow::bail!("--exact {e}: the integral must be a finite number");
+    }
     if let Some(formula) = text.strip_prefix("expr:") {
         let f = Expr::parse(formula, None)?;
         let exact = match exact {

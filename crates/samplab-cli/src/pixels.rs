@@ -63,16 +63,20 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     if let Some(o) = a.output.as_ref().filter(|o| o.extension().is_none_or(|e| !e.eq_ignore_ascii_case("npy"))) {
         anyhow::bail!("-o {}: pixel values are written as .npy", o.display());
     }
+    if let Some(o) = &a.output {
+        samplab::io::check_file(o)?;
+    }
     if a.frames == 0 {
         anyhow::bail!("--frames 0: at least one frame");
     }
     let film = Film { width: a.res.0, height: a.res.1, spp: a.spp, dims: a.dims };
-    let p = pixel::prepare(&a.spec, film, Seed(a.seed))?;
+    let stop = samplab::progress::Progress::until(&crate::bar::STOP);
+    let p = pixel::prepare_with(&a.spec, film, Seed(a.seed), &stop)?;
     if a.mask_spectrum {
         masks(&p, a.frames, a.json)?;
     }
     let Some(output) = &a.output else { return Ok(()) };
-    let values = p.fill(a.frames)?;
+    let values = p.fill_with(a.frames, &stop)?;
     let shape = [a.frames, a.res.1, a.res.0, a.spp, a.dims].map(|k| k as usize);
     let mut bytes = samplab::io::npy_header(&shape);
     bytes.reserve(8 * values.len());

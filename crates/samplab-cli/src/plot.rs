@@ -41,6 +41,9 @@ pub struct Args {
 }
 
 pub fn run(a: &Args) -> anyhow::Result<()> {
+    use samplab::io::Role;
+    samplab::io::check_file(&a.output)?;
+    samplab::io::refuse_overlap(&[Role::Input("the point file", &a.file), Role::File("-o", &a.output)])?;
     let format = a.format.as_deref().map(Format::from_name).transpose()?;
     let sets = io::read(&a.file, format)?;
     let Some(set) = sets.get(a.set) else {

@@ -150,6 +150,25 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
             bail!("--error-image needs --reference");
         }
     }
+    {
+        use samplab::io::Role;
+        let reference = a
+            .reference
+            .as_deref()
+            .map(|p| if p.exists() { Role::Input("--reference", p) } else { Role::File("--reference", p) });
+        let roles = [
+            Some(Role::Input("the scene", Path::new(&a.scene))),
+            Some(Role::File("--output", &a.output)),
+            reference,
+            a.error_image.as_deref().map(|p| Role::File("--error-image", p)),
+        ];
+        samplab::io::refuse_overlap(&roles.into_iter().flatten().collect::<Vec<_>>())?;
+        for role in roles.iter().flatten() {
+            if let Role::File(_, p) = role {
+                samplab::io::check_file(p)?;
+            }
+        }
+    }
     if a.penumbra && a.reference.is_none() {
         bail!("--penumbra needs --reference");
     }

@@ -57,6 +57,10 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     }
     let replace = if a.force { samplab::io::Replace::Force } else { samplab::io::Replace::IfOurs };
     samplab::io::check_folder(&a.output, replace)?;
+    if let Some(file) = &a.file {
+        use samplab::io::Role;
+        samplab::io::refuse_overlap(&[Role::Input("the point file", file), Role::Folder("-o", &a.output)])?;
+    }
     let crate::sets::Loaded { sets, source, spec } = a.source.load(a.file.as_deref(), 20, &samplab::io::ANY)?;
     // the closed form, before the spectra: a --theory that has none is refused, not dropped
     let theory_curves = match (a.theory, spec.as_deref()) {

@@ -99,8 +99,11 @@ fn bad_input_exit_2_with_one_line() {
     let px = |args: &[&str], expect: &[&str]| {
         let mut all = vec!["pixels"];
         all.extend_from_slice(args);
-        all.extend_from_slice(&["-o", "/nonexistent-samplab-dir/p.npy"]);
+        // a writable place, which the refusal leaves empty
+        let out = std::env::temp_dir().join(format!("samplab-cli-px-{}.npy", std::process::id()));
+        all.extend_from_slice(&["-o", out.to_str().unwrap()]);
         assert_bad_input(&all, expect);
+        assert!(!out.exists(), "{args:?}: wrote {}", out.display());
     };
     px(&["zsobol", "--res", "4x4", "--spp", "3"], &["--spp 3: zsobol: spp a power of two: try 2 and 4"]);
     px(&["zsobl", "--res", "4x4", "--spp", "4"], &["unknown pixel sampler 'zsobl'", "zsobol"]);

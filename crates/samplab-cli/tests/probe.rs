@@ -453,3 +453,175 @@ fn products_of_thousands_of_factors_are_not_rounded_to_zero() {
     assert!((wd / exact - 1.0).abs() < 1e-10, "{wd} vs {exact}");
     assert!(value("mixture").is_finite() && value("mixture") > 0.0);
 }
+
+// Round 3 (issue 89): paths through themselves, planted links, the prediction cache.
+
+/// Links planted at every temporary name the earlier builds used for a process id near
+/// this one (`.NAME.PID.K.tmp` beside a file output, `HASH.tmpPID-K` in the cache), each to
+/// `victim`.
+fn plant_links(dir: &Path, name: impl Fn(u32, usize) -> String, victim: &Path) {
+    let me = std::process::id();
+    for pid in me.saturating_sub(20)..me + 600 {
+        for k in 0..2 {
+            std::os::unix::fs::symlink(victim, dir.join(name(pid, k))).unwrap();
+        }
+    }
+}
+
+const PREDICT: &str = "$S predict --integrand disk:r=0.3 --sampler sobol.owen -n 16 --res 8 --sets 8 --json";
+
+#[test]
+fn no_write_follows_a_link_planted_at_a_temporary_name() {
+    let dir = temp("planted");
+    let victim = dir.join("victim");
+    std::fs::write(&victim, "precious").unwrap();
+    std::fs::create_dir(dir.join("out")).unwrap();
+    plant_links(&dir.join("out"), |pid, k| format!(".p.txt.{pid}.{k}.tmp"), &victim);
+    let (out, _) = sh(&dir, "$S generate jitter -n 16 -o out/p.txt", SECOND * 30);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(std::fs::read(&victim).unwrap(), b"precious", "written through a planted link");
+    assert!(std::fs::symlink_metadata(dir.join("out/p.txt")).unwrap().is_file());
+    // the cache: its entry's name, then links at the old temporary names beside it
+    let cache = format!("SAMPLAB_CACHE=\"{}\" ", dir.join("cache").display());
+    let (first, _) = sh(&dir, &format!("{cache}{PREDICT}"), SECOND * 60);
+    assert!(first.status.success(), "{}", String::from_utf8_lossy(&first.stderr));
+    let spectra = dir.join("cache/spectra");
+    let entry = listing(&spectra).pop().unwrap();
+    std::fs::remove_file(spectra.join(&entry)).unwrap();
+    let stem = entry.trim_end_matches(".bin").to_string();
+    plant_links(&spectra, |pid, k| format!("{stem}.tmp{pid}-{k}"), &victim);
+    let (again, _) = sh(&dir, &format!("{cache}{PREDICT}"), SECOND * 60);
+    assert!(again.status.success(), "{}", String::from_utf8_lossy(&again.stderr));
+    assert_eq!(again.stdout, first.stdout);
+    assert_eq!(std::fs::read(&victim).unwrap(), b"precious", "the cache wrote through a planted link");
+    assert!(std::fs::symlink_metadata(spectra.join(&entry)).unwrap().is_file());
+}
+
+#[test]
+fn no_spelling_of_a_path_loses_a_folder_or_an_input() {
+    let dir = temp("spellings");
+    let spectrum = "$S spectrum --sampler jitter -n 16 --sets 2 --res 8";
+    let (out, _) = sh(&dir, &format!("{spectrum} -o spec && mkdir empty"), SECOND * 60);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    std::os::unix::fs::symlink("spec", dir.join("link")).unwrap();
+    // each spelling of the folder replaces it in place
+    for target in ["spec/../spec", "./spec", "\"$PWD/spec\"", "empty/../empty"] {
+        let (out, _) = sh(&dir, &format!("{spectrum} --seed 3 -o {target}"), SECOND * 60);
+        assert!(out.status.success(), "{target}: {}", String::from_utf8_lossy(&out.stderr));
+        assert_eq!(listing(&dir), ["empty", "link", "spec"], "{target}");
+    }
+    assert!(dir.join("empty/spectrum.json").is_file() && dir.join("spec/spectrum.json").is_file());
+    // a link is neither replaced nor written through
+    let (out, _) = sh(&dir, &format!("{spectrum} -o link"), SECOND * 60);
+    refused(&out, "link", "link: is a link");
+    assert!(std::fs::symlink_metadata(dir.join("link")).unwrap().file_type().is_symlink());
+    // an output that is one of the inputs, or holds one
+    let (out, _) = sh(
+        &dir,
+        "$S generate jitter -n 16 -o spec/p.txt --force 2>/dev/null; $S generate jitter -n 16 -o p.txt",
+        SECOND * 30,
+    );
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    std::fs::create_dir(dir.join("rep")).unwrap();
+    std::fs::write(dir.join("rep/subr2013.html"), "<html></html>").unwrap();
+    // as samplab made it
+    std::fs::write(dir.join("rep/.samplab-manifest"), "subr2013.html\n").unwrap();
+    for (cmd, expect) in [
+        ("$S plot p.txt -o ./p.txt".to_string(), "name the same place"),
+        ("$S spectrum p.txt --res 8 -o . --force".to_string(), "the working folder"),
+        ("mkdir -p in && cp p.txt in/ && $S spectrum in/p.txt --res 8 -o in --force".to_string(), "overlap"),
+        ("$S atlas --only jitter --out rep --report rep".to_string(), "name the same place"),
+        ("$S render spheres --res 8x8 -n 1 -o x.exr --reference x.exr".to_string(), "name the same place"),
+        (
+            "$S render spheres --res 8x8 -n 1 -o x.png --reference r.exr --error-image ./x.png".to_string(),
+            "name the same place",
+        ),
+        ("$S atlas --only jitter --out a --report missing".to_string(), "missing: does not exist"),
+        ("$S atlas --only jitter --out a --report p.txt".to_string(), "p.txt: is not a folder"),
+        ("$S atlas --only jitter --out a --report empty".to_string(), "empty: holds no paper's page"),
+        ("$S generate jitter -n 16 -o p.txt/q.txt".to_string(), "is not a folder"),
+        ("$S reproduce --only subr2013 --out p.txt/r".to_string(), "is not a folder"),
+    ] {
+        let (out, _) = sh(&dir, &cmd, SECOND * 60);
+        refused(&out, &cmd, expect);
+    }
+    assert_eq!(std::fs::read(dir.join("rep/subr2013.html")).unwrap(), b"<html></html>");
+    assert!(dir.join("in/p.txt").is_file() && dir.join("p.txt").is_file());
+    let left: Vec<_> = listing(&dir).into_iter().filter(|n| n.starts_with('.')).collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
+}
+
+#[test]
+fn a_damaged_planted_endless_or_blocking_cache_entry_is_measured_again() {
+    let dir = temp("cache");
+    let cache = format!("SAMPLAB_CACHE=\"{}\" ", dir.join("cache").display());
+    let (fresh, _) = sh(&dir, &format!("{PREDICT} --no-cache"), SECOND * 60);
+    assert!(fresh.status.success(), "{}", String::from_utf8_lossy(&fresh.stderr));
+    let (first, _) = sh(&dir, &format!("{cache}{PREDICT}"), SECOND * 60);
+    assert_eq!(first.stdout, fresh.stdout);
+    let spectra = dir.join("cache/spectra");
+    let entry = spectra.join(listing(&spectra).pop().unwrap());
+    let good = std::fs::read(&entry).unwrap();
+    let header = good.iter().enumerate().filter(|&(_, &b)| b == b'\n').nth(1).unwrap().0 + 1;
+    let value = |v: f64| {
+        let mut bytes = good.clone();
+        bytes[header + 8..header + 16].copy_from_slice(&v.to_le_bytes());
+        bytes
+    };
+    let mut flipped = good.clone();
+    flipped[header + 3] ^= 1;
+    type Make<'a> = Box<dyn Fn(&Path) + 'a>;
+    let damaged: [(&str, Make<'_>); 9] = [
+        ("a flipped bit", Box::new(|p| std::fs::write(p, &flipped).unwrap())),
+        ("1e6", Box::new(|p| std::fs::write(p, value(1e6)).unwrap())),
+        ("NaN", Box::new(|p| std::fs::write(p, value(f64::NAN)).unwrap())),
+        ("-1", Box::new(|p| std::fs::write(p, value(-1.0)).unwrap())),
+        ("cut short", Box::new(|p| std::fs::write(p, &good[..good.len() - 8]).unwrap())),
+        ("a FIFO", Box::new(mkfifo)),
+        ("a link to an endless device", Box::new(|p| std::os::unix::fs::symlink("/dev/zero", p).unwrap())),
+        (
+            "a link to the good entry",
+            Box::new(|p| {
+                std::fs::write(p.with_extension("elsewhere"), &good).unwrap();
+                std::os::unix::fs::symlink(p.with_extension("elsewhere"), p).unwrap();
+            }),
+        ),
+        ("a 10 GB sparse file", Box::new(|p| std::fs::File::create(p).unwrap().set_len(10 << 30).unwrap())),
+    ];
+    for (what, make) in damaged {
+        let _ = std::fs::remove_file(&entry);
+        make(&entry);
+        let (out, _) = sh(&dir, &format!("{cache}{PREDICT}"), SECOND * 30);
+        assert!(out.status.success(), "{what}: {}", String::from_utf8_lossy(&out.stderr));
+        assert_eq!(out.stdout, fresh.stdout, "{what}: read as good");
+        // replaced by a whole entry
+        assert!(std::fs::symlink_metadata(&entry).unwrap().is_file(), "{what}");
+        assert_eq!(std::fs::read(&entry).unwrap(), good, "{what}");
+    }
+    // two writers at once leave one whole entry
+    std::fs::remove_file(&entry).unwrap();
+    let (out, _) = sh(&dir, &format!("{cache}{PREDICT} > a & {cache}{PREDICT} > b; wait"), SECOND * 60);
+    assert!(out.status.success());
+    assert_eq!(std::fs::read(dir.join("a")).unwrap(), fresh.stdout);
+    assert_eq!(std::fs::read(dir.join("b")).unwrap(), fresh.stdout);
+    assert_eq!(std::fs::read(&entry).unwrap(), good);
+    assert_eq!(listing(&spectra).len(), 2, "{:?}", listing(&spectra));
+}
+
+#[test]
+fn piles_of_equal_points_and_a_fifo_manifest_do_not_hang() {
+    let dir = temp("piles");
+    std::fs::write(dir.join("same.txt"), "0.25 0.75\n".repeat(20_000)).unwrap();
+    std::fs::create_dir(dir.join("out")).unwrap();
+    mkfifo(&dir.join("out/.samplab-manifest"));
+    for cmd in [
+        "$S discrepancy pcf rdf min-distance relative-radius same.txt",
+        "$S plot same.txt --pcf -o pcf.png",
+        "$S plot same.txt -o same.png",
+    ] {
+        let (out, _) = sh(&dir, cmd, SECOND * 30);
+        assert!(out.status.success(), "{cmd}: {}", String::from_utf8_lossy(&out.stderr));
+    }
+    let (out, _) = sh(&dir, "$S spectrum --sampler jitter -n 16 --sets 2 --res 8 -o out", SECOND * 30);
+    refused(&out, "a FIFO manifest", "which samplab did not write");
+}

@@ -2,6 +2,7 @@
 //! callable, evaluated in batches with the GIL taken for each batch.
 
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
@@ -12,12 +13,15 @@ use crate::err;
 
 /// A Python function f(x) of an (n, d) array returning n values, with its integral when
 /// known. The first exception it raises (or a wrong shape, or a value that is not finite)
-/// is kept and re-raised by [`Callable::failure`]; later batches are not evaluated.
+/// is kept and re-raised by [`Callable::failure`]; later batches are not evaluated, nor
+/// are they once its stop flag is raised (a signal: the caller raises the signal's own
+/// exception).
 pub struct Callable {
     f: Py<PyAny>,
     dims: usize,
     exact: Option<f64>,
     failed: Mutex<Option<PyErr>>,
+    stop: AtomicBool,
 }
 
 impl Callable {
@@ -60,7 +64,7 @@ impl Integrand for Callable {
         self.exact.unwrap_or(f64::NAN)
     }
     fn eval_many(&self, points: &[f64], out: &mut [f64]) {
-        let failed = self.failed.lock().map_or(true, |e| e.is_some());
+        let failed = self.stop.load(Ordering::Relaxed) || self.failed.lock().map_or(true, |e| e.is_some());
         let values = if failed { Err(None) } else { Python::attach(|py| self.batch(py, points)).map_err(Some) };
         match values {
             Ok(v) => out.copy_from_slice(&v),
@@ -106,9 +110,18 @@ impl Given {
             if dims == 0 {
                 return Err(err("d = 0: a callable integrand needs at least one dimension".to_string()));
             }
+            if let Some(e) = exact.filter(|e| !e.is_finite()) {
+                return Err(err(format!("exact = {e}: the integral must be a finite number")));
+            }
             let name =
                 value.getattr("__name__").and_then(|n| n.extract::<String>()).unwrap_or_else(|_| "callable".into());
-            let f = Callable { f: value.clone().unbind(), dims, exact, failed: Mutex::new(None) };
+            let f = Callable {
+                f: value.clone().unbind(),
+                dims,
+                exact,
+                failed: Mutex::new(None),
+                stop: AtomicBool::new(false),
+            };
             return Ok((Given::Callable(f), name));
         }
         Err(err(format!(
@@ -130,6 +143,14 @@ impl Given {
     pub fn failure(&self) -> Option<PyErr> {
         match self {
             Given::Callable(c) => c.failure(),
+            _ => None,
+        }
+    }
+
+    /// A callable's stop flag (raised, its remaining batches are skipped).
+    pub fn stop(&self) -> Option<&AtomicBool> {
+        match self {
+            Given::Callable(c) => Some(&c.stop),
             _ => None,
         }
     }

@@ -40,7 +40,7 @@ fn err<E: std::fmt::Display + 'static>(e: E) -> PyErr {
         Some(samplab_render::Error::Samplab(e)) => Some(e),
         _ => match any.downcast_ref::<samplab_report::Error>() {
             Some(samplab_report::Error::Samplab(e)) => Some(e),
-            _ => None,
+            _ => any.downcast_ref::<InSet>().map(|s| &s.error),
         },
     });
     let file = match any.downcast_ref::<samplab_render::Error>() {
@@ -48,6 +48,22 @@ fn err<E: std::fmt::Display + 'static>(e: E) -> PyErr {
         _ => None,
     };
     typed(library, file, &e.to_string()).unwrap_or_else(|| Error::new_err(e.to_string()))
+}
+
+/// A library failure on one set of a stack, typed as the failure itself.
+struct InSet {
+    set: usize,
+    error: samplab::Error,
+}
+
+impl std::fmt::Display for InSet {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "set {}: {}", self.set, self.error)?;
+        if matches!(self.error, samplab::Error::WorkLimit { .. }) {
+            write!(f, "; raise it with max_work")?;
+        }
+        Ok(())
+    }
 }
 
 /// The typed exception for a library failure, when it has one.
@@ -101,13 +117,28 @@ const AWAKE: Duration = Duration::from_micros(200);
 /// Python run its signal handlers. When one raises (`KeyboardInterrupt` on Ctrl-C), the
 /// flag is raised, the work stops at its next check, and the handler's exception is raised
 /// in place of a result: nothing is returned or written.
+///
+/// Called from a thread of the pool (a Python callable that samplab evaluates, calling
+/// samplab in turn), the work runs on that thread: waiting there for a task queued behind
+/// it would never end, and the outer call already watches for signals.
 fn interruptible<R: Send, E: std::fmt::Display + Send + 'static>(
     py: Python<'_>,
     size: usize,
     work: impl FnOnce(&AtomicBool) -> Result<R, E> + Send,
 ) -> PyResult<R> {
+    interruptible_raising(py, size, &[], work)
+}
+
+/// [`interruptible`], also raising each flag of `also` on a signal: the stop flags of the
+/// Python callables the work evaluates, so that their remaining batches are skipped.
+fn interruptible_raising<R: Send, E: std::fmt::Display + Send + 'static>(
+    py: Python<'_>,
+    size: usize,
+    also: &[&AtomicBool],
+    work: impl FnOnce(&AtomicBool) -> Result<R, E> + Send,
+) -> PyResult<R> {
     let stop = AtomicBool::new(false);
-    if size < SMALL {
+    if size < SMALL || rayon::current_thread_index().is_some() {
         return py.detach(|| work(&stop)).map_err(err);
     }
     py.detach(|| {
@@ -139,6 +170,7 @@ fn interruptible<R: Send, E: std::fmt::Display + Send + 'static>(
                             && let Err(e) = Python::attach(|py| py.check_signals())
                         {
                             stop.store(true, Ordering::Relaxed);
+                            also.iter().for_each(|flag| flag.store(true, Ordering::Relaxed));
                             raised = Some(e);
                         }
                     }
@@ -276,9 +308,11 @@ fn pixels<'py>(
         return Err(err("frames = 0: at least one frame"));
     }
     let (width, height, spp, dims) = film;
-    let p =
-        samplab::pixel::prepare(spec, samplab::pixel::Film { width, height, spp, dims }, Seed(seed)).map_err(err)?;
-    let data = py.detach(|| p.fill(frames)).map_err(err)?;
+    let film = samplab::pixel::Film { width, height, spp, dims };
+    let data = interruptible(py, usize::MAX, |stop| {
+        let stop = Progress::until(stop);
+        samplab::pixel::prepare_with(spec, film, Seed(seed), &stop)?.fill_with(frames, &stop)
+    })?;
     shaped(py, data, &[frames, height, width, spp, dims].map(|k| k as usize))
 }
 
@@ -433,13 +467,11 @@ fn discrepancy(
         sets.par_iter()
             .enumerate()
             .map(|(k, s)| {
-                progress.check().map_err(|e| e.to_string())?;
-                samplab::discrepancy::compute(&m, s, limits.stopped_by(progress)).map_err(|e| match e {
-                    samplab::Error::WorkLimit { .. } => format!("set {k}: {e}; raise it with max_work"),
-                    e => format!("set {k}: {e}"),
-                })
+                progress.check().map_err(|error| InSet { set: k, error })?;
+                samplab::discrepancy::compute(&m, s, limits.stopped_by(progress))
+                    .map_err(|error| InSet { set: k, error })
             })
-            .collect::<Result<Vec<f64>, String>>()
+            .collect::<Result<Vec<f64>, InSet>>()
     })
 }
 
@@ -615,7 +647,9 @@ fn integrate_given(
         d: Some(dims),
         exact: Some(exact),
     };
-    let merged = interruptible(py, usize::MAX, |stop| study.run_with(Some(given.integrand()), &Progress::until(stop)));
+    let merged = interruptible_raising(py, usize::MAX, &given.stop().into_iter().collect::<Vec<_>>(), |stop| {
+        study.run_with(Some(given.integrand()), &Progress::until(stop))
+    });
     if let Some(e) = given.failure() {
         return Err(e);
     }
@@ -674,7 +708,8 @@ fn predict(
         seed: Seed(seed),
         cache: cache.as_ref(),
     };
-    let outcome = interruptible(py, usize::MAX, |stop| study.run(&Progress::until(stop)));
+    let flags: Vec<&AtomicBool> = given.iter().filter_map(|(g, _)| g.stop()).collect();
+    let outcome = interruptible_raising(py, usize::MAX, &flags, |stop| study.run(&Progress::until(stop)));
     if let Some(e) = given.iter().find_map(|(g, _)| g.failure()) {
         return Err(e);
     }
@@ -697,8 +732,10 @@ fn cubature(
         serde_json::from_str(settings).map_err(|e| err(format!("cubature settings: {e}")))?;
     let (given, name) = integrand::Given::from_python(&integrand, settings.seed.0, dims, exact)?;
     let f = given.integrand();
-    let outcome =
-        interruptible(py, usize::MAX, |stop| samplab::cubature::cubature(f, &settings, &Progress::until(stop)));
+    let flags: Vec<&AtomicBool> = given.stop().into_iter().collect();
+    let outcome = interruptible_raising(py, usize::MAX, &flags, |stop| {
+        samplab::cubature::cubature(f, &settings, &Progress::until(stop))
+    });
     if let Some(e) = given.failure() {
         return Err(e);
     }
@@ -710,8 +747,10 @@ fn cubature(
 #[pyfunction]
 fn reference(py: Python<'_>, f: Bound<'_, PyAny>, dims: usize) -> PyResult<f64> {
     let (given, _) = integrand::Given::from_python(&f, Seed::DEFAULT.0, dims, None)?;
-    let value =
-        interruptible(py, usize::MAX, |stop| samplab::cubature::reference(given.integrand(), &Progress::until(stop)));
+    let flags: Vec<&AtomicBool> = given.stop().into_iter().collect();
+    let value = interruptible_raising(py, usize::MAX, &flags, |stop| {
+        samplab::cubature::reference(given.integrand(), &Progress::until(stop))
+    });
     if let Some(e) = given.failure() {
         return Err(e);
     }
@@ -866,6 +905,9 @@ fn image_metrics(
     spp: Option<Vec<f64>>,
 ) -> PyResult<String> {
     let [frames, h, w] = [0, 1, 2].map(|k| errors.shape()[k]);
+    if w == 0 || h == 0 {
+        return Err(err(format!("an empty image, {w}x{h} pixels")));
+    }
     let values = errors.as_slice().map_err(|_| err("the array must be C-contiguous"))?;
     let planes = values
         .chunks(w * h.max(1))

@@ -25,6 +25,10 @@ CASES = {
     # one set's exact discrepancy (the branch and bound's worst case: more than 30 s whole),
     # stopped within the computation
     "extreme-discrepancy": "samplab.discrepancy('extreme', samplab.generate('hammersley', n=8192))",
+    # the optimized pixel sampler's preparation (29 s whole), then its values
+    "heitz2019": "samplab.pixels('heitz2019', res=(64, 64), spp=256, dims=32)",
+    # a slow Python integrand: its remaining batches are skipped once the signal comes
+    "slow-callable": "samplab.predict([lambda x: (time.sleep(0.05), x[:, 0])[1]], ['random'], n=[64], res=64, cache=False)",
 }
 
 
@@ -39,12 +43,17 @@ def test_ctrl_c_stops_a_long_call(name, tmp_path):
         # started with SIGINT ignored (a background job of a shell without job control),
         # which Python would keep
         signal.signal(signal.SIGINT, signal.default_int_handler)
-        threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
-        start = time.monotonic()
+        # the work after the signal in CPU seconds of this process (every thread): what a
+        # loaded machine does not stretch, as it stretches wall time
+        at = []
+        def ctrl_c():
+            at.append(time.process_time())
+            os.kill(os.getpid(), signal.SIGINT)
+        threading.Timer(1.0, ctrl_c).start()
         try:
             {CASES[name]}
         except KeyboardInterrupt:
-            print("stopped after", time.monotonic() - start)
+            print("stopped; CPU seconds after the signal", time.process_time() - at[0])
         else:
             print("finished")
         """
@@ -52,7 +61,7 @@ def test_ctrl_c_stops_a_long_call(name, tmp_path):
     run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
     words = run.stdout.split()
-    assert words[0] == "stopped", run.stdout
-    # the signal came at 1 s; the call must be gone within a few seconds of it
-    assert float(words[-1]) < 6.0, run.stdout
+    assert words[0] == "stopped;", run.stdout
+    # the call is gone after little work (two threads busy for a second at most)
+    assert float(words[-1]) < 2.0, run.stdout
     assert os.listdir(tmp_path) == [], "an output was left behind"

@@ -75,3 +75,69 @@ def test_empty_stacks_are_refused():
     for empty in [np.empty((0, 4, 2)), np.empty((2, 0, 2)), np.empty((0, 2))]:
         with pytest.raises(samplab.Error, match="empty"):
             samplab.discrepancy("star", empty)
+
+
+# Round 3 (issue 89)
+
+
+def test_work_limits_raise_work_limit_error():
+    with pytest.raises(samplab.WorkLimitError, match="raise it with max_work") as caught:
+        samplab.discrepancy("star", samplab.generate("random", n=4000, d=6), max_work=10)
+    assert caught.value.limit == 10 and caught.value.work > 1e10
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda: samplab.discrepancy("star", samplab.generate("random", n=16), max_work="x"),
+        lambda: samplab.spectrum(samplab.generate("random", n=16), res=8, tolerance="x"),
+        lambda: samplab.cubature("keister:d=2", abs_tol="x"),
+        lambda: samplab.image_metrics(np.zeros((8, 8)), sigma="x"),
+        lambda: samplab.image_metrics(np.zeros((8, 8)), sigma=[1, "x"]),
+        lambda: samplab.generate("jit\udc80", n=4),
+        lambda: samplab.integrate(["random", "jit\udc80"], "quad", [16]),
+        lambda: samplab.image_metrics(np.zeros((0, 0))),
+        lambda: samplab.image_metrics(np.zeros((8, 0, 3))),
+        lambda: samplab.image_metrics(np.zeros((8, 8), complex)),
+        lambda: samplab.cubature(lambda x: x.sum(axis=1), d=2, exact=float("nan")),
+        lambda: samplab.cubature(lambda x: x.sum(axis=1), d=2, exact=float("inf")),
+        lambda: samplab.integrate("random", lambda x: x[:, 0], [16], d=1, exact=float("nan")),
+    ],
+)
+def test_bad_arguments_raise_samplab_errors(call):
+    with pytest.raises(samplab.Error):
+        call()
+
+
+@pytest.mark.parametrize(
+    "inner",
+    [
+        "samplab.cubature(lambda y: y.sum(axis=1), d=1, abs_tol=1e-2)['estimate'] * 0",
+        "samplab.generate('sobol.owen', n=1 << 17).sum() * 0",
+        "samplab.discrepancy('l2-star', samplab.generate('random', n=1 << 17)) * 0",
+    ],
+)
+def test_a_callable_that_calls_samplab_finishes(inner):
+    # re-entrant: samplab inside an integrand samplab evaluates (it hung the interpreter)
+    code = f"""
+import samplab
+f = lambda x: x.sum(axis=1) + {inner}
+print(samplab.cubature(f, d=2, abs_tol=1e-2, max_n=1 << 12)["estimate"])
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert abs(float(out.stdout) - 1.0) < 0.05, out.stdout
+
+
+def test_a_render_past_the_memory_available_raises():
+    code = """
+import resource, samplab
+resource.setrlimit(resource.RLIMIT_AS, (8_000_000 * 1024, resource.RLIM_INFINITY))
+try:
+    samplab.render("spheres", n=10**8)
+except samplab.MemoryLimitError as e:
+    print("refused:", e)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.startswith("refused: "), out.stdout

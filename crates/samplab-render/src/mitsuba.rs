@@ -60,9 +60,25 @@ pub fn parse(text: &str, file: &str, dir: &Path, paths: Paths) -> Result<Scene> 
         let pos = e.pos();
         Error::Scene { file: file.into(), line: pos.row as usize, message: format!("malformed XML: {e}") }
     })?;
+    // the reader descends recursively: a scene nested deeper than any real one is refused
+    // (each node's depth from its parent's: nodes come in document order, parents first)
+    let mut depth = vec![0usize; doc.descendants().count()];
+    for node in doc.descendants() {
+        let d = node.parent().map_or(0, |p| depth[p.id().get() as usize]) + usize::from(node.is_element());
+        depth[node.id().get() as usize] = d;
+        if d > MAX_NESTING {
+            let line = doc.text_pos_at(node.range().start).row as usize;
+            let message = format!("elements nested more than {MAX_NESTING} deep");
+            return Err(Error::Scene { file: file.into(), line, message });
+        }
+    }
     let mut reader = Reader { file, doc: &doc, dir, paths, defaults: HashMap::new(), bsdfs: HashMap::new() };
     reader.scene(doc.root_element())
 }
+
+/// The deepest nesting of elements a scene may have (Mitsuba's own scenes nest a few
+/// levels: scene, shape, bsdf, twosided's bsdf, texture, its transform).
+const MAX_NESTING: usize = 64;
 
 struct Reader<'a, 'input> {
     file: &'a str,

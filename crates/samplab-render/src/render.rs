@@ -576,11 +576,13 @@ pub fn render(scene: &Scene, options: &Options, progress: &Progress) -> Result<R
     };
     let image = || format!("a {w}x{h} image");
     samplab::memory::check(image, 16 * w as u128 * h as u128)?;
-    // each thread holds one pixel's points: up to 3 coordinates of every light point, and
-    // the pixel, lens, shutter and lobe points of every estimate
+    // each thread holds one pixel's points: up to 3 coordinates of every light point and
+    // its place on the light (with the flag of whether it is kept), and the pixel, lens,
+    // shutter and lobe points of every estimate
     let (n, spp) = (options.n as u128, options.spp as u128);
     let light_points = if options.pattern == Pattern::PerPixel { n * spp } else { n };
-    let per_thread = 8 * (3 * light_points * scene.lights.len().max(1) as u128 + 7 * spp);
+    let per_point = 8 * 3 + std::mem::size_of::<crate::light::LightPoint>() as u128 + 1;
+    let per_thread = per_point * light_points * scene.lights.len().max(1) as u128 + 8 * 7 * spp;
     let threads = rayon::current_num_threads() as u128;
     samplab::memory::check(
         || format!("the points of one pixel ({n} light x {spp} spp) on {threads} threads"),

@@ -214,6 +214,10 @@ fn stem(entry: &SamplerEntry) -> &'static str {
 /// target folder is then left as it was.
 pub fn build(options: &Options, stop: &AtomicBool, progress: &Progress) -> Result<usize, Error> {
     samplab::io::check_folder(&options.run.out, options.run.replace)?;
+    if let Some(report) = &options.report {
+        use samplab::io::Role;
+        samplab::io::refuse_overlap(&[Role::Input("the report", report), Role::Folder("the atlas", &options.run.out)])?;
+    }
     let mut entries: Vec<&'static SamplerEntry> = if options.only.is_empty() {
         SAMPLERS.iter().collect()
     } else {
@@ -443,8 +447,20 @@ fn measure_speeds(entries: &[&'static SamplerEntry], stop: &AtomicBool) -> Resul
 /// spec's first ':' or space).
 fn uses_in_report(dir: &Path) -> Result<Vec<(Vec<&'static str>, Use)>, Error> {
     let read = |p: &Path| std::fs::read_to_string(p).map_err(|e| crate::io_error(p, e));
+    let papers = crate::paper::all();
+    if !papers.iter().any(|paper| dir.join(format!("{}.html", paper.key)).is_file()) {
+        let what = if dir.is_dir() {
+            "holds no paper's page"
+        } else if dir.exists() {
+            "is not a folder"
+        } else {
+            "does not exist"
+        };
+        let reason = format!("{what}; the report is the folder `samplab reproduce --out DIR` writes");
+        return Err(crate::io_error(dir, std::io::Error::other(reason)));
+    }
     let mut out = Vec::new();
-    for paper in crate::paper::all() {
+    for paper in papers {
         let path = dir.join(format!("{}.html", paper.key));
         // a report of some papers (`--only`) has no page for the others
         if !path.is_file() {

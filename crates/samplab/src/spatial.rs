@@ -390,7 +390,15 @@ pub fn pcf(points: &PointSet, radii: &[f64], sigma: f64) -> Result<Vec<f64>> {
     let Some(&last) = radii.last() else { return Ok(Vec::new()) };
     let cut = 6.0 * sigma;
     let reach = last + cut;
-    let grid = Grid::covering(points.as_slice(), points.dims(), reach);
+    // coincident points once each, with their counts: a pile of equal points is one point,
+    // not n^2 / 2 pairs at distance 0 in one cell
+    let distinct = distinct(points);
+    let (coords, weights) = match &distinct {
+        Some((coords, weights)) => (coords.as_slice(), Some(weights.as_slice())),
+        None => (points.as_slice(), None),
+    };
+    let weight = |i: u32| weights.map_or(1.0, |w| w[i as usize]);
+    let grid = Grid::covering(coords, points.dims(), reach);
     let norm = 1.0 / (std::f64::consts::PI.sqrt() * sigma);
     // evenly spaced radii (to 1e-12 of their range): the kernel by a recurrence
     let spacing = if radii.len() > 1 { (last - radii[0]) / (radii.len() - 1) as f64 } else { 0.0 };
@@ -398,41 +406,50 @@ pub fn pcf(points: &PointSet, radii: &[f64], sigma: f64) -> Result<Vec<f64>> {
         && radii.iter().enumerate().all(|(b, &r)| (r - radii[0] - b as f64 * spacing).abs() <= 1e-12 * last))
     .then_some(spacing / sigma);
     let step = even.map_or(1.0, |delta| (-2.0 * delta * delta).exp());
-    let parts = pairs(
+    // a pair at squared distance d2 counted `w` times
+    let add = |acc: &mut [f64], d2: f64, w: f64| {
+        if d2 >= reach * reach {
+            return;
+        }
+        let d = d2.sqrt();
+        let (from, to) = (radii.partition_point(|&r| r < d - cut), radii.partition_point(|&r| r <= d + cut));
+        if from == to {
+            return;
+        }
+        match even {
+            // exp(-(t + delta)^2) = exp(-t^2) exp(-2 t delta - delta^2): two exponentials
+            // per pair, then products
+            Some(delta) => {
+                let t = (radii[from] - d) / sigma;
+                let (mut g, mut q) = ((-t * t).exp(), (-(2.0 * t + delta) * delta).exp());
+                for a in &mut acc[from..to] {
+                    *a += w * g;
+                    g *= q;
+                    q *= step;
+                }
+            }
+            None => {
+                for (a, &r) in acc[from..to].iter_mut().zip(&radii[from..to]) {
+                    let t = (r - d) / sigma;
+                    *a += w * (-t * t).exp();
+                }
+            }
+        }
+    };
+    let mut parts = indexed_pairs(
         &grid,
         1,
         true,
+        CHUNK,
         || vec![0.0; radii.len()],
-        |acc, d2| {
-            if d2 >= reach * reach {
-                return;
-            }
-            let d = d2.sqrt();
-            let (from, to) = (radii.partition_point(|&r| r < d - cut), radii.partition_point(|&r| r <= d + cut));
-            if from == to {
-                return;
-            }
-            match even {
-                // exp(-(t + delta)^2) = exp(-t^2) exp(-2 t delta - delta^2): two exponentials
-                // per pair, then products
-                Some(delta) => {
-                    let t = (radii[from] - d) / sigma;
-                    let (mut g, mut q) = ((-t * t).exp(), (-(2.0 * t + delta) * delta).exp());
-                    for a in &mut acc[from..to] {
-                        *a += g;
-                        g *= q;
-                        q *= step;
-                    }
-                }
-                None => {
-                    for (a, &r) in acc[from..to].iter_mut().zip(&radii[from..to]) {
-                        let t = (r - d) / sigma;
-                        *a += (-t * t).exp();
-                    }
-                }
-            }
-        },
+        |acc, q, r, d2| add(acc, d2, weight(grid.ids[q]) * weight(grid.ids[r])),
     );
+    if let Some(weights) = weights {
+        // the pairs within each pile, at distance 0
+        let mut own = vec![0.0; radii.len()];
+        add(&mut own, 0.0, weights.iter().map(|&w| w * (w - 1.0) / 2.0).sum());
+        parts.push(own);
+    }
     let n = points.len() as f64;
     let surface = sphere_surface(points.dims());
     Ok(radii
@@ -444,6 +461,46 @@ pub fn pcf(points: &PointSet, radii: &[f64], sigma: f64) -> Result<Vec<f64>> {
             2.0 * sum * norm / (n * (n - 1.0) * surface * r.powi(points.dims() as i32 - 1))
         })
         .collect())
+}
+
+/// The distinct points of `points` (coordinates, in the order of their first occurrence)
+/// and how many times each occurs; `None` when no two are equal.
+fn distinct(points: &PointSet) -> Option<(Vec<f64>, Vec<f64>)> {
+    let (data, dims) = (points.as_slice(), points.dims());
+    let point = |i: usize| &data[i * dims..(i + 1) * dims];
+    let mut order: Vec<usize> = (0..points.len()).collect();
+    order.par_sort_by(|&a, &b| {
+        point(a)
+            .iter()
+            .zip(point(b))
+            .map(|(x, y)| x.total_cmp(y))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+            .then(a.cmp(&b))
+    });
+    let same = |a: usize, b: usize| point(a).iter().zip(point(b)).all(|(x, y)| x.to_bits() == y.to_bits());
+    if order.windows(2).all(|w| !same(w[0], w[1])) {
+        return None;
+    }
+    // each point's first occurrence, then the piles in that order
+    let mut first = vec![0usize; points.len()];
+    let mut start = 0;
+    for (at, &i) in order.iter().enumerate() {
+        if at > 0 && !same(order[at - 1], i) {
+            start = at;
+        }
+        first[i] = order[start];
+    }
+    let (mut coords, mut weights, mut slot) = (Vec::new(), Vec::new(), vec![usize::MAX; points.len()]);
+    for &f in &first {
+        if slot[f] == usize::MAX {
+            slot[f] = weights.len();
+            coords.extend_from_slice(point(f));
+            weights.push(0.0);
+        }
+        weights[slot[f]] += 1.0;
+    }
+    Some((coords, weights))
 }
 
 /// The radial distribution function on the torus: the histogram estimator of the PCF over

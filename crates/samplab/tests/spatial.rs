@@ -99,7 +99,16 @@ fn pcf_and_rdf_equal_their_definitions() {
     for trial in 0..60 {
         let d = 1 + below(&mut rng, 3) as usize;
         let n = 2 + below(&mut rng, 400) as usize;
-        let p = if trial % 2 == 0 { nasty(&mut rng, n, d) } else { random_set(n, d, trial) };
+        let p = match trial % 3 {
+            0 => nasty(&mut rng, n, d),
+            1 => random_set(n, d, trial),
+            // piles of equal points (each pile once, with its count, in the fast sum)
+            _ => {
+                let few = random_set(1 + n / 10, d, trial);
+                let picks = (0..n).flat_map(|_| few.point(below(&mut rng, few.len() as u64) as usize).to_vec());
+                PointSet::new(d, picks.collect()).unwrap()
+            }
+        };
         let sigma = 0.002 + 0.05 * uniform(&mut rng);
         // evenly spaced radii (the kernel by a recurrence) and uneven ones
         let even: Vec<f64> = (1..=40).map(|i| i as f64 * 0.0125).collect();

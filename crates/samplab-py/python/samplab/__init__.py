@@ -14,6 +14,8 @@ The registries (``samplers()``, ``metrics()``, ``warps()``, ``integrands()``, ``
 
 from __future__ import annotations
 
+import functools
+import inspect
 import json
 from typing import Any, Callable, Dict, List, Optional, Sequence, Union
 
@@ -107,6 +109,24 @@ def _count(name: str, value: Any) -> int:
     if not 0 <= value < 2**64:
         raise Error(f"{name} = {value}: out of range [0, 2^64)")
     return int(value)
+
+
+def _real(name: str, value: Any, finite: bool = False) -> float:
+    """A real number (a Python or NumPy int or float, not a bool or a string), finite when
+    ``finite`` (samplab.Error naming it otherwise, as ``_count``)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise Error(f"{name} = {value!r}: expected a real number, not {type(value).__name__}")
+    x = float(value)
+    if finite and not np.isfinite(x):
+        raise Error(f"{name} = {x}: must be a finite number")
+    return x
+
+
+def _reals(name: str, values: Any, finite: bool = False) -> List[float]:
+    """``_real`` of each of a sequence."""
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
+        raise Error(f"{name} = {values!r}: expected a sequence of real numbers")
+    return [_real(name, v, finite) for v in values]
 
 
 def _counts(name: str, value: Any) -> List[int]:
@@ -440,7 +460,12 @@ def image_metrics(
     """
 
     def luminance(a: np.ndarray, name: str) -> np.ndarray:
+        a = np.asarray(a)
+        if a.dtype.kind not in "fiu":
+            raise Error(f"{name}: expected real numbers, got dtype {a.dtype}")
         a = np.asarray(a, dtype=np.float64)
+        if 0 in a.shape:
+            raise Error(f"{name}: an empty image, shape {a.shape}")
         if a.ndim >= 3 and a.shape[-1] == 3:
             a = a @ np.array([0.2126, 0.7152, 0.0722])
         if a.ndim not in (2, 3):
@@ -455,8 +480,8 @@ def image_metrics(
         error = error - ref
     single = error.ndim == 2
     frames = np.ascontiguousarray(error[None] if single else error)
-    counts = None if spp is None else [float(n) for n in spp]
-    result = json.loads(_samplab.image_metrics(frames, [float(s) for s in sigma], counts))
+    counts = None if spp is None else _reals("spp", spp, finite=True)
+    result = json.loads(_samplab.image_metrics(frames, _reals("sigma", sigma, finite=True), counts))
     return result["frames"][0] if single and spp is None else result
 
 
@@ -633,7 +658,7 @@ def discrepancy(metric: str, points: Any, max_work: Optional[float] = None) -> U
     (4,)
     """
     a = _points(points, stack=True)
-    v = np.asarray(_samplab.discrepancy(metric, a, None if max_work is None else float(max_work)))
+    v = np.asarray(_samplab.discrepancy(metric, a, None if max_work is None else _real("max_work", max_work)))
     return float(v[0]) if np.ndim(points) == 2 else v
 
 
@@ -691,7 +716,7 @@ def spectrum(points: Any, res: int = 128, direct: bool = False, tolerance: float
     >>> bool(0.5 < 256 * spec["periodogram_radial"].mean() < 1.5)   # white noise: 1/n
     True
     """
-    return _samplab.spectrum(_points(points, stack=True), _count("res", res), bool(direct), float(tolerance))
+    return _samplab.spectrum(_points(points, stack=True), _count("res", res), bool(direct), _real("tolerance", tolerance))
 
 
 def reference(f: Any, d: int) -> float:
@@ -798,7 +823,7 @@ def integrate(
     if callable(integrand):
         if d is None:
             raise Error("a callable integrand needs d= (its dimension)")
-        given = (_count("d", d), float(reference(integrand, d) if exact is None else exact))
+        given = (_count("d", d), _real("exact", reference(integrand, d) if exact is None else exact, finite=True))
         return json.loads(
             _samplab.integrate_given(names, integrand, _counts("n", n), _count("sets", sets), _seed(seed), given)
         )
@@ -886,7 +911,7 @@ def cubature(
     given: Dict[str, Any] = {}
     for name, value in (("abs_tol", abs_tol), ("rel_tol", rel_tol), ("level", level)):
         if value is not None:
-            given[name] = float(value)
+            given[name] = _real(name, value)
     for name, value in (("replications", replications), ("min_n", min_n), ("max_n", max_n)):
         if value is not None:
             given[name] = _count(name, value)
@@ -896,7 +921,7 @@ def cubature(
     if seed is not None:
         given["seed"] = _seed(seed)
     dims = 0 if d is None else _count("d", d)
-    return json.loads(_samplab.cubature(integrand, dims, None if exact is None else float(exact), json.dumps(given)))
+    return json.loads(_samplab.cubature(integrand, dims, None if exact is None else _real("exact", exact, finite=True), json.dumps(given)))
 
 
 def predict(
@@ -977,7 +1002,7 @@ def predict(
             measured,
             _seed(seed),
             _count("d", d),
-            [float(v) for v in integrals],
+            _reals("exact", integrals, finite=True),
             bool(cache),
         )
     )
@@ -1164,6 +1189,42 @@ def read_exr(path: str) -> Dict[str, Any]:
         A file that cannot be read.
     """
     return _samplab.read_exr(str(path))
+
+
+def _strings(value: Any, depth: int = 0) -> Any:
+    """Every string in an argument: itself, or within lists, tuples and dicts (three levels:
+    a call's arguments, a list among them, and its items)."""
+    if isinstance(value, str):
+        yield value
+    elif depth < 3 and isinstance(value, (list, tuple)):
+        for v in value:
+            yield from _strings(v, depth + 1)
+    elif depth < 3 and isinstance(value, dict):
+        for k, v in value.items():
+            yield from _strings(k, depth + 1)
+            yield from _strings(v, depth + 1)
+
+
+def _valid_text(f: Callable[..., Any]) -> Callable[..., Any]:
+    """``f``, refusing with samplab.Error a string argument that is not valid Unicode text
+    (a lone surrogate, which no UTF-8 encoding holds) before the call."""
+
+    @functools.wraps(f)
+    def checked(*args: Any, **kwargs: Any) -> Any:
+        for text in _strings((args, kwargs)):
+            try:
+                text.encode("utf-8")
+            except UnicodeEncodeError as e:
+                raise Error(f"{f.__name__}: {text!r} is not valid text ({e.reason} at position {e.start})") from None
+        return f(*args, **kwargs)
+
+    return checked
+
+
+for _name in __all__:
+    if inspect.isfunction(globals().get(_name)):
+        globals()[_name] = _valid_text(globals()[_name])
+del _name
 
 
 from .study import Study, StudyResult  # noqa: E402  (study.py imports this package's names)

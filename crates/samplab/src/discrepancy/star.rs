@@ -77,15 +77,21 @@ pub fn star_naive(points: &[f64], dims: usize) -> f64 {
     }
 }
 
-/// Points sorted by x, with the rank of each y among the critical y values.
-fn sweep_order(points: &[f64]) -> (Vec<(f64, usize)>, Vec<f64>) {
+/// Points (x, the rank of y among the critical y values) sorted by x, and those values.
+type Order = (Vec<(f64, usize)>, Vec<f64>);
+
+/// The points' [`Order`], looking at the stop flag between its stages.
+fn sweep_order(points: &[f64], progress: Progress) -> Result<Order> {
     let ys = critical(points.iter().skip(1).step_by(2).copied());
+    progress.check()?;
     let mut order: Vec<(f64, usize)> = points
         .par_chunks_exact(2)
         .map(|p| (p[0], ys.binary_search_by(|c| c.total_cmp(&p[1])).expect("y is a critical value")))
         .collect();
+    progress.check()?;
     order.par_sort_by(|a, b| a.0.total_cmp(&b.0));
-    (order, ys)
+    progress.check()?;
+    Ok((order, ys))
 }
 
 /// What a 2D sweep over x does at each event.
@@ -148,7 +154,8 @@ impl Sweeper for ArraySweep<'_> {
 
 /// Exact 2D star discrepancy by an O(n^2) sweep: the public cross-check for [`star_2d`].
 pub fn star_2d_sweep(points: &[f64]) -> f64 {
-    let (order, ys) = sweep_order(points);
+    // (never stopped: the silent progress)
+    let (order, ys) = sweep_order(points, Progress::SILENT).unwrap_or_default();
     let m = ys.len();
     let mut s = ArraySweep { ys: &ys, n: order.len() as f64, below: vec![0; m], upto: vec![0; m], worst: 0.0 };
     sweep(&order, &mut s);
@@ -183,6 +190,7 @@ impl<'a> KineticSweep<'a> {
         } else {
             KineticTree::new(&slopes.iter().map(|s| -s).collect::<Vec<_>>(), step, 0.0)
         };
+        progress.check()?;
         let mut s =
             KineticSweep { m: slopes.len(), open, tree, max: f64::NEG_INFINITY, progress, steps: 0, stopped: false };
         sweep(order, &mut s);
@@ -239,7 +247,9 @@ fn weighted(points: &[f64], dims: usize, w: f64, total: f64, progress: Progress)
             (open, closed)
         }
         2 => {
-            let (order, ys) = sweep_order(points);
+            // the setup of 10^6 points takes a second: a look at the stop flag per stage
+            progress.check()?;
+            let (order, ys) = sweep_order(points, progress)?;
             let slopes: Vec<f64> = ys.iter().map(|b| w * b).collect();
             // the two kinds of boxes share nothing but the order: one sweep each, side by side
             let (open, closed) = rayon::join(

@@ -122,6 +122,9 @@ pub struct Expr {
     exact: f64,
 }
 
+/// Variables x0 .. x65535: more dimensions than any integrand is sampled in.
+const MAX_VARIABLES: usize = 1 << 16;
+
 impl Expr {
     /// Parse `text`. Its dimensions are `dims` where given (every variable must be below
     /// it), otherwise one more than the highest variable's index.
@@ -478,8 +481,9 @@ impl Parser<'_> {
 
     fn name(&mut self, name: &str, column: usize) -> Result<usize> {
         if let Some(k) = name.strip_prefix('x').filter(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit())) {
-            let k =
-                k.parse::<usize>().map_err(|_| self.error(column, &format!("variable `{name}` is out of range")))?;
+            let k = k.parse::<usize>().ok().filter(|&k| k < MAX_VARIABLES).ok_or_else(|| {
+                self.error(column, &format!("variable `{name}` is out of range (x0 .. x{})", MAX_VARIABLES - 1))
+            })?;
             return Ok(self.push(Op::Var(k)));
         }
         match name {

@@ -27,8 +27,12 @@ use crate::registry::{About, Entry, Registry};
 mod delimited;
 mod output;
 pub mod text;
+pub(crate) use output::replace_entry;
 use output::write_atomic_with;
-pub use output::{MANIFEST, Replace, Staged, abandon, check_folder, write_atomic, write_folder};
+pub use output::{
+    MANIFEST, Replace, Role, Staged, abandon, check_file, check_folder, refuse_overlap, resolve, write_atomic,
+    write_folder,
+};
 
 /// One CSV line (RFC 4180): the fields joined by commas, a field holding a comma, a quote
 /// or a line break quoted (its quotes doubled), and a newline.

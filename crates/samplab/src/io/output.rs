@@ -13,6 +13,14 @@
 //! - A target named `-` is refused: by the command-line convention it is standard output,
 //!   which a front end writes itself; made as a file or folder it would be a stray `-`.
 //!
+//! - Every temporary is created exclusively (never through a link or over something that
+//!   exists) under a name no other user can predict, beside the resolved target: an output
+//!   folder others can write (a shared scratch or cache folder) cannot redirect a write.
+//! - A target is resolved before anything is renamed (its folder's links and `..`, and the
+//!   target itself when it is a link), so every spelling of a path names one place; a
+//!   command refuses an output that is one of its inputs, holds one, or is named twice
+//!   ([`refuse_overlap`]).
+//!
 //! Every temporary path is registered while it exists, so that a front end stopping the
 //! process at once (a second signal, a watchdog) can remove them first ([`abandon`]).
 
@@ -59,6 +67,193 @@ pub fn abandon(code: i32) -> ! {
 
 fn io_error(path: &Path, e: &std::io::Error) -> Error {
     Error::Io { path: path.display().to_string(), reason: e.to_string() }
+}
+
+/// A token no other process can predict: SipHash under the process's random keys of a
+/// counter and the clock, for temporary names.
+fn token() -> String {
+    use std::hash::{BuildHasher as _, Hasher as _};
+    static COUNT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let mut h = std::collections::hash_map::RandomState::new().build_hasher();
+    h.write_u64(COUNT.fetch_add(1, std::sync::atomic::Ordering::Relaxed));
+    h.write_u32(std::process::id());
+    h.write_u128(std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos()));
+    format!("{:016x}", h.finish())
+}
+
+/// A new file `.{name}.{token}.tmp` in `dir`, created exclusively (never through a link,
+/// never over an existing entry), registered while it exists.
+///
+/// # Errors
+/// The file cannot be created (`about` names the path in the error).
+fn temporary_file(dir: &Path, name: &str, about: &Path) -> Result<(PathBuf, std::fs::File)> {
+    let mut options = std::fs::OpenOptions::new();
+    options.write(true).create_new(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt as _;
+        options.custom_flags(libc::O_NOFOLLOW);
+    }
+    let mut tries = 0;
+    loop {
+        let tmp = dir.join(format!(".{name}.{}.tmp", token()));
+        match options.open(&tmp) {
+            Ok(f) => {
+                register(&tmp);
+                return Ok((tmp, f));
+            }
+            // a name taken by chance (or planted): another name
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && tries < 8 => tries += 1,
+            Err(e) => return Err(io_error(about, &e)),
+        }
+    }
+}
+
+/// Where a write to `path` lands: its folder resolved (links and `..`), so that every
+/// spelling of one place gives one path. A link at `path` itself is refused (replacing it
+/// would destroy a link samplab did not make, and following it would let whoever planted
+/// it choose the file written), but for a link to a device or a FIFO, written through.
+///
+/// # Errors
+/// The folder does not exist, `path` names no file (`..`, `/`), or it is a link.
+pub fn resolve(path: &Path) -> Result<PathBuf> {
+    if std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink())
+        && !matches!(existing(path), Existing::Special)
+    {
+        return Err(Error::Io {
+            path: path.display().to_string(),
+            reason: "is a link; samplab neither replaces nor writes through it (name the file or folder itself)".into(),
+        });
+    }
+    let (dir, name) = split(path)?;
+    let dir = std::fs::canonicalize(&dir).map_err(|e| io_error(path, &e))?;
+    Ok(dir.join(name))
+}
+
+/// Refuse `path` as an output file before any work: `-`, a folder, a link to a file, a
+/// missing or unwritable folder (a device or a FIFO is written through).
+///
+/// # Errors
+/// [`Error::Io`] saying why, in one line.
+pub fn check_file(path: &Path) -> Result<()> {
+    refuse_dash(path, "file")?;
+    match existing(path) {
+        Existing::Special => return Ok(()),
+        Existing::Folder => {
+            return Err(Error::Io {
+                path: path.display().to_string(),
+                reason: "is a folder; samplab does not replace a folder by a file".into(),
+            });
+        }
+        Existing::Nothing | Existing::File => {}
+    }
+    let target = resolve(path)?;
+    writable(target.parent().unwrap_or(Path::new("/")), path)
+}
+
+/// Refuse a folder `dir` (or, when it does not exist yet, the nearest folder above it) in
+/// which no entry can be made, naming `about`.
+fn writable(dir: &Path, about: &Path) -> Result<()> {
+    #[cfg(unix)]
+    {
+        let mut at = dir;
+        while !at.exists() {
+            match at.parent() {
+                Some(p) if !p.as_os_str().is_empty() => at = p,
+                _ => return Ok(()),
+            }
+        }
+        let Ok(c) = std::ffi::CString::new(at.as_os_str().as_encoded_bytes()) else { return Ok(()) };
+        // SAFETY: access(2) on a NUL-terminated path.
+        if !at.is_dir() || unsafe { libc::access(c.as_ptr(), libc::W_OK | libc::X_OK) } != 0 {
+            return Err(Error::Io {
+                path: about.display().to_string(),
+                reason: format!("cannot be written: {} is not a folder samplab may write in", at.display()),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Replace the entry `path` (whatever non-folder is there: a file, a link, a FIFO, never
+/// followed or opened) by `bytes`, through an exclusively created temporary beside it: for
+/// files in a folder others may write, such as a shared cache.
+///
+/// # Errors
+/// The temporary cannot be written or renamed.
+pub(crate) fn replace_entry(path: &Path, bytes: &[u8]) -> Result<()> {
+    use std::io::Write as _;
+    let (dir, name) = split(path)?;
+    let (tmp, mut f) = temporary_file(&dir, &name, path)?;
+    let result = f
+        .write_all(bytes)
+        .and_then(|()| f.sync_all())
+        .and_then(|()| std::fs::rename(&tmp, path))
+        .map_err(|e| io_error(path, &e));
+    if result.is_err() {
+        discard(&mut staged(), &tmp);
+    } else {
+        staged().retain(|p| p != &tmp);
+    }
+    result
+}
+
+/// What a command reads or writes, for [`refuse_overlap`].
+#[derive(Debug, Clone, Copy)]
+pub enum Role<'a> {
+    /// A file or folder the command reads (its name, e.g. `--reference`, for the message).
+    Input(&'a str, &'a Path),
+    /// A file the command writes.
+    File(&'a str, &'a Path),
+    /// A folder the command writes (replaced whole).
+    Folder(&'a str, &'a Path),
+}
+
+/// Refuse a command whose outputs overlap: an output that is one of its inputs, a folder
+/// output holding an input or another output, or one place named by two outputs, whatever
+/// the spelling (`a/../a`, `./a`, a link, an absolute path).
+///
+/// # Errors
+/// [`Error::Invalid`] naming both.
+pub fn refuse_overlap(roles: &[Role<'_>]) -> Result<()> {
+    // where each path lands; a path that cannot be resolved is left to its own command
+    let place = |p: &Path| -> Option<PathBuf> {
+        std::fs::canonicalize(p).ok().or_else(|| {
+            let (dir, name) = split(p).ok()?;
+            Some(std::fs::canonicalize(dir).ok()?.join(name))
+        })
+    };
+    let places: Vec<(Role<'_>, Option<PathBuf>)> = roles
+        .iter()
+        .map(|r| match *r {
+            Role::Input(_, p) | Role::File(_, p) | Role::Folder(_, p) => (*r, place(p)),
+        })
+        .collect();
+    let name = |r: &Role<'_>| match *r {
+        Role::Input(n, p) | Role::File(n, p) | Role::Folder(n, p) => format!("{n} {}", p.display()),
+    };
+    for (i, (a, pa)) in places.iter().enumerate() {
+        let Some(pa) = pa else { continue };
+        for (b, pb) in places.iter().skip(i + 1) {
+            let Some(pb) = pb else { continue };
+            let (inside_a, inside_b) = (pb.starts_with(pa), pa.starts_with(pb));
+            let clash = match (a, b) {
+                (Role::Input(..), Role::Input(..)) => false,
+                (Role::Folder(..), _) => inside_a,
+                (_, Role::Folder(..)) => inside_b,
+                _ => pa == pb,
+            };
+            if clash {
+                let how = if pa == pb { "name the same place" } else { "overlap (one holds the other)" };
+                return Err(Error::Invalid(format!(
+                    "{} and {} {how}; samplab never writes over its own inputs or one output over another",
+                    name(a),
+                    name(b)
+                )));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Refuse the target `-` (module docs): `what` is a file or a folder.
@@ -177,30 +372,20 @@ impl Staged {
             }
             Existing::Nothing | Existing::File => {}
         }
-        let (dir, name) = split(path)?;
-        let tmp = dir.join(format!(".{name}.{}.{}.tmp", std::process::id(), self.files.len()));
-        self.stage_into(&tmp, path, write)?;
-        self.files.push((tmp, path.to_path_buf()));
-        Ok(())
-    }
-
-    fn stage_into(
-        &self,
-        tmp: &Path,
-        path: &Path,
-        write: &mut dyn FnMut(&mut dyn std::io::Write) -> Result<()>,
-    ) -> Result<()> {
-        register(tmp);
-        let result = std::fs::File::create(tmp).map_err(|e| io_error(path, &e)).and_then(|f| {
-            let mut w = std::io::BufWriter::new(f);
-            write(&mut w)?;
+        let target = resolve(path)?;
+        let (dir, name) = split(&target)?;
+        let (tmp, f) = temporary_file(&dir, &name, path)?;
+        let mut w = std::io::BufWriter::new(f);
+        let result = write(&mut w).and_then(|()| {
             let f = w.into_inner().map_err(|e| io_error(path, e.error()))?;
             f.sync_all().map_err(|e| io_error(path, &e))
         });
-        if result.is_err() {
-            discard(&mut staged(), tmp);
+        if let Err(e) = result {
+            discard(&mut staged(), &tmp);
+            return Err(e);
         }
-        result
+        self.files.push((tmp, target));
+        Ok(())
     }
 
     /// Rename every staged file into place.
@@ -290,9 +475,16 @@ fn protected(target: &Path) -> Option<&'static str> {
 /// The first entry of the folder `dir` (in [`entries`]' order) that its manifest does not
 /// list, if any.
 fn foreign_entry(dir: &Path) -> Result<Option<String>> {
-    let listed: std::collections::HashSet<String> =
-        std::fs::read_to_string(dir.join(MANIFEST)).map(|t| t.lines().map(str::to_owned).collect()).unwrap_or_default();
-    Ok(entries(dir)?.into_iter().find(|e| e != MANIFEST && !listed.contains(e)))
+    // a manifest is a small regular file; anything else there (a FIFO, a device, a link, a
+    // huge file) is itself an entry samplab did not write
+    let manifest = dir.join(MANIFEST);
+    let small_file = std::fs::symlink_metadata(&manifest).is_ok_and(|m| m.is_file() && m.len() <= 1 << 24);
+    let listed: std::collections::HashSet<String> = if small_file {
+        std::fs::read_to_string(&manifest).map(|t| t.lines().map(str::to_owned).collect()).unwrap_or_default()
+    } else {
+        std::collections::HashSet::new()
+    };
+    Ok(entries(dir)?.into_iter().find(|e| (e != MANIFEST || !small_file) && !listed.contains(e)))
 }
 
 /// Every entry under `dir`, relative, in sorted order (for its manifest).
@@ -323,6 +515,8 @@ pub fn check_folder(out: &Path, replace: Replace) -> Result<()> {
     if let Some(what) = protected(out) {
         return refuse(format!("is {what}; samplab never writes its output there (name a new folder)"));
     }
+    let (parent, _) = split(out)?;
+    writable(&parent, out)?;
     match existing(out) {
         Existing::Nothing => Ok(()),
         Existing::File | Existing::Special => {
@@ -349,15 +543,15 @@ pub fn write_folder<E: From<Error>>(
     fill: impl FnOnce(&Path) -> std::result::Result<(), E>,
 ) -> std::result::Result<(), E> {
     check_folder(out, replace)?;
-    let (parent, name) = split(out)?;
+    let (parent, _) = split(out)?;
     std::fs::create_dir_all(&parent).map_err(|e| io_error(&parent, &e))?;
-    let staging = parent.join(format!(".{name}.partial-{}", std::process::id()));
+    // every spelling of the target (`a/../a`, a link to it) is one place from here on
+    let target = resolve(out)?;
+    let (parent, name) = split(&target)?;
+    let staging = parent.join(format!(".{name}.partial-{}", token()));
+    // created exclusively: a planted entry or link at the name is an error, never followed
+    std::fs::create_dir(&staging).map_err(|e| io_error(&staging, &e))?;
     register(&staging);
-    let _ = std::fs::remove_dir_all(&staging);
-    if let Err(e) = std::fs::create_dir(&staging) {
-        discard(&mut staged(), &staging);
-        return Err(io_error(&staging, &e).into());
-    }
     let filled = fill(&staging).and_then(|()| {
         let mut manifest = entries(&staging)?.join("\n");
         manifest.push('\n');
@@ -367,15 +561,30 @@ pub fn write_folder<E: From<Error>>(
         discard(&mut staged(), &staging);
         return Err(e);
     }
-    // the old folder (if any) goes only once the new one is complete
+    // the old folder (if any) goes only once the new one is in its place
     let mut list = staged();
-    let old = parent.join(format!(".{name}.old-{}", std::process::id()));
     let result = (|| {
-        check_folder(out, replace)?;
-        if out.exists() {
-            std::fs::rename(out, &old).map_err(|e| io_error(out, &e))?;
+        check_folder(&target, replace)?;
+        let old = match std::fs::symlink_metadata(&target) {
+            Ok(_) => {
+                let old = parent.join(format!(".{name}.old-{}", token()));
+                std::fs::rename(&target, &old).map_err(|e| io_error(out, &e))?;
+                Some(old)
+            }
+            Err(_) => None,
+        };
+        match std::fs::rename(&staging, &target) {
+            Ok(()) => Ok(old),
+            Err(e) => {
+                let mut reason = e.to_string();
+                if let Some(old) = &old
+                    && std::fs::rename(old, &target).is_err()
+                {
+                    reason = format!("{reason}; the old folder is kept as {}", old.display());
+                }
+                Err(Error::Io { path: out.display().to_string(), reason })
+            }
         }
-        std::fs::rename(&staging, out).map_err(|e| io_error(out, &e))
     })();
     if result.is_err() {
         discard(&mut list, &staging);
@@ -383,8 +592,10 @@ pub fn write_folder<E: From<Error>>(
         list.retain(|p| p != &staging);
     }
     drop(list);
-    let _ = std::fs::remove_dir_all(&old);
-    Ok(result?)
+    if let Some(old) = result? {
+        let _ = std::fs::remove_dir_all(&old);
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -9,6 +9,7 @@ use super::{four, Family, Film, Keys, PixelEntry, PixelSampler, unit};
 use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::qmc::sobol::SOBOL_MAX_DIMS;
+use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::{Default, Kind, ParamSpec, Params};
 
@@ -71,7 +72,7 @@ pub(crate) struct Dither {
     shifts: Shifts,
 }
 
-fn build(p: &Params, film: Film, seed: Seed) -> Result<Family> {
+fn build(p: &Params, film: Film, seed: Seed, _: &Progress<'_>) -> Result<Family> {
     Ok(Family::from(Dither {
         keys: Keys::new(seed, film.dims),
         tables: (0..film.dims as usize).map(byte_tables).collect(),

@@ -11,6 +11,7 @@ use super::{four, Family, ANY_SPP, Film, PixelEntry, PixelSampler};
 use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::qmc::halton::PRIMES;
+use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::{Default, Kind, ParamSpec, Params};
 
@@ -138,7 +139,7 @@ fn inverse_mod(x: u64, n: u64) -> u64 {
     s0.rem_euclid(n as i64) as u64
 }
 
-fn build(p: &Params, film: Film, seed: Seed) -> Result<Family> {
+fn build(p: &Params, film: Film, seed: Seed, _: &Progress<'_>) -> Result<Family> {
     let randomize = match p.word("randomize") {
         "none" => Randomize::None,
         "owen" => Randomize::Owen,

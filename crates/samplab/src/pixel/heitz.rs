@@ -32,6 +32,7 @@ use super::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
 use super::{Family, Film, Keys, PixelEntry, PixelSampler, rekey, unit};
 use crate::error::Result;
 use crate::integrand::{HalfPlane, Integrand};
+use crate::progress::Progress;
 use crate::registry::About;
 use crate::sampler::Counts;
 use crate::sampler::qmc::sobol::SOBOL_MAX_DIMS;
@@ -135,7 +136,7 @@ pub(crate) struct Heitz {
     pairs: Vec<PairKeys>,
 }
 
-fn build(p: &Params, film: Film, seed: Seed) -> Result<Family> {
+fn build(p: &Params, film: Film, seed: Seed, progress: &Progress<'_>) -> Result<Family> {
     // a tile no larger than the film needs (and at least 16: the energy's reach)
     let side = (p.int("tile") as u32).min(film.width.max(film.height).max(16));
     let optimized = (p.int("optimized") as u32).min(film.dims).div_ceil(2);
@@ -150,9 +151,9 @@ fn build(p: &Params, film: Film, seed: Seed) -> Result<Family> {
                 owen_digits(reversed_digits(&tables[d], i), owen[d])
             };
             let points: Vec<[u32; 2]> = (0..spp).map(|i| [coordinate(0, i), coordinate(1, i)]).collect();
-            optimize(&points, side, seed.derive_str("heitz keys").derive(u64::from(pair)))
+            optimize(&points, side, seed.derive_str("heitz keys").derive(u64::from(pair)), progress)
         })
-        .collect();
+        .collect::<Result<_>>()?;
     Ok(Family::from(Heitz { keys: Keys::new(seed, film.dims), tables, owen, side, rank_mask: spp - 1, pairs }))
 }
 
@@ -294,7 +295,11 @@ impl Steps {
 }
 
 /// The optimized keys of one pair: `points` are the pair's base points (the film's spp).
-fn optimize(points: &[[u32; 2]], side: u32, seed: Seed) -> PairKeys {
+/// Pixels an optimizing sweep visits between two looks at the stop flag.
+const CHECK: usize = 64;
+
+/// (Stops within a sweep once `progress` says so.)
+fn optimize(points: &[[u32; 2]], side: u32, seed: Seed, progress: &Progress<'_>) -> Result<PairKeys> {
     let mut stream = Stream(seed.0, 0);
     let n = (side * side) as usize;
     let spp = points.len();
@@ -310,7 +315,10 @@ fn optimize(points: &[[u32; 2]], side: u32, seed: Seed) -> PairKeys {
     // error vectors a, b of p and q changes sum_p |(g * e)_p|^2 by
     // 2 <b - a, B_p - B_q> - 2 K(p - q) |a - b|^2, B the blurred field without centres.
     let mut rows = vec![0.0f32; n * INTEGRANDS];
-    for (row, key) in rows.chunks_mut(INTEGRANDS).zip(&scramble) {
+    for (p, (row, key)) in rows.chunks_mut(INTEGRANDS).zip(&scramble).enumerate() {
+        if p % CHECK == 0 {
+            progress.check()?;
+        }
         points.iter().for_each(|&p| steps.add(shifted(p, *key), row));
         row.iter_mut().for_each(|v| *v /= spp as f32);
     }
@@ -321,6 +329,9 @@ fn optimize(points: &[[u32; 2]], side: u32, seed: Seed) -> PairKeys {
     let mut field = Field::new(rows, side, &near);
     for _ in 0..SWAP_SWEEPS {
         for p in 0..n {
+            if p % CHECK == 0 {
+                progress.check()?;
+            }
             let (dx, dy) = (stream.below(2 * SWAP_RADIUS + 1) as i32, stream.below(2 * SWAP_RADIUS + 1) as i32);
             let q = field.at(p, dx - SWAP_RADIUS as i32, dy - SWAP_RADIUS as i32);
             if q == p {
@@ -350,6 +361,9 @@ fn optimize(points: &[[u32; 2]], side: u32, seed: Seed) -> PairKeys {
     let mut row = vec![0.0f32; INTEGRANDS];
     for _ in 0..REFINE_SWEEPS {
         for (p, current) in scramble.iter_mut().enumerate() {
+            if p % CHECK == 0 {
+                progress.check()?;
+            }
             let cost = |e: &[f32]| dot(e, e) + 2.0 * dot(e, field.blurred(p));
             let mut best = (cost(field.row(p)), None);
             for _ in 0..(REFINE_SAMPLES / spp).max(1) {
@@ -373,7 +387,7 @@ fn optimize(points: &[[u32; 2]], side: u32, seed: Seed) -> PairKeys {
     // divided by its mean error power
     let levels = spp.trailing_zeros() as usize;
     if levels == 0 {
-        return PairKeys { scramble, rank };
+        return Ok(PairKeys { scramble, rank });
     }
     // each pixel's sums over aligned blocks of 2^j samples, j < levels: block b of level j
     // at tree[(offsets[j] + b) * INTEGRANDS ..]
@@ -398,17 +412,25 @@ fn optimize(points: &[[u32; 2]], side: u32, seed: Seed) -> PairKeys {
         let block = &tree[(offsets[j] + (r as usize >> j)) * INTEGRANDS..][..INTEGRANDS];
         block.iter().zip(mean).map(|(v, m)| v / (1usize << j) as f32 - m).collect()
     };
-    let mut fields: Vec<(Vec<f32>, f32, Field)> = (0..levels)
-        .map(|j| {
-            let mean = steps.exact.clone();
-            let rows: Vec<f32> = (0..n).flat_map(|p| prefix(&tree(p), j, rank[p], &mean)).collect();
-            let field = Field::new(rows, side, &near);
-            let scale = 1.0 / field.power().max(f32::MIN_POSITIVE);
-            (mean, scale, field)
-        })
-        .collect();
+    let mut fields: Vec<(Vec<f32>, f32, Field)> = Vec::with_capacity(levels);
+    for j in 0..levels {
+        let mean = steps.exact.clone();
+        let mut rows: Vec<f32> = Vec::with_capacity(n * INTEGRANDS);
+        for (p, &r) in rank.iter().enumerate() {
+            if p % CHECK == 0 {
+                progress.check()?;
+            }
+            rows.extend(prefix(&tree(p), j, r, &mean));
+        }
+        let field = Field::new(rows, side, &near);
+        let scale = 1.0 / field.power().max(f32::MIN_POSITIVE);
+        fields.push((mean, scale, field));
+    }
     for _ in 0..RANK_SWEEPS {
         for (p, current) in rank.iter_mut().enumerate() {
+            if p % CHECK == 0 {
+                progress.check()?;
+            }
             // pixel p's part of the energy with error vector e at level j is
             // |e|^2 + 2 <e, B_p>; a key's cost adds its blocks' at every level
             let tree = tree(p);
@@ -441,5 +463,5 @@ fn optimize(points: &[[u32; 2]], side: u32, seed: Seed) -> PairKeys {
             }
         }
     }
-    PairKeys { scramble, rank }
+    Ok(PairKeys { scramble, rank })
 }

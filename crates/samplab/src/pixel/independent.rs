@@ -3,6 +3,7 @@
 use super::{Family, ANY_SPP, Film, PixelEntry, PixelSampler, Keys, rekey};
 use crate::error::Result;
 use crate::registry::About;
+use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::Params;
 
@@ -20,7 +21,7 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
 #[derive(Debug)]
 pub(crate) struct Independent(Keys);
 
-fn build(_: &Params, _: Film, seed: Seed) -> Result<Family> {
+fn build(_: &Params, _: Film, seed: Seed, _: &Progress<'_>) -> Result<Family> {
     Ok(Family::from(Independent(Keys::new(seed, 0))))
 }
 

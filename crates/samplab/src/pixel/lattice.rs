@@ -8,6 +8,7 @@ use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::qmc::cbc::{self, Weights};
 use crate::sampler::randomize::scramble::owen_scramble_u32;
+use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::Params;
 
@@ -38,7 +39,7 @@ pub(crate) struct Lattice {
     z: Vec<u32>,
 }
 
-fn build(_: &Params, film: Film, seed: Seed) -> Result<Family> {
+fn build(_: &Params, film: Film, seed: Seed, _: &Progress<'_>) -> Result<Family> {
     let z = cbc::construct(1 << M, film.dims as usize, Weights::decaying(2.0), true)?;
     Ok(Family::from(Lattice { keys: Keys::new(seed, film.dims), z: z.into_iter().map(|zj| zj as u32).collect() }))
 }

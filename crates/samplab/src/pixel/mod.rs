@@ -42,6 +42,7 @@ use std::fmt::Debug;
 use rayon::prelude::*;
 
 use crate::error::{Error, Result};
+use crate::progress::Progress;
 use crate::registry::{About, Entry, canonical};
 use crate::sampler::Counts;
 use crate::seed::Seed;
@@ -242,7 +243,7 @@ pub struct PixelEntry {
     /// How the point-set family becomes a pixel sampler, in words.
     pub mapping: &'static str,
     /// Builds the prepared sampler for a film and a seed (the film already checked).
-    pub(crate) build: fn(&Params, Film, Seed) -> Result<Family>,
+    pub(crate) build: fn(&Params, Film, Seed, &Progress<'_>) -> Result<Family>,
 }
 
 impl Entry for PixelEntry {
@@ -270,6 +271,14 @@ pub struct Pixels {
 /// An unknown name or bad parameters, a film out of range, a sample count the family does
 /// not take, or more dimensions than it draws.
 pub fn prepare(spec: &str, film: Film, seed: Seed) -> Result<Pixels> {
+    prepare_with(spec, film, seed, &Progress::SILENT)
+}
+
+/// [`prepare`], stopped when `progress` says so (the optimized families take seconds).
+///
+/// # Errors
+/// As [`prepare`], or [`Error::Interrupted`].
+pub fn prepare_with(spec: &str, film: Film, seed: Seed, progress: &Progress<'_>) -> Result<Pixels> {
     let (entry, params) = PIXEL_SAMPLERS.resolve(spec)?;
     let spec = canonical(&entry.about, &params);
     film.check()?;
@@ -282,7 +291,7 @@ pub fn prepare(spec: &str, film: Film, seed: Seed) -> Result<Pixels> {
     if film.dims > entry.max_dims {
         return Err(Error::InvalidDims { sampler: spec, dims: film.dims as usize, supported: entry.dims.into() });
     }
-    let inner = (entry.build)(&params, film, seed)?;
+    let inner = (entry.build)(&params, film, seed, progress)?;
     Ok(Pixels { spec, film, seed, inner })
 }
 
@@ -395,6 +404,14 @@ impl Pixels {
     /// # Errors
     /// As [`Pixels::values`], or a refused allocation ([`crate::memory`]).
     pub fn fill(&self, frames: u32) -> Result<Vec<f64>> {
+        self.fill_with(frames, &Progress::SILENT)
+    }
+
+    /// [`Pixels::fill`], stopped when `progress` says so (checked every row).
+    ///
+    /// # Errors
+    /// As [`Pixels::fill`], or [`Error::Interrupted`].
+    pub fn fill_with(&self, frames: u32, progress: &Progress<'_>) -> Result<Vec<f64>> {
         let total = self.values(frames)?;
         let mut out = crate::memory::zeroed::<f64>(|| format!("{total} pixel sampler values"), total)?;
         let f = self.film;
@@ -402,7 +419,8 @@ impl Pixels {
         if row == 0 {
             return Ok(out);
         }
-        out.par_chunks_mut(row).enumerate().for_each(|(r, values)| {
+        out.par_chunks_mut(row).enumerate().try_for_each(|(r, values)| {
+            progress.check()?;
             let (frame, y) = ((r / f.height as usize) as u32, (r % f.height as usize) as u32);
             let mut k = 0;
             for x in 0..f.width {
@@ -419,7 +437,8 @@ impl Pixels {
                     }
                 }
             }
-        });
+            Ok::<(), Error>(())
+        })?;
         Ok(out)
     }
 }

@@ -9,6 +9,7 @@ use openqmc::{Sampler, SamplerImpl};
 use super::{one_by_one, Family, ANY_SPP, Film, PixelEntry, PixelSampler, unit};
 use crate::error::Result;
 use crate::registry::About;
+use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::Params;
 
@@ -24,7 +25,7 @@ macro_rules! entries {
             dims: "any (4D domains)",
             max_dims: super::MAX_DIMS,
             mapping: MAPPING,
-            build: |_: &Params, _: Film, seed: Seed| -> Result<Family> {
+            build: |_: &Params, _: Film, seed: Seed, _: &Progress<'_>| -> Result<Family> {
                 Ok(Family::from(OpenQmc::<openqmc::$sampler>::new(seed)))
             },
         }),+];

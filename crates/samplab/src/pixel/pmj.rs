@@ -10,6 +10,7 @@ use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::randomize::scramble::{owen_scramble_reversed, owen_scramble_u32, permute};
 use crate::sampler::stratified::pmj::pmj02_digits;
+use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::Params;
 
@@ -108,11 +109,11 @@ fn pool(film: Film, seed: Seed) -> Vec<[u32; 4]> {
         .collect()
 }
 
-fn build_plain(_: &Params, film: Film, seed: Seed) -> Result<Family> {
+fn build_plain(_: &Params, film: Film, seed: Seed, _: &Progress<'_>) -> Result<Family> {
     Ok(Family::from(Pmj { keys: Keys::new(seed, 0), spp: film.spp, pool: pool(film, seed), shifts: None }))
 }
 
-fn build_bn(p: &Params, film: Film, seed: Seed) -> Result<Family> {
+fn build_bn(p: &Params, film: Film, seed: Seed, _: &Progress<'_>) -> Result<Family> {
     let shifts = Some(Shifts::new(p.int("mask") as usize, seed, film.dims.div_ceil(2))?);
     Ok(Family::from(Pmj { keys: Keys::new(seed, 0), spp: film.spp, pool: pool(film, seed), shifts }))
 }

@@ -7,6 +7,7 @@ use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::qmc::sobol::{SOBOL_MAX_DIMS, direction_numbers};
 use crate::sampler::randomize::scramble::owen_scramble_reversed;
+use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::Params;
 
@@ -112,7 +113,7 @@ pub(crate) struct Burley {
     tables: Vec<ReversedLow>,
 }
 
-fn build_sobol(_: &Params, film: Film, seed: Seed) -> Result<Family> {
+fn build_sobol(_: &Params, film: Film, seed: Seed, _: &Progress<'_>) -> Result<Family> {
     Ok(Family::from(Burley { keys: Keys::new(seed, film.dims), tables: (0..film.dims as usize).map(ReversedLow::new).collect() }))
 }
 
@@ -164,7 +165,7 @@ pub(crate) struct Padded {
     sobol: Sobol2,
 }
 
-fn build_padded(p: &Params, film: Film, seed: Seed) -> Result<Family> {
+fn build_padded(p: &Params, film: Film, seed: Seed, _: &Progress<'_>) -> Result<Family> {
     let scramble = Scramble::from_word(p.word("randomize"));
     Ok(Family::from(Padded { seed: seed.0, spp: film.spp, scramble, sobol: Sobol2::default() }))
 }

@@ -6,6 +6,7 @@ use crate::error::Result;
 use crate::numeric::BELOW_ONE;
 use crate::registry::About;
 use crate::sampler::randomize::scramble::permute;
+use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::Params;
 
@@ -35,7 +36,7 @@ pub(crate) struct Stratified {
     rows: u32,
 }
 
-fn build(_: &Params, film: Film, seed: Seed) -> Result<Family> {
+fn build(_: &Params, film: Film, seed: Seed, _: &Progress<'_>) -> Result<Family> {
     let rows = (1..=film.spp.isqrt()).rev().find(|a| film.spp.is_multiple_of(*a)).unwrap_or(1);
     Ok(Family::from(Stratified { keys: Keys::new(seed, 0), spp: film.spp, columns: film.spp / rows, rows }))
 }

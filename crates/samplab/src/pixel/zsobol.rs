@@ -8,6 +8,7 @@ use super::pbrt::{RANDOMIZE, Scramble, Sobol2, frame_seed, hash_words, mix_bits,
 use super::{Family, Film, POWER_OF_TWO_SPP, Pairs, PixelEntry};
 use crate::error::Result;
 use crate::registry::About;
+use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::Params;
 
@@ -72,7 +73,7 @@ pub(crate) struct ZSobol {
     hashes: Vec<u64>,
 }
 
-fn build(p: &Params, film: Film, seed: Seed) -> Result<Family> {
+fn build(p: &Params, film: Film, seed: Seed, _: &Progress<'_>) -> Result<Family> {
     let log2_spp = film.spp.ilog2();
     let side = film.width.max(film.height).next_power_of_two();
     Ok(Family::from(ZSobol {

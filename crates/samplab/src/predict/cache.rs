@@ -1,8 +1,18 @@
 //! Measured sampler spectra kept between runs: a spectrum is a pure function of the
-//! sampler's spec, n, dimension, grid, set count, seed and samplab's version, so one
-//! measured once is read back bit for bit instead of measured again.
+//! sampler's spec, n, dimension, grid, set count, seed and samplab's source (its digest,
+//! made at build time, not only its version), so one measured once is read back bit for
+//! bit instead of measured again.
+//!
+//! A cache folder may be shared (a cluster's scratch), so nothing in it is trusted: an
+//! entry is read only when it is a regular file (not a link, a FIFO or a device) of exactly
+//! the size its key implies, and its SHA-256 matches; anything else is measured again and
+//! replaced. Entries are written to an exclusively created temporary with an unpredictable
+//! name and renamed into place, so two writers leave one whole entry.
 
+use std::io::Read as _;
 use std::path::{Path, PathBuf};
+
+use sha2::{Digest as _, Sha256};
 
 use super::SamplerSpectrum;
 use crate::seed::Seed;
@@ -22,8 +32,9 @@ impl Key<'_> {
     /// with one hash never mix).
     fn text(&self) -> String {
         format!(
-            "samplab {} spectrum of {} at n = {} in {}D, {} frequencies per axis, {} sets, seed {}",
+            "samplab {} (source {}) spectrum of {} at n = {} in {}D, {} frequencies per axis, {} sets, seed {}",
             env!("CARGO_PKG_VERSION"),
+            env!("SAMPLAB_SOURCE_DIGEST"),
             self.spec,
             self.n,
             self.dims,
@@ -41,7 +52,7 @@ pub struct Cache {
 }
 
 /// The first line of every file.
-const MAGIC: &str = "samplab spectrum cache 1";
+const MAGIC: &str = "samplab spectrum cache 2";
 
 impl Cache {
     /// The cache in `dir` (made when first written).
@@ -68,16 +79,18 @@ impl Cache {
         self.dir.join(format!("{:016x}.bin", Seed(0).derive_str(&key.text()).0))
     }
 
-    /// The spectrum stored for `key`; `None` when absent, unreadable or not this key's.
+    /// The spectrum stored for `key`; `None` when absent, unreadable, damaged, not a
+    /// regular file of the expected size, or not this key's (module docs).
     pub(super) fn load(&self, key: &Key<'_>) -> Option<SamplerSpectrum> {
-        let bytes = std::fs::read(self.path(key)).ok()?;
+        let cells = key.res.checked_pow(u32::try_from(key.dims).ok()?)?;
         let header = format!("{MAGIC}\n{}\n", key.text());
-        let body = bytes.strip_prefix(header.as_bytes())?;
-        let cells = key.res.pow(key.dims as u32);
-        // the mean and the batches, whole
-        if body.len() != 8 * cells * (1 + super::BATCHES) {
+        let size = header.len() + 8 * cells * (1 + super::BATCHES) + 32;
+        let bytes = read_entry(&self.path(key), size)?;
+        let (content, digest) = bytes.split_at(size - 32);
+        if Sha256::digest(content).as_slice() != digest {
             return None;
         }
+        let body = content.strip_prefix(header.as_bytes())?;
         let values: Vec<f64> =
             body.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes"))).collect();
         let mut rows = values.chunks_exact(cells).map(<[f64]>::to_vec);
@@ -93,23 +106,41 @@ impl Cache {
         })
     }
 
-    /// Keep `s` for `key`, written whole under a temporary name and then renamed, so that
-    /// a reader never sees half a file; a cache that cannot be written is left alone (the
+    /// Keep `s` for `key` (module docs); a cache that cannot be written is left alone (the
     /// spectrum is measured again next time).
     pub(super) fn store(&self, key: &Key<'_>, s: &SamplerSpectrum) {
         let mut bytes = format!("{MAGIC}\n{}\n", key.text()).into_bytes();
         for v in std::iter::once(&s.mean).chain(&s.batches).flatten() {
             bytes.extend_from_slice(&v.to_le_bytes());
         }
-        let path = self.path(key);
-        static WRITES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-        let count = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let temporary = path.with_extension(format!("tmp{}-{count}", std::process::id()));
-        let written = std::fs::create_dir_all(&self.dir)
-            .and_then(|()| std::fs::write(&temporary, &bytes))
-            .and_then(|()| std::fs::rename(&temporary, &path));
-        if written.is_err() {
-            let _ = std::fs::remove_file(&temporary);
+        let digest = Sha256::digest(&bytes);
+        bytes.extend_from_slice(&digest);
+        if std::fs::create_dir_all(&self.dir).is_ok() {
+            let _ = crate::io::replace_entry(&self.path(key), &bytes);
         }
     }
+}
+
+/// The whole of the entry `path` when it is a regular file (not followed through a link,
+/// never opened when it is a FIFO or a device) of exactly `size` bytes.
+fn read_entry(path: &Path, size: usize) -> Option<Vec<u8>> {
+    let is_entry = |m: &std::fs::Metadata| m.is_file() && m.len() == size as u64;
+    if !is_entry(&std::fs::symlink_metadata(path).ok()?) {
+        return None;
+    }
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt as _;
+        // a FIFO swapped in after the check must not block the open
+        options.custom_flags(libc::O_NOFOLLOW | libc::O_NONBLOCK);
+    }
+    let file = options.open(path).ok()?;
+    if !is_entry(&file.metadata().ok()?) {
+        return None;
+    }
+    let mut bytes = Vec::with_capacity(size);
+    file.take(size as u64 + 1).read_to_end(&mut bytes).ok()?;
+    (bytes.len() == size).then_some(bytes)
 }
