@@ -51,6 +51,13 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     }
     let metrics: Vec<Metric> = metric_items.iter().map(|m| Metric::parse(m)).collect::<Result<_, _>>()?;
     let limits = Limits::new(a.max_work)?;
+    // the sets to make and the metrics' work on them, refused before any is made
+    if let Some((n, d, sets)) = a.source.planned(1) {
+        let concurrent = sets.saturating_mul(metrics.len()).min(rayon::current_num_threads()) as u128;
+        let working = metrics.iter().map(|m| m.memory(n)).max().unwrap_or(0);
+        let bytes = (n as u128 * d as u128 * 8).saturating_mul(sets as u128) + working * concurrent;
+        samplab::memory::check(|| format!("the metrics of {sets} set(s) of {n} {d}D points"), bytes)?;
+    }
     let crate::sets::Loaded { sets, source, .. } = a.source.load(file.as_deref(), 1, &(0.0..=1.0))?;
     let bar = Bar::new((sets.len() * metrics.len()) as u64, "evaluations");
     let progress = bar.progress();

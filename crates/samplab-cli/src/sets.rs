@@ -45,6 +45,12 @@ impl SetSource {
         self.sampler.is_some()
     }
 
+    /// The points per set, dimensions and sets to be generated (`default_sets` unless
+    /// --sets), when they are to be generated.
+    pub fn planned(&self, default_sets: usize) -> Option<(usize, usize, usize)> {
+        Some((self.n?, self.dims, self.sets.unwrap_or(default_sets))).filter(|_| self.generates())
+    }
+
     /// Read `file` or generate the sets (`default_sets` realizations unless --sets); a file
     /// with a coordinate outside `domain` is refused with its line.
     pub fn load(

@@ -625,3 +625,67 @@ fn piles_of_equal_points_and_a_fifo_manifest_do_not_hang() {
     let (out, _) = sh(&dir, "$S spectrum --sampler jitter -n 16 --sets 2 --res 8 -o out", SECOND * 30);
     refused(&out, "a FIFO manifest", "which samplab did not write");
 }
+
+#[test]
+fn the_new_commands_past_the_memory_available_exit_2_within_5_s() {
+    let dir = temp("sizes-3");
+    for args in [
+        "discrepancy l2-star --sampler random -n 60000000",
+        "discrepancy centered --sampler random -n 100000000",
+        "discrepancy wraparound --sampler random -n 60000000",
+        "discrepancy star --sampler random -n 60000000",
+        "discrepancy min-distance --sampler random -n 60000000",
+        "discrepancy pcf --sampler random -n 60000000",
+        "pixels zsobol --res 8192x8192 --spp 1 --mask-spectrum",
+        "pixels zsobol --res 65536x65536 --spp 1 --mask-spectrum",
+        "pixels zsobol --res 64x64 --spp 1 --frames 4294967295 --mask-spectrum",
+        "pixels zsobol --res 65536x65536 --spp 4096 --dims 64 -o p.npy",
+        "generate net:matrices=/dev/zero -n 16",
+        "generate lattice:vector=/dev/urandom -n 16",
+        "cubature --integrand keister:d=2 --max-n 1099511627776 --abs-tol 1e-12",
+        "cubature --integrand keister:d=1000 --min-n 1048576",
+        "predict --integrand disk --sampler sobol.owen -n 16 --res 4096",
+        "predict --integrand disk --sampler sobol.owen -n 1000000000",
+    ] {
+        let (out, took) = sh(&dir, &format!("ulimit -v 2000000 && exec \"$S\" {args}"), SECOND * 60);
+        refused(&out, args, "");
+        assert!(took < Duration::from_secs(5), "{args}: {took:?}");
+    }
+    assert!(listing(&dir).is_empty(), "{:?}", listing(&dir));
+}
+
+#[test]
+fn round_3_bad_input_is_refused() {
+    let dir = temp("accepted-3");
+    let deep = format!(
+        "<scene version=\"3.0.0\">{}<bsdf type=\"diffuse\"/>{}</scene>",
+        "<bsdf type=\"twosided\">".repeat(50_000),
+        "</bsdf>".repeat(50_000)
+    );
+    std::fs::write(dir.join("deep.xml"), deep).unwrap();
+    let scene =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../samplab-render/tests/scenes/sphere-box.xml"))
+            .unwrap()
+            .replace("<rgb name=\"radiance\" value=\"18\"/>", "<rgb name=\"radiance\" value=\"1e308\"/>");
+    std::fs::write(dir.join("bright.xml"), scene).unwrap();
+    std::fs::copy(
+        concat!(env!("CARGO_MANIFEST_DIR"), "/../samplab-render/tests/scenes/cube.obj"),
+        dir.join("cube.obj"),
+    )
+    .unwrap();
+    for (cmd, expect) in [
+        ("$S render bright.xml --res 16x16 --mode path -o b.exr", "beyond 32-bit floats"),
+        ("$S render deep.xml -o r.exr", "deep.xml:1: elements nested more than 64 deep"),
+        ("$S cubature --integrand expr:x18446744073709551615", "variable `x18446744073709551615` is out of range"),
+        ("$S cubature --integrand expr:x0 --exact nan", "--exact NaN: the integral must be a finite number"),
+        ("$S cubature --integrand expr:x0 --exact inf", "--exact inf: the integral must be a finite number"),
+        (
+            "$S integrate --sampler random --integrand expr:x0 --exact=-inf -n 16",
+            "the integral must be a finite number",
+        ),
+    ] {
+        let (out, _) = sh(&dir, cmd, SECOND * 30);
+        refused(&out, cmd, expect);
+    }
+    assert!(!dir.join("b.exr").exists());
+}

@@ -186,6 +186,11 @@ impl Image {
         use exr::prelude::{AnyChannel, AnyChannels, Encoding, FlatSamples, Layer, LayerAttributes, WritableImage};
         let fail = |m: String| Error::Image { path: path.display().to_string(), message: m };
         let w = self.width;
+        // an image samplab could not read back is not written
+        if let Some(i) = self.rgb.iter().position(|v| !v.is_finite()) {
+            let pixel = non_finite(i / 3 % w, i / 3 / w, i % 3, self.rgb[i]);
+            return Err(fail(format!("{pixel}: beyond 32-bit floats (a light too bright?); not written")));
+        }
         let channel = |name: &str, data: Vec<f32>| AnyChannel::new(name, FlatSamples::F32(data));
         let plane = |k: usize| self.rgb.iter().skip(k).step_by(3).copied().collect::<Vec<f32>>();
         let mut list = vec![channel("B", plane(2)), channel("G", plane(1)), channel("R", plane(0))];
@@ -239,13 +244,7 @@ impl Image {
         for i in 0..w * h {
             for (k, p) in planes.iter().enumerate() {
                 if !p[i].is_finite() {
-                    return Err(fail(format!(
-                        "pixel ({}, {}) channel {} is {}",
-                        i % w,
-                        i / w,
-                        ["R", "G", "B"][k],
-                        p[i]
-                    )));
+                    return Err(fail(non_finite(i % w, i / w, k, p[i])));
                 }
                 rgb.push(p[i]);
             }
@@ -278,6 +277,11 @@ impl Image {
             }),
         }
     }
+}
+
+/// Where a value that is not finite is: pixel (x, y), channel k of R, G, B.
+fn non_finite(x: usize, y: usize, k: usize, value: f32) -> String {
+    format!("pixel ({x}, {y}) channel {} is {value}", ["R", "G", "B"][k])
 }
 
 /// Stage an 8-bit RGB picture as PNG for `path`.

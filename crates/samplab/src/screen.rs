@@ -406,6 +406,12 @@ pub fn mask_measures(p: &crate::pixel::Pixels, dim: u32, frames: u32) -> Result<
     if frames == 0 {
         return Err(Error::Setting { name: "frames", value: "0".into(), reason: "at least one frame".into() });
     }
+    // every frame's mask (a mask and its centred plane at a time), and the spectra's
+    // complex buffers
+    let f = p.film();
+    let pixels = u128::from(f.width) * u128::from(f.height);
+    let bytes = (u128::from(frames) * 8 + 2 * 8 + 4 * 16) * pixels;
+    crate::memory::check(|| format!("the masks of {frames} frame(s) of {}x{} pixels", f.width, f.height), bytes)?;
     let centred = |frame| -> Result<Plane> {
         let m = p.mask(frame, 0, dim)?;
         Plane::new(m.width, m.height, m.values.iter().map(|v| v - 0.5).collect())

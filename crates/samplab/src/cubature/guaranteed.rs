@@ -123,9 +123,7 @@ impl Run<'_> {
         let mut n = self.min_n;
         loop {
             let m = n.trailing_zeros();
-            // the points, the values, the coefficients (complex for a lattice) and the map
-            let bytes = n as u128 * (d as u128 + 4) * 8;
-            crate::memory::check(|| format!("cubature of {n} {d}D points"), bytes)?;
+            crate::memory::check(|| format!("cubature of {n} {d}D points"), bytes(n, d))?;
             let points = sampler.plan(n, d)?.generate(seed)?;
             let points = points.as_slice();
             let old = y.len();
@@ -160,6 +158,12 @@ impl Run<'_> {
             n *= 2;
         }
     }
+}
+
+/// The memory a step of `n` points takes: the points, the values, the coefficients
+/// (complex for a lattice) and the map.
+pub(super) fn bytes(n: usize, d: usize) -> u128 {
+    n as u128 * (d as u128 + 4) * 8
 }
 
 /// The refusal of an integrand's non-finite value.

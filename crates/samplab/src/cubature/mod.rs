@@ -222,6 +222,13 @@ impl Settings {
 /// Never: every rule takes at least one step.
 pub fn cubature(f: &dyn Integrand, settings: &Settings, progress: &Progress) -> Result<Cubature> {
     settings.check()?;
+    // the last step's memory (the run's largest), refused before the first step
+    let (d, last) = (f.dims(), settings.max_n);
+    let bytes = match settings.rule {
+        Rule::Replicated => replicated_bytes(last, d, settings.replications),
+        _ => guaranteed::bytes(last, d),
+    };
+    crate::memory::check(|| format!("cubature up to max_n = {last} {d}D points (its last step)"), bytes)?;
     let start = Instant::now();
     let spec = settings.sampler.as_deref().unwrap_or(settings.rule.default_sampler());
     let sampler = sampler::build(spec)?;
@@ -311,6 +318,12 @@ fn guaranteed_sampler(rule: Rule, sampler: &dyn sampler::Sampler, d: usize) -> R
 /// What a rule reports: its steps, whether it met the tolerance, the evaluations, its kind.
 type Outcome = (Vec<Step>, bool, usize, String);
 
+/// The memory a step of `n` points of the replicated rule takes: each thread holds one
+/// randomization's points and values at a time.
+fn replicated_bytes(n: usize, d: usize, r: usize) -> u128 {
+    n as u128 * (d as u128 + 1) * 8 * r.min(rayon::current_num_threads()) as u128
+}
+
 /// The replicated rule: R randomizations, Student's t interval over their means.
 fn replicated(
     f: &dyn Integrand,
@@ -328,9 +341,10 @@ fn replicated(
     let mut sums = vec![0.0; r];
     let mut done = 0;
     loop {
-        // each thread holds one randomization's points and values at a time
-        let bytes = n as u128 * (d as u128 + 1) * 8 * r.min(rayon::current_num_threads()) as u128;
-        crate::memory::check(|| format!("cubature of {n} {d}D points x {r} randomizations"), bytes)?;
+        crate::memory::check(
+            || format!("cubature of {n} {d}D points x {r} randomizations"),
+            replicated_bytes(n, d, r),
+        )?;
         let plan = sampler.plan(n, d)?;
         let sequence = plan.access(settings.seed).is_some();
         let from = if sequence { done } else { 0 };

@@ -34,6 +34,39 @@ pub use output::{
     write_folder,
 };
 
+/// The most bytes a file named by a spec may hold (the largest real ones, 1024 dimensions
+/// of 64 matrix columns in decimal, take a few MiB).
+pub const SPEC_FILE_MAX: u64 = 16 << 20;
+
+/// The text of a small file a spec names (a generating matrix, a lattice's vector): a
+/// regular file (not a device or a FIFO, which could be endless) of at most `max` bytes,
+/// read whole; anything else is refused before it is read.
+///
+/// # Errors
+/// [`Error::Io`] naming the file: missing, not a regular file, larger than `max`, not
+/// UTF-8.
+pub fn read_small_text(path: &str, max: u64) -> Result<String> {
+    let io = |reason: String| Error::Io { path: path.into(), reason };
+    let meta = std::fs::metadata(path).map_err(|e| io(e.to_string()))?;
+    if !meta.is_file() {
+        return Err(io("not a regular file (a device or a FIFO is not read)".into()));
+    }
+    if meta.len() > max {
+        return Err(io(format!(
+            "{} long, over the {} such a file may be",
+            crate::memory::human(meta.len().into()),
+            crate::memory::human(max.into())
+        )));
+    }
+    let mut text = String::new();
+    std::io::Read::read_to_string(
+        &mut std::io::Read::take(std::fs::File::open(path).map_err(|e| io(e.to_string()))?, max),
+        &mut text,
+    )
+    .map_err(|e| io(e.to_string()))?;
+    Ok(text)
+}
+
 /// One CSV line (RFC 4180): the fields joined by commas, a field holding a comma, a quote
 /// or a line break quoted (its quotes doubled), and a newline.
 pub fn csv_line<S: AsRef<str>>(fields: impl IntoIterator<Item = S>) -> String {

@@ -81,12 +81,8 @@ fn token() -> String {
     format!("{:016x}", h.finish())
 }
 
-/// A new file `.{name}.{token}.tmp` in `dir`, created exclusively (never through a link,
-/// never over an existing entry), registered while it exists.
-///
-/// # Errors
-/// The file cannot be created (`about` names the path in the error).
-fn temporary_file(dir: &Path, name: &str, about: &Path) -> Result<(PathBuf, std::fs::File)> {
+/// How a temporary is opened: created, never over an existing entry or through a link.
+fn exclusive() -> std::fs::OpenOptions {
     let mut options = std::fs::OpenOptions::new();
     options.write(true).create_new(true);
     #[cfg(unix)]
@@ -94,6 +90,16 @@ fn temporary_file(dir: &Path, name: &str, about: &Path) -> Result<(PathBuf, std:
         use std::os::unix::fs::OpenOptionsExt as _;
         options.custom_flags(libc::O_NOFOLLOW);
     }
+    options
+}
+
+/// A new file `.{name}.{token}.tmp` in `dir`, created exclusively (never through a link,
+/// never over an existing entry), registered while it exists.
+///
+/// # Errors
+/// The file cannot be created (`about` names the path in the error).
+fn temporary_file(dir: &Path, name: &str, about: &Path) -> Result<(PathBuf, std::fs::File)> {
+    let options = exclusive();
     let mut tries = 0;
     loop {
         let tmp = dir.join(format!(".{name}.{}.tmp", token()));
@@ -699,6 +705,32 @@ mod tests {
         let sub = dir.join("sub");
         std::fs::create_dir(&sub).unwrap();
         assert!(write_atomic(&sub, b"x").unwrap_err().to_string().contains("is a folder"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn temporaries_are_unpredictable_and_never_opened_through_a_link() {
+        let dir = temp("exclusive");
+        let victim = dir.join("victim");
+        std::fs::write(&victim, "precious").unwrap();
+        // a link or a file at the name: refused, the target untouched
+        std::os::unix::fs::symlink(&victim, dir.join("link")).unwrap();
+        assert!(exclusive().open(dir.join("link")).is_err());
+        assert!(exclusive().open(&victim).is_err());
+        assert_eq!(std::fs::read(&victim).unwrap(), b"precious");
+        // names: distinct, without the process id
+        let names: std::collections::HashSet<String> = (0..64)
+            .map(|_| {
+                let (tmp, _) = temporary_file(&dir, "p.txt", &dir).unwrap();
+                discard(&mut staged(), &tmp);
+                tmp.file_name().unwrap().to_string_lossy().into_owned()
+            })
+            .collect();
+        assert_eq!(names.len(), 64);
+        let pid = format!(".{}.", std::process::id());
+        assert!(names.iter().all(|n| n.starts_with(".p.txt.") && !n.contains(&pid)), "{names:?}");
+        assert_eq!(listing(&dir), ["link", "victim"]);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -169,6 +169,14 @@ impl Study<'_> {
     /// grid or set count, integrands of different dimensions, or a stop.
     pub fn run(&self, progress: &Progress) -> Result<Outcome> {
         let dims = self.check()?;
+        // the spectra (res^d grids of f64: each integrand's, each sampler's mean and
+        // batches at each n) and each thread's non-uniform FFT (complex, twice res per
+        // axis), refused before any is made
+        let cells = (self.res as u128).saturating_pow(dims as u32);
+        let grids = self.integrands.len() + (1 + super::BATCHES) * self.samplers.len() * self.ns.len();
+        let threads = rayon::current_num_threads() as u128;
+        let bytes = cells * 8 * grids as u128 + cells * (1 << dims) * 16 * threads;
+        crate::memory::check(|| format!("the spectra of {} frequencies per axis in {dims}D", self.res), bytes)?;
         let fs = self.integrands.iter().map(|(f, _)| integrand_spectrum(*f, self.res)).collect::<Result<Vec<_>>>()?;
         let mut skipped = Vec::new();
         let mut tasks = Vec::new();

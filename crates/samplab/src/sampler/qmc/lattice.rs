@@ -419,7 +419,7 @@ fn cbc_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Construct
 fn embedded_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Construction>> {
     let vector = match p.path_or_auto("vector") {
         Some(path) => {
-            let text = std::fs::read_to_string(path).map_err(|e| Error::Io { path: path.into(), reason: e.to_string() })?;
+            let text = crate::io::read_small_text(path, crate::io::SPEC_FILE_MAX)?;
             Vector::File(Arc::new(parse_vector(&text, path)?))
         }
         None => Vector::Constructed(weights(p)),

@@ -802,7 +802,7 @@ const BASE: ParamSpec = ParamSpec {
 };
 
 fn read_matrices(path: &str) -> Result<Source> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::Io { path: path.into(), reason: e.to_string() })?;
+    let text = crate::io::read_small_text(path, crate::io::SPEC_FILE_MAX)?;
     Ok(Source::File(Arc::new(Matrices::parse(&text, path)?)))
 }
 
