@@ -7,6 +7,8 @@
 
 mod common;
 use common::Temp;
+#[path = "common/stopped.rs"]
+mod stopped;
 
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
@@ -269,7 +271,8 @@ fn max_memory_holds_for_every_large_allocation() {
 
 /// Each command of `commands` (its arguments, and the seconds it runs before the signal)
 /// stopped by SIGINT, SIGTERM and SIGHUP in turn, in a folder of its own named `name`:
-/// each exits 130 within a second and leaves nothing behind.
+/// each exits 130 after at most [`stopped::STOP_CPU`] CPU seconds of work and leaves
+/// nothing behind.
 fn one_signal_stops_within_a_second(name: &str, commands: &[(&str, f64)]) {
     let dir = temp(name);
     mkfifo(&dir.join("fifo"));
@@ -279,19 +282,14 @@ fn one_signal_stops_within_a_second(name: &str, commands: &[(&str, f64)]) {
                 Command::new(BIN).args(args.split(' ')).current_dir(&dir).stderr(Stdio::piped()).spawn().unwrap();
             std::thread::sleep(Duration::from_secs_f64(after));
             assert!(child.try_wait().unwrap().is_none(), "{args}: finished before the signal");
-            let sent = Instant::now();
+            let at_signal = stopped::cpu_seconds(child.id());
             assert!(
                 Command::new("kill").args([&format!("-{signal}"), &child.id().to_string()]).status().unwrap().success()
             );
-            while child.try_wait().unwrap().is_none() {
-                if sent.elapsed() > SECOND {
-                    let _ = child.kill();
-                    panic!("{args}: still running 1 s after SIG{signal}");
-                }
-                std::thread::sleep(Duration::from_millis(10));
-            }
-            let out = child.wait_with_output().unwrap();
-            assert_eq!(out.status.code(), Some(130), "{args} SIG{signal}");
+            let (code, cpu) = stopped::reap(child.id(), SECOND * 60);
+            assert_eq!(code, Some(130), "{args} SIG{signal}");
+            let after = cpu - at_signal;
+            assert!(after < stopped::STOP_CPU, "{args}: {after:.2} CPU seconds after SIG{signal}");
             assert_eq!(listing(&dir), ["fifo"], "{args} SIG{signal}: files left");
         }
     }

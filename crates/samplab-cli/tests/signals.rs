@@ -6,17 +6,20 @@
 
 mod common;
 use common::Temp;
+#[path = "common/stopped.rs"]
+mod stopped;
 
+use std::io::Read as _;
 use std::path::Path;
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 fn temp(name: &str) -> Temp {
     Temp::new("signals", name)
 }
 
-/// Start `args` in `dir`, send `signal` after `after`, and check the stop: exit 130 within
-/// 10 s of the signal, one line on stderr, nothing left in `dir`.
+/// Start `args` in `dir`, send `signal` after `after`, and check the stop: exit 130 after
+/// at most [`stopped::STOP_CPU`] CPU seconds of work, one line on stderr, nothing left in `dir`.
 fn stopped(name: &str, args: &[&str], signal: &str, after: Duration) {
     let dir = temp(name);
     let mut child = Command::new(env!("CARGO_BIN_EXE_samplab"))
@@ -28,14 +31,15 @@ fn stopped(name: &str, args: &[&str], signal: &str, after: Duration) {
         .unwrap();
     std::thread::sleep(after);
     assert!(child.try_wait().unwrap().is_none(), "{name}: finished before the signal; make it longer");
-    let sent = Instant::now();
+    let at_signal = stopped::cpu_seconds(child.id());
     let kill = Command::new("kill").args([signal, &child.id().to_string()]).status().unwrap();
     assert!(kill.success());
-    let out = child.wait_with_output().unwrap();
-    let waited = sent.elapsed();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(130), "{name}: {stderr}");
-    assert!(waited < Duration::from_secs(10), "{name}: took {waited:?} to stop");
+    let (code, cpu) = stopped::reap(child.id(), Duration::from_secs(60));
+    let mut stderr = String::new();
+    child.stderr.take().unwrap().read_to_string(&mut stderr).unwrap();
+    assert_eq!(code, Some(130), "{name}: {stderr}");
+    let after = cpu - at_signal;
+    assert!(after < stopped::STOP_CPU, "{name}: {after:.2} CPU seconds after the signal");
     assert!(stderr.ends_with("samplab: interrupted: nothing was written\n"), "{name}: {stderr}");
     assert_eq!(listing(&dir), Vec::<String>::new(), "{name}: files were left behind");
 }
