@@ -34,7 +34,7 @@ fn stopped(name: &str, args: &[&str], signal: &str, after: Duration) {
     let at_signal = stopped::cpu_seconds(child.id());
     let kill = Command::new("kill").args([signal, &child.id().to_string()]).status().unwrap();
     assert!(kill.success());
-    let (code, cpu) = stopped::reap(child.id(), Duration::from_secs(60));
+    let (code, cpu, _) = stopped::reap(child.id(), Duration::from_secs(60));
     let mut stderr = String::new();
     child.stderr.take().unwrap().read_to_string(&mut stderr).unwrap();
     assert_eq!(code, Some(130), "{name}: {stderr}");

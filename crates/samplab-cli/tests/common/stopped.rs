@@ -1,5 +1,6 @@
-//! How much a command does after a signal, in CPU seconds of the process (all its threads):
-//! what a loaded machine does not stretch, as it stretches wall time.
+//! How much work a command does (after a signal, or before a refusal), in CPU seconds of
+//! the process (all its threads) and its peak resident memory: what a loaded machine does
+//! not stretch, as it stretches wall time.
 
 use std::time::{Duration, Instant};
 
@@ -17,9 +18,10 @@ pub fn cpu_seconds(pid: u32) -> f64 {
     ticks / unsafe { libc::sysconf(libc::_SC_CLK_TCK) } as f64
 }
 
-/// Reap the child `pid`: its exit code (None when a signal ended it) and the CPU seconds it
-/// used in all. Past `limit` it is killed and this panics: a hang, not a slow stop.
-pub fn reap(pid: u32, limit: Duration) -> (Option<i32>, f64) {
+/// Reap the child `pid`: its exit code (None when a signal ended it), the CPU seconds it
+/// used in all and its peak resident memory in bytes. Past `limit` it is killed and this
+/// panics: a hang, not a slow stop.
+pub fn reap(pid: u32, limit: Duration) -> (Option<i32>, f64, u64) {
     let start = Instant::now();
     let pid = pid as libc::pid_t;
     loop {
@@ -30,7 +32,8 @@ pub fn reap(pid: u32, limit: Duration) -> (Option<i32>, f64) {
         if got == pid {
             let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
             let code = libc::WIFEXITED(status).then(|| libc::WEXITSTATUS(status));
-            return (code, seconds(usage.ru_utime) + seconds(usage.ru_stime));
+            let peak = u64::try_from(usage.ru_maxrss).unwrap_or(0) * 1024;
+            return (code, seconds(usage.ru_utime) + seconds(usage.ru_stime), peak);
         }
         if start.elapsed() > limit {
             // SAFETY: kill(2) on this test's own child.
