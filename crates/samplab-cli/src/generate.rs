@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::Context as _;
-use samplab::io::{self, Format};
+use samplab::io::{self, Format, Role};
 use samplab::{Seed, sampler, warp};
 
 use crate::bar::Bar;
@@ -59,6 +59,10 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     let output = a.output.as_deref().filter(|p| p.as_os_str() != "-");
     if let Some(p) = output {
         samplab::io::check_file(p)?;
+        let files = sampler::inputs(&a.spec)?;
+        let mut roles: Vec<Role<'_>> = files.iter().map(|f| Role::Input("the sampler's file", f)).collect();
+        roles.push(Role::File("-o", p));
+        samplab::io::refuse_overlap(&roles)?;
     }
     let format = match &a.format {
         Some(f) => Format::from_name(f)?,

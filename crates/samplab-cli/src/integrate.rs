@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use anyhow::bail;
 use samplab::experiment::{self, Fit, Integrands, Row, Study};
 use samplab::integrand::Family;
+use samplab::io::Role;
 use samplab::{Seed, sampler};
 use samplab_report::plot::{self as draw, LineChart, Series};
 
@@ -61,6 +62,10 @@ pub struct Args {
 pub fn run(a: &Args) -> anyhow::Result<()> {
     if let Some(p) = &a.plot {
         samplab::io::check_file(p)?;
+        let files = a.samplers.iter().map(|s| sampler::inputs(s)).collect::<Result<Vec<_>, _>>()?.concat();
+        let mut roles: Vec<Role<'_>> = files.iter().map(|f| Role::Input("a sampler's file", f)).collect();
+        roles.push(Role::File("--plot", p));
+        samplab::io::refuse_overlap(&roles)?;
     }
     let own = crate::own::parse(&a.integrand, a.exact, true)?;
     let family = match &own {

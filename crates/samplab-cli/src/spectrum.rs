@@ -57,9 +57,12 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     }
     let replace = if a.force { samplab::io::Replace::Force } else { samplab::io::Replace::IfOurs };
     samplab::io::check_folder(&a.output, replace)?;
-    if let Some(file) = &a.file {
+    {
         use samplab::io::Role;
-        samplab::io::refuse_overlap(&[Role::Input("the point file", file), Role::Folder("-o", &a.output)])?;
+        let files = a.source.inputs(a.file.as_deref());
+        let mut roles: Vec<Role<'_>> = files.iter().map(|f| Role::Input("the points' file", f)).collect();
+        roles.push(Role::Folder("-o", &a.output));
+        samplab::io::refuse_overlap(&roles)?;
     }
     let crate::sets::Loaded { sets, source, spec } = a.source.load(a.file.as_deref(), 20, &samplab::io::ANY)?;
     // the closed form, before the spectra: a --theory that has none is refused, not dropped

@@ -34,10 +34,10 @@ fn stopped(name: &str, args: &[&str], signal: &str, after: Duration) {
     let at_signal = stopped::cpu_seconds(child.id());
     let kill = Command::new("kill").args([signal, &child.id().to_string()]).status().unwrap();
     assert!(kill.success());
-    let (code, cpu, _) = stopped::reap(child.id(), Duration::from_secs(60));
+    let (status, cpu, _) = stopped::reap(child.id(), Duration::from_secs(60));
     let mut stderr = String::new();
     child.stderr.take().unwrap().read_to_string(&mut stderr).unwrap();
-    assert_eq!(code, Some(130), "{name}: {stderr}");
+    assert_eq!(status.code(), Some(130), "{name}: {stderr}");
     let after = cpu - at_signal;
     assert!(after < stopped::STOP_CPU, "{name}: {after:.2} CPU seconds after the signal");
     assert!(stderr.ends_with("samplab: interrupted: nothing was written\n"), "{name}: {stderr}");

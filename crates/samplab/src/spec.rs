@@ -273,6 +273,17 @@ impl Params {
         }
     }
 
+    /// The paths held by the parameters that `specs` declares as [`Kind::Path`] (those not
+    /// left to the method): the files a spec reads.
+    pub fn paths(&self, specs: &[ParamSpec]) -> Vec<std::path::PathBuf> {
+        specs
+            .iter()
+            .filter(|s| matches!(s.kind, Kind::Path))
+            .filter_map(|s| self.path_or_auto(s.name))
+            .map(std::path::PathBuf::from)
+            .collect()
+    }
+
     /// The real numbers `name` holds, or None when they are left to the method (`auto`).
     ///
     /// # Panics

@@ -18,10 +18,11 @@ pub fn cpu_seconds(pid: u32) -> f64 {
     ticks / unsafe { libc::sysconf(libc::_SC_CLK_TCK) } as f64
 }
 
-/// Reap the child `pid`: its exit code (None when a signal ended it), the CPU seconds it
-/// used in all and its peak resident memory in bytes. Past `limit` it is killed and this
-/// panics: a hang, not a slow stop.
-pub fn reap(pid: u32, limit: Duration) -> (Option<i32>, f64, u64) {
+/// Reap the child `pid`: how it ended, the CPU seconds it and the children it waited for used
+/// in all, and the peak resident memory of any of them in bytes. Past `limit` it (and its
+/// process group, if it leads one) is killed and this panics: a hang, not a slow stop.
+pub fn reap(pid: u32, limit: Duration) -> (std::process::ExitStatus, f64, u64) {
+    use std::os::unix::process::ExitStatusExt as _;
     let start = Instant::now();
     let pid = pid as libc::pid_t;
     loop {
@@ -31,14 +32,20 @@ pub fn reap(pid: u32, limit: Duration) -> (Option<i32>, f64, u64) {
         assert!(got >= 0, "wait4: {}", std::io::Error::last_os_error());
         if got == pid {
             let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
-            let code = libc::WIFEXITED(status).then(|| libc::WEXITSTATUS(status));
             let peak = u64::try_from(usage.ru_maxrss).unwrap_or(0) * 1024;
-            return (code, seconds(usage.ru_utime) + seconds(usage.ru_stime), peak);
+            return (
+                std::process::ExitStatus::from_raw(status),
+                seconds(usage.ru_utime) + seconds(usage.ru_stime),
+                peak,
+            );
         }
         if start.elapsed() > limit {
-            // SAFETY: kill(2) on this test's own child.
-            unsafe { libc::kill(pid, libc::SIGKILL) };
-            panic!("still running {limit:?} after the signal");
+            // SAFETY: kill(2) on this test's own child and the group it may lead.
+            unsafe {
+                libc::kill(-pid, libc::SIGKILL);
+                libc::kill(pid, libc::SIGKILL);
+            }
+            panic!("still running after {limit:?}");
         }
         std::thread::sleep(Duration::from_millis(10));
     }

@@ -353,7 +353,7 @@ pub fn read_within(path: &Path, format: Option<Format>, domain: &RangeInclusive<
         read_regular(path, meta.len()).map_err(io)?
     } else {
         // a pipe or a device has no length: read while the memory allows (`/dev/zero` never
-        // ends), checked as it grows
+        // ends), each growth of the buffer checked before it is made
         use std::io::Read as _;
         let mut file = std::fs::File::open(path).map_err(io)?;
         let mut bytes = Vec::new();
@@ -363,10 +363,12 @@ pub fn read_within(path: &Path, format: Option<Format>, domain: &RangeInclusive<
             if got == 0 {
                 break;
             }
-            bytes.extend_from_slice(&chunk[..got]);
-            if bytes.len().is_power_of_two() || bytes.len() % (64 << 20) < got {
-                crate::memory::check(|| format!("reading {name} (not a regular file)"), bytes.len() as u128 * factor)?;
+            if bytes.len() + got > bytes.capacity() {
+                let grown = (2 * bytes.capacity()).max(bytes.len() + got);
+                crate::memory::check(|| format!("reading {name} (not a regular file)"), grown as u128 * factor)?;
+                bytes.reserve_exact(grown - bytes.len());
             }
+            bytes.extend_from_slice(&chunk[..got]);
         }
         bytes
     };

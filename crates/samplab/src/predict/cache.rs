@@ -25,7 +25,12 @@ pub(super) struct Key<'a> {
     pub res: usize,
     pub sets: usize,
     pub seed: Seed,
+    /// The build's source digest ([`SOURCE`]).
+    pub source: &'a str,
 }
+
+/// This build's source digest: a digest of samplab's `src/` and `data/`, made by build.rs.
+pub(super) const SOURCE: &str = env!("SAMPLAB_SOURCE_DIGEST");
 
 impl Key<'_> {
     /// The key in words, stored in the file and compared on reading (so that two keys
@@ -34,7 +39,7 @@ impl Key<'_> {
         format!(
             "samplab {} (source {}) spectrum of {} at n = {} in {}D, {} frequencies per axis, {} sets, seed {}",
             env!("CARGO_PKG_VERSION"),
-            env!("SAMPLAB_SOURCE_DIGEST"),
+            self.source,
             self.spec,
             self.n,
             self.dims,
@@ -143,4 +148,58 @@ fn read_entry(path: &Path, size: usize) -> Option<Vec<u8>> {
     let mut bytes = Vec::with_capacity(size);
     file.take(size as u64 + 1).read_to_end(&mut bytes).ok()?;
     (bytes.len() == size).then_some(bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn spectrum(res: usize, salt: f64) -> SamplerSpectrum {
+        let row = |b: usize| (0..res * res).map(|i| salt + (i * (b + 3)) as f64 / 7.0).collect::<Vec<f64>>();
+        SamplerSpectrum {
+            sampler: "jitter".into(),
+            n: 16,
+            dims: 2,
+            res,
+            mean: row(0),
+            batches: (1..=super::super::BATCHES).map(row).collect(),
+            source: "measured: mean of 16 realizations".into(),
+        }
+    }
+
+    fn folder(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("samplab-cache-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        dir
+    }
+
+    #[test]
+    fn an_entry_is_read_back_bit_for_bit_and_never_by_another_build() {
+        let dir = folder("builds");
+        let cache = Cache::new(&dir);
+        let key = |source| Key { spec: "jitter", n: 16, dims: 2, res: 4, sets: 16, seed: Seed(3), source };
+        let (ours, older) = (key("aaaa"), key("bbbb"));
+        let s = spectrum(4, 0.5);
+        cache.store(&ours, &s);
+        let back = cache.load(&ours).expect("stored");
+        assert_eq!(
+            back.mean.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+            s.mean.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+        );
+        assert_eq!(back.batches, s.batches);
+        // another build's key finds nothing, even with this build's entry at its name
+        assert!(cache.load(&older).is_none());
+        std::fs::copy(cache.path(&ours), cache.path(&older)).unwrap();
+        assert!(cache.load(&older).is_none(), "an entry of another source read as this one's");
+        // a changed value (the checksum) or a changed length is measured again
+        let mut bytes = std::fs::read(cache.path(&ours)).unwrap();
+        let at = bytes.len() - 40;
+        bytes[at] ^= 1;
+        std::fs::write(cache.path(&ours), &bytes).unwrap();
+        assert!(cache.load(&ours).is_none());
+        bytes.pop();
+        std::fs::write(cache.path(&ours), &bytes).unwrap();
+        assert!(cache.load(&ours).is_none());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

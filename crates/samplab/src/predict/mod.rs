@@ -279,7 +279,7 @@ fn spectrum_of_plan(
         progress.advance(sets as u64)?;
         return Ok(s);
     }
-    let key = cache::Key { spec, n, dims, res, sets, seed };
+    let key = cache::Key { spec, n, dims, res, sets, seed, source: cache::SOURCE };
     if let Some(found) = cache.and_then(|c| c.load(&key)) {
         progress.advance(sets as u64)?;
         return Ok(found);

@@ -252,6 +252,27 @@ pub fn build(spec: &str) -> Result<Box<dyn Sampler>> {
     entry.build(&params)
 }
 
+/// The files a sampler spec reads (`file:path=`, `net:matrices=`, `lattice:vector=`, its
+/// stages' too), so that a command can refuse to write over one of them.
+///
+/// # Errors
+/// As [`build`], for a spec that does not resolve.
+///
+/// ```
+/// let files = samplab::sampler::inputs("net:matrices=m.txt+shift").unwrap();
+/// assert_eq!(files, [std::path::PathBuf::from("m.txt")]);
+/// assert!(samplab::sampler::inputs("sobol").unwrap().is_empty());
+/// ```
+pub fn inputs(spec: &str) -> Result<Vec<std::path::PathBuf>> {
+    if let Some((before, stage, params)) = super::randomize::split(spec)? {
+        let mut files = inputs(before)?;
+        files.extend(params.paths(stage.about.params));
+        return Ok(files);
+    }
+    let (entry, params) = SAMPLERS.resolve(spec)?;
+    Ok(params.paths(entry.about().params))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
