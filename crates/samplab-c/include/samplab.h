@@ -7,19 +7,82 @@
 #include <stdint.h>
 
 /*
+ The library's major version (the SONAME's number).
+ */
+#define SAMPLAB_VERSION_MAJOR 0
+
+/*
+ The library's minor version.
+ */
+#define SAMPLAB_VERSION_MINOR 1
+
+/*
+ The library's patch version.
+ */
+#define SAMPLAB_VERSION_PATCH 0
+
+/*
  A prepared pixel sampler (opaque to C).
  */
 typedef struct SamplabPixels SamplabPixels;
+
+/*
+ One pixel sampler family: its name (a spec, with parameters after `:`), one line on what
+ it is, the sample counts per pixel it takes and the dimensions it draws (in words), and
+ the most dimensions a film may ask of it.
+ */
+typedef struct SamplabFamily {
+  /*
+   Canonical name, e.g. "zsobol".
+   */
+  const char *name;
+  /*
+   One line: what it is.
+   */
+  const char *summary;
+  /*
+   The sample counts per pixel it takes, e.g. "a power of two".
+   */
+  const char *spp;
+  /*
+   The dimensions it draws, in words.
+   */
+  const char *dims;
+  /*
+   The most dimensions a film may have (values past a film's dimensions are padding).
+   */
+  uint32_t max_dims;
+} SamplabFamily;
 
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
 
 /*
+ The library's version, "MAJOR.MINOR.PATCH" (that of the library loaded at run time, which
+ may differ from the header's `SAMPLAB_VERSION_*`).
+ */
+const char *samplab_version(void);
+
+/*
+ The pixel sampler families this library has, in `samplab list pixels`'s order: stores a
+ pointer to the first of them in `*families` (when `families` is not NULL) and returns how
+ many there are. The table lives as long as the process.
+
+ # Safety
+ `families` is null or points to a writable pointer.
+ */
+size_t samplab_pixel_families(const struct SamplabFamily **families);
+
+/*
  Prepare the pixel sampler `spec` (e.g. "zsobol", "sobol.padded:randomize=owen",
- "openqmc.sobolbn") for a `width` x `height` film of `spp` samples per pixel and `dims`
- dimensions, with `seed`. Returns NULL on an error and writes its one-line message into
- `error` (`error_len` bytes, NUL-terminated; `error` may be NULL).
+ "openqmc.sobolbn"; `samplab_pixel_families` lists them) for a `width` x `height` film of
+ `spp` samples per pixel and `dims` dimensions, with `seed`. Returns NULL on an error and
+ writes its one-line message into `error` (`error_len` bytes, NUL-terminated; `error` may
+ be NULL). Most families prepare in microseconds; the optimized ones take longer
+ (`heitz2019` optimizes a tile per pair of dimensions: 16 s for a 256 x 256 film of 256
+ spp and 32 dimensions on two cores, 30 CPU seconds): `samplab_pixels_new_polled` can
+ report and stop it.
 
  # Safety
  `spec` is a NUL-terminated string; `error` is null or points to `error_len` writable bytes.
@@ -34,9 +97,32 @@ struct SamplabPixels *samplab_pixels_new(const char *spec,
                                          size_t error_len);
 
 /*
- Dimension `dim` of sample `index` of pixel (`x`, `y`) in `frame`, in [0, 1). NaN when a
- key is outside the film the sampler was prepared for (x >= width, y >= height,
- index >= spp, dim >= dims) or `sampler` is NULL. Thread-safe; allocates nothing.
+ `samplab_pixels_new`, calling `poll(seconds, user)` on the calling thread about every
+ 50 ms while the sampler is prepared (`seconds` since the start); once `poll` returns 0
+ it is not called again, the preparation stops within a fraction of a second and this
+ returns NULL with the message "interrupted". `poll` may be NULL.
+
+ # Safety
+ As `samplab_pixels_new`; `poll` is null or a function that may be called with `user`.
+ */
+struct SamplabPixels *samplab_pixels_new_polled(const char *spec,
+                                                uint32_t width,
+                                                uint32_t height,
+                                                uint32_t spp,
+                                                uint32_t dims,
+                                                uint64_t seed,
+                                                int32_t (*poll)(double seconds, void *user),
+                                                void *user,
+                                                char *error,
+                                                size_t error_len);
+
+/*
+ Dimension `dim` of sample `index` of pixel (`x`, `y`) in `frame`, in [0, 1). Past the
+ film's dimensions (dim >= dims: a path with no depth limit) the value is padding:
+ independent uniform values hashed from (seed, pixel, frame, index, dim), random rather
+ than stratified, never NaN. NaN only for a key outside the film itself (x >= width,
+ y >= height, index >= spp: a bug in the caller) or a NULL `sampler`. Thread-safe;
+ allocates nothing.
 
  # Safety
  `sampler` is null or was returned by `samplab_pixels_new` and not yet freed.
@@ -50,8 +136,9 @@ double samplab_pixel_sample(const struct SamplabPixels *sampler,
 
 /*
  Dimensions `dim` .. `dim + 3` of one sample into `out[0..4]` (faster than four calls for
- the families that draw pairs or blocks). Returns 0, or -1 (`out` untouched) when a key
- is outside the film or a pointer is NULL.
+ the families that draw pairs or blocks), padded past the film's dimensions as
+ `samplab_pixel_sample` is. Returns 0, or -1 (`out` untouched) when a key is outside the
+ film (x, y or index) or a pointer is NULL.
 
  # Safety
  `sampler` is null or live; `out` is null or points to 4 writable doubles.

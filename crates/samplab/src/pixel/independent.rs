@@ -25,6 +25,13 @@ fn build(_: &Params, _: Film, seed: Seed, _: &Progress<'_>) -> Result<Family> {
     Ok(Family::from(Independent(Keys::new(seed, 0))))
 }
 
+/// The padding of every family past its film's dimensions ([`super::Pixels::sample_padded`]):
+/// independent values under a seed derived from `seed`, so that they are not the
+/// `independent` family's own values.
+pub(crate) fn padding(seed: Seed) -> Independent {
+    Independent(Keys::new(seed.derive_str("pixel padding"), 0))
+}
+
 impl PixelSampler for Independent {
     #[inline(always)]
     fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {

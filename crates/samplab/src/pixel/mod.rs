@@ -262,6 +262,8 @@ pub struct Pixels {
     film: Film,
     seed: Seed,
     inner: Family,
+    /// The values past the film's dimensions ([`Pixels::sample_padded`]).
+    padding: independent::Independent,
 }
 
 /// Prepare the pixel sampler `spec` (e.g. `zsobol`, `sobol.padded:randomize=owen`) for a
@@ -292,7 +294,7 @@ pub fn prepare_with(spec: &str, film: Film, seed: Seed, progress: &Progress<'_>)
         return Err(Error::InvalidDims { sampler: spec, dims: film.dims as usize, supported: entry.dims.into() });
     }
     let inner = (entry.build)(&params, film, seed, progress)?;
-    Ok(Pixels { spec, film, seed, inner })
+    Ok(Pixels { spec, film, seed, inner, padding: independent::padding(seed) })
 }
 
 impl Pixels {
@@ -365,6 +367,22 @@ impl Pixels {
             }
         }
         Ok(self.sample(pixel, frame, index, dim))
+    }
+
+    /// [`Pixels::try_sample`], except that a dimension past the film's is not an error but
+    /// padding: independent uniform values (53 random bits) hashed from the seed, pixel,
+    /// frame, index and dimension, as the `independent` family draws them under a seed of
+    /// their own. A renderer with no depth limit (Russian roulette) never runs out of
+    /// dimensions; past the budget it gets random sampling, not the family's structure.
+    ///
+    /// # Errors
+    /// [`Error::Setting`] naming `x`, `y` or `index` when it lies outside the film.
+    pub fn sample_padded(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> Result<f64> {
+        if dim >= self.film.dims {
+            self.try_sample(pixel, frame, index, 0)?;
+            return Ok(self.padding.sample(pixel, frame, index, dim));
+        }
+        self.try_sample(pixel, frame, index, dim)
     }
 
     /// The image of dimension `dim` of sample `index` in `frame`, one value per pixel of
