@@ -246,7 +246,10 @@ pub fn cubature(f: &dyn Integrand, settings: &Settings, progress: &Progress) -> 
             } else {
                 "Fourier coefficients of a lattice, baker's transform (Jimenez Rugama & Hickernell 2016)"
             };
-            let kind = format!("guaranteed for integrands in the cone of {paper}: fudge 5 2^-m, r = 4, on {spec}");
+            let kind = format!(
+                "guaranteed only for integrands in the cone of {paper}: fudge 5 2^-m, r = 4, on {spec}; the cone \
+                 is not checked, and outside it (a narrow peak the first points miss) the bound can be false"
+            );
             let steps = steps.into_iter().map(|(n, estimate, bound)| Step { n, estimate, bound }).collect();
             (steps, converged, evaluations, kind)
         }

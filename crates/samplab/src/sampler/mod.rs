@@ -74,6 +74,17 @@ pub use registry::{Counts, SamplerEntry, build, inputs};
 /// The largest point count samplab will allocate for one set (2^32 points).
 pub const MAX_POINTS: usize = 1 << 32;
 
+/// The centre of the cell [v, v + 1) 2^-32: where a randomized sampler with 32 random bits
+/// per coordinate (Owen-scrambled or digitally shifted Sobol', pmj02) puts a coordinate, so
+/// that it lies in the open interval (0, 1) and an integrand never sees 0 (Phi^-1(0) is
+/// -inf). A scrambled net's points are uniform over their cells; the centre keeps every
+/// point in its elementary interval (the net stays a net) and its bias is below the
+/// truncation's, which the cell's left end had.
+#[inline(always)]
+pub fn cell_centre(v: u32) -> f64 {
+    (f64::from(v) + 0.5) * (1.0 / 4_294_967_296.0)
+}
+
 /// The count and dimension a plan was checked for. Only `plan` (on `dyn Sampler`) makes
 /// one, so [`Sampler::prepare`], which takes it, is reached only after every check passed:
 /// the shape is the token that keeps the checks, for samplers written outside samplab too.

@@ -357,7 +357,8 @@ impl Access for HaltonAccess<'_> {
 
 /// The Hammersley set of n points: (i/n, Halton coordinates 0..d-2 of i). In base 2 with
 /// n = 2^m, the 2D set is a (0,m,2)-net. The first coordinate is randomized on its 32-bit
-/// binary expansion (XOR or Owen) or by a shift, like the others.
+/// binary expansion (XOR or Owen: the centre of its 2^-32 cell) or by a shift, like the
+/// others.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hammersley {
     randomization: Randomization,
@@ -395,8 +396,8 @@ impl Prepared for Planned {
             let fixed = ((i as u128) << 32).div_euclid(n as u128) as u32;
             p[0] = match self.halton.randomization {
                 Randomization::None => i as f64 / n as f64,
-                Randomization::Xor => f64::from(fixed ^ bits) / 4_294_967_296.0,
-                Randomization::Owen => f64::from(owen_scramble_u32(fixed, bits)) / 4_294_967_296.0,
+                Randomization::Xor => crate::sampler::cell_centre(fixed ^ bits),
+                Randomization::Owen => crate::sampler::cell_centre(owen_scramble_u32(fixed, bits)),
                 Randomization::Shift => wrap01(i as f64 / n as f64 + shift),
                 Randomization::Lms => unreachable!("Hammersley declares no linear matrix scrambling"),
             };

@@ -1,13 +1,14 @@
 //! The Sobol' sequence (Sobol' 1967) with Joe–Kuo direction numbers (Joe & Kuo 2008,
 //! new-joe-kuo-6.21201, first 1024 dimensions, baked in by `build.rs`), 32-bit
-//! resolution, at most 2^32 points; randomized by [`Randomization`].
+//! resolution, at most 2^32 points; randomized by [`Randomization`]. The scrambled and
+//! digitally shifted points are the centres of their 2^-32 cells ([`cell_centre`]), never 0.
 
 use std::ops::RangeInclusive;
 
 use crate::sampler::randomize::randomized_families;
 use crate::sampler::registry::{Counts, SamplerEntry};
 use crate::sampler::randomize::scramble::{Randomization, hash_unit, owen_scramble_reversed};
-use crate::sampler::{Access, Prepared, Construction, Shape};
+use crate::sampler::{Access, Prepared, Construction, Shape, cell_centre};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
 use crate::seed::{Seed, wrap01};
@@ -85,10 +86,8 @@ impl Sobol {
     fn finish(&self, x: u32, key: DimKey) -> f64 {
         match self.randomization {
             Randomization::None => f64::from(x) * TO_UNIT,
-            Randomization::Xor => f64::from(x ^ key.bits) * TO_UNIT,
-            Randomization::Owen => {
-                f64::from(owen_scramble_reversed(x.reverse_bits(), key.bits).reverse_bits()) * TO_UNIT
-            }
+            Randomization::Xor => cell_centre(x ^ key.bits),
+            Randomization::Owen => cell_centre(owen_scramble_reversed(x.reverse_bits(), key.bits).reverse_bits()),
             Randomization::Shift => wrap01(f64::from(x) * TO_UNIT + key.shift),
             Randomization::Lms => unreachable!("Sobol' declares no linear matrix scrambling"),
         }
@@ -212,7 +211,7 @@ impl Planned {
                     count,
                     true,
                     #[inline(always)]
-                    |x, j| f64::from(owen_scramble_reversed(x, keys[j].bits).reverse_bits()) * TO_UNIT,
+                    |x, j| cell_centre(owen_scramble_reversed(x, keys[j].bits).reverse_bits()),
                 ),
                 Randomization::None => gray_walk(
                     out,
@@ -230,7 +229,7 @@ impl Planned {
                     count,
                     false,
                     #[inline(always)]
-                    |x, j| f64::from(x ^ keys[j].bits) * TO_UNIT,
+                    |x, j| cell_centre(x ^ keys[j].bits),
                 ),
                 Randomization::Shift => gray_walk(
                     out,

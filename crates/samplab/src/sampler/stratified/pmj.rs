@@ -61,8 +61,8 @@ impl Construction for Pmj02 {
 impl Pmj02 {
     fn fill(&self, n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         for (p, q) in out.chunks_exact_mut(2).zip(&pmj02_digits(n, seed)) {
-            p[0] = f64::from(q[0]) / 4_294_967_296.0;
-            p[1] = f64::from(q[1]) / 4_294_967_296.0;
+            p[0] = crate::sampler::cell_centre(q[0]);
+            p[1] = crate::sampler::cell_centre(q[1]);
         }
         Ok(())
     }
