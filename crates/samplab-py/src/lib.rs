@@ -333,6 +333,14 @@ fn is_sequence(spec: &str) -> PyResult<bool> {
     Ok(plan.is_ok_and(|p| p.access(Seed(0)).is_some()))
 }
 
+/// The dimensions the sampler `spec` makes, (fewest, most), and whether its points depend
+/// on the seed.
+#[pyfunction]
+fn sampler_info(spec: &str) -> PyResult<(usize, usize, bool)> {
+    let dims = samplab::sampler::build(spec).map_err(err)?.dims();
+    Ok((*dims.start(), *dims.end(), samplab::sampler::randomized(spec).map_err(err)?))
+}
+
 /// Points `start .. start + n` of the sequence `spec` in `d` dimensions, randomized as set 0
 /// of [`generate`] with the same seed (so `start = 0` gives the same points).
 #[pyfunction]
@@ -1051,6 +1059,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(registry, m)?)?;
     m.add_function(wrap_pyfunction!(generate, m)?)?;
     m.add_function(wrap_pyfunction!(is_sequence, m)?)?;
+    m.add_function(wrap_pyfunction!(sampler_info, m)?)?;
     m.add_function(wrap_pyfunction!(pixels, m)?)?;
     m.add_function(wrap_pyfunction!(blue_noise_mask, m)?)?;
     m.add_function(wrap_pyfunction!(image_metrics, m)?)?;

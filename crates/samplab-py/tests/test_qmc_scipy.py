@@ -50,3 +50,59 @@ class TestSamplabHalton(SamplabEngineTests):
     unscramble_nd = scipy_tests.TestHalton.unscramble_nd
     scramble_nd = None
     base_two_axes = (0,)
+
+
+# scipy's Sobol'-specific behaviour, with scipy's own assertions and reference values: the
+# scramble= and rng= keywords, the warning for a first draw that is not a power of two,
+# random_base2, and the dimension limit.
+
+
+def sobol(d, scramble=True, rng=None):
+    return Engine("sobol", d, scramble=scramble, rng=rng)
+
+
+def test_scramble_picks_the_construction_as_scipy_does():
+    assert sobol(2, scramble=False).spec == "sobol" and sobol(2).spec == "sobol.owen"
+    assert Engine("sobol.owen", 2, scramble=False).spec == "sobol"
+    assert Engine("halton", 2, scramble=True).spec == "halton.owen"
+    assert Engine("jitter", 2, scramble=True).spec == "jitter"  # random by construction
+    import samplab
+
+    with pytest.raises(samplab.Error, match="no unscrambled construction"):
+        Engine("jitter", 2, scramble=False)
+    with pytest.raises(TypeError):
+        Engine("sobol", 2, scramble="yes")
+    with pytest.raises(TypeError):
+        Engine("sobol", 2, rng=1, seed=1)
+    # rng= as scipy takes it: an int is samplab's seed, a Generator or RandomState is drawn from
+    assert np.array_equal(sobol(3, rng=7).random(8), Engine("sobol.owen", 3, seed=7).random(8))
+    assert sobol(2, rng=np.random.RandomState(1)).random(4).shape == (4, 2)
+
+
+def test_a_first_draw_not_a_power_of_two_warns_in_scipys_words():
+    with pytest.warns(UserWarning, match=r"The balance properties of Sobol' points"):
+        sobol(1).random(10)
+    for spec in ("net.lms", "pmj02"):
+        with pytest.warns(UserWarning, match=r"The balance properties"):
+            Engine(spec, 2).random(12)
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        sobol(2).random(16)
+        Engine("halton.owen", 2).random(10)  # not a base-2 net: no warning
+
+
+def test_random_base2_keeps_the_balance_or_refuses():
+    engine = sobol(2, scramble=False)
+    reference = scipy_tests.TestSobol.unscramble_nd
+    assert np.array_equal(engine.random_base2(2), reference[:4])
+    assert np.array_equal(engine.random_base2(2), reference[4:8])
+    with pytest.raises(ValueError, match=r"The balance properties of Sobol' points"):
+        engine.random_base2(2)
+
+
+def test_dimensions_past_the_table_are_refused_as_scipy_refuses():
+    with pytest.raises(ValueError, match=r"Maximum supported dimensionality is 1024\."):
+        sobol(1025)
+    assert sobol(1024, scramble=False).random(2).shape == (2, 1024)

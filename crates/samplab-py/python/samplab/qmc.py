@@ -23,6 +23,7 @@ None is samplab's default seed, so an engine is reproducible unless given a Gene
 
 from __future__ import annotations
 
+import warnings
 from collections import namedtuple
 from typing import Any, Optional
 
@@ -40,11 +41,51 @@ def _samplab_seed(seed: Any) -> int:
         return DEFAULT_SEED
     if isinstance(seed, np.random.Generator):
         return int(seed.integers(0, 2**63, dtype=np.int64))
+    if isinstance(seed, np.random.RandomState):
+        return int(seed.randint(0, 2**63, dtype=np.int64))
     if isinstance(seed, np.random.SeedSequence):
         return int(seed.generate_state(1, np.uint64)[0])
     if isinstance(seed, (int, np.integer)) and not isinstance(seed, bool) and int(seed) >= 2**64:
         return int(np.random.SeedSequence(int(seed)).generate_state(1, np.uint64)[0])
     return _seed(seed)
+
+
+#: The randomizations a family's spec may end with (``sobol.owen``); ``scramble=True``
+#: picks the first the family has.
+_RANDOMIZATIONS = ("owen", "xor", "lms", "shift")
+
+
+def _scrambled(spec: str, scramble: Optional[bool]) -> str:
+    """``spec`` as ``scramble`` asks (scipy's keyword): None leaves it; False names the
+    family's unrandomized construction (``sobol.owen`` -> ``sobol``); True its Owen (or
+    first) randomization when ``spec`` names an unrandomized one (``sobol`` ->
+    ``sobol.owen``)."""
+    if scramble is None:
+        return spec
+    if not isinstance(scramble, (bool, np.bool_)):
+        raise TypeError(f"scramble must be True or False, got {scramble!r}")
+    name, colon, params = spec.partition(":")
+    family, dot, last = name.rpartition(".")
+    names = {e["name"] for e in _samplab.registry("samplers")}
+    if not scramble:
+        if dot and last in _RANDOMIZATIONS and family in names:
+            return family + colon + params
+        if name in names and any(f"{name}.{r}" in names for r in _RANDOMIZATIONS):
+            return spec
+        raise Error(f"scramble=False: {spec} has no unscrambled construction")
+    if _samplab.sampler_info(spec)[2]:
+        return spec
+    for r in _RANDOMIZATIONS:
+        if f"{name}.{r}" in names:
+            return f"{name}.{r}" + colon + params
+    raise Error(f"scramble=True: {spec} has no randomization (samplab list samplers)")
+
+
+def _base_2_net(spec: str) -> bool:
+    """Whether ``spec`` is a digital net in base 2, whose balance needs n a power of two."""
+    name, _, params = spec.partition(":")
+    family = name.split(".")[0]
+    return family in ("sobol", "pmj02") or (family in ("net", "niederreiter") and "base=" not in params)
 
 
 class Engine(_qmc.QMCEngine):
@@ -55,30 +96,57 @@ class Engine(_qmc.QMCEngine):
     spec : str
         A sampler spec, e.g. ``"sobol.owen"``, ``"halton.xor"``, ``"jitter"``, ``"nrooks"``.
     d : int
-        Dimensions.
-    seed : int, numpy.random.SeedSequence, numpy.random.Generator or None
-        samplab's seed, or what is mapped to one (see the module's documentation).
+        Dimensions (more than the sampler makes is refused with scipy's message: "Maximum
+        supported dimensionality is 1024." for Sobol').
+    scramble : bool, optional
+        scipy's keyword: False for the family's unrandomized construction (``sobol``),
+        True for its randomized one (``sobol`` -> ``sobol.owen``); unset, ``spec`` as given.
+    rng : int, numpy.random.Generator, numpy.random.RandomState, numpy.random.SeedSequence or None
+        samplab's seed, or what is mapped to one (see the module's documentation);
+        ``seed=`` is its older name, as in scipy.
     optimization : {None, "random-cd", "lloyd"}
         scipy's optimization of every draw, as its engines take it.
+
+    A base-2 net (``sobol*``, ``net``, ``niederreiter``, ``pmj02``) warns as scipy's Sobol'
+    does when its first draw is not a power of two, and ``random_base2(m)`` draws 2^m points
+    while the total stays a power of two.
     """
 
     def __init__(
-        self, spec: str = "sobol.owen", d: int = 2, *, seed: Any = None, optimization: Optional[str] = None
+        self,
+        spec: str = "sobol.owen",
+        d: int = 2,
+        *,
+        scramble: Optional[bool] = None,
+        rng: Any = None,
+        optimization: Optional[str] = None,
+        seed: Any = None,
     ) -> None:
         if isinstance(d, bool) or not isinstance(d, (int, np.integer)) or d < 0:
             raise Error(f"d must be a non-negative whole number, got {d!r}")
+        if rng is not None and seed is not None:
+            raise TypeError("give rng or seed (its older name), not both")
+        rng = seed if rng is None else rng
+        spec = _scrambled(spec, scramble)
+        if d > 0:
+            most = _samplab.sampler_info(spec)[1]
+            if d > most:
+                raise Error(f"Maximum supported dimensionality is {most}.")
         self.spec = spec
         self.sequence = _samplab.is_sequence(spec)
-        self.samplab_seed = _samplab_seed(seed)
+        self.samplab_seed = _samplab_seed(rng)
         # scipy's own state (qmc_quad spawns Generators from self.rng; the optimizers draw from it)
-        rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(self.samplab_seed)
-        self._initialize(int(d), rng=rng, optimization=optimization)
+        state = rng if isinstance(rng, np.random.Generator) else np.random.default_rng(self.samplab_seed)
+        self._initialize(int(d), rng=state, optimization=optimization)
         self._init_quad = {"spec": spec, "d": int(d), "optimization": optimization}
 
     def _random(self, n: int = 1, *, workers: int = 1) -> np.ndarray:
         n = _count("n", n)
         if n == 0 or self.d == 0:
             return np.empty((n, self.d))
+        if self.num_generated == 0 and n & (n - 1) and _base_2_net(self.spec):
+            # scipy's Sobol' warns so, in these words
+            warnings.warn("The balance properties of Sobol' points require n to be a power of 2.", stacklevel=3)
         if self.sequence and self.num_generated:
             return _samplab.sequence_points(self.spec, self.num_generated, n, self.d, self.samplab_seed)
         if self.num_generated and not self.sequence:
@@ -87,6 +155,21 @@ class Engine(_qmc.QMCEngine):
                 "points already drawn (call reset(), or draw all points at once)"
             )
         return _samplab.generate(self.spec, n, self.d, self.samplab_seed, 1)[0]
+
+    def random_base2(self, m: int) -> np.ndarray:
+        """2^m points, as scipy's ``Sobol.random_base2``: refused (ValueError, scipy's
+        words) when the points drawn would no longer number a power of two."""
+        m = _count("m", m)
+        n = 2**m
+        total = self.num_generated + n
+        if total & (total - 1):
+            raise Error(
+                "The balance properties of Sobol' points require n to be a power of 2. "
+                f"{self.num_generated} points have been previously generated, then: "
+                f"n={self.num_generated}+2**{m}={total}. If you still want to do this, the function "
+                "'Engine.random()' can be used."
+            )
+        return self.random(n)
 
     def reset(self) -> "Engine":
         """Start again from the first point (the same points as before)."""

@@ -69,7 +69,7 @@ pub static SAMPLERS: crate::registry::Registry<SamplerEntry> = crate::registry::
 );
 
 pub use randomize::scramble::Randomization;
-pub use registry::{Counts, SamplerEntry, build, inputs};
+pub use registry::{Counts, SamplerEntry, build, inputs, randomized};
 
 /// The largest point count samplab will allocate for one set (2^32 points).
 pub const MAX_POINTS: usize = 1 << 32;

@@ -273,6 +273,24 @@ pub fn inputs(spec: &str) -> Result<Vec<std::path::PathBuf>> {
     Ok(params.paths(entry.about().params))
 }
 
+/// Whether a sampler spec's points depend on the seed: its entry's flag, or any stage after
+/// it (every stage draws from the seed).
+///
+/// # Errors
+/// As [`build`], for a spec that does not resolve.
+///
+/// ```
+/// assert!(samplab::sampler::randomized("sobol.owen").unwrap());
+/// assert!(!samplab::sampler::randomized("sobol").unwrap());
+/// assert!(samplab::sampler::randomized("sobol+shift").unwrap());
+/// ```
+pub fn randomized(spec: &str) -> Result<bool> {
+    if super::randomize::split(spec)?.is_some() {
+        return Ok(true);
+    }
+    Ok(SAMPLERS.resolve(spec)?.0.randomized)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
