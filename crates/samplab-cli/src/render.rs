@@ -58,9 +58,10 @@ pub struct Args {
     /// and the other strategies do not apply)
     #[arg(long, default_value = "visibility")]
     mode: String,
-    /// Path mode: the most segments of a path (Mitsuba's max_depth: 2 is direct lighting)
-    #[arg(long, default_value_t = settings::MAX_DEPTH)]
-    max_depth: usize,
+    /// Path mode: the most segments of a path (Mitsuba's max_depth: 2 is direct lighting);
+    /// default: a Mitsuba scene's `path` integrator's max_depth, else 5
+    #[arg(long)]
+    max_depth: Option<usize>,
     /// Obscurance mode: the distance beyond which a surface no longer obscures
     #[arg(long, default_value_t = 1.0)]
     range: f64,

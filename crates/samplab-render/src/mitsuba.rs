@@ -5,8 +5,10 @@
 //! `sphere`, `cube` and `obj` with `to_world` transforms (`translate`, `scale`, `rotate`,
 //! `matrix`, `lookat`), `area` emitters with a radiance on rectangles and disks, and
 //! `<default>` parameters with `$name` substitution. Anything else is refused with its
-//! element and line, never skipped silently (integrators and samplers are read past: the
-//! testbed has its own).
+//! element and line, never skipped silently (a `path` integrator's `max_depth` is path mode's
+//! depth unless the render sets one; other integrators and samplers are read past: the
+//! testbed has its own). Mitsuba's numbers may be written as `<integer>` where it takes a
+//! float.
 //!
 //! Two differences from Mitsuba remain, so that a file meant to render the same in both
 //! wraps open surfaces in `twosided` and gives each emitter shape a black BSDF: samplab's
@@ -95,6 +97,7 @@ struct Built {
     materials: Vec<Material>,
     objects: Vec<Object>,
     lights: Vec<Light>,
+    max_depth: Option<usize>,
 }
 
 fn grey(v: f64) -> Material {
@@ -196,15 +199,22 @@ impl Reader<'_, '_> {
         if root.tag_name().name() != "scene" {
             return Err(self.fail(root, format!("the root element is <{}>, not <scene>", root.tag_name().name())));
         }
-        let mut built =
-            Built { camera: None, resolution: (256, 256), materials: vec![grey(0.5)], objects: vec![], lights: vec![] };
+        let mut built = Built {
+            camera: None,
+            resolution: (256, 256),
+            materials: vec![grey(0.5)],
+            objects: vec![],
+            lights: vec![],
+            max_depth: None,
+        };
         for node in root.children().filter(Node::is_element) {
             match node.tag_name().name() {
                 "default" => {
                     let (name, value) = (self.attr(node, "name")?, self.attr(node, "value")?);
                     self.defaults.entry(name).or_insert(value);
                 }
-                "integrator" | "sampler" => {}
+                "integrator" => self.integrator(node, &mut built)?,
+                "sampler" => {}
                 "sensor" => self.sensor(node, &mut built)?,
                 "bsdf" => {
                     let id = self.attr(node, "id")?;
@@ -223,7 +233,40 @@ impl Reader<'_, '_> {
             planes: vec![],
             lights: built.lights,
             resolution: built.resolution,
+            max_depth: built.max_depth,
         })
+    }
+
+    /// A `path` integrator's `max_depth` (a path's most segments; -1, Mitsuba's unlimited,
+    /// is refused: samplab's paths end at a depth); its roulette depth (`rr_depth`) changes
+    /// no expectation and is read past. Any other integrator is read past (the render's
+    /// `--mode` chooses the estimator); a property samplab would not honour is refused.
+    fn integrator(&self, node: Node, built: &mut Built) -> Result<()> {
+        if self.attr(node, "type")? != "path" {
+            return Ok(());
+        }
+        for c in node.children().filter(Node::is_element) {
+            match (c.tag_name().name(), c.attribute("name").unwrap_or("")) {
+                ("integer", "max_depth") => {
+                    let v = self.attr(c, "value")?;
+                    let depth =
+                        v.parse::<usize>().ok().filter(|d| crate::path::check_depth(*d).is_ok()).ok_or_else(|| {
+                            self.fail(
+                                c,
+                                format!(
+                                    "max_depth {v}: samplab's paths have 1 to {} segments (no unlimited depth)",
+                                    crate::path::MAX_DEPTH
+                                ),
+                            )
+                        })?;
+                    built.max_depth = Some(depth);
+                }
+                ("integer", "rr_depth") => {}
+                ("boolean", "hide_emitters") if self.attr(c, "value")? == "false" => {}
+                _ => return Err(self.unsupported(c, "not supported in a path integrator")),
+            }
+        }
+        Ok(())
     }
 
     fn sensor(&self, node: Node, built: &mut Built) -> Result<()> {
@@ -236,11 +279,12 @@ impl Reader<'_, '_> {
             Camera { eye: DVec3::ZERO, target: DVec3::Z, up: DVec3::Y, fov: 0.0, aperture: 0.0, focus: 1.0 };
         for c in node.children().filter(Node::is_element) {
             match (c.tag_name().name(), c.attribute("name").unwrap_or("")) {
-                ("float", "fov") => fov = Some(self.number(c, "value")?),
+                // Mitsuba reads an <integer> where it takes a float
+                ("float" | "integer", "fov") => fov = Some(self.number(c, "value")?),
                 ("string", "fov_axis") => axis = self.attr(c, "value")?,
-                ("float", "aperture_radius") => camera.aperture = self.number(c, "value")?,
-                ("float", "focus_distance") => camera.focus = self.number(c, "value")?,
-                ("float", "near_clip" | "far_clip") => {}
+                ("float" | "integer", "aperture_radius") => camera.aperture = self.number(c, "value")?,
+                ("float" | "integer", "focus_distance") => camera.focus = self.number(c, "value")?,
+                ("float" | "integer", "near_clip" | "far_clip") => {}
                 ("transform", "to_world") => to_world = self.transform(c)?,
                 ("film", _) => {
                     for f in c.children().filter(Node::is_element) {

@@ -153,6 +153,9 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Suggested image size.
     pub resolution: (usize, usize),
+    /// The most segments of a path the scene asks for (a Mitsuba scene's `path` integrator's
+    /// `max_depth`), used in path mode unless the render sets its own.
+    pub max_depth: Option<usize>,
 }
 
 /// Relative offset of shadow-ray origins and ends, against self-intersection.

@@ -222,6 +222,7 @@ fn scene(camera: Camera, shapes: Vec<(Shape, u32)>, materials: Vec<Material>, li
         planes: vec![(Plane { point: DVec3::ZERO, normal: DVec3::Y }, 0)],
         lights,
         resolution: (256, 192),
+        max_depth: None,
     }
 }
 

@@ -51,8 +51,9 @@ pub struct Settings {
     pub spp: usize,
     /// `visibility`, `direct`, `obscurance` or `path`.
     pub mode: String,
-    /// Path mode: the most segments of a path.
-    pub max_depth: usize,
+    /// Path mode: the most segments of a path (None: the scene's, a Mitsuba scene's `path`
+    /// integrator's `max_depth`, else [`MAX_DEPTH`]).
+    pub max_depth: Option<usize>,
     /// `center` or `area`.
     pub pixel: String,
     /// Strategy over the pixel area.
@@ -84,7 +85,7 @@ impl Default for Settings {
             n: N,
             spp: 1,
             mode: "visibility".into(),
-            max_depth: MAX_DEPTH,
+            max_depth: None,
             pixel: "center".into(),
             pixel_sampler: SECONDARY.into(),
             lens_sampler: SECONDARY.into(),
@@ -119,12 +120,14 @@ fn sampler(name: &'static str, spec: &str) -> samplab::Result<Box<dyn samplab::S
 }
 
 impl Settings {
-    /// The estimator, with path mode's depth.
-    fn mode(&self) -> samplab::Result<Mode> {
+    /// The estimator, with path mode's depth: the one set, else the scene's, else
+    /// [`MAX_DEPTH`].
+    fn mode(&self, scene: &Scene) -> samplab::Result<Mode> {
         Ok(match choose("mode", &self.mode, &MODES)? {
             Mode::Path { .. } => {
-                crate::path::check_depth(self.max_depth)?;
-                Mode::Path { max_depth: self.max_depth as u32 }
+                let depth = self.max_depth.or(scene.max_depth).unwrap_or(MAX_DEPTH);
+                crate::path::check_depth(depth)?;
+                Mode::Path { max_depth: depth as u32 }
             }
             mode => mode,
         })
@@ -136,7 +139,7 @@ impl Settings {
     /// has one: [`PATH_SAMPLER`] for the default, a pixel sampler's name wherever both lists
     /// have it, and a point-set sampler is refused.
     fn pixels(&self, scene: &Scene, width: usize, height: usize) -> Result<Option<samplab::pixel::Pixels>> {
-        let mode = self.mode()?;
+        let mode = self.mode(scene)?;
         let path = matches!(mode, Mode::Path { .. });
         let spec = if path && self.pixel_sampler == SECONDARY { PATH_SAMPLER } else { self.pixel_sampler.as_str() };
         // a stage (`sobol+shift`) makes a point-set spec
@@ -177,9 +180,9 @@ impl Settings {
         let path = matches!(mode, Mode::Path { .. });
         let refuse =
             |name: &'static str, value: String, reason: String| Err(samplab::Error::Setting { name, value, reason });
-        if !path && self.max_depth != MAX_DEPTH {
+        if let (false, Some(depth)) = (path, self.max_depth) {
             let reason = format!("read in path mode only (this render's mode is {})", self.mode);
-            return refuse("max_depth", self.max_depth.to_string(), reason);
+            return refuse("max_depth", depth.to_string(), reason);
         }
         if mode != Mode::Obscurance && self.range.to_bits() != 1f64.to_bits() {
             let reason = format!("read in obscurance mode only (this render's mode is {})", self.mode);
@@ -211,12 +214,12 @@ impl Settings {
     pub fn options(&self, scene: &Scene) -> Result<Options> {
         let (width, height) = self.res.unwrap_or(scene.resolution);
         let pixels = self.pixels(scene, width, height)?;
-        self.unread(self.mode()?, pixels.as_ref().map(samplab::pixel::Pixels::spec))?;
+        self.unread(self.mode(scene)?, pixels.as_ref().map(samplab::pixel::Pixels::spec))?;
         let options = Options {
             light: sampler("sampler", &self.sampler)?,
             n: self.n,
             spp: self.spp,
-            mode: self.mode()?,
+            mode: self.mode(scene)?,
             footprint: choose("pixel", &self.pixel, &FOOTPRINTS)?,
             pixel: match pixels {
                 Some(_) => sampler("pixel_sampler", SECONDARY)?,
@@ -279,7 +282,7 @@ mod tests {
         let path = || Settings { mode: "path".into(), ..d() };
         let zsobol = || Settings { pixel_sampler: "zsobol".into(), ..d() };
         for (s, unread) in [
-            (Settings { max_depth: 3, ..d() }, "max_depth"),
+            (Settings { max_depth: Some(3), ..d() }, "max_depth"),
             (Settings { mode: "direct".into(), range: 2.0, ..d() }, "range"),
             (Settings { range: 0.0, ..path() }, "range"),
             (Settings { n: 4, ..path() }, "n"),
@@ -294,7 +297,7 @@ mod tests {
             d(),
             path(),
             zsobol(),
-            Settings { max_depth: 3, ..path() },
+            Settings { max_depth: Some(3), ..path() },
             Settings { mode: "obscurance".into(), range: 2.0, ..d() },
             Settings { n: 4, sampler: "halton".into(), lens_sampler: "random".into(), ..d() },
             Settings { n: 4, ..zsobol() },

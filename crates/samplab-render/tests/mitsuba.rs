@@ -144,3 +144,47 @@ fn a_scene_cannot_make_samplab_read_a_file_outside_its_folder() {
     let e = load(&dir.join("scene/s.xml"), Paths::InsideScene).map(|_| ()).unwrap_err().to_string();
     assert!(e.contains("not a regular file"), "{e}");
 }
+
+/// A scene's `path` integrator sets path mode's depth unless the render sets its own (the
+/// Mitsuba Cornell box asks for 8, which samplab rendered at its default 5), and a number
+/// Mitsuba reads where it takes a float may be written as an integer.
+#[test]
+fn the_scenes_max_depth_and_integer_numbers_are_read_as_mitsuba_reads_them() {
+    use samplab_render::settings::Settings;
+    let text = std::fs::read_to_string("tests/scenes/sphere-box.xml").unwrap();
+    let with = |integrator: &str| {
+        let text = text.replacen("<sensor", &format!("{integrator}\n<sensor"), 1);
+        parse(&text, "s.xml", Path::new("tests/scenes"), Paths::InsideScene)
+    };
+    let deep = with("<integrator type=\"path\"><integer name=\"max_depth\" value=\"2\"/><integer name=\"rr_depth\" value=\"3\"/></integrator>").unwrap();
+    assert_eq!(deep.max_depth, Some(2));
+    let plain = load(Path::new("tests/scenes/sphere-box.xml"), Paths::InsideScene).unwrap();
+    assert_eq!(plain.max_depth, None);
+    let path = |max_depth| Settings { mode: "path".into(), max_depth, res: Some((8, 6)), ..Settings::default() };
+    let depth = |scene, s: Settings| match s.options(scene).unwrap().mode {
+        Mode::Path { max_depth } => max_depth,
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(depth(&deep, path(None)), 2, "the scene's depth");
+    assert_eq!(depth(&deep, path(Some(7))), 7, "the render's own");
+    assert_eq!(depth(&plain, path(None)), samplab_render::settings::MAX_DEPTH as u32);
+    // outside path mode the scene's depth is not an error: the render did not set one
+    assert!(Settings { res: Some((8, 6)), ..Settings::default() }.options(&deep).is_ok());
+    for (integrator, want) in [
+        ("<integrator type=\"path\"><integer name=\"max_depth\" value=\"-1\"/></integrator>", "max_depth -1"),
+        ("<integrator type=\"path\"><boolean name=\"hide_emitters\" value=\"true\"/></integrator>", "<boolean>"),
+    ] {
+        let e = with(integrator).unwrap_err().to_string();
+        assert!(e.contains(want), "{e}");
+    }
+    let focus = |kind: &str| {
+        let t = text.replacen(
+            "<float name=\"fov\"",
+            &format!("<{kind} name=\"focus_distance\" value=\"3\"/><float name=\"fov\""),
+            1,
+        );
+        parse(&t, "s.xml", Path::new("tests/scenes"), Paths::InsideScene).unwrap().camera.focus
+    };
+    assert_eq!(focus("integer"), 3.0);
+    assert_eq!(focus("integer"), focus("float"));
+}

@@ -30,6 +30,7 @@ fn ground_point(light: Light) -> Scene {
         planes: vec![(Plane { point: DVec3::ZERO, normal: DVec3::Y }, 0)],
         lights: vec![light],
         resolution: (1, 1),
+        max_depth: None,
     }
 }
 
@@ -86,6 +87,7 @@ fn mirrors_reflect_their_albedo_of_what_they_face() {
             ],
             lights: vec![],
             resolution: (1, 1),
+            max_depth: None,
         };
         let mut o = Options::new("sobol.owen", 1, 1, 1).unwrap();
         o.spp = 64;

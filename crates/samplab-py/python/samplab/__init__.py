@@ -1101,8 +1101,8 @@ def render(scene: str, light: Optional[str] = None, reference_samples: Optional[
     **settings
         The CLI's flags, with its defaults: ``sampler`` (light strategy, ``"jitter"``),
         ``n`` (16), ``spp`` (1), ``mode`` (``"visibility"``, ``"direct"``,
-        ``"obscurance"``, ``"path"``), ``max_depth`` (5), ``pixel`` (``"center"``,
-        ``"area"``), ``pixel_sampler``, ``lens_sampler``, ``time_sampler``,
+        ``"obscurance"``, ``"path"``), ``max_depth`` (the scene's ``path`` integrator's,
+        else 5), ``pixel`` (``"center"``, ``"area"``), ``pixel_sampler``, ``lens_sampler``, ``time_sampler``,
         ``gloss_sampler`` (``"sobol.owen"``), ``pattern`` (``"estimate"``, ``"pixel"``),
         ``disk_map``, ``range``, ``interleave`` ((w, h)), ``res`` ((width, height)),
         ``seed``. A setting moved from its default that the render would not read
