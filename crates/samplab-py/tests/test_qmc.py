@@ -11,11 +11,15 @@ from samplab.qmc import Engine
 
 def test_sequence_engine_extends_and_resets():
     e = Engine("sobol.owen", d=3, seed=7)
-    first, second = e.random(100), e.random(28)
+    # a first draw of 100 unbalances the net: scipy's warning says so
+    with pytest.warns(UserWarning, match="balance properties"):
+        first = e.random(100)
+    second = e.random(28)
     whole = samplab.generate("sobol.owen", n=128, d=3, seed=7)
     assert np.vstack([first, second]).tobytes() == whole.tobytes()
     e.reset()
-    assert e.random(100).tobytes() == first.tobytes()
+    with pytest.warns(UserWarning, match="balance properties"):
+        assert e.random(100).tobytes() == first.tobytes()
     e.reset().fast_forward(100)
     assert e.random(28).tobytes() == second.tobytes()
 
