@@ -59,10 +59,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     let output = a.output.as_deref().filter(|p| p.as_os_str() != "-");
     if let Some(p) = output {
         samplab::io::check_file(p)?;
-        let files = sampler::inputs(&a.spec)?;
-        let mut roles: Vec<Role<'_>> = files.iter().map(|f| Role::Input("the sampler's file", f)).collect();
-        roles.push(Role::File("-o", p));
-        samplab::io::refuse_overlap(&roles)?;
+        crate::refuse_overlap(&[&a.spec], &[Role::File("-o", p)])?;
     }
     let format = match &a.format {
         Some(f) => Format::from_name(f)?,

@@ -62,10 +62,8 @@ pub struct Args {
 pub fn run(a: &Args) -> anyhow::Result<()> {
     if let Some(p) = &a.plot {
         samplab::io::check_file(p)?;
-        let files = a.samplers.iter().map(|s| sampler::inputs(s)).collect::<Result<Vec<_>, _>>()?.concat();
-        let mut roles: Vec<Role<'_>> = files.iter().map(|f| Role::Input("a sampler's file", f)).collect();
-        roles.push(Role::File("--plot", p));
-        samplab::io::refuse_overlap(&roles)?;
+        let specs: Vec<&str> = a.samplers.iter().map(String::as_str).collect();
+        crate::refuse_overlap(&specs, &[Role::File("--plot", p)])?;
     }
     let own = crate::own::parse(&a.integrand, a.exact, true)?;
     let family = match &own {

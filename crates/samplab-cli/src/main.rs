@@ -283,6 +283,19 @@ fn library<'e>(cause: &'e (dyn std::error::Error + 'static)) -> Option<&'e sampl
     })
 }
 
+/// [`samplab::io::refuse_overlap`] over a command's `roles` (its outputs and the files it
+/// reads) and the files its sampler specs `specs` read (`net:matrices=`, `file:path=`;
+/// [`samplab::sampler::inputs`]). A spec that does not resolve adds no file: building it
+/// says why.
+pub(crate) fn refuse_overlap(specs: &[&str], roles: &[samplab::io::Role<'_>]) -> anyhow::Result<()> {
+    use samplab::io::Role;
+    let files: Vec<std::path::PathBuf> =
+        specs.iter().flat_map(|s| samplab::sampler::inputs(s).unwrap_or_default()).collect();
+    let all: Vec<Role<'_>> =
+        files.iter().map(|f| Role::Input("the sampler's file", f)).chain(roles.iter().copied()).collect();
+    Ok(samplab::io::refuse_overlap(&all)?)
+}
+
 /// Write `bytes` to `path` atomically, or to stdout when there is no path: a stdout that
 /// is closed or cannot take them (a full disk) is an error, a broken pipe a quiet exit.
 pub(crate) fn emit(path: Option<&std::path::Path>, bytes: &[u8]) -> anyhow::Result<()> {

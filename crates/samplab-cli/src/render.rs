@@ -163,15 +163,10 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
             reference,
             a.error_image.as_deref().map(|p| Role::File("--error-image", p)),
         ];
-        // the files the samplers read (a spec that does not resolve, or a pixel family, is
-        // left to its own error below)
-        let files: Vec<PathBuf> = [&a.sampler, &a.pixel_sampler]
-            .into_iter()
-            .flat_map(|s| samplab::sampler::inputs(s).unwrap_or_default())
-            .collect();
-        let read = files.iter().map(|f| Role::Input("a sampler's file", f));
-        samplab::io::refuse_overlap(&roles.into_iter().flatten().chain(read).collect::<Vec<_>>())?;
-        for role in roles.iter().flatten() {
+        // with the files the samplers read (a pixel family reads none)
+        let roles: Vec<Role<'_>> = roles.into_iter().flatten().collect();
+        crate::refuse_overlap(&[&a.sampler, &a.pixel_sampler], &roles)?;
+        for role in &roles {
             if let Role::File(_, p) = role {
                 samplab::io::check_file(p)?;
             }

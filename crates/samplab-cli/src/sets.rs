@@ -1,7 +1,7 @@
 //! The point sets a measuring command works on: a file, or fresh realizations of a sampler.
 
 use std::ops::RangeInclusive;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use anyhow::bail;
 use samplab::io::{self, Format};
@@ -14,7 +14,7 @@ use crate::bar::Bar;
 pub struct SetSource {
     /// Generate the sets with this sampler instead of reading a file
     #[arg(long)]
-    sampler: Option<String>,
+    pub sampler: Option<String>,
     /// Points per set (with --sampler)
     #[arg(short, long, requires = "sampler")]
     n: Option<usize>,
@@ -49,16 +49,6 @@ impl SetSource {
     /// --sets), when they are to be generated.
     pub fn planned(&self, default_sets: usize) -> Option<(usize, usize, usize)> {
         Some((self.n?, self.dims, self.sets.unwrap_or(default_sets))).filter(|_| self.generates())
-    }
-
-    /// The files the sets come from: `file`, or those the sampler's spec reads (none for a
-    /// spec that does not resolve: loading it says why).
-    pub fn inputs(&self, file: Option<&Path>) -> Vec<PathBuf> {
-        match (&self.sampler, file) {
-            (_, Some(f)) => vec![f.to_path_buf()],
-            (Some(spec), None) => sampler::inputs(spec).unwrap_or_default(),
-            (None, None) => Vec::new(),
-        }
     }
 
     /// Read `file` or generate the sets (`default_sets` realizations unless --sets); a file

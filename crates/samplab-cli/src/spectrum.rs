@@ -59,10 +59,10 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     samplab::io::check_folder(&a.output, replace)?;
     {
         use samplab::io::Role;
-        let files = a.source.inputs(a.file.as_deref());
-        let mut roles: Vec<Role<'_>> = files.iter().map(|f| Role::Input("the points' file", f)).collect();
-        roles.push(Role::Folder("-o", &a.output));
-        samplab::io::refuse_overlap(&roles)?;
+        let file = a.file.as_deref().map(|f| Role::Input("the point file", f));
+        let roles: Vec<Role<'_>> = file.into_iter().chain([Role::Folder("-o", &a.output)]).collect();
+        let specs: Vec<&str> = a.source.sampler.iter().map(String::as_str).collect();
+        crate::refuse_overlap(&specs, &roles)?;
     }
     let crate::sets::Loaded { sets, source, spec } = a.source.load(a.file.as_deref(), 20, &samplab::io::ANY)?;
     // the closed form, before the spectra: a --theory that has none is refused, not dropped
