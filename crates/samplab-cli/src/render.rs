@@ -65,9 +65,11 @@ pub struct Args {
     /// Obscurance mode: the distance beyond which a surface no longer obscures
     #[arg(long, default_value_t = 1.0)]
     range: f64,
-    /// Camera rays through the pixel centre or over its area
-    #[arg(long, default_value = "center")]
-    pixel: String,
+    /// Camera rays through the pixel centre (center), over its area (area, a box filter) or
+    /// over Mitsuba 3's windowed Gaussian filter (gaussian: stddev 0.5 pixel, radius 2);
+    /// default: a Mitsuba scene's film filter (box: area), else center
+    #[arg(long)]
+    pixel: Option<String>,
     /// Strategy over the pixel area (spp points), or a pixel sampler (`samplab list pixels`:
     /// zsobol, sobol.padded, pmj02.bn, dither, openqmc.sobolbn, ...) that then draws every
     /// dimension of every estimate (film, lens, time, gloss, light samples) in place of
@@ -229,7 +231,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     let sampler = options.pixels.as_ref().map_or_else(|| options.light.spec(), |p| p.spec().to_string());
     let mut summary = serde_json::json!({
         "scene": a.scene, "sampler": sampler, "n": a.n, "spp": a.spp, "mode": a.mode,
-        "pixel": a.pixel, "width": width, "height": height, "seed": a.seed, "seconds": seconds,
+        "pixel": options.footprint.name(), "width": width, "height": height, "seed": a.seed, "seconds": seconds,
         "camera_rays": rendered.camera_rays, "shadow_rays": rendered.shadow_rays,
         "rays_per_second": rays as f64 / seconds, "errors": errors,
         "penumbra_only": a.penumbra,

@@ -799,7 +799,7 @@ fn settings(given: Option<&Bound<'_, PyDict>>) -> PyResult<samplab_render::Setti
             "spp" => s.spp = value.extract().map_err(bad)?,
             "mode" => s.mode = value.extract().map_err(bad)?,
             "max_depth" => s.max_depth = Some(value.extract().map_err(bad)?),
-            "pixel" => s.pixel = value.extract().map_err(bad)?,
+            "pixel" => s.pixel = Some(value.extract().map_err(bad)?),
             "pixel_sampler" => s.pixel_sampler = value.extract().map_err(bad)?,
             "lens_sampler" => s.lens_sampler = value.extract().map_err(bad)?,
             "time_sampler" => s.time_sampler = value.extract().map_err(bad)?,

@@ -12,6 +12,7 @@ pub mod bsdf;
 pub mod bvh;
 pub mod camera;
 pub mod error;
+pub mod filter;
 pub mod geometry;
 pub mod image;
 pub mod light;
@@ -26,7 +27,8 @@ pub mod settings;
 pub mod study;
 
 pub use error::{Error, Result};
+pub use filter::Footprint;
 pub use image::{Errors, Image};
-pub use render::{Footprint, Mode, Options, Pattern, Rendered, render};
+pub use render::{Mode, Options, Pattern, Rendered, render};
 pub use scene::Scene;
 pub use settings::Settings;

@@ -1,6 +1,7 @@
 //! Area lights: a segment (Ramamoorthi et al. 2012's linear light), a parallelogram (square
 //! and rectangle lights), an elliptical disk (circular lights), each optionally with a
-//! Gaussian emission falloff (Ramamoorthi et al. 2012, section 5.3).
+//! Gaussian emission falloff (Ramamoorthi et al. 2012, section 5.3), and a triangle (a face of
+//! an emitting mesh, uniform).
 //!
 //! A light maps a point of the unit square (the unit interval for a segment) to a point on
 //! the light, area-preserving, so the sampling pattern of a pixel is any samplab point set.
@@ -41,6 +42,27 @@ pub enum LightShape {
         /// Second semi-axis.
         v: DVec3,
     },
+    /// The triangle `p + s e1 + t e2`, s, t >= 0, s + t <= 1; it emits on the side of
+    /// e1 x e2. It has no falloff (a falloff set on it is not read).
+    Triangle {
+        /// One vertex.
+        p: DVec3,
+        /// Edge to the second vertex.
+        e1: DVec3,
+        /// Edge to the third vertex.
+        e2: DVec3,
+    },
+}
+
+/// The outline of a planar light in its plane's coordinates (s, t) along its two edges.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Outline {
+    /// 0 <= s, t <= 1.
+    Parallelogram,
+    /// s^2 + t^2 <= 1.
+    Disk,
+    /// s, t >= 0, s + t <= 1.
+    Triangle,
 }
 
 /// How the unit square is mapped to a disk light.
@@ -73,6 +95,11 @@ pub struct Light {
     pub falloff: Option<f64>,
     /// Square-to-disk map for disk lights.
     pub disk_map: DiskMap,
+    /// The material of the light's surface, when it is one (a Mitsuba emitter shape): it
+    /// then blocks rays from both sides, reflects by that material (Mitsuba gives every
+    /// emitter shape a BSDF) and emits on its front side only. None (the papers' lights):
+    /// a light is seen from its emitting side only, reflects nothing and blocks nothing.
+    pub surface: Option<u32>,
 }
 
 /// A point on a light.
@@ -96,6 +123,7 @@ impl Light {
             LightShape::Segment { a, b } => (b - a).length(),
             LightShape::Parallelogram { u, v, .. } => u.cross(v).length(),
             LightShape::Disk { u, v, .. } => PI * u.cross(v).length(),
+            LightShape::Triangle { e1, e2, .. } => 0.5 * e1.cross(e2).length(),
         }
     }
 
@@ -103,7 +131,9 @@ impl Light {
     pub fn normal(&self) -> Option<DVec3> {
         match self.shape {
             LightShape::Segment { .. } => None,
-            LightShape::Parallelogram { u, v, .. } | LightShape::Disk { u, v, .. } => Some(u.cross(v).normalize()),
+            LightShape::Parallelogram { u, v, .. }
+            | LightShape::Disk { u, v, .. }
+            | LightShape::Triangle { e1: u, e2: v, .. } => Some(u.cross(v).normalize()),
         }
     }
 
@@ -113,6 +143,7 @@ impl Light {
             LightShape::Segment { a, b } => 0.5 * (a + b),
             LightShape::Parallelogram { corner, u, v } => corner + 0.5 * (u + v),
             LightShape::Disk { centre, .. } => centre,
+            LightShape::Triangle { p, e1, e2 } => p + (e1 + e2) / 3.0,
         }
     }
 
@@ -149,6 +180,12 @@ impl Light {
                 };
                 (centre + x * eu + y * ev, x, y)
             }
+            // area-preserving: the square root of the first coordinate sets how far from p
+            // the point lies, the second where along that cross-section
+            LightShape::Triangle { p, e1, e2 } => {
+                let r = u[0].sqrt();
+                (p + (r * (1.0 - u[1])) * e1 + (r * u[1]) * e2, 0.0, 0.0)
+            }
         };
         Some(LightPoint { position, weight: self.falloff_at(x, y) })
     }
@@ -168,6 +205,7 @@ impl Light {
             LightShape::Parallelogram { .. } => line * line,
             // (1/pi) * integral over the unit disk of exp(-r^2 / 2 s^2)
             LightShape::Disk { .. } => 2.0 * s * s * (1.0 - (-1.0 / (2.0 * s * s)).exp()),
+            LightShape::Triangle { .. } => 1.0,
         }
     }
 
@@ -181,51 +219,57 @@ impl Light {
 
     /// Where a camera ray meets the light (its emitting side), and the radiance seen there.
     pub fn intersect(&self, ray: &Ray, t_max: f64) -> Option<(f64, DVec3)> {
-        let t = self.hit(ray.origin, ray.dir, t_max);
+        let t = self.hit(ray.origin, ray.dir, 0.0, t_max);
         (t < t_max).then(|| (t, self.radiance_at(ray.at(t))))
     }
 
-    /// The plane the light lies in: origin, edges and whether it is a disk (None for a
-    /// segment, which a ray never meets).
+    /// The plane the light lies in: origin, edges and outline (None for a segment, which a
+    /// ray never meets).
     #[inline(always)]
-    fn plane(&self) -> Option<(DVec3, DVec3, DVec3, bool)> {
+    fn plane(&self) -> Option<(DVec3, DVec3, DVec3, Outline)> {
         match self.shape {
             LightShape::Segment { .. } => None,
-            LightShape::Parallelogram { corner, u, v } => Some((corner, u, v, false)),
-            LightShape::Disk { centre, u, v } => Some((centre, u, v, true)),
+            LightShape::Parallelogram { corner, u, v } => Some((corner, u, v, Outline::Parallelogram)),
+            LightShape::Disk { centre, u, v } => Some((centre, u, v, Outline::Disk)),
+            LightShape::Triangle { p, e1, e2 } => Some((p, e1, e2, Outline::Triangle)),
         }
     }
 
     /// The light's local coordinates of point `p` in its plane (running over [-1, 1] edge
-    /// to edge, centre to rim for a disk) and whether `p` is on the light.
+    /// to edge, centre to rim for a disk; 0 on a triangle, which has no falloff) and whether
+    /// `p` is on the light.
     #[inline(always)]
-    fn local(origin: DVec3, u: DVec3, v: DVec3, disk: bool, p: DVec3) -> (f64, f64, bool) {
+    fn local(origin: DVec3, u: DVec3, v: DVec3, outline: Outline, p: DVec3) -> (f64, f64, bool) {
         let n = u.cross(v);
         let w = n / n.length_squared();
         let q = p - origin;
         let (s, r) = (w.dot(q.cross(v)), w.dot(u.cross(q)));
-        if disk {
-            (s, r, s * s + r * r <= 1.0)
-        } else {
-            (2.0 * s - 1.0, 2.0 * r - 1.0, (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&r))
+        match outline {
+            Outline::Disk => (s, r, s * s + r * r <= 1.0),
+            Outline::Parallelogram => {
+                (2.0 * s - 1.0, 2.0 * r - 1.0, (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&r))
+            }
+            Outline::Triangle => (0.0, 0.0, s >= 0.0 && r >= 0.0 && s + r <= 1.0),
         }
     }
 
-    /// Where the ray `o + t d` meets the emitting side in (0, t_max), or infinity
-    /// (branch-free, for packets).
+    /// Where the ray `o + t d` meets the light in (t_min, t_max), or infinity (branch-free,
+    /// for packets): its emitting side only, unless it is a surface ([`Light::surface`]),
+    /// met from either side.
     #[inline(always)]
-    pub(crate) fn hit(&self, o: DVec3, d: DVec3, t_max: f64) -> f64 {
-        let Some((origin, u, v, disk)) = self.plane() else { return f64::INFINITY };
+    pub(crate) fn hit(&self, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> f64 {
+        let Some((origin, u, v, outline)) = self.plane() else { return f64::INFINITY };
         let n = u.cross(v);
         let t = plane_t(o, d, origin, n);
-        let (_, _, inside) = Light::local(origin, u, v, disk, o + t * d);
-        if d.dot(n) < 0.0 && t > 0.0 && t < t_max && inside { t } else { f64::INFINITY }
+        let (_, _, inside) = Light::local(origin, u, v, outline, o + t * d);
+        let facing = self.surface.is_some() || d.dot(n) < 0.0;
+        if facing && t > t_min && t < t_max && inside { t } else { f64::INFINITY }
     }
 
     /// The radiance emitted at point `p` of the light.
     pub(crate) fn radiance_at(&self, p: DVec3) -> DVec3 {
-        let Some((origin, u, v, disk)) = self.plane() else { return self.radiance };
-        let (x, y, _) = Light::local(origin, u, v, disk, p);
+        let Some((origin, u, v, outline)) = self.plane() else { return self.radiance };
+        let (x, y, _) = Light::local(origin, u, v, outline, p);
         self.radiance * self.falloff_at(x, y)
     }
 }
@@ -306,6 +350,7 @@ mod tests {
             radiance: DVec3::ONE,
             falloff,
             disk_map: DiskMap::Concentric,
+            surface: None,
         }
     }
 

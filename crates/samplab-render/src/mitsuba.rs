@@ -1,19 +1,22 @@
 //! The subset of the Mitsuba 3 XML scene format these experiments need: a `perspective`
-//! or `thinlens` sensor (`lookat` or matrix `to_world`, `fov`, `fov_axis`, film size),
-//! `diffuse`, `conductor` (a perfect mirror) and `roughconductor` (Beckmann or GGX microfacets,
-//! reflecting fully) BSDFs (also inside `twosided`, by `id` and `ref`), shapes `rectangle`, `disk`,
-//! `sphere`, `cube` and `obj` with `to_world` transforms (`translate`, `scale`, `rotate`,
-//! `matrix`, `lookat`), `area` emitters with a radiance on rectangles and disks, and
-//! `<default>` parameters with `$name` substitution. Anything else is refused with its
-//! element and line, never skipped silently (a `path` integrator's `max_depth` is path mode's
-//! depth unless the render sets one; other integrators and samplers are read past: the
-//! testbed has its own). Mitsuba's numbers may be written as `<integer>` where it takes a
-//! float.
+//! or `thinlens` sensor (`lookat` or matrix `to_world`, `fov`, `fov_axis`) with an `hdrfilm`
+//! (its size and its `box` or `gaussian` reconstruction filter), `diffuse`, `conductor` (a
+//! perfect mirror) and `roughconductor` (Beckmann or GGX microfacets, reflecting fully) BSDFs
+//! (also inside `twosided`, by `id` and `ref`), shapes `rectangle`, `disk`, `sphere`, `cube`
+//! and `obj` with `to_world` transforms (`translate`, `scale`, `rotate`, `matrix`, `lookat`),
+//! `area` emitters with a radiance on every shape but the sphere (inside the shape, or by `id`
+//! and `ref` in any order), `<include>` of other files and `<default>` parameters with
+//! `$name` substitution. Anything else is refused with its element and line, never skipped
+//! silently (a `path` integrator's `max_depth` is path mode's depth unless the render sets
+//! one; other integrators and samplers are read past: the testbed has its own). Mitsuba's
+//! numbers may be written as `<integer>` where it takes a float.
 //!
-//! Two differences from Mitsuba remain, so that a file meant to render the same in both
-//! wraps open surfaces in `twosided` and gives each emitter shape a black BSDF: samplab's
-//! surfaces reflect on both sides, and its lights reflect nothing and block nothing
-//! (Mitsuba gives an emitter shape a grey diffuse BSDF unless told otherwise).
+//! Surfaces are honoured as Mitsuba defines them: a BSDF reflects on the front of its shape
+//! only (the side its normal points to; black from behind) unless wrapped in `twosided`, a
+//! shape without a BSDF is a one-sided grey diffuse (reflectance 0.5), and an emitter shape
+//! is a surface too: it blocks rays from both sides, reflects by its BSDF and emits on its
+//! front. The film's filter is where the camera rays go unless the render says (`box`: the
+//! pixel area; `gaussian`, Mitsuba's default: its footprint, [`crate::filter`]).
 
 use std::collections::HashMap;
 use std::path::{Component, Path, PathBuf};
@@ -24,6 +27,7 @@ use roxmltree::Node;
 use crate::bvh::{Bvh, Object};
 use crate::camera::Camera;
 use crate::error::{Error, Result};
+use crate::filter::Footprint;
 use crate::geometry::Shape;
 use crate::light::{DiskMap, Light, LightShape};
 use crate::scene::{Distribution, Finish, Material, Scene, Texture};
@@ -62,6 +66,13 @@ pub fn parse(text: &str, file: &str, dir: &Path, paths: Paths) -> Result<Scene> 
         let pos = e.pos();
         Error::Scene { file: file.into(), line: pos.row as usize, message: format!("malformed XML: {e}") }
     })?;
+    check_nesting(&doc, file)?;
+    let mut reader = Reader { file, doc: &doc, dir, paths, state: State::default(), includes: 0 };
+    reader.scene(doc.root_element())
+}
+
+/// Refuse a document nested deeper than [`MAX_NESTING`].
+fn check_nesting(doc: &roxmltree::Document, file: &str) -> Result<()> {
     // the reader descends recursively: a scene nested deeper than any real one is refused
     // (each node's depth from its parent's: nodes come in document order, parents first)
     let mut depth = vec![0usize; doc.descendants().count()];
@@ -74,34 +85,78 @@ pub fn parse(text: &str, file: &str, dir: &Path, paths: Paths) -> Result<Scene> 
             return Err(Error::Scene { file: file.into(), line, message });
         }
     }
-    let mut reader = Reader { file, doc: &doc, dir, paths, defaults: HashMap::new(), bsdfs: HashMap::new() };
-    reader.scene(doc.root_element())
+    Ok(())
 }
 
 /// The deepest nesting of elements a scene may have (Mitsuba's own scenes nest a few
 /// levels: scene, shape, bsdf, twosided's bsdf, texture, its transform).
 const MAX_NESTING: usize = 64;
 
+/// The deepest chain of `<include>`s (a file including itself is refused by it).
+const MAX_INCLUDES: usize = 16;
+
+/// What every file of a scene shares: the parameters and the named BSDFs and emitters.
+#[derive(Default)]
+struct State {
+    defaults: HashMap<String, String>,
+    bsdfs: HashMap<String, Material>,
+    /// Named area emitters' radiance.
+    emitters: HashMap<String, DVec3>,
+}
+
 struct Reader<'a, 'input> {
     file: &'a str,
     doc: &'a roxmltree::Document<'input>,
     dir: &'a Path,
     paths: Paths,
-    defaults: HashMap<String, String>,
-    bsdfs: HashMap<String, Material>,
+    state: State,
+    /// How many `<include>`s deep this file is.
+    includes: usize,
+}
+
+/// Where an element is, for an error raised once the whole scene is read.
+#[derive(Clone)]
+struct Place {
+    file: String,
+    line: usize,
+}
+
+impl Place {
+    fn fail(&self, message: String) -> Error {
+        Error::Scene { file: self.file.clone(), line: self.line, message }
+    }
+}
+
+/// A shape as read, its references resolved once the whole scene is read (Mitsuba lets a
+/// `ref` name an element defined later).
+struct Part {
+    /// Its surfaces, or why it cannot be one.
+    surfaces: Result<Vec<Shape>>,
+    /// Its outline as a light, or why it cannot emit.
+    lights: Result<Vec<LightShape>>,
+    /// Its BSDF, given inside it (None: a `ref` or the default).
+    bsdf: Option<Material>,
+    /// Its emitter's radiance, given inside it.
+    emitter: Option<DVec3>,
+    /// Its `ref`s, each to a BSDF or an emitter.
+    refs: Vec<(String, Place)>,
 }
 
 struct Built {
     camera: Option<Camera>,
     resolution: (usize, usize),
-    materials: Vec<Material>,
-    objects: Vec<Object>,
-    lights: Vec<Light>,
+    footprint: Option<Footprint>,
+    parts: Vec<Part>,
     max_depth: Option<usize>,
 }
 
 fn grey(v: f64) -> Material {
     Material::diffuse(DVec3::splat(v))
+}
+
+/// Mitsuba's BSDF for a shape that names none: a one-sided grey diffuse.
+fn default_bsdf() -> Material {
+    Material { front_only: true, ..grey(0.5) }
 }
 
 impl Reader<'_, '_> {
@@ -122,12 +177,17 @@ impl Reader<'_, '_> {
             .ok_or_else(|| self.fail(node, format!("<{}> needs a '{name}' attribute", node.tag_name().name())))?;
         match raw.strip_prefix('$') {
             Some(key) => self
+                .state
                 .defaults
                 .get(key)
                 .cloned()
                 .ok_or_else(|| self.fail(node, format!("'${key}' has no <default name=\"{key}\">"))),
             None => Ok(raw.to_string()),
         }
+    }
+
+    fn place(&self, node: Node) -> Place {
+        Place { file: self.file.into(), line: self.doc.text_pos_at(node.range().start).row as usize }
     }
 
     fn numbers(&self, node: Node, name: &str) -> Result<Vec<f64>> {
@@ -196,45 +256,132 @@ impl Reader<'_, '_> {
     }
 
     fn scene(&mut self, root: Node) -> Result<Scene> {
+        // Mitsuba's film where a sensor names none: 768 x 576 pixels, a Gaussian filter
+        let mut built = Built {
+            camera: None,
+            resolution: (768, 576),
+            footprint: Some(Footprint::MITSUBA),
+            parts: vec![],
+            max_depth: None,
+        };
+        self.elements(root, &mut built)?;
+        let camera = built.camera.ok_or_else(|| self.fail(root, "the scene has no <sensor>"))?;
+        let (mut materials, mut objects, mut lights) = (vec![default_bsdf()], vec![], vec![]);
+        for part in built.parts {
+            let (mut bsdf, mut emitter) = (part.bsdf, part.emitter);
+            for (id, place) in part.refs {
+                if let Some(m) = self.state.bsdfs.get(&id) {
+                    bsdf = Some(*m);
+                } else if let Some(e) = self.state.emitters.get(&id) {
+                    emitter = Some(*e);
+                } else {
+                    return Err(place.fail(format!("no <bsdf id=\"{id}\"> or <emitter id=\"{id}\"> in the scene")));
+                }
+            }
+            let material = match bsdf {
+                Some(m) => {
+                    materials.push(m);
+                    materials.len() as u32 - 1
+                }
+                None => 0,
+            };
+            match emitter {
+                Some(radiance) => lights.extend(part.lights?.into_iter().map(|shape| Light {
+                    shape,
+                    radiance,
+                    falloff: None,
+                    disk_map: DiskMap::Concentric,
+                    surface: Some(material),
+                })),
+                None => objects.extend(part.surfaces?.into_iter().map(|shape| Object { shape, material })),
+            }
+        }
+        Ok(Scene {
+            camera,
+            materials,
+            bvh: Bvh::new(objects),
+            planes: vec![],
+            lights,
+            resolution: built.resolution,
+            max_depth: built.max_depth,
+            footprint: built.footprint,
+        })
+    }
+
+    /// The top-level elements of a scene (or of a file it includes).
+    fn elements(&mut self, root: Node, built: &mut Built) -> Result<()> {
         if root.tag_name().name() != "scene" {
             return Err(self.fail(root, format!("the root element is <{}>, not <scene>", root.tag_name().name())));
         }
-        let mut built = Built {
-            camera: None,
-            resolution: (256, 256),
-            materials: vec![grey(0.5)],
-            objects: vec![],
-            lights: vec![],
-            max_depth: None,
-        };
         for node in root.children().filter(Node::is_element) {
             match node.tag_name().name() {
                 "default" => {
                     let (name, value) = (self.attr(node, "name")?, self.attr(node, "value")?);
-                    self.defaults.entry(name).or_insert(value);
+                    self.state.defaults.entry(name).or_insert(value);
                 }
-                "integrator" => self.integrator(node, &mut built)?,
+                "integrator" => self.integrator(node, built)?,
                 "sampler" => {}
-                "sensor" => self.sensor(node, &mut built)?,
+                "sensor" => self.sensor(node, built)?,
                 "bsdf" => {
                     let id = self.attr(node, "id")?;
                     let m = self.bsdf(node)?;
-                    self.bsdfs.insert(id, m);
+                    self.state.bsdfs.insert(id, m);
                 }
-                "shape" => self.shape(node, &mut built)?,
+                "emitter" if node.attribute("id").is_some() => {
+                    let id = self.attr(node, "id")?;
+                    let radiance = self.emitter(node)?;
+                    self.state.emitters.insert(id, radiance);
+                }
+                "shape" => {
+                    let part = self.shape(node)?;
+                    built.parts.push(part);
+                }
+                "include" => self.include(node, built)?,
                 _ => return Err(self.unsupported(node, "not supported by samplab's Mitsuba subset")),
             }
         }
-        let camera = built.camera.ok_or_else(|| self.fail(root, "the scene has no <sensor>"))?;
-        Ok(Scene {
-            camera,
-            materials: built.materials,
-            bvh: Bvh::new(built.objects),
-            planes: vec![],
-            lights: built.lights,
-            resolution: built.resolution,
-            max_depth: built.max_depth,
-        })
+        Ok(())
+    }
+
+    /// An `<include filename>`: its file's elements read as if written here; the files it
+    /// names are found from the main scene's folder, as Mitsuba's resolver does.
+    fn include(&mut self, node: Node, built: &mut Built) -> Result<()> {
+        if self.includes >= MAX_INCLUDES {
+            return Err(self.fail(node, format!("<include> nested more than {MAX_INCLUDES} deep")));
+        }
+        let name = self.attr(node, "filename")?;
+        let (file, text) = crate::obj::read_scene_file(&self.file_path(node, &name)?)?;
+        let doc = roxmltree::Document::parse(&text).map_err(|e| {
+            let message = format!("malformed XML: {e}");
+            Error::Scene { file: file.clone(), line: e.pos().row as usize, message }
+        })?;
+        check_nesting(&doc, &file)?;
+        let mut inner = Reader {
+            file: &file,
+            doc: &doc,
+            dir: self.dir,
+            paths: self.paths,
+            state: std::mem::take(&mut self.state),
+            includes: self.includes + 1,
+        };
+        let read = inner.elements(doc.root_element(), built);
+        self.state = inner.state;
+        read
+    }
+
+    /// An area emitter's radiance.
+    fn emitter(&self, node: Node) -> Result<DVec3> {
+        if self.attr(node, "type")? != "area" {
+            return Err(self.unsupported(node, "only area emitters on shapes are supported"));
+        }
+        let mut radiance = None;
+        for c in node.children().filter(Node::is_element) {
+            match c.attribute("name") {
+                Some("radiance") => radiance = Some(self.colour(c)?),
+                _ => return Err(self.unsupported(c, "not supported in an area emitter")),
+            }
+        }
+        radiance.ok_or_else(|| self.fail(node, "an area emitter needs a radiance"))
     }
 
     /// A `path` integrator's `max_depth` (a path's most segments; -1, Mitsuba's unlimited,
@@ -286,15 +433,7 @@ impl Reader<'_, '_> {
                 ("float" | "integer", "focus_distance") => camera.focus = self.number(c, "value")?,
                 ("float" | "integer", "near_clip" | "far_clip") => {}
                 ("transform", "to_world") => to_world = self.transform(c)?,
-                ("film", _) => {
-                    for f in c.children().filter(Node::is_element) {
-                        match (f.tag_name().name(), f.attribute("name").unwrap_or("")) {
-                            ("integer", "width") => built.resolution.0 = self.count(f)?,
-                            ("integer", "height") => built.resolution.1 = self.count(f)?,
-                            _ => {}
-                        }
-                    }
-                }
+                ("film", _) => self.film(c, built)?,
                 ("sampler", _) => {}
                 _ => return Err(self.unsupported(c, "not supported in a sensor")),
             }
@@ -327,6 +466,42 @@ impl Reader<'_, '_> {
         camera.up = to_world.transform_vector3(DVec3::Y);
         built.camera = Some(camera);
         Ok(())
+    }
+
+    /// An `hdrfilm`: its size and reconstruction filter (Mitsuba's default: a Gaussian);
+    /// its pixel and component formats only encode the output and are read past.
+    fn film(&self, node: Node, built: &mut Built) -> Result<()> {
+        if self.attr(node, "type")? != "hdrfilm" {
+            return Err(self.unsupported(node, "only hdrfilm is supported"));
+        }
+        for f in node.children().filter(Node::is_element) {
+            match (f.tag_name().name(), f.attribute("name").unwrap_or("")) {
+                ("integer", "width") => built.resolution.0 = self.count(f)?,
+                ("integer", "height") => built.resolution.1 = self.count(f)?,
+                ("string", "pixel_format" | "component_format") => {}
+                ("rfilter", _) => built.footprint = Some(self.rfilter(f)?),
+                _ => return Err(self.unsupported(f, "not supported in a film")),
+            }
+        }
+        Ok(())
+    }
+
+    /// A reconstruction filter: `box` (the pixel area) or `gaussian` (with its `stddev`).
+    fn rfilter(&self, node: Node) -> Result<Footprint> {
+        let kind = self.attr(node, "type")?;
+        let mut stddev = 0.5;
+        for c in node.children().filter(Node::is_element) {
+            match (kind.as_str(), c.tag_name().name(), c.attribute("name").unwrap_or("")) {
+                ("gaussian", "float" | "integer", "stddev") => stddev = self.number(c, "value")?,
+                _ => return Err(self.unsupported(c, &format!("not supported in a {kind} filter"))),
+            }
+        }
+        match kind.as_str() {
+            "box" => Ok(Footprint::Area),
+            "gaussian" if stddev > 0.0 && stddev <= 100.0 => Ok(Footprint::Gaussian { stddev }),
+            "gaussian" => Err(self.fail(node, format!("stddev {stddev} is outside (0, 100] pixels"))),
+            _ => Err(self.unsupported(node, "filters: box, gaussian")),
+        }
     }
 
     fn count(&self, node: Node) -> Result<usize> {
@@ -379,12 +554,15 @@ impl Reader<'_, '_> {
     fn bsdf(&self, node: Node) -> Result<Material> {
         match self.attr(node, "type")?.as_str() {
             "twosided" => {
-                let inner =
-                    node.children().find(Node::is_element).ok_or_else(|| self.fail(node, "<twosided> needs a BSDF"))?;
-                self.bsdf(inner)
+                let mut inner = node.children().filter(Node::is_element);
+                let front = inner.next().ok_or_else(|| self.fail(node, "<twosided> needs a BSDF"))?;
+                if let Some(back) = inner.next() {
+                    return Err(self.unsupported(back, "a second BSDF for the back side is not supported"));
+                }
+                Ok(Material { front_only: false, ..self.bsdf(front)? })
             }
             "diffuse" => {
-                let mut m = grey(0.5);
+                let mut m = default_bsdf();
                 for c in node.children().filter(Node::is_element) {
                     if c.attribute("name") != Some("reflectance") {
                         return Err(self.unsupported(c, "not supported in a diffuse BSDF"));
@@ -418,7 +596,7 @@ impl Reader<'_, '_> {
                 } else {
                     return Err(self.fail(node, format!("alpha {alpha} is outside (0, 1)")));
                 };
-                Ok(Material { finish, ..Material::diffuse(reflectance) })
+                Ok(Material { finish, front_only: true, ..Material::diffuse(reflectance) })
             }
             _ => Err(self.unsupported(node, "only diffuse, conductor and roughconductor BSDFs are supported")),
         }
@@ -431,36 +609,17 @@ impl Reader<'_, '_> {
         }
     }
 
-    fn shape(&self, node: Node, built: &mut Built) -> Result<()> {
+    /// A shape, its references left to resolve ([`Part`]).
+    fn shape(&self, node: Node) -> Result<Part> {
         let kind = self.attr(node, "type")?;
-        let (mut to_world, mut material, mut emitter) = (DMat4::IDENTITY, 0u32, None);
+        let (mut to_world, mut bsdf, mut emitter, mut refs) = (DMat4::IDENTITY, None, None, vec![]);
         let (mut centre, mut radius, mut filename, mut flip) = (DVec3::ZERO, 1.0, None, false);
         for c in node.children().filter(Node::is_element) {
             match (c.tag_name().name(), c.attribute("name").unwrap_or("")) {
                 ("transform", "to_world") => to_world = self.transform(c)?,
-                ("ref", _) => {
-                    let id = self.attr(c, "id")?;
-                    let m = self
-                        .bsdfs
-                        .get(&id)
-                        .ok_or_else(|| self.fail(c, format!("no <bsdf id=\"{id}\"> before this")))?;
-                    built.materials.push(*m);
-                    material = built.materials.len() as u32 - 1;
-                }
-                ("bsdf", _) => {
-                    built.materials.push(self.bsdf(c)?);
-                    material = built.materials.len() as u32 - 1;
-                }
-                ("emitter", _) => {
-                    if self.attr(c, "type")? != "area" {
-                        return Err(self.unsupported(c, "only area emitters on shapes are supported"));
-                    }
-                    let radiance = c
-                        .children()
-                        .find(|r| r.is_element() && r.attribute("name") == Some("radiance"))
-                        .ok_or_else(|| self.fail(c, "an area emitter needs a radiance"))?;
-                    emitter = Some(self.colour(radiance)?);
-                }
+                ("ref", _) => refs.push((self.attr(c, "id")?, self.place(c))),
+                ("bsdf", _) => bsdf = Some(self.bsdf(c)?),
+                ("emitter", _) => emitter = Some(self.emitter(c)?),
                 ("point", "center") => centre = self.xyz(c, 0.0)?,
                 ("float", "radius") => radius = self.number(c, "value")?,
                 ("string", "filename") => filename = Some(self.attr(c, "filename").or_else(|_| self.attr(c, "value"))?),
@@ -476,33 +635,22 @@ impl Reader<'_, '_> {
         if flip {
             std::mem::swap(&mut u, &mut v);
         }
-        let mut push = |shape| built.objects.push(Object { shape, material });
-        match (kind.as_str(), emitter) {
-            ("rectangle", None) => {
-                push(Shape::Parallelogram { corner: point(DVec3::new(-1.0, -1.0, 0.0)), u: 2.0 * u, v: 2.0 * v })
+        let no_light = |what: &str| Err(self.unsupported(node, &format!("area emitters on {what} are not supported")));
+        let (surfaces, lights) = match kind.as_str() {
+            "rectangle" => {
+                let (corner, u, v) = (point(DVec3::new(-1.0, -1.0, 0.0)), 2.0 * u, 2.0 * v);
+                (Ok(vec![Shape::Parallelogram { corner, u, v }]), Ok(vec![LightShape::Parallelogram { corner, u, v }]))
             }
-            ("rectangle", Some(radiance)) => built.lights.push(Light {
-                shape: LightShape::Parallelogram { corner: point(DVec3::new(-1.0, -1.0, 0.0)), u: 2.0 * u, v: 2.0 * v },
-                radiance,
-                falloff: None,
-                disk_map: DiskMap::Concentric,
-            }),
-            ("disk", Some(radiance)) => built.lights.push(Light {
-                shape: LightShape::Disk { centre: point(DVec3::ZERO), u, v },
-                radiance,
-                falloff: None,
-                disk_map: DiskMap::Concentric,
-            }),
-            ("disk", None) => {
+            "disk" => {
                 let r = u.length();
-                if (v.length() - r).abs() > 1e-9 * r || u.dot(v).abs() > 1e-9 * r * r {
-                    return Err(
-                        self.fail(node, "<shape type=\"disk\">: non-uniform scales make an ellipse, unsupported")
-                    );
-                }
-                push(Shape::Disk { centre: point(DVec3::ZERO), normal: u.cross(v).normalize(), radius: r });
+                let surface = if (v.length() - r).abs() > 1e-9 * r || u.dot(v).abs() > 1e-9 * r * r {
+                    Err(self.fail(node, "<shape type=\"disk\">: non-uniform scales make an ellipse, unsupported"))
+                } else {
+                    Ok(vec![Shape::Disk { centre: point(DVec3::ZERO), normal: u.cross(v).normalize(), radius: r }])
+                };
+                (surface, Ok(vec![LightShape::Disk { centre: point(DVec3::ZERO), u, v }]))
             }
-            ("sphere", None) => {
+            "sphere" => {
                 let m3 = DMat3::from_mat4(to_world);
                 let scale = m3.x_axis.length();
                 if (m3.y_axis.length() - scale).abs() > 1e-9 * scale
@@ -512,31 +660,37 @@ impl Reader<'_, '_> {
                         self.fail(node, "<shape type=\"sphere\">: non-uniform scales make an ellipsoid, unsupported")
                     );
                 }
-                push(Shape::Sphere { centre: point(centre), radius: radius * scale, velocity: DVec3::ZERO });
+                let sphere = Shape::Sphere { centre: point(centre), radius: radius * scale, velocity: DVec3::ZERO };
+                (Ok(vec![sphere]), no_light("spheres"))
             }
-            ("cube", None) => {
-                for face in cuboid(
+            "cube" => {
+                let faces = cuboid(
                     point(DVec3::splat(-1.0)),
                     2.0 * vector(DVec3::X),
                     2.0 * vector(DVec3::Y),
                     2.0 * vector(DVec3::Z),
-                ) {
-                    push(face);
-                }
+                );
+                let lights = faces.iter().map(|f| match *f {
+                    Shape::Parallelogram { corner, u, v } => LightShape::Parallelogram { corner, u, v },
+                    _ => unreachable!("a cuboid's faces are parallelograms"),
+                });
+                let lights = lights.collect();
+                (Ok(faces.to_vec()), Ok(lights))
             }
-            ("obj", None) => {
+            "obj" => {
                 let name =
                     filename.ok_or_else(|| self.fail(node, "<shape type=\"obj\"> needs <string name=\"filename\">"))?;
-                for [a, b, c] in crate::obj::load(&self.file_path(node, &name)?)? {
-                    let (a, b, c) = (point(a), point(b), point(c));
-                    push(Shape::Triangle { p: a, e1: b - a, e2: c - a });
-                }
-            }
-            ("sphere" | "cube" | "obj", Some(_)) => {
-                return Err(self.unsupported(node, "area emitters are supported on rectangles and disks only"));
+                let triangles = crate::obj::load(&self.file_path(node, &name)?)?;
+                let corners =
+                    triangles.into_iter().map(|[a, b, c]| (point(a), point(b) - point(a), point(c) - point(a)));
+                let corners: Vec<_> = corners.collect();
+                (
+                    Ok(corners.iter().map(|&(p, e1, e2)| Shape::Triangle { p, e1, e2 }).collect()),
+                    Ok(corners.iter().map(|&(p, e1, e2)| LightShape::Triangle { p, e1, e2 }).collect()),
+                )
             }
             _ => return Err(self.unsupported(node, "shapes: rectangle, disk, sphere, cube, obj")),
-        }
-        Ok(())
+        };
+        Ok(Part { surfaces, lights, bsdf, emitter, refs })
     }
 }

@@ -7,7 +7,8 @@
 //!
 //! `max_depth` counts segments as Mitsuba does: 1 sees only what emits, 2 adds direct
 //! lighting, each more one bounce. A surface's self-emission (a material's `emission`) is
-//! seen from the camera only, as in the other modes; lights reflect nothing.
+//! seen from the camera only, as in the other modes; a light reflects by its material where
+//! it is a surface ([`Light::surface`], a Mitsuba emitter shape), and nothing otherwise.
 //!
 //! Every dimension comes from the render's pixel sampler, keyed by (pixel, estimate,
 //! dimension): 0-1 the film position, 2-3 the lens, 4 the shutter time, then per vertex k
@@ -19,10 +20,11 @@ use samplab::pixel::Pixels;
 
 use crate::bsdf;
 use crate::camera::Frame;
+use crate::filter::Footprint;
 use crate::geometry::Ray;
 use crate::light::{DiskMap, Light, LightShape};
 use crate::packet::{Packet, WIDTH};
-use crate::render::{FIRST_LIGHT_DIM, Footprint, Mode};
+use crate::render::{FIRST_LIGHT_DIM, Mode};
 use crate::scene::{Finish, Hit, Scene, Seen};
 
 /// Dimensions each path vertex takes.
@@ -160,10 +162,8 @@ pub(crate) fn pixel(c: &Context, col: usize, row: usize, s: &mut Scratch) -> (DV
     s.rays.clear();
     s.states.clear();
     for e in 0..c.spp as u32 {
-        let film = match c.footprint {
-            Footprint::Area => [sample(e, 0), sample(e, 1)],
-            Footprint::Centre => [0.5, 0.5],
-        };
+        let u = if c.footprint.spreads() { [sample(e, 0), sample(e, 1)] } else { [0.5; 2] };
+        let film = c.footprint.offset(u, col, row, c.width, c.height);
         let lens = if scene.camera.aperture > 0.0 { [sample(e, 2), sample(e, 3)] } else { [0.5, 0.5] };
         let time = if moving { sample(e, 4) } else { 0.0 };
         let (x, y) = ((col as f64 + film[0]) / c.width as f64, (row as f64 + film[1]) / c.height as f64);
@@ -182,24 +182,40 @@ pub(crate) fn pixel(c: &Context, col: usize, row: usize, s: &mut Scratch) -> (DV
         for k in 0..s.rays.len() {
             let (ray, hit, st) = (s.rays[k], s.hits[k], s.states[k]);
             let e = st.estimate as usize;
+            // what a light sends along the ray, weighted against the light sample that could
+            // have found it (none after a camera or mirror ray)
+            let emitted = |light: usize, le: DVec3| {
+                let mut w = 1.0;
+                if st.pdf > 0.0 {
+                    let em = &c.emitters[light];
+                    let distance = hit.t * ray.dir.length();
+                    let cos = em.normal.map_or(1.0, |n| -n.dot(ray.dir.normalize()));
+                    w = power(st.pdf, em.pdf(distance, cos));
+                }
+                st.throughput * le * w
+            };
             match scene.seen(&ray, hit) {
                 Seen::Nothing => {}
                 Seen::Light(le) => {
-                    let mut w = 1.0;
-                    if st.pdf > 0.0 {
-                        let em = &c.emitters[scene.light_of(hit.what).unwrap_or_default()];
-                        let distance = hit.t * ray.dir.length();
-                        let cos = em.normal.map_or(1.0, |n| -n.dot(ray.dir.normalize()));
-                        w = power(st.pdf, em.pdf(distance, cos));
-                    }
-                    s.radiance[e] += st.throughput * le * w;
+                    s.radiance[e] += emitted(scene.light_of(hit.what).unwrap_or_default(), le);
                     if depth == 0 {
                         s.visible[e] = 1.0;
                     }
                 }
-                Seen::Surface { position, normal, albedo, emission, finish } => {
-                    if depth == 0 {
-                        s.radiance[e] += st.throughput * emission;
+                Seen::Surface { position, normal, albedo, emission, finish, light } => {
+                    match light {
+                        Some(l) if emission != DVec3::ZERO => {
+                            s.radiance[e] += emitted(l as usize, emission);
+                            if depth == 0 {
+                                s.visible[e] = 1.0;
+                            }
+                        }
+                        None if depth == 0 => s.radiance[e] += st.throughput * emission,
+                        _ => {}
+                    }
+                    // a black light (or one met from behind) ends the path
+                    if light.is_some() && albedo == DVec3::ZERO {
+                        continue;
                     }
                     if depth + 1 >= c.max_depth {
                         continue;

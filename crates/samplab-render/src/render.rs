@@ -44,6 +44,7 @@ use samplab::seed::{Rng, Seed, shuffle, uniform};
 
 use crate::bsdf::phong_lobe;
 use crate::error::{Error, Result};
+use crate::filter::Footprint;
 use crate::geometry::Ray;
 use crate::image::Image;
 use crate::light::{DiskMap, Light, LightPoint, LightPoints, geometry};
@@ -66,15 +67,6 @@ pub enum Mode {
         /// Most segments of a path (Mitsuba's `max_depth`: 2 is direct lighting).
         max_depth: u32,
     },
-}
-
-/// Where in the pixel the camera rays go.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Footprint {
-    /// Every estimate through the pixel centre.
-    Centre,
-    /// Over the pixel's area (antialiasing) by the pixel strategy.
-    Area,
 }
 
 /// How light samples are grouped.
@@ -244,7 +236,7 @@ impl Options {
             o.pixels = Some(samplab::pixel::prepare("sobol", film, o.seed)?);
             return Ok(o);
         }
-        let needs_estimates = self.footprint == Footprint::Area || scene.camera.aperture > 0.0 || scene.moving();
+        let needs_estimates = self.footprint.spreads() || scene.camera.aperture > 0.0 || scene.moving();
         let spp = if needs_estimates { self.spp.max(64) } else { 1 };
         let mut o = self.converged("sobol.owen", light_samples, spp)?;
         o.seed = self.seed.derive_str("reference");
@@ -304,7 +296,7 @@ impl Options {
             scene.lights.iter().map(|l| self.light.plan(per_pattern, l.dims())).collect::<samplab::Result<_>>()?
         };
         let mut pixel = None;
-        if self.footprint == Footprint::Area {
+        if self.footprint.spreads() {
             if self.interleave.is_none() {
                 pixel = Some(self.pixel.plan(self.spp, 2)?);
             }
@@ -918,7 +910,7 @@ fn render_pixel(setup: &Setup, px: Pixel, s: &mut Scratch) -> (DVec3, f64, (u64,
             // here rather than in `visit`, which the reflected waves share: there it cost 4%
             if let Some(&Some(albedo)) = setup.plain.get(hit.what as usize) {
                 let position = ray.at(hit.t);
-                let normal = scene.facing_normal(hit.what, position, &ray);
+                let (normal, _) = scene.facing_normal(hit.what, position, &ray);
                 shadow += end_path(setup, px, s, estimate, position, normal, albedo, ray.time);
                 continue;
             }
@@ -961,7 +953,7 @@ fn try_deal(setup: &Setup, px: Pixel, s: &mut Scratch) -> samplab::Result<()> {
     let Setup { options: o, lights, keys, plans, .. } = *setup;
     let spp = o.spp;
     if let Some(p) = &o.pixels {
-        if o.footprint == Footprint::Area {
+        if o.footprint.spreads() {
             s.pixel.clear();
             s.pixel.extend((0..spp as u32).flat_map(|e| [0, 1].map(|d| p.sample(px.at(), px.frame, e, d))));
         }
@@ -977,7 +969,7 @@ fn try_deal(setup: &Setup, px: Pixel, s: &mut Scratch) -> samplab::Result<()> {
         }
         return Ok(());
     }
-    if o.footprint == Footprint::Area {
+    if o.footprint.spreads() {
         s.pixel.resize(spp * 2, 0.0);
         match (&plans.tile, &plans.pixel) {
             (Some(t), _) => s.pixel.copy_from_slice(t.cell(px.col, px.row)),
@@ -1037,10 +1029,9 @@ fn start(setup: &Setup, s: &mut Scratch) {
 fn camera_packet(setup: &Setup, px: Pixel, s: &mut Scratch, first: usize, m: usize) {
     let Setup { scene, options: o, frame, moving, .. } = *setup;
     let mut film = [[0.5; WIDTH]; 2];
-    if o.footprint == Footprint::Area {
+    if o.footprint.spreads() {
         for (i, u) in s.pixel[2 * first..2 * (first + m)].chunks_exact(2).enumerate() {
-            film[0][i] = u[0];
-            film[1][i] = u[1];
+            [film[0][i], film[1][i]] = o.footprint.offset([u[0], u[1]], px.col, px.row, o.width, o.height);
         }
     }
     let mut lens = [[0.5; WIDTH]; 2];
@@ -1080,8 +1071,11 @@ fn visit(setup: &Setup, px: Pixel, s: &mut Scratch, ray: &Ray, hit: Hit, path: P
             s.visible[e] += 1.0;
             return 0;
         }
-        Seen::Surface { position, normal, albedo, emission, finish } => {
+        Seen::Surface { position, normal, albedo, emission, finish, light } => {
             s.radiance[e] += path.throughput * emission;
+            if light.is_some() && emission != DVec3::ZERO {
+                s.visible[e] += 1.0;
+            }
             (position, normal, albedo, finish)
         }
     };

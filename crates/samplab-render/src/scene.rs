@@ -4,6 +4,7 @@ use glam::DVec3;
 
 use crate::bvh::Bvh;
 use crate::camera::Camera;
+use crate::filter::Footprint;
 use crate::geometry::{Plane, Ray};
 use crate::light::Light;
 use crate::packet::{Packet, WIDTH, packets};
@@ -93,15 +94,21 @@ pub struct Material {
     pub emission: Texture,
     /// How it reflects.
     pub finish: Finish,
+    /// Whether it reflects on the front of its surface only (the side its shape's normal
+    /// points to), black from behind, as Mitsuba's BSDFs not wrapped in `twosided`; else on
+    /// both sides.
+    pub front_only: bool,
 }
 
 impl Material {
-    /// A Lambertian material of constant reflectance that emits nothing.
+    /// A Lambertian material of constant reflectance that emits nothing and reflects on
+    /// both sides.
     pub fn diffuse(albedo: DVec3) -> Material {
         Material {
             albedo: Texture::Constant(albedo),
             emission: Texture::Constant(DVec3::ZERO),
             finish: Finish::Diffuse,
+            front_only: false,
         }
     }
 }
@@ -113,7 +120,7 @@ pub enum Seen {
     Nothing,
     /// An emitter, with the radiance it sends along the ray.
     Light(DVec3),
-    /// A surface.
+    /// A surface (a light's too, where the light is one: [`crate::Light::surface`]).
     Surface {
         /// Position.
         position: DVec3,
@@ -125,6 +132,9 @@ pub enum Seen {
         emission: DVec3,
         /// How it reflects.
         finish: Finish,
+        /// The light whose surface this is: `emission` is then its radiance toward the ray
+        /// (zero from behind), which lights the scene, not only the camera.
+        light: Option<u32>,
     },
 }
 
@@ -156,6 +166,9 @@ pub struct Scene {
     /// The most segments of a path the scene asks for (a Mitsuba scene's `path` integrator's
     /// `max_depth`), used in path mode unless the render sets its own.
     pub max_depth: Option<usize>,
+    /// Where the camera rays go in a pixel unless the render says (a Mitsuba scene's film's
+    /// reconstruction filter).
+    pub footprint: Option<Footprint>,
 }
 
 /// Relative offset of shadow-ray origins and ends, against self-intersection.
@@ -205,7 +218,7 @@ impl Scene {
         }
         for (k, light) in self.lights.iter().enumerate() {
             let index = lights_from + k as u32;
-            p.each::<false>(index, &mut t, &mut hit, |o, d, _, t_max| light.hit(o, d, t_max));
+            p.each::<false>(index, &mut t, &mut hit, |o, d, _, t_max| light.hit(o, d, 0.0, t_max));
         }
         std::array::from_fn(|i| Hit { t: t[i], what: hit[i] })
     }
@@ -215,19 +228,33 @@ impl Scene {
     pub fn seen(&self, ray: &Ray, hit: Hit) -> Seen {
         let position = ray.at(hit.t);
         let Some(material) = self.material_of(hit.what) else {
-            return match self.light_of(hit.what) {
-                Some(i) => Seen::Light(self.lights[i].radiance_at(position)),
-                None => Seen::Nothing,
+            let Some(i) = self.light_of(hit.what) else { return Seen::Nothing };
+            let light = &self.lights[i];
+            let (Some(material), Some(front)) = (light.surface, light.normal()) else {
+                return Seen::Light(light.radiance_at(position));
+            };
+            let behind = front.dot(ray.dir) > 0.0;
+            let m = &self.materials[material as usize];
+            let black = behind && m.front_only;
+            return Seen::Surface {
+                position,
+                normal: if behind { -front } else { front },
+                albedo: if black { DVec3::ZERO } else { m.albedo.at(position) },
+                emission: if behind { DVec3::ZERO } else { light.radiance_at(position) },
+                finish: m.finish,
+                light: Some(i as u32),
             };
         };
-        let normal = self.facing_normal(hit.what, position, ray);
+        let (normal, behind) = self.facing_normal(hit.what, position, ray);
         let m = &self.materials[material as usize];
+        let black = behind && m.front_only;
         Seen::Surface {
             position,
             normal,
-            albedo: m.albedo.at(position),
+            albedo: if black { DVec3::ZERO } else { m.albedo.at(position) },
             emission: m.emission.at(position),
             finish: m.finish,
+            light: None,
         }
     }
 
@@ -240,13 +267,13 @@ impl Scene {
     }
 
     /// The unit normal at `position` of the BVH object or plane `what` ([`Hit::what`]),
-    /// facing `ray`'s origin.
+    /// facing `ray`'s origin, and whether the ray met the surface from behind.
     #[inline(always)]
-    pub(crate) fn facing_normal(&self, what: u32, position: DVec3, ray: &Ray) -> DVec3 {
+    pub(crate) fn facing_normal(&self, what: u32, position: DVec3, ray: &Ray) -> (DVec3, bool) {
         let (objects, i) = (self.bvh.objects().len(), what as usize);
         let normal =
             if i < objects { self.bvh.normal(i, position, ray.time) } else { self.planes[i - objects].0.normal };
-        if normal.dot(ray.dir) > 0.0 { -normal } else { normal }
+        if normal.dot(ray.dir) > 0.0 { (-normal, true) } else { (normal, false) }
     }
 
     /// The light of hit index `what` ([`Hit::what`]), if it names one.
@@ -267,6 +294,7 @@ impl Scene {
                     albedo: Texture::Constant(albedo),
                     emission: Texture::Constant(DVec3::ZERO),
                     finish: Finish::Diffuse,
+                    front_only: false,
                 } => Some(albedo),
                 _ => None,
             })
@@ -292,14 +320,17 @@ impl Scene {
     }
 
     /// Whether each shadow ray ([`Scene::shadow_ray`]) of a packet is blocked before its
-    /// light point; a lane not `live` is not traced and reads blocked (to be compiled wide,
-    /// [`samplab::simd::wide`]).
+    /// light point (by a shape, a plane or a light that is a surface); a lane not `live` is
+    /// not traced and reads blocked (to be compiled wide, [`samplab::simd::wide`]).
     #[inline(always)]
     pub(crate) fn occluded(&self, p: &Packet, live: &[bool; WIDTH]) -> [bool; WIDTH] {
         let mut t = live.map(|l| if l { 1.0 - RAY_EPSILON } else { f64::NEG_INFINITY });
         let mut hit = [0; WIDTH];
         for (plane, _) in &self.planes {
             p.each::<true>(0, &mut t, &mut hit, |o, d, _, t_max| plane.hit(o, d, RAY_EPSILON, t_max));
+        }
+        for light in self.lights.iter().filter(|l| l.surface.is_some()) {
+            p.each::<true>(0, &mut t, &mut hit, |o, d, _, t_max| light.hit(o, d, RAY_EPSILON, t_max));
         }
         self.bvh.trace::<true>(p, RAY_EPSILON, &mut t, &mut hit);
         t.map(|x| x == f64::NEG_INFINITY)

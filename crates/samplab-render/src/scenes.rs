@@ -67,7 +67,7 @@ pub fn overhead_light(kind: LightKind, centre: DVec3, size: f64) -> Light {
         LightKind::Linear => LightShape::Segment { a: centre - 0.5 * u, b: centre + 0.5 * u },
     };
     let falloff = (kind == LightKind::Gaussian).then_some(GAUSSIAN_SIGMA);
-    let mut light = Light { shape, radiance: DVec3::ONE, falloff, disk_map: DiskMap::Concentric };
+    let mut light = Light { shape, radiance: DVec3::ONE, falloff, disk_map: DiskMap::Concentric, surface: None };
     // small-light irradiance at height h: L * A * mean falloff / h^2 (cos = 1)
     let h = centre.y;
     light.radiance = DVec3::splat(IRRADIANCE * h * h / (light.area() * light.mean_weight()));
@@ -223,6 +223,7 @@ fn scene(camera: Camera, shapes: Vec<(Shape, u32)>, materials: Vec<Material>, li
         lights,
         resolution: (256, 192),
         max_depth: None,
+        footprint: None,
     }
 }
 

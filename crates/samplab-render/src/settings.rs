@@ -8,9 +8,10 @@ use std::path::Path;
 use samplab::Seed;
 
 use crate::error::Result;
+use crate::filter::Footprint;
 use crate::light::DiskMap;
 use crate::mitsuba::Paths;
-use crate::render::{Footprint, Mode, Options, Pattern};
+use crate::render::{Mode, Options, Pattern};
 use crate::scene::Scene;
 use crate::scenes::{LightKind, builtin};
 
@@ -33,8 +34,12 @@ pub const MODES: [(&str, Mode); 4] = [
     ("path", Mode::Path { max_depth: MAX_DEPTH as u32 }),
 ];
 /// Pixel footprints, by name.
-pub const FOOTPRINTS: [(&str, Footprint); 3] =
-    [("center", Footprint::Centre), ("centre", Footprint::Centre), ("area", Footprint::Area)];
+pub const FOOTPRINTS: [(&str, Footprint); 4] = [
+    ("center", Footprint::Centre),
+    ("centre", Footprint::Centre),
+    ("area", Footprint::Area),
+    ("gaussian", Footprint::MITSUBA),
+];
 /// Light-sample groupings, by name.
 pub const PATTERNS: [(&str, Pattern); 2] = [("estimate", Pattern::PerEstimate), ("pixel", Pattern::PerPixel)];
 
@@ -54,8 +59,9 @@ pub struct Settings {
     /// Path mode: the most segments of a path (None: the scene's, a Mitsuba scene's `path`
     /// integrator's `max_depth`, else [`MAX_DEPTH`]).
     pub max_depth: Option<usize>,
-    /// `center` or `area`.
-    pub pixel: String,
+    /// `center`, `area` or `gaussian` (None: the scene's, a Mitsuba film's reconstruction
+    /// filter, else `center`).
+    pub pixel: Option<String>,
     /// Strategy over the pixel area.
     pub pixel_sampler: String,
     /// Strategy over the lens.
@@ -86,7 +92,7 @@ impl Default for Settings {
             spp: 1,
             mode: "visibility".into(),
             max_depth: None,
-            pixel: "center".into(),
+            pixel: None,
             pixel_sampler: SECONDARY.into(),
             lens_sampler: SECONDARY.into(),
             time_sampler: SECONDARY.into(),
@@ -220,7 +226,10 @@ impl Settings {
             n: self.n,
             spp: self.spp,
             mode: self.mode(scene)?,
-            footprint: choose("pixel", &self.pixel, &FOOTPRINTS)?,
+            footprint: match &self.pixel {
+                Some(word) => choose("pixel", word, &FOOTPRINTS)?,
+                None => scene.footprint.unwrap_or(Footprint::Centre),
+            },
             pixel: match pixels {
                 Some(_) => sampler("pixel_sampler", SECONDARY)?,
                 None => sampler("pixel_sampler", &self.pixel_sampler)?,

@@ -41,7 +41,7 @@ fn unsupported_or_malformed_scenes_name_the_element_and_line() {
             format!("{sensor}\n<bsdf type=\"roughconductor\" id=\"m\"><float name=\"alpha\" value=\"1.5\"/></bsdf>"),
             "s.xml:3: alpha 1.5 is outside",
         ),
-        (format!("{sensor}\n<shape type=\"rectangle\"><ref id=\"nope\"/></shape>"), "s.xml:3: no <bsdf id=\"nope\">"),
+        (format!("{sensor}\n<shape type=\"rectangle\"><ref id=\"nope\"/></shape>"), "s.xml:3: no <bsdf id=\"nope\"> or <emitter id=\"nope\">"),
         (
             format!("{sensor}\n<shape type=\"sphere\"><float name=\"radius\" value=\"x1\"/></shape>"),
             "s.xml:3: value=\"x1\"",
@@ -63,10 +63,55 @@ fn unsupported_or_malformed_scenes_name_the_element_and_line() {
             "s.xml:4: <skew>",
         ),
         (format!("{sensor}\n<shape type=\"cube\"></shap>"), "s.xml:3: malformed XML"),
+        (
+            "<sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n<film type=\"hdrfilm\"><integer name=\"crop_width\" value=\"8\"/></film></sensor>".into(),
+            "s.xml:3: <integer>: not supported in a film",
+        ),
+        (
+            "<sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n<film type=\"hdrfilm\"><rfilter type=\"lanczos\"/></film></sensor>".into(),
+            "s.xml:3: <rfilter type=\"lanczos\">: filters: box, gaussian",
+        ),
+        (
+            format!("{sensor}\n<bsdf type=\"twosided\" id=\"t\"><bsdf type=\"diffuse\"/>\n<bsdf type=\"diffuse\"/></bsdf>"),
+            "s.xml:4: <bsdf type=\"diffuse\">: a second BSDF for the back side",
+        ),
+        (format!("{sensor}\n<include filename=\"absent.xml\"/>"), "s.xml:3: filename 'absent.xml': cannot read"),
+        (
+            format!("{sensor}\n<emitter type=\"area\" id=\"e\"><rgb name=\"irradiance\" value=\"1\"/></emitter>"),
+            "s.xml:3: <rgb>: not supported in an area emitter",
+        ),
     ] {
         let e = parse(&wrap(&body), "s.xml", Path::new("."), Paths::InsideScene).map(|_| ()).unwrap_err().to_string();
         assert!(e.starts_with(want), "{e}\n  wanted: {want}");
     }
+}
+
+/// What a ray straight down sees of a rectangle facing up (+z rotated to +y) and one facing
+/// down, each wrapped in `twosided` or not: Mitsuba's BSDFs are black from behind.
+#[test]
+fn a_bsdf_reflects_on_its_front_only_unless_twosided() {
+    use samplab_render::geometry::Ray;
+    use samplab_render::scene::Seen;
+    let seen = |angle: i32, twosided: bool| {
+        let bsdf = "<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"0.8\"/></bsdf>";
+        let bsdf = if twosided { format!("<bsdf type=\"twosided\">{bsdf}</bsdf>") } else { bsdf.to_string() };
+        let xml = format!(
+            "<scene version=\"3.0.0\"><sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/></sensor>\
+             <shape type=\"rectangle\"><transform name=\"to_world\"><rotate x=\"1\" angle=\"{angle}\"/></transform>\
+             {bsdf}</shape></scene>"
+        );
+        let scene = parse(&xml, "s.xml", Path::new("."), Paths::InsideScene).unwrap();
+        let ray = Ray { origin: DVec3::new(0.1, 2.0, 0.2), dir: DVec3::NEG_Y, time: 0.0 };
+        let mut hits = vec![];
+        scene.trace(&[ray], &mut hits);
+        match scene.seen(&ray, hits[0]) {
+            Seen::Surface { albedo, normal, .. } => (albedo.x, normal.y),
+            other => panic!("{other:?}"),
+        }
+    };
+    assert_eq!(seen(-90, false), (0.8, 1.0), "the front, facing up");
+    assert_eq!(seen(90, false), (0.0, 1.0), "the back: black");
+    assert_eq!(seen(90, true), (0.8, 1.0), "the back of a twosided BSDF");
 }
 
 #[test]

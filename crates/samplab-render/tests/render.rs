@@ -31,6 +31,7 @@ fn ground_point(light: Light) -> Scene {
         lights: vec![light],
         resolution: (1, 1),
         max_depth: None,
+        footprint: None,
     }
 }
 
@@ -50,6 +51,7 @@ fn a_disk_light_gives_the_closed_form_irradiance() {
         radiance: DVec3::splat(radiance),
         falloff: None,
         disk_map: DiskMap::Concentric,
+        surface: None,
     };
     let exact = radiance * radius * radius / (height * height + radius * radius);
     let scene = ground_point(light);
@@ -88,6 +90,7 @@ fn mirrors_reflect_their_albedo_of_what_they_face() {
             lights: vec![],
             resolution: (1, 1),
             max_depth: None,
+            footprint: None,
         };
         let mut o = Options::new("sobol.owen", 1, 1, 1).unwrap();
         o.spp = 64;
@@ -111,6 +114,7 @@ fn a_rectangle_light_gives_the_analytic_form_factor() {
         radiance: DVec3::splat(radiance),
         falloff: None,
         disk_map: DiskMap::Concentric,
+        surface: None,
     };
     let direct = pixel(&ground_point(light), Mode::Direct, 1 << 14);
     assert!((direct / (radiance * f) - 1.0).abs() < 2e-4, "{direct} vs {}", radiance * f);
@@ -207,6 +211,7 @@ fn obscurance_under_a_parallel_plane_has_its_closed_form() {
         radiance: DVec3::ONE,
         falloff: None,
         disk_map: DiskMap::Concentric,
+        surface: None,
     };
     let mut scene = ground_point(unused);
     scene.lights.clear();
