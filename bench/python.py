@@ -61,6 +61,19 @@ ours = median_time(lambda: samplab.generate("halton.xor", n=N, seed=1))
 row("Halton n=2^20, scrambled", "scipy Halton(scramble=True)", median_time(lambda: qmc.Halton(2, seed=rng).random(N)), ours)
 row("Halton n=2^20, scrambled", "qmcpy Halton()", median_time(lambda: qmcpy.Halton(2, seed=7).gen_samples(N), min_runs=3), ours)
 row("Latin hypercube n=2^20", "scipy LatinHypercube", median_time(lambda: qmc.LatinHypercube(2, seed=rng).random(N)), median_time(lambda: samplab.generate("nrooks", n=N, seed=1)))
+
+
+def engine_draws(make, n, draws=8):
+    """An engine made, then `draws` draws of n points: small draws show a per-call cost."""
+    def run():
+        engine = make()
+        for _ in range(draws):
+            engine.random(n)
+    return median_time(run)
+
+
+row("Halton engine, 8 draws of 64 points, 8D", "scipy Halton(scramble=True)",
+    engine_draws(lambda: qmc.Halton(8, seed=rng), 64), engine_draws(lambda: Engine("halton.owen", d=8, seed=1), 64))
 n_pd = 10_000
 radius = 0.72 * math.sqrt(2.0 / (math.sqrt(3.0) * n_pd))
 peer = median_time(lambda: qmc.PoissonDisk(2, radius=radius, seed=rng).random(n_pd), min_runs=3)

@@ -360,6 +360,10 @@ fn sequence_points<'py>(
         Err(e @ samplab::Error::InvalidDims { .. }) => return Err(err(e)),
         Err(_) => return Err(whole()),
     };
+    // planned for the points asked for where the sequence has them, so that its tables (a
+    // cache: Owen-scrambled Halton's) fit the count
+    let end = start.checked_add(n as u64).and_then(|end| usize::try_from(end).ok());
+    let plan = end.and_then(|end| sampler.plan(end, d).ok()).unwrap_or(plan);
     let Some(access) = plan.access(Seed(seed).derive(0)) else {
         return Err(whole());
     };

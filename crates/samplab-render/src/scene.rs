@@ -120,7 +120,7 @@ pub enum Seen {
     Nothing,
     /// An emitter, with the radiance it sends along the ray.
     Light(DVec3),
-    /// A surface (a light's too, where the light is one: [`crate::Light::surface`]).
+    /// A surface (a light's too, where the light is one: [`crate::light::Light::surface`]).
     Surface {
         /// Position.
         position: DVec3,

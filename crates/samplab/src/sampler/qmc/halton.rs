@@ -327,7 +327,10 @@ impl Prepared for Radical {
     }
 
     fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
-        let coordinates = (0..self.tables.len()).map(|d| self.coordinate(seed, d, u64::MAX)).collect();
+        // Owen tables sized for the planned count, as a fill's (a cache only: the indices
+        // past it walk more digits, to the same bits): the largest, 2^16 entries a
+        // dimension, took milliseconds to build where 64 points take microseconds
+        let coordinates = (0..self.tables.len()).map(|d| self.coordinate(seed, d, self.n as u64)).collect();
         Some(Box::new(HaltonAccess { coordinates }))
     }
 }
