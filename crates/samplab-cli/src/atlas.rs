@@ -14,8 +14,12 @@ use samplab_report::{Scale, atlas};
 )]
 pub struct Args {
     /// More sets and instances, finer spectra (slower) instead of the fast default
-    #[arg(long)]
+    #[arg(long, conflicts_with = "smoke")]
     full: bool,
+    /// The least that draws every page, to check the pages, links and figures (seconds a
+    /// sampler: counts up to 1024, two sets, a coarse spectrum); not for reading the numbers
+    #[arg(long)]
+    smoke: bool,
     /// Only these samplers (comma-separated names or aliases)
     #[arg(long, value_delimiter = ',')]
     only: Vec<String>,
@@ -49,6 +53,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         only: a.only.clone(),
         measure_speed: a.speed,
         report: a.report.clone(),
+        smoke: a.smoke,
     };
     let start = Instant::now();
     let len = if a.only.is_empty() { samplab::sampler::SAMPLERS.iter().count() } else { a.only.len() };

@@ -161,6 +161,30 @@ fn make_input(name: &str, dir: &Path) -> Result<(), String> {
     }
 }
 
+/// Run each source's examples (a page's or a command's: its name and lines) in order in a
+/// fresh folder of its own, the sources side by side, as many at a time as there are
+/// cores (most lines are short single-threaded commands); the failures, in the sources'
+/// order.
+fn run_all(sources: &[(String, Vec<String>)]) -> Vec<String> {
+    use std::sync::Mutex;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let next = AtomicUsize::new(0);
+    let results: Vec<Mutex<Vec<String>>> = sources.iter().map(|_| Mutex::default()).collect();
+    let workers = std::thread::available_parallelism().map_or(2, |n| n.get());
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            scope.spawn(|| {
+                loop {
+                    let k = next.fetch_add(1, Ordering::Relaxed);
+                    let Some((source, lines)) = sources.get(k) else { break };
+                    *results[k].lock().unwrap() = run_examples(source, lines);
+                }
+            });
+        }
+    });
+    results.into_iter().flat_map(|r| r.into_inner().unwrap()).collect()
+}
+
 /// Run a page's or a command's examples in order in a fresh folder; the failures.
 fn run_examples(source: &str, lines: &[String]) -> Vec<String> {
     let dir = Temp::new("examples", &source.replace(['/', ' ', '.'], "-"));
@@ -224,14 +248,15 @@ fn every_example_of_the_readme_and_the_guide_runs() {
         std::fs::read_dir(root().join("docs/guide")).unwrap().map(|e| e.unwrap().path()).collect();
     guide.sort();
     pages.extend(guide.into_iter().filter(|p| p.extension().is_some_and(|e| e == "md")));
-    let mut failures = Vec::new();
-    let mut count = 0;
-    for page in &pages {
-        let lines = page_examples(&std::fs::read_to_string(page).unwrap());
-        count += lines.len();
-        let name = page.strip_prefix(root()).unwrap_or(page).display().to_string();
-        failures.extend(run_examples(&name, &lines));
-    }
+    let sources: Vec<(String, Vec<String>)> = pages
+        .iter()
+        .map(|page| {
+            let name = page.strip_prefix(root()).unwrap_or(page).display().to_string();
+            (name, page_examples(&std::fs::read_to_string(page).unwrap()))
+        })
+        .collect();
+    let count: usize = sources.iter().map(|s| s.1.len()).sum();
+    let failures = run_all(&sources);
     assert!(count >= 40, "only {count} examples found in the README and the guide");
     assert!(failures.is_empty(), "{} of {count} examples failed:\n{}", failures.len(), failures.join("\n"));
 }
@@ -255,17 +280,15 @@ fn every_example_of_every_commands_help_runs() {
         .map(String::from)
         .collect();
     assert!(commands.len() >= 14, "commands: {commands:?}");
-    let mut failures = Vec::new();
-    let mut count = 0;
+    let (mut sources, mut failures) = (Vec::new(), Vec::new());
     for c in &commands {
         match help_examples(&samplab(&[c, "--help"])) {
-            Ok(lines) => {
-                count += lines.len();
-                failures.extend(run_examples(&format!("samplab {c} --help"), &lines));
-            }
+            Ok(lines) => sources.push((format!("samplab {c} --help"), lines)),
             Err(e) => failures.push(format!("samplab {c} --help: {e}")),
         }
     }
+    let count: usize = sources.iter().map(|s| s.1.len()).sum();
+    failures.extend(run_all(&sources));
     assert!(failures.is_empty(), "{} failures:\n{}", failures.len(), failures.join("\n"));
     assert!(count >= 30, "only {count} examples in the commands' help");
 }

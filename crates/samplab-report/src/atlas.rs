@@ -67,28 +67,72 @@ pub struct Options {
     /// A reproduction report (`samplab reproduce --out DIR`) whose experiments are searched
     /// for each sampler, to list where the reproduction uses it.
     pub report: Option<PathBuf>,
+    /// The least that draws every page (CI's check of the pages, links and figures): the
+    /// counts up to 1024, two sets and two instances of each integrand, a coarse spectrum;
+    /// `run.scale` is then not read.
+    pub smoke: bool,
 }
 
-/// Sets per count: more at the small counts, where one set says least.
-fn sets_at(scale: Scale, n: usize) -> usize {
-    match (scale, n) {
-        (Scale::Fast, ..=1024) => 24,
-        (Scale::Fast, ..=4096) => 8,
-        (Scale::Fast, _) => 4,
-        (Scale::Full, ..=1024) => 64,
-        (Scale::Full, ..=4096) => 32,
-        (Scale::Full, _) => 16,
+/// How much the atlas measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Level {
+    Smoke,
+    Fast,
+    Full,
+}
+
+impl Level {
+    fn of(options: &Options) -> Level {
+        match (options.smoke, options.run.scale) {
+            (true, _) => Level::Smoke,
+            (false, Scale::Fast) => Level::Fast,
+            (false, Scale::Full) => Level::Full,
+        }
     }
-}
 
-/// Instances of each integrand family, each estimated on every set.
-fn instances(scale: Scale) -> u64 {
-    if scale == Scale::Fast { 8 } else { 32 }
-}
+    fn name(self) -> &'static str {
+        match self {
+            Level::Smoke => "smoke",
+            Level::Fast => "fast",
+            Level::Full => "full",
+        }
+    }
 
-/// Frequencies per axis of the spectrum.
-fn resolution(scale: Scale) -> usize {
-    if scale == Scale::Fast { 128 } else { 256 }
+    /// The counts aimed at.
+    fn counts(self) -> &'static [usize] {
+        if self == Level::Smoke { &COUNTS[..4] } else { &COUNTS }
+    }
+
+    /// Sets per count: more at the small counts, where one set says least.
+    fn sets_at(self, n: usize) -> usize {
+        match (self, n) {
+            (Level::Smoke, _) => 2,
+            (Level::Fast, ..=1024) => 24,
+            (Level::Fast, ..=4096) => 8,
+            (Level::Fast, _) => 4,
+            (Level::Full, ..=1024) => 64,
+            (Level::Full, ..=4096) => 32,
+            (Level::Full, _) => 16,
+        }
+    }
+
+    /// Instances of each integrand family, each estimated on every set.
+    fn instances(self) -> u64 {
+        match self {
+            Level::Smoke => 2,
+            Level::Fast => 8,
+            Level::Full => 32,
+        }
+    }
+
+    /// Frequencies per axis of the spectrum.
+    fn resolution(self) -> usize {
+        match self {
+            Level::Smoke => 64,
+            Level::Fast => 128,
+            Level::Full => 256,
+        }
+    }
 }
 
 /// One count's measurements.
@@ -234,7 +278,7 @@ pub fn build(options: &Options, stop: &AtomicBool, progress: &Progress) -> Resul
     let pages: Vec<Page> = entries
         .par_iter()
         .map(|&entry| {
-            let measured = match measure(entry, options.run.scale, options.run.seed, &Progress::until(stop)) {
+            let measured = match measure(entry, Level::of(options), options.run.seed, &Progress::until(stop)) {
                 // an entry that needs a file (its parameters) has nothing to measure alone
                 Err(Error::Samplab(e))
                     if e != samplab::Error::Interrupted
@@ -292,7 +336,7 @@ struct Drawn {
 /// Measure one sampler (its entry at the default parameters).
 fn measure(
     entry: &'static SamplerEntry,
-    scale: Scale,
+    level: Level,
     seed: Seed,
     progress: &Progress,
 ) -> Result<(Measured, Drawn), Error> {
@@ -302,17 +346,17 @@ fn measure(
     let families: Vec<Family> = INTEGRANDS.iter().map(|(f, _)| Family::parse(f)).collect::<Result<_, _>>()?;
     let integrands = families
         .iter()
-        .map(|f| (0..instances(scale)).map(|k| f.instance(seed.derive_str("integrands"), k)).collect())
+        .map(|f| (0..level.instances()).map(|k| f.instance(seed.derive_str("integrands"), k)).collect())
         .collect::<Result<Vec<Vec<_>>, _>>()?;
     let mut rows = Vec::new();
     let mut at: Option<Vec<PointSet>> = None;
     let mut pictured = Vec::new();
-    for target in COUNTS {
+    for &target in level.counts() {
         let Some(n) = count_from(entry, sampler.as_ref(), target) else { continue };
         if rows.iter().any(|r: &Row| r.n == n) {
             continue;
         }
-        let m = if entry.randomized { sets_at(scale, target) } else { 1 };
+        let m = if entry.randomized { level.sets_at(target) } else { 1 };
         let plan = sampler.plan(n, 2)?;
         let sets = plan.generate_sets(seed, if target == AT { m.max(2) } else { m }, progress)?;
         rows.push(Row {
@@ -333,7 +377,7 @@ fn measure(
     }
     let sets = at.ok_or_else(|| Error::Invalid(format!("{}: no count near {AT} in 2D", entry.about.name)))?;
     let n = sets[0].len();
-    let res = resolution(scale);
+    let res = level.resolution();
     let st = spectrum::statistics(&sets, res, spectrum::Method::of(false, 1e-9))?;
     let (radial, _) = spectrum::radial(&st.periodogram, res, 2);
     let low = (n as f64).sqrt() / 2.0;
@@ -694,7 +738,7 @@ th[data-sort]{cursor:pointer}th[data-sort]:after{content:' \\2195';color:#999}
 ";
 
 fn scale_words(options: &Options) -> String {
-    format!("scale {}, seed {}", if options.run.scale == Scale::Fast { "fast" } else { "full" }, options.run.seed.0)
+    format!("scale {}, seed {}", Level::of(options).name(), options.run.seed.0)
 }
 
 /// The way from `from` (a folder) to `to`, both made absolute, as a relative URL.
