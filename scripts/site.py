@@ -189,10 +189,11 @@ def check(site, binary):
 
 def main():
     site, binary = pathlib.Path(sys.argv[1]), sys.argv[2]
+    rustdoc = pathlib.Path(sys.argv[3]) if len(sys.argv) > 3 else ROOT / "target/doc"
     guide(site)
     commands = cli_pages(site, binary)
     samplab = python_api(site)
-    shutil.copytree(ROOT / "target/doc", site / "rust", dirs_exist_ok=True)
+    shutil.copytree(rustdoc, site / "rust", dirs_exist_ok=True)
     failed = doctests(samplab)
     problems = check(site, binary)
     for p in problems:
