@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Mitsuba 3's own images of its two Cornell boxes, as Mitsuba renders them: the image mean
 of each channel over R independent renders, with its standard error, written as the fixture
-that crates/samplab-render/tests/cornell.rs compares samplab's path mode with.
+that crates/samplab-render/tests/as_mitsuba.rs compares samplab's path mode with.
 
     python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba==3.9.1 drjit==1.5.0 numpy
     /tmp/mi/bin/python scripts/mitsuba/cornell_reference.py > crates/samplab-render/tests/fixtures/cornell-mitsuba.json

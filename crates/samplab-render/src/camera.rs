@@ -20,6 +20,10 @@ pub struct Camera {
     pub aperture: f64,
     /// Distance of the plane in focus, along the view direction.
     pub focus: f64,
+    /// Mitsuba's `near_clip` and `far_clip`: what lies nearer than the first or farther
+    /// than the second, in depth along the view direction, is not seen by camera rays
+    /// (`[0, inf]` clips nothing).
+    pub clip: [f64; 2],
 }
 
 /// A camera set up for one image size.
@@ -35,6 +39,7 @@ pub struct Frame {
     half_h: f64,
     aperture: f64,
     focus: f64,
+    clip: [f64; 2],
 }
 
 impl Camera {
@@ -53,23 +58,46 @@ impl Camera {
             half_h: half_w * height as f64 / width as f64,
             aperture: self.aperture,
             focus: self.focus,
+            clip: self.clip,
         }
     }
 }
 
 impl Frame {
     /// The ray through film point (x, y) (both in [0, 1), y down), from lens sample `lens`
-    /// (unit square, mapped to the lens disk concentrically) at shutter time `time`.
+    /// (unit square, mapped to the lens disk concentrically) at shutter time `time`. The
+    /// ray starts on the near clipping plane, as Mitsuba 3's perspective and thin-lens
+    /// cameras start theirs; [`Frame::beyond_far`] says which of its hits are clipped.
     #[inline(always)]
     pub fn ray(&self, x: f64, y: f64, lens: [f64; 2], time: f64) -> Ray {
         let dir = self.forward + (2.0 * x - 1.0) * self.half_w * self.right + (1.0 - 2.0 * y) * self.half_h * self.up;
-        if self.aperture <= 0.0 {
-            return Ray { origin: self.eye, dir, time };
+        let mut ray = if self.aperture <= 0.0 {
+            Ray { origin: self.eye, dir, time }
+        } else {
+            let focus_point = self.eye + dir * self.focus;
+            let (x, y) = concentric(lens[0], lens[1]);
+            let origin = self.eye + self.aperture * (x * self.right + y * self.up);
+            Ray { origin, dir: focus_point - origin, time }
+        };
+        if self.clip[0] > 0.0 {
+            ray.origin += ray.dir * (self.clip[0] / self.depth_per_t());
         }
-        let focus_point = self.eye + dir * self.focus;
-        let (x, y) = concentric(lens[0], lens[1]);
-        let origin = self.eye + self.aperture * (x * self.right + y * self.up);
-        Ray { origin, dir: focus_point - origin, time }
+        ray
+    }
+
+    /// Whether a camera ray's hit at parameter `t` lies beyond the far clipping plane: the
+    /// camera does not see it.
+    #[inline(always)]
+    pub fn beyond_far(&self, t: f64) -> bool {
+        t * self.depth_per_t() > self.clip[1] - self.clip[0]
+    }
+
+    /// How far along the view direction a camera ray goes per unit of its parameter: its
+    /// direction's component along the view (1 for a pinhole, whose rays reach the unit
+    /// image plane at t = 1; the focus distance for a lens, whose rays reach the focus plane).
+    #[inline(always)]
+    fn depth_per_t(&self) -> f64 {
+        if self.aperture <= 0.0 { 1.0 } else { self.focus }
     }
 }
 
@@ -86,6 +114,7 @@ mod tests {
             fov: 90.0,
             aperture: 0.0,
             focus: 1.0,
+            clip: [0.0, f64::INFINITY],
         };
         let f = cam.frame(200, 100);
         let centre = f.ray(0.5, 0.5, [0.5; 2], 0.0).dir.normalize();
@@ -105,6 +134,7 @@ mod tests {
             fov: 40.0,
             aperture: 0.3,
             focus: 2.5,
+            clip: [0.0, f64::INFINITY],
         };
         let f = cam.frame(64, 64);
         let forward = (cam.target - cam.eye).normalize();

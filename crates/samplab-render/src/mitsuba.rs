@@ -1,5 +1,6 @@
 //! The subset of the Mitsuba 3 XML scene format these experiments need: a `perspective`
-//! or `thinlens` sensor (`lookat` or matrix `to_world`, `fov`, `fov_axis`) with an `hdrfilm`
+//! or `thinlens` sensor (a rigid `to_world`, `fov`, `fov_axis`, `near_clip` and `far_clip`:
+//! the camera sees only what lies between the planes, as in Mitsuba) with an `hdrfilm`
 //! (its size and its `box` or `gaussian` reconstruction filter), `diffuse`, `conductor` (a
 //! perfect mirror) and `roughconductor` (Beckmann or GGX microfacets, reflecting fully) BSDFs
 //! (also inside `twosided`, by `id` and `ref`), shapes `rectangle`, `disk`, `sphere`, `cube`
@@ -15,7 +16,10 @@
 //! only (the side its normal points to; black from behind) unless wrapped in `twosided`, a
 //! shape without a BSDF is a one-sided grey diffuse (reflectance 0.5), and an emitter shape
 //! is a surface too: it blocks rays from both sides, reflects by its BSDF and emits on its
-//! front. The film's filter is where the camera rays go unless the render says (`box`: the
+//! front. A shape's front is Mitsuba's: `flip_normals` turns it over (refused on spheres);
+//! a mesh with vertex normals takes the side they point to unless `face_normals` is set
+//! ([`crate::obj`]), and a mirroring transform keeps the side of a rectangle's, disk's or
+//! cube's normal, which Mitsuba transforms as a normal. The film's filter is where the camera rays go unless the render says (`box`: the
 //! pixel area; `gaussian`, Mitsuba's default: its footprint, [`crate::filter`]).
 
 use std::collections::HashMap;
@@ -30,6 +34,7 @@ use crate::error::{Error, Result};
 use crate::filter::Footprint;
 use crate::geometry::Shape;
 use crate::light::{DiskMap, Light, LightShape};
+use crate::obj::Normals;
 use crate::scene::{Distribution, Finish, Material, Scene, Texture};
 use crate::scenes::cuboid;
 
@@ -320,6 +325,8 @@ impl Reader<'_, '_> {
                     self.state.defaults.entry(name).or_insert(value);
                 }
                 "integrator" => self.integrator(node, built)?,
+                // the render's strategies and sample count stand in for Mitsuba's sampler:
+                // choosing them is what samplab is for
                 "sampler" => {}
                 "sensor" => self.sensor(node, built)?,
                 "bsdf" => {
@@ -408,6 +415,7 @@ impl Reader<'_, '_> {
                         })?;
                     built.max_depth = Some(depth);
                 }
+                // Russian roulette changes a path's noise, not its expectation
                 ("integer", "rr_depth") => {}
                 ("boolean", "hide_emitters") if self.attr(c, "value")? == "false" => {}
                 _ => return Err(self.unsupported(c, "not supported in a path integrator")),
@@ -422,8 +430,16 @@ impl Reader<'_, '_> {
             return Err(self.unsupported(node, "only perspective and thinlens sensors are supported"));
         }
         let (mut fov, mut axis, mut to_world) = (None, "x".to_string(), DMat4::IDENTITY);
-        let mut camera =
-            Camera { eye: DVec3::ZERO, target: DVec3::Z, up: DVec3::Y, fov: 0.0, aperture: 0.0, focus: 1.0 };
+        // Mitsuba's default clipping planes
+        let mut camera = Camera {
+            eye: DVec3::ZERO,
+            target: DVec3::Z,
+            up: DVec3::Y,
+            fov: 0.0,
+            aperture: 0.0,
+            focus: 1.0,
+            clip: [1e-2, 1e4],
+        };
         for c in node.children().filter(Node::is_element) {
             match (c.tag_name().name(), c.attribute("name").unwrap_or("")) {
                 // Mitsuba reads an <integer> where it takes a float
@@ -431,9 +447,11 @@ impl Reader<'_, '_> {
                 ("string", "fov_axis") => axis = self.attr(c, "value")?,
                 ("float" | "integer", "aperture_radius") => camera.aperture = self.number(c, "value")?,
                 ("float" | "integer", "focus_distance") => camera.focus = self.number(c, "value")?,
-                ("float" | "integer", "near_clip" | "far_clip") => {}
+                ("float" | "integer", "near_clip") => camera.clip[0] = self.number(c, "value")?,
+                ("float" | "integer", "far_clip") => camera.clip[1] = self.number(c, "value")?,
                 ("transform", "to_world") => to_world = self.transform(c)?,
                 ("film", _) => self.film(c, built)?,
+                // as a top-level sampler
                 ("sampler", _) => {}
                 _ => return Err(self.unsupported(c, "not supported in a sensor")),
             }
@@ -454,12 +472,28 @@ impl Reader<'_, '_> {
                 return Err(self.fail(node, format!("fov_axis '{other}' is not supported (x, y, smaller, larger)")));
             }
         };
-        // a singular matrix maps the camera's frame to a plane, a line or a point
-        let det = DMat3::from_mat4(to_world).determinant();
-        if !det.is_finite() || det.abs() < 1e-12 {
-            return Err(
-                self.fail(node, format!("the sensor's to_world is singular (determinant {det:e}): no camera frame"))
-            );
+        let [near, far] = camera.clip;
+        if near <= 0.0 || far <= near {
+            return Err(self.fail(node, format!("near_clip {near} and far_clip {far}: Mitsuba needs 0 < near < far")));
+        }
+        // Mitsuba refuses a camera transform that scales (and so one that shears or is
+        // singular), with the same tolerance on its columns' products; a mirror it would
+        // render mirrored, which samplab's right-handed frame cannot
+        let linear = DMat3::from_mat4(to_world);
+        let off =
+            (linear.transpose() * linear - DMat3::IDENTITY).to_cols_array().iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        // (a diagonal product overflows to infinity, never NaN, so `max` misses nothing)
+        if off > 1e-3 {
+            return Err(self.fail(
+                node,
+                format!(
+                    "the sensor's to_world scales, shears or is singular (its columns' products are {off:.1e} off \
+                     orthonormal); a camera's transform rotates and translates only"
+                ),
+            ));
+        }
+        if linear.determinant() < 0.0 {
+            return Err(self.fail(node, "the sensor's to_world mirrors the camera's frame (determinant -1)"));
         }
         camera.eye = to_world.transform_point3(DVec3::ZERO);
         camera.target = camera.eye + to_world.transform_vector3(DVec3::Z);
@@ -478,6 +512,7 @@ impl Reader<'_, '_> {
             match (f.tag_name().name(), f.attribute("name").unwrap_or("")) {
                 ("integer", "width") => built.resolution.0 = self.count(f)?,
                 ("integer", "height") => built.resolution.1 = self.count(f)?,
+                // how Mitsuba stores its image file; samplab writes its own formats
                 ("string", "pixel_format" | "component_format") => {}
                 ("rfilter", _) => built.footprint = Some(self.rfilter(f)?),
                 _ => return Err(self.unsupported(f, "not supported in a film")),
@@ -614,6 +649,7 @@ impl Reader<'_, '_> {
         let kind = self.attr(node, "type")?;
         let (mut to_world, mut bsdf, mut emitter, mut refs) = (DMat4::IDENTITY, None, None, vec![]);
         let (mut centre, mut radius, mut filename, mut flip) = (DVec3::ZERO, 1.0, None, false);
+        let mut normals = Normals::Vertex;
         for c in node.children().filter(Node::is_element) {
             match (c.tag_name().name(), c.attribute("name").unwrap_or("")) {
                 ("transform", "to_world") => to_world = self.transform(c)?,
@@ -624,15 +660,20 @@ impl Reader<'_, '_> {
                 ("float", "radius") => radius = self.number(c, "value")?,
                 ("string", "filename") => filename = Some(self.attr(c, "filename").or_else(|_| self.attr(c, "value"))?),
                 ("boolean", "flip_normals") => flip = self.attr(c, "value")? == "true",
-                ("boolean", "face_normals") => {}
+                ("boolean", "face_normals") if self.attr(c, "value")? == "true" => normals = Normals::Face,
+                ("boolean", "face_normals") => normals = Normals::Vertex,
                 _ => return Err(self.unsupported(c, &format!("not supported in <shape type=\"{kind}\">"))),
             }
         }
         let affine = DAffine3::from_mat4(to_world);
         let point = |p: DVec3| affine.transform_point3(p);
         let vector = |v: DVec3| affine.transform_vector3(v);
+        // Mitsuba transforms a rectangle's or disk's normal, and a mesh's vertex normals, as
+        // normals: under a mirroring transform they keep their side while the winding of the
+        // transformed corners (samplab's front) turns over
+        let mirror = DMat3::from_mat4(to_world).determinant() < 0.0;
         let (mut u, mut v) = (vector(DVec3::X), vector(DVec3::Y));
-        if flip {
+        if flip != mirror {
             std::mem::swap(&mut u, &mut v);
         }
         let no_light = |what: &str| Err(self.unsupported(node, &format!("area emitters on {what} are not supported")));
@@ -660,16 +701,30 @@ impl Reader<'_, '_> {
                         self.fail(node, "<shape type=\"sphere\">: non-uniform scales make an ellipsoid, unsupported")
                     );
                 }
+                if flip {
+                    return Err(self.fail(
+                        node,
+                        "<shape type=\"sphere\">: flip_normals (a sphere seen from inside) is not supported",
+                    ));
+                }
                 let sphere = Shape::Sphere { centre: point(centre), radius: radius * scale, velocity: DVec3::ZERO };
                 (Ok(vec![sphere]), no_light("spheres"))
             }
             "cube" => {
-                let faces = cuboid(
+                let mut faces = cuboid(
                     point(DVec3::splat(-1.0)),
                     2.0 * vector(DVec3::X),
                     2.0 * vector(DVec3::Y),
                     2.0 * vector(DVec3::Z),
                 );
+                // Mitsuba's cube is a mesh with outward vertex normals
+                if flip != (mirror && normals == Normals::Vertex) {
+                    for face in &mut faces {
+                        if let Shape::Parallelogram { u, v, .. } = face {
+                            std::mem::swap(u, v);
+                        }
+                    }
+                }
                 let lights = faces.iter().map(|f| match *f {
                     Shape::Parallelogram { corner, u, v } => LightShape::Parallelogram { corner, u, v },
                     _ => unreachable!("a cuboid's faces are parallelograms"),
@@ -680,9 +735,14 @@ impl Reader<'_, '_> {
             "obj" => {
                 let name =
                     filename.ok_or_else(|| self.fail(node, "<shape type=\"obj\"> needs <string name=\"filename\">"))?;
-                let triangles = crate::obj::load(&self.file_path(node, &name)?)?;
-                let corners =
-                    triangles.into_iter().map(|[a, b, c]| (point(a), point(b) - point(a), point(c) - point(a)));
+                let triangles = crate::obj::load(&self.file_path(node, &name)?, normals)?;
+                let corners = triangles.into_iter().map(|t| {
+                    let [a, mut b, mut c] = t.corners.map(point);
+                    if flip != (mirror && t.by_normals) {
+                        std::mem::swap(&mut b, &mut c);
+                    }
+                    (a, b - a, c - a)
+                });
                 let corners: Vec<_> = corners.collect();
                 (
                     Ok(corners.iter().map(|&(p, e1, e2)| Shape::Triangle { p, e1, e2 }).collect()),

@@ -181,6 +181,9 @@ pub(crate) fn pixel(c: &Context, col: usize, row: usize, s: &mut Scratch) -> (DV
         s.next_states.clear();
         for k in 0..s.rays.len() {
             let (ray, hit, st) = (s.rays[k], s.hits[k], s.states[k]);
+            if depth == 0 && c.frame.beyond_far(hit.t) {
+                continue;
+            }
             let e = st.estimate as usize;
             // what a light sends along the ray, weighted against the light sample that could
             // have found it (none after a camera or mirror ray)

@@ -906,6 +906,9 @@ fn render_pixel(setup: &Setup, px: Pixel, s: &mut Scratch) -> (DVec3, f64, (u64,
         let hits = scene.trace_packet(&s.camera);
         for (i, &hit) in hits[..m].iter().enumerate() {
             let (ray, estimate) = (s.camera.ray(i), (first + i) as u32);
+            if setup.frame.beyond_far(hit.t) {
+                continue;
+            }
             // a plain surface (most hits) ends the path without the general lookup; checked
             // here rather than in `visit`, which the reflected waves share: there it cost 4%
             if let Some(&Some(albedo)) = setup.plain.get(hit.what as usize) {

@@ -228,7 +228,15 @@ fn scene(camera: Camera, shapes: Vec<(Shape, u32)>, materials: Vec<Material>, li
 }
 
 fn look(eye: [f64; 3], target: [f64; 3], fov: f64) -> Camera {
-    Camera { eye: eye.into(), target: target.into(), up: DVec3::Y, fov, aperture: 0.0, focus: 1.0 }
+    Camera {
+        eye: eye.into(),
+        target: target.into(),
+        up: DVec3::Y,
+        fov,
+        aperture: 0.0,
+        focus: 1.0,
+        clip: [0.0, f64::INFINITY],
+    }
 }
 
 fn spheres(kind: LightKind) -> Scene {

@@ -77,6 +77,26 @@ fn unsupported_or_malformed_scenes_name_the_element_and_line() {
         ),
         (format!("{sensor}\n<include filename=\"absent.xml\"/>"), "s.xml:3: filename 'absent.xml': cannot read"),
         (
+            "<sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n<float name=\"near_clip\" value=\"0\"/></sensor>".into(),
+            "s.xml:2: near_clip 0 and far_clip 10000: Mitsuba needs 0 < near < far",
+        ),
+        (
+            "<sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n<float name=\"far_clip\" value=\"0.001\"/></sensor>".into(),
+            "s.xml:2: near_clip 0.01 and far_clip 0.001",
+        ),
+        (
+            "<sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n<transform name=\"to_world\"><scale value=\"2\"/></transform></sensor>".into(),
+            "s.xml:2: the sensor's to_world scales, shears or is singular",
+        ),
+        (
+            "<sensor type=\"perspective\"><float name=\"fov\" value=\"40\"/>\n<transform name=\"to_world\"><scale x=\"-1\"/></transform></sensor>".into(),
+            "s.xml:2: the sensor's to_world mirrors",
+        ),
+        (
+            format!("{sensor}\n<shape type=\"sphere\"><boolean name=\"flip_normals\" value=\"true\"/></shape>"),
+            "s.xml:3: <shape type=\"sphere\">: flip_normals",
+        ),
+        (
             format!("{sensor}\n<emitter type=\"area\" id=\"e\"><rgb name=\"irradiance\" value=\"1\"/></emitter>"),
             "s.xml:3: <rgb>: not supported in an area emitter",
         ),

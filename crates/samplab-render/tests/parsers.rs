@@ -173,8 +173,8 @@ proptest! {
         let seed = std::fs::read("tests/scenes/cube.obj").unwrap();
         let input = apply(&seed, &edits);
         bounded("OBJ", &input, |b| {
-            if let Ok(triangles) = samplab_render::obj::parse(&String::from_utf8_lossy(b), "fuzz.obj") {
-                assert!(triangles.iter().flatten().all(|v| v.is_finite()));
+            if let Ok(triangles) = samplab_render::obj::parse(&String::from_utf8_lossy(b), "fuzz.obj", samplab_render::obj::Normals::Vertex) {
+                assert!(triangles.iter().flat_map(|t| t.corners).all(|v| v.is_finite()));
             }
         })?;
     }

@@ -1,7 +1,7 @@
 //! samplab-render's integration tests as one binary, each file a module (one link where
 //! there were five).
-#[path = "cornell.rs"]
-mod cornell;
+#[path = "as_mitsuba.rs"]
+mod as_mitsuba;
 #[path = "mitsuba.rs"]
 mod mitsuba;
 #[path = "parsers.rs"]
