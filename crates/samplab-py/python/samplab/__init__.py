@@ -17,7 +17,7 @@ from __future__ import annotations
 import functools
 import inspect
 import json
-from typing import Any, Callable, Dict, List, Optional, Sequence, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -96,6 +96,8 @@ DEFAULT_SEED: int = _samplab.default_seed()
 def _seed(seed: Optional[int]) -> int:
     if seed is None:
         return DEFAULT_SEED
+    if type(seed) is int and 0 <= seed < 2**64:  # the common case, checked first (it is cheap)
+        return seed
     if isinstance(seed, (bool, float)) or not isinstance(seed, (int, np.integer)):
         raise Error(f"seed must be a whole number in [0, 2^64), got {seed!r}")
     if not 0 <= int(seed) < 2**64:
@@ -104,6 +106,8 @@ def _seed(seed: Optional[int]) -> int:
 
 
 def _count(name: str, value: Any) -> int:
+    if type(value) is int and 0 <= value < 2**64:  # as in _seed
+        return value
     if isinstance(value, (bool, float)) or not isinstance(value, (int, np.integer)):
         raise Error(f"{name} = {value!r}: must be a whole number")
     if not 0 <= value < 2**64:
@@ -1192,18 +1196,31 @@ def read_exr(path: str) -> Dict[str, Any]:
     return _samplab.read_exr(str(path))
 
 
-def _strings(value: Any, depth: int = 0) -> Any:
-    """Every string in an argument: itself, or within lists, tuples and dicts (three levels:
-    a call's arguments, a list among them, and its items)."""
+def _bad_text(value: Any, depth: int) -> Optional[Tuple[str, UnicodeEncodeError]]:
+    """The first string in an argument (itself, or within lists, tuples and dicts down to
+    depth 3: a call's arguments, a list among them, and its items) that is not valid Unicode
+    text, with its error; None when there is none. Plain recursion, no generators: it runs
+    before every call of the package with an argument that is not a number or ASCII text.
+    """
     if isinstance(value, str):
-        yield value
+        try:
+            value.encode("utf-8")
+        except UnicodeEncodeError as e:
+            return value, e
     elif depth < 3 and isinstance(value, (list, tuple)):
         for v in value:
-            yield from _strings(v, depth + 1)
+            bad = _bad_text(v, depth + 1)
+            if bad is not None:
+                return bad
     elif depth < 3 and isinstance(value, dict):
         for k, v in value.items():
-            yield from _strings(k, depth + 1)
-            yield from _strings(v, depth + 1)
+            bad = _bad_text(k, depth + 1) or _bad_text(v, depth + 1)
+            if bad is not None:
+                return bad
+    return None
+
+
+_PLAIN = frozenset((int, float, bool, type(None), np.ndarray))
 
 
 def _valid_text(f: Callable[..., Any]) -> Callable[..., Any]:
@@ -1212,10 +1229,13 @@ def _valid_text(f: Callable[..., Any]) -> Callable[..., Any]:
 
     @functools.wraps(f)
     def checked(*args: Any, **kwargs: Any) -> Any:
-        for text in _strings((args, kwargs)):
-            try:
-                text.encode("utf-8")
-            except UnicodeEncodeError as e:
+        for value in (*args, *kwargs, *kwargs.values()):
+            # most arguments are numbers and ASCII names: nothing to look into
+            if type(value) in _PLAIN or (type(value) is str and value.isascii()):
+                continue
+            bad = _bad_text(value, 2)
+            if bad is not None:
+                text, e = bad
                 raise Error(f"{f.__name__}: {text!r} is not valid text ({e.reason} at position {e.start})") from None
         return f(*args, **kwargs)
 
