@@ -6,6 +6,11 @@
 //! Every call that does real work releases the GIL; every samplab error becomes a
 //! `samplab.Error` (a `ValueError`) carrying the CLI's one-line message. Long calls can be
 //! stopped with Ctrl-C (`interruptible`).
+//!
+//! The crate has no Rust tests (pytest tests it through Python), so its test build is empty:
+//! `cargo test --workspace --lib` builds every library's test harness, `test = false` or
+//! not, and this one cost 15 s of the tests' build for nothing.
+#![cfg(not(test))]
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::RecvTimeoutError;

@@ -105,50 +105,68 @@ def test_render_study_local_dask_and_cli_agree(client, cli, tmp_path):
         assert out["errors"] == errors
 
 
-def test_a_killed_worker_does_not_change_the_result(client):
-    # about 5 s of work in 24 chunks
-    study = Study.integrate(["random", "jitter"], "disk", [1024, 4096], sets=20000, instances=6, seed=5)
+def first_chunk_kept(box, timeout=120):
+    """Wait until the checkpoint folder ``box`` holds a finished chunk: the study is under
+    way, with most of its chunks still to compute."""
+    give_up = time.monotonic() + timeout
+    while not (box.is_dir() and any(f.suffix == ".chunk" for f in box.iterdir())):
+        assert time.monotonic() < give_up, "no chunk was kept"
+        time.sleep(0.005)
+
+
+# About 2 s of work in 24 chunks: the interruptions below land once the first chunk is
+# kept, with 23 left to compute however fast the machine (they waited 1-1.5 s of a 5 s
+# study before).
+SHORT = "Study.integrate(['random', 'jitter'], 'disk', [1024, 4096], sets=8000, instances=6, seed={})"
+
+
+def test_a_killed_worker_does_not_change_the_result(client, tmp_path):
+    study = eval(SHORT.format(5))
+    assert len(study.chunks) == 24
     expected = study.run(progress=False)
     pids = client.run(os.getpid)
+    box = tmp_path / "checkpoint"
     killed = []
 
     def kill_one():
-        time.sleep(1.0)
-        pid = next(iter(pids.values()))
-        os.kill(pid, signal.SIGKILL)
+        first_chunk_kept(box)
+        os.kill(next(iter(pids.values())), signal.SIGKILL)
         killed.append(time.monotonic())
 
-    killer = threading.Thread(target=kill_one)
-    start = time.monotonic()
+    killer = threading.Thread(target=kill_one, daemon=True)
     killer.start()
-    result = study.run(client, progress=False)
+    result = study.run(client, checkpoint=str(box), progress=False)
     end = time.monotonic()
-    killer.join()
-    assert killed and killed[0] < end, f"the study ended {end - start:.1f} s in, before the kill"
+    killer.join(timeout=60)
+    assert killed and killed[0] < end, "the study ended before the kill"
     assert result.to_json() == expected.to_json()
     client.wait_for_workers(2, timeout=60)
 
 
 def test_a_stopped_study_resumes_computing_only_the_missing_chunks(tmp_path):
     box = tmp_path / "checkpoint"
-    # about 5 s of work in 24 chunks, stopped after 1.5 s
-    make = "Study.integrate(['random', 'jitter'], 'disk', [1024, 4096], sets=20000, instances=6, seed=9)"
+    make = SHORT.format(9)
     script = textwrap.dedent(
         f"""
-        import os, signal, threading, samplab
+        import signal, samplab
         from samplab import Study
         # KeyboardInterrupt on SIGINT even if it was ignored when the tests began (as in
         # test_interrupt.py)
         signal.signal(signal.SIGINT, signal.default_int_handler)
-        threading.Timer(1.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
         try:
             {make}.run(checkpoint={str(box)!r}, progress=False)
         except KeyboardInterrupt:
             print("stopped")
         """
     )
-    run = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
-    assert run.stdout.strip() == "stopped", run.stdout + run.stderr
+    run = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        first_chunk_kept(box)
+        run.send_signal(signal.SIGINT)
+        out, err = run.communicate(timeout=120)
+    finally:
+        run.kill()
+    assert out.strip() == "stopped", out + err
     study = eval(make)
     kept = [f for f in os.listdir(box) if f.endswith(".chunk")]
     assert 0 < len(kept) < len(study.chunks), f"{len(kept)} chunks kept: stop earlier or make the study longer"
