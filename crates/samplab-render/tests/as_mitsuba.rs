@@ -141,6 +141,13 @@ fn mitsubas_own_cbox_rgb_renders_as_mitsuba_renders_it() {
 
 /// Every element scene as Mitsuba renders it, and each with its element left out (its
 /// sibling that lacks it, rendered as main rendered the element before 2026-12-06) failing.
+///
+/// Failure probability: about 2.7%, 0.27% for each of about 10 independent comparisons at
+/// 3 standard errors (the lit grounds' three channels are one grey value; black images and
+/// emitters seen whole have no noise and must agree exactly); fixed seeds, so the verdict is
+/// the same on every run. Least work: 8 renders of 256 spp at 16 x 16 for each of the 17
+/// scenes (4 s), where each element left out misses by far more than 3 standard errors (an
+/// image black where Mitsuba's is lit, or a plane clipped away).
 #[test]
 fn each_scene_element_renders_as_mitsuba_renders_it() {
     let fixture = |name: &str| mitsuba("elements-mitsuba.json", name, None);

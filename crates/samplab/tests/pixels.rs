@@ -191,6 +191,12 @@ fn frames_and_seeds_change_the_values_pixels_are_decorrelated() {
     }
 }
 
+/// Failure probability: 6.3e-5 for each of the 147 (family, dimension, box) comparisons at
+/// 4 standard errors (two-sided normal tail), 0.9% for the whole test were they independent;
+/// the seed is fixed, so the verdict is the same on every run. Least work: the families'
+/// preparation takes 1.9 s of the test's 3.4 (2026-12-06); the pixels cost about 1 s per
+/// 8,192, and 16,384 of them put the bug the test was written for at 10 to 40 standard
+/// errors, where 8,192 would put it at 7 to 28 for 0.5 s less: kept at 16,384.
 #[test]
 fn every_familys_estimates_are_unbiased_in_the_first_and_the_later_dimensions() {
     // the mean over 16,384 pixels of each pixel's 4-sample estimate of a box [0, a) x [0, b)
