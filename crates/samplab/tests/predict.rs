@@ -80,6 +80,14 @@ fn brute_force(f: &dyn Integrand, points: &[f64], g: usize) -> f64 {
     total / (g * g) as f64
 }
 
+/// Failure probability: the brute-force half is exact (to 1e-10), so only the measured half
+/// can fail by chance: 0.27% for each of its 34 comparisons whose variance is not zero, at 3
+/// standard errors, 8.8% for the test were they independent (they are 34 fixed seeds' draws,
+/// so the verdict is the same on every run; the largest |z| at 2026-12-06 was 2.1). Least
+/// work: 4000 shifted realizations put the measured variance's standard error at about 1.1%
+/// of it (sobol.shift at n = 16), so a prediction 5% off is 4.5 standard errors away; the
+/// criterion scales with that error, so fewer realizations would keep the failure
+/// probability and lose that power.
 #[test]
 fn shifted_sets_on_trigonometric_integrands_are_predicted_exactly() {
     let cosine = instance("cosine:u=3,v=5");
@@ -200,6 +208,10 @@ fn closed_forms_agree_with_the_fft_of_sampled_values() {
     }
 }
 
+/// Failure probability: 0.27% for each of the 2 comparisons at 3 standard errors of the
+/// measured spectrum's prediction (256 sets), 0.54% in all; a fixed seed. Least work: the
+/// criterion scales with the measured prediction's standard error, so the sets buy power,
+/// not a lower failure probability; 256 sets take 1.1 s (2026-12-06).
 #[test]
 fn the_closed_form_jitter_spectrum_predicts_what_measured_jitter_spectra_do() {
     // jitter.box at delta = 1/2 cell is jitter by another name, so its spectrum is measured
@@ -218,6 +230,12 @@ fn the_closed_form_jitter_spectrum_predicts_what_measured_jitter_spectra_do() {
     }
 }
 
+/// Failure probability: the exponent is a closed form's (no sampling); the measured
+/// variances over 4000 realizations have a standard error of about sqrt(2 / 4000) = 2.2% of
+/// themselves for errors near Gaussian (a sum over many cells), so 20% is about 9 standard
+/// errors: below 1e-15 per comparison. Least work: issue 40's fixed criterion; 1000
+/// realizations would keep a failure probability of about 1e-5 (4.4 standard errors) for a
+/// quarter of the test's 0.4 s (2026-12-06): not worth a looser test.
 #[test]
 fn jittered_sampling_of_a_disk_converges_as_n_to_the_minus_three_halves() {
     // criterion fixed before the first run (issue 40): the predicted exponent within 0.05
@@ -284,6 +302,11 @@ fn the_small_frequency_exponents_are_those_of_the_closed_forms() {
     assert_eq!((fit.exponent, fit.best, fit.worst), (None, None, -1.5));
 }
 
+/// Failure probability: small but not computed. The measured slope's own standard error,
+/// from variances known to about 2.2% each (4000 shifted realizations, errors near
+/// Gaussian) over a factor 16 in n, is about 0.011, so the criterion of 0.1 is about 9 of
+/// them; the predicted exponent comes from a fit to 8-set spectra, whose error is not in that
+/// figure. Least work: the test takes 0.4 s (2026-12-06).
 #[test]
 fn the_best_case_exponent_is_what_jitter_shows_on_a_band_limited_integrand() {
     // criterion fixed before the run: the measured slope (shifted sets) on the plane wave
@@ -303,6 +326,11 @@ fn the_best_case_exponent_is_what_jitter_shows_on_a_band_limited_integrand() {
     assert!((slope - best).abs() <= 0.1, "measured {slope}, predicted best {best}");
 }
 
+/// Failure probability: 0.27% for each of the 2 comparisons of the radial form with the
+/// torus sum at 3 standard errors (64 Poisson-disk sets); the comparisons with measured
+/// variances (2000 shifted realizations, standard error about 3.2%) allow 20%, about 6
+/// standard errors: about 1e-9 for errors near Gaussian. Fixed seeds. Least work: 3.9 s
+/// (2026-12-06), most of it making Poisson-disk sets; not re-sized yet.
 #[test]
 fn the_radial_form_is_the_torus_sum_for_isotropic_spectra() {
     let f = instance("disk:r=0.3,cx=0.45,cy=0.5");
