@@ -136,6 +136,11 @@ fn pcf_and_rdf_equal_their_definitions() {
     assert!(spatial::pcf(&p, &[0.1], 0.0).is_err());
 }
 
+/// Failure probability: 6.3e-5 for each of the 20 radii at 4 standard errors (two-sided
+/// normal tail; each mean is over 40 independent sets), 1.3e-3 for the test; the grid half
+/// is a closed form to 1e-12. Fixed seeds. Least work: the criterion scales with the
+/// standard error, so the 40 sets of 2000 points (2.6 s with the grid, 2026-12-06) buy
+/// power against a biased estimator, not a lower failure probability.
 #[test]
 fn white_noise_has_pcf_one_and_a_grid_peaks_at_its_spacing() {
     // white noise: the estimator is unbiased for r > 3 sigma (exactly in 2D); the mean of
@@ -775,6 +780,10 @@ fn step_and_single_peak_sets_have_the_spectra_they_target() {
     assert!(nyquist[1] > nyquist[0] + 0.1);
 }
 
+/// Failure probability: not computed in closed form (a correlated chain with the Euler
+/// step's bias): the share's error was 4-12% at 10^5 to 4 x 10^5 steps against a criterion
+/// of 20%, while a temperature halved or doubled moves the share by a factor of 19 or 4.4
+/// (the comment below; 2026-11-30). Fixed seed. Least work: 10^5 steps, the fewest measured.
 #[test]
 fn kdm_langevin_steps_sample_the_gibbs_distribution() {
     use samplab::sampler::blue_noise::gbn;
