@@ -127,14 +127,21 @@ pub fn in_range(x: Estimate, lo: f64, hi: f64) -> Decision {
     } else {
         Verdict::Undecided
     };
-    Decision::new(verdict, format!("[{a:.4}, {b:.4}] (ours +- {Z} SE) inside [{lo}, {hi}]"))
+    Decision::new(verdict, format!("[{a:.4}, {b:.4}] (ours +- {Z} SE) inside [{}, {}]", short(lo), short(hi)))
 }
 
 /// A value with a stated confidence interval (a fitted exponent's 95% interval, say)
 /// against a target: reproduced when the interval holds the target, not reproduced when
 /// it does not.
 pub fn covers((lo, hi): (f64, f64), target: f64) -> Decision {
-    Decision::new(holds(lo <= target && target <= hi), format!("{target} in the interval [{lo:.3}, {hi:.3}]"))
+    Decision::new(holds(lo <= target && target <= hi), format!("{} in the interval [{lo:.3}, {hi:.3}]", short(target)))
+}
+
+/// `x` to 6 significant digits, in the shortest form that reads back as that rounding
+/// (`0.8307` for 0.8306999999999998, `0.693147` for ln 2, `0.046` as it is).
+fn short(x: f64) -> String {
+    let rounded: f64 = format!("{x:.5e}").parse().expect("a float's own exponent form");
+    format!("{rounded}")
 }
 
 /// The claim "a < b" for two values with confidence intervals: reproduced when a's whole
@@ -306,11 +313,15 @@ mod tests {
         assert_eq!(in_range(est(2.0, 0.05), 1.5, 2.5).verdict, Verdict::Reproduced);
         assert_eq!(in_range(est(1.0, 0.05), 1.5, 2.5).verdict, Verdict::NotReproduced);
         assert_eq!(in_range(est(1.5, 0.05), 1.5, 2.5).verdict, Verdict::Undecided);
+        let ln2 = std::f64::consts::LN_2;
+        assert!(in_range(est(0.0, 0.05), -ln2, ln2).criterion.ends_with("inside [-0.693147, 0.693147]"));
     }
 
     #[test]
     fn intervals() {
         assert_eq!(covers((-1.1, -0.9), -1.0).verdict, Verdict::Reproduced);
+        // the target printed to its precision, not its binary rounding
+        assert!(covers((-0.134, 0.046), 0.17 - 1.0007).criterion.starts_with("-0.8307 in"));
         assert_eq!(covers((-1.6, -1.3), -1.0).verdict, Verdict::NotReproduced);
         assert_eq!(interval_below((-2.0, -1.8), (-1.5, -1.3)).verdict, Verdict::Reproduced);
         assert_eq!(interval_below((-1.5, -1.3), (-2.0, -1.8)).verdict, Verdict::NotReproduced);

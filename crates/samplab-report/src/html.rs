@@ -193,9 +193,10 @@ fn full_scale_html(claims: &[(String, Claim)]) -> String {
 fn lint_html(lint: &[String]) -> String {
     if lint.is_empty() {
         return format!(
-            "<p>Every figure passes the lint (<code>samplab_report::lint</code>): no two labels overlapping, no legend over data, no two series drawn alike, legend swatches in their series' dash style, no axis over {} decades, every render shown at {} px or wider. <a href=\"lint.json\">lint.json</a></p>\n",
+            "<p>Every figure passes the lint (<code>samplab_report::lint</code>): no two labels overlapping, no legend over data, no two series drawn alike, legend swatches in their series' dash style, no axis over {} decades, every render shown at {} px or wider; no claim prints a number with more than {} significant digits. <a href=\"lint.json\">lint.json</a></p>\n",
             crate::plot::MAX_DECADES,
-            crate::lint::MIN_PICTURE_WIDTH
+            crate::lint::MIN_PICTURE_WIDTH,
+            crate::lint::MAX_DIGITS
         );
     }
     let mut h = format!("<p class=\"not-reproduced\">{} findings of the figure lint:</p>\n<ul>\n", lint.len());
@@ -343,6 +344,12 @@ pub(crate) fn write_report(
         write(&dir.join(format!("{}.html", paper.key)), page(paper.title, &nav, &body).as_bytes())?;
         index_rows.push_str(&index_row(paper, done.len(), &claims, status_counts));
         all_claims.extend(claims.into_iter().map(|c| (paper.key.to_string(), c.clone())));
+    }
+    for (paper, c) in &all_claims {
+        let texts = [&c.statement, &c.published, &c.ours, &c.theory, &c.decision.criterion];
+        for text in texts.into_iter().chain(c.explanation.as_ref()) {
+            lint.extend(crate::lint::printed_numbers(text).into_iter().map(|f| format!("{paper}/{}: {f}", c.id)));
+        }
     }
     let refs: Vec<&Claim> = all_claims.iter().map(|(_, c)| c).collect();
     let scale = if options.scale == Scale::Fast { "fast (default)" } else { "full (the papers' own scales)" };

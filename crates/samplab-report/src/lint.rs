@@ -1,4 +1,5 @@
-//! The figure lint, run on every figure the report writes: what a reader would see wrong.
+//! The figure lint, run on every figure the report writes: what a reader would see wrong;
+//! and the claims' texts, for numbers printed past their precision ([`printed_numbers`]).
 //! The chart checks what its specification shows ([`crate::plot::Drawable::lint`]: two
 //! series drawn alike, an axis spanning more than [`crate::plot::MAX_DECADES`] decades);
 //! this module reads the SVG as drawn: no two text labels overlapping or touching, no
@@ -8,6 +9,45 @@
 //! The SVG is plotters' own output: one element per line, text content on the line after
 //! its `<text>` tag, the legend a translucent (`opacity="0.85"`) white rectangle drawn
 //! after the data.
+
+/// The most significant digits a decimal number may be printed with: a float printed with
+/// more (`0.8306999999999998`, `0.6931471805599453`) shows its binary rounding, not a
+/// measured or published precision.
+pub const MAX_DIGITS: usize = 12;
+
+/// Each decimal number in `text` (one with a point or an exponent: integers are exact)
+/// printed with more than [`MAX_DIGITS`] significant digits, as a finding.
+pub fn printed_numbers(text: &str) -> Vec<String> {
+    let bytes = text.as_bytes();
+    let mut found = Vec::new();
+    let mut i = 0;
+    while i < bytes.len() {
+        // a number starts at a digit that does not continue a word (`x86`, `d2`)
+        if !bytes[i].is_ascii_digit() || (i > 0 && (bytes[i - 1].is_ascii_alphanumeric() || bytes[i - 1] == b'_')) {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i < bytes.len() && (bytes[i].is_ascii_digit() || bytes[i] == b'.') {
+            i += 1;
+        }
+        let mantissa = &text[start..i];
+        let exponent = i + 1 < bytes.len() && matches!(bytes[i], b'e' | b'E') && {
+            let j = i + 1 + usize::from(matches!(bytes[i + 1], b'-' | b'+'));
+            j < bytes.len() && bytes[j].is_ascii_digit()
+        };
+        if !(mantissa.contains('.') || exponent) {
+            continue;
+        }
+        let digits = mantissa.trim_start_matches(['0', '.']).chars().filter(char::is_ascii_digit).count();
+        if digits > MAX_DIGITS {
+            found.push(format!(
+                "'{mantissa}' printed with {digits} significant digits (over {MAX_DIGITS}): a float past its precision"
+            ));
+        }
+    }
+    found
+}
 
 /// The narrowest a render is displayed on the page, in CSS pixels: smaller ones are
 /// enlarged by an integer factor, nearest neighbour, so that banding and noise stay visible.
@@ -211,6 +251,18 @@ mod tests {
         let dashed_swatch = "<polyline stroke=\"#1F77B4\" stroke-width=\"2\" points=\"610,100 617,100 \"/>\n\
                              <polyline stroke=\"#1F77B4\" stroke-width=\"2\" points=\"621,100 628,100 \"/>\n";
         assert!(svg(&format!("<svg>\n{dashes}{}{dashed_swatch}</svg>", legend(600))).is_empty());
+    }
+
+    #[test]
+    fn numbers_printed_past_their_precision_are_found() {
+        let found = printed_numbers("-0.8306999999999998 in [-0.134, 0.046]; ln 2 = 0.6931471805599453");
+        assert_eq!(found.len(), 2, "{found:?}");
+        assert!(found[0].starts_with("'0.8306999999999998' printed with 16 significant digits"), "{found:?}");
+        // what is fine: short decimals, exponents, long integers (seeds), digits in words
+        for fine in ["0.046 and 1.2e-12", "seed 18446744073709551615", "x86_64 d12345678901234.5", "0.000000123456"] {
+            assert!(printed_numbers(fine).is_empty(), "{fine}: {:?}", printed_numbers(fine));
+        }
+        assert_eq!(printed_numbers("1.23456789012345e-7").len(), 1);
     }
 
     #[test]
