@@ -102,6 +102,14 @@ fn agrees(r: &Reference, mean: &[f64], se: &[f64]) -> (bool, String) {
     (ok, text)
 }
 
+/// Failure probability, found by this audit to be far above the 0.27% per value the
+/// criterion's comment expects: each z's standard error comes from 16 renders (15 degrees
+/// of freedom, the samplab side's error dominating), so z follows Student's t, 0.9% of values
+/// beyond 3 and 1.6e-4 beyond 5; over 1,296 values the chance of more than 12 beyond 3 is
+/// 0.38 and of one beyond 5 is 0.19 (7e-5 and 7e-4 were z normal). The criterion was fixed
+/// before the first comparison and is not changed here; the fixed seeds keep the verdict
+/// stable (9 beyond 3, worst 4.3). A criterion on t's quantiles is the mend, for the next
+/// change of this test. Least work: 16 renders x 256 spp at 24 x 18.
 #[test]
 fn path_mode_equals_mitsuba_3s_path_tracer_within_the_noise() {
     let r = reference();
