@@ -105,12 +105,14 @@ def test_render_study_local_dask_and_cli_agree(client, cli, tmp_path):
         assert out["errors"] == errors
 
 
-def first_chunk_kept(box, timeout=120):
-    """Wait until the checkpoint folder ``box`` holds a finished chunk: the study is under
-    way, with most of its chunks still to compute."""
-    give_up = time.monotonic() + timeout
-    while not (box.is_dir() and any(f.suffix == ".chunk" for f in box.iterdir())):
-        assert time.monotonic() < give_up, "no chunk was kept"
+def first_chunk_kept(box, running):
+    """Wait until the checkpoint folder ``box`` holds a finished chunk, while ``running()``
+    says the study goes on; the chunks kept by then (most are still to compute)."""
+    while True:
+        kept = [f for f in box.iterdir() if f.suffix == ".chunk"] if box.is_dir() else []
+        if kept:
+            return len(kept)
+        assert running(), "the study ended before a chunk was kept"
         time.sleep(0.005)
 
 
@@ -126,19 +128,23 @@ def test_a_killed_worker_does_not_change_the_result(client, tmp_path):
     expected = study.run(progress=False)
     pids = client.run(os.getpid)
     box = tmp_path / "checkpoint"
+    finished = threading.Event()
     killed = []
 
     def kill_one():
-        first_chunk_kept(box)
+        kept = first_chunk_kept(box, lambda: not finished.is_set())
         os.kill(next(iter(pids.values())), signal.SIGKILL)
-        killed.append(time.monotonic())
+        killed.append(kept)
 
     killer = threading.Thread(target=kill_one, daemon=True)
     killer.start()
-    result = study.run(client, checkpoint=str(box), progress=False)
-    end = time.monotonic()
-    killer.join(timeout=60)
-    assert killed and killed[0] < end, "the study ended before the kill"
+    try:
+        result = study.run(client, checkpoint=str(box), progress=False)
+    finally:
+        finished.set()
+    killer.join()
+    # the kill landed with chunks still to compute: work done, not seconds
+    assert killed and killed[0] < len(study.chunks), f"killed after {killed} of {len(study.chunks)} chunks"
     assert result.to_json() == expected.to_json()
     client.wait_for_workers(2, timeout=60)
 
@@ -161,7 +167,7 @@ def test_a_stopped_study_resumes_computing_only_the_missing_chunks(tmp_path):
     )
     run = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
-        first_chunk_kept(box)
+        first_chunk_kept(box, lambda: run.poll() is None)
         run.send_signal(signal.SIGINT)
         out, err = run.communicate(timeout=120)
     finally:
