@@ -118,6 +118,9 @@ def test_integration_study_equals_the_cli(cli):
 
 
 def test_integrands_evaluate_with_exact_integrals():
+    """Failure probability negligible: the worst error over the families and seeds 0-19 was
+    0.07 of the tolerance (2026-12-06). Fixed seed. Least work: 2^14 points, milliseconds a
+    family (fewer not measured)."""
     for fam in samplab.integrands():
         dims = fam["details"][0].split(": ")[1]
         # a d-dimensional family at its default d
@@ -131,6 +134,10 @@ def test_integrands_evaluate_with_exact_integrals():
 
 
 def test_blue_noise_samplers_and_spacing_metrics_from_python():
+    """Failure probability below 1e-20: white noise's PCF at r = 2 has a standard deviation
+    of 0.015 over seeds 0-199 (2026-12-06), a tenth of the criterion; its relative radius
+    and Nyquist share are a tenth of theirs too. Fixed seeds. Least work: 2048 points, a few
+    milliseconds."""
     # the registries reach Python as they are: blue-noise sets are far better spread than
     # white noise by the relative radius, and a white-noise PCF at 2 d_max is near 1
     noise = samplab.generate("random", n=2048, seed=3)
@@ -165,6 +172,10 @@ def test_predict_equals_the_cli_and_white_noise_is_var_over_n(cli):
 
 
 def test_predict_takes_callables_and_arrays_with_their_errors():
+    """Failure probability about 7e-5, from the prediction within 4 standard errors of the
+    measured variance (400 sets: Student's t with 399 degrees of freedom); the rest is exact.
+    Fixed seed. Least work: 4 standard errors at any count; 400 sets let a bias of a fifth of
+    the variance's spread show."""
     # a step in x: Var(f) = 1/4, so white noise predicts 1 / (4 n); the callable's spectrum is
     # an FFT of sampled values (within its stated error), the array's a closed form (exact)
     def step(x):

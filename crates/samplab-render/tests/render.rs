@@ -1,5 +1,8 @@
 //! The renderer against closed forms (radiometry) and the papers' claims on the built-in
 //! scenes.
+//!
+//! The tests that sample give their failure probability and least work in their doc
+//! comments; the others check what holds for every draw (bytes, refusals, stops).
 
 use std::f64::consts::PI;
 
@@ -42,6 +45,10 @@ fn pixel(scene: &Scene, mode: Mode, n: usize) -> f64 {
     f64::from(render(scene, &o, &Progress::SILENT).unwrap().image.rgb[0])
 }
 
+/// Failure probability negligible: over seeds 0-39 the direct estimate's relative error
+/// (2^14 Owen-scrambled Sobol' samples) had an RMS of 2.9e-6, 1/68 of the criterion
+/// (2026-12-06); visibility mode's quadrature does not depend on the seed (1.6e-3 against
+/// 2e-3, the same at every seed). Least work: 2^14 samples, a millisecond.
 #[test]
 fn a_disk_light_gives_the_closed_form_irradiance() {
     // irradiance under a parallel disk of radius R at height h: pi L R^2 / (h^2 + R^2);
@@ -101,6 +108,9 @@ fn mirrors_reflect_their_albedo_of_what_they_face() {
     }
 }
 
+/// Failure probability negligible: over seeds 0-39 the relative error of 2^14
+/// Owen-scrambled Sobol' samples had an RMS of 7.4e-7, 1/270 of the criterion
+/// (2026-12-06). Least work: 2^14 samples, a millisecond.
 #[test]
 fn a_rectangle_light_gives_the_analytic_form_factor() {
     // differential area below the corner of a parallel a x b rectangle at height h:
@@ -139,6 +149,11 @@ fn reference(scene: &Scene, w: usize, h: usize) -> Image {
     render(scene, &Options::new("sobol.owen", 2048, w, h).unwrap(), &Progress::SILENT).unwrap().image
 }
 
+/// Failure probability negligible: over ten disjoint triples of seeds the ratio of uniform
+/// jitter's MSE to stratified's was 2.54-2.86 on the square light, 0.52-0.60 on the disk and
+/// 0.47-0.55 on the Gaussian (2026-12-06), each more than ten of its spreads from 1. Least
+/// work: 3 renders of 80 x 60 pixels per sampler and light; the margin would allow one,
+/// and the three cost a fraction of a second.
 #[test]
 fn uniform_jitter_beats_stratified_on_round_and_gaussian_lights_but_not_square_ones() {
     // Ramamoorthi et al. 2012, Fig. 13 (two spheres above a plane); disks by rejection from
@@ -156,6 +171,10 @@ fn uniform_jitter_beats_stratified_on_round_and_gaussian_lights_but_not_square_o
     }
 }
 
+/// Failure probability about 3e-4: over ten disjoint triples of seeds the ratio was
+/// 1.59-1.77 (mean 1.69, standard deviation 0.055; 2026-12-06), so the interval's lower end
+/// is 3.5 standard deviations away (normal tail), its upper end 16. Least work: 3 renders
+/// of 80 x 60 pixels per sampler; fewer would widen the ratio's spread past that margin.
 #[test]
 fn stratified_variance_is_about_twice_uniform_jitter_on_the_grids_with_a_linear_light() {
     // Ramamoorthi et al. 2012, section 4.2.3: 83% more variance for stratified, theory 2x
@@ -203,6 +222,9 @@ fn counts_a_strategy_cannot_make_are_refused_before_any_work() {
     assert!(render(&scene, &o, &Progress::SILENT).is_err());
 }
 
+/// Failure probability negligible: over seeds 0-39 the error of 4096 Owen-scrambled Sobol'
+/// directions had an RMS at most 4.1e-6 (range 4), 1/490 of the criterion (2026-12-06).
+/// Least work: 4096 directions, a millisecond.
 #[test]
 fn obscurance_under_a_parallel_plane_has_its_closed_form() {
     // a white ground, and (optionally) a plane at height h: along a direction at cos = mu the
@@ -278,6 +300,10 @@ fn a_raised_stop_flag_stops_the_render_at_its_next_pixel() {
     assert!((3..64).contains(&finished), "{finished} rows finished");
 }
 
+/// Failure probability negligible: 16 times the samples divide Monte Carlo's RMSE by 4 and
+/// the criterion asks for 2; the RMSE of 768 pixels has a relative spread of a few percent,
+/// so even `independent` is tens of spreads inside it. Least work: 32 x 24 pixels at 4 and
+/// 64 samples per pixel.
 #[test]
 fn a_pixel_sampler_draws_every_dimension_and_converges_to_the_reference() {
     use samplab::pixel::{Film, prepare};

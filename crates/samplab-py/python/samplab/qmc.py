@@ -200,8 +200,9 @@ def qmc_quad(
 ) -> QMCQuadResult:
     """The integral of ``func`` over the box [a, b], as ``scipy.integrate.qmc_quad`` computes
     it: ``func(x)`` takes x of shape (d, n) and returns n values; ``n_estimates``
-    randomizations of ``n_points`` points each of ``qrng`` (a randomized samplab spec, an
-    ``Engine``, or None for ``"sobol.owen"``); the result's ``integral`` is their mean and
+    randomizations of ``n_points`` points each of ``qrng`` (a randomized samplab spec or None
+    for ``"sobol.owen"``, both at samplab's default seed, or an ``Engine``, at its seed, of the
+    box's dimensions); the result's ``integral`` is their mean and
     ``standard_error`` its standard error. With ``abs_tol`` or ``rel_tol`` (on the box's
     integral), ``n_points`` is only the first n: it is doubled, the earlier points kept, until
     Student's t bound at 0.99 over the randomizations meets the tolerance or ``max_n`` is
@@ -214,6 +215,11 @@ def qmc_quad(
     spec = qrng.spec if isinstance(qrng, Engine) else ("sobol.owen" if qrng is None else qrng)
     if not isinstance(spec, str):
         raise Error(f"qrng: a samplab spec or samplab.qmc.Engine, got {qrng!r}")
+    # an engine brings its seed (a spec or None: samplab's default seed) and must have the
+    # box's dimensions
+    seed = qrng.samplab_seed if isinstance(qrng, Engine) else None
+    if isinstance(qrng, Engine) and qrng.d != len(lo):
+        raise Error(f"qrng: an engine of d={qrng.d} for a box of {len(lo)} dimensions")
     width = hi - lo
     volume = float(np.prod(width))
 
@@ -230,6 +236,7 @@ def qmc_quad(
         replications=n_estimates,
         min_n=n_points,
         max_n=(max_n if max_n is not None else 1 << 20) if tolerance else n_points,
+        seed=seed,
     )
     from scipy.stats import t as student_t
 

@@ -20,7 +20,7 @@ pub fn paper() -> Paper {
             id: "variance",
             title: "Variance from the spectra, and measured",
             source: "Pilleboue et al. 2015 (variance of a shifted estimator from the spectra); the integrands of Subr & Kautz 2013 (case I, the quad) and Sbert et al. 2006 (the disk, the half-plane)",
-            parameters: "integrands quad, disk, halfplane and the plane wave cosine:u=3,v=5 (instance 0 of each family for the experiment's seed); counts 16, 64, 256, 1024; 128 frequencies per axis; each sampler's spectrum from the first 16 of its sets, the variance measured over 256 sets, each moved by a uniform toroidal shift, and again unshifted; its small-frequency exponent fitted to its radial spectra at the four counts over |k| / sqrt n <= 0.25; 15 samplers (fast) or every registered 2D sampler (full)",
+            parameters: "integrands quad, disk, halfplane and the plane wave cosine:u=3,v=5 (instance 0 of each family for the experiment's seed); counts 16, 64, 256, 1024; 128 frequencies per axis; the spectra of random and jitter in closed form, each other sampler's from the first 16 of its sets, the variance measured over 256 sets, each moved by a uniform toroidal shift, and again unshifted; its small-frequency exponent fitted to its radial spectra at the four counts over |k| / sqrt n <= 0.25; 15 samplers (fast) or every registered 2D sampler (full)",
             run: variance,
         }],
     }
@@ -102,7 +102,10 @@ fn variance(ctx: &Ctx) -> Result<Output, Error> {
             let seed = ctx.seed.derive(k as u64).derive(n as u64);
             let stop = Progress::until(ctx.stop);
             let sets = s.plan(n, 2)?.generate_sets(seed, MEASURED_SETS, &stop)?;
-            let spectrum = predict::spectrum_of_sets(&s.spec(), &sets[..SPECTRUM_SETS], RES, &stop)?;
+            let spectrum = match predict::closed_form(&s.spec(), n, 2, RES) {
+                Some(closed) => closed,
+                None => predict::spectrum_of_sets(&s.spec(), &sets[..SPECTRUM_SETS], RES, &stop)?,
+            };
             for (i, (_, f)) in integrands.iter().enumerate() {
                 rows.push(Row {
                     integrand: i,

@@ -251,31 +251,7 @@ fn spectrum_of_plan(
     check_res(res)?;
     check_sets(sets)?;
     let (n, dims) = (plan.n(), plan.dims());
-    let closed = |mean: Vec<f64>, source: &str| SamplerSpectrum {
-        sampler: spec.to_string(),
-        n,
-        dims,
-        res,
-        mean,
-        batches: Vec::new(),
-        source: source.into(),
-    };
-    let formula = match spec {
-        "random" => Some(closed(vec![1.0; res.pow(dims as u32)], "closed form: 1 (white noise)")),
-        "jitter" => {
-            let m = (n as f64).powf(1.0 / dims as f64).round();
-            let sinc2 = |k: i64| {
-                let t = std::f64::consts::PI * k as f64 / m;
-                if k == 0 { 1.0 } else { (t.sin() / t).powi(2) }
-            };
-            let p = frequencies(res, dims)
-                .map(|k| if k == [0, 0] { 0.0 } else { 1.0 - sinc2(k[0]) * if dims == 2 { sinc2(k[1]) } else { 1.0 } })
-                .collect();
-            Some(closed(p, "closed form: 1 - prod sinc^2(pi k_i / m), m^d strata"))
-        }
-        _ => None,
-    };
-    if let Some(s) = formula {
+    if let Some(s) = closed_form(spec, n, dims, res) {
         progress.advance(sets as u64)?;
         return Ok(s);
     }
@@ -290,6 +266,37 @@ fn spectrum_of_plan(
         c.store(&key, &measured);
     }
     Ok(measured)
+}
+
+/// The spectrum of `spec` at `n` points in `dims` dimensions on a window of `res`
+/// frequencies per axis, where a closed form is known: `random` (1, white noise) and
+/// `jitter` (1 - prod sinc^2(pi k_i / m) for m^d strata, one uniform point in each); None
+/// for any other sampler.
+pub fn closed_form(spec: &str, n: usize, dims: usize, res: usize) -> Option<SamplerSpectrum> {
+    let closed = |mean: Vec<f64>, source: &str| SamplerSpectrum {
+        sampler: spec.to_string(),
+        n,
+        dims,
+        res,
+        mean,
+        batches: Vec::new(),
+        source: source.into(),
+    };
+    match spec {
+        "random" => Some(closed(vec![1.0; res.pow(dims as u32)], "closed form: 1 (white noise)")),
+        "jitter" => {
+            let m = (n as f64).powf(1.0 / dims as f64).round();
+            let sinc2 = |k: i64| {
+                let t = std::f64::consts::PI * k as f64 / m;
+                if k == 0 { 1.0 } else { (t.sin() / t).powi(2) }
+            };
+            let p = frequencies(res, dims)
+                .map(|k| if k == [0, 0] { 0.0 } else { 1.0 - sinc2(k[0]) * if dims == 2 { sinc2(k[1]) } else { 1.0 } })
+                .collect();
+            Some(closed(p, "closed form: 1 - prod sinc^2(pi k_i / m), m^d strata"))
+        }
+        _ => None,
+    }
 }
 
 /// The measured spectrum of the sets `sets` of the sampler `spec` (all of one size and

@@ -541,6 +541,16 @@ mod tests {
         assert!(err.contains("not realizable"), "{err}");
     }
 
+    /// The gradient against central differences at every coordinate whose two moves stay on
+    /// one smooth piece of the energy. The energy bins each pair's distance linearly on
+    /// nodes sigma / 32 apart, so it is smooth between nodes and its slope jumps where a
+    /// distance crosses one (or the cut); a central difference straddling such a kink
+    /// averages two slopes, and at h = 1e-6 about 9% of the coordinates straddle one (1133
+    /// of 12800 over seeds 0-99, 2026-12-06: checking 4 fixed coordinates, as this test
+    /// did, failed for about a third of the seeds). Failure probability: none for a correct
+    /// gradient (an identity on each piece: over seeds 0-99 no coordinate on one piece missed
+    /// it; the points only make the case generic). Least work: one set of 64 points, all 128
+    /// coordinates, at least half of them on one piece.
     #[test]
     fn the_gradient_is_the_energy_s_derivative() {
         let n = 64;
@@ -551,16 +561,36 @@ mod tests {
         let measured = m.measure(&points);
         let gradient = m.gradient(&measured, &m.table(&measured.estimate));
         let scale = gradient.iter().fold(0.0f64, |a, g| a.max(g.abs()));
-        for c in [0, 7, 40, 101] {
-            let h = 1e-6;
+        // the smooth piece a set lies on: every pair's node interval, or none past the cut
+        let piece = |p: &[f64]| -> Vec<Option<usize>> {
+            (0..n)
+                .flat_map(|a| (a + 1..n).map(move |b| (a, b)))
+                .map(|(a, b)| {
+                    let d = torus_gap(p[2 * a], p[2 * b]).hypot(torus_gap(p[2 * a + 1], p[2 * b + 1]));
+                    (d < m.cut()).then(|| (d / m.node()) as usize)
+                })
+                .collect()
+        };
+        let h = 1e-6;
+        let mut checked = 0;
+        for c in 0..2 * n {
             let (mut up, mut down) = (points.clone(), points.clone());
             up[c] += h;
             down[c] -= h;
+            if piece(&up) != piece(&down) {
+                continue;
+            }
+            checked += 1;
             let numeric = (energy(&up) - energy(&down)) / (2.0 * h);
             assert!((numeric - gradient[c]).abs() < 1e-6 * scale, "coordinate {c}: {numeric} vs {}", gradient[c]);
         }
+        // (98-128 of 128 over seeds 0-99)
+        assert!(checked >= n, "only {checked} of {} coordinates on one piece", 2 * n);
     }
 
+    /// Failure probability not computed in closed form: over seeds 0-39 the descent ended at
+    /// 0.009-0.026 of its starting mismatch (2026-12-06) against a criterion of 0.05, twice
+    /// the worst. Fixed seed. Least work: 256 points and 100 iterations, a fraction of a second.
     #[test]
     fn the_descent_lowers_the_mismatch() {
         let n = 256;
