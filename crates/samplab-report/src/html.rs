@@ -348,7 +348,8 @@ pub(crate) fn write_report(
     for (paper, c) in &all_claims {
         let texts = [&c.statement, &c.published, &c.ours, &c.theory, &c.decision.criterion];
         for text in texts.into_iter().chain(c.explanation.as_ref()) {
-            lint.extend(crate::lint::printed_numbers(text).into_iter().map(|f| format!("{paper}/{}: {f}", c.id)));
+            let findings = crate::lint::printed_numbers(text).into_iter().chain(crate::lint::whitespace_runs(text));
+            lint.extend(findings.map(|f| format!("{paper}/{}: {f}", c.id)));
         }
     }
     let refs: Vec<&Claim> = all_claims.iter().map(|(_, c)| c).collect();

@@ -1,5 +1,6 @@
 //! The figure lint, run on every figure the report writes: what a reader would see wrong;
-//! and the claims' texts, for numbers printed past their precision ([`printed_numbers`]).
+//! and the claims' texts, for numbers printed past their precision ([`printed_numbers`]) and
+//! runs of white space ([`whitespace_runs`]).
 //! The chart checks what its specification shows ([`crate::plot::Drawable::lint`]: two
 //! series drawn alike, an axis spanning more than [`crate::plot::MAX_DECADES`] decades);
 //! this module reads the SVG as drawn: no two text labels overlapping or touching, no
@@ -215,6 +216,26 @@ pub fn svg(svg: &str) -> Vec<String> {
     found
 }
 
+/// Each run of white space in `text` other than one space (two or more spaces, a tab, a
+/// line break: a claim's text is one paragraph, and a run is what a string literal broken
+/// across source lines leaves), as a finding naming the words before it.
+pub fn whitespace_runs(text: &str) -> Vec<String> {
+    let mut found = Vec::new();
+    let mut at = 0;
+    while let Some(start) = text[at..].find(char::is_whitespace).map(|i| at + i) {
+        let end = text[start..].find(|c: char| !c.is_whitespace()).map_or(text.len(), |i| start + i);
+        if &text[start..end] != " " {
+            // the last 24 characters of the words before, runs shown as one space
+            let words = text[..start].split_whitespace().collect::<Vec<_>>().join(" ");
+            let before: String = words.chars().skip(words.chars().count().saturating_sub(24)).collect();
+            found
+                .push(format!("a run of {} white-space characters after '{before}'", text[start..end].chars().count()));
+        }
+        at = end;
+    }
+    found
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -263,6 +284,16 @@ mod tests {
             assert!(printed_numbers(fine).is_empty(), "{fine}: {:?}", printed_numbers(fine));
         }
         assert_eq!(printed_numbers("1.23456789012345e-7").len(), 1);
+    }
+
+    #[test]
+    fn white_space_runs_are_found() {
+        let found = whitespace_runs("lattices,                       Kronecker and\n Sobol'");
+        assert_eq!(found.len(), 2, "{found:?}");
+        assert_eq!(found[0], "a run of 23 white-space characters after 'lattices,'");
+        assert_eq!(found[1], "a run of 2 white-space characters after 'lattices, Kronecker and'");
+        assert!(whitespace_runs("one space between words, then an end ").is_empty());
+        assert_eq!(whitespace_runs("a\ttab").len(), 1);
     }
 
     #[test]
