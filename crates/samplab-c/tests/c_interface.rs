@@ -165,6 +165,10 @@ fn the_version_and_the_families_are_the_librarys() {
 
 /// Past the film's dimensions: values in [0, 1) for every family, uniform (their mean and
 /// variance within 5 standard errors of 1/2 and 1/12), and not the `independent` family's.
+///
+/// Failure probability about 2e-5: two checks at 5 standard errors (normal tails, 4096
+/// values each: 5.7e-7) for each of 17 families. Fixed seed. Least work: 16 x 16 pixels x
+/// 16 samples, milliseconds; fewer values would leave a biased padding unseen.
 #[test]
 fn values_past_the_films_dimensions_are_uniform_padding_never_nan() {
     let film = Film { width: 16, height: 16, spp: 16, dims: 4 };

@@ -860,13 +860,19 @@ fn annulus_offset(rng: &mut Rng, r: f64) -> (f64, f64) {
     }
 }
 
-/// Grow a Bridson set with radius r over the unit square (or torus).
-fn bridson(r: f64, torus: bool, k: u32, rng: &mut Rng, grid: &mut DiskGrid) {
+/// Grow a Bridson set with radius r over the unit square (or torus), stopping when
+/// `progress` says so (checked every 1024 steps, under a millisecond of work).
+fn bridson(r: f64, torus: bool, k: u32, rng: &mut Rng, grid: &mut DiskGrid, progress: &Progress) -> Result<()> {
     let mut active: Vec<u32> = Vec::new();
     let first = [uniform(rng), uniform(rng)];
     grid.insert(&first);
     active.push(0);
+    let mut steps = 0u32;
     while !active.is_empty() {
+        steps = steps.wrapping_add(1);
+        if steps.is_multiple_of(1024) {
+            progress.check()?;
+        }
         let a = below(rng, active.len() as u64) as usize;
         let i = active[a] as usize;
         let (px, py) = (grid.points()[2 * i], grid.points()[2 * i + 1]);
@@ -907,6 +913,7 @@ fn bridson(r: f64, torus: bool, k: u32, rng: &mut Rng, grid: &mut DiskGrid) {
             active.swap_remove(a);
         }
     }
+    Ok(())
 }
 
 /// Bridson's fast Poisson-disk sampling (2D), O(n).
@@ -957,12 +964,12 @@ impl Bridson {
         let mut r = self.radius.unwrap_or(0.72 * packing_distance(n, dims)?);
         let mut rng = seed.rng();
         let mut grid = DiskGrid::new(r, self.torus, n + n / 4);
-        bridson(r, self.torus, self.k, &mut rng, &mut grid);
+        bridson(r, self.torus, self.k, &mut rng, &mut grid, &Progress::SILENT)?;
         // an automatic radius shrinks until the fill holds n points (small n fluctuate)
         while grid.len() < n && self.radius.is_none() {
             r *= 0.98 * (grid.len() as f64 / n as f64).sqrt();
             grid = DiskGrid::new(r, self.torus, n + n / 4);
-            bridson(r, self.torus, self.k, &mut rng, &mut grid);
+            bridson(r, self.torus, self.k, &mut rng, &mut grid, &Progress::SILENT)?;
         }
         if grid.len() < n {
             return Err(Error::Infeasible {
@@ -992,11 +999,12 @@ impl Maximal {
     }
 }
 
-/// Bridson followed by gap filling: a maximal set for radius r.
-fn maximal_set(r: f64, torus: bool, seed: Seed, capacity: usize) -> DiskGrid {
+/// Bridson followed by gap filling: a maximal set for radius r, stopping when `progress`
+/// says so (in Bridson's growth and between the gap filling's levels).
+fn maximal_set(r: f64, torus: bool, seed: Seed, capacity: usize, progress: &Progress) -> Result<DiskGrid> {
     let mut rng = seed.rng();
     let mut grid = DiskGrid::new(r, torus, capacity);
-    bridson(r, torus, 30, &mut rng, &mut grid);
+    bridson(r, torus, 30, &mut rng, &mut grid, progress)?;
     // quadtree of cells that no single disk covers
     let base = (2f64.sqrt() / r).ceil() as usize;
     let mut side = 1.0 / base as f64;
@@ -1007,6 +1015,7 @@ fn maximal_set(r: f64, torus: bool, seed: Seed, capacity: usize) -> DiskGrid {
         cells.into_par_iter().filter(|&(x, y)| !grid.covers_square(x, y, side)).collect()
     };
     for _depth in 0..24 {
+        progress.check()?;
         cells = uncovered(cells, &grid, side);
         if cells.is_empty() {
             break;
@@ -1032,7 +1041,7 @@ fn maximal_set(r: f64, torus: bool, seed: Seed, capacity: usize) -> DiskGrid {
             .filter(|&(x, y)| x < 1.0 && y < 1.0)
             .collect();
     }
-    grid
+    Ok(grid)
 }
 
 impl Construction for Maximal {
@@ -1054,10 +1063,8 @@ impl Maximal {
             let s = seed.derive(t);
             let (mut lo, mut hi) = (0.5 * rmax, rmax);
             for _ in 0..64 {
-                // a stop between maximal sets (each 34 ms at 10^4 points)
-                progress.check()?;
                 let r = 0.5 * (lo + hi);
-                let grid = maximal_set(r, self.torus, s, n + n / 4);
+                let grid = maximal_set(r, self.torus, s, n + n / 4, progress)?;
                 match grid.len().cmp(&n) {
                     std::cmp::Ordering::Equal => {
                         copy_out(grid.points(), out);
@@ -1218,7 +1225,7 @@ mod tests {
         // square is farther than r from the set (a dart could land there), and it is quick
         for torus in [false, true] {
             let r = 0.09;
-            let grid = maximal_set(r, torus, Seed(5), 200);
+            let grid = maximal_set(r, torus, Seed(5), 200, &Progress::SILENT).unwrap();
             let points = grid.points();
             let step = 1.0 / 400.0;
             for i in 0..400 {
