@@ -118,9 +118,14 @@ fn inputs(line: &str) -> Vec<String> {
 }
 
 /// How a reader's own file is made, in the folder `dir`.
-fn make_input(name: &str, dir: &Path) -> Result<(), String> {
+fn make_input(name: &str, dir: &Path, cache: &Path) -> Result<(), String> {
     let run = |args: &[&str]| {
-        let out = Command::new(env!("CARGO_BIN_EXE_samplab")).args(args).current_dir(dir).output().unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_samplab"))
+            .args(args)
+            .current_dir(dir)
+            .env("SAMPLAB_CACHE", cache)
+            .output()
+            .unwrap();
         out.status
             .success()
             .then_some(())
@@ -161,12 +166,25 @@ fn make_input(name: &str, dir: &Path) -> Result<(), String> {
     }
 }
 
+/// The examples' cache of measured spectra (`SAMPLAB_CACHE`), shared by this run's tests
+/// (the pages and the commands' help repeat lines) and emptied when the run starts, in
+/// cargo's scratch folder for integration tests: the user's cache is neither read, so the
+/// run's cost does not depend on what earlier runs left there, nor filled (it had grown to
+/// 2.2 GB, one set of spectra per source digest).
+static CACHE: std::sync::LazyLock<PathBuf> = std::sync::LazyLock::new(|| {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("examples-cache");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+});
+
 /// Run each source's examples (a page's or a command's: its name and lines) in order in a
 /// fresh folder of its own, the sources side by side, as many at a time as there are
 /// cores (most lines are short single-threaded commands); the failures, in the sources'
-/// order.
+/// order, with [`CACHE`] for their measured spectra.
 fn run_all(sources: &[(String, Vec<String>)]) -> Vec<String> {
     use std::sync::Mutex;
+    let cache: &Path = &CACHE;
     use std::sync::atomic::{AtomicUsize, Ordering};
     let next = AtomicUsize::new(0);
     let results: Vec<Mutex<Vec<String>>> = sources.iter().map(|_| Mutex::default()).collect();
@@ -177,7 +195,7 @@ fn run_all(sources: &[(String, Vec<String>)]) -> Vec<String> {
                 loop {
                     let k = next.fetch_add(1, Ordering::Relaxed);
                     let Some((source, lines)) = sources.get(k) else { break };
-                    *results[k].lock().unwrap() = run_examples(source, lines);
+                    *results[k].lock().unwrap() = run_examples(source, lines, cache);
                 }
             });
         }
@@ -186,7 +204,7 @@ fn run_all(sources: &[(String, Vec<String>)]) -> Vec<String> {
 }
 
 /// Run a page's or a command's examples in order in a fresh folder; the failures.
-fn run_examples(source: &str, lines: &[String]) -> Vec<String> {
+fn run_examples(source: &str, lines: &[String], cache: &Path) -> Vec<String> {
     let dir = Temp::new("examples", &source.replace(['/', ' ', '.'], "-"));
     let bin = Path::new(env!("CARGO_BIN_EXE_samplab")).parent().unwrap().to_path_buf();
     let path =
@@ -201,11 +219,19 @@ fn run_examples(source: &str, lines: &[String]) -> Vec<String> {
         if command == "reproduce" || (command == "atlas" && !w.iter().any(|x| x == "--only")) {
             continue;
         }
-        if let Some(e) = inputs(line).iter().filter(|f| !dir.join(f).exists()).find_map(|f| make_input(f, &dir).err()) {
+        if let Some(e) =
+            inputs(line).iter().filter(|f| !dir.join(f).exists()).find_map(|f| make_input(f, &dir, cache).err())
+        {
             failures.push(format!("{source}: {line}\n    {e}"));
             continue;
         }
-        let out = Command::new("bash").args(["-c", line]).current_dir(&dir).env("PATH", &path).output().unwrap();
+        let out = Command::new("bash")
+            .args(["-c", line])
+            .current_dir(&dir)
+            .env("PATH", &path)
+            .env("SAMPLAB_CACHE", cache)
+            .output()
+            .unwrap();
         if !out.status.success() {
             failures.push(format!("{source}: {line}\n    {}", String::from_utf8_lossy(&out.stderr).trim()));
         }
