@@ -60,7 +60,7 @@ use crate::numeric::quadrature::gauss_legendre;
 use crate::progress::Progress;
 use crate::numeric::normal_cdf;
 use crate::registry::About;
-use crate::seed::{Seed, wrap01};
+use crate::seed::wrap01;
 use crate::spatial::{self, Grid, torus_gap};
 use crate::spec::{Default, Kind, ParamSpec, Params, Value};
 use rayon::prelude::*;
@@ -334,10 +334,10 @@ impl Matching {
 }
 
 impl Matched {
-    /// The descent from `points` for `iterations` steps, advancing `progress` by one per
-    /// step; returns E before and after.
-    fn descend(&self, points: &mut [f64], n: usize, progress: &Progress) -> Result<(f64, f64)> {
-        let m = Matching::new(self.shape, n, self.sigma, self.reach);
+    /// The descent from `points` (the `m.n` points of one set) for `iterations` steps,
+    /// advancing `progress` by one per step; returns E before and after.
+    fn descend(&self, m: &Matching, points: &mut [f64], progress: &Progress) -> Result<(f64, f64)> {
+        let n = m.n;
         let mut current = m.measure(points);
         let first = m.energy(&current.estimate);
         let mut energy = first;
@@ -379,26 +379,24 @@ impl Construction for Matched {
         SETTLED.check_count(n, dims)
     }
 
+    /// The smoothed target (thousands of quadratures of the target PCF) is computed here,
+    /// once for every set of the shape.
     fn prepare(&self, shape: crate::sampler::Shape) -> Result<Box<dyn Prepared + '_>> {
+        let (n, dims) = (shape.n(), shape.dims());
+        let matching = (n >= 2).then(|| Matching::new(self.shape, n, self.sigma, self.reach));
         Ok(crate::sampler::from_fill_reporting(self.units(), move |seed, out, progress| {
-            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+            SETTLED.fill(n, dims, seed, out)?;
+            match &matching {
+                Some(m) => self.descend(m, out, progress).map(drop),
+                None => progress.advance(self.units()),
+            }
         }))
     }
 }
 
 impl Matched {
-
     fn units(&self) -> u64 {
         self.iterations as u64
-    }
-    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
-        SETTLED.fill(n, dims, seed, out)?;
-        if n >= 2 {
-            self.descend(out, n, progress)?;
-        } else {
-            progress.advance(self.units())?;
-        }
-        Ok(())
     }
 }
 
@@ -513,6 +511,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[
 mod tests {
     use super::*;
     use crate::sampler::random::Random;
+    use crate::seed::Seed;
 
     #[test]
     fn the_step_pcf_is_the_hankel_transform_of_the_step() {
@@ -597,7 +596,8 @@ mod tests {
         let mut points = vec![0.0; 2 * n];
         Random::draw(Seed(9), &mut points);
         let heck = Matched { shape: Shape::Step { nu: 0.55 }, iterations: 100, sigma: 0.1, reach: 6.0 };
-        let (first, last) = heck.descend(&mut points, n, &Progress::SILENT).unwrap();
+        let matching = Matching::new(heck.shape, n, heck.sigma, heck.reach);
+        let (first, last) = heck.descend(&matching, &mut points, &Progress::SILENT).unwrap();
         assert!(last < 0.05 * first, "{first} -> {last}");
     }
 }
