@@ -286,24 +286,31 @@ const STORED: &str = include_str!("../../../data/lattice-cbc-2_20-decay2.txt");
 const DEFAULT_WEIGHTS: Weights = Weights { first: 1.0, decay: 2.0 };
 
 /// The first `dims` components of the embedded vector for `weights`.
+///
+/// [`CONSTRUCTED`] is locked only to read and to store, never across a construction: the
+/// construction runs on rayon's pool, and a caller that held the lock while it waited for
+/// the pool deadlocked when the pool's threads were themselves waiting for the lock (a
+/// cubature on a lattice rule run from inside a parallel loop: the test suite hung so). Two
+/// callers may then construct the same vector side by side; either result is the same, and
+/// the longer is kept.
 fn constructed(weights: Weights, dims: usize) -> Result<Vec<u64>> {
-    let mut cache = CONSTRUCTED.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-    let slot = match cache.iter().position(|(w, _)| *w == weights) {
-        Some(i) => i,
-        None => {
-            let start = if weights == DEFAULT_WEIGHTS {
-                Arc::new(parse_vector(STORED, "data/lattice-cbc-2_20-decay2.txt")?)
-            } else {
-                Arc::default()
-            };
-            cache.push((weights, start));
-            cache.len() - 1
-        }
+    let cache = || CONSTRUCTED.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    let known = cache().iter().find(|(w, _)| *w == weights).map(|(_, z)| Arc::clone(z));
+    let mut z = match known {
+        Some(z) => z,
+        None if weights == DEFAULT_WEIGHTS => Arc::new(parse_vector(STORED, "data/lattice-cbc-2_20-decay2.txt")?),
+        None => Arc::default(),
     };
-    if cache[slot].1.len() < dims {
-        cache[slot].1 = Arc::new(cbc::construct(1 << EMBEDDED_M, dims, weights, true)?);
+    if z.len() < dims {
+        z = Arc::new(cbc::construct(1 << EMBEDDED_M, dims, weights, true)?);
     }
-    Ok(cache[slot].1[..dims].to_vec())
+    let mut cache = cache();
+    match cache.iter_mut().find(|(w, _)| *w == weights) {
+        Some((_, kept)) if kept.len() >= z.len() => {}
+        Some((_, kept)) => *kept = Arc::clone(&z),
+        None => cache.push((weights, Arc::clone(&z))),
+    }
+    Ok(z[..dims].to_vec())
 }
 
 /// Where an embedded sequence's generating vector comes from.
