@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use anyhow::bail;
 use samplab::Seed;
-use samplab_report::{Options, Scale, Verdict, paper};
+use samplab_report::{Options, Scale, paper};
 
 /// Reproduce the papers' tables and figures.
 #[derive(clap::Args)]
@@ -49,16 +49,12 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     let start = Instant::now();
     let bars = crate::bar::Experiments::new();
     let claims = samplab_report::reproduce(&chosen, &options, &crate::bar::STOP, &|task, e| bars.show(task, e))?;
-    let count = |name: &str| claims.iter().filter(|(_, c)| c.verdict_name() == name).count();
+    let [reproduced, checked, failed, contradicted, undecided] = samplab_report::tally(claims.iter().map(|(_, c)| c));
     let explained =
-        claims.iter().filter(|(_, c)| c.verdict() == Verdict::NotReproduced && c.explanation.is_some()).count();
+        claims.iter().filter(|(_, c)| c.verdict_name() == "not reproduced" && c.explanation.is_some()).count();
     crate::say!(
-        "{} claims: {} reproduced, {} checked (identities), {} not reproduced ({explained} of them explained), {} undecided; {:.1} s. Report: {}",
+        "{} claims: {reproduced} reproduced, {checked} checked (derived), {failed} not reproduced ({explained} of them explained), {contradicted} contradicted (derived), {undecided} undecided; {:.1} s. Report: {}",
         claims.len(),
-        count("reproduced"),
-        count("checked"),
-        count("not reproduced"),
-        count("undecided"),
         start.elapsed().as_secs_f64(),
         a.out.join("index.html").display()
     );

@@ -45,9 +45,13 @@ pub enum Status {
     NotReproduced,
     /// No claim contradicted, some undecided.
     Undecided,
-    /// Every claim an identity or closed-form check, and each holds: checked, not a
+    /// Every claim derived (an identity, algebra, a closed form or a deterministic sampler
+    /// at fixed positions: no random measurement), and each holds: checked, not a
     /// reproduction of a result.
     Checked,
+    /// No measured claim fails, and a derived claim does: the paper's statement is
+    /// contradicted by algebra or an exact computation.
+    Contradicted,
     /// Drawn or computed in the report; the paper states nothing about it to test.
     Shown,
     /// Not in the report; the item says why.
@@ -56,12 +60,13 @@ pub enum Status {
 
 impl Status {
     /// Every status, in the order the tables list them.
-    pub const ALL: [Status; 7] = [
+    pub const ALL: [Status; 8] = [
         Status::Reproduced,
         Status::Differs,
         Status::NotReproduced,
         Status::Undecided,
         Status::Checked,
+        Status::Contradicted,
         Status::Shown,
         Status::NotAttempted,
     ];
@@ -74,6 +79,7 @@ impl Status {
             Status::NotReproduced => "not reproduced",
             Status::Undecided => "undecided",
             Status::Checked => "checked",
+            Status::Contradicted => "contradicted",
             Status::Shown => "shown",
             Status::NotAttempted => "not attempted",
         }
@@ -101,11 +107,17 @@ pub fn status(item: &Item, claims: &[&Claim]) -> Status {
     }
     let failed: Vec<&&&Claim> = mine.iter().filter(|c| c.verdict() == Verdict::NotReproduced).collect();
     if !failed.is_empty() {
-        return if failed.iter().all(|c| c.explanation.is_some()) { Status::Differs } else { Status::NotReproduced };
+        return if failed.iter().all(|c| c.derived) {
+            Status::Contradicted
+        } else if failed.iter().all(|c| c.explanation.is_some()) {
+            Status::Differs
+        } else {
+            Status::NotReproduced
+        };
     }
     if mine.iter().any(|c| c.verdict() == Verdict::Undecided) {
         Status::Undecided
-    } else if mine.iter().all(|c| c.identity) {
+    } else if mine.iter().all(|c| c.derived) {
         Status::Checked
     } else {
         Status::Reproduced
@@ -114,8 +126,8 @@ pub fn status(item: &Item, claims: &[&Claim]) -> Status {
 
 /// The coverage audit: what a row's status promises, checked against the report. Every
 /// attempted row links to at least one figure or table that the run made (`made`: their
-/// ids), and a row that is reproduced or differs rests on at least one claim that is not an
-/// identity. Returns every breach, naming the row.
+/// ids), and a row that is reproduced or differs rests on at least one measured claim (not
+/// derived). Returns every breach, naming the row.
 pub fn audit(items: &[Item], claims: &[&Claim], made: &[&str]) -> Vec<String> {
     let mut breaches = Vec::new();
     for it in items {
@@ -136,9 +148,9 @@ pub fn audit(items: &[Item], claims: &[&Claim], made: &[&str]) -> Vec<String> {
         {
             breaches.push(format!("{}: its key figure {key} is not one it shows", it.item));
         }
-        let tested = claims.iter().any(|c| it.claims.contains(&c.id) && !c.identity);
+        let tested = claims.iter().any(|c| it.claims.contains(&c.id) && !c.derived);
         if matches!(status, Status::Reproduced | Status::Differs) && !tested {
-            breaches.push(format!("{}: {} on identities alone", it.item, status.name()));
+            breaches.push(format!("{}: {} on derived claims alone", it.item, status.name()));
         }
     }
     breaches
@@ -211,26 +223,51 @@ mod tests {
         assert_eq!(status(&item(&["a", "d"]), &all), Status::Undecided);
         assert_eq!(status(&item(&["c", "d"]), &all), Status::Differs);
         assert_eq!(status(&item(&[]), &all), Status::Shown);
-        let identity = Claim { identity: true, ..claim("i", exactly(true, ""), false) };
-        let all = [&ok, &identity];
+        let derived = Claim { derived: true, ..claim("i", exactly(true, ""), false) };
+        let wrong = Claim { derived: true, ..claim("w", exactly(false, ""), true) };
+        let all = [&ok, &derived, &wrong, &bad, &explained];
         assert_eq!(status(&item(&["i"]), &all), Status::Checked);
         assert_eq!(status(&item(&["a", "i"]), &all), Status::Reproduced);
+        // a derived claim that fails contradicts the paper; a measured failure beside it
+        // still decides the row
+        assert_eq!(status(&item(&["a", "i", "w"]), &all), Status::Contradicted);
+        assert_eq!(status(&item(&["w", "b"]), &all), Status::NotReproduced);
+        assert_eq!(status(&item(&["w", "c"]), &all), Status::Differs);
+    }
+
+    /// Every verdict a claim can show is one the report counts, once.
+    #[test]
+    fn every_verdict_shown_is_counted() {
+        let mut claims = Vec::new();
+        for derived in [false, true] {
+            for verdict in [Verdict::Reproduced, Verdict::NotReproduced, Verdict::Undecided] {
+                let decision = Decision { verdict, criterion: String::new() };
+                claims.push(Claim { derived, ..claim("x", decision, false) });
+            }
+        }
+        // reproduced, not reproduced, undecided; checked, contradicted, undecided
+        assert_eq!(crate::tally(&claims), [1, 1, 1, 1, 2]);
     }
 
     #[test]
-    fn the_audit_refuses_a_status_without_a_figure_or_on_identities() {
+    fn the_audit_refuses_a_status_without_a_figure_and_derived_claims_never_reproduce() {
         let ok = claim("a", exactly(true, ""), false);
-        let identity = Claim { identity: true, ..claim("i", exactly(true, ""), false) };
-        let failed = Claim { identity: true, ..claim("f", exactly(false, ""), true) };
-        let all = [&ok, &identity, &failed];
+        let derived = Claim { derived: true, ..claim("i", exactly(true, ""), false) };
+        let contradicted = Claim { derived: true, ..claim("f", exactly(false, ""), true) };
+        let measured_failure = claim("m", exactly(false, ""), true);
+        let reproduced_on_derived = Claim { derived: true, ..claim("r", exactly(true, ""), false) };
+        let all = [&ok, &derived, &contradicted, &measured_failure, &reproduced_on_derived];
         assert!(audit(&[item(&["a"])], &all, &["fig"]).is_empty());
         // a figure the run did not make, and no figure at all
         assert!(audit(&[item(&["a"])], &all, &["other"])[0].contains("did not make"));
         let bare = Item { shows: Vec::new(), ..item(&[]) };
         assert!(audit(&[bare], &all, &["fig"])[0].contains("shown but shows no figure"));
-        // an identity that fails with an explanation "differs", on nothing but an identity
-        assert!(audit(&[item(&["f"])], &all, &["fig"])[0].contains("differs on identities alone"));
-        assert!(audit(&[item(&["i"])], &all, &["fig"]).is_empty(), "checked on an identity is what it says");
+        // derived claims alone give "checked" or "contradicted", which is what they say; a
+        // row that differs needs a measured claim
+        assert!(audit(&[item(&["i"])], &all, &["fig"]).is_empty(), "checked on a derived claim is what it says");
+        assert!(audit(&[item(&["f"])], &all, &["fig"]).is_empty(), "contradicted by a derivation is what it says");
+        assert!(audit(&[item(&["m", "i"])], &all, &["fig"]).is_empty());
+        assert_eq!(status(&item(&["i", "r"]), &all), Status::Checked, "never reproduced on derived claims alone");
         // a key figure must be one the item shows
         let keyed = |key: &str| Item { key: Some(key.into()), ..item(&["a"]) };
         assert!(audit(&[keyed("fig")], &all, &["fig"]).is_empty());

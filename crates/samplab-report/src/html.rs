@@ -24,7 +24,7 @@ th,td{border:1px solid #ccc;padding:.3em .6em;text-align:right}th{background:#f3
 td:first-child,th:first-child,table.claims td,table.claims th{text-align:left}figure{margin:1.2em 0}figure img{max-width:100%;border:1px solid #ddd}
 figcaption,.caption{color:#555;font-size:.9em}.reproduced{color:#17692b;font-weight:600}
 .not-reproduced{color:#b3261e;font-weight:600}.differs{color:#8a5a00;font-weight:600}
-.undecided{color:#5a4b8a;font-weight:600}.checked{color:#2f5f5f;font-weight:600}.shown{color:#555;font-weight:600}.not-attempted{color:#888;font-weight:600}
+.undecided{color:#5a4b8a;font-weight:600}.checked{color:#2f5f5f;font-weight:600}.contradicted{color:#7a2048;font-weight:600}.shown{color:#555;font-weight:600}.not-attempted{color:#888;font-weight:600}
 .criterion{color:#666;font-size:.85em}.addition{color:#0b5f86;font-weight:600}
 .note{background:#f8f8f2;border-left:3px solid #bbb;padding:.4em .8em;margin:.5em 0}
 .pending{color:#666}code{background:#f3f3f3;padding:0 .2em}nav a{margin-right:1em}
@@ -72,8 +72,8 @@ fn claims_table(claims: &[&Claim]) -> String {
 }
 
 /// The coverage table of one paper, and its count per status.
-fn coverage_table(items: &[coverage::Item], claims: &[&Claim]) -> (String, [usize; 7]) {
-    let mut counts = [0; 7];
+fn coverage_table(items: &[coverage::Item], claims: &[&Claim]) -> (String, [usize; Status::ALL.len()]) {
+    let mut counts = [0; Status::ALL.len()];
     let mut h =
         String::from("<table class=\"claims\"><tr><th>item</th><th>what</th><th>status</th><th>where</th></tr>\n");
     for it in items {
@@ -248,11 +248,12 @@ fn overview_html(
     claims: &[&Claim],
     figures: &[&Figure],
 ) -> Result<String, Error> {
-    let [r, k, n, u] = counts(claims);
+    let [(paper_claims, of_paper), (additions, of_additions)] = by_origin(claims);
     let mut h = format!(
-        "<section class=\"overview\"><h2><a href=\"{key}.html\">{title}</a></h2>\n<p class=\"caption\">{}</p>\n<p>{} claims: <span class=\"reproduced\">{r} reproduced</span>, <span class=\"checked\">{k} checked</span>, <span class=\"not-reproduced\">{n} not reproduced</span>, <span class=\"undecided\">{u} undecided</span> (<a href=\"{key}.html#claims\">the paper's claims</a>).</p>\n<div class=\"keys\">\n",
+        "<section class=\"overview\"><h2><a href=\"{key}.html\">{title}</a></h2>\n<p class=\"caption\">{}</p>\n<p>{paper_claims} claims of the paper: {}; {additions} of samplab's additions: {} (<a href=\"{key}.html#claims\">every claim</a>).</p>\n<div class=\"keys\">\n",
         escape(cite),
-        claims.len(),
+        verdict_spans(of_paper),
+        verdict_spans(of_additions),
         key = paper.key,
         title = escape(paper.title)
     );
@@ -291,10 +292,23 @@ fn overview_html(
     Ok(h + "</div></section>\n")
 }
 
-/// Claims reproduced, checked (identities that hold), not reproduced, undecided.
-fn counts(claims: &[&Claim]) -> [usize; 4] {
-    let of = |name: &str| claims.iter().filter(|c| c.verdict_name() == name).count();
-    ["reproduced", "checked", "not reproduced", "undecided"].map(of)
+/// The claims of the paper and samplab's additions ([`Claim::addition`]): how many of each,
+/// and their counts by verdict ([`crate::tally`]).
+fn by_origin(claims: &[&Claim]) -> [(usize, [usize; 5]); 2] {
+    [false, true].map(|addition| {
+        let mine: Vec<&Claim> = claims.iter().copied().filter(|c| c.addition.is_some() == addition).collect();
+        (mine.len(), crate::tally(mine))
+    })
+}
+
+/// Counts by verdict in words, each in its verdict's colour ("3 reproduced, 1 checked").
+fn verdict_spans(counts: [usize; 5]) -> String {
+    let parts: Vec<String> = crate::VERDICT_NAMES
+        .iter()
+        .zip(counts)
+        .map(|(name, k)| format!("<span class=\"{}\">{k} {name}</span>", name.replace(' ', "-")))
+        .collect();
+    parts.join(", ")
 }
 
 /// Write every file of the report into `dir`; returns the claims with their paper keys.
@@ -333,7 +347,7 @@ pub(crate) fn write_report(
         let figures: Vec<&Figure> = done.iter().flat_map(|d| &d.output.figures).collect();
         overviews.push_str(&overview_html(paper, &cite, &items, &claims, &figures)?);
         let mut body = format!(
-            "<p>{}</p>\n<h2>Coverage</h2>\n<p>Every numbered table and figure of the paper (and the equations it states as results), with the status its claims' verdicts give: reproduced (every claim), differs (a claim not reproduced, with a written explanation), not reproduced, undecided (an interval that cannot decide), checked (every claim an identity or a closed form checked against itself: the code agrees with the equation, which reproduces no result), shown (drawn or computed, with no statement of the paper to test), or not attempted (and why). Each row links the figures and tables that show it.</p>\n{cov}<h2 id=\"claims\">Claims</h2>\n{}",
+            "<p>{}</p>\n<h2>Coverage</h2>\n<p>Every numbered table and figure of the paper (and the equations it states as results), with the status its claims' verdicts give: reproduced (every claim), differs (a claim not reproduced, with a written explanation), not reproduced, undecided (an interval that cannot decide), checked (every claim derived, not measured: an identity, algebra, a closed form checked against itself or a deterministic sampler at fixed positions; the code agrees with the equation, which reproduces no result), contradicted (no measured claim fails, and a derived one does: the paper's statement is wrong by algebra or an exact computation), shown (drawn or computed, with no statement of the paper to test), or not attempted (and why). Each row links the figures and tables that show it.</p>\n{cov}<h2 id=\"claims\">Claims</h2>\n{}",
             escape(&cite),
             claims_table(&claims)
         );
@@ -356,8 +370,8 @@ pub(crate) fn write_report(
     let scale = if options.scale == Scale::Fast { "fast (default)" } else { "full (the papers' own scales)" };
     let body = format!(
         "<p>samplab {} reproduction, scale {scale}, seed {}; experiments took {:.1} s in all. Every number in a table comes from this run, except the published values, which are read from one data file with their sources. Per paper: its key figures, the claims they decide and their verdicts; then the counts, the figure lint, the timing and every claim.</p>\n{overviews}<h2>Summary</h2>\n\
-         <table><tr><th rowspan=\"2\">paper</th><th rowspan=\"2\">experiments</th><th colspan=\"4\">claims</th><th colspan=\"7\">numbered tables, figures and result equations</th></tr>\n\
-         <tr><th>reproduced</th><th>checked</th><th>not reproduced</th><th>undecided</th><th>reproduced</th><th>differs</th><th>not reproduced</th><th>undecided</th><th>checked</th><th>shown</th><th>pending (not attempted)</th></tr>\n{index_rows}</table>\n\
+         <table><tr><th rowspan=\"2\">paper</th><th rowspan=\"2\">experiments</th><th colspan=\"5\">claims: the paper's + samplab's additions</th><th colspan=\"8\">numbered tables, figures and result equations</th></tr>\n\
+         <tr><th>reproduced</th><th>checked</th><th>not reproduced</th><th>contradicted</th><th>undecided</th><th>reproduced</th><th>differs</th><th>not reproduced</th><th>undecided</th><th>checked</th><th>contradicted</th><th>shown</th><th>pending (not attempted)</th></tr>\n{index_rows}</table>\n\
          {}<h2>Figure lint</h2>\n{}{}<h2>All claims</h2>\n{}<p><a href=\"claims.json\">claims.json</a></p>\n",
         env!("CARGO_PKG_VERSION"),
         options.seed.0,
@@ -425,13 +439,15 @@ fn index_row(
     claims: &[&Claim],
     status_counts: impl IntoIterator<Item = usize>,
 ) -> String {
-    let [r, k, n, u] = counts(claims);
+    let [(_, of_paper), (_, of_additions)] = by_origin(claims);
     let mut row = format!(
-        "<tr><td><a href=\"{key}.html\">{title}</a></td><td>{}</td><td>{r}</td><td>{k}</td><td>{n}</td><td>{u}</td>",
-        experiments,
+        "<tr><td><a href=\"{key}.html\">{title}</a></td><td>{experiments}</td>",
         key = paper.key,
         title = escape(paper.title)
     );
+    for (p, a) in of_paper.iter().zip(of_additions) {
+        let _ = if a > 0 { write!(row, "<td>{p} + {a}</td>") } else { write!(row, "<td>{p}</td>") };
+    }
     for c in status_counts {
         let _ = write!(row, "<td>{c}</td>");
     }

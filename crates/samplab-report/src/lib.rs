@@ -250,10 +250,12 @@ pub struct Claim {
     /// For samplab's own additions (not statements of the paper): their source.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub addition: Option<String>,
-    /// An identity or a closed form checked against itself (a warp inverting its CDF, a
-    /// limit computed both ways): reported as "checked", never as a reproduction.
+    /// Derived, not measured: decided by an identity, algebra, a closed form checked against
+    /// itself (a warp inverting its CDF, a limit computed both ways) or a deterministic
+    /// sampler at fixed positions, with no random measurement. Reported as "checked" when it
+    /// holds and "contradicted" when not, never as a reproduction.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
-    pub identity: bool,
+    pub derived: bool,
 }
 
 impl Claim {
@@ -262,10 +264,12 @@ impl Claim {
         self.decision.verdict
     }
 
-    /// The verdict as the report names it: "checked" for an identity that holds.
+    /// The verdict as the report names it: "checked" and "contradicted" for a derived claim
+    /// that holds and one that does not.
     pub fn verdict_name(&self) -> &'static str {
         match self.verdict() {
-            Verdict::Reproduced if self.identity => "checked",
+            Verdict::Reproduced if self.derived => "checked",
+            Verdict::NotReproduced if self.derived => "contradicted",
             Verdict::Reproduced => "reproduced",
             Verdict::NotReproduced => "not reproduced",
             Verdict::Undecided => "undecided",
@@ -280,6 +284,21 @@ impl Claim {
             _ => Some(self.explanation.as_deref().unwrap_or(NO_EXPLANATION)),
         }
     }
+}
+
+/// The names of the verdicts shown ([`Claim::verdict_name`]), in the order the report
+/// counts them.
+pub const VERDICT_NAMES: [&str; 5] = ["reproduced", "checked", "not reproduced", "contradicted", "undecided"];
+
+/// How many of `claims` show each verdict, in the order of [`VERDICT_NAMES`].
+pub fn tally<'a>(claims: impl IntoIterator<Item = &'a Claim>) -> [usize; 5] {
+    let mut counts = [0; 5];
+    for c in claims {
+        if let Some(k) = VERDICT_NAMES.iter().position(|n| *n == c.verdict_name()) {
+            counts[k] += 1;
+        }
+    }
+    counts
 }
 
 /// What a claim that is not reproduced says when nobody found why.

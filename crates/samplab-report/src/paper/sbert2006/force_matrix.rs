@@ -58,7 +58,7 @@ pub(super) fn force_matrix(ctx: &Ctx) -> Result<Output, Error> {
                 cells.len() == grid * grid && shared,
                 "every cell holds one point and all share one offset within their cell",
             ),
-            identity: true,
+            derived: true,
             ..Claim::default()
         }],
         notes: vec![],
