@@ -58,6 +58,18 @@ pub struct Plane {
 /// per pixel.
 pub const LOW_FREQUENCY_CUTOFF: f64 = 1.0 / 16.0;
 
+/// Frequency |f| in cycles per pixel of index (kx, ky) of a `width` x `height` periodogram.
+fn frequency(index: usize, width: usize, height: usize) -> f64 {
+    let signed = |k: usize, n: usize| if 2 * k > n { k as f64 - n as f64 } else { k as f64 } / n as f64;
+    signed(index % width, width).hypot(signed(index / width, height))
+}
+
+/// How many frequencies of a `width` x `height` image's periodogram lie in 0 < |f| <
+/// `cutoff` cycles per pixel: those [`Plane::low_frequency`] averages.
+pub fn low_frequency_count(width: usize, height: usize, cutoff: f64) -> usize {
+    (0..width * height).map(|k| frequency(k, width, height)).filter(|&f| f > 0.0 && f < cutoff).count()
+}
+
 /// An image's measures ([`Plane::metrics`]).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Metrics {
@@ -159,8 +171,7 @@ impl Plane {
 
     /// Frequency |f| in cycles per pixel of periodogram index (kx, ky).
     fn frequency(&self, index: usize) -> f64 {
-        let signed = |k: usize, n: usize| if 2 * k > n { k as f64 - n as f64 } else { k as f64 } / n as f64;
-        signed(index % self.width, self.width).hypot(signed(index / self.width, self.height))
+        frequency(index, self.width, self.height)
     }
 
     /// The periodogram averaged over rings of |f| (1 / shorter side wide, up to 1/2
@@ -475,6 +486,22 @@ pub fn flicker(frames: &[Plane]) -> Result<f64> {
 mod tests {
     use super::*;
     use crate::seed::mix64;
+
+    /// The frequencies below a cutoff are the lattice points of a disk: counted here over
+    /// signed integer frequencies, for square and oblong images.
+    #[test]
+    fn the_low_frequency_count_is_the_disks_lattice_points() {
+        for (w, h, cutoff) in [(128, 128, 1.0 / 16.0), (64, 32, 0.1), (30, 50, 0.25)] {
+            let mut count = 0;
+            for ky in -(h as i64) / 2..(h as i64 + 1) / 2 {
+                for kx in -(w as i64) / 2..(w as i64 + 1) / 2 {
+                    let f = (kx as f64 / w as f64).hypot(ky as f64 / h as f64);
+                    count += usize::from(f > 0.0 && f < cutoff);
+                }
+            }
+            assert_eq!(low_frequency_count(w, h, cutoff), count, "{w} x {h}");
+        }
+    }
 
     fn noise(w: usize, h: usize, seed: u64) -> Plane {
         // uniform in (-1/2, 1/2): variance 1/12

@@ -108,7 +108,7 @@ fn claims(measured: &[(&str, Vec<MaskMeasures>)], side: u32) -> Vec<Claim> {
             statement: "independent: the 1-spp image of dimension 0 is white noise".into(),
             published: "the definition: values independent per pixel".into(),
             ours: format!("low-frequency energy {e:.3} of white noise's"),
-            decision: white("independent", e),
+            decision: white("independent", e, side),
             addition: Some("issue 38's check of the measure".into()),
             ..Claim::default()
         });
