@@ -149,9 +149,8 @@ fn page(title: &str, nav: &str, body: &str) -> String {
 }
 
 /// On a fast report's index: the claims whose verdict differs in the last recorded
-/// full-scale run ([`crate::published::full_scale`]), and those it did not have.
-fn full_scale_html(claims: &[(String, Claim)]) -> String {
-    let full = crate::published::full_scale();
+/// full-scale run `full` ([`crate::published::full_scale`]), and those it did not have.
+fn full_scale_html(full: &crate::published::FullScale, claims: &[(String, Claim)]) -> String {
     let mut changed = String::new();
     let (mut n, mut missing) = (0, Vec::new());
     for (paper, c) in claims {
@@ -239,14 +238,16 @@ fn timing_html(dir: &Path, results: &[(&Paper, Vec<Done>)], options: &Options, w
 
 /// A paper's overview on the index: its title and source, its claims by verdict, and its
 /// key figures (the coverage items that name one), each with the claims it decides and
-/// their verdicts, linked into the paper's page. Errors when a key figure is not a figure
-/// of the run (a table has no picture to open with).
+/// their verdicts, linked into the paper's page; on a fast report, a claim that the last
+/// full-scale run (`full`) decided otherwise shows both verdicts. Errors when a key figure
+/// is not a figure of the run (a table has no picture to open with).
 fn overview_html(
     paper: &Paper,
     cite: &str,
     items: &[coverage::Item],
     claims: &[&Claim],
     figures: &[&Figure],
+    full: Option<&crate::published::FullScale>,
 ) -> Result<String, Error> {
     let [(paper_claims, of_paper), (additions, of_additions)] = by_origin(claims);
     let mut h = format!(
@@ -277,14 +278,20 @@ fn overview_html(
             what = escape(&it.what)
         );
         for c in claims.iter().filter(|c| it.claims.contains(&c.id)) {
+            let span = |v: &str| format!("<span class=\"{}\">{}</span>", escape(&v.replace(' ', "-")), escape(v));
+            let at_full = full
+                .and_then(|f| f.verdicts.get(&format!("{}/{}", paper.key, c.id)))
+                .filter(|v| v.as_str() != c.verdict_name());
+            let verdict = match at_full {
+                Some(v) => format!("{} at fast scale, {} at full scale", span(c.verdict_name()), span(v)),
+                None => span(c.verdict_name()),
+            };
             let _ = writeln!(
                 h,
-                "<li><a href=\"{}.html#claim-{}\">{}</a>: <span class=\"{}\">{}</span></li>",
+                "<li><a href=\"{}.html#claim-{}\">{}</a>: {verdict}</li>",
                 paper.key,
                 escape(&c.id),
                 escape(&c.statement),
-                c.verdict_name().replace(' ', "-"),
-                c.verdict_name()
             );
         }
         h.push_str("</ul></figcaption></figure>\n");
@@ -323,6 +330,7 @@ pub(crate) fn write_report(
     for (p, _) in results {
         let _ = write!(nav, "<a href=\"{}.html\">{}</a>", p.key, escape(p.title));
     }
+    let full = (options.scale == Scale::Fast).then(crate::published::full_scale);
     let mut all_claims: Vec<(String, Claim)> = Vec::new();
     let mut index_rows = String::new();
     let mut overviews = String::new();
@@ -345,7 +353,7 @@ pub(crate) fn write_report(
         }
         let (cov, status_counts) = coverage_table(&items, &claims);
         let figures: Vec<&Figure> = done.iter().flat_map(|d| &d.output.figures).collect();
-        overviews.push_str(&overview_html(paper, &cite, &items, &claims, &figures)?);
+        overviews.push_str(&overview_html(paper, &cite, &items, &claims, &figures, full.as_ref())?);
         let mut body = format!(
             "<p>{}</p>\n<h2>Coverage</h2>\n<p>Every numbered table and figure of the paper (and the equations it states as results), with the status its claims' verdicts give: reproduced (every claim), differs (a claim not reproduced, with a written explanation), not reproduced, undecided (an interval that cannot decide), checked (every claim derived, not measured: an identity, algebra, a closed form checked against itself or a deterministic sampler at fixed positions; the code agrees with the equation, which reproduces no result), contradicted (no measured claim fails, and a derived one does: the paper's statement is wrong by algebra or an exact computation), shown (drawn or computed, with no statement of the paper to test), or not attempted (and why). Each row links the figures and tables that show it.</p>\n{cov}<h2 id=\"claims\">Claims</h2>\n{}",
             escape(&cite),
@@ -376,7 +384,7 @@ pub(crate) fn write_report(
         env!("CARGO_PKG_VERSION"),
         options.seed.0,
         total_seconds,
-        if options.scale == Scale::Fast { full_scale_html(&all_claims) } else { String::new() },
+        full.as_ref().map_or(String::new(), |f| full_scale_html(f, &all_claims)),
         lint_html(&lint),
         timing_html(dir, results, options, wall)?,
         claims_table(&refs)

@@ -211,7 +211,23 @@ fn every_figure_passes_the_lint_and_every_failure_says_why() {
     // the index says which verdicts the recorded full-scale run gives otherwise
     let index = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(index.contains("<h2>Verdicts at full scale</h2>"));
-    assert!(!samplab_report::published::full_scale().verdicts.is_empty(), "data/full_scale.json records no run");
+    let full = samplab_report::published::full_scale();
+    assert!(!full.verdicts.is_empty(), "data/full_scale.json records no run");
+    // and a key claim (in a paper's overview, before the summary) that the full run decided
+    // otherwise shows both verdicts, never the fast one alone
+    let overviews = &index[..index.find("<h2>Summary</h2>").unwrap()];
+    let (_, claims, _) = &*FULL_RUN;
+    for (paper, c) in claims {
+        let link = format!("href=\"{paper}.html#claim-{}\"", c.id);
+        let Some(at) = overviews.find(&link) else { continue };
+        let line = &overviews[at..at + overviews[at..].find("</li>").unwrap()];
+        match full.verdicts.get(&format!("{paper}/{}", c.id)) {
+            Some(v) if v != c.verdict_name() => {
+                assert!(line.contains(&format!("{v}</span> at full scale")), "{paper}/{}: {line}", c.id);
+            }
+            _ => assert!(!line.contains("at full scale"), "{paper}/{}: {line}", c.id),
+        }
+    }
     // renders narrower than the minimum are enlarged on the page
     let page = std::fs::read_to_string(out.join("subr2013.html")).unwrap();
     for w in attributes(&page, "width") {

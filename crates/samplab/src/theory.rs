@@ -40,6 +40,38 @@ pub fn systematic_efficiency_small(p: f64, n: usize) -> f64 {
     (1.0 - p) / (1.0 - n as f64 * p)
 }
 
+/// The covariogram of a disk of radius `r` (Sbert et al. 2006 eq. 6 for its indicator): the
+/// area of the lens where the disk and its copy moved by `d` overlap,
+/// 2 r^2 acos(d / 2r) - (d / 2) sqrt(4 r^2 - d^2), zero from d = 2r on.
+pub fn disk_covariogram(r: f64, d: f64) -> f64 {
+    if d >= 2.0 * r {
+        return 0.0;
+    }
+    2.0 * r * r * (d / (2.0 * r)).acos() - 0.5 * d * (4.0 * r * r - d * d).sqrt()
+}
+
+/// The exact variance of systematic sampling's estimate of a disk's area, Sbert et al. 2006
+/// eq. 5: V sum over the lattice vectors tau k of g(tau k), less the integral of g (the
+/// squared area), with g the disk's covariogram (eq. 6, [`disk_covariogram`]). The lattice
+/// is the square grid of `n` points over the unit square (n a perfect square, spacing
+/// n^-1/2, cell volume V = 1/n) under one uniform random offset; the disk (radius `r`)
+/// must lie inside the square, where the torus's grid and the plane's agree. Unlike the
+/// law k B u^3 (eq. 10), an average over positions and sizes, this holds for one disk, so
+/// it follows the variance's oscillation with the radius (the Zitterbewegung).
+pub fn systematic_variance_disk(r: f64, n: usize) -> f64 {
+    let side = (n as f64).sqrt().round();
+    let spacing = 1.0 / side;
+    let reach = (2.0 * r / spacing).ceil() as i64;
+    let mut sum = crate::discrepancy::l2::Sum::default();
+    for i in -reach..=reach {
+        for j in -reach..=reach {
+            sum.add(disk_covariogram(r, spacing * ((i * i + j * j) as f64).sqrt()));
+        }
+    }
+    let area = std::f64::consts::PI * r * r;
+    sum.value() / n as f64 - area * area
+}
+
 /// Ramamoorthi et al. 2012: the expected N^2 x squared error of 1D visibility with
 /// `discontinuities` discontinuities in distinct strata, over uniform random positions,
 /// for a sampler family (`regular` = their "uniform", `jitter` = "stratified",
@@ -100,6 +132,59 @@ mod tests {
         // eq. 16's small-p efficiency says the opposite there
         assert!(systematic_efficiency(p, n, 2.0 * std::f64::consts::PI.sqrt()) < 1.0);
         assert!(systematic_efficiency_small(p, n) > 1.0);
+    }
+
+    /// The exact variance over offsets of (points of the sqrt(n) x sqrt(n) grid in the disk) / n,
+    /// by brute force: the offsets on a `side` x `side` midpoint lattice over one cell.
+    fn variance_over_offsets(r: f64, (cx, cy): (f64, f64), n: usize, side: usize) -> f64 {
+        let k = (n as f64).sqrt() as usize;
+        let h = 1.0 / k as f64;
+        let (mut sum, mut sum2) = (0.0, 0.0);
+        for i in 0..side * side {
+            let (ox, oy) = (((i % side) as f64 + 0.5) / side as f64 * h, ((i / side) as f64 + 0.5) / side as f64 * h);
+            let inside = (0..n)
+                .filter(|p| (ox + (p % k) as f64 * h - cx).hypot(oy + (p / k) as f64 * h - cy) < r)
+                .count() as f64
+                / n as f64;
+            sum += inside;
+            sum2 += inside * inside;
+        }
+        let m = (side * side) as f64;
+        sum2 / m - (sum / m).powi(2)
+    }
+
+    #[test]
+    fn eq5_is_the_variance_over_offsets_by_brute_force() {
+        // disks wider than the grid's spacing (where the small-region form no longer holds),
+        // off centre, and one narrower (where it does)
+        for (r, centre, n) in [(0.3, (0.5, 0.5), 16), (0.21, (0.45, 0.52), 64), (0.137, (0.6, 0.35), 100)] {
+            let exact = systematic_variance_disk(r, n);
+            let brute = variance_over_offsets(r, centre, n, 600);
+            assert!((exact / brute - 1.0).abs() < 0.01, "r = {r}, N = {n}: eq. 5 {exact}, over offsets {brute}");
+        }
+        let (r, n) = (0.04, 36);
+        let p = std::f64::consts::PI * r * r;
+        let small = random_indicator_variance(p, n) / systematic_efficiency_small(p, n);
+        assert!((systematic_variance_disk(r, n) / small - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_disk_covariogram_integrates_to_the_squared_area() {
+        // eq. 6: g(0) is the area, g vanishes from 2r, and its integral over the plane is the
+        // area squared (radial midpoint rule, 20000 rings)
+        let r = 0.3;
+        let area = std::f64::consts::PI * r * r;
+        assert!((disk_covariogram(r, 0.0) - area).abs() < 1e-15);
+        assert_eq!(disk_covariogram(r, 2.0 * r), 0.0);
+        let rings = 20000;
+        let dr = 2.0 * r / rings as f64;
+        let integral: f64 = (0..rings)
+            .map(|i| {
+                let d = (i as f64 + 0.5) * dr;
+                2.0 * std::f64::consts::PI * d * disk_covariogram(r, d) * dr
+            })
+            .sum();
+        assert!((integral / (area * area) - 1.0).abs() < 1e-7, "{integral} against {}", area * area);
     }
 
     #[test]

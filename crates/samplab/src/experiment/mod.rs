@@ -120,6 +120,10 @@ pub struct Row {
     pub rmse: f64,
     /// N^2 x the mean squared error (Ramamoorthi et al.'s normalization).
     pub normalized_mse: f64,
+    /// The standard error of `normalized_mse`: N^2 x the standard deviation of the
+    /// instances' mean squared errors over sqrt(instances) (the instances are independent
+    /// draws of the family); NaN for a single instance.
+    pub normalized_mse_se: f64,
     /// The closed-form prediction for this row, where one exists.
     pub theory: Option<Prediction>,
 }
@@ -144,8 +148,10 @@ pub fn json(rows: &[Row]) -> String {
     format!("{}\n", serde_json::to_string_pretty(&v).expect("JSON of plain numbers"))
 }
 
-/// The rows as CSV: sampler, integrand, n, the four statistics, and the closed-form
-/// prediction's statistic and value where there is one (numbers as Rust prints them).
+/// The rows as CSV: sampler, integrand, n, the four statistics, the closed-form
+/// prediction's statistic and value where there is one, and the normalized mean squared
+/// error's standard error (last, so that the earlier columns keep their places; numbers
+/// as Rust prints them).
 pub fn csv(rows: &[Row]) -> String {
     let mut out = crate::io::csv_line([
         "sampler",
@@ -157,6 +163,7 @@ pub fn csv(rows: &[Row]) -> String {
         "normalized_mse",
         "theory_statistic",
         "theory_value",
+        "normalized_mse_se",
     ]);
     for r in rows {
         let (statistic, value) = r
@@ -173,6 +180,7 @@ pub fn csv(rows: &[Row]) -> String {
             format!("{:?}", r.normalized_mse),
             statistic,
             value,
+            format!("{:?}", r.normalized_mse_se),
         ]);
     }
     out
@@ -390,6 +398,11 @@ impl Prepared<'_> {
         let kf = per.len() as f64;
         let mean_of = |g: &dyn Fn(&UnitStats) -> f64| per.iter().map(g).sum::<f64>() / kf;
         let mse = mean_of(&|r| r.mse);
+        let mse_se = if per.len() > 1 {
+            crate::stats::Summary::of(&per.iter().map(|r| r.mse).collect::<Vec<_>>()).standard_error()
+        } else {
+            f64::NAN
+        };
         let theory =
             predict(spec, self.instances[0].as_ref(), n).map(|p| Prediction { value: mean_of(&|r| r.prediction), ..p });
         Row {
@@ -405,6 +418,7 @@ impl Prepared<'_> {
             },
             rmse: mse.sqrt(),
             normalized_mse: mse * (n * n) as f64,
+            normalized_mse_se: mse_se * (n * n) as f64,
             theory,
         }
     }
