@@ -141,27 +141,40 @@ fn ramamoorthi_normalized_variances() {
     }
 }
 
-/// The standard error a row states for N^2 MSE is the spread the number actually has: 100
-/// studies of 50 instances each under independent seeds, whose N^2 MSE values scatter with
-/// a standard deviation that must match the rows' mean stated standard error.
+/// The standard errors a row states (of the relative mean, the relative variance and N^2
+/// MSE) are the spreads the numbers actually have: 100 studies of 50 instances each (of
+/// one fixed disk, so that mean / exact is bounded) under independent seeds, whose values
+/// scatter with standard deviations that must match the
+/// rows' mean stated standard errors.
 ///
-/// Failure probability: under 1e-3. Each study's value is a mean over 50 instances (close to
-/// normal), so the sample standard deviation of the 100 values has a relative standard
-/// error of about sqrt(1 / 198) = 7%; the band [0.75, 1.3] is 3.5 of them below and 4.2
-/// above (the stated errors, averaged over 100 studies, vary far less). Fixed seeds. Least
-/// work: 100 studies keep the band narrow enough to catch a missing sqrt(2) or a divisor of
-/// instances instead of its root (factors 0.71 and 7).
+/// Failure probability: under 3e-3 for the three together. Each study's value is a mean
+/// over 50 instances (close to normal), so the sample standard deviation of the 100 values
+/// has a relative standard error of about sqrt(1 / 198) = 7%; the band [0.75, 1.3] is 3.5 of
+/// them below and 4.2 above (the stated errors, averaged over 100 studies, vary far less).
+/// Fixed seeds. Least work: 100 studies keep the band narrow enough to catch a missing
+/// sqrt(2) or a divisor of instances instead of its root (factors 0.71 and 7).
 #[test]
-fn the_stated_standard_error_of_normalized_mse_is_its_spread_over_seeds() {
-    let rows: Vec<Row> = (0..100).map(|s| study(&["random"], "step", &[16], 2, 50, 1000 + s).remove(0)).collect();
-    let values: Vec<f64> = rows.iter().map(|r| r.normalized_mse).collect();
-    let mean = values.iter().sum::<f64>() / values.len() as f64;
-    let spread = (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (values.len() - 1) as f64).sqrt();
-    let stated = rows.iter().map(|r| r.normalized_mse_se).sum::<f64>() / rows.len() as f64;
-    let ratio = spread / stated;
-    assert!((0.75..1.3).contains(&ratio), "spread over seeds / stated standard error = {ratio}");
+fn the_stated_standard_errors_are_the_spreads_over_seeds() {
+    let rows: Vec<Row> =
+        (0..100).map(|s| study(&["random"], "disk:r=0.3,cx=0.5,cy=0.5", &[16], 2, 50, 1000 + s).remove(0)).collect();
+    // a statistic of a row and its stated standard error
+    type Stated = fn(&Row) -> (f64, f64);
+    let stats: [(&str, Stated); 3] = [
+        ("relative mean", |r| (r.relative_mean, r.relative_mean_se)),
+        ("relative variance", |r| (r.relative_variance, r.relative_variance_se)),
+        ("N^2 MSE", |r| (r.normalized_mse, r.normalized_mse_se)),
+    ];
+    for (what, of) in stats {
+        let values: Vec<f64> = rows.iter().map(|r| of(r).0).collect();
+        let mean = values.iter().sum::<f64>() / values.len() as f64;
+        let spread = (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (values.len() - 1) as f64).sqrt();
+        let stated = rows.iter().map(|r| of(r).1).sum::<f64>() / rows.len() as f64;
+        let ratio = spread / stated;
+        assert!((0.75..1.3).contains(&ratio), "{what}: spread over seeds / stated standard error = {ratio}");
+    }
     // one instance has no spread to state
-    assert!(study(&["random"], "step", &[16], 2, 1, 7)[0].normalized_mse_se.is_nan());
+    let one = study(&["random"], "step", &[16], 2, 1, 7).remove(0);
+    assert!(one.relative_mean_se.is_nan() && one.relative_variance_se.is_nan() && one.normalized_mse_se.is_nan());
 }
 
 #[test]
