@@ -138,28 +138,32 @@ fn trade_claim(n: usize, bias: [f64; 4], variance: [Estimate; 4]) -> Claim {
     }
 }
 
+/// A row's relative variance +- one standard error over the instances.
+fn variance_bar(r: &Row) -> (f64, f64) {
+    (r.relative_variance - r.relative_variance_se, r.relative_variance + r.relative_variance_se)
+}
+
 /// Fig. 5's two panels of test case `case` (index `c`): relative variance against N, and
 /// against the relative bias at the largest N.
 fn case_figures(c: usize, case: &str, rows: &[Row], ns: &[usize]) -> Result<[Figure; 2], Error> {
     let series: Vec<Series> = STRATEGIES
         .iter()
         .map(|(name, spec)| {
-            let pts = rows
-                .iter()
-                .filter(|r| sampler_spec_matches(spec, &r.sampler))
-                .map(|r| (r.n as f64, r.relative_variance))
-                .collect();
+            let mine: Vec<&Row> = rows.iter().filter(|r| sampler_spec_matches(spec, &r.sampler)).collect();
             Series {
                 colour_key: Some(spec.to_string()),
                 dashed: spec.starts_with("jitter.gaussian"),
-                ..Series::line(*name, pts)
+                intervals: mine.iter().map(|r| variance_bar(r)).collect(),
+                ..Series::line(*name, mine.iter().map(|r| (r.n as f64, r.relative_variance)).collect())
             }
         })
         .collect();
     let chart = variance_chart(format!("Relative variance against N, test case {case}"), series);
     let variance = Figure::render(
         &format!("subr2013-fig5-variance-{}", c + 1),
-        &format!("Fig. 5 (bottom row), test case {case}: relative variance against N, 10 instances x 50 realizations"),
+        &format!(
+            "Fig. 5 (bottom row), test case {case}: relative variance against N, {INSTANCES} instances x {SETS} realizations; bars: +- 1 standard error over the instances"
+        ),
         &chart,
         (900, 600),
     )?;
@@ -172,6 +176,7 @@ fn case_figures(c: usize, case: &str, rows: &[Row], ns: &[usize]) -> Result<[Fig
             Series {
                 markers: true,
                 colour_key: Some(spec.to_string()),
+                intervals: vec![variance_bar(r)],
                 ..Series::line(*name, vec![((r.relative_mean - 1.0).abs().max(1e-7), r.relative_variance)])
             }
         })
@@ -187,7 +192,9 @@ fn case_figures(c: usize, case: &str, rows: &[Row], ns: &[usize]) -> Result<[Fig
     };
     let accuracy = Figure::render(
         &format!("subr2013-fig5-accuracy-{}", c + 1),
-        &format!("Fig. 5 (top row), test case {case}: relative variance against relative bias at N = {n_max}"),
+        &format!(
+            "Fig. 5 (top row), test case {case}: relative variance against relative bias at N = {n_max}; bars: +- 1 standard error of the variance over the instances"
+        ),
         &chart,
         (900, 600),
     )?;
