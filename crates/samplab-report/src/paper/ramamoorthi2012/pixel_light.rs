@@ -39,15 +39,10 @@ pub(super) fn pixel_light(ctx: &Ctx) -> Result<Output, Error> {
             Cell::num(m.standard_error(), 7),
             Cell::num(share.0, 4),
         ]);
-        series.push(Series {
-            colour_key: Some(key.to_string()),
-            ..Series::line(
-                *name,
-                a.error_spectrum.iter().enumerate().skip(1).map(|(w, &e)| (w as f64, e.max(1e-9))).collect(),
-            )
-        });
+        series.push((*name, *key, a.error_spectrum.clone()));
         ctx.advance(1)?;
     }
+    let series = spectrum_series(&series);
     let fraction = shares[0].1;
     let chart = LineChart {
         title: format!(
@@ -69,6 +64,39 @@ pub(super) fn pixel_light(ctx: &Ctx) -> Result<Output, Error> {
         claims,
         notes: vec!["The estimate per pixel is the mean visibility of its N samples; the exact value integrates the blocker pattern over the light analytically. Spectra over (pixel, light) use the samples as points in [0,1)^2 weighted by visibility.".into()],
     })
+}
+
+/// The error spectra's curves (frequency 0 left out): each pattern's non-zero values as a
+/// line (as markers where it has zeros), and the frequencies where its spectrum is zero
+/// (below 1e-12 of the largest value drawn: uniform sampling's error lives on its bands
+/// alone) as markers at a floor a decade under the least non-zero value, named as such,
+/// instead of a line at an arbitrary floor.
+fn spectrum_series(spectra: &[(&str, &str, Vec<f64>)]) -> Vec<Series> {
+    let largest = spectra.iter().flat_map(|s| s.2.iter().skip(1)).fold(0.0f64, |a, &e| a.max(e));
+    let zero = |e: f64| e <= 1e-12 * largest;
+    let least =
+        spectra.iter().flat_map(|s| s.2.iter().skip(1)).filter(|&&e| !zero(e)).fold(f64::INFINITY, |a, &e| a.min(e));
+    let floor = 10f64.powf((least.log10() - 1.0).floor());
+    let mut series = Vec::new();
+    for (name, key, spectrum) in spectra {
+        let at = |keep: bool| spectrum.iter().enumerate().skip(1).filter(move |&(_, &e)| zero(e) != keep);
+        let zeros: Vec<(f64, f64)> = at(false).map(|(w, _)| (w as f64, floor)).collect();
+        // a spectrum with zeros between its values is marked point by point, not joined
+        // into a curve it does not have
+        series.push(Series {
+            markers: !zeros.is_empty(),
+            colour_key: Some(key.to_string()),
+            ..Series::line(*name, at(true).map(|(w, &e)| (w as f64, e)).collect())
+        });
+        if !zeros.is_empty() {
+            series.push(Series {
+                markers: true,
+                colour_key: Some("floor".into()),
+                ..Series::line(format!("{name}: exactly 0 (drawn at {floor:.0e})"), zeros)
+            });
+        }
+    }
+    series
 }
 
 /// A spectrum over (pixel, light) in the paper's layout: pixel (spatial) frequency across,
