@@ -6,7 +6,7 @@
 use rayon::prelude::*;
 use samplab::pixel::{Film, Pixels, prepare};
 use samplab::progress::Progress;
-use samplab::screen::{LOW_FREQUENCY_CUTOFF, Metrics, Plane, convergence, flicker as flicker_of};
+use samplab::screen::{LOW_FREQUENCY_CUTOFF, Metrics, Plane, Radial, convergence, flicker as flicker_of};
 use samplab_render::image::Srgb8;
 use samplab_render::scenes::builtin;
 use samplab_render::{Footprint, Image, Mode, Options, Scene, render};
@@ -116,6 +116,8 @@ struct Errors {
     energy: Vec<f64>,
     /// The flicker of the error over those frames.
     flicker: Option<f64>,
+    /// The error's radial spectrum at [`TARGET_SPP`], averaged over those frames.
+    radial: Option<Radial>,
 }
 
 pub(super) fn scenes(ctx: &Ctx) -> Result<Output, Error> {
@@ -129,7 +131,7 @@ pub(super) fn scenes(ctx: &Ctx) -> Result<Output, Error> {
     let mut out = Output::default();
     for (c, case) in cases.iter().enumerate() {
         out.tables.push(error_table(ctx, case, &names, &spps, &measured[c], size));
-        out.figures.push(rmse_chart(case, &names, &measured[c])?);
+        out.figures.extend(rmse_charts(case, &names, &measured[c])?);
         out.figures.push(spectrum_chart(case, &names, &measured[c])?);
         out.figures.push(mosaic(case, &refs[c].0, &pictures[c])?);
         out.claims.extend(lf_claims(case, &names, &measured[c]));
@@ -156,7 +158,16 @@ type Pictures = Vec<Vec<(&'static str, Image)>>;
 /// at [`TARGET_SPP`] the low-frequency energy of each frame, the flicker, and the image.
 struct Run {
     planes: Vec<(Plane, Metrics)>,
-    frames: Vec<Option<(Vec<f64>, f64, Image)>>,
+    frames: Vec<Option<Frames>>,
+}
+
+/// What the [`LF_FRAMES`] frames at [`TARGET_SPP`] give: each frame's low-frequency energy,
+/// the flicker, the last frame's image, and the error's radial spectrum averaged over them.
+struct Frames {
+    energy: Vec<f64>,
+    flicker: f64,
+    image: Image,
+    radial: Radial,
 }
 
 /// Every family's errors on every case (per case, per family), and the images shown. Each
@@ -196,6 +207,7 @@ fn measure(
                     metrics: Vec::new(),
                     energy: Vec::new(),
                     flicker: None,
+                    radial: None,
                 })
                 .collect()
         })
@@ -205,11 +217,12 @@ fn measure(
         let Some(run) = run else { continue };
         for (c, ((plane, metrics), frames)) in run.planes.into_iter().zip(run.frames).enumerate() {
             let s = &mut measured[c][f];
-            if let Some((energy, flicker, img)) = frames {
+            if let Some(Frames { energy, flicker, image, radial }) = frames {
                 s.energy = energy;
                 s.flicker = Some(flicker);
+                s.radial = Some(radial);
                 if SHOWN.contains(&names[f]) {
-                    pictures[c].push((names[f], img));
+                    pictures[c].push((names[f], image));
                 }
             }
             s.metrics.push(metrics);
@@ -237,13 +250,23 @@ fn run_cases(ctx: &Ctx, cases: &[Case], refs: &[(Image, Vec<f64>)], mut p: Pixel
                 planes.push(error_plane(&img, reference)?);
             }
             let energy = planes.iter().map(|e| e.low_frequency(LOW_FREQUENCY_CUTOFF)).collect::<Result<_, _>>()?;
-            frames = Some((energy, flicker_of(&planes)?, img));
+            frames = Some(Frames { energy, flicker: flicker_of(&planes)?, image: img, radial: mean_radial(&planes) });
         }
         let metrics = plane.metrics(&[SIGMA])?;
         run.planes.push((plane, metrics));
         run.frames.push(frames);
     }
     Ok(run)
+}
+
+/// The frames' radial spectra (each over its own variance) averaged ring by ring.
+fn mean_radial(planes: &[Plane]) -> Radial {
+    let spectra: Vec<Radial> = planes.iter().map(Plane::radial).collect();
+    let k = spectra.len() as f64;
+    Radial {
+        frequency: spectra[0].frequency.clone(),
+        power: (0..spectra[0].power.len()).map(|r| spectra.iter().map(|s| s.power[r]).sum::<f64>() / k).collect(),
+    }
 }
 
 /// A case's table: per family, RMSE per spp, the slopes, and the low-frequency energy and
@@ -380,51 +403,67 @@ fn dither_fades(names: &[&str], measured: &[Errors]) -> Result<Claim, Error> {
     })
 }
 
-/// RMSE against spp, every family.
-fn rmse_chart(case: &Case, names: &[&str], measured: &[Errors]) -> Result<Figure, Error> {
-    let series = names
+/// The groups of families whose RMSE curves share a chart (small multiples: 17 curves in one
+/// band were unreadable): an id suffix, what the group is, and whether a family belongs.
+/// Independent sampling is drawn in every chart, the reference.
+const RMSE_GROUPS: [(&str, &str, Member); 3] = [
+    ("", "the families whose images and spectra are shown", |name| SHOWN.contains(&name)),
+    ("-sequences", "the other per-pixel sequences", |name| !SHOWN.contains(&name) && !name.starts_with("openqmc.")),
+    ("-openqmc", "OpenQMC's samplers", |name| name.starts_with("openqmc.")),
+];
+
+/// Whether a family belongs to a group of [`RMSE_GROUPS`].
+type Member = fn(&str) -> bool;
+
+/// RMSE against spp, one chart per group of [`RMSE_GROUPS`], independent sampling in each.
+fn rmse_charts(case: &Case, names: &[&str], measured: &[Errors]) -> Result<Vec<Figure>, Error> {
+    RMSE_GROUPS
         .iter()
-        .zip(measured)
-        .enumerate()
-        .filter(|(_, (_, s))| !s.spp.is_empty())
-        .map(|(f, (name, s))| {
-            let (key, markers) = look(f);
-            let points = s.spp.iter().zip(&s.metrics).map(|(&n, m)| (n as f64, m.rmse)).collect();
-            Series { colour_key: Some(key), markers, ..Series::line(*name, points) }
+        .map(|&(suffix, what, member)| {
+            let series = names
+                .iter()
+                .zip(measured)
+                .enumerate()
+                .filter(|(_, (name, s))| !s.spp.is_empty() && (**name == "independent" || member(name)))
+                .map(|(f, (name, s))| {
+                    let (key, markers) = look(f);
+                    let points = s.spp.iter().zip(&s.metrics).map(|(&n, m)| (n as f64, m.rmse)).collect();
+                    Series { colour_key: Some(key), markers, ..Series::line(*name, points) }
+                })
+                .collect();
+            let chart = LineChart {
+                title: format!("{}: RMSE of the luminance against spp, {what}", case.name),
+                x_label: "samples per pixel".into(),
+                y_label: "RMSE".into(),
+                series,
+                log_y: true,
+                log_x: true,
+                polar: false,
+            };
+            Figure::render(
+                &format!("renderer-{}-rmse{suffix}", case.name),
+                &format!("{}, {}: RMSE against spp, {what} (independent sampling in each chart)", case.name, case.what),
+                &chart,
+                (960, 620),
+            )
         })
-        .collect();
-    let chart = LineChart {
-        title: format!("{}: RMSE of the luminance against spp", case.name),
-        x_label: "samples per pixel".into(),
-        y_label: "RMSE".into(),
-        series,
-        log_y: true,
-        log_x: true,
-        polar: false,
-    };
-    Figure::render(
-        &format!("renderer-{}-rmse", case.name),
-        &format!("{}, {}: RMSE against spp, every pixel sampler family", case.name, case.what),
-        &chart,
-        (960, 620),
-    )
+        .collect()
 }
 
 /// The radial power spectrum of the error at the target count, the families shown.
 fn spectrum_chart(case: &Case, names: &[&str], measured: &[Errors]) -> Result<Figure, Error> {
     let mut series = Vec::new();
     for (f, (name, s)) in names.iter().zip(measured).enumerate() {
-        let Some(i) = s.spp.iter().position(|&n| n == TARGET_SPP) else { continue };
+        let Some(r) = &s.radial else { continue };
         if !SHOWN.contains(name) {
             continue;
         }
-        let r = &s.metrics[i].radial;
         let points = r.frequency.iter().zip(&r.power).filter(|(_, p)| **p > 0.0).map(|(&x, &p)| (x, p)).collect();
         let (key, markers) = look(f);
         series.push(Series { colour_key: Some(key), markers, ..Series::line(*name, points) });
     }
     let chart = LineChart {
-        title: format!("{}: radial power spectrum of the error, {TARGET_SPP} spp", case.name),
+        title: format!("{}: radial power spectrum of the error, {TARGET_SPP} spp, {LF_FRAMES} frames", case.name),
         x_label: "frequency (cycles per pixel)".into(),
         y_label: "power / variance (white noise: 1)".into(),
         series,
@@ -435,7 +474,7 @@ fn spectrum_chart(case: &Case, names: &[&str], measured: &[Errors]) -> Result<Fi
     Figure::render(
         &format!("renderer-{}-spectrum", case.name),
         &format!(
-            "{}: the error's radially averaged power spectrum at {TARGET_SPP} spp over its variance; blue noise rises from little power at low frequencies",
+            "{}: the error's radially averaged power spectrum at {TARGET_SPP} spp over its variance, averaged over the {LF_FRAMES} frames the low-frequency claims use; blue noise rises from little power at low frequencies",
             case.name
         ),
         &chart,
