@@ -12,7 +12,7 @@ use crate::{Experiment, Paper};
 use pixel_light::pixel_light;
 use rendered::{error_vs_n, grids_lights, grids_linear, planar_lights};
 use spectra::{gaussian_light, square_light};
-use visibility::{discontinuities, error_vs_position, tables};
+use visibility::{discontinuities, error_vs_position, section8, tables};
 
 /// The paper's experiments.
 pub fn paper() -> Paper {
@@ -61,6 +61,13 @@ pub fn paper() -> Paper {
                 source: "Figure 7",
                 parameters: "N = 256; 1000 trials (the paper's) at both scales; up to 7 and up to 100 discontinuities",
                 run: discontinuities,
+            },
+            Experiment {
+                id: "section-8",
+                title: "Poisson disk and per-pixel shifted Halton against stratified sampling and uniform jitter",
+                source: "Section 8",
+                parameters: "1D visibility with 1, 2, 3, 5, 10 and 20 discontinuities; Poisson disk (dart throwing, relative radius 0.7) at N = 256; Halton (base 2, a random offset per estimate) against uniform jitter at N = 256 and 200; 1000 trials x 2 realizations",
+                run: section8,
             },
             Experiment {
                 id: "grids-linear",

@@ -367,7 +367,7 @@ fn fewer_samples_claim(saved: &[(&str, (Estimate, f64))], seeds: u64) -> Claim {
     Claim {
         id: "fewer-samples".into(),
         statement: "Uniform jitter needs 20-40% fewer shadow samples than stratified sampling for the same error (circular and Gaussian lights)".into(),
-        published: "abstract and section 8: 20-40%; section 7: about 30% (Fig. 17)".into(),
+        published: "abstract and conclusions: 20-40%; section 4.2.3: about 30% (linear lights); section 7: about 30% (Fig. 17)".into(),
         ours: saved
             .iter()
             .map(|(light, (s, slope))| {
