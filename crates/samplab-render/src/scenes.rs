@@ -122,6 +122,14 @@ static BUILTINS: &[Builtin] = &[
         build: |kind| grids(kind, [0.0, 90.0, 45.0]),
     },
     Builtin {
+        about: About::new(
+            "fibers",
+            "400 thin random fibres above a plane: many shadow edges per stratum (in place of Ramamoorthi et al. 2012's tentacles, Fig. 21, whose geometry is not published)",
+        ),
+        default_light: Some(LightKind::Disk),
+        build: fibers,
+    },
+    Builtin {
         about: About::new("occluder", "a disc light above a square occluder (Subr & Kautz 2013, Fig. 8)"),
         default_light: Some(LightKind::Disk),
         build: occluder,
@@ -314,6 +322,31 @@ fn grids(kind: LightKind, angles: [f64; 3]) -> Scene {
             for face in cuboid(corner, 2.0 * along, DVec3::Y * 0.03, 0.06 * across) {
                 shapes.push((face, 1));
             }
+        }
+    }
+    let light = overhead_light(kind, DVec3::new(0.0, 2.2, 0.0), 1.0);
+    scene(
+        look([0.0, 3.2, 2.2], [0.0, 0.0, 0.0], 55.0),
+        shapes,
+        vec![Material::diffuse(GREY), Material::diffuse(GREY)],
+        vec![light],
+    )
+}
+
+/// 400 fibres (square section 0.01, lengths 0.4-1.2) at random heights 0.3-1.3, positions
+/// and directions (one fixed seed), under the grids' light: from a shading point below
+/// them the light is crossed by many thin shadows, several within one light stratum.
+fn fibers(kind: LightKind) -> Scene {
+    let mut rng = samplab::Seed(21).rng();
+    let mut u = || samplab::seed::uniform(&mut rng);
+    let mut shapes = Vec::new();
+    for _ in 0..400 {
+        let (height, x, z, length) = (0.3 + u(), 2.0 * u() - 1.0, 2.0 * u() - 1.0, 0.4 + 0.8 * u());
+        let (s, c) = (PI * u()).sin_cos();
+        let (along, across) = (DVec3::new(c, 0.0, s), DVec3::new(-s, 0.0, c));
+        let corner = DVec3::new(x, height, z) - 0.5 * length * along - 0.005 * across;
+        for face in cuboid(corner, length * along, DVec3::Y * 0.01, 0.01 * across) {
+            shapes.push((face, 1));
         }
     }
     let light = overhead_light(kind, DVec3::new(0.0, 2.2, 0.0), 1.0);

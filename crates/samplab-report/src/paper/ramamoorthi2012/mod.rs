@@ -10,7 +10,7 @@ mod visibility;
 
 use crate::{Experiment, Paper};
 use pixel_light::pixel_light;
-use rendered::{error_vs_n, grids_lights, grids_linear, planar_lights};
+use rendered::{complex_occluder, error_vs_n, grids_lights, grids_linear, planar_lights};
 use spectra::{gaussian_light, square_light};
 use visibility::{discontinuities, error_vs_position, section8, tables};
 
@@ -96,6 +96,13 @@ pub fn paper() -> Paper {
                 source: "Figure 20",
                 parameters: "both grid geometries; circular (rejection) and Gaussian lights; N = 4 .. 64 (squares); 64 x 48 (fast) or 160 x 120 (full); 2 (fast) or 6 (full) seeds",
                 run: error_vs_n,
+            },
+            Experiment {
+                id: "complex-occluder",
+                title: "Very complex shadows: random, stratified and uniform jitter against N",
+                source: "Figure 21",
+                parameters: "the fibers scene (400 thin random fibres) in place of the unpublished tentacles; circular (rejection) and square lights; N = 4, 16, 64; 64 x 48 (fast) or 160 x 120 (full); 3 (fast) or 6 (full) seeds; reference 1024 (fast) or 8192 (full) samples",
+                run: complex_occluder,
             },
         ],
     }
