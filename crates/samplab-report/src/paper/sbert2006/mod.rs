@@ -146,7 +146,7 @@ fn efficiency(ctx: &Ctx) -> Result<Output, Error> {
 fn one_count(ctx: &Ctx, n: usize, radii: &[f64], runs: usize, t: &mut Tally) -> Result<(), Error> {
     let (lo, hi) = theory::systematic_break_even(n, K_PRIME_CIRCLE);
     let mut curves = [Vec::new(), Vec::new()];
-    let mut predicted = Vec::new();
+    let (mut predicted, mut exact) = (Vec::new(), Vec::new());
     let (mut wins, mut compared, mut gaps, mut ratios) = (0, 0, Vec::new(), Vec::new());
     for (i, &r) in radii.iter().enumerate() {
         let p = PI * r * r;
@@ -172,6 +172,7 @@ fn one_count(ctx: &Ctx, n: usize, radii: &[f64], runs: usize, t: &mut Tally) -> 
         }
         let eq15 = theory::systematic_efficiency(p, n, K_PRIME_CIRCLE);
         predicted.push((p, eq15));
+        exact.push((p, independent / theory::systematic_variance_disk(r, n)));
         // systematic ahead of stratified where its variance is lower (its efficiency
         // higher; a zero variance is the highest)
         let efficiency = |m: f64| if m.is_nan() { f64::INFINITY } else { m };
@@ -215,12 +216,18 @@ fn one_count(ctx: &Ctx, n: usize, radii: &[f64], runs: usize, t: &mut Tally) -> 
         Cell::num(lo, 4),
         Cell::num(hi.min(PI / 4.0), 4),
     ]);
-    t.figures.push(fig3(n, runs, &curves, predicted)?);
+    t.figures.push(fig3(n, runs, &curves, [exact, predicted])?);
     Ok(())
 }
 
-/// Fig. 3's panel at `n`: the measured efficiencies and eq. 15's.
-fn fig3(n: usize, runs: usize, curves: &[Vec<(f64, f64)>; 2], predicted: Vec<(f64, f64)>) -> Result<Figure, Error> {
+/// Fig. 3's panel at `n`: the measured efficiencies, systematic sampling's exact one (eq. 5)
+/// and eq. 15's.
+fn fig3(
+    n: usize,
+    runs: usize,
+    curves: &[Vec<(f64, f64)>; 2],
+    [exact, predicted]: [Vec<(f64, f64)>; 2],
+) -> Result<Figure, Error> {
     let chart = LineChart {
         title: format!("Efficiency against independent sampling, centred circle, N = {n}"),
         x_label: "p (area of the circle)".into(),
@@ -236,6 +243,7 @@ fn fig3(n: usize, runs: usize, curves: &[Vec<(f64, f64)>; 2], predicted: Vec<(f6
                 colour_key: Some("jitter.uniform".into()),
                 ..Series::line("systematic, eq. 15", predicted)
             },
+            Series { colour_key: Some("floor".into()), ..Series::line("systematic, exact (eq. 5)", exact) },
             Series {
                 dashed: true,
                 colour_key: Some("random".into()),
@@ -249,7 +257,7 @@ fn fig3(n: usize, runs: usize, curves: &[Vec<(f64, f64)>; 2], predicted: Vec<(f6
     Figure::render(
         &format!("sbert2006-fig3-n{n}"),
         &format!(
-            "Fig. 3, N = {n}: efficiency of systematic and stratified sampling for a centred circle ({runs} runs per radius); dashed: eq. 15 with k' = 2 sqrt(pi)"
+            "Fig. 3, N = {n}: efficiency of systematic and stratified sampling for a centred circle ({runs} runs per radius); grey: systematic sampling's exact efficiency (eq. 5); dashed: eq. 15 with k' = 2 sqrt(pi)"
         ),
         &chart,
         (900, 520),
