@@ -482,6 +482,35 @@ pub fn flicker(frames: &[Plane]) -> Result<f64> {
     Ok((changes / ((n - 1.0) * pixels)).sqrt() / (squares / (n * pixels)).sqrt())
 }
 
+/// The correlation between consecutive frames' values, sum a b / sqrt(sum a^2 sum b^2) per
+/// pair (about 0 for independent frames of zero-mean noise, 1 for a static pattern, -1 for
+/// one that flips sign): the distribution behind [`flicker`]'s mean.
+///
+/// # Errors
+/// As [`flicker`]; also a frame whose values are all 0.
+pub fn frame_correlations(frames: &[Plane]) -> Result<Vec<f64>> {
+    flicker(frames)?;
+    frames
+        .windows(2)
+        .map(|p| {
+            let (a, b) = (&p[0].values, &p[1].values);
+            let (ab, aa, bb) = (
+                total(a.iter().zip(b).map(|(x, y)| x * y)),
+                total(a.iter().map(|x| x * x)),
+                total(b.iter().map(|y| y * y)),
+            );
+            if aa == 0.0 || bb == 0.0 {
+                return Err(Error::Setting {
+                    name: "frames",
+                    value: frames.len().to_string(),
+                    reason: "a frame whose values are all 0 has no correlation".into(),
+                });
+            }
+            Ok(ab / (aa * bb).sqrt())
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -568,6 +597,21 @@ mod tests {
         let f = flicker(&frames).unwrap();
         assert!((f - 2f64.sqrt()).abs() < 0.1, "{f}");
         assert!(flicker(std::slice::from_ref(&a)).is_err());
+    }
+
+    /// Failure probability: the correlation of two independent 32^2 noise images has a
+    /// standard deviation of 1/32; 0.15 is 4.8 of them (two-sided normal tail 2e-6 per pair,
+    /// 3 pairs). Fixed seeds. Least work: 32^2 pixels; fewer would widen the band.
+    #[test]
+    fn frame_correlations_are_one_for_a_static_pattern_and_near_zero_for_noise() {
+        let a = noise(32, 32, 3);
+        let flipped = Plane::new(32, 32, a.values().iter().map(|v| -v).collect()).unwrap();
+        let r = frame_correlations(&[a.clone(), a.clone(), flipped]).unwrap();
+        assert!((r[0] - 1.0).abs() < 1e-12 && (r[1] + 1.0).abs() < 1e-12, "{r:?}");
+        let frames: Vec<Plane> = (0..4).map(|f| noise(32, 32, 10 + f)).collect();
+        assert!(frame_correlations(&frames).unwrap().iter().all(|r| r.abs() < 0.15));
+        let zero = Plane::new(32, 32, vec![0.0; 1024]).unwrap();
+        assert!(frame_correlations(&[a, zero]).is_err());
     }
 
     #[test]

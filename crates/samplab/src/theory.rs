@@ -81,6 +81,33 @@ pub fn systematic_variance_disk(r: f64, n: usize) -> f64 {
 /// integral. The sum stops where the Gaussian factor falls below 1e-17. None when `f` has
 /// no closed-form Fourier coefficients, n is not a square, or sigma is not positive.
 pub fn gaussian_jitter_expectation(f: &dyn crate::integrand::Integrand, n: usize, sigma: f64) -> Option<f64> {
+    gaussian_jitter_harmonics(f, n, sigma, |j, sign, weight, [re, _]| if j == [0, 0] { re } else { sign * weight * re })
+}
+
+/// Subr & Kautz 2013 eq. 7's bound on Gaussian jitter's bias on `f` (n and sigma as in
+/// [`gaussian_jitter_expectation`]): the phases of eq. 4 ignored, the sum over the grid's
+/// harmonics m j != 0 of |<S>| |F(m j)|, with |<S>| = exp(-2 pi^2 sigma^2 |j|^2). It bounds
+/// |bias| from above (the triangle inequality), the "conservative approximation" of their
+/// section 2.4.
+pub fn gaussian_jitter_bias_bound(f: &dyn crate::integrand::Integrand, n: usize, sigma: f64) -> Option<f64> {
+    gaussian_jitter_harmonics(
+        f,
+        n,
+        sigma,
+        |j, _, weight, [re, im]| if j == [0, 0] { 0.0 } else { weight * re.hypot(im) },
+    )
+}
+
+/// The sum over Gaussian jitter's harmonics j (frequencies m j, m = sqrt(n)) of
+/// `term(j, (-1)^(j1 + j2), exp(-2 pi^2 sigma^2 |j|^2), F(m j))`, as far as the Gaussian
+/// factor exceeds 1e-17; None when `f` has no closed-form Fourier coefficients, n is not a
+/// square, or sigma is not positive.
+fn gaussian_jitter_harmonics(
+    f: &dyn crate::integrand::Integrand,
+    n: usize,
+    sigma: f64,
+    term: impl Fn([i64; 2], f64, f64, [f64; 2]) -> f64,
+) -> Option<f64> {
     let m = (n as f64).sqrt().round() as i64;
     if m * m != n as i64 || sigma.is_nan() || sigma <= 0.0 || f.dims() != 2 {
         return None;
@@ -95,7 +122,7 @@ pub fn gaussian_jitter_expectation(f: &dyn crate::integrand::Integrand, n: usize
                 continue;
             }
             let sign = if (a + b).rem_euclid(2) == 0 { 1.0 } else { -1.0 };
-            sum.add(sign * weight * f.fourier([m * a, m * b])?[0]);
+            sum.add(term([a, b], sign, weight, f.fourier([m * a, m * b])?));
         }
     }
     Some(sum.value())
@@ -240,6 +267,8 @@ mod tests {
             assert!(z.abs() < 5.0, "quad {instance}, sigma {sigma}: mean {} against {exact} (z = {z:.2})", stats.mean);
             // and the bias is real: the expectation is not the integral
             assert!((exact - f.exact()).abs() > 20.0 * stats.standard_error(), "quad {instance}: no bias to test");
+            // eq. 7's amplitudes-only sum bounds it
+            assert!(gaussian_jitter_bias_bound(f.as_ref(), n, sigma).unwrap() >= (exact - f.exact()).abs());
         }
         // the uniform-jitter limit: a wide Gaussian leaves no bias; a regular grid (sigma
         // 0) and a non-square count have no such sum
@@ -247,6 +276,21 @@ mod tests {
         assert!((gaussian_jitter_expectation(f.as_ref(), 16, 2.0).unwrap() - f.exact()).abs() < 1e-12);
         assert!(gaussian_jitter_expectation(f.as_ref(), 16, 0.0).is_none());
         assert!(gaussian_jitter_expectation(f.as_ref(), 15, 0.1).is_none());
+    }
+
+    #[test]
+    fn eq7_is_the_bias_itself_for_one_real_harmonic() {
+        use crate::integrand::Family;
+        // (1 + cos(2 pi 16 x)) / 2 at N = 256: all its energy on the grid's first harmonics,
+        // real (zero phase), so ignoring the phases loses nothing: the bound is |bias|, which
+        // is exp(-2 pi^2 sigma^2) / 2 (the two harmonics each carry 1/4, sign -1)
+        let f = Family::parse("cosine:u=16,v=0,phase=0").unwrap().instance(crate::Seed(1), 0).unwrap();
+        for sigma in [0.1, 0.25, 0.5] {
+            let bias = gaussian_jitter_expectation(f.as_ref(), 256, sigma).unwrap() - f.exact();
+            let want = -(-2.0 * std::f64::consts::PI.powi(2) * sigma * sigma).exp() / 2.0;
+            assert!((bias - want).abs() < 1e-14, "sigma {sigma}: {bias} against {want}");
+            assert!((gaussian_jitter_bias_bound(f.as_ref(), 256, sigma).unwrap() - want.abs()).abs() < 1e-14);
+        }
     }
 
     #[test]

@@ -6,7 +6,9 @@
 use rayon::prelude::*;
 use samplab::pixel::{Film, Pixels, prepare};
 use samplab::progress::Progress;
-use samplab::screen::{LOW_FREQUENCY_CUTOFF, Metrics, Plane, Radial, convergence, flicker as flicker_of};
+use samplab::screen::{
+    LOW_FREQUENCY_CUTOFF, Metrics, Plane, Radial, convergence, flicker as flicker_of, frame_correlations,
+};
 use samplab_render::image::Srgb8;
 use samplab_render::scenes::builtin;
 use samplab_render::{Footprint, Image, Mode, Options, Scene, render};
@@ -116,6 +118,8 @@ struct Errors {
     energy: Vec<f64>,
     /// The flicker of the error over those frames.
     flicker: Option<f64>,
+    /// The correlations of the error between consecutive frames.
+    correlations: Vec<f64>,
     /// The error's radial spectrum at [`TARGET_SPP`], averaged over those frames.
     radial: Option<Radial>,
 }
@@ -141,6 +145,7 @@ pub(super) fn scenes(ctx: &Ctx) -> Result<Output, Error> {
     }
     let (table, claim) = flicker_table(&cases, &names, &measured, size, ctx);
     out.tables.push(table);
+    out.tables.push(correlation_table(&cases, &names, &measured, ctx));
     out.claims.push(claim);
     out.notes.push(format!(
         "Each family draws every dimension of every estimate (film, lens, light sample, path vertices) from its own dimensions, keyed by pixel and sample. The error's low-frequency energy is judged at {TARGET_SPP} spp, where blue-noise samplers are meant to help, over {LF_FRAMES} frames (each frame its own samples); less than Owen-scrambled Sobol' per pixel's by more than 3 standard errors of the difference is reproduced, more by as much not reproduced, undecided in between. References carry their own noise, which sets a floor under the RMSE at the highest counts."
@@ -166,6 +171,7 @@ struct Run {
 struct Frames {
     energy: Vec<f64>,
     flicker: f64,
+    correlations: Vec<f64>,
     image: Image,
     radial: Radial,
 }
@@ -207,6 +213,7 @@ fn measure(
                     metrics: Vec::new(),
                     energy: Vec::new(),
                     flicker: None,
+                    correlations: Vec::new(),
                     radial: None,
                 })
                 .collect()
@@ -217,9 +224,10 @@ fn measure(
         let Some(run) = run else { continue };
         for (c, ((plane, metrics), frames)) in run.planes.into_iter().zip(run.frames).enumerate() {
             let s = &mut measured[c][f];
-            if let Some(Frames { energy, flicker, image, radial }) = frames {
+            if let Some(Frames { energy, flicker, correlations, image, radial }) = frames {
                 s.energy = energy;
                 s.flicker = Some(flicker);
+                s.correlations = correlations;
                 s.radial = Some(radial);
                 if SHOWN.contains(&names[f]) {
                     pictures[c].push((names[f], image));
@@ -250,7 +258,13 @@ fn run_cases(ctx: &Ctx, cases: &[Case], refs: &[(Image, Vec<f64>)], mut p: Pixel
                 planes.push(error_plane(&img, reference)?);
             }
             let energy = planes.iter().map(|e| e.low_frequency(LOW_FREQUENCY_CUTOFF)).collect::<Result<_, _>>()?;
-            frames = Some(Frames { energy, flicker: flicker_of(&planes)?, image: img, radial: mean_radial(&planes) });
+            frames = Some(Frames {
+                energy,
+                flicker: flicker_of(&planes)?,
+                correlations: frame_correlations(&planes)?,
+                image: img,
+                radial: mean_radial(&planes),
+            });
         }
         let metrics = plane.metrics(&[SIGMA])?;
         run.planes.push((plane, metrics));
@@ -555,4 +569,37 @@ fn flicker_table(cases: &[Case], names: &[&str], measured: &[Vec<Errors>], size:
         ..Claim::default()
     };
     (table, claim)
+}
+
+/// The distribution behind each flicker: per family and case, the least, median and
+/// largest correlation of the error between consecutive frames (the [`LF_FRAMES`] - 1
+/// pairs at [`TARGET_SPP`]).
+fn correlation_table(cases: &[Case], names: &[&str], measured: &[Vec<Errors>], ctx: &Ctx) -> Table {
+    let rows = names
+        .iter()
+        .enumerate()
+        .map(|(f, name)| {
+            let mut row = vec![Cell::Text(spec(ctx, name))];
+            row.extend(cases.iter().enumerate().map(|(c, _)| {
+                let mut r = measured[c][f].correlations.clone();
+                if r.is_empty() {
+                    return Cell::Text("-".into());
+                }
+                r.sort_by(f64::total_cmp);
+                Cell::Text(format!("{:+.2} / {:+.2} / {:+.2}", r[0], r[r.len() / 2], r[r.len() - 1]))
+            }));
+            row
+        })
+        .collect();
+    let mut columns = vec!["family".to_string()];
+    columns.extend(cases.iter().map(|c| c.name.to_string()));
+    Table {
+        id: "renderer-frame-correlation".into(),
+        caption: format!(
+            "Behind each flicker: the correlation of the luminance error between consecutive frames, least / median / largest over the {} pairs at {TARGET_SPP} spp (independent frames about 0, a static pattern 1, a flip -1)",
+            LF_FRAMES - 1
+        ),
+        columns,
+        rows,
+    }
 }
