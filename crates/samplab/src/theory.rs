@@ -86,7 +86,7 @@ pub fn gaussian_jitter_expectation(f: &dyn crate::integrand::Integrand, n: usize
 
 /// Subr & Kautz 2013 eq. 7's bound on Gaussian jitter's bias on `f` (n and sigma as in
 /// [`gaussian_jitter_expectation`]): the phases of eq. 4 ignored, the sum over the grid's
-/// harmonics m j != 0 of |<S>| |F(m j)|, with |<S>| = exp(-2 pi^2 sigma^2 |j|^2). It bounds
+/// harmonics m j != 0 of `|<S>| |F(m j)|`, with `|<S>| = exp(-2 pi^2 sigma^2 |j|^2)`. It bounds
 /// |bias| from above (the triangle inequality), the "conservative approximation" of their
 /// section 2.4.
 pub fn gaussian_jitter_bias_bound(f: &dyn crate::integrand::Integrand, n: usize, sigma: f64) -> Option<f64> {
