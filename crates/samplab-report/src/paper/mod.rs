@@ -27,7 +27,7 @@ pub fn keys() -> Vec<&'static str> {
     all().iter().map(|p| p.key).collect()
 }
 
-use samplab::experiment::{self, Row, Study};
+use samplab::experiment::{Row, Study, UnitStats};
 use samplab::integrand::Family;
 use samplab::progress::Progress;
 use samplab::{Sampler, Seed, sampler};
@@ -44,9 +44,26 @@ pub(crate) fn study(
     instances: usize,
     seed: Seed,
 ) -> Result<Vec<Row>, Error> {
+    Ok(study_units(ctx, samplers, integrand, ns, (sets, instances), seed)?.1)
+}
+
+/// [`study`], with the statistics of each of its units (sampler, count, instance; in the
+/// order of [`samplab::experiment::Prepared::units`]) beside its rows.
+pub(crate) fn study_units(
+    ctx: &Ctx,
+    samplers: &[&str],
+    integrand: &str,
+    ns: &[usize],
+    (sets, instances): (usize, usize),
+    seed: Seed,
+) -> Result<(Vec<UnitStats>, Vec<Row>), Error> {
     let s: Vec<Box<dyn Sampler>> = samplers.iter().map(|x| sampler::build(x)).collect::<Result<_, _>>()?;
     let family = Family::parse(integrand)?;
     let report = |k| ctx.tick(k);
     let progress = Progress::new(&report).stopped_by(ctx.stop);
-    Ok(experiment::run(&Study { samplers: &s, family: (&family).into(), ns, sets, instances, seed }, &progress)?)
+    let study = Study { samplers: &s, family: (&family).into(), ns, sets, instances, seed };
+    let prepared = study.prepare()?;
+    let units = prepared.every_unit(&progress)?;
+    let rows = prepared.rows(&units)?;
+    Ok((units, rows))
 }

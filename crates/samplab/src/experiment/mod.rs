@@ -397,6 +397,22 @@ impl Prepared<'_> {
         })
     }
 
+    /// Every unit's statistics, in unit order (the units in parallel). `progress` advances
+    /// by one per unit and is checked before each realization.
+    ///
+    /// # Errors
+    /// As [`Prepared::unit`].
+    pub fn every_unit(&self, progress: &Progress) -> Result<Vec<UnitStats>> {
+        (0..self.units())
+            .into_par_iter()
+            .map(|u| {
+                let stats = self.unit(u, progress)?;
+                progress.advance(1)?;
+                Ok(stats)
+            })
+            .collect()
+    }
+
     /// The rows from every unit's statistics, in unit order (the merge of a study computed
     /// in pieces: the same arithmetic in the same order as [`run`], so the same bits).
     ///
@@ -452,15 +468,7 @@ impl Prepared<'_> {
 /// As [`Study::prepare`] and [`Prepared::unit`].
 pub fn run(study: &Study, progress: &Progress) -> Result<Vec<Row>> {
     let prepared = study.prepare()?;
-    let units: Vec<UnitStats> = (0..prepared.units())
-        .into_par_iter()
-        .map(|u| {
-            let stats = prepared.unit(u, progress)?;
-            progress.advance(1)?;
-            Ok(stats)
-        })
-        .collect::<Result<_>>()?;
-    prepared.rows(&units)
+    prepared.rows(&prepared.every_unit(progress)?)
 }
 
 /// Two-sided 97.5% Student t quantiles for 1..=30 degrees of freedom.

@@ -21,7 +21,7 @@ use samplab_render::scenes::LightKind;
 use samplab_render::{Mode, Pattern};
 
 use super::shadows::{Setup, scene};
-use super::study;
+use super::{study, study_units};
 use crate::criteria::{self, Decision, Estimate};
 use crate::plot::{LineChart, Series};
 use crate::published;
@@ -118,7 +118,7 @@ fn efficiency(ctx: &Ctx) -> Result<Output, Error> {
     let ns = [16usize, 64, 100, 400];
     let radii: Vec<f64> = (1..=60).map(|i| 0.5 * i as f64 / 60.0).collect();
     let runs = ctx.pick(100, 1000);
-    ctx.set_length((ns.len() * radii.len() * 2) as u64);
+    ctx.set_length((ns.len() * radii.len() * 2 * FIG3_BATCHES) as u64);
     let mut t = Tally::default();
     for &n in &ns {
         one_count(ctx, n, &radii, runs, &mut t)?;
@@ -142,30 +142,42 @@ fn efficiency(ctx: &Ctx) -> Result<Output, Error> {
     })
 }
 
+/// Independent batches of Fig. 3's runs at each radius: a method's variance is the mean of
+/// its batches' variances (each unbiased, divisor runs / batches - 1), and its standard
+/// error their spread over sqrt(batches), so the efficiencies get error bars without a
+/// fourth moment.
+const FIG3_BATCHES: usize = 10;
+
+/// A measured curve: its points, and each point's +-1 standard error bar.
+type Measured = (Vec<(f64, f64)>, Vec<(f64, f64)>);
+
 /// Fig. 3 at one count `n`: the efficiencies over the radii, their medians, the figure.
 fn one_count(ctx: &Ctx, n: usize, radii: &[f64], runs: usize, t: &mut Tally) -> Result<(), Error> {
     let (lo, hi) = theory::systematic_break_even(n, K_PRIME_CIRCLE);
-    let mut curves = [Vec::new(), Vec::new()];
+    let mut curves: [Measured; 2] = Default::default();
     let (mut predicted, mut exact) = (Vec::new(), Vec::new());
     let (mut wins, mut compared, mut gaps, mut ratios) = (0, 0, Vec::new(), Vec::new());
     for (i, &r) in radii.iter().enumerate() {
         let p = PI * r * r;
-        let res = study(
+        let (units, _) = study_units(
             ctx,
             &["jitter.uniform", "jitter"],
             &format!("disk:r={r},cx=0.5,cy=0.5"),
             &[n],
-            runs,
-            1,
+            (runs / FIG3_BATCHES, FIG3_BATCHES),
             ctx.seed.derive(n as u64).derive(i as u64),
         )?;
         let independent = theory::random_indicator_variance(p, n);
         let mut measured = [f64::NAN; 2];
-        for ((c, row), m) in curves.iter_mut().zip(&res).zip(&mut measured) {
-            let variance = row.relative_variance * (row.relative_mean * p).powi(2);
-            if variance > 0.0 {
-                *m = independent / variance;
-                c.push((p, *m));
+        for (((points, bars), batches), m) in curves.iter_mut().zip(units.chunks_exact(FIG3_BATCHES)).zip(&mut measured)
+        {
+            let variance = Summary::of(&batches.iter().map(|u| u.variance).collect::<Vec<_>>());
+            if variance.mean > 0.0 {
+                *m = independent / variance.mean;
+                points.push((p, *m));
+                // the delta method on the log scale: SE(ln Var) = SE(Var) / Var
+                let spread = (variance.standard_error() / variance.mean).exp();
+                bars.push((*m / spread, *m * spread));
             } else {
                 t.unmeasured += 1;
             }
@@ -210,8 +222,8 @@ fn one_count(ctx: &Ctx, n: usize, radii: &[f64], runs: usize, t: &mut Tally) -> 
     };
     t.rows.push(vec![
         Cell::num(n as f64, 0),
-        Cell::num(median(&curves[0]), 2),
-        Cell::num(median(&curves[1]), 2),
+        Cell::num(median(&curves[0].0), 2),
+        Cell::num(median(&curves[1].0), 2),
         Cell::num(median(&predicted), 2),
         Cell::num(lo, 4),
         Cell::num(hi.min(PI / 4.0), 4),
@@ -225,7 +237,7 @@ fn one_count(ctx: &Ctx, n: usize, radii: &[f64], runs: usize, t: &mut Tally) -> 
 fn fig3(
     n: usize,
     runs: usize,
-    curves: &[Vec<(f64, f64)>; 2],
+    curves: &[Measured; 2],
     [exact, predicted]: [Vec<(f64, f64)>; 2],
 ) -> Result<Figure, Error> {
     let chart = LineChart {
@@ -235,9 +247,14 @@ fn fig3(
         series: vec![
             Series {
                 colour_key: Some("jitter.uniform".into()),
-                ..Series::line("systematic (measured)", curves[0].clone())
+                intervals: curves[0].1.clone(),
+                ..Series::line("systematic (measured)", curves[0].0.clone())
             },
-            Series { colour_key: Some("jitter".into()), ..Series::line("stratified (measured)", curves[1].clone()) },
+            Series {
+                colour_key: Some("jitter".into()),
+                intervals: curves[1].1.clone(),
+                ..Series::line("stratified (measured)", curves[1].0.clone())
+            },
             Series {
                 dashed: true,
                 colour_key: Some("jitter.uniform".into()),
@@ -257,7 +274,7 @@ fn fig3(
     Figure::render(
         &format!("sbert2006-fig3-n{n}"),
         &format!(
-            "Fig. 3, N = {n}: efficiency of systematic and stratified sampling for a centred circle ({runs} runs per radius); grey: systematic sampling's exact efficiency (eq. 5); dashed: eq. 15 with k' = 2 sqrt(pi)"
+            "Fig. 3, N = {n}: efficiency of systematic and stratified sampling for a centred circle ({runs} runs per radius, in {FIG3_BATCHES} batches; bars: +-1 standard error over the batches); grey: systematic sampling's exact efficiency (eq. 5); dashed: eq. 15 with k' = 2 sqrt(pi)"
         ),
         &chart,
         (900, 520),
