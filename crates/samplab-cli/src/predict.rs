@@ -18,7 +18,7 @@ fn after_help() -> String {
          approximation otherwise, and for sets used unshifted.\n\n\
          Examples:\n  samplab predict --integrand disk:r=0.3,cx=0.45,cy=0.5 --sampler random --sampler jitter \\\n      \
          --sampler sobol.owen -n 64,256,1024,4096 --measure\n  samplab predict --integrand cosine:u=3,v=5 --all -n 64,256 \
-         --json\n  samplab predict --integrand quad --integrand disk --integrand halfplane --all\n\n\
+         --json\n  samplab predict --integrand quad --integrand disk --integrand halfplane --all -n 64,256\n\n\
          The radial column is the same sum with the sampler's spectrum averaged over rings of \
          equal |k| (the form for isotropic samplers). The exponent table fits P(k) ~ c (|k| / \
          sqrt n)^beta over |k| / sqrt n <= 0.25 and gives the variance exponents it implies: \
