@@ -324,6 +324,12 @@ fn grids(kind: LightKind, angles: [f64; 3]) -> Scene {
             }
         }
     }
+    under_bar_light(kind, shapes)
+}
+
+/// `shapes`, grey, under the light and seen by the camera of the scenes of thin bars
+/// (`grids`, `fibers`).
+fn under_bar_light(kind: LightKind, shapes: Vec<(Shape, u32)>) -> Scene {
     let light = overhead_light(kind, DVec3::new(0.0, 2.2, 0.0), 1.0);
     scene(
         look([0.0, 3.2, 2.2], [0.0, 0.0, 0.0], 55.0),
@@ -349,13 +355,7 @@ fn fibers(kind: LightKind) -> Scene {
             shapes.push((face, 1));
         }
     }
-    let light = overhead_light(kind, DVec3::new(0.0, 2.2, 0.0), 1.0);
-    scene(
-        look([0.0, 3.2, 2.2], [0.0, 0.0, 0.0], 55.0),
-        shapes,
-        vec![Material::diffuse(GREY), Material::diffuse(GREY)],
-        vec![light],
-    )
+    under_bar_light(kind, shapes)
 }
 
 fn occluder(kind: LightKind) -> Scene {

@@ -253,6 +253,19 @@ fn error_curves(
     Ok((series, mse))
 }
 
+/// The chart of [`error_curves`]' series on `scene` under its `light` light, log-log.
+fn error_chart(scene: &str, light: &str, series: Vec<Series>) -> LineChart {
+    LineChart {
+        title: format!("{scene} scene, {light} light: relative RMS error against N"),
+        x_label: "light samples per pixel N".into(),
+        y_label: "relative RMS error".into(),
+        series,
+        log_y: true,
+        log_x: true,
+        polar: false,
+    }
+}
+
 /// Fig. 21: very complex shadows (the tentacles, whose geometry is not published; here the
 /// fibers scene, hundreds of thin random fibres), circular and square lights: random,
 /// stratified and uniform jitter against N.
@@ -277,15 +290,7 @@ pub(super) fn complex_occluder(ctx: &Ctx) -> Result<Output, Error> {
             row.extend(series.iter().map(|s| Cell::num(100.0 * s.points[i].1, 2)));
             rows.push(row);
         }
-        let chart = LineChart {
-            title: format!("fibers scene, {light_name} light: relative RMS error against N"),
-            x_label: "light samples per pixel N".into(),
-            y_label: "relative RMS error".into(),
-            series,
-            log_y: true,
-            log_x: true,
-            polar: false,
-        };
+        let chart = error_chart("fibers", light_name, series);
         figures.push(Figure::render(
             &format!("ramamoorthi2012-fig21-{light_name}"),
             &format!("Fig. 21 (e-f), {light_name} light, the fibers scene in place of the tentacles: fractional error against N; bars: +- 1 standard error over the seeds"),
@@ -373,15 +378,7 @@ pub(super) fn error_vs_n(ctx: &Ctx) -> Result<Output, Error> {
         if scene_name == GRIDS[0] {
             saved.push((light_name, samples_saved(&ns, &mse)));
         }
-        let chart = LineChart {
-            title: format!("{scene_name} scene, {light_name} light: relative RMS error against N"),
-            x_label: "light samples per pixel N".into(),
-            y_label: "relative RMS error".into(),
-            series,
-            log_y: true,
-            log_x: true,
-            polar: false,
-        };
+        let chart = error_chart(scene_name, light_name, series);
         figures.push(Figure::render(
             &format!("ramamoorthi2012-fig20-{scene_name}-{}", light_name.to_lowercase()),
             &format!("Fig. 20: fractional error against N, {scene_name} scene, {light_name} light; bars: +- 1 standard error over the seeds"),
