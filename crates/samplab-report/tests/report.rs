@@ -1,6 +1,7 @@
 //! The report: every page's links and images resolve, the run is deterministic whatever
 //! the thread count, and a failed run never replaces or fakes a report.
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::LazyLock;
 use std::sync::atomic::AtomicBool;
@@ -8,6 +9,7 @@ use std::sync::atomic::AtomicBool;
 use samplab::Seed;
 use samplab::io::Replace;
 use samplab_report::{Error, Experiment, Options, Paper, Scale, paper, reproduce};
+use sha2::{Digest as _, Sha256};
 
 /// A fresh folder `name` under cargo's scratch folder for integration tests (in the target
 /// folder, emptied here by the next run: a run leaves nothing in the system's temporary
@@ -121,36 +123,6 @@ fn every_experiment_has_an_expected_time() {
     }
 }
 
-/// Every file of `a`'s figures and tables equals the same file of `b`, and every claim of
-/// `a`'s claims.json equals the claim with the same paper and id in `b`'s; returns how many
-/// files were compared.
-fn assert_same_outputs(a: &Path, b: &Path) -> usize {
-    let mut compared = 0;
-    for sub in ["figures", "tables"] {
-        for entry in std::fs::read_dir(a.join(sub)).unwrap() {
-            let path = entry.unwrap().path();
-            let name = path.file_name().unwrap();
-            let other = b.join(sub).join(name);
-            assert!(other.exists(), "{} missing from the other run", other.display());
-            assert!(std::fs::read(&path).unwrap() == std::fs::read(&other).unwrap(), "{sub}/{name:?} differs");
-            compared += 1;
-        }
-    }
-    let claims = |dir: &Path| -> Vec<serde_json::Value> {
-        serde_json::from_slice::<serde_json::Value>(&std::fs::read(dir.join("claims.json")).unwrap())
-            .unwrap()
-            .as_array()
-            .unwrap()
-            .clone()
-    };
-    let theirs = claims(b);
-    for c in claims(a) {
-        let twin = theirs.iter().find(|t| t["paper"] == c["paper"] && t["id"] == c["id"]);
-        assert_eq!(Some(&c), twin, "claim {} / {} differs", c["paper"], c["id"]);
-    }
-    compared
-}
-
 #[test]
 fn every_link_and_image_resolves() {
     let (out, claims, _) = &*FULL_RUN;
@@ -241,20 +213,14 @@ fn slow_tier() -> bool {
     std::env::args().any(|a| a == "--include-ignored" || a == "--ignored")
 }
 
-/// The papers on one thread, run once and shared by the tests: all of them in the slow
-/// tier; otherwise Subr & Kautz's renders, most of the fast run's time, are left out. They
-/// run in two groups of about the same expected time (`data/timings.json`), side by side,
-/// each on a one-thread pool of its own, beside the two-thread run. (Run as one, the
-/// one-thread reproduction outlasted the two-thread run with a core idle: the test took
-/// 179 s at 161% CPU, against 151 s at 195% in two groups, 2026-11-29.) Returns each
-/// group's report.
-static ONE_THREAD_RUNS: LazyLock<Vec<PathBuf>> = LazyLock::new(|| {
+/// The papers on one thread in two groups of about the same expected time
+/// (`data/timings.json`), side by side, each on a one-thread pool of its own, beside the
+/// two-thread run (run as one, the one-thread reproduction outlasted the two-thread run
+/// with a core idle: the test took 179 s at 161% CPU, against 151 s at 195% in two groups,
+/// 2026-11-29). Returns each group's report.
+fn one_thread_runs(mut papers: Vec<Paper>) -> Vec<PathBuf> {
     let seconds = samplab_report::expected_seconds(Scale::Fast);
     let cost = |p: &Paper| p.experiments.iter().map(|e| seconds[&format!("{}/{}", p.key, e.id)]).sum::<f64>();
-    let mut papers = paper::all();
-    if !slow_tier() {
-        papers.retain(|p| p.key != SLOW_PAPER);
-    }
     papers.sort_by(|a, b| cost(b).total_cmp(&cost(a)));
     // longest first, each to the group with less so far
     let mut groups: [(f64, Vec<Paper>); 2] = Default::default();
@@ -277,50 +243,240 @@ static ONE_THREAD_RUNS: LazyLock<Vec<PathBuf>> = LazyLock::new(|| {
             .collect();
         runs.into_iter().map(|r| r.join().unwrap()).collect()
     })
-});
+}
 
-/// The paper whose one-thread run is left to the slow tier.
+/// The paper whose one-thread run is left to the slow tier when it is not recorded.
 const SLOW_PAPER: &str = "subr2013";
 
-/// The names of the figure and table files of a report.
-fn files(dir: &Path) -> std::collections::BTreeSet<PathBuf> {
-    ["figures", "tables"]
-        .iter()
-        .flat_map(|sub| {
-            std::fs::read_dir(dir.join(sub)).unwrap().map(move |e| Path::new(sub).join(e.unwrap().file_name()))
-        })
-        .collect()
+/// What the determinism check compares: each figure and table file of a report and each
+/// claim of its claims.json, by name (`figures/NAME`, `tables/NAME`, `claims/PAPER/ID`),
+/// with the SHA-256 of its bytes.
+type Outputs = BTreeMap<String, String>;
+
+fn sha256(bytes: &[u8]) -> String {
+    Sha256::digest(bytes).iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// The outputs of the reports in `dirs` (one run's groups), each name once.
+fn outputs(dirs: &[PathBuf]) -> Outputs {
+    let mut out = Outputs::new();
+    let mut add =
+        |name: String, bytes: &[u8]| assert!(out.insert(name.clone(), sha256(bytes)).is_none(), "{name} twice");
+    for dir in dirs {
+        for sub in ["figures", "tables"] {
+            for entry in std::fs::read_dir(dir.join(sub)).unwrap() {
+                let path = entry.unwrap().path();
+                add(format!("{sub}/{}", path.file_name().unwrap().to_string_lossy()), &std::fs::read(&path).unwrap());
+            }
+        }
+        let claims: Vec<serde_json::Value> =
+            serde_json::from_slice(&std::fs::read(dir.join("claims.json")).unwrap()).unwrap();
+        for c in claims {
+            let name = format!("claims/{}/{}", c["paper"].as_str().unwrap(), c["id"].as_str().unwrap());
+            add(name, &serde_json::to_vec(&c).unwrap());
+        }
+    }
+    out
+}
+
+/// The recorded one-thread run (written by `scripts/record-one-thread`): the inputs it was
+/// made from and its outputs.
+const RECORD: &str = "tests/one-thread-run.json";
+
+/// The files that compile into the reproduction or that it includes, from the repository's
+/// root: the three crates it runs (their sources, data, scenes and assets), the guide pages
+/// the library includes, the manifests and lock file, and this test (which sets the run's
+/// options). A folder stands for every file under it.
+const SOURCES: &[&str] = &[
+    "Cargo.toml",
+    "Cargo.lock",
+    "docs/guide",
+    "crates/samplab/Cargo.toml",
+    "crates/samplab/build.rs",
+    "crates/samplab/src",
+    "crates/samplab/data",
+    "crates/samplab-render/Cargo.toml",
+    "crates/samplab-render/src",
+    "crates/samplab-render/scenes",
+    "crates/samplab-report/Cargo.toml",
+    "crates/samplab-report/src",
+    "crates/samplab-report/data",
+    "crates/samplab-report/assets",
+    "crates/samplab-report/tests/report.rs",
+];
+
+/// The SHA-256 of the files at `paths` under `root` (folders walked), each file's path
+/// relative to `root` and its bytes, in the paths' sorted order.
+fn sources_digest(root: &Path, paths: &[&str]) -> String {
+    fn walk(path: &Path, files: &mut Vec<PathBuf>) {
+        if path.is_dir() {
+            for entry in std::fs::read_dir(path).unwrap() {
+                walk(&entry.unwrap().path(), files);
+            }
+        } else {
+            files.push(path.to_path_buf());
+        }
+    }
+    let mut files = Vec::new();
+    for p in paths {
+        assert!(root.join(p).exists(), "{p} does not exist");
+        walk(&root.join(p), &mut files);
+    }
+    files.sort();
+    let mut all = Vec::new();
+    for f in files {
+        let name = f.strip_prefix(root).unwrap().to_string_lossy().into_owned();
+        let bytes = std::fs::read(&f).unwrap();
+        all.extend_from_slice(format!("{name}\n{}\n", bytes.len()).as_bytes());
+        all.extend_from_slice(&bytes);
+    }
+    sha256(&all)
+}
+
+/// The first line a command prints, if it runs.
+fn first_line(program: &str, arg: &str) -> Option<String> {
+    let out = std::process::Command::new(program).arg(arg).output().ok()?;
+    let text = String::from_utf8_lossy(&out.stdout);
+    out.status.success().then(|| text.lines().next().unwrap_or_default().to_string())
+}
+
+/// Everything besides the thread count that the one-thread run's bytes depend on: the
+/// sources ([`SOURCES`]), the compiler, the instruction sets the build targets and those
+/// the library chooses among at run time (`samplab::simd` and the FFT), the processor's
+/// vendor, and the C library (whose mathematical functions differ between versions); None
+/// where one of them cannot be read.
+fn inputs() -> Option<String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    #[cfg(not(target_arch = "x86_64"))]
+    let cpu = String::new();
+    #[cfg(target_arch = "x86_64")]
+    let cpu = {
+        use std::arch::is_x86_feature_detected as has;
+        let features = [
+            ("sse4.1", has!("sse4.1")),
+            ("avx", has!("avx")),
+            ("avx2", has!("avx2")),
+            ("fma", has!("fma")),
+            ("avx512f", has!("avx512f")),
+            ("avx512bw", has!("avx512bw")),
+            ("avx512dq", has!("avx512dq")),
+            ("avx512vl", has!("avx512vl")),
+            ("gfni", has!("gfni")),
+        ];
+        features.iter().filter(|f| f.1).map(|f| f.0).collect::<Vec<_>>().join(" ")
+    };
+    let built_for = [cfg!(target_feature = "avx2"), cfg!(target_feature = "fma"), cfg!(target_feature = "avx512f")];
+    let vendor = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()?
+        .lines()
+        .find_map(|l| l.strip_prefix("vendor_id").map(|v| v.trim_start_matches([' ', '\t', ':']).to_string()))?;
+    Some(format!(
+        "sources {}; {}; {} {}; built for avx2 fma avx512f: {built_for:?}; {} on {vendor}, {}",
+        sources_digest(&root, SOURCES),
+        first_line("rustc", "-V")?,
+        std::env::consts::ARCH,
+        std::env::consts::OS,
+        cpu,
+        first_line("ldd", "--version")?,
+    ))
+}
+
+/// A line on the test's standard error that the harness does not capture (CI's log shows
+/// which way the determinism check went).
+fn say(line: &str) {
+    use std::io::Write as _;
+    let _ = writeln!(std::io::stderr(), "{line}");
+}
+
+/// The one-thread side of the determinism check, shared by the tests: the recorded run
+/// where it was made from exactly this run's inputs ([`inputs`]), else the papers run on
+/// one thread now (all of them in the slow tier; otherwise Subr & Kautz's renders, most of
+/// the fast run's time, are left out); and whether it holds every paper. With
+/// `SAMPLAB_RECORD_ONE_THREAD` set (`scripts/record-one-thread`), every paper is run on
+/// one thread and the record is written.
+///
+/// A record is as strong as a rerun: the one-thread run is a function of the inputs the
+/// record names, so a rerun from the same inputs makes the same bytes; where any input
+/// differs (a source edited since the record, another compiler, C library or instruction
+/// set), the run is made again.
+static ONE_THREAD: LazyLock<(Outputs, bool)> = LazyLock::new(|| {
+    let record = Path::new(env!("CARGO_MANIFEST_DIR")).join(RECORD);
+    let inputs = inputs();
+    if std::env::var_os("SAMPLAB_RECORD_ONE_THREAD").is_some() {
+        let outputs = outputs(&one_thread_runs(paper::all()));
+        let inputs = inputs.expect("the run's inputs cannot be read: nothing to record");
+        let json = serde_json::json!({
+            "about": "the fast reproduction's outputs on one thread (SHA-256), and the inputs they \
+                      were made from; written by scripts/record-one-thread, read by tests/report.rs",
+            "inputs": inputs,
+            "outputs": outputs,
+        });
+        std::fs::write(&record, serde_json::to_string_pretty(&json).unwrap() + "\n").unwrap();
+        say(&format!("determinism: the one-thread run recorded in {RECORD}"));
+        return (outputs, true);
+    }
+    if let (Some(inputs), Ok(text)) = (&inputs, std::fs::read_to_string(&record)) {
+        let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+        if json["inputs"].as_str() == Some(inputs) {
+            say(&format!("determinism: compared with the one-thread run recorded from these inputs ({RECORD})"));
+            return (serde_json::from_value(json["outputs"].clone()).unwrap(), true);
+        }
+    }
+    say("determinism: no one-thread run recorded from these inputs; running it");
+    let mut papers = paper::all();
+    if !slow_tier() {
+        papers.retain(|p| p.key != SLOW_PAPER);
+    }
+    (outputs(&one_thread_runs(papers)), slow_tier())
+});
+
+/// Every output of the one-thread side equals the two-thread run's (each experiment's seed
+/// depends only on its paper and id); returns how many were compared.
+fn assert_same_as_two_threads() -> usize {
+    let two = outputs(std::slice::from_ref(&FULL_RUN.0));
+    for (name, digest) in &ONE_THREAD.0 {
+        assert_eq!(two.get(name), Some(digest), "{name}: the one-thread run made other bytes (or none)");
+    }
+    ONE_THREAD.0.len()
 }
 
 #[test]
 fn deterministic_whatever_the_thread_count() {
-    // each experiment's seed depends only on its paper and id, so the files must match the
-    // shared two-thread run's
-    let compared: usize = ONE_THREAD_RUNS.iter().map(|one| assert_same_outputs(one, &FULL_RUN.0)).sum();
-    assert!(compared > 50, "only {compared} files compared");
+    let compared = assert_same_as_two_threads();
+    assert!(compared > 50, "only {compared} outputs compared");
 }
 
 #[test]
 #[ignore = "slow tier (run by .ci/run): every paper's fast reproduction on one thread"]
 fn slow_every_experiment_deterministic_whatever_the_thread_count() {
     assert!(slow_tier(), "the slow tier is chosen by --include-ignored or --ignored");
-    let (two, _, _) = &*FULL_RUN;
-    for one in ONE_THREAD_RUNS.iter() {
-        assert_same_outputs(one, two);
-    }
-    // both ways round: the one-thread runs together made every file and claim of the
-    // two-thread run
-    let one: std::collections::BTreeSet<PathBuf> = ONE_THREAD_RUNS.iter().flat_map(|dir| files(dir)).collect();
-    assert_eq!(one, files(two));
-    let claims = |dir: &Path| {
-        serde_json::from_slice::<serde_json::Value>(&std::fs::read(dir.join("claims.json")).unwrap())
-            .unwrap()
-            .as_array()
-            .unwrap()
-            .len()
-    };
-    assert_eq!(ONE_THREAD_RUNS.iter().map(|dir| claims(dir)).sum::<usize>(), claims(two));
-    assert!(files(two).iter().any(|f| f.to_string_lossy().contains(SLOW_PAPER)), "no file of {SLOW_PAPER}");
+    assert_same_as_two_threads();
+    assert!(ONE_THREAD.1, "the one-thread side left papers out");
+    // both ways round: the one-thread run made every file and claim of the two-thread run
+    let two = outputs(std::slice::from_ref(&FULL_RUN.0));
+    let missing: Vec<&String> = two.keys().filter(|k| !ONE_THREAD.0.contains_key(*k)).collect();
+    assert!(missing.is_empty(), "not made on one thread: {missing:?}");
+    assert!(two.keys().any(|k| k.contains(SLOW_PAPER)), "no output of {SLOW_PAPER}");
+}
+
+/// The sources' digest changes with a file's bytes, its name, and a file added.
+#[test]
+fn the_sources_digest_sees_every_change() {
+    let dir = temp("digest");
+    std::fs::create_dir_all(dir.join("src/sub")).unwrap();
+    std::fs::write(dir.join("src/sub/a.rs"), "fn a() {}").unwrap();
+    std::fs::write(dir.join("b.toml"), "b").unwrap();
+    let digest = || sources_digest(&dir, &["src", "b.toml"]);
+    let mut seen = vec![digest()];
+    std::fs::write(dir.join("src/sub/a.rs"), "fn a() { }").unwrap();
+    seen.push(digest());
+    std::fs::rename(dir.join("src/sub/a.rs"), dir.join("src/sub/c.rs")).unwrap();
+    seen.push(digest());
+    std::fs::write(dir.join("src/d.rs"), "").unwrap();
+    seen.push(digest());
+    let unique: std::collections::BTreeSet<&String> = seen.iter().collect();
+    assert_eq!(unique.len(), seen.len(), "{seen:?}");
+    assert_eq!(digest(), seen[3], "the same files, the same digest");
 }
 
 fn failing(_: &samplab_report::Ctx) -> Result<samplab_report::Output, Error> {
