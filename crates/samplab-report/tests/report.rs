@@ -431,18 +431,19 @@ static ONE_THREAD: LazyLock<(Outputs, bool)> = LazyLock::new(|| {
 });
 
 /// Every output of the one-thread side equals the two-thread run's (each experiment's seed
-/// depends only on its paper and id); returns how many were compared.
-fn assert_same_as_two_threads() -> usize {
+/// depends only on its paper and id); returns the two-thread run's digests.
+fn assert_same_as_two_threads() -> Outputs {
     let two = outputs(std::slice::from_ref(&FULL_RUN.0));
     for (name, digest) in &ONE_THREAD.0 {
         assert_eq!(two.get(name), Some(digest), "{name}: the one-thread run made other bytes (or none)");
     }
-    ONE_THREAD.0.len()
+    two
 }
 
 #[test]
 fn deterministic_whatever_the_thread_count() {
-    let compared = assert_same_as_two_threads();
+    assert_same_as_two_threads();
+    let compared = ONE_THREAD.0.len();
     assert!(compared > 50, "only {compared} outputs compared");
 }
 
@@ -450,10 +451,9 @@ fn deterministic_whatever_the_thread_count() {
 #[ignore = "slow tier (run by .ci/run): every paper's fast reproduction on one thread"]
 fn slow_every_experiment_deterministic_whatever_the_thread_count() {
     assert!(slow_tier(), "the slow tier is chosen by --include-ignored or --ignored");
-    assert_same_as_two_threads();
+    let two = assert_same_as_two_threads();
     assert!(ONE_THREAD.1, "the one-thread side left papers out");
     // both ways round: the one-thread run made every file and claim of the two-thread run
-    let two = outputs(std::slice::from_ref(&FULL_RUN.0));
     let missing: Vec<&String> = two.keys().filter(|k| !ONE_THREAD.0.contains_key(*k)).collect();
     assert!(missing.is_empty(), "not made on one thread: {missing:?}");
     assert!(two.keys().any(|k| k.contains(SLOW_PAPER)), "no output of {SLOW_PAPER}");
