@@ -27,10 +27,11 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
+use samplab::construct::Counts;
 use samplab::discrepancy::{self, Limits, Metric};
 use samplab::integrand::Family;
 use samplab::progress::Progress;
-use samplab::sampler::{Counts, SAMPLERS, SamplerEntry};
+use samplab::sampler::{SAMPLERS, SamplerEntry};
 use samplab::{PointSet, Sampler, Seed, spatial, spectrum, warp};
 use serde::{Deserialize, Serialize};
 

@@ -11,13 +11,8 @@ fn main() {
             .map(|_| {
                 let t = Instant::now();
                 std::hint::black_box(
-                    samplab::sampler::qmc::cbc::construct(
-                        n,
-                        s,
-                        samplab::sampler::qmc::cbc::Weights::decaying(2.0),
-                        embedded,
-                    )
-                    .unwrap(),
+                    samplab::construct::cbc::construct(n, s, samplab::construct::cbc::Weights::decaying(2.0), embedded)
+                        .unwrap(),
                 );
                 t.elapsed().as_secs_f64()
             })

@@ -284,7 +284,7 @@ impl Plane {
 
 /// A compensated sum.
 fn total(values: impl Iterator<Item = f64>) -> f64 {
-    let mut sum = crate::discrepancy::l2::Sum::default();
+    let mut sum = crate::numeric::Sum::default();
     values.for_each(|v| sum.add(v));
     sum.value()
 }

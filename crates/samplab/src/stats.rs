@@ -23,10 +23,10 @@ impl Summary {
     pub fn of(values: &[f64]) -> Summary {
         assert!(!values.is_empty(), "a summary of no values");
         let n = values.len() as f64;
-        let mut sum = crate::discrepancy::l2::Sum::default();
+        let mut sum = crate::numeric::Sum::default();
         values.iter().for_each(|&v| sum.add(v));
         let mean = sum.value() / n;
-        let mut sq = crate::discrepancy::l2::Sum::default();
+        let mut sq = crate::numeric::Sum::default();
         values.iter().for_each(|&v| sq.add((v - mean) * (v - mean)));
         let sd = if values.len() > 1 { (sq.value() / (n - 1.0)).sqrt() } else { 0.0 };
         let (min, max) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));

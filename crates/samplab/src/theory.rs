@@ -62,7 +62,7 @@ pub fn systematic_variance_disk(r: f64, n: usize) -> f64 {
     let side = (n as f64).sqrt().round();
     let spacing = 1.0 / side;
     let reach = (2.0 * r / spacing).ceil() as i64;
-    let mut sum = crate::discrepancy::l2::Sum::default();
+    let mut sum = crate::numeric::Sum::default();
     for i in -reach..=reach {
         for j in -reach..=reach {
             sum.add(disk_covariogram(r, spacing * ((i * i + j * j) as f64).sqrt()));
@@ -114,7 +114,7 @@ fn gaussian_jitter_harmonics(
     }
     let falloff = |j2: i64| (-2.0 * std::f64::consts::PI.powi(2) * sigma * sigma * j2 as f64).exp();
     let reach = (17.0 * 10f64.ln() / (2.0 * std::f64::consts::PI.powi(2) * sigma * sigma)).sqrt().ceil() as i64;
-    let mut sum = crate::discrepancy::l2::Sum::default();
+    let mut sum = crate::numeric::Sum::default();
     for a in -reach..=reach {
         for b in -reach..=reach {
             let weight = falloff(a * a + b * b);

@@ -5,10 +5,11 @@
 //! comments give their failure probability and least work. The others check properties that
 //! hold for every draw.
 
+use samplab::construct::cbc;
+use samplab::construct::cbc::Weights;
 use samplab::discrepancy::{self, Limits, Metric};
 use samplab::progress::Progress;
-use samplab::sampler::qmc::cbc::Weights;
-use samplab::sampler::{self, qmc::cbc, qmc::kronecker};
+use samplab::sampler::{self, qmc::kronecker};
 use samplab::{PointSet, Seed};
 
 fn set(spec: &str, n: usize, d: usize, seed: u64) -> PointSet {

@@ -6,7 +6,8 @@
 //! equality with a reference), so none has a failure probability; a randomized sampler is
 //! drawn at fixed seeds only to make the case generic.
 
-use samplab::sampler::{self, qmc::halton};
+use samplab::construct::radical;
+use samplab::sampler;
 use samplab::{PointSet, Seed};
 
 fn make(spec: &str, n: usize, d: usize, seed: u64) -> PointSet {
@@ -183,7 +184,7 @@ fn halton_first_points_by_hand() {
     // radical inverse in base 2 is bit reversal
     for i in 0u64..1000 {
         let rev = (i.reverse_bits() >> 11) as f64 / (1u64 << 53) as f64;
-        assert_eq!(halton::radical_inverse(i, 2), rev);
+        assert_eq!(radical::radical_inverse(i, 2), rev);
     }
 }
 

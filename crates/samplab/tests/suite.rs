@@ -3,6 +3,8 @@
 //! process-wide memory limit) and `discrepancy.rs`, whose stops are judged in CPU seconds
 //! after the flag (beside the heavier tests of the others a 4 x 10^6-point sort ran past
 //! its bound once in two runs).
+#[path = "architecture.rs"]
+mod architecture;
 #[path = "conformance.rs"]
 mod conformance;
 #[path = "constructions.rs"]

@@ -7,42 +7,12 @@
 
 use super::{Limits, MetricEntry};
 use crate::error::{Error, Result};
-use crate::numeric::order_key;
+use crate::numeric::{Sum, order_key};
 use crate::points::PointSet;
 use crate::progress::Progress;
 use crate::registry::About;
 use crate::spec::Params;
 use rayon::prelude::*;
-
-/// Neumaier's compensated sum.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct Sum {
-    sum: f64,
-    err: f64,
-}
-
-impl Sum {
-    /// Add `x`.
-    #[inline]
-    pub fn add(&mut self, x: f64) {
-        let t = self.sum + x;
-        if self.sum.abs() >= x.abs() {
-            self.err += (self.sum - t) + x;
-        } else {
-            self.err += (x - t) + self.sum;
-        }
-        self.sum = t;
-    }
-    /// Add another compensated sum.
-    pub fn merge(&mut self, other: Sum) {
-        self.add(other.sum);
-        self.add(other.err);
-    }
-    /// The sum.
-    pub fn value(&self) -> f64 {
-        self.sum + self.err
-    }
-}
 
 const CHUNK: usize = 64;
 
@@ -437,7 +407,7 @@ impl ScaledSum {
     /// The same sum, kept as e^log sum.
     fn rescale(&mut self, log: f64) {
         let factor = if self.log == f64::NEG_INFINITY { 0.0 } else { (self.log - log).exp() };
-        self.sum = Sum { sum: self.sum.sum * factor, err: self.sum.err * factor };
+        self.sum = self.sum.scaled(factor);
         self.log = log;
     }
 

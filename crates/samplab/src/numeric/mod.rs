@@ -1,12 +1,47 @@
-//! Numerics shared across samplab: the last double below one, the normal distribution
-//! function and its inverse, Student's t quantiles, and Gauss–Legendre quadrature
-//! ([`quadrature`]).
+//! Numerics shared across samplab: the last double below one, a compensated sum, the
+//! normal distribution function and its inverse, Student's t quantiles, and Gauss–Legendre
+//! quadrature ([`quadrature`]).
 
 pub mod quadrature;
 
 /// The largest f64 below one: where a rounding could land a coordinate on 1.0, it is
 /// clamped here, so that every coordinate stays in [0, 1).
 pub const BELOW_ONE: f64 = 1.0 - f64::EPSILON / 2.0;
+
+/// Neumaier's compensated sum.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Sum {
+    sum: f64,
+    err: f64,
+}
+
+impl Sum {
+    /// Add `x`.
+    #[inline]
+    pub fn add(&mut self, x: f64) {
+        let t = self.sum + x;
+        if self.sum.abs() >= x.abs() {
+            self.err += (self.sum - t) + x;
+        } else {
+            self.err += (x - t) + self.sum;
+        }
+        self.sum = t;
+    }
+    /// Add another compensated sum.
+    pub fn merge(&mut self, other: Sum) {
+        self.add(other.sum);
+        self.add(other.err);
+    }
+    /// The sum.
+    pub fn value(&self) -> f64 {
+        self.sum + self.err
+    }
+    /// The sum and its compensation each multiplied by `factor`.
+    #[must_use]
+    pub fn scaled(self, factor: f64) -> Sum {
+        Sum { sum: self.sum * factor, err: self.err * factor }
+    }
+}
 
 /// A double's place in `f64::total_cmp`'s order, as an integer: integers compare (and
 /// sort) faster than `total_cmp` does.

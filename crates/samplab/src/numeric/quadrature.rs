@@ -32,7 +32,7 @@ static NODES: LazyLock<Vec<(f64, f64)>> = LazyLock::new(|| {
 /// The integral of `f` over [a, b] with `panels` equal panels of 16-point Gauss-Legendre.
 pub fn gauss_legendre(f: impl Fn(f64) -> f64, a: f64, b: f64, panels: usize) -> f64 {
     let h = (b - a) / panels as f64;
-    let mut sum = crate::discrepancy::l2::Sum::default();
+    let mut sum = crate::numeric::Sum::default();
     for p in 0..panels {
         let mid = a + (p as f64 + 0.5) * h;
         for &(x, w) in NODES.iter() {

@@ -4,11 +4,12 @@
 //! are negatively correlated and the error spreads as blue noise over the screen.
 
 use super::mask::Mask;
-use super::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
-use super::{four, Family, Film, Keys, PixelEntry, PixelSampler, unit};
+use crate::construct::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
+use super::{four, Family, Film, Keys, PixelEntry, PixelSampler};
+use crate::construct::unit;
 use crate::error::Result;
 use crate::registry::About;
-use crate::sampler::qmc::sobol::SOBOL_MAX_DIMS;
+use crate::construct::sobol::SOBOL_MAX_DIMS;
 use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::{Default, Kind, ParamSpec, Params};

@@ -6,11 +6,12 @@
 //! (the offset found by the Chinese remainder theorem). Every value is computed in
 //! single precision as pbrt computes it, so the values equal pbrt's bit for bit.
 
-use super::pbrt::{frame_seed, hash_words, mix_bits, permutation_element};
-use super::{four, Family, ANY_SPP, Film, PixelEntry, PixelSampler};
+use crate::construct::pbrt::{frame_seed, hash_words, mix_bits, permutation_element};
+use super::{four, Family, Film, PixelEntry, PixelSampler};
+use crate::construct::counts::ANY;
 use crate::error::Result;
 use crate::registry::About;
-use crate::sampler::qmc::halton::PRIMES;
+use crate::construct::radical::PRIMES;
 use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::{Default, Kind, ParamSpec, Params};
@@ -42,7 +43,7 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
     .params(&[RANDOMIZE])
     .terse()
     .cite(&["halton1960", "pharr2023", "owen1995"]),
-    spp: ANY_SPP,
+    spp: ANY,
     dims: "1 to 1000 (pbrt's prime table)",
     max_dims: PRIME_TABLE_SIZE,
     mapping: "screen-space ordering of one sequence: dimensions 0 and 1 (the film position, never \
@@ -240,7 +241,7 @@ mod tests {
     fn every_pixel_of_a_tile_gets_its_own_first_two_coordinates() {
         let film = Film { width: 20, height: 10, spp: 3, dims: 2 };
         let h = Halton::new(Randomize::None, film, Seed(0));
-        let halton = crate::sampler::qmc::halton::radical_inverse;
+        let halton = crate::construct::radical::radical_inverse;
         for y in 0..10 {
             for x in 0..20 {
                 for i in 0..3 {

@@ -28,14 +28,15 @@
 
 use rayon::prelude::*;
 
-use super::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
-use super::{Family, Film, Keys, PixelEntry, PixelSampler, rekey, unit};
+use crate::construct::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
+use super::{Family, Film, Keys, PixelEntry, PixelSampler, rekey};
+use crate::construct::unit;
 use crate::error::Result;
 use crate::integrand::{HalfPlane, Integrand};
 use crate::progress::Progress;
 use crate::registry::About;
-use crate::sampler::Counts;
-use crate::sampler::qmc::sobol::SOBOL_MAX_DIMS;
+use crate::construct::Counts;
+use crate::construct::sobol::SOBOL_MAX_DIMS;
 use crate::seed::{Seed, mix64};
 use crate::spec::{Default, Kind, ParamSpec, Params};
 

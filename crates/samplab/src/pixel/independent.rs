@@ -1,6 +1,7 @@
 //! Independent uniform values: the baseline every pixel sampler is measured against.
 
-use super::{Family, ANY_SPP, Film, PixelEntry, PixelSampler, Keys, rekey};
+use super::{Family, Film, PixelEntry, PixelSampler, Keys, rekey};
+use crate::construct::counts::ANY;
 use crate::error::Result;
 use crate::registry::About;
 use crate::progress::Progress;
@@ -11,7 +12,7 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
     about: About::new("independent", "independent uniform values, 53 random bits each, hashed from every key")
         .aliases(&["pixel.independent"])
         .cite(&["cook1986"]),
-    spp: ANY_SPP,
+    spp: ANY,
     dims: "any",
     max_dims: super::MAX_DIMS,
     mapping: "none needed: every value is a hash of (seed, pixel, frame, index, dimension)",

@@ -3,11 +3,12 @@
 //! as Burley 2020 shuffles Sobol', and a random shift per pixel and dimension (Cranley &
 //! Patterson 1976).
 
-use super::{four, Family, Film, Keys, PixelEntry, PixelSampler, unit};
+use super::{four, Family, Film, Keys, PixelEntry, PixelSampler};
+use crate::construct::unit;
 use crate::error::Result;
 use crate::registry::About;
-use crate::sampler::qmc::cbc::{self, Weights};
-use crate::sampler::randomize::scramble::owen_scramble_u32;
+use crate::construct::cbc::{self, Weights};
+use crate::construct::scramble::owen_scramble_u32;
 use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::Params;

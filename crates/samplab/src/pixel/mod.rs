@@ -41,15 +41,14 @@ use std::fmt::Debug;
 
 use rayon::prelude::*;
 
+use crate::construct::Counts;
 use crate::error::{Error, Result};
 use crate::progress::Progress;
 use crate::registry::{About, Entry, canonical};
-use crate::sampler::Counts;
 use crate::seed::Seed;
-use crate::spec::Params;
+use crate::spec::{Default, Kind, ParamSpec, Params};
 
 pub mod mask;
-pub mod pbrt;
 
 crate::registry::registry_files! {
     /// Every pixel sampler family, in listing order.
@@ -534,14 +533,13 @@ pub(crate) fn one_by_one<S: PixelSampler + ?Sized>(
     four(|k| s.sample(pixel, frame, index, dim + k))
 }
 
-/// 32 bits of fixed point to [0, 1), exactly.
-#[inline(always)]
-pub(crate) fn unit(bits: u32) -> f64 {
-    f64::from(bits) * (1.0 / 4_294_967_296.0)
-}
-
-/// The rule "any spp".
-pub(crate) const ANY_SPP: Counts = Counts::Any("");
+/// The `randomize` parameter of the pbrt-compatible families (`sobol.padded`, `zsobol`).
+pub(crate) const RANDOMIZE: ParamSpec = ParamSpec {
+    name: "randomize",
+    kind: Kind::Choice(&["none", "xor", "fastowen", "owen"]),
+    default: Default::Word("fastowen"),
+    doc: "pbrt-v4's RandomizeStrategy: none, xor (PermuteDigits), fastowen (FastOwen), owen (Owen)",
+};
 
 /// spp a power of two.
 pub(crate) const POWER_OF_TWO_SPP: Counts =

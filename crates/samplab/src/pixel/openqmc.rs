@@ -6,7 +6,8 @@ use std::marker::PhantomData;
 
 use openqmc::{Sampler, SamplerImpl};
 
-use super::{one_by_one, Family, ANY_SPP, Film, PixelEntry, PixelSampler, unit};
+use super::{one_by_one, Family, Film, PixelEntry, PixelSampler};
+use crate::construct::{counts::ANY, unit};
 use crate::error::Result;
 use crate::registry::About;
 use crate::progress::Progress;
@@ -21,7 +22,7 @@ macro_rules! entries {
     ($($name:literal => $sampler:ident, $summary:literal;)+) => {
         pub(crate) static ENTRIES: &[PixelEntry] = &[$(PixelEntry {
             about: About::new($name, $summary).cite(&["openqmc"]),
-            spp: ANY_SPP,
+            spp: ANY,
             dims: "any (4D domains)",
             max_dims: super::MAX_DIMS,
             mapping: MAPPING,

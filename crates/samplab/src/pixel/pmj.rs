@@ -5,11 +5,12 @@
 //! with a blue-noise shift per pixel, as pbrt-v4's `PMJ02BNSampler` pads.
 
 use super::dither::{MASK, Shifts};
-use super::{Family, Film, Pairs, PixelEntry, Keys, rekey, unit};
+use super::{Family, Film, Pairs, PixelEntry, Keys, rekey};
+use crate::construct::unit;
 use crate::error::Result;
 use crate::registry::About;
-use crate::sampler::randomize::scramble::{owen_scramble_reversed, owen_scramble_u32, permute};
-use crate::sampler::stratified::pmj::pmj02_digits;
+use crate::construct::scramble::{owen_scramble_reversed, owen_scramble_u32, permute};
+use crate::construct::pmj02::pmj02_digits;
 use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::Params;

@@ -1,11 +1,12 @@
 //! Jittered strata per pixel with dimension padding (Cook 1986; as pbrt's
 //! `StratifiedSampler`, with hashed permutations instead of its stream of draws).
 
-use super::{Family, ANY_SPP, Film, Pairs, PixelEntry, Keys, rekey};
+use super::{Family, Film, Pairs, PixelEntry, Keys, rekey};
+use crate::construct::counts::ANY;
 use crate::error::Result;
 use crate::numeric::BELOW_ONE;
 use crate::registry::About;
-use crate::sampler::randomize::scramble::permute;
+use crate::construct::scramble::permute;
 use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::Params;
@@ -18,7 +19,7 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
     )
     .aliases(&["pixel.stratified", "stratified.padded"])
     .cite(&["cook1986", "pharr2023", "kensler2013"]),
-    spp: ANY_SPP,
+    spp: ANY,
     dims: "any (pairs of 2D strata)",
     max_dims: super::MAX_DIMS,
     mapping: "dimension padding: dimensions 2k, 2k+1 put sample i in stratum pi(i) of an a x b grid, \
@@ -57,7 +58,7 @@ impl Pairs for Stratified {
         let (cx, cy) = (stratum % self.columns, stratum / self.columns);
         // the quotient can round up to 1 when a side has more than 2^22 cells
         let u = |cell: u32, bits: u64, cells: u32| {
-            ((f64::from(cell) + super::unit(bits as u32)) / f64::from(cells)).min(BELOW_ONE)
+            ((f64::from(cell) + crate::construct::unit(bits as u32)) / f64::from(cells)).min(BELOW_ONE)
         };
         [u(cx, jitter, self.columns), u(cy, jitter >> 32, self.rows)]
     }

@@ -4,7 +4,8 @@
 //! it, so that neighbouring pixels get well-spread, different parts of the sequence: the
 //! error is spread over the screen as blue noise.
 
-use super::pbrt::{RANDOMIZE, Scramble, Sobol2, frame_seed, hash_words, mix_bits, morton2};
+use super::RANDOMIZE;
+use crate::construct::pbrt::{Scramble, Sobol2, frame_seed, hash_words, mix_bits, morton2};
 use super::{Family, Film, POWER_OF_TWO_SPP, Pairs, PixelEntry};
 use crate::error::Result;
 use crate::registry::About;

@@ -8,12 +8,13 @@ use std::ops::RangeInclusive;
 use std::path::Path;
 use std::sync::Arc;
 
+use crate::construct::Counts;
 use crate::error::{Error, Result};
 use crate::numeric::BELOW_ONE;
 use crate::points::PointSet;
 use crate::progress::Progress;
 use crate::registry::About;
-use crate::sampler::registry::{Counts, SamplerEntry};
+use crate::sampler::registry::SamplerEntry;
 use crate::sampler::{Access, Construction, Prepared, Shape};
 use crate::seed::Seed;
 use crate::spec::{Default, Kind, ParamSpec, Params};

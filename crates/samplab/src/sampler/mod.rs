@@ -34,9 +34,13 @@
 //! - [`blue_noise`]: Poisson disks, elimination, relaxation and optimization;
 //! - [`qmc`]: Sobol', Halton and Hammersley, digital nets, Kronecker sequences, lattices;
 //! - [`randomize`]: the scrambles of the digital constructions, declared once per family
-//!   ([`randomize::scramble`]), and the stages written after any spec (`+shift`,
-//!   `+micro-jitter`);
-//! - [`registry`]: the entries' shape, typed counts ([`Counts`]) and [`build`].
+//!   (the scrambles themselves are [`crate::construct::scramble`], shared with the pixel
+//!   samplers), and the stages written after any spec (`+shift`, `+micro-jitter`);
+//! - [`registry`]: the entries' shape (their typed counts are [`crate::construct::Counts`])
+//!   and [`build`].
+//!
+//! The mathematics under the families (generating matrices, digit tables, scrambles, CBC
+//! searches) is in [`crate::construct`], which the pixel samplers read as well.
 //!
 //! A sampler outside samplab implements [`Sampler`] (its documentation has one); a built-in
 //! construction implements the crate's `Construction` and is named by its entry.
@@ -46,6 +50,7 @@ use std::ops::RangeInclusive;
 
 use rayon::prelude::*;
 
+use crate::construct::MAX_POINTS;
 use crate::error::{Error, Result};
 use crate::points::PointSet;
 use crate::progress::Progress;
@@ -68,22 +73,7 @@ pub static SAMPLERS: crate::registry::Registry<SamplerEntry> = crate::registry::
     &[&[random::ENTRIES, file::ENTRIES], stratified::FILES, blue_noise::FILES, qmc::FILES, randomize::FILES],
 );
 
-pub use randomize::scramble::Randomization;
-pub use registry::{Counts, SamplerEntry, build, inputs, randomized};
-
-/// The largest point count samplab will allocate for one set (2^32 points).
-pub const MAX_POINTS: usize = 1 << 32;
-
-/// The centre of the cell [v, v + 1) 2^-32: where a randomized sampler with 32 random bits
-/// per coordinate (Owen-scrambled or digitally shifted Sobol', pmj02) puts a coordinate, so
-/// that it lies in the open interval (0, 1) and an integrand never sees 0 (Phi^-1(0) is
-/// -inf). A scrambled net's points are uniform over their cells; the centre keeps every
-/// point in its elementary interval (the net stays a net) and its bias is below the
-/// truncation's, which the cell's left end had.
-#[inline(always)]
-pub fn cell_centre(v: u32) -> f64 {
-    (f64::from(v) + 0.5) * (1.0 / 4_294_967_296.0)
-}
+pub use registry::{SamplerEntry, build, inputs, randomized};
 
 /// The count and dimension a plan was checked for. Only `plan` (on `dyn Sampler`) makes
 /// one, so [`Sampler::prepare`], which takes it, is reached only after every check passed:
@@ -516,38 +506,9 @@ pub fn generate_sets(sampler: &dyn Sampler, n: usize, dims: usize, seed: Seed, m
     sampler.plan(n, dims)?.generate_sets(seed, m, &Progress::SILENT)
 }
 
-/// The integer k with k^d == n, if there is one; otherwise the two nearest valid counts.
-pub(crate) fn exact_root(n: usize, dims: usize) -> std::result::Result<usize, (usize, usize)> {
-    let guess = (n as f64).powf(1.0 / dims as f64).round() as usize;
-    let pow = |k: usize| k.checked_pow(dims as u32).unwrap_or(usize::MAX);
-    for k in guess.saturating_sub(1)..=guess + 1 {
-        if pow(k) == n {
-            return Ok(k);
-        }
-    }
-    let mut k = guess.max(1);
-    while pow(k) > n && k > 1 {
-        k -= 1;
-    }
-    while pow(k + 1) <= n {
-        k += 1;
-    }
-    Err((pow(k), pow(k + 1)))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn exact_root_names_neighbours() {
-        assert_eq!(exact_root(16, 2), Ok(4));
-        assert_eq!(exact_root(15, 2), Err((9, 16)));
-        assert_eq!(exact_root(27, 3), Ok(3));
-        assert_eq!(exact_root(28, 3), Err((27, 64)));
-        assert_eq!(exact_root(7, 1), Ok(7));
-        assert_eq!(exact_root(2, 2), Err((1, 4)));
-    }
 
     #[test]
     fn optimizers_report_each_iteration_and_stop_between_them() {

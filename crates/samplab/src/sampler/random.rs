@@ -2,8 +2,9 @@
 
 use std::ops::RangeInclusive;
 
-use super::registry::{ANY, SamplerEntry};
+use super::registry::SamplerEntry;
 use super::{Construction, Prepared, Shape, Stream};
+use crate::construct::counts::ANY;
 use crate::error::Result;
 use crate::progress::Progress;
 use crate::registry::About;

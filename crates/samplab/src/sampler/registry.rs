@@ -5,7 +5,8 @@
 
 use std::ops::RangeInclusive;
 
-use super::{Access, Construction, MAX_POINTS, Prepared, SAMPLERS, Sampler, Shape, Stream, exact_root};
+use super::{Access, Construction, Prepared, SAMPLERS, Sampler, Shape, Stream};
+use crate::construct::Counts;
 use crate::error::{Error, Result};
 use crate::progress::Progress;
 use crate::registry::{About, Entry, canonical};
@@ -130,94 +131,6 @@ impl Prepared for Labelled<'_> {
     }
     fn stream(&self, seed: Seed) -> Option<Box<dyn Stream + '_>> {
         self.inner.stream(seed)
-    }
-}
-
-/// Any count.
-pub(crate) const ANY: Counts = Counts::Any("");
-
-/// Which counts n a sampler makes, declared in its entry: a typed rule that checks a count
-/// (naming the nearest valid ones), finds valid counts and prints the listing line.
-#[derive(Debug, Clone, Copy)]
-pub enum Counts {
-    /// Any n (up to [`MAX_POINTS`]); the note says where the structure is best ("nets at
-    /// powers of two"), or is empty.
-    Any(&'static str),
-    /// n at most `most`; `why` says what limits it.
-    AtMost {
-        /// The largest count.
-        most: u64,
-        /// The limit's reason, in words.
-        why: &'static str,
-    },
-    /// n = k^d: a grid.
-    Grid,
-    /// The counts `list(dims, near)` yields, increasing (from the first valid count or from
-    /// some way below `near`); `rule` in words.
-    Listed {
-        /// The rule, in words.
-        rule: &'static str,
-        /// The valid counts in `dims` dimensions around `near`, increasing.
-        list: fn(usize, usize) -> Box<dyn Iterator<Item = usize>>,
-    },
-    /// A rule that depends on the parameters, in words; the construction checks it.
-    Rule(&'static str),
-}
-
-impl Counts {
-    /// Whether the rule admits `n` points in `dims` dimensions.
-    ///
-    /// # Errors
-    /// [`Error::InvalidCount`] naming the rule and the nearest valid counts (the sampler's
-    /// name left for the caller).
-    pub fn check(&self, n: usize, dims: usize) -> Result<()> {
-        let invalid = |reason: String| Err(Error::InvalidCount { sampler: String::new(), n, dims, reason });
-        match *self {
-            Counts::Any(_) | Counts::Rule(_) => Ok(()),
-            Counts::AtMost { most, why } if n as u64 > most => invalid(why.into()),
-            Counts::AtMost { .. } => Ok(()),
-            Counts::Grid => exact_root(n, dims).map(|_| ()).or_else(|(lo, hi)| {
-                invalid(format!("a {dims}D grid needs n = k^{dims}; the nearest valid counts are {lo} and {hi}"))
-            }),
-            Counts::Listed { rule, list } => {
-                if list(dims, n).take_while(|&c| c <= n).any(|c| c == n) {
-                    return Ok(());
-                }
-                let below = list(dims, n).take_while(|&c| c < n).last();
-                let above = list(dims, n).take_while(|&c| c <= MAX_POINTS).find(|&c| c > n);
-                let near = match (below, above) {
-                    (Some(b), Some(a)) => format!("try {b} and {a}"),
-                    (Some(c), None) | (None, Some(c)) => format!("try {c}"),
-                    (None, None) => "no count fits".into(),
-                };
-                invalid(format!("{rule}: {near}"))
-            }
-        }
-    }
-
-    /// The first count from `n` on that the rule admits in `dims` dimensions (`None` for a
-    /// rule of the parameters, or past [`MAX_POINTS`]).
-    pub fn first_from(&self, n: usize, dims: usize) -> Option<usize> {
-        match *self {
-            Counts::Rule(_) => None,
-            Counts::Listed { list, .. } => list(dims, n).find(|&c| c >= n),
-            _ => (n..=MAX_POINTS).find(|&c| self.check(c, dims).is_ok()),
-        }
-    }
-
-    /// The listing line: the rule in words.
-    pub fn describe(&self) -> String {
-        match *self {
-            Counts::Any("") => "any n".into(),
-            Counts::Any(note) => format!("any n ({note})"),
-            Counts::AtMost { why, .. } => format!("any n up to the limit: {why}"),
-            Counts::Grid => "n = k^d".into(),
-            Counts::Listed { rule, list } => {
-                let first: Vec<String> = list(2, 1).take(8).map(|c| c.to_string()).collect();
-                format!("{rule} (in 2D: {}, ...)", first.join(", "))
-            }
-            Counts::Rule(words) => words.into(),
-        }
     }
 }
 

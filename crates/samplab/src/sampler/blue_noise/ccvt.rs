@@ -13,7 +13,8 @@
 use std::ops::RangeInclusive;
 
 use crate::sampler::random::Random;
-use crate::sampler::registry::{ANY, SamplerEntry};
+use crate::construct::counts::ANY;
+use crate::sampler::registry::SamplerEntry;
 use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;

@@ -5,7 +5,8 @@
 
 use std::ops::RangeInclusive;
 
-use crate::sampler::registry::{Counts, SamplerEntry};
+use crate::construct::Counts;
+use crate::sampler::registry::SamplerEntry;
 use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;

@@ -25,7 +25,8 @@ use std::ops::RangeInclusive;
 use spade::{DelaunayTriangulation, HasPosition, Point2, Triangulation};
 
 use super::poisson::edge_is_torus;
-use crate::sampler::registry::{ANY, EDGE, SamplerEntry};
+use crate::construct::counts::ANY;
+use crate::sampler::registry::{EDGE, SamplerEntry};
 use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;

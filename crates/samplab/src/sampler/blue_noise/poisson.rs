@@ -23,7 +23,8 @@ use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 use rand_core::Rng as _;
 
 use super::select_in_order;
-use crate::sampler::registry::{ANY, EDGE, SamplerEntry};
+use crate::construct::counts::ANY;
+use crate::sampler::registry::{EDGE, SamplerEntry};
 use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::memory::{FAULT_CHUNK, FAULT_IN, filled, refill};

@@ -17,7 +17,8 @@ use std::ops::RangeInclusive;
 
 use rayon::prelude::*;
 
-use crate::sampler::registry::{ANY, SamplerEntry};
+use crate::construct::counts::ANY;
+use crate::sampler::registry::SamplerEntry;
 use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::Result;
 use crate::numeric::order_key;

@@ -53,7 +53,8 @@ use std::ops::RangeInclusive;
 
 
 use super::elimination::SETTLED;
-use crate::sampler::registry::{ANY, SamplerEntry};
+use crate::construct::counts::ANY;
+use crate::sampler::registry::SamplerEntry;
 use crate::sampler::{Prepared, Construction};
 use crate::error::{Error, Result};
 use crate::numeric::quadrature::gauss_legendre;

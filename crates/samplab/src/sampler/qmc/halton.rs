@@ -1,7 +1,7 @@
 //! Radical-inverse constructions: the Halton sequence (Halton 1960, bases = the first d
 //! primes) and the Hammersley set (Hammersley & Handscomb 1964: i/n, then Halton), with
 //! the randomizations of [`Randomization`]; Owen scrambling in base b is the nested affine
-//! scramble of [`crate::sampler::randomize::scramble`]'s `OwenDigits` (one hash per non-zero digit beyond a
+//! scramble of [`crate::construct::scramble`]'s `OwenDigits` (one hash per non-zero digit beyond a
 //! table of the first digits, the endless zero digits after the index's end in one step).
 //!
 //! A coordinate in base b is sum_j pi_j(a_j) b^-(j+1) over the base-b digits a_j of the
@@ -16,129 +16,18 @@ use std::borrow::Cow;
 
 use crate::numeric::BELOW_ONE;
 use crate::sampler::randomize::randomized_families;
-use crate::sampler::registry::{ANY, Counts, SamplerEntry};
-use crate::sampler::randomize::scramble::{Divisor, OwenDigits, Randomization, hash_unit, owen_scramble_u32};
+use crate::construct::{counts::ANY, Counts};
+use crate::sampler::registry::SamplerEntry;
+use crate::construct::radical::{DigitTable, PRIMES};
+use crate::construct::scramble::{OwenDigits, Randomization, hash_unit, owen_scramble_u32};
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::Result;
 use crate::progress::Progress;
-use crate::seed::{Seed, shuffle, wrap01};
+use crate::seed::{Seed, wrap01};
 use crate::spec::Params;
 
 /// How many dimensions (primes) the Halton sequence supports.
-pub const HALTON_MAX_DIMS: usize = 1024;
-
-/// The first [`HALTON_MAX_DIMS`] primes (by trial division, at compile time).
-pub static PRIMES: [u32; HALTON_MAX_DIMS] = first_primes();
-
-const fn first_primes() -> [u32; HALTON_MAX_DIMS] {
-    let mut primes = [0u32; HALTON_MAX_DIMS];
-    let (mut found, mut c) = (0, 2u32);
-    while found < HALTON_MAX_DIMS {
-        let mut k = 0;
-        while k < found && primes[k] * primes[k] <= c && c % primes[k] != 0 {
-            k += 1;
-        }
-        if k == found || primes[k] * primes[k] > c {
-            primes[found] = c;
-            found += 1;
-        }
-        c += 1;
-    }
-    primes
-}
-
-/// The unscrambled radical inverse of `index` in `base` (van der Corput for base 2).
-pub fn radical_inverse(index: u64, base: u32) -> f64 {
-    DigitTable::new(base, None).value(index)
-}
-
-/// The digit weights of one coordinate, b^-(j+1) for positions j < P, and (random digit
-/// scrambling) the permuted digits' terms `scaled[j*b + a] = pi_j(a) b^-(j+1)` with
-/// `tail[m]`, the contribution of positions m..P when those digits are zero. The identity's
-/// terms a b^-(j+1) are computed as they are needed (the same products, so the same bits):
-/// a plan holds only the weights, a few dozen numbers per base.
-#[derive(Debug, Clone)]
-struct DigitTable {
-    base: u32,
-    /// The base, prepared for division by multiplication (random access's digits).
-    by_base: Divisor,
-    weights: Vec<f64>,
-    permuted: Option<Permuted>,
-}
-
-/// The terms of randomly permuted digits ([`DigitTable`]).
-#[derive(Debug, Clone)]
-struct Permuted {
-    scaled: Vec<f64>,
-    tail: Vec<f64>,
-}
-
-fn positions(base: u32) -> usize {
-    (53.0 / f64::from(base).log2()).ceil() as usize + 1
-}
-
-impl DigitTable {
-    /// Identity digits (`perms = None`) or one random permutation per position.
-    fn new(base: u32, perm_seed: Option<Seed>) -> Self {
-        let (b, p) = (base as usize, positions(base));
-        let mut weights = Vec::with_capacity(p);
-        let mut weight = 1.0 / f64::from(base);
-        for _ in 0..p {
-            weights.push(weight);
-            weight /= f64::from(base);
-        }
-        let permuted = perm_seed.map(|seed| {
-            let mut rng = seed.rng();
-            let mut perm: Vec<u32> = (0..base).collect();
-            let mut scaled = Vec::with_capacity(p * b);
-            for &weight in &weights {
-                shuffle(&mut rng, &mut perm);
-                scaled.extend(perm.iter().map(|&a| f64::from(a) * weight));
-            }
-            let mut tail = vec![0.0; p + 1];
-            for m in (0..p).rev() {
-                tail[m] = tail[m + 1] + scaled[m * b];
-            }
-            Permuted { scaled, tail }
-        });
-        DigitTable { base, by_base: Divisor::new(u64::from(base)), weights, permuted }
-    }
-
-    /// The term of digit `a` at position `j`.
-    #[inline]
-    fn term(&self, j: usize, a: u32) -> f64 {
-        match &self.permuted {
-            Some(t) => t.scaled[j * self.base as usize + a as usize],
-            None => f64::from(a) * self.weights[j],
-        }
-    }
-
-    /// The contribution of positions m..P when their digits are zero.
-    #[inline]
-    fn tail(&self, m: usize) -> f64 {
-        self.permuted.as_ref().map_or(0.0, |t| t.tail[m])
-    }
-
-    fn value(&self, mut index: u64) -> f64 {
-        let mut digits = [0u32; 64];
-        let mut m = 0;
-        while index != 0 {
-            let (q, r) = self.by_base.divide(index);
-            digits[m] = r as u32;
-            index = q;
-            m += 1;
-        }
-        // from the last digit up (as the odometer sums), each table's loop on its own
-        let v = match &self.permuted {
-            None => (0..m).rev().fold(0.0, |v, j| v + f64::from(digits[j]) * self.weights[j]),
-            Some(t) => {
-                let b = self.base as usize;
-                (0..m).rev().fold(t.tail[m], |v, j| v + t.scaled[j * b + digits[j] as usize])
-            }
-        };
-        v.min(BELOW_ONE)
-    }
-}
+pub const HALTON_MAX_DIMS: usize = PRIMES.len();
 
 /// The most base-b digits of an index (base 2, 64-bit indices).
 const MAX_DIGITS: usize = 64;
@@ -399,8 +288,8 @@ impl Prepared for Planned {
             let fixed = ((i as u128) << 32).div_euclid(n as u128) as u32;
             p[0] = match self.halton.randomization {
                 Randomization::None => i as f64 / n as f64,
-                Randomization::Xor => crate::sampler::cell_centre(fixed ^ bits),
-                Randomization::Owen => crate::sampler::cell_centre(owen_scramble_u32(fixed, bits)),
+                Randomization::Xor => crate::construct::cell_centre(fixed ^ bits),
+                Randomization::Owen => crate::construct::cell_centre(owen_scramble_u32(fixed, bits)),
                 Randomization::Shift => wrap01(i as f64 / n as f64 + shift),
                 Randomization::Lms => unreachable!("Hammersley declares no linear matrix scrambling"),
             };

@@ -10,7 +10,8 @@
 
 use std::ops::RangeInclusive;
 
-use crate::sampler::registry::{ANY, SamplerEntry};
+use crate::construct::counts::ANY;
+use crate::sampler::registry::SamplerEntry;
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;

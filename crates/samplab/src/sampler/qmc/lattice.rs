@@ -9,7 +9,7 @@
 //!   sum_i prod_j (1 + 2 pi^2 B_2({i z_j / n})), B_2(x) = x^2 - x + 1/6. The search costs
 //!   n^2 d / 2, so it is offered up to n = 2^14 and its result is remembered per (n, d).
 //! - CBC lattices (`lattice.cbc`): z by the fast component-by-component construction of
-//!   Nuyens & Cools (2006) for product weights, n a prime or a power of 2 ([`super::cbc`]).
+//!   Nuyens & Cools (2006) for product weights, n a prime or a power of 2 ([`crate::construct::cbc`]).
 //! - The embedded lattice sequence (`lattice`): point i is frac(phi_2(i) z), phi_2 the
 //!   radical inverse in base 2, so every prefix of 2^k points is the lattice of 2^k points
 //!   (Hickernell, Hong, L'Ecuyer & Lemieux 2000); z from a file (`vector=FILE`) or by the
@@ -20,11 +20,12 @@
 
 use rayon::prelude::*;
 use std::ops::RangeInclusive;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, PoisonError};
 
-use crate::sampler::registry::{Counts, SamplerEntry};
-use super::cbc::Weights;
-use super::cbc;
+use crate::construct::Counts;
+use crate::sampler::registry::SamplerEntry;
+use crate::construct::cbc::Weights;
+use crate::construct::cbc;
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
@@ -265,17 +266,12 @@ impl Access for Sequence<'_> {
 }
 
 /// The embedded lattice sequence, its vector from a file or constructed.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct Embedded {
     vector: Vector,
     shift: bool,
     tent: bool,
 }
-
-/// The longest vector constructed so far for each weights: construction is component by
-/// component, so the vector for d dimensions is the first d components of any longer one
-/// (a cubature plans n = 1024, 2048, ... and pays the construction once).
-static CONSTRUCTED: std::sync::Mutex<Vec<(Weights, Arc<Vec<u64>>)>> = std::sync::Mutex::new(Vec::new());
 
 /// The embedded vector for the default weights (gamma_j = j^-2), its first 128 components
 /// as the construction makes them, stored: the construction for 2^20 points takes about
@@ -285,39 +281,51 @@ const STORED: &str = include_str!("../../../data/lattice-cbc-2_20-decay2.txt");
 /// The default weights of the embedded constructions (`gamma` and `decay`'s defaults).
 const DEFAULT_WEIGHTS: Weights = Weights { first: 1.0, decay: 2.0 };
 
-/// The first `dims` components of the embedded vector for `weights`.
-///
-/// [`CONSTRUCTED`] is locked only to read and to store, never across a construction: the
-/// construction runs on rayon's pool, and a caller that held the lock while it waited for
-/// the pool deadlocked when the pool's threads were themselves waiting for the lock (a
-/// cubature on a lattice rule run from inside a parallel loop: the test suite hung so). Two
-/// callers may then construct the same vector side by side; either result is the same, and
-/// the longer is kept.
-fn constructed(weights: Weights, dims: usize) -> Result<Vec<u64>> {
-    let cache = || CONSTRUCTED.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-    let known = cache().iter().find(|(w, _)| *w == weights).map(|(_, z)| Arc::clone(z));
-    let mut z = match known {
-        Some(z) => z,
-        None if weights == DEFAULT_WEIGHTS => Arc::new(parse_vector(STORED, "data/lattice-cbc-2_20-decay2.txt")?),
-        None => Arc::default(),
-    };
-    if z.len() < dims {
-        z = Arc::new(cbc::construct(1 << EMBEDDED_M, dims, weights, true)?);
+/// The embedded fast CBC vector for 2^20 points with these weights, kept by the sampler
+/// that owns it (never by the process): the longest made so far. Construction is component
+/// by component, so the vector for d dimensions is the first d components of any longer
+/// one, and a cubature that plans n = 1024, 2048, ... on one sampler pays it once.
+#[derive(Debug)]
+struct Constructed {
+    weights: Weights,
+    longest: Mutex<Arc<Vec<u64>>>,
+}
+
+impl Constructed {
+    fn new(weights: Weights) -> Constructed {
+        Constructed { weights, longest: Mutex::default() }
     }
-    let mut cache = cache();
-    match cache.iter_mut().find(|(w, _)| *w == weights) {
-        Some((_, kept)) if kept.len() >= z.len() => {}
-        Some((_, kept)) => *kept = Arc::clone(&z),
-        None => cache.push((weights, Arc::clone(&z))),
+
+    /// The first `dims` components.
+    ///
+    /// The memo is locked only to read and to store, never across a construction: the
+    /// construction runs on rayon's pool, and a caller that held the lock while it waited
+    /// for the pool deadlocked when the pool's threads were themselves waiting for the lock
+    /// (a cubature on a lattice rule run from inside a parallel loop: the test suite hung
+    /// so). Two plans may then construct the same vector side by side; either result is
+    /// the same, and the longer is kept.
+    fn first(&self, dims: usize) -> Result<Vec<u64>> {
+        let memo = || self.longest.lock().unwrap_or_else(PoisonError::into_inner);
+        let mut z = Arc::clone(&memo());
+        if z.is_empty() && self.weights == DEFAULT_WEIGHTS {
+            z = Arc::new(parse_vector(STORED, "data/lattice-cbc-2_20-decay2.txt")?);
+        }
+        if z.len() < dims {
+            z = Arc::new(cbc::construct(1 << EMBEDDED_M, dims, self.weights, true)?);
+        }
+        let mut kept = memo();
+        if kept.len() < z.len() {
+            *kept = Arc::clone(&z);
+        }
+        Ok(z[..dims].to_vec())
     }
-    Ok(z[..dims].to_vec())
 }
 
 /// Where an embedded sequence's generating vector comes from.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 enum Vector {
-    /// The embedded fast CBC for 2^20 points with these weights.
-    Constructed(Weights),
+    /// The embedded fast CBC for 2^20 points.
+    Constructed(Constructed),
     /// Read from a file.
     File(Arc<Vec<u64>>),
 }
@@ -334,7 +342,7 @@ impl Construction for Embedded {
     }
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
         let z = match &self.vector {
-            Vector::Constructed(weights) => constructed(*weights, shape.dims())?,
+            Vector::Constructed(memo) => memo.first(shape.dims())?,
             Vector::File(z) => z[..shape.dims()].to_vec(),
         };
         Ok(Box::new(Rank1 { z, order: Order::Radical, shift: self.shift, tent: self.tent }))
@@ -429,7 +437,7 @@ fn embedded_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Cons
             let text = crate::io::read_small_text(path, crate::io::SPEC_FILE_MAX)?;
             Vector::File(Arc::new(parse_vector(&text, path)?))
         }
-        None => Vector::Constructed(weights(p)),
+        None => Vector::Constructed(Constructed::new(weights(p))),
     };
     Ok(Box::new(Embedded { vector, shift, tent: p.word("tent") == "yes" }))
 }

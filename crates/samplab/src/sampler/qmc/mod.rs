@@ -8,14 +8,12 @@
 //! - [`net`]: digital nets and sequences in a prime base from generating matrices
 //!   (Niederreiter 1992): a file's, Faure's (1982) and Niederreiter's (1988).
 //! - [`kronecker`]: Kronecker sequences frac(i alpha) (Weyl 1916), Roberts' R_d by default.
-//! - [`lattice`] and [`cbc`]: rank-1 lattices (Sloan & Joe 1994): Fibonacci, Korobov
-//!   (Korobov 1959), component-by-component (Nuyens & Cools 2006) and the embedded lattice
-//!   sequence (Hickernell et al. 2000; Cools, Kuo & Nuyens 2006).
+//! - [`lattice`]: rank-1 lattices (Sloan & Joe 1994): Fibonacci, Korobov (Korobov 1959),
+//!   component-by-component ([`crate::construct::cbc`]) and the embedded lattice sequence
+//!   (Hickernell et al. 2000; Cools, Kuo & Nuyens 2006).
 //!
 //! Every one of them is progressive or planned from tables built once per plan, and the
 //! sequences give random access equal to the batch ([`crate::sampler::Plan::access`]).
-
-pub mod cbc;
 
 crate::registry::registry_files! {
     /// The files of this family, in listing order.

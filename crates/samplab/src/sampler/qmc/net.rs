@@ -22,7 +22,7 @@
 //!   lower triangular (uniform non-zero diagonal, uniform below it), then a digital shift;
 //! - `.owen`: Owen's (1995) nested scrambling: the permutation of digit r depends on digits
 //!   0..r, hashed (Burley 2020 in base 2; in base b the random affine digit maps of
-//!   [`crate::sampler::randomize::scramble`]'s `OwenDigits`, shared with Halton);
+//!   [`crate::construct::scramble`]'s `OwenDigits`, shared with Halton);
 //! - `.shift`: a Cranley-Patterson shift mod 1 (not a net any more).
 //!
 //! The first three keep every (t, m, s)-net property of the construction.
@@ -32,8 +32,9 @@ use std::sync::Arc;
 
 use crate::numeric::BELOW_ONE;
 use crate::sampler::randomize::randomized_families;
-use crate::sampler::registry::{Counts, SamplerEntry};
-use crate::sampler::randomize::scramble::{OwenDigits, Randomization, hash2, owen_scramble_u32};
+use crate::construct::Counts;
+use crate::sampler::registry::SamplerEntry;
+use crate::construct::scramble::{OwenDigits, Randomization, hash2, owen_scramble_u32};
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
@@ -128,7 +129,7 @@ impl Matrices {
     /// The Sobol' matrices of Joe & Kuo (2008), 32 x 32 bits, for `dims` dimensions.
     fn sobol(dims: usize) -> Matrices {
         let digits = (0..dims)
-            .flat_map(|d| super::sobol::direction_numbers(d).into_iter())
+            .flat_map(|d| crate::construct::sobol::direction_numbers(d).into_iter())
             .flat_map(|v| (0..32).map(move |r| ((v >> (31 - r)) & 1) as u8))
             .collect();
         Matrices { base: 2, dims, cols: 32, rows: 32, digits }
@@ -460,7 +461,7 @@ const MAX_DIMS: usize = 1024;
 impl Construction for Net {
     fn dims(&self) -> RangeInclusive<usize> {
         match &self.source {
-            Source::Sobol => 1..=super::sobol::SOBOL_MAX_DIMS,
+            Source::Sobol => 1..=crate::construct::sobol::SOBOL_MAX_DIMS,
             Source::File(m) => 1..=m.dims,
             Source::Faure => 1..=MAX_BASE as usize,
             Source::Niederreiter(_) => 1..=MAX_DIMS,

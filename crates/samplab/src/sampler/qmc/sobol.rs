@@ -6,21 +6,17 @@
 use std::ops::RangeInclusive;
 
 use crate::sampler::randomize::randomized_families;
-use crate::sampler::registry::{Counts, SamplerEntry};
-use crate::sampler::randomize::scramble::{Randomization, hash_unit, owen_scramble_reversed};
-use crate::sampler::{Access, Prepared, Construction, Shape, cell_centre};
+use crate::construct::Counts;
+use crate::sampler::registry::SamplerEntry;
+use crate::construct::scramble::{Randomization, hash_unit, owen_scramble_reversed};
+use crate::construct::sobol::{REVERSED_DIRECTIONS, SOBOL_DIRECTIONS, SOBOL_MAX_DIMS, sobol_u32};
+use crate::construct::{cell_centre, unit};
+use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
 use crate::seed::{Seed, wrap01};
 use crate::spec::Params;
 use crate::simd::wide;
-
-include!(concat!(env!("OUT_DIR"), "/sobol_directions.rs"));
-
-/// How many dimensions the baked-in table holds.
-pub const SOBOL_MAX_DIMS: usize = SOBOL_DIRECTIONS.len();
-
-const TO_UNIT: f64 = 1.0 / 4_294_967_296.0;
 
 /// Sobol' points in Gray-code order: coordinate j of point i is the XOR of the direction
 /// numbers v_{j,k} for the set bits k of gray(i) = i ^ (i >> 1), read as a 32-bit binary
@@ -37,33 +33,6 @@ impl Sobol {
     pub fn new(randomization: Randomization) -> Self {
         Sobol { randomization }
     }
-}
-
-/// The unscrambled 32-bit digits of coordinate `dim` of Sobol' point `index` in natural
-/// (not Gray-code) order.
-#[inline]
-pub fn sobol_u32(index: u32, dim: usize) -> u32 {
-    let v = &SOBOL_DIRECTIONS[dim];
-    let mut x = 0;
-    let mut i = index;
-    let mut k = 0;
-    while i != 0 {
-        if i & 1 == 1 {
-            x ^= v[k];
-        }
-        i >>= 1;
-        k += 1;
-    }
-    x
-}
-
-/// The 32 direction numbers of dimension `dim` (column k of its generating matrix, row 0
-/// the most significant bit).
-///
-/// # Panics
-/// When `dim` is not below [`SOBOL_MAX_DIMS`].
-pub fn direction_numbers(dim: usize) -> [u32; 32] {
-    SOBOL_DIRECTIONS[dim]
 }
 
 /// Per-dimension randomization state derived from the seed.
@@ -85,10 +54,10 @@ impl Sobol {
     #[inline]
     fn finish(&self, x: u32, key: DimKey) -> f64 {
         match self.randomization {
-            Randomization::None => f64::from(x) * TO_UNIT,
+            Randomization::None => unit(x),
             Randomization::Xor => cell_centre(x ^ key.bits),
             Randomization::Owen => cell_centre(owen_scramble_reversed(x.reverse_bits(), key.bits).reverse_bits()),
-            Randomization::Shift => wrap01(f64::from(x) * TO_UNIT + key.shift),
+            Randomization::Shift => wrap01(unit(x) + key.shift),
             Randomization::Lms => unreachable!("Sobol' declares no linear matrix scrambling"),
         }
     }
@@ -220,7 +189,7 @@ impl Planned {
                     count,
                     false,
                     #[inline(always)]
-                    |x, _| f64::from(x) * TO_UNIT,
+                    |x, _| unit(x),
                 ),
                 Randomization::Xor => gray_walk(
                     out,
@@ -238,7 +207,7 @@ impl Planned {
                     count,
                     false,
                     #[inline(always)]
-                    |x, j| wrap01(f64::from(x) * TO_UNIT + keys[j].shift),
+                    |x, j| wrap01(unit(x) + keys[j].shift),
                 ),
                 Randomization::Lms => unreachable!("Sobol' declares no linear matrix scrambling"),
             },

@@ -11,7 +11,8 @@
 
 use std::ops::RangeInclusive;
 
-use crate::sampler::registry::{Counts, SamplerEntry};
+use crate::construct::Counts;
+use crate::sampler::registry::SamplerEntry;
 use super::StageEntry;
 use crate::sampler::{Construction, Prepared, Sampler, Shape};
 use crate::error::Result;

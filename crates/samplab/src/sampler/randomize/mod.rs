@@ -1,9 +1,11 @@
 //! Randomizations: what makes a deterministic construction a random one while keeping its
 //! structure, and the stage that moves any set's points.
 //!
-//! - [`scramble`]: the randomizations of the digital sequences (random digit scrambling
-//!   after Matoušek 1998, Owen's 1995 nested scrambling by hashing after Burley 2020, and
-//!   the Cranley & Patterson 1976 shift) and the hash-based permutations they use.
+//! - [`crate::construct::scramble`] (shared with the pixel samplers): the randomizations of
+//!   the digital sequences (random digit scrambling after Matoušek 1998, Owen's 1995 nested
+//!   scrambling by hashing after Burley 2020, and the Cranley & Patterson 1976 shift) and
+//!   the hash-based permutations they use; `randomized_families!` (below) declares a
+//!   family with the ones it keeps its structure under.
 //! - [`micro_jitter`]: `+micro-jitter` after any spec: every point moved by a small uniform
 //!   offset (after Roberts 2018).
 //! - [`shift`]: `+shift` after any spec: a Cranley–Patterson shift in 64-bit fixed point.
@@ -17,7 +19,6 @@ use crate::registry::{About, Entry, Registry};
 use crate::sampler::{Construction, Sampler};
 use crate::spec::{Params, Spec};
 
-pub mod scramble;
 pub mod shift;
 
 /// How a stage builds its construction over the sampler before it, from resolved
@@ -131,7 +132,7 @@ macro_rules! randomized_families {
             counts: $counts,
             randomized: $randomized,
             dims: $dims,
-            build: |p| $build(p, $crate::sampler::Randomization::$randomization),
+            build: |p| $build(p, $crate::construct::Randomization::$randomization),
         }
     };
 }

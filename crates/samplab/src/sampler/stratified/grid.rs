@@ -9,8 +9,10 @@
 use std::f64::consts::TAU;
 use std::ops::RangeInclusive;
 
-use crate::sampler::registry::{Counts, SamplerEntry};
-use crate::sampler::{Prepared, Construction, Shape, exact_root};
+use crate::construct::Counts;
+use crate::sampler::registry::SamplerEntry;
+use crate::construct::counts::exact_root;
+use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::numeric::BELOW_ONE;
 use crate::registry::About;
@@ -249,7 +251,7 @@ fn hex_rows(k: usize) -> usize {
 
 /// The counts k r(k) the hexagonal lattice makes, in increasing order.
 fn hex_counts() -> impl Iterator<Item = (usize, usize)> + Clone {
-    (1..).map(|k| (k * hex_rows(k), k)).take_while(|&(n, _)| n <= crate::sampler::MAX_POINTS)
+    (1..).map(|k| (k * hex_rows(k), k)).take_while(|&(n, _)| n <= crate::construct::MAX_POINTS)
 }
 
 impl Construction for Hexagonal {

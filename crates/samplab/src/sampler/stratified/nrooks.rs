@@ -3,7 +3,8 @@
 
 use std::ops::RangeInclusive;
 
-use crate::sampler::registry::{ANY, Counts, SamplerEntry};
+use crate::construct::{counts::ANY, Counts};
+use crate::sampler::registry::SamplerEntry;
 use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::Result;
 use crate::registry::About;

@@ -4,49 +4,20 @@
 
 use std::ops::RangeInclusive;
 
-use rand_core::Rng as _;
-
-use crate::sampler::registry::{Counts, SamplerEntry};
-use crate::sampler::randomize::scramble::{hash_unit, permute};
-use crate::sampler::qmc::sobol::SOBOL_DIRECTIONS;
+use crate::construct::Counts;
+use crate::sampler::registry::SamplerEntry;
+use crate::construct::scramble::{hash_unit, permute};
+use crate::construct::pmj02::pmj02_digits;
 use crate::sampler::{Prepared, Construction, Shape};
 use crate::error::Result;
 use crate::registry::About;
 use crate::seed::Seed;
 
 /// pmj02: every prefix of 2^m points is a (0,m,2)-net in base 2 (one point in every
-/// elementary interval of area 2^-m), and so is every later block of 2^m points.
-///
-/// Stochastic construction (Helmer et al. 2021, section 4): point 0 is uniform; point i
-/// in [2^m, 2^(m+1)) copies the first m binary digits of an earlier "partner" point per
-/// axis, takes the opposite (m+1)-th digit, and draws every later digit at random. The
-/// x partner is i - 2^m (van der Corput structure); the y partner is i - 2^m XOR t_m,
-/// where t_m solves the Sobol' dimension-2 generator restricted to its first m digits
-/// (so that the new point fills the unoccupied half of each elementary interval). The
-/// result has the distribution of an Owen-scrambled (0,2)-sequence; it is O(n), uses no
-/// occupancy structure, and needs no rejection. 32-bit resolution, 2D, n <= 2^32.
+/// elementary interval of area 2^-m), and so is every later block of 2^m points: the
+/// stochastic construction of [`crate::construct::pmj02`].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Pmj02;
-
-/// t_m for m = 0..32: the index j < 2^m whose first m Sobol' dimension-2 digits equal
-/// those of the direction number v_m.
-fn partner_masks() -> [u32; 32] {
-    let v = &SOBOL_DIRECTIONS[1];
-    std::array::from_fn(|m| {
-        let top = if m == 0 { 0 } else { !0u32 << (32 - m) };
-        let mut target = v[m] & top;
-        let mut j = 0u32;
-        // v_k has its lowest set bit at 31-k, so solve from the lowest digit up
-        for k in (0..m).rev() {
-            if target & (1 << (31 - k)) != 0 {
-                target ^= v[k] & top;
-                j |= 1 << k;
-            }
-        }
-        debug_assert_eq!(target, 0);
-        j
-    })
-}
 
 impl Construction for Pmj02 {
     fn dims(&self) -> RangeInclusive<usize> {
@@ -61,32 +32,11 @@ impl Construction for Pmj02 {
 impl Pmj02 {
     fn fill(&self, n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         for (p, q) in out.chunks_exact_mut(2).zip(&pmj02_digits(n, seed)) {
-            p[0] = crate::sampler::cell_centre(q[0]);
-            p[1] = crate::sampler::cell_centre(q[1]);
+            p[0] = crate::construct::cell_centre(q[0]);
+            p[1] = crate::construct::cell_centre(q[1]);
         }
         Ok(())
     }
-}
-
-/// The first `n` points of the pmj02 sequence of `seed`, as 32-bit fixed-point digits.
-pub(crate) fn pmj02_digits(n: usize, seed: Seed) -> Vec<[u32; 2]> {
-    let t = partner_masks();
-    let mut rng = seed.rng();
-    let mut xy: Vec<[u32; 2]> = Vec::with_capacity(n);
-    xy.push([rng.next_u32(), rng.next_u32()]);
-    for i in 1..n {
-        let m = i.ilog2() as usize;
-        let px = i ^ (1 << m);
-        let py = px ^ t[m] as usize;
-        let keep = if m == 0 { 0 } else { !0u32 << (32 - m) };
-        let flip = 1u32 << (31 - m);
-        let fresh = flip - 1;
-        let child = |parent: u32, r: u32| (parent & keep) | (!parent & flip) | (r & fresh);
-        let r = rng.next_u64();
-        xy.push([child(xy[px][0], r as u32), child(xy[py][1], (r >> 32) as u32)]);
-    }
-    xy.truncate(n);
-    xy
 }
 
 /// Correlated multi-jittered sampling (Kensler 2013, section 4): an m x k arrangement of

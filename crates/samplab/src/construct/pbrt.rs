@@ -3,10 +3,9 @@
 //! definitions so that `zsobol` and `sobol.padded` give pbrt's values bit for bit (the
 //! fixture `tests/fixtures/pbrt_pixel_samplers.txt` and `scripts/pbrt/`).
 
-use super::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
+use super::scramble::owen_scramble_u32;
 use super::unit;
-use crate::sampler::randomize::scramble::owen_scramble_u32;
-use crate::spec::{Default, Kind, ParamSpec};
+use crate::construct::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
 
 /// MurmurHash64A (Appleby) with seed 0 over little-endian 32-bit words, as pbrt's
 /// `Hash(args...)` hashes the bytes of its (int) arguments.
@@ -102,16 +101,8 @@ pub enum Scramble {
     Owen,
 }
 
-/// The `randomize` parameter of the pbrt-compatible families.
-pub(crate) const RANDOMIZE: ParamSpec = ParamSpec {
-    name: "randomize",
-    kind: Kind::Choice(&["none", "xor", "fastowen", "owen"]),
-    default: Default::Word("fastowen"),
-    doc: "pbrt-v4's RandomizeStrategy: none, xor (PermuteDigits), fastowen (FastOwen), owen (Owen)",
-};
-
 impl Scramble {
-    /// From the `randomize` word.
+    /// From the word of the pixel samplers' `randomize` parameter (pbrt's names).
     pub(crate) fn from_word(word: &str) -> Scramble {
         match word {
             "none" => Scramble::None,

@@ -1,0 +1,112 @@
+//! The library's layers, read from its sources (ARCHITECTURE.md draws the map): the
+//! constructions import only the numeric base, the base nothing above it, and the two front
+//! doors (point sets in `sampler/`, pixel samplers in `pixel/`) never each other.
+
+use std::path::Path;
+
+/// The numeric base: what every layer may import.
+const BASE: &[&str] =
+    &["bibliography", "error", "memory", "numeric", "points", "progress", "registry", "seed", "simd", "spec"];
+
+/// Each rule: files under `from` may name (as `crate::module`) only what `may` allows.
+struct Rule {
+    from: &'static [&'static str],
+    may: fn(&str) -> bool,
+    why: &'static str,
+}
+
+const RULES: &[Rule] = &[
+    Rule { from: BASE, may: |m| BASE.contains(&m), why: "the base imports only the base" },
+    Rule {
+        from: &["construct"],
+        may: |m| BASE.contains(&m) || m == "construct",
+        why: "the constructions import only the base",
+    },
+    Rule { from: &["sampler"], may: |m| m != "pixel", why: "the point sets never import the pixel samplers" },
+    Rule { from: &["pixel"], may: |m| m != "sampler", why: "the pixel samplers never import the point sets" },
+];
+
+/// The top-level module a source path (relative to `src/`) belongs to.
+fn module_of(path: &str) -> &str {
+    let first = path.split('/').next().unwrap_or(path);
+    first.strip_suffix(".rs").unwrap_or(first)
+}
+
+/// Every `crate::module` a source names outside its comments, with its line.
+fn named_modules(text: &str) -> Vec<(usize, String)> {
+    let mut named = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        if line.trim_start().starts_with("//") {
+            continue;
+        }
+        for (at, _) in line.match_indices("crate::") {
+            let rest = &line[at + "crate::".len()..];
+            let module: String = rest.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
+            if !module.is_empty() {
+                named.push((i + 1, module));
+            }
+        }
+    }
+    named
+}
+
+/// The rules a set of sources (path relative to `src/`, text) breaks, one line each.
+fn violations(sources: &[(String, String)]) -> Vec<String> {
+    let mut found = Vec::new();
+    for (path, text) in sources {
+        let from = module_of(path);
+        for rule in RULES.iter().filter(|r| r.from.contains(&from)) {
+            for (line, module) in named_modules(text) {
+                if module != from && !(rule.may)(&module) {
+                    found.push(format!("src/{path}:{line} names crate::{module}: {}", rule.why));
+                }
+            }
+        }
+    }
+    found
+}
+
+fn sources(dir: &Path, root: &Path, out: &mut Vec<(String, String)>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            sources(&path, root, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            let relative = path.strip_prefix(root).unwrap().to_string_lossy().replace('\\', "/");
+            out.push((relative, std::fs::read_to_string(&path).unwrap()));
+        }
+    }
+}
+
+#[test]
+fn layers_import_only_downward() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut all = Vec::new();
+    sources(&root, &root, &mut all);
+    assert!(all.iter().any(|(p, _)| p.starts_with("construct/")) && all.len() > 90, "{} sources", all.len());
+    let found = violations(&all);
+    assert!(found.is_empty(), "{}", found.join("\n"));
+}
+
+/// The check finds what it is for: a pixel sampler reaching into a point-set family, a
+/// construction importing a front door, the base importing a measure (and comments pass).
+#[test]
+fn the_layer_check_sees_a_wrong_import() {
+    let file = |path: &str, text: &str| (path.to_string(), text.to_string());
+    let found = violations(&[
+        file("pixel/sobol.rs", "use crate::construct::sobol::byte_tables;\nuse crate::sampler::qmc::sobol::Sobol;\n"),
+        file("sampler/qmc/net.rs", "// see crate::pixel::sobol\nfn f() { crate::pixel::prepare(); }\n"),
+        file("construct/pbrt.rs", "use crate::spec::ParamSpec;\nuse crate::sampler::Counts;\n"),
+        file("numeric/mod.rs", "let s = crate::discrepancy::l2::Sum::default();"),
+        file("spectrum/mod.rs", "use crate::sampler::Plan;"),
+    ]);
+    assert_eq!(
+        found,
+        [
+            "src/pixel/sobol.rs:2 names crate::sampler: the pixel samplers never import the point sets",
+            "src/sampler/qmc/net.rs:2 names crate::pixel: the point sets never import the pixel samplers",
+            "src/construct/pbrt.rs:2 names crate::sampler: the constructions import only the base",
+            "src/numeric/mod.rs:1 names crate::discrepancy: the base imports only the base",
+        ]
+    );
+}
