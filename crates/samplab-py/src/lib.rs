@@ -31,6 +31,7 @@ use samplab::{PointSet, Seed};
 use samplab_render::study::Study;
 
 mod integrand;
+mod sampler;
 
 // named in the package it is raised from, so that it pickles (Dask sends it between processes)
 create_exception!(samplab, Error, PyValueError, "Every samplab error: its message names what is wrong and where.");
@@ -39,7 +40,7 @@ create_exception!(samplab, Error, PyValueError, "Every samplab error: its messag
 /// derives from the matching built-in for the library's unknown names (`LookupError`),
 /// memory refusals (`MemoryError`), file failures (`OSError`) and work limits, with the
 /// failure's fields as attributes.
-fn err<E: std::fmt::Display + 'static>(e: E) -> PyErr {
+pub(crate) fn err<E: std::fmt::Display + 'static>(e: E) -> PyErr {
     let any = &e as &dyn std::any::Any;
     let library = any.downcast_ref::<samplab::Error>().or_else(|| match any.downcast_ref::<samplab_render::Error>() {
         Some(samplab_render::Error::Samplab(e)) => Some(e),
@@ -126,7 +127,7 @@ const AWAKE: Duration = Duration::from_micros(200);
 /// Called from a thread of the pool (a Python callable that samplab evaluates, calling
 /// samplab in turn), the work runs on that thread: waiting there for a task queued behind
 /// it would never end, and the outer call already watches for signals.
-fn interruptible<R: Send, E: std::fmt::Display + Send + 'static>(
+pub(crate) fn interruptible<R: Send, E: std::fmt::Display + Send + 'static>(
     py: Python<'_>,
     size: usize,
     work: impl FnOnce(&AtomicBool) -> Result<R, E> + Send,
@@ -266,36 +267,8 @@ fn registry<'py>(py: Python<'py>, kind: &str) -> PyResult<Bound<'py, PyList>> {
 }
 
 /// A flat vector as an array of `shape`.
-fn shaped<'py>(py: Python<'py>, data: Vec<f64>, shape: &[usize]) -> PyResult<Bound<'py, PyAny>> {
+pub(crate) fn shaped<'py>(py: Python<'py>, data: Vec<f64>, shape: &[usize]) -> PyResult<Bound<'py, PyAny>> {
     Ok(PyArray1::from_vec(py, data).reshape(shape)?.into_any())
-}
-
-/// `sets` realizations of `n` points in `d` dimensions as a (sets, n, d) array, starting at
-/// realization `first`; set k is seeded `seed.derive(k)`, as `samplab generate` does, so
-/// the bytes are the CLI's.
-#[pyfunction]
-#[pyo3(signature = (spec, n, d, seed, sets, first=0))]
-fn generate<'py>(
-    py: Python<'py>,
-    spec: &str,
-    n: usize,
-    d: usize,
-    seed: u64,
-    sets: usize,
-    first: u64,
-) -> PyResult<Bound<'py, PyAny>> {
-    if sets == 0 {
-        return Err(err("sets must be at least 1"));
-    }
-    let end = first.checked_add(sets as u64).ok_or_else(|| err("first + sets passes 2^64 - 1"))?;
-    let sampler = samplab::sampler::build(spec).map_err(err)?;
-    let plan = sampler.plan(n, d).map_err(err)?;
-    // a sequence's or a stream's points cost about the same each; a construction's cost is
-    // not its size (Lloyd's 10^5 iterations on 1024 points ran for minutes unstoppable)
-    let cheap = plan.access(Seed(seed)).is_some() || plan.stream(Seed(seed)).is_some();
-    let size = if cheap { sets.saturating_mul(n * d) } else { usize::MAX };
-    let data = interruptible(py, size, |stop| plan.stack(Seed(seed), first..end, &Progress::until(stop)))?;
-    shaped(py, data, &[sets, n, d])
 }
 
 /// Every value of `frames` frames of a film (width, height, spp, dims) from the pixel
@@ -327,69 +300,6 @@ fn pixels<'py>(
 fn blue_noise_mask<'py>(py: Python<'py>, size: usize, channels: usize, seed: u64) -> PyResult<Bound<'py, PyAny>> {
     let mask = py.detach(|| samplab::pixel::mask::Mask::void_and_cluster(size, channels, Seed(seed))).map_err(err)?;
     shaped(py, mask.values().to_vec(), &[size, size, channels])
-}
-
-/// Whether `spec` names a progressive sequence (random access, extensible).
-#[pyfunction]
-fn is_sequence(spec: &str) -> PyResult<bool> {
-    let sampler = samplab::sampler::build(spec).map_err(err)?;
-    // a sequence makes any count, so one point in its fewest dimensions plans
-    let plan = sampler.plan(1, *sampler.dims().start());
-    Ok(plan.is_ok_and(|p| p.access(Seed(0)).is_some()))
-}
-
-/// The dimensions the sampler `spec` makes, (fewest, most), and whether its points depend
-/// on the seed.
-#[pyfunction]
-fn sampler_info(spec: &str) -> PyResult<(usize, usize, bool)> {
-    let dims = samplab::sampler::build(spec).map_err(err)?.dims();
-    Ok((*dims.start(), *dims.end(), samplab::sampler::randomized(spec).map_err(err)?))
-}
-
-/// Points `start .. start + n` of the sequence `spec` in `d` dimensions, randomized as set 0
-/// of [`generate`] with the same seed (so `start = 0` gives the same points).
-#[pyfunction]
-fn sequence_points<'py>(
-    py: Python<'py>,
-    spec: &str,
-    start: u64,
-    n: usize,
-    d: usize,
-    seed: u64,
-) -> PyResult<Bound<'py, PyAny>> {
-    let sampler = samplab::sampler::build(spec).map_err(err)?;
-    let whole = || err(format!("{}: makes whole sets, not a sequence: it cannot be extended", sampler.spec()));
-    // a sequence makes any count: a plan of one point fails only on the dimension
-    let plan = match sampler.plan(1, d) {
-        Ok(plan) => plan,
-        Err(e @ samplab::Error::InvalidDims { .. }) => return Err(err(e)),
-        Err(_) => return Err(whole()),
-    };
-    // planned for the points asked for where the sequence has them, so that its tables (a
-    // cache: Owen-scrambled Halton's) fit the count
-    let end = start.checked_add(n as u64).and_then(|end| usize::try_from(end).ok());
-    let plan = end.and_then(|end| sampler.plan(end, d).ok()).unwrap_or(plan);
-    let Some(access) = plan.access(Seed(seed).derive(0)) else {
-        return Err(whole());
-    };
-    let data = py
-        .detach(|| -> samplab::Result<Vec<f64>> {
-            samplab::memory::check(|| format!("{n} points of {d} dimensions"), 8 * n as u128 * d as u128)?;
-            let mut data = Vec::with_capacity(n * d);
-            for i in 0..n as u64 {
-                let index = start.checked_add(i).ok_or_else(|| samplab::Error::Setting {
-                    name: "start",
-                    value: start.to_string(),
-                    reason: format!("start + {n} points passes the last index 2^64 - 1"),
-                })?;
-                for dim in 0..d {
-                    data.push(access.sample(index, dim)?);
-                }
-            }
-            Ok(data)
-        })
-        .map_err(err)?;
-    shaped(py, data, &[n, d])
 }
 
 /// Point sets from a C-contiguous float64 array of shape (sets, n, d), every coordinate
@@ -1066,13 +976,10 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(default_seed, m)?)?;
     m.add_function(wrap_pyfunction!(registry, m)?)?;
-    m.add_function(wrap_pyfunction!(generate, m)?)?;
-    m.add_function(wrap_pyfunction!(is_sequence, m)?)?;
-    m.add_function(wrap_pyfunction!(sampler_info, m)?)?;
+    m.add_class::<sampler::Sampler>()?;
     m.add_function(wrap_pyfunction!(pixels, m)?)?;
     m.add_function(wrap_pyfunction!(blue_noise_mask, m)?)?;
     m.add_function(wrap_pyfunction!(image_metrics, m)?)?;
-    m.add_function(wrap_pyfunction!(sequence_points, m)?)?;
     m.add_function(wrap_pyfunction!(warp, m)?)?;
     m.add_function(wrap_pyfunction!(save, m)?)?;
     m.add_function(wrap_pyfunction!(load, m)?)?;

@@ -68,6 +68,7 @@ __all__ = [
     "predict",
     "formats",
     "scenes",
+    "Sampler",
     "generate",
     "pixel_samplers",
     "pixels",
@@ -274,6 +275,86 @@ def scenes() -> List[Dict[str, Any]]:
     return _registry("scenes")
 
 
+class Sampler:
+    """A sampler built once from its spec, for ``d`` dimensions.
+
+    Building it checks the name, the parameters and the dimensions once; its sets then come
+    from the object (the bytes of ``samplab generate`` with the same spec and seed). It
+    pickles as its spec and dimensions, so Dask's and multiprocessing's workers rebuild the
+    same sampler.
+
+    Parameters
+    ----------
+    spec : str
+        The sampler's spec, e.g. ``"sobol.owen"`` (``samplers()`` lists them).
+    d : int, default 2
+        Dimensions.
+
+    Raises
+    ------
+    samplab.Error
+        An unknown name (``UnknownNameError``, with suggestions), a bad parameter, or
+        dimensions the sampler does not make (naming those it does).
+
+    Examples
+    --------
+    >>> s = samplab.Sampler("sobol.owen", d=4)
+    >>> s.d, s.is_sequence
+    (4, True)
+    >>> s.generate(8, seed=1).shape
+    (8, 4)
+    >>> import pickle
+    >>> again = pickle.loads(pickle.dumps(s))
+    >>> bool((again.generate(8, seed=1) == s.generate(8, seed=1)).all())
+    True
+    """
+
+    __slots__ = ("_native", "_given", "_d")
+
+    def __init__(self, spec: str, d: int = 2) -> None:
+        if not isinstance(spec, str):
+            raise TypeError(f"spec must be a str, got {type(spec).__name__}")
+        native = _samplab.Sampler(spec)
+        d = _count("d", d)
+        native.check_dims(d)
+        self._native, self._given, self._d = native, spec, d
+
+    @property
+    def spec(self) -> str:
+        """The canonical spec: the name and every parameter, defaults included."""
+        return self._native.spec
+
+    @property
+    def d(self) -> int:
+        """Dimensions."""
+        return self._d
+
+    @property
+    def is_sequence(self) -> bool:
+        """Whether it is a progressive sequence (Sobol', Halton): extensible, with random
+        access (``points``)."""
+        return self._native.is_sequence()
+
+    def generate(self, n: int, seed: Optional[int] = None, sets: Optional[int] = None) -> np.ndarray:
+        """``n`` points in [0, 1)^d: float64 of shape (n, d), or (sets, n, d) when ``sets``
+        is given; set k is seeded by a hash of ``seed`` and k, as ``samplab generate`` does.
+        A count the sampler cannot make raises ``samplab.Error`` naming the nearest ones."""
+        m = 1 if sets is None else _count("sets", sets)
+        out = self._native.generate(_count("n", n), self._d, _seed(seed), m)
+        return out[0] if sets is None else out
+
+    def points(self, start: int, n: int, seed: Optional[int] = None) -> np.ndarray:
+        """Points ``start .. start + n`` of a sequence, float64 of shape (n, d), randomized as
+        ``generate(..., seed=seed)`` (so ``start = 0`` gives its first points)."""
+        return self._native.points(_count("start", start), _count("n", n), self._d, _seed(seed))
+
+    def __reduce__(self) -> Tuple[Any, Tuple[str, int]]:
+        return (Sampler, (self._given, self._d))
+
+    def __repr__(self) -> str:
+        return f"samplab.Sampler({self._given!r}, d={self._d})"
+
+
 def generate(spec: str, n: int, d: int = 2, seed: Optional[int] = None, sets: Optional[int] = None) -> np.ndarray:
     """Points of a sampler in [0, 1)^d.
 
@@ -314,9 +395,7 @@ def generate(spec: str, n: int, d: int = 2, seed: Optional[int] = None, sets: Op
     >>> samplab.generate("sobol.owen", n=1024, d=3, sets=10).shape
     (10, 1024, 3)
     """
-    m = 1 if sets is None else _count("sets", sets)
-    out = _samplab.generate(spec, _count("n", n), _count("d", d), _seed(seed), m)
-    return out[0] if sets is None else out
+    return Sampler(spec, d).generate(n, seed=seed, sets=sets)
 
 
 def pixel_samplers() -> List[Dict[str, Any]]:
@@ -507,7 +586,7 @@ def is_sequence(spec: str) -> bool:
     >>> samplab.is_sequence("sobol.owen"), samplab.is_sequence("jitter")
     (True, False)
     """
-    return _samplab.is_sequence(spec)
+    return _samplab.Sampler(spec).is_sequence()
 
 
 def sequence_points(spec: str, start: int, n: int, d: int = 2, seed: Optional[int] = None) -> np.ndarray:
@@ -538,7 +617,7 @@ def sequence_points(spec: str, start: int, n: int, d: int = 2, seed: Optional[in
     >>> bool((samplab.sequence_points("sobol.owen", 16, 48, seed=3) == whole[16:]).all())
     True
     """
-    return _samplab.sequence_points(spec, _count("start", start), _count("n", n), _count("d", d), _seed(seed))
+    return Sampler(spec, d).points(start, n, seed=seed)
 
 
 def warp(name: str, points: Any) -> np.ndarray:
@@ -1246,6 +1325,7 @@ for _name in __all__:
     if inspect.isfunction(globals().get(_name)):
         globals()[_name] = _valid_text(globals()[_name])
 del _name
+Sampler.__init__ = _valid_text(Sampler.__init__)  # type: ignore[method-assign]
 
 
 from .study import Study, StudyResult  # noqa: E402  (study.py imports this package's names)

@@ -73,7 +73,7 @@ def _scrambled(spec: str, scramble: Optional[bool]) -> str:
         if name in names and any(f"{name}.{r}" in names for r in _RANDOMIZATIONS):
             return spec
         raise Error(f"scramble=False: {spec} has no unscrambled construction")
-    if _samplab.sampler_info(spec)[2]:
+    if _samplab.Sampler(spec).randomized():
         return spec
     for r in _RANDOMIZATIONS:
         if f"{name}.{r}" in names:
@@ -128,12 +128,13 @@ class Engine(_qmc.QMCEngine):
             raise TypeError("give rng or seed (its older name), not both")
         rng = seed if rng is None else rng
         spec = _scrambled(spec, scramble)
+        self._sampler = _samplab.Sampler(spec)
         if d > 0:
-            most = _samplab.sampler_info(spec)[1]
+            most = self._sampler.dims()[1]
             if d > most:
                 raise Error(f"Maximum supported dimensionality is {most}.")
         self.spec = spec
-        self.sequence = _samplab.is_sequence(spec)
+        self.sequence = self._sampler.is_sequence()
         self.samplab_seed = _samplab_seed(rng)
         # scipy's own state (qmc_quad spawns Generators from self.rng; the optimizers draw from it)
         state = rng if isinstance(rng, np.random.Generator) else np.random.default_rng(self.samplab_seed)
@@ -148,13 +149,13 @@ class Engine(_qmc.QMCEngine):
             # scipy's Sobol' warns so, in these words
             warnings.warn("The balance properties of Sobol' points require n to be a power of 2.", stacklevel=3)
         if self.sequence and self.num_generated:
-            return _samplab.sequence_points(self.spec, self.num_generated, n, self.d, self.samplab_seed)
+            return self._sampler.points(self.num_generated, n, self.d, self.samplab_seed)
         if self.num_generated and not self.sequence:
             raise Error(
                 f"{self.spec} makes whole sets, not a sequence: it cannot extend the {self.num_generated} "
                 "points already drawn (call reset(), or draw all points at once)"
             )
-        return _samplab.generate(self.spec, n, self.d, self.samplab_seed, 1)[0]
+        return self._sampler.generate(n, self.d, self.samplab_seed, 1)[0]
 
     def random_base2(self, m: int) -> np.ndarray:
         """2^m points, as scipy's ``Sobol.random_base2``: refused (ValueError, scipy's

@@ -274,6 +274,23 @@ impl<F: Fn(Seed, &mut [f64], &Progress) -> Result<()> + Send + Sync> Prepared fo
 }
 
 impl<'s> dyn Sampler + 's {
+    /// Check that the sampler makes `dims` dimensions: the first of `plan`'s checks, for a
+    /// front end that holds a sampler for one dimension before any count.
+    ///
+    /// # Errors
+    /// [`Error::InvalidDims`] naming the dimensions it makes.
+    pub fn check_dims(&self, dims: usize) -> Result<()> {
+        let range = self.dims();
+        if range.contains(&dims) {
+            return Ok(());
+        }
+        Err(Error::InvalidDims {
+            sampler: self.spec(),
+            dims,
+            supported: format!("{}..={}", range.start(), range.end()),
+        })
+    }
+
     /// Check that `n` points in `dims` dimensions can be made, and prepare to make them
     /// ([`Sampler::prepare`]: every table built here, once).
     ///
@@ -293,14 +310,7 @@ impl<'s> dyn Sampler + 's {
     /// }
     /// ```
     pub fn plan(&self, n: usize, dims: usize) -> Result<Plan<'_>> {
-        let range = self.dims();
-        if !range.contains(&dims) {
-            return Err(Error::InvalidDims {
-                sampler: self.spec(),
-                dims,
-                supported: format!("{}..={}", range.start(), range.end()),
-            });
-        }
+        self.check_dims(dims)?;
         if n == 0 || n > MAX_POINTS || n.checked_mul(dims).is_none() {
             return Err(Error::InvalidCount {
                 sampler: self.spec(),
