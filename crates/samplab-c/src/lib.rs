@@ -84,7 +84,7 @@ pub unsafe extern "C" fn samplab_pixel_families(families: *mut *const SamplabFam
                     name: c(e.about.name),
                     summary: c(e.about.summary),
                     spp: c(&e.spp.describe()),
-                    dims: c(e.dims),
+                    dims: c(&e.dims()),
                     max_dims: e.max_dims,
                 })
                 .collect(),

@@ -153,7 +153,7 @@ fn the_version_and_the_families_are_the_librarys() {
         // SAFETY: the table's strings are NUL-terminated and live as long as the process
         let text = |p| unsafe { std::ffi::CStr::from_ptr(p) }.to_str().unwrap().to_string();
         assert_eq!(text(f.name), e.about.name);
-        assert_eq!((text(f.spp), text(f.dims), f.max_dims), (e.spp.describe(), e.dims.to_string(), e.max_dims));
+        assert_eq!((text(f.spp), text(f.dims), f.max_dims), (e.spp.describe(), e.dims(), e.max_dims));
         // the most dimensions are accepted, one more refused
         let film = |dims| Film { width: 4, height: 4, spp: e.spp.first_from(4, 2).unwrap_or(4) as u32, dims };
         assert!(prepare(e.about.name, film(f.max_dims.min(64)), Seed(1)).is_ok(), "{}", e.about.name);

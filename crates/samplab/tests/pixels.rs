@@ -3,7 +3,8 @@
 //! directly, and the stratification each family promises, counted on elementary intervals.
 
 use samplab::Seed;
-use samplab::pixel::{Film, PIXEL_SAMPLERS, Pixels, prepare};
+use samplab::pixel::{Film, MAX_DIMS, MappingKind, PIXEL_SAMPLERS, Pixels, prepare};
+use samplab::registry::Entry;
 
 /// pbrt's `FloatOneMinusEpsilon`.
 const ONE_MINUS_EPSILON: f32 = 0.999_999_94;
@@ -403,5 +404,33 @@ fn padded_families_pairs_of_dimensions_are_independent_within_a_pixel() {
                 assert!(rms <= limit, "{name}: dimensions {a} and {b}: RMS {rms:.4} over {limit:.4}");
             }
         }
+    }
+}
+
+/// Every pixel entry names the point-set family it draws (one `samplab generate` builds),
+/// its listing line is printed from its typed mapping, and its dimensions in words follow
+/// from the number (`any` exactly when it is the pixel samplers' limit).
+#[test]
+fn pixel_entries_are_typed_and_name_a_point_set_family() {
+    let mut kinds = Vec::new();
+    for e in PIXEL_SAMPLERS.iter() {
+        let (name, m) = (e.about.name, e.mapping);
+        assert!(samplab::sampler::build(m.family).is_ok(), "{name}: {} is not a point-set family", m.family);
+        assert_eq!(e.details()[1], format!("mapping: {} of {}: {}", m.kind.words(), m.family, m.how), "{name}");
+        assert!(!m.how.is_empty() && !m.how.starts_with(m.kind.words()), "{name}: the kind is said twice");
+        let dims = e.dims();
+        assert_eq!(dims.starts_with("any"), e.max_dims == MAX_DIMS, "{name}: {dims}");
+        assert!(dims.starts_with("any") || dims.starts_with(&format!("1 to {}", e.max_dims)), "{name}: {dims}");
+        kinds.push(m.kind);
+    }
+    for kind in [
+        MappingKind::Hashed,
+        MappingKind::PerPixel,
+        MappingKind::Padded,
+        MappingKind::ScreenOrder,
+        MappingKind::Mask,
+        MappingKind::External,
+    ] {
+        assert!(kinds.contains(&kind), "no family maps by {kind:?}");
     }
 }

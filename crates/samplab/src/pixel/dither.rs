@@ -5,7 +5,7 @@
 
 use super::mask::Mask;
 use crate::construct::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
-use super::{four, Family, Film, Keys, PixelEntry, PixelSampler};
+use super::{four, Family, Film, Keys, PixelEntry, PixelSampler, Mapping, MappingKind};
 use crate::construct::unit;
 use crate::error::Result;
 use crate::registry::About;
@@ -32,11 +32,15 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
     .params(&[MASK])
     .cite(&["georgiev2016", "ulichney1993", "burley2020"]),
     spp: super::Counts::Any("the shared set a net at powers of two; shifts keep it a toroidal translate"),
-    dims: "1 to 1024 (the Joe-Kuo table)",
+    dims_note: "the Joe-Kuo table",
     max_dims: SOBOL_MAX_DIMS as u32,
-    mapping: "one toroidal shift per pixel and pair of dimensions: the mask value at the pixel, the \
+    mapping: Mapping {
+        kind: MappingKind::Mask,
+        family: "sobol",
+        how: "one toroidal shift per pixel and pair of dimensions: the mask value at the pixel, the \
               mask itself shifted by a hash of (seed, frame, pair), so pairs and frames see unrelated \
               parts of the same blue noise; the set is the same in every pixel of a frame",
+    },
     build,
 }];
 

@@ -7,7 +7,7 @@
 //! single precision as pbrt computes it, so the values equal pbrt's bit for bit.
 
 use crate::construct::pbrt::{frame_seed, hash_words, mix_bits, permutation_element};
-use super::{four, Family, Film, PixelEntry, PixelSampler};
+use super::{four, Family, Film, PixelEntry, PixelSampler, Mapping, MappingKind};
 use crate::construct::counts::ANY;
 use crate::error::Result;
 use crate::registry::About;
@@ -44,14 +44,18 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
     .terse()
     .cite(&["halton1960", "pharr2023", "owen1995"]),
     spp: ANY,
-    dims: "1 to 1000 (pbrt's prime table)",
+    dims_note: "pbrt's prime table",
     max_dims: PRIME_TABLE_SIZE,
-    mapping: "screen-space ordering of one sequence: dimensions 0 and 1 (the film position, never \
+    mapping: Mapping {
+        kind: MappingKind::ScreenOrder,
+        family: "halton",
+        how: "dimensions 0 and 1 (the film position, never \
               randomized, as pbrt's GetPixel2D) place sample i of pixel p at Halton index o(p) + i 2^j 3^k; \
               dimension d >= 2 is the radical inverse in the d-th prime of that index, its digits \
               permuted by Hash(base, digit, seed) (permutedigits) or by the digits before them \
               (owen; pbrt's Owen ignores the seed: samplab XORs the frame's seed into its hash, \
               which is pbrt's value at seed 0); frame 0 uses the seed's low 32 bits as pbrt's seed",
+    },
     build,
 }];
 

@@ -29,7 +29,7 @@
 use rayon::prelude::*;
 
 use crate::construct::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
-use super::{Family, Film, Keys, PixelEntry, PixelSampler, rekey};
+use super::{Family, Film, Keys, PixelEntry, PixelSampler, rekey, Mapping, MappingKind};
 use crate::construct::unit;
 use crate::error::Result;
 use crate::integrand::{HalfPlane, Integrand};
@@ -93,12 +93,16 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
         rule: "spp a power of two up to 256 (the keys are optimized for it)",
         list: |_, _| Box::new((0..=MAX_SPP.trailing_zeros()).map(|k| 1usize << k)),
     },
-    dims: "1 to 1024 (the Joe-Kuo table)",
+    dims_note: "the Joe-Kuo table",
     max_dims: SOBOL_MAX_DIMS as u32,
-    mapping: "screen-space keys from a tile: sample i of pixel p, dimension d, is Owen-Sobol' point \
+    mapping: Mapping {
+        kind: MappingKind::ScreenOrder,
+        family: "sobol",
+        how: "keys from a tile: sample i of pixel p, dimension d, is Owen-Sobol' point \
               i XOR rank(p, d/2), its digits XOR scramble(p, d); the keys of the first `optimized` \
               dimensions optimized for the film's spp by samplab (swaps of scrambling keys, trades for fresh ones, then a \
               choice of ranking keys, against Heaviside test integrands), the tile offset per frame",
+    },
     build,
 }];
 

@@ -1,6 +1,6 @@
 //! Independent uniform values: the baseline every pixel sampler is measured against.
 
-use super::{Family, Film, PixelEntry, PixelSampler, Keys, rekey};
+use super::{Family, Film, PixelEntry, PixelSampler, Keys, rekey, Mapping, MappingKind};
 use crate::construct::counts::ANY;
 use crate::error::Result;
 use crate::registry::About;
@@ -13,9 +13,13 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
         .aliases(&["pixel.independent"])
         .cite(&["cook1986"]),
     spp: ANY,
-    dims: "any",
+    dims_note: "",
     max_dims: super::MAX_DIMS,
-    mapping: "none needed: every value is a hash of (seed, pixel, frame, index, dimension)",
+    mapping: Mapping {
+        kind: MappingKind::Hashed,
+        family: "random",
+        how: "every value is a hash of (seed, pixel, frame, index, dimension)",
+    },
     build,
 }];
 

@@ -3,7 +3,7 @@
 //! as Burley 2020 shuffles Sobol', and a random shift per pixel and dimension (Cranley &
 //! Patterson 1976).
 
-use super::{four, Family, Film, Keys, PixelEntry, PixelSampler};
+use super::{four, Family, Film, Keys, PixelEntry, PixelSampler, Mapping, MappingKind};
 use crate::construct::unit;
 use crate::error::Result;
 use crate::registry::About;
@@ -26,11 +26,15 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
     .aliases(&["pixel.lattice"])
     .cite(&["cools2006", "nuyens2006", "burley2020", "cranley1976"]),
     spp: super::Counts::Any("each pixel's first 2^m samples a shifted lattice, m up to 16"),
-    dims: "1 to 1024 (a CBC vector made when prepared: about 0.2 s for 64 dimensions)",
+    dims_note: "a CBC vector made when prepared: about 0.2 s for 64 dimensions",
     max_dims: 1024,
-    mapping: "one sequence per pixel: the index nested-uniform scrambled by the pixel's hash maps samples \
+    mapping: Mapping {
+        kind: MappingKind::PerPixel,
+        family: "lattice",
+        how: "the index nested-uniform scrambled by the pixel's hash maps samples \
               0..2^m to an aligned block of the radical-inverse order, itself a shifted lattice of 2^m \
               points; then a random shift per dimension; value = frac(phi_2(i) z_d + shift)",
+    },
     build,
 }];
 

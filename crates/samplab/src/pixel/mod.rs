@@ -8,7 +8,8 @@
 //! It is prepared once for a [`Film`] (resolution, samples per pixel, dimensions), which is
 //! where tables are built (a PMJ02 pool, a blue-noise mask).
 //!
-//! How a point-set family becomes a pixel sampler is part of its entry ([`PixelEntry::mapping`]):
+//! How a point-set family becomes a pixel sampler is part of its entry, typed
+//! ([`PixelEntry::mapping`], a [`MappingKind`]):
 //! - one sequence per pixel, decorrelated by hashes of (seed, pixel, frame): `sobol` and
 //!   `lattice` shuffle the index per pixel (Burley 2020), so each pixel's first 2^m
 //!   samples are an aligned block of the sequence, still a net or a shifted lattice;
@@ -235,14 +236,68 @@ pub struct PixelEntry {
     pub about: About,
     /// Which sample counts per pixel it takes, and where it stratifies.
     pub spp: Counts,
-    /// How many dimensions it draws (at most [`MAX_DIMS`]), in words; `max_dims` is the number.
-    pub dims: &'static str,
-    /// The most dimensions.
+    /// The most dimensions (at most [`MAX_DIMS`]).
     pub max_dims: u32,
-    /// How the point-set family becomes a pixel sampler, in words.
-    pub mapping: &'static str,
+    /// What limits or groups the dimensions, in words ("the Joe-Kuo table", "pairs of 2D
+    /// Sobol'"), or empty; the listing's dimensions are derived from it and `max_dims`.
+    pub dims_note: &'static str,
+    /// How a point-set family becomes this pixel sampler.
+    pub mapping: Mapping,
     /// Builds the prepared sampler for a film and a seed (the film already checked).
     pub(crate) build: fn(&Params, Film, Seed, &Progress<'_>) -> Result<Family>,
+}
+
+impl PixelEntry {
+    /// The dimensions it draws, in words: "any" or "1 to N", and the note.
+    pub fn dims(&self) -> String {
+        let range = if self.max_dims == MAX_DIMS { "any".to_string() } else { format!("1 to {}", self.max_dims) };
+        if self.dims_note.is_empty() { range } else { format!("{range} ({})", self.dims_note) }
+    }
+}
+
+/// How a pixel sampler draws a point-set family: the kind of mapping, the family (a name
+/// in [`crate::sampler::SAMPLERS`]'s listing, its construction in [`crate::construct`]), and
+/// the particulars in words. The listing's line is printed from it.
+#[derive(Debug, Clone, Copy)]
+pub struct Mapping {
+    /// The kind of mapping.
+    pub kind: MappingKind,
+    /// The point-set family whose construction it draws.
+    pub family: &'static str,
+    /// The particulars, in words.
+    pub how: &'static str,
+}
+
+/// The ways a point-set family becomes a pixel sampler.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MappingKind {
+    /// No structure to map: every value a hash of the keys.
+    Hashed,
+    /// One sequence per pixel, decorrelated by hashes of (seed, pixel, frame).
+    PerPixel,
+    /// Dimension padding: each pair (or block) of dimensions from its own randomization of
+    /// a low-dimensional pattern.
+    Padded,
+    /// A screen-space ordering: one sequence (or its keys) spread over the film's pixels.
+    ScreenOrder,
+    /// A screen-space mask: one toroidal shift per pixel from a blue-noise mask.
+    Mask,
+    /// Another library's samplers, as it defines them.
+    External,
+}
+
+impl MappingKind {
+    /// In words, for the listing.
+    pub fn words(self) -> &'static str {
+        match self {
+            MappingKind::Hashed => "hashed values",
+            MappingKind::PerPixel => "one sequence per pixel",
+            MappingKind::Padded => "dimension padding",
+            MappingKind::ScreenOrder => "screen-space ordering",
+            MappingKind::Mask => "screen-space mask",
+            MappingKind::External => "another library's own",
+        }
+    }
 }
 
 impl Entry for PixelEntry {
@@ -250,7 +305,11 @@ impl Entry for PixelEntry {
         &self.about
     }
     fn details(&self) -> Vec<String> {
-        vec![format!("spp: {}; dimensions: {}", self.spp.describe(), self.dims), format!("mapping: {}", self.mapping)]
+        let Mapping { kind, family, how } = self.mapping;
+        vec![
+            format!("spp: {}; dimensions: {}", self.spp.describe(), self.dims()),
+            format!("mapping: {} of {family}: {how}", kind.words()),
+        ]
     }
 }
 
@@ -290,7 +349,7 @@ pub fn prepare_with(spec: &str, film: Film, seed: Seed, progress: &Progress<'_>)
         other => other,
     })?;
     if film.dims > entry.max_dims {
-        return Err(Error::InvalidDims { sampler: spec, dims: film.dims as usize, supported: entry.dims.into() });
+        return Err(Error::InvalidDims { sampler: spec, dims: film.dims as usize, supported: entry.dims() });
     }
     let inner = (entry.build)(&params, film, seed, progress)?;
     Ok(Pixels { spec, film, seed, inner, padding: independent::padding(seed) })

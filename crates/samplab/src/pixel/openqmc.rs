@@ -6,7 +6,7 @@ use std::marker::PhantomData;
 
 use openqmc::{Sampler, SamplerImpl};
 
-use super::{one_by_one, Family, Film, PixelEntry, PixelSampler};
+use super::{one_by_one, Family, Film, Mapping, MappingKind, PixelEntry, PixelSampler};
 use crate::construct::{counts::ANY, unit};
 use crate::error::Result;
 use crate::registry::About;
@@ -14,18 +14,18 @@ use crate::progress::Progress;
 use crate::seed::Seed;
 use crate::spec::Params;
 
-const MAPPING: &str = "OpenQMC's own: Sampler::new(x, y, frame, index).new_domain(seed).new_domain(d / 4) \
+const HOW: &str = "Sampler::new(x, y, frame, index).new_domain(seed).new_domain(d / 4) \
                        draws dimensions 4(d / 4) .. 4(d / 4) + 3 (the seed's low 32 bits as the key); \
                        indices stratified up to 2^16";
 
 macro_rules! entries {
-    ($($name:literal => $sampler:ident, $summary:literal;)+) => {
+    ($($name:literal => $sampler:ident, $family:literal, $summary:literal;)+) => {
         pub(crate) static ENTRIES: &[PixelEntry] = &[$(PixelEntry {
             about: About::new($name, $summary).cite(&["openqmc"]),
             spp: ANY,
-            dims: "any (4D domains)",
+            dims_note: "4D domains",
             max_dims: super::MAX_DIMS,
-            mapping: MAPPING,
+            mapping: Mapping { kind: MappingKind::External, family: $family, how: HOW },
             build: |_: &Params, _: Film, seed: Seed, _: &Progress<'_>| -> Result<Family> {
                 Ok(Family::from(OpenQmc::<openqmc::$sampler>::new(seed)))
             },
@@ -34,12 +34,12 @@ macro_rules! entries {
 }
 
 entries! {
-    "openqmc.sobol" => SobolSampler, "OpenQMC's SobolSampler: Owen-scrambled Sobol' per pixel";
-    "openqmc.sobolbn" => SobolBnSampler, "OpenQMC's SobolBnSampler: Sobol' with blue-noise key and rank tables";
-    "openqmc.pmj" => PmjSampler, "OpenQMC's PmjSampler: progressive multi-jittered (0,2) from a table";
-    "openqmc.pmjbn" => PmjBnSampler, "OpenQMC's PmjBnSampler: pmj with blue-noise key and rank tables";
-    "openqmc.lattice" => LatticeSampler, "OpenQMC's LatticeSampler: a randomized rank-1 lattice";
-    "openqmc.latticebn" => LatticeBnSampler, "OpenQMC's LatticeBnSampler: lattice with blue-noise tables";
+    "openqmc.sobol" => SobolSampler, "sobol", "OpenQMC's SobolSampler: Owen-scrambled Sobol' per pixel";
+    "openqmc.sobolbn" => SobolBnSampler, "sobol", "OpenQMC's SobolBnSampler: Sobol' with blue-noise key and rank tables";
+    "openqmc.pmj" => PmjSampler, "pmj02", "OpenQMC's PmjSampler: progressive multi-jittered (0,2) from a table";
+    "openqmc.pmjbn" => PmjBnSampler, "pmj02", "OpenQMC's PmjBnSampler: pmj with blue-noise key and rank tables";
+    "openqmc.lattice" => LatticeSampler, "lattice", "OpenQMC's LatticeSampler: a randomized rank-1 lattice";
+    "openqmc.latticebn" => LatticeBnSampler, "lattice", "OpenQMC's LatticeBnSampler: lattice with blue-noise tables";
 }
 
 /// One OpenQMC sampler type, keyed by samplab's seed.

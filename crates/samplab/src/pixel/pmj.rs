@@ -5,7 +5,7 @@
 //! with a blue-noise shift per pixel, as pbrt-v4's `PMJ02BNSampler` pads.
 
 use super::dither::{MASK, Shifts};
-use super::{Family, Film, Pairs, PixelEntry, Keys, rekey};
+use super::{Family, Film, Pairs, PixelEntry, Keys, rekey, Mapping, MappingKind};
 use crate::construct::unit;
 use crate::error::Result;
 use crate::registry::About;
@@ -31,15 +31,19 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
         .aliases(&["pixel.pmj02"])
         .cite(&["christensen2018", "helmer2021", "pharr2023"]),
         spp: super::Counts::AtMost { most: MOST, why: "the pool holds 32 sequences of at most 2^16 points" },
-        dims: "any (blocks of two 2D pmj02)",
+        dims_note: "blocks of two 2D pmj02",
         max_dims: super::MAX_DIMS,
-        mapping: "dimension padding by blocks of four: dimensions 4k .. 4k+3 take the pool entry named by \
+        mapping: Mapping {
+            kind: MappingKind::Padded,
+            family: "pmj02",
+            how: "blocks of four: dimensions 4k .. 4k+3 take the pool entry named by \
                   the top 4 bits of h (two independent pmj02 sequences, the second read through a fixed \
                   nested scramble of its index, which decorrelates the pairs and keeps its prefixes nets), \
                   sample pi(i) of its first spp for both pairs (pi a nested uniform scramble of the index for \
                   a power-of-two spp, so that every prefix of 2^j samples is a net; a hashed permutation \
                   otherwise), each value XOR-ed with hashed digits (a digital shift, which keeps every \
                   (0,m,2)-net a net), h a 64-bit hash of (seed, pixel, frame, k)",
+        },
         build: build_plain,
     },
     PixelEntry {
@@ -52,11 +56,15 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
         .params(&[MASK])
         .cite(&["christensen2018", "helmer2021", "georgiev2016", "ulichney1993", "pharr2023"]),
         spp: super::Counts::AtMost { most: MOST, why: "the pool holds 16 sequences of at most 2^16 points" },
-        dims: "any (pairs of 2D pmj02)",
+        dims_note: "pairs of 2D pmj02",
         max_dims: super::MAX_DIMS,
-        mapping: "screen-space mask: as pbrt-v4's PMJ02BNSampler, the pair's sequence is shared by all \
+        mapping: Mapping {
+            kind: MappingKind::Mask,
+            family: "pmj02",
+            how: "as pbrt-v4's PMJ02BNSampler, the pair's sequence is shared by all \
                   pixels, its samples permuted per pixel, then shifted modulo 1 by the pixel's \
                   blue-noise value (the mask shifted by a hash of frame and pair)",
+        },
         build: build_bn,
     },
 ];

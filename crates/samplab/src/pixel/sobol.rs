@@ -3,7 +3,7 @@
 
 use super::RANDOMIZE;
 use crate::construct::pbrt::{Scramble, Sobol2, frame_seed, hash_words, permutation_element};
-use super::{one_by_one, Family, Film, Keys, Pairs, PixelEntry, PixelSampler};
+use super::{one_by_one, Family, Film, Keys, Pairs, PixelEntry, PixelSampler, Mapping, MappingKind};
 use crate::construct::{counts::ANY, unit};
 use crate::error::Result;
 use crate::registry::About;
@@ -23,12 +23,16 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
         .aliases(&["pixel.sobol", "burley"])
         .cite(&["burley2020", "joe2008", "sobol1967"]),
         spp: super::Counts::Any("each pixel's first 2^m samples a (t,m,s)-net"),
-        dims: "1 to 1024 (the Joe-Kuo table)",
+        dims_note: "the Joe-Kuo table",
         max_dims: SOBOL_MAX_DIMS as u32,
-        mapping: "one sequence per pixel: the index's low 16 digits are nested-uniform scrambled by the \
+        mapping: Mapping {
+            kind: MappingKind::PerPixel,
+            family: "sobol",
+            how: "the index's low 16 digits are nested-uniform scrambled by the \
                   pixel's hash (Burley 2020, section 4), which maps samples 0..2^m to an aligned block \
                   of 2^m Sobol' points, itself a net; each dimension then Owen-scrambled by its own \
                   hash of (pixel, dimension)",
+        },
         build: build_sobol,
     },
     PixelEntry {
@@ -42,11 +46,15 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
         .terse()
         .cite(&["pharr2023", "burley2020", "kensler2013"]),
         spp: ANY,
-        dims: "any (pairs of 2D Sobol')",
+        dims_note: "pairs of 2D Sobol'",
         max_dims: super::MAX_DIMS,
-        mapping: "dimension padding: dimensions 2k, 2k+1 are Sobol' dimensions 0, 1 at a per-pixel \
+        mapping: Mapping {
+            kind: MappingKind::Padded,
+            family: "sobol",
+            how: "dimensions 2k, 2k+1 are Sobol' dimensions 0, 1 at a per-pixel \
                   permutation of the sample index, scrambled by Hash(pixel, 2k, seed), as pbrt-v4 \
                   (bit for bit; frame 0 uses the seed's low 32 bits as pbrt's seed)",
+        },
         build: build_padded,
     },
 ];

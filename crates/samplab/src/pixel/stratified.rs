@@ -1,7 +1,7 @@
 //! Jittered strata per pixel with dimension padding (Cook 1986; as pbrt's
 //! `StratifiedSampler`, with hashed permutations instead of its stream of draws).
 
-use super::{Family, Film, Pairs, PixelEntry, Keys, rekey};
+use super::{Family, Film, Pairs, PixelEntry, Keys, rekey, Mapping, MappingKind};
 use crate::construct::counts::ANY;
 use crate::error::Result;
 use crate::numeric::BELOW_ONE;
@@ -20,11 +20,15 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
     .aliases(&["pixel.stratified", "stratified.padded"])
     .cite(&["cook1986", "pharr2023", "kensler2013"]),
     spp: ANY,
-    dims: "any (pairs of 2D strata)",
+    dims_note: "pairs of 2D strata",
     max_dims: super::MAX_DIMS,
-    mapping: "dimension padding: dimensions 2k, 2k+1 put sample i in stratum pi(i) of an a x b grid, \
+    mapping: Mapping {
+        kind: MappingKind::Padded,
+        family: "jitter",
+        how: "dimensions 2k, 2k+1 put sample i in stratum pi(i) of an a x b grid, \
               jittered, pi a hashed permutation of (seed, pixel, frame, k); every pair of a pixel's \
               samples is stratified, different pairs are independent",
+    },
     build,
 }];
 

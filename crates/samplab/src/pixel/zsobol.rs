@@ -6,7 +6,7 @@
 
 use super::RANDOMIZE;
 use crate::construct::pbrt::{Scramble, Sobol2, frame_seed, hash_words, mix_bits, morton2};
-use super::{Family, Film, POWER_OF_TWO_SPP, Pairs, PixelEntry};
+use super::{Family, Film, POWER_OF_TWO_SPP, Pairs, PixelEntry, Mapping, MappingKind};
 use crate::error::Result;
 use crate::registry::About;
 use crate::progress::Progress;
@@ -24,12 +24,16 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
     .terse()
     .cite(&["ahmed2020", "pharr2023", "burley2020"]),
     spp: POWER_OF_TWO_SPP,
-    dims: "any (pairs of 2D Sobol')",
+    dims_note: "pairs of 2D Sobol'",
     max_dims: super::MAX_DIMS,
-    mapping: "screen-space ordering: sample i of pixel p is Sobol' point P(morton(p) * spp + i), P \
+    mapping: Mapping {
+        kind: MappingKind::ScreenOrder,
+        family: "sobol",
+        how: "sample i of pixel p is Sobol' point P(morton(p) * spp + i), P \
               permuting each base-4 digit by a hash of the digits above it and of the dimension pair; \
               dimensions 2k, 2k+1 are Sobol' dimensions 0, 1 scrambled by Hash(2k + 2, seed) \
               (frame 0 uses the seed's low 32 bits as pbrt's seed)",
+    },
     build,
 }];
 
