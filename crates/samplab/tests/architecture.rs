@@ -1,6 +1,7 @@
 //! The library's layers, read from its sources (ARCHITECTURE.md draws the map): the
 //! constructions import only the numeric base, the base nothing above it, and the two front
-//! doors (point sets in `sampler/`, pixel samplers in `pixel/`) never each other.
+//! doors (point sets in `sampler/`, pixel samplers in `pixel/`) never each other; and
+//! neither they nor the constructions keep process-wide state.
 
 use std::path::Path;
 
@@ -50,11 +51,27 @@ fn named_modules(text: &str) -> Vec<(usize, String)> {
     named
 }
 
+/// The modules whose state lives in their samplers and plans, never in the process.
+const STATELESS: &[&str] = &["construct", "sampler", "pixel"];
+
+/// Whether a line declares process-wide mutable or lazily made state (a cache).
+fn process_wide(line: &str) -> bool {
+    let code = line.trim_start();
+    let declares =
+        code.starts_with("static ") || code.starts_with("pub static ") || code.starts_with("pub(crate) static ");
+    declares && ["Mutex", "RwLock", "OnceLock", "LazyLock", "OnceCell", "thread_local"].iter().any(|w| code.contains(w))
+}
+
 /// The rules a set of sources (path relative to `src/`, text) breaks, one line each.
 fn violations(sources: &[(String, String)]) -> Vec<String> {
     let mut found = Vec::new();
     for (path, text) in sources {
         let from = module_of(path);
+        if STATELESS.contains(&from) {
+            for (i, line) in text.lines().enumerate().filter(|(_, l)| process_wide(l)) {
+                found.push(format!("src/{path}:{} keeps process-wide state: {}", i + 1, line.trim()));
+            }
+        }
         for rule in RULES.iter().filter(|r| r.from.contains(&from)) {
             for (line, module) in named_modules(text) {
                 if module != from && !(rule.may)(&module) {
@@ -89,7 +106,8 @@ fn layers_import_only_downward() {
 }
 
 /// The check finds what it is for: a pixel sampler reaching into a point-set family, a
-/// construction importing a front door, the base importing a measure (and comments pass).
+/// construction importing a front door, the base importing a measure, a sampler's cache in a
+/// static (and comments, and the state of I/O, pass).
 #[test]
 fn the_layer_check_sees_a_wrong_import() {
     let file = |path: &str, text: &str| (path.to_string(), text.to_string());
@@ -99,6 +117,8 @@ fn the_layer_check_sees_a_wrong_import() {
         file("construct/pbrt.rs", "use crate::spec::ParamSpec;\nuse crate::sampler::Counts;\n"),
         file("numeric/mod.rs", "let s = crate::discrepancy::l2::Sum::default();"),
         file("spectrum/mod.rs", "use crate::sampler::Plan;"),
+        file("sampler/qmc/lattice.rs", "static CONSTRUCTED: Mutex<Vec<u64>> = Mutex::new(Vec::new());"),
+        file("io/mod.rs", "static STAGED: Mutex<Vec<u64>> = Mutex::new(Vec::new());"),
     ]);
     assert_eq!(
         found,
@@ -107,6 +127,8 @@ fn the_layer_check_sees_a_wrong_import() {
             "src/sampler/qmc/net.rs:2 names crate::pixel: the point sets never import the pixel samplers",
             "src/construct/pbrt.rs:2 names crate::sampler: the constructions import only the base",
             "src/numeric/mod.rs:1 names crate::discrepancy: the base imports only the base",
+            "src/sampler/qmc/lattice.rs:1 keeps process-wide state: static CONSTRUCTED: Mutex<Vec<u64>> = \
+             Mutex::new(Vec::new());",
         ]
     );
 }
