@@ -47,7 +47,7 @@ static ALLOCATOR: alloc::Checked = alloc::Checked;
     about,
     long_about = None,
     max_term_width = 100,
-    after_help = "Exit codes: 0 done; 2 an error (one line on stderr: bad input, a refused output, a failed\nwrite, stdout closed); 130 stopped by Ctrl-C, SIGTERM or SIGHUP (nothing written); 141 stdout\nclosed by its reader (a broken pipe, as `| head`: quiet, as a process killed by SIGPIPE);\n70 a bug."
+    after_help = "Exit codes: 0 done; 2 an error (one line on stderr: bad input, a refused output, a failed\nwrite, stdout closed); 130 stopped by Ctrl-C, SIGTERM or SIGHUP (nothing written); 141 stdout\nclosed by its reader (a broken pipe, as `| head`: quiet, as a process killed by SIGPIPE);\n70 a bug.\n\nEnvironment: SAMPLAB_SIMD=baseline|avx2|avx512 limits the vector instructions the hot loops use\n(every tier makes the same bytes; for testing and timing a narrower path)."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -209,6 +209,10 @@ fn run(cli: Cli) -> ExitCode {
     // a hidden switch for the test that proves the panic path (exit 70, one line)
     if std::env::var_os("SAMPLAB_TEST_PANIC").is_some() {
         panic!("a panic on purpose (SAMPLAB_TEST_PANIC)");
+    }
+    // an instruction-set limit the library would ignore is refused here, before any work
+    if let Err(e) = samplab::simd::Tier::from_environment() {
+        return finish(Err(e.into()));
     }
     finish(match cli.command {
         Command::Reproduce(a) => reproduce::run(&a),

@@ -7,6 +7,7 @@ use common::Temp;
 use std::process::{Command, Output};
 
 use samplab::io::{self, Format};
+use samplab::simd::{self, Tier};
 use samplab::{Seed, sampler};
 
 /// The binary, with a cache of measured spectra of this test run's (never the user's).
@@ -763,4 +764,125 @@ fn predict_takes_an_image_as_an_integrand() {
         &["predict", "--image", dir.join("broken.png").to_str().unwrap(), "--sampler", "random"],
         &["broken.png"],
     );
+}
+
+/// A command's outputs: its files' and its stdout's bytes, by name.
+type Outputs = Vec<(String, Vec<u8>)>;
+
+/// The first place where the outputs of the tiers differ: the tiers, the output and the
+/// byte (None when every tier made the same bytes).
+fn first_difference(runs: &[(Tier, Outputs)]) -> Option<String> {
+    let (first, reference) = runs.first()?;
+    for (tier, outputs) in &runs[1..] {
+        for ((name, a), (_, b)) in reference.iter().zip(outputs) {
+            if a != b {
+                let at = a.iter().zip(b).position(|(x, y)| x != y).unwrap_or(a.len().min(b.len()));
+                return Some(format!("{name}: {} and {} differ at byte {at}", first.name(), tier.name()));
+            }
+        }
+    }
+    None
+}
+
+/// The bytes of a command with the vector instructions limited to `tier`: its stdout and
+/// every file it wrote under `out`, by name.
+fn outputs_on(tier: Tier, args: &[&str], out: &std::path::Path) -> Outputs {
+    let _ = std::fs::remove_dir_all(out);
+    let _ = std::fs::remove_file(out);
+    let run = command().args(args).env(simd::LIMIT_VARIABLE, tier.name()).current_dir(out.parent().unwrap()).output();
+    let run = run.expect("running samplab");
+    assert!(run.status.success(), "{args:?} on {}: {}", tier.name(), String::from_utf8_lossy(&run.stderr));
+    let mut files: Outputs = match std::fs::read_dir(out) {
+        Ok(dir) => {
+            dir.map(|e| e.unwrap().path()).map(|p| (p.display().to_string(), std::fs::read(&p).unwrap())).collect()
+        }
+        Err(_) => std::fs::read(out).map(|b| vec![(out.display().to_string(), b)]).unwrap_or_default(),
+    };
+    files.sort();
+    files.push((format!("{args:?} stdout"), run.stdout));
+    files
+}
+
+/// Every command whose hot loops are compiled per instruction set (Sobol' points, the L2
+/// discrepancies, the NUFFT's spreading, the renderer's packets) makes the same bytes on
+/// every tier this processor has, the whole command limited by `SAMPLAB_SIMD`.
+#[test]
+fn every_instruction_set_makes_the_same_bytes() {
+    let dir = temp("tiers");
+    let (folder, image) = (dir.join("out"), dir.join("out.exr"));
+    let (folder_arg, image_arg) = (folder.to_str().unwrap(), image.to_str().unwrap());
+    let tiers: Vec<Tier> = Tier::ALL.into_iter().filter(|&t| t <= Tier::detected()).collect();
+    let commands: [(&[&str], &std::path::Path); 6] = [
+        (&["generate", "sobol.owen", "-n", "4096", "-d", "9", "--seed", "5", "--format", "json"], &folder),
+        (&["generate", "sobol", "-n", "1000", "-d", "5", "--sets", "2", "--seed", "5", "--format", "json"], &folder),
+        (
+            &[
+                "discrepancy",
+                "l2-star",
+                "centered",
+                "wraparound",
+                "--sampler",
+                "halton.owen",
+                "-n",
+                "3000",
+                "-d",
+                "4",
+                "--json",
+            ],
+            &folder,
+        ),
+        (
+            &[
+                "spectrum",
+                "--sampler",
+                "random",
+                "-n",
+                "20000",
+                "--sets",
+                "2",
+                "--res",
+                "64",
+                "--seed",
+                "3",
+                "-o",
+                folder_arg,
+            ],
+            &folder,
+        ),
+        (
+            &[
+                "render",
+                "sphere-box",
+                "--sampler",
+                "sobol.owen",
+                "-n",
+                "8",
+                "--mode",
+                "direct",
+                "--res",
+                "24x16",
+                "-o",
+                image_arg,
+            ],
+            &image,
+        ),
+        (
+            &["render", "spheres", "--sampler", "jitter", "-n", "4", "--res", "24x16", "--seed", "4", "-o", image_arg],
+            &image,
+        ),
+    ];
+    for (args, out) in commands {
+        let runs: Vec<_> = tiers.iter().map(|&t| (t, outputs_on(t, args, out))).collect();
+        assert!(runs[0].1.iter().map(|(_, b)| b.len()).sum::<usize>() > 1000, "{args:?}: little output");
+        assert_eq!(first_difference(&runs), None, "{args:?}");
+    }
+    // the check sees a difference: one byte of one tier's file changed
+    let mut runs = vec![(Tier::Baseline, vec![("f".to_string(), vec![1, 2, 3])]), (Tier::Avx2, vec![])];
+    runs[1].1 = vec![("f".to_string(), vec![1, 2, 4])];
+    assert_eq!(first_difference(&runs).as_deref(), Some("f: baseline and avx2 differ at byte 2"));
+    // a word that names no tier is refused in one line before any work
+    let bad = samplab_env(&["generate", "random", "-n", "4"], simd::LIMIT_VARIABLE, "avx3");
+    let err = String::from_utf8_lossy(&bad.stderr);
+    assert_eq!(bad.status.code(), Some(2), "{err}");
+    assert!(bad.stdout.is_empty() && err.lines().count() == 1 && err.contains("SAMPLAB_SIMD"), "{err}");
 }

@@ -5,63 +5,130 @@
 //! Sobol' points into two instructions; an older AVX-512 processor takes the AVX2 tier.
 //! Every lane does the same operations in the same order on each instruction set (no fused
 //! multiply-add), so the results are the same bits; [`on_each_instruction_set`] lets tests
-//! check it.
+//! check it for a kernel, and [`LIMIT_VARIABLE`] (`SAMPLAB_SIMD=avx2`) runs a whole process
+//! on a narrower tier, so that a command's bytes can be compared across tiers (the CLI's
+//! test `every_instruction_set_makes_the_same_bytes`) and a narrower path timed on a wider
+//! machine.
 
-/// `f()` compiled for the widest vector instructions the processor has (AVX-512, AVX2 or the
+use crate::error::{Error, Result};
+
+/// An instruction set [`wide`] compiles hot loops for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Tier {
+    /// x86-64's baseline (SSE2), or whatever the target has off x86-64.
+    Baseline,
+    /// AVX2.
+    Avx2,
+    /// AVX-512 with BW, DQ, VL and GFNI.
+    Avx512,
+}
+
+/// The environment variable that limits [`wide`] to a narrower tier than the processor's
+/// (`baseline`, `avx2` or `avx512`): to test and time a narrower path on a wider machine.
+pub const LIMIT_VARIABLE: &str = "SAMPLAB_SIMD";
+
+impl Tier {
+    /// Every tier, narrowest first.
+    pub const ALL: [Tier; 3] = [Tier::Baseline, Tier::Avx2, Tier::Avx512];
+
+    /// Its name, as [`LIMIT_VARIABLE`] takes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Tier::Baseline => "baseline",
+            Tier::Avx2 => "avx2",
+            Tier::Avx512 => "avx512",
+        }
+    }
+
+    /// The widest tier this processor has.
+    pub fn detected() -> Tier {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::is_x86_feature_detected as has;
+            if has!("avx512f") && has!("avx512bw") && has!("avx512dq") && has!("avx512vl") && has!("gfni") {
+                return Tier::Avx512;
+            }
+            if has!("avx2") {
+                return Tier::Avx2;
+            }
+        }
+        Tier::Baseline
+    }
+
+    /// The tier [`LIMIT_VARIABLE`] asks for (unset: the processor's).
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] for a word that names no tier, or a tier this processor lacks.
+    pub fn from_environment() -> Result<Tier> {
+        let detected = Tier::detected();
+        let Some(value) = std::env::var_os(LIMIT_VARIABLE) else { return Ok(detected) };
+        let word = value.to_string_lossy();
+        let bad = |reason: String| Error::Invalid(format!("{LIMIT_VARIABLE}={word}: {reason}"));
+        let tier = Tier::ALL
+            .into_iter()
+            .find(|t| t.name() == word)
+            .ok_or_else(|| bad("not an instruction set (baseline, avx2 or avx512)".into()))?;
+        if tier > detected {
+            return Err(bad(format!("this processor has {} at most", detected.name())));
+        }
+        Ok(tier)
+    }
+}
+
+/// The tier [`wide`] uses: [`Tier::from_environment`], or the processor's where the
+/// variable is not valid (a front end that wants the error calls `from_environment` itself
+/// first, as the CLI does). Read once, then one load per call (wide runs per pixel in the
+/// renderer).
+#[inline(always)]
+pub fn tier() -> Tier {
+    use std::sync::atomic::{AtomicU8, Ordering};
+    // 0: not yet read, else 1 + the tier's place in Tier::ALL
+    static TIER: AtomicU8 = AtomicU8::new(0);
+    match TIER.load(Ordering::Relaxed) {
+        0 => {
+            let tier = Tier::from_environment().unwrap_or_else(|_| Tier::detected());
+            TIER.store(1 + tier as u8, Ordering::Relaxed);
+            tier
+        }
+        n => Tier::ALL[usize::from(n - 1)],
+    }
+}
+
+/// `f()` compiled for the widest vector instructions [`tier`] allows (AVX-512, AVX2 or the
 /// baseline), chosen at run time. `f` and everything it calls must be inlined into it
 /// (`#[inline(always)]`, including on the closure) to be compiled wide.
 #[inline(always)]
 pub fn wide<R>(f: impl FnOnce() -> R) -> R {
     #[cfg(target_arch = "x86_64")]
-    {
-        if has_avx512() {
-            // SAFETY: the processor supports the tier's features, checked just above.
-            return unsafe { avx512(f) };
-        }
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the processor supports AVX2, checked just above.
-            return unsafe { avx2(f) };
-        }
+    match tier() {
+        // SAFETY: the processor supports the tier's features (`tier` is at most the detected one).
+        Tier::Avx512 => return unsafe { avx512(f) },
+        // SAFETY: as above.
+        Tier::Avx2 => return unsafe { avx2(f) },
+        Tier::Baseline => {}
     }
     f()
 }
 
 /// `f()` on every instruction set this processor has (baseline, AVX2, AVX-512), for tests
-/// that they give the same bits.
+/// that they give the same bits. (Only `f`'s own code is compiled for each: a [`wide`]
+/// inside it chooses by [`tier`]; a whole command runs on one tier with [`LIMIT_VARIABLE`].)
 pub fn on_each_instruction_set<R>(f: impl Fn() -> R) -> Vec<R> {
     #[allow(unused_mut)] // one entry only off x86-64
     let mut out = vec![f()];
     #[cfg(target_arch = "x86_64")]
     {
-        if std::arch::is_x86_feature_detected!("avx2") {
+        let detected = Tier::detected();
+        if detected >= Tier::Avx2 {
             // SAFETY: the processor supports AVX2, checked just above.
             out.push(unsafe { avx2(&f) });
         }
-        if has_avx512() {
+        if detected == Tier::Avx512 {
             // SAFETY: the processor supports the tier's features, checked just above.
             out.push(unsafe { avx512(&f) });
         }
     }
     out
-}
-
-/// Whether the processor has every feature of the AVX-512 tier: detected once, then one load
-/// per call (wide runs per pixel in the renderer).
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-fn has_avx512() -> bool {
-    use std::arch::is_x86_feature_detected as has;
-    use std::sync::atomic::{AtomicU8, Ordering};
-    // 0: not yet detected, 1: no, 2: yes
-    static TIER: AtomicU8 = AtomicU8::new(0);
-    match TIER.load(Ordering::Relaxed) {
-        0 => {
-            let yes = has!("avx512f") && has!("avx512bw") && has!("avx512dq") && has!("avx512vl") && has!("gfni");
-            TIER.store(1 + u8::from(yes), Ordering::Relaxed);
-            yes
-        }
-        tier => tier == 2,
-    }
 }
 
 #[cfg(target_arch = "x86_64")]
