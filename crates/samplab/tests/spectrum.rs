@@ -1,7 +1,8 @@
 //! Spectral statistics: the direct DFT against single-frequency sums, and Subr & Kautz's
 //! central claims with tolerances derived from the number of realizations.
 
-use samplab::spectrum::{self, Method, theory};
+use samplab::construct::spectrum_theory as theory;
+use samplab::spectrum::{self, Method};
 use samplab::{PointSet, Seed, sampler};
 
 fn sets(spec: &str, n: usize, m: usize, seed: u64) -> Vec<PointSet> {

@@ -10,13 +10,14 @@
 //!   studies        experiment, study, predict, cubature
 //!   measures       discrepancy, spectrum, spatial, screen, theory, stats, integrand, warp, io
 //!   front doors    sampler (point sets)            pixel (per-pixel draws)
-//!   constructions  construct: sobol, radical, scramble, pbrt, pmj02, cbc, counts
+//!   constructions  construct: sobol, radical, scramble, pbrt, pmj02, cbc, counts, spectrum_theory
 //!   base           numeric, seed, simd, progress, memory, error, spec, registry, points
 //! ```
 //!
 //! The test `layers_import_only_downward` (`tests/architecture.rs`) reads the sources and
-//! holds three rules: the base imports only the base, this module only the base, and
-//! `sampler` and `pixel` never each other. ARCHITECTURE.md at the repository's root draws
+//! holds the rules: the base imports only the base, this module only the base, `sampler`
+//! and `pixel` never each other and nothing above them but the edges ARCHITECTURE.md
+//! lists, and none of the three keeps process-wide state. ARCHITECTURE.md at the repository's root draws
 //! the map for the whole workspace, lists the edges that still cross the layers upward, and
 //! says where each kind of change goes: a new generating matrix, digit table, scramble,
 //! hash or search here, in the file of its kind, with the paper and equation it implements;
@@ -31,6 +32,8 @@
 //! - [`pmj02`]: the stochastic pmj02 construction (Helmer et al. 2021);
 //! - [`cbc`]: fast component-by-component searches for rank-1 lattices (Nuyens & Cools 2006);
 //! - [`counts`]: which counts a construction makes ([`Counts`]);
+//! - [`spectrum_theory`]: the closed-form spectra of jittered sampling (Subr & Kautz 2013),
+//!   a construction's own theory beside its measured spectra;
 //! - fixed point to the unit interval: [`unit()`] and [`cell_centre`].
 
 pub mod cbc;
@@ -40,6 +43,7 @@ pub mod pmj02;
 pub mod radical;
 pub mod scramble;
 pub mod sobol;
+pub mod spectrum_theory;
 
 pub use counts::{Counts, MAX_POINTS};
 pub use scramble::Randomization;

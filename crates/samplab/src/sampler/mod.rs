@@ -177,7 +177,7 @@ pub trait Sampler: Send + Sync + Debug {
     /// The closed form of the variance of the spectrum of `n` points in `dims` dimensions,
     /// where one is known (Gaussian and box jitter: Subr & Kautz 2013 eqs. 9 and 11 in their
     /// exact form).
-    fn spectrum_theory(&self, _n: usize, _dims: usize) -> Option<crate::spectrum::theory::VarianceTheory> {
+    fn spectrum_theory(&self, _n: usize, _dims: usize) -> Option<crate::construct::spectrum_theory::VarianceTheory> {
         None
     }
 }
@@ -200,7 +200,7 @@ pub(crate) trait Construction: Send + Sync + Debug {
     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>>;
 
     /// As [`Sampler::spectrum_theory`].
-    fn spectrum_theory(&self, _n: usize, _dims: usize) -> Option<crate::spectrum::theory::VarianceTheory> {
+    fn spectrum_theory(&self, _n: usize, _dims: usize) -> Option<crate::construct::spectrum_theory::VarianceTheory> {
         None
     }
 }

@@ -7,12 +7,12 @@ use std::ops::RangeInclusive;
 
 use super::{Access, Construction, Prepared, SAMPLERS, Sampler, Shape, Stream};
 use crate::construct::Counts;
+use crate::construct::spectrum_theory::VarianceTheory;
 use crate::error::{Error, Result};
 use crate::progress::Progress;
 use crate::registry::{About, Entry, canonical};
 use crate::seed::Seed;
 use crate::spec::{Default, Kind, ParamSpec, Params};
-use crate::spectrum::theory::VarianceTheory;
 
 /// One registered sampler.
 #[derive(Debug)]

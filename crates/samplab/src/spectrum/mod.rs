@@ -25,7 +25,6 @@ use crate::progress::Progress;
 pub mod aliasing;
 pub mod nufft;
 pub mod pixel_light;
-pub mod theory;
 pub mod tree;
 
 pub use tree::{Sets, Spectra};

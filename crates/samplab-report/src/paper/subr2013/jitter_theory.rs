@@ -3,7 +3,8 @@
 
 use std::f64::consts::PI;
 
-use samplab::spectrum::{self, Method, theory};
+use samplab::construct::spectrum_theory as theory;
+use samplab::spectrum::{self, Method};
 
 use samplab::stats::Summary;
 

@@ -18,7 +18,7 @@ use crate::numeric::BELOW_ONE;
 use crate::registry::About;
 use crate::seed::{Rng, Seed, normal, uniform, wrap01};
 use crate::spec::{Default, Kind, ParamSpec};
-use crate::spectrum::theory::{self, VarianceTheory};
+use crate::construct::spectrum_theory::{self as theory, VarianceTheory};
 
 /// How each grid point is displaced inside (or around) its cell. Offsets are fractions of
 /// the grid spacing 1/k.
