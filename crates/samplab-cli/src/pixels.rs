@@ -11,8 +11,14 @@ fn after_help() -> String {
         "The array has shape (frames, height, width, spp, dims): value [f, y, x, i, d] is dimension d \
          of sample i of pixel (x, y) in frame f, the same bytes as samplab.pixels() in Python and \
          samplab_pixel_sample() in C.\n\nExamples:\n  samplab pixels zsobol --res 64x64 --spp 16 --dims 8 -o z.npy\n  \
-         samplab pixels sobol.padded:randomize=owen --res 32x32 --spp 4 --dims 4 --frames 16 -o p.npy\n\n\
-         Pixel samplers: {}.\n`samplab list pixels` lists each with its sample counts, mapping and references.",
+         samplab pixels sobol.padded.xor --res 32x32 --spp 4 --dims 4 --frames 16 -o p.npy\n  \
+         samplab pixels sobol.owen --res 16x16 --spp 64 --dims 6 -o s.npy   # the point set in every pixel\n\n\
+         Pixel samplers: {}.\n`samplab list pixels` lists each with its sample counts, mapping and references.\n\n\
+         Any point-set sequence (sobol.owen, halton.owen, net.lms, lattice.shift, kronecker, SPEC+shift) is a pixel \
+         sampler too: sample i of pixel p in frame f is point i of `samplab generate SPEC --seed S`, S the pixel's \
+         seed (samplab.pixel_seed in Python), so a randomization word names one scramble in both commands. After a \
+         pixel sampler's own name, .none, .xor and .owen set its randomize (pbrt's none, xor and fastowen: \
+         fastowen is the point sets' Owen hash); randomize=WORD stays.",
         pixel::PIXEL_SAMPLERS.names()
     )
 }
@@ -21,7 +27,8 @@ fn after_help() -> String {
 #[derive(clap::Args)]
 #[command(after_help = after_help())]
 pub struct Args {
-    /// Pixel sampler spec, e.g. zsobol, sobol, pmj02.bn:mask=128, openqmc.sobolbn
+    /// Pixel sampler spec, e.g. zsobol, zsobol.xor, sobol, pmj02.bn:mask=128, openqmc.sobolbn, or a
+    /// point-set sequence per pixel: sobol.owen, halton.owen, lattice.shift
     spec: String,
     /// Film resolution, WIDTHxHEIGHT
     #[arg(long, value_parser = parse_res)]

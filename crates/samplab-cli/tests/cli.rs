@@ -886,3 +886,40 @@ fn every_instruction_set_makes_the_same_bytes() {
     assert_eq!(bad.status.code(), Some(2), "{err}");
     assert!(bad.stdout.is_empty() && err.lines().count() == 1 && err.contains("SAMPLAB_SIMD"), "{err}");
 }
+
+/// The f64 values of a `samplab pixels` array (NumPy format 1.0, little-endian, C order).
+fn npy_values(path: &std::path::Path) -> Vec<f64> {
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[..8], b"\x93NUMPY\x01\x00");
+    let start = 10 + usize::from(u16::from_le_bytes([bytes[8], bytes[9]]));
+    assert!(String::from_utf8_lossy(&bytes[10..start]).contains("'<f8'"));
+    bytes[start..].chunks_exact(8).map(|b| f64::from_le_bytes(b.try_into().unwrap())).collect()
+}
+
+/// `samplab pixels sobol.owen` and `samplab generate sobol.owen` name one scramble: a
+/// pixel's first 2^k samples are the point set `generate` writes under the pixel's seed,
+/// bit for bit (and so for any point-set sequence and randomization word).
+#[test]
+fn a_randomization_word_names_the_same_scramble_in_pixels_and_generate() {
+    let dir = temp("pixel-words");
+    let (px, set) = (dir.join("p.npy"), dir.join("g.npy"));
+    for spec in ["sobol.owen", "sobol.xor", "halton.owen", "lattice.shift", "sobol+shift"] {
+        let run = |args: &[&str]| {
+            let r = samplab(args);
+            assert!(r.status.success(), "{spec}: {}", String::from_utf8_lossy(&r.stderr));
+        };
+        let p = px.to_str().unwrap();
+        run(&["pixels", spec, "--res", "3x2", "--spp", "8", "--dims", "3", "--frames", "2", "--seed", "5", "-o", p]);
+        let values = npy_values(&px);
+        assert_eq!(values.len(), 2 * 2 * 3 * 8 * 3);
+        for (frame, y, x) in [(0u32, 0u32, 0u32), (1, 1, 2), (0, 1, 1)] {
+            let seed = samplab::pixel::pixel_seed(Seed(5), [x, y], frame).0.to_string();
+            run(&["generate", spec, "-n", "8", "-d", "3", "--seed", &seed, "-o", set.to_str().unwrap()]);
+            let points = io::read(&set, None).unwrap();
+            let first = (((frame * 2 + y) * 3 + x) * 8 * 3) as usize;
+            let pixel = &values[first..first + 24];
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(pixel), bits(points[0].as_slice()), "{spec}: pixel ({x}, {y}) in frame {frame}");
+        }
+    }
+}

@@ -272,15 +272,18 @@ pub(crate) fn shaped<'py>(py: Python<'py>, data: Vec<f64>, shape: &[usize]) -> P
 }
 
 /// Every value of `frames` frames of a film (width, height, spp, dims) from the pixel
-/// sampler `spec`, as an array (frames, height, width, spp, dims): the bytes of `samplab
-/// pixels`.
+/// sampler `spec` (with `per_pixel`, the point-set sequence `spec` served per pixel, even
+/// where a pixel sampler has its name), as an array (frames, height, width, spp, dims): the
+/// bytes of `samplab pixels`.
 #[pyfunction]
+#[pyo3(signature = (spec, film, frames, seed, per_pixel=false))]
 fn pixels<'py>(
     py: Python<'py>,
     spec: &str,
     film: (u32, u32, u32, u32),
     frames: u32,
     seed: u64,
+    per_pixel: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     if frames == 0 {
         return Err(err("frames = 0: at least one frame"));
@@ -289,9 +292,21 @@ fn pixels<'py>(
     let film = samplab::pixel::Film { width, height, spp, dims };
     let data = interruptible(py, usize::MAX, |stop| {
         let stop = Progress::until(stop);
-        samplab::pixel::prepare_with(spec, film, Seed(seed), &stop)?.fill_with(frames, &stop)
+        let pixels = if per_pixel {
+            samplab::pixel::per_pixel(spec, film, Seed(seed))?
+        } else {
+            samplab::pixel::prepare_with(spec, film, Seed(seed), &stop)?
+        };
+        pixels.fill_with(frames, &stop)
     })?;
     shaped(py, data, &[frames, height, width, spp, dims].map(|k| k as usize))
+}
+
+/// The seed of pixel (x, y) in `frame` under `seed`, under which a point-set sequence
+/// served per pixel draws its points.
+#[pyfunction]
+fn pixel_seed(seed: u64, x: u32, y: u32, frame: u32) -> u64 {
+    samplab::pixel::pixel_seed(Seed(seed), [x, y], frame).0
 }
 
 /// A tileable blue-noise mask by void-and-cluster, (size, size, channels): the bytes of
@@ -978,6 +993,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(registry, m)?)?;
     m.add_class::<sampler::Sampler>()?;
     m.add_function(wrap_pyfunction!(pixels, m)?)?;
+    m.add_function(wrap_pyfunction!(pixel_seed, m)?)?;
     m.add_function(wrap_pyfunction!(blue_noise_mask, m)?)?;
     m.add_function(wrap_pyfunction!(image_metrics, m)?)?;
     m.add_function(wrap_pyfunction!(warp, m)?)?;

@@ -131,6 +131,27 @@ def test_a_sampler_object_makes_the_functions_bytes_and_pickles():
     assert native.generate(64, 4, 7, 3).tobytes() == whole.tobytes()
 
 
+def test_a_sequence_served_per_pixel_is_the_point_set_under_each_pixels_seed():
+    # one randomization word in both doors: pixel (x, y) of frame f holds the set that
+    # generate makes under pixel_seed(seed, x, y, f), as `samplab pixels sobol.owen` does
+    for spec in ("sobol.owen", "halton.xor", "lattice.shift"):
+        s = samplab.Sampler(spec, d=3)
+        film = s.pixels((3, 2), 8, frames=2, seed=5)
+        assert film.shape == (2, 2, 3, 8, 3)
+        assert film.tobytes() == samplab.pixels(spec, (3, 2), 8, dims=3, frames=2, seed=5).tobytes()
+        for f, y, x in ((0, 0, 0), (1, 1, 2)):
+            here = s.generate(8, seed=samplab.pixel_seed(5, x, y, f))
+            assert film[f, y, x].tobytes() == here.tobytes(), (spec, f, y, x)
+        assert film[0, 0, 0].tobytes() != film[0, 0, 1].tobytes()
+    # "sobol" is a pixel sampler's name too: the Sampler serves the point set, unscrambled,
+    # the same in every pixel
+    plain = samplab.Sampler("sobol", d=2).pixels((2, 2), 4)
+    assert (plain == plain[0, 0, 0]).all()
+    assert not (samplab.pixels("sobol", (2, 2), 4) == plain).all()
+    with pytest.raises(samplab.Error, match="sequence with random access"):
+        samplab.Sampler("jitter").pixels((2, 2), 4)
+
+
 def test_a_sampler_unpickled_in_another_process_makes_the_same_bytes():
     s = samplab.Sampler("halton.owen", d=3)
     program = (

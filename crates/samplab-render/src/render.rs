@@ -253,7 +253,7 @@ impl Options {
 
     /// Every sampler of the render planned for its counts: the checks of
     /// [`Options::check`], done once.
-    fn plans(&self, scene: &Scene) -> Result<Plans<'_>> {
+    fn plans(&self, scene: &Scene) -> Result<Plans> {
         for (what, v) in [("width", self.width), ("height", self.height)] {
             if v == 0 || v > MAX_SIDE {
                 return Err(Error::Invalid(format!("image {what} {v} is out of range 1..={MAX_SIDE}")));
@@ -319,7 +319,7 @@ impl Options {
 impl Options {
     /// The checks of a render whose every dimension comes from the pixel sampler `p`; no
     /// strategy is planned.
-    fn pixel_sampler_plans(&self, p: &samplab::pixel::Pixels, scene: &Scene) -> Result<Plans<'_>> {
+    fn pixel_sampler_plans(&self, p: &samplab::pixel::Pixels, scene: &Scene) -> Result<Plans> {
         if self.pattern == Pattern::PerPixel || self.interleave.is_some() {
             return Err(Error::Invalid(format!(
                 "the pixel sampler {} draws each estimate's samples from its own dimensions: it takes \
@@ -350,21 +350,21 @@ impl Options {
 }
 
 /// `sampler` planned for `n` points in `dims` dimensions where `on`, else None.
-fn plan_if(on: bool, sampler: &dyn Sampler, n: usize, dims: usize) -> samplab::Result<Option<Plan<'_>>> {
+fn plan_if(on: bool, sampler: &dyn Sampler, n: usize, dims: usize) -> samplab::Result<Option<Plan>> {
     on.then(|| sampler.plan(n, dims)).transpose()
 }
 
 /// The render's samplers planned for their counts (None where the scene needs none).
-struct Plans<'s> {
+struct Plans {
     /// Per light (one for obscurance directions): n points, or n x spp for patterns per pixel.
-    light: Vec<Plan<'s>>,
+    light: Vec<Plan>,
     /// Over the pixel area, without interleaving.
-    pixel: Option<Plan<'s>>,
+    pixel: Option<Plan>,
     /// The interleaving tile, drawn once.
     tile: Option<Tile>,
-    lens: Option<Plan<'s>>,
-    time: Option<Plan<'s>>,
-    gloss: Option<Plan<'s>>,
+    lens: Option<Plan>,
+    time: Option<Plan>,
+    gloss: Option<Plan>,
 }
 
 /// The largest interleaving tile side, in pixels.
@@ -699,7 +699,7 @@ struct Setup<'a> {
     /// [`Scene::plain_albedos`].
     plain: Vec<Option<DVec3>>,
     /// The samplers planned for their counts, and the interleaving tile.
-    plans: &'a Plans<'a>,
+    plans: &'a Plans,
     /// In path mode, what its pixels share.
     path: Option<&'a crate::path::Context<'a>>,
 }

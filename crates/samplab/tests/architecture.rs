@@ -1,7 +1,9 @@
 //! The library's layers, read from its sources (ARCHITECTURE.md draws the map): the
 //! constructions import only the numeric base, the base nothing above it, and the two front
-//! doors (point sets in `sampler/`, pixel samplers in `pixel/`) never each other; and
-//! neither they nor the constructions keep process-wide state.
+//! doors (point sets in `sampler/`, pixel samplers in `pixel/`) never each other's family
+//! files (a pixel sampler may serve a point set per pixel through the point sets' own front
+//! door, `sampler::build` and its `Plan`); and neither they nor the constructions keep
+//! process-wide state.
 
 use std::path::Path;
 
@@ -9,25 +11,33 @@ use std::path::Path;
 const BASE: &[&str] =
     &["bibliography", "error", "memory", "numeric", "points", "progress", "registry", "seed", "simd", "spec"];
 
-/// Each rule: files under `from` may name (as `crate::module`) only what `may` allows.
+/// Each rule: files under `from` may name (as `crate::module::item`) only what `may`
+/// allows, given the module and the item after it.
 struct Rule {
     from: &'static [&'static str],
-    may: fn(&str) -> bool,
+    may: fn(&str, &str) -> bool,
     why: &'static str,
 }
 
+/// What the pixel samplers may name of the point sets: their front door, never a family.
+const SAMPLER_FRONT: &[&str] = &["build", "Plan", "Sampler"];
+
 const RULES: &[Rule] = &[
-    Rule { from: BASE, may: |m| BASE.contains(&m), why: "the base imports only the base" },
+    Rule { from: BASE, may: |m, _| BASE.contains(&m), why: "the base imports only the base" },
     Rule {
         from: &["construct"],
-        may: |m| BASE.contains(&m) || m == "construct",
+        may: |m, _| BASE.contains(&m) || m == "construct",
         why: "the constructions import only the base",
     },
-    Rule { from: &["sampler"], may: |m| m != "pixel", why: "the point sets never import the pixel samplers" },
-    Rule { from: &["pixel"], may: |m| m != "sampler", why: "the pixel samplers never import the point sets" },
+    Rule { from: &["sampler"], may: |m, _| m != "pixel", why: "the point sets never import the pixel samplers" },
+    Rule {
+        from: &["pixel"],
+        may: |m, item| m != "sampler" || SAMPLER_FRONT.contains(&item),
+        why: "the pixel samplers reach the point sets only through sampler::build and a Plan",
+    },
     Rule {
         from: &["sampler", "pixel"],
-        may: |m| BASE.contains(&m) || ["construct", "sampler", "pixel"].contains(&m) || UPWARD.contains(&m),
+        may: |m, _| BASE.contains(&m) || ["construct", "sampler", "pixel"].contains(&m) || UPWARD.contains(&m),
         why: "the front doors import the constructions and the base (and the edges ARCHITECTURE.md lists)",
     },
 ];
@@ -44,8 +54,9 @@ fn module_of(path: &str) -> &str {
     first.strip_suffix(".rs").unwrap_or(first)
 }
 
-/// Every `crate::module` a source names outside its comments, with its line.
-fn named_modules(text: &str) -> Vec<(usize, String)> {
+/// Every `crate::module` a source names outside its comments, with its line and the item
+/// named after it (`crate::sampler::build`: `sampler` and `build`; empty for a group).
+fn named_modules(text: &str) -> Vec<(usize, String, String)> {
     let mut named = Vec::new();
     for (i, line) in text.lines().enumerate() {
         if line.trim_start().starts_with("//") {
@@ -53,9 +64,11 @@ fn named_modules(text: &str) -> Vec<(usize, String)> {
         }
         for (at, _) in line.match_indices("crate::") {
             let rest = &line[at + "crate::".len()..];
-            let module: String = rest.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
+            let word = |s: &str| s.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect::<String>();
+            let module = word(rest);
+            let item = rest[module.len()..].strip_prefix("::").map(word).unwrap_or_default();
             if !module.is_empty() {
-                named.push((i + 1, module));
+                named.push((i + 1, module, item));
             }
         }
     }
@@ -84,8 +97,8 @@ fn violations(sources: &[(String, String)]) -> Vec<String> {
             }
         }
         for rule in RULES.iter().filter(|r| r.from.contains(&from)) {
-            for (line, module) in named_modules(text) {
-                if module != from && !(rule.may)(&module) {
+            for (line, module, item) in named_modules(text) {
+                if module != from && !(rule.may)(&module, &item) {
                     found.push(format!("src/{path}:{line} names crate::{module}: {}", rule.why));
                 }
             }
@@ -124,6 +137,7 @@ fn the_layer_check_sees_a_wrong_import() {
     let file = |path: &str, text: &str| (path.to_string(), text.to_string());
     let found = violations(&[
         file("pixel/sobol.rs", "use crate::construct::sobol::byte_tables;\nuse crate::sampler::qmc::sobol::Sobol;\n"),
+        file("pixel/sequence.rs", "use crate::sampler::{Plan, build};\nlet s = crate::sampler::build(spec);"),
         file("sampler/qmc/net.rs", "// see crate::pixel::sobol\nfn f() { crate::pixel::prepare(); }\n"),
         file("construct/pbrt.rs", "use crate::spec::ParamSpec;\nuse crate::sampler::Counts;\n"),
         file("numeric/mod.rs", "let s = crate::discrepancy::l2::Sum::default();"),
@@ -135,7 +149,10 @@ fn the_layer_check_sees_a_wrong_import() {
     assert_eq!(
         found,
         [
-            "src/pixel/sobol.rs:2 names crate::sampler: the pixel samplers never import the point sets",
+            "src/pixel/sobol.rs:2 names crate::sampler: the pixel samplers reach the point sets only through \
+             sampler::build and a Plan",
+            "src/pixel/sequence.rs:1 names crate::sampler: the pixel samplers reach the point sets only through \
+             sampler::build and a Plan",
             "src/sampler/qmc/net.rs:2 names crate::pixel: the point sets never import the pixel samplers",
             "src/construct/pbrt.rs:2 names crate::sampler: the constructions import only the base",
             "src/numeric/mod.rs:1 names crate::discrepancy: the base imports only the base",

@@ -431,3 +431,35 @@ fn micro_jitter_alone_with_fraction_one_is_jittered_sampling() {
     let err = sampler::build("micro-jitter").unwrap().generate(10, 2, Seed(1)).unwrap_err().to_string();
     assert!(err.starts_with("micro-jitter") && err.contains("9 and 16"), "{err}");
 }
+
+/// `family.shift` is `family+shift`: one code path (the stage's fixed-point shift), bit for
+/// bit, for every lattice and the Kronecker sequence, in their batches and their random
+/// access; with `tent=yes` the shift comes before the tent (the tent of `lattice+shift`,
+/// computed here from the plain shifted points), not after it.
+#[test]
+fn a_familys_shift_entry_is_its_shift_stage() {
+    let bits = |s: &PointSet| s.as_slice().iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    for (family, n, d) in [
+        ("lattice", 64, 3),
+        ("lattice.cbc", 61, 3),
+        ("lattice.korobov", 64, 3),
+        ("lattice.fibonacci", 55, 2),
+        ("kronecker", 100, 4),
+    ] {
+        let entry = set(&format!("{family}.shift"), n, d, 5);
+        let staged = set(&format!("{family}+shift"), n, d, 5);
+        assert_eq!(bits(&entry), bits(&staged), "{family}");
+        assert_ne!(bits(&entry), bits(&set(family, n, d, 5)), "{family}: not shifted");
+    }
+    let (entry, staged) = (sampler::build("lattice.shift").unwrap(), sampler::build("lattice+shift").unwrap());
+    let (a, b) = (entry.plan(8, 2).unwrap(), staged.plan(8, 2).unwrap());
+    let (a, b) = (a.access(Seed(3)).unwrap(), b.access(Seed(3)).unwrap());
+    for i in [0, 7, 1 << 20] {
+        assert_eq!(a.sample(i, 1).unwrap().to_bits(), b.sample(i, 1).unwrap().to_bits());
+    }
+    let tented = set("lattice.cbc.shift:tent=yes", 61, 2, 5);
+    let shifted = set("lattice.cbc+shift", 61, 2, 5);
+    for (t, x) in tented.as_slice().iter().zip(shifted.as_slice()) {
+        assert_eq!(t.to_bits(), (1.0 - (2.0 * x - 1.0).abs()).min(1.0 - f64::EPSILON / 2.0).to_bits());
+    }
+}

@@ -434,3 +434,75 @@ fn pixel_entries_are_typed_and_name_a_point_set_family() {
         assert!(kinds.contains(&kind), "no family maps by {kind:?}");
     }
 }
+
+/// A point-set sequence named in the pixel door is that point set in every pixel: sample i
+/// of pixel p in frame f is point i of the batch `generate` makes as set 0 of `pixel_seed(seed,
+/// p, f)`, bit for bit (the pixel draws each value alone, by random access; the batch walks
+/// the sequence), so `.owen`, `.xor`, `.lms`, `.shift` and `+shift` name one scramble in
+/// both doors. Each pixel's first 2^k samples keep the point set's structure (a (0,k,2)-net
+/// for scrambled Sobol' in two dimensions), and the pixels are not one another's copies.
+#[test]
+fn a_point_set_sequence_per_pixel_is_the_point_set_under_the_pixels_seed() {
+    let film = Film { width: 5, height: 3, spp: 16, dims: 4 };
+    let seed = Seed(41);
+    for spec in [
+        "sobol.owen",
+        "sobol.xor",
+        "sobol.shift",
+        "sobol+shift",
+        "halton.owen",
+        "faure.lms",
+        "niederreiter.owen",
+        "lattice.shift",
+        "kronecker.shift",
+    ] {
+        let p = prepare(spec, film, seed).unwrap();
+        assert_eq!(p.spec(), samplab::sampler::build(spec).unwrap().spec());
+        let mut firsts = Vec::new();
+        for (pixel, frame) in [([0, 0], 0), ([4, 2], 0), ([2, 1], 3)] {
+            let s = samplab::pixel::pixel_seed(seed, pixel, frame);
+            let set = samplab::sampler::build(spec).unwrap().generate(16, 4, s.derive(0)).unwrap();
+            for i in 0..16 {
+                for d in 0..4 {
+                    let ours = p.sample(pixel, frame, i, d);
+                    let batch = set.point(i as usize)[d as usize];
+                    assert_eq!(ours.to_bits(), batch.to_bits(), "{spec} {pixel:?} frame {frame} sample {i} dim {d}");
+                }
+            }
+            let xy: Vec<[f64; 2]> =
+                (0..16).map(|i| [p.sample(pixel, frame, i, 0), p.sample(pixel, frame, i, 1)]).collect();
+            if ["sobol.owen", "sobol.xor"].contains(&spec) {
+                assert!(is_02_net(&xy), "{spec} {pixel:?}: not a (0,4,2)-net");
+            }
+            firsts.push(xy[0]);
+        }
+        assert!(firsts[0] != firsts[1] && firsts[1] != firsts[2], "{spec}: pixels repeat each other");
+    }
+    // a set, not a sequence, is refused in words
+    let e = prepare("random", film, seed).unwrap_err().to_string();
+    assert!(e.contains("sequence with random access"), "{e}");
+    assert!(prepare("no-such-family", film, seed).unwrap_err().to_string().contains("unknown pixel sampler"));
+}
+
+/// The point sets' randomization words after the name of a pixel sampler that is not a
+/// point set's are its `randomize` values: `.owen` is pbrt's FastOwen (the point sets'
+/// hash), `.xor` pbrt's XOR, `.none` none; a word the family does not offer stays an
+/// unknown name. (`halton.owen` is the point set per pixel, above; pbrt's Halton sampler
+/// keeps `halton:randomize=owen`.)
+#[test]
+fn randomization_words_after_a_pixel_samplers_name_are_its_randomize_values() {
+    let film = Film { width: 6, height: 4, spp: 8, dims: 6 };
+    for (word, same) in [
+        ("zsobol.owen", "zsobol:randomize=fastowen"),
+        ("zsobol.xor", "zsobol:randomize=xor"),
+        ("sobol.padded.none", "sobol.padded:randomize=none"),
+        ("halton.none", "halton:randomize=none"),
+    ] {
+        let (a, b) = (prepare(word, film, Seed(3)).unwrap(), prepare(same, film, Seed(3)).unwrap());
+        assert_eq!(a.spec(), b.spec(), "{word}");
+        for (x, y, i, d) in [(0, 0, 0, 0), (5, 3, 7, 5), (2, 1, 3, 2)] {
+            assert_eq!(a.sample([x, y], 0, i, d).to_bits(), b.sample([x, y], 0, i, d).to_bits(), "{word}");
+        }
+    }
+    assert!(prepare("zsobol.lms", film, Seed(3)).unwrap_err().to_string().contains("unknown pixel sampler"));
+}

@@ -72,6 +72,7 @@ __all__ = [
     "generate",
     "pixel_samplers",
     "pixels",
+    "pixel_seed",
     "blue_noise_mask",
     "image_metrics",
     "is_sequence",
@@ -348,6 +349,13 @@ class Sampler:
         ``generate(..., seed=seed)`` (so ``start = 0`` gives its first points)."""
         return self._native.points(_count("start", start), _count("n", n), self._d, _seed(seed))
 
+    def pixels(self, res: Sequence[int], spp: int, frames: int = 1, seed: Optional[int] = None) -> np.ndarray:
+        """The sequence served per pixel: float64 of shape (frames, height, width, spp, d),
+        entry [f, y, x, i] point i of ``generate(spp, seed=pixel_seed(seed, x, y, f))`` (so
+        ``"sobol.owen"`` names one scramble for point sets and pixels). Only a sequence
+        (``is_sequence``) serves pixels; ``samplab.pixels`` gives the pixel samplers."""
+        return _film_values(self._given, res, spp, self._d, frames, seed, per_pixel=True)
+
     def __reduce__(self) -> Tuple[Any, Tuple[str, int]]:
         return (Sampler, (self._given, self._d))
 
@@ -459,6 +467,23 @@ def pixels(
     >>> bool(((v >= 0) & (v < 1)).all())
     True
     """
+    return _film_values(spec, res, spp, dims, frames, seed, per_pixel=False)
+
+
+def pixel_seed(seed: Optional[int], x: int, y: int, frame: int = 0) -> int:
+    """The seed of pixel (x, y) in ``frame``: a point-set sequence served per pixel
+    (``Sampler.pixels``, ``samplab pixels sobol.owen``) gives that pixel the set
+    ``generate(spp, seed=pixel_seed(seed, x, y, frame))``."""
+    for name, value in (("x", x), ("y", y), ("frame", frame)):
+        if _count(name, value) >= 2**32:
+            raise Error(f"{name} = {value}: out of range [0, 2^32)")
+    return int(_samplab.pixel_seed(_seed(seed), int(x), int(y), int(frame)))
+
+
+def _film_values(
+    spec: str, res: Sequence[int], spp: int, dims: int, frames: int, seed: Optional[int], per_pixel: bool
+) -> np.ndarray:
+    """``pixels`` (or, ``per_pixel``, a point-set sequence per pixel), its arguments checked."""
     try:
         if isinstance(res, (str, bytes)):
             raise TypeError
@@ -470,7 +495,7 @@ def pixels(
         if _count(name, value) >= 2**32:
             raise Error(f"{name} = {value}: out of range [0, 2^32)")
     film = (int(width), int(height), int(spp), int(dims))
-    return _samplab.pixels(spec, film, int(frames), _seed(seed))
+    return _samplab.pixels(spec, film, int(frames), _seed(seed), per_pixel)
 
 
 def blue_noise_mask(size: int = 64, channels: int = 1, seed: Optional[int] = None) -> np.ndarray:

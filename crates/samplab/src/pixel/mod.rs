@@ -19,7 +19,12 @@
 //! - screen-space orderings and masks: `zsobol` (Morton-ordered pixels, Ahmed & Wonka
 //!   2020, pbrt-v4's values bit for bit), `dither` and `pmj02.bn` (one toroidal shift per
 //!   pixel from a blue-noise [`mask`], Georgiev & Fajardo 2016), OpenQMC's `*bn` tables;
-//! - OpenQMC's six samplers as OpenQMC defines them (`openqmc.*`, through `openqmc-rs`).
+//! - OpenQMC's six samplers as OpenQMC defines them (`openqmc.*`, through `openqmc-rs`);
+//! - any point-set sequence whose spec is not a pixel sampler's name (`sobol.owen`,
+//!   `halton.owen`, `net.lms`, `lattice.shift`, `SPEC+shift`): one sequence per pixel, the
+//!   point set itself under the pixel's seed ([`pixel_seed`], [`per_pixel`]), so a
+//!   randomization word names one scramble through both front doors. After a pixel
+//!   sampler's own name, `.none`, `.xor` and `.owen` set its `randomize` (`zsobol.owen`).
 //!
 //! ```
 //! use samplab::{Seed, pixel};
@@ -50,11 +55,15 @@ use crate::seed::Seed;
 use crate::spec::{Default, Kind, ParamSpec, Params};
 
 pub mod mask;
+mod sequence;
+
+pub use sequence::pixel_seed;
 
 crate::registry::registry_files! {
     /// Every pixel sampler family, in listing order.
     pub static PIXEL_SAMPLERS: Registry<PixelEntry> = ("pixel sampler",
-        "PIXEL SAMPLERS  (spec: name[:key=value,...]; values keyed by seed, pixel, frame, index, dimension)")
+        "PIXEL SAMPLERS  (spec: name[.none|.xor|.owen][:key=value,...], or a point-set sequence per pixel: sobol.owen, \
+         halton.owen, lattice.shift, ...; values keyed by seed, pixel, frame, index, dimension)")
         from [independent, stratified, sobol, zsobol, halton, pmj, lattice, dither, heitz, openqmc];
 }
 
@@ -189,6 +198,7 @@ families! {
     OpenQmcPmjBn(openqmc::OpenQmc<::openqmc::PmjBnSampler>),
     OpenQmcLattice(openqmc::OpenQmc<::openqmc::LatticeSampler>),
     OpenQmcLatticeBn(openqmc::OpenQmc<::openqmc::LatticeBnSampler>),
+    Sequence(sequence::PerPixel),
 }
 
 /// A family that computes its dimensions in pairs (2k, 2k + 1), one 2D pattern each: it is
@@ -339,7 +349,18 @@ pub fn prepare(spec: &str, film: Film, seed: Seed) -> Result<Pixels> {
 /// # Errors
 /// As [`prepare`], or [`Error::Interrupted`].
 pub fn prepare_with(spec: &str, film: Film, seed: Seed, progress: &Progress<'_>) -> Result<Pixels> {
-    let (entry, params) = PIXEL_SAMPLERS.resolve(spec)?;
+    let (entry, params) = match PIXEL_SAMPLERS.resolve(spec) {
+        Ok(found) => found,
+        Err(unknown @ Error::UnknownName { .. }) => {
+            film.check()?;
+            match sequence::prepare(spec, film, seed) {
+                Err(Error::UnknownName { kind: "sampler", .. }) => {}
+                done => return done,
+            }
+            PIXEL_SAMPLERS.resolve(&with_randomization(spec).ok_or(unknown)?)?
+        }
+        Err(other) => return Err(other),
+    };
     let spec = canonical(&entry.about, &params);
     film.check()?;
     entry.spp.check(film.spp as usize, 2).map_err(|e| match e {
@@ -353,6 +374,43 @@ pub fn prepare_with(spec: &str, film: Film, seed: Seed, progress: &Progress<'_>)
     }
     let inner = (entry.build)(&params, film, seed, progress)?;
     Ok(Pixels { spec, film, seed, inner, padding: independent::padding(seed) })
+}
+
+/// The point-set sequence `spec` (`sobol`, `sobol.owen`, `halton.owen`, ...) served per pixel
+/// ([`pixel_seed`]), even where a pixel sampler has the same name (`sobol` here is the
+/// unscrambled Sobol' sequence, the same in every pixel, not the pixel sampler `sobol`).
+///
+/// # Errors
+/// An unknown point set, one that is not a sequence with random access, a film out of
+/// range, or a count or dimension the sequence does not make.
+pub fn per_pixel(spec: &str, film: Film, seed: Seed) -> Result<Pixels> {
+    film.check()?;
+    sequence::prepare(spec, film, seed)
+}
+
+/// The point sets' randomization words and the `randomize` value each is in pbrt's
+/// samplers: pbrt's FastOwen is the point sets' hash-based Owen scramble (`.owen`, the same
+/// hash), its XOR their random digit scrambling in base 2 (`.xor`).
+const RANDOMIZATION_WORDS: &[(&str, &str)] = &[("none", "none"), ("xor", "xor"), ("owen", "fastowen")];
+
+/// `spec`, a randomization word after a pixel sampler's name (`zsobol.owen`,
+/// `sobol.padded.xor:...`), written with that sampler's `randomize` parameter; `None` for
+/// any other spec.
+fn with_randomization(spec: &str) -> Option<String> {
+    let (name, args) = spec.split_once(':').map_or((spec, None), |(n, a)| (n, Some(a)));
+    name.rsplit_once('.').and_then(|(family, word)| {
+        let entry = PIXEL_SAMPLERS.lookup(family).ok()?;
+        let offered = match entry.about.params.iter().find(|p| p.name == "randomize")?.kind {
+            Kind::Choice(words) => words,
+            _ => return None,
+        };
+        let &(_, chosen) =
+            RANDOMIZATION_WORDS.iter().find(|(w, v)| w.eq_ignore_ascii_case(word) && offered.contains(v))?;
+        Some(match args {
+            Some(args) => format!("{family}:{args},randomize={chosen}"),
+            None => format!("{family}:randomize={chosen}"),
+        })
+    })
 }
 
 impl Pixels {

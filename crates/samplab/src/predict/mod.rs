@@ -241,7 +241,7 @@ pub fn sampler_spectrum(
 /// `sets` in all.
 fn spectrum_of_plan(
     spec: &str,
-    plan: &crate::sampler::Plan<'_>,
+    plan: &crate::sampler::Plan,
     res: usize,
     sets: usize,
     seed: Seed,

@@ -40,28 +40,28 @@ impl Construction for Saved {
         }
         Ok(())
     }
-    fn prepare(&self, _shape: Shape) -> Result<Box<dyn Prepared + '_>> {
-        Ok(Box::new(Replay { set: &self.set }))
+    fn prepare(&self, _shape: Shape) -> Result<Box<dyn Prepared>> {
+        Ok(Box::new(Replay { set: Arc::clone(&self.set) }))
     }
 }
 
 /// The saved set, the same for every seed.
 #[derive(Debug)]
-struct Replay<'a> {
-    set: &'a PointSet,
+struct Replay {
+    set: Arc<PointSet>,
 }
 
-impl Prepared for Replay<'_> {
+impl Prepared for Replay {
     fn fill(&self, _seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         out.copy_from_slice(self.set.as_slice());
         progress.advance(1)
     }
     fn access(&self, _seed: Seed) -> Option<Box<dyn Access + '_>> {
-        Some(Box::new(Replay { set: self.set }))
+        Some(Box::new(Replay { set: Arc::clone(&self.set) }))
     }
 }
 
-impl Access for Replay<'_> {
+impl Access for Replay {
     fn sample(&self, index: u64, dim: usize) -> Result<f64> {
         let point = usize::try_from(index).ok().filter(|&i| i < self.set.len()).ok_or_else(|| Error::Setting {
             name: "index",

@@ -125,13 +125,13 @@ impl Shape {
 ///     fn dims(&self) -> RangeInclusive<usize> {
 ///         2..=2
 ///     }
-///     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
-///         let n = shape.n() as f64;
+///     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+///         let (n, a) = (shape.n() as f64, self.a as f64);
 ///         Ok(sampler::from_fill(move |_seed, out| {
 ///             for (i, p) in out.chunks_exact_mut(2).enumerate() {
 ///                 let x = (i as f64 + 0.5) / n;
 ///                 p[0] = x;
-///                 p[1] = (self.a as f64 * x).fract();
+///                 p[1] = (a * x).fract();
 ///             }
 ///             Ok(())
 ///         }))
@@ -172,7 +172,7 @@ pub trait Sampler: Send + Sync + Debug {
     ///
     /// # Errors
     /// Tables that cannot be built (a construction that fails for this count).
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>>;
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>>;
 
     /// The closed form of the variance of the spectrum of `n` points in `dims` dimensions,
     /// where one is known (Gaussian and box jitter: Subr & Kautz 2013 eqs. 9 and 11 in their
@@ -197,7 +197,7 @@ pub(crate) trait Construction: Send + Sync + Debug {
     }
 
     /// As [`Sampler::prepare`].
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>>;
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>>;
 
     /// As [`Sampler::spectrum_theory`].
     fn spectrum_theory(&self, _n: usize, _dims: usize) -> Option<crate::construct::spectrum_theory::VarianceTheory> {
@@ -228,6 +228,14 @@ pub trait Prepared: Send + Sync {
         None
     }
 
+    /// Coordinate `dim` of point `index` for `seed`, equal to what [`Prepared::access`]
+    /// gives, one value at a time: a point set served per pixel ([`crate::pixel`]) asks
+    /// each value under the pixel's own seed. The default prepares the seed's whole access;
+    /// a sequence whose keys are cheap per coordinate (Sobol') overrides it.
+    fn sample_at(&self, seed: Seed, index: u64, dim: usize) -> Option<Result<f64>> {
+        self.access(seed).map(|access| access.sample(index, dim))
+    }
+
     /// The set for `seed` made chunk by chunk, for a sampler without random access that can
     /// (random); the sequences stream through [`Prepared::access`].
     fn stream(&self, _seed: Seed) -> Option<Box<dyn Stream + '_>> {
@@ -237,16 +245,16 @@ pub trait Prepared: Send + Sync {
 
 /// The prepared state of a sampler that needs no tables: `fill(seed, out)` writes one set
 /// (`out` holds n x dims coordinates, row-major); one unit of progress per set.
-pub fn from_fill<'s>(fill: impl Fn(Seed, &mut [f64]) -> Result<()> + Send + Sync + 's) -> Box<dyn Prepared + 's> {
+pub fn from_fill(fill: impl Fn(Seed, &mut [f64]) -> Result<()> + Send + Sync + 'static) -> Box<dyn Prepared> {
     Box::new(FromFill(fill))
 }
 
 /// The prepared state of an optimizer without tables: `units` units of progress per set,
 /// which `fill(seed, out, progress)` reports itself (once per iteration).
-pub fn from_fill_reporting<'s>(
+pub fn from_fill_reporting(
     units: u64,
-    fill: impl Fn(Seed, &mut [f64], &Progress) -> Result<()> + Send + Sync + 's,
-) -> Box<dyn Prepared + 's> {
+    fill: impl Fn(Seed, &mut [f64], &Progress) -> Result<()> + Send + Sync + 'static,
+) -> Box<dyn Prepared> {
     Box::new(FromFillReporting { units, fill })
 }
 
@@ -309,7 +317,7 @@ impl<'s> dyn Sampler + 's {
     ///     plan.fill(Seed(7).derive(k), &mut buffer).unwrap();
     /// }
     /// ```
-    pub fn plan(&self, n: usize, dims: usize) -> Result<Plan<'_>> {
+    pub fn plan(&self, n: usize, dims: usize) -> Result<Plan> {
         self.check_dims(dims)?;
         if n == 0 || n > MAX_POINTS || n.checked_mul(dims).is_none() {
             return Err(Error::InvalidCount {
@@ -321,7 +329,7 @@ impl<'s> dyn Sampler + 's {
         }
         self.check_count(n, dims)?;
         let shape = Shape { n, dims };
-        Ok(Plan { sampler: self, shape, prepared: self.prepare(shape)? })
+        Ok(Plan { spec: self.spec(), shape, prepared: self.prepare(shape)? })
     }
 
     /// `n` points in [0,1)^dims for `seed`: `plan`, then [`Plan::generate`].
@@ -335,19 +343,19 @@ impl<'s> dyn Sampler + 's {
 
 /// A sampler checked for one count and dimension, with its prepared tables: fill it from as
 /// many seeds as needed.
-pub struct Plan<'s> {
-    sampler: &'s dyn Sampler,
+pub struct Plan {
+    spec: String,
     shape: Shape,
-    prepared: Box<dyn Prepared + 's>,
+    prepared: Box<dyn Prepared>,
 }
 
-impl Debug for Plan<'_> {
+impl Debug for Plan {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "Plan({}, n = {}, d = {})", self.sampler.spec(), self.shape.n, self.shape.dims)
+        write!(f, "Plan({}, n = {}, d = {})", self.spec, self.shape.n, self.shape.dims)
     }
 }
 
-impl<'s> Plan<'s> {
+impl Plan {
     /// Points per set.
     pub fn n(&self) -> usize {
         self.shape.n
@@ -360,7 +368,7 @@ impl<'s> Plan<'s> {
 
     /// The sampler's canonical spec.
     pub fn spec(&self) -> String {
-        self.sampler.spec()
+        self.spec.clone()
     }
 
     /// Write the `n` points for `seed` into `out` (length `n * dims`, row-major), reading
@@ -427,6 +435,12 @@ impl<'s> Plan<'s> {
     /// for the indices below n, and on past n as far as the sequence goes.
     pub fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
         self.prepared.access(seed)
+    }
+
+    /// Coordinate `dim` of point `index` for `seed`, as [`Plan::access`] gives it, without
+    /// keeping the access (`None` for the samplers without random access).
+    pub fn sample_at(&self, seed: Seed, index: u64, dim: usize) -> Option<Result<f64>> {
+        self.prepared.sample_at(seed, index, dim)
     }
 
     /// The set for `seed` made chunk by chunk, equal to [`Plan::generate`]`(seed)`, for the

@@ -104,7 +104,7 @@ impl Sampler for Registered {
         let declared = self.counts.map_or(Ok(()), |c| c.check(n, dims));
         declared.and_then(|()| self.construction.check_count(n, dims)).map_err(|e| labelled(e, || self.spec()))
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
         let inner = self.construction.prepare(shape).map_err(|e| labelled(e, || self.spec()))?;
         Ok(Box::new(Labelled { inner, spec: self.spec() }))
     }
@@ -114,12 +114,12 @@ impl Sampler for Registered {
 }
 
 /// A construction's prepared state whose errors name the sampler.
-struct Labelled<'a> {
-    inner: Box<dyn Prepared + 'a>,
+struct Labelled {
+    inner: Box<dyn Prepared>,
     spec: String,
 }
 
-impl Prepared for Labelled<'_> {
+impl Prepared for Labelled {
     fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         self.inner.fill(seed, out, progress).map_err(|e| labelled(e, || self.spec.clone()))
     }
@@ -128,6 +128,9 @@ impl Prepared for Labelled<'_> {
     }
     fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
         self.inner.access(seed)
+    }
+    fn sample_at(&self, seed: Seed, index: u64, dim: usize) -> Option<Result<f64>> {
+        self.inner.sample_at(seed, index, dim)
     }
     fn stream(&self, seed: Seed) -> Option<Box<dyn Stream + '_>> {
         self.inner.stream(seed)

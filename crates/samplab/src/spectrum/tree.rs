@@ -36,7 +36,7 @@ pub enum Sets<'a> {
     /// `m` realizations of a planned sampler, made when their block is reached.
     Generated {
         /// The sampler, count and dimension.
-        plan: &'a Plan<'a>,
+        plan: &'a Plan,
         /// Set k is `plan.generate(seed.derive(k))`, as everywhere in samplab.
         seed: Seed,
         /// How many.

@@ -72,9 +72,10 @@ impl Construction for ForceMatrix {
         Ok(())
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = self.clone();
         Ok(crate::sampler::from_fill_reporting(1, move |seed, out, progress| {
-            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+            me.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
         }))
     }
 }

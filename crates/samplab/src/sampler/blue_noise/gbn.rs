@@ -125,9 +125,10 @@ impl Construction for Gbn {
         1..=4
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = *self;
         Ok(crate::sampler::from_fill_reporting(self.units(), move |seed, out, progress| {
-            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+            me.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
         }))
     }
 }

@@ -42,9 +42,10 @@ impl Construction for Kdm {
         SETTLED.check_count(n, dims)
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = *self;
         Ok(crate::sampler::from_fill_reporting(self.units(), move |seed, out, progress| {
-            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+            me.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
         }))
     }
 }

@@ -806,9 +806,10 @@ impl Construction for DartThrowing {
         Ok(())
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = self.clone();
         Ok(crate::sampler::from_fill_reporting(1, move |seed, out, progress| {
-            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+            me.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
         }))
     }
 }
@@ -954,8 +955,9 @@ impl Construction for Bridson {
         Ok(())
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
-        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = self.clone();
+        Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
 
@@ -1050,9 +1052,10 @@ impl Construction for Maximal {
         2..=2
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = self.clone();
         Ok(crate::sampler::from_fill_reporting(1, move |seed, out, progress| {
-            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+            me.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
         }))
     }
 }

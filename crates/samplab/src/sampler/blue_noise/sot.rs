@@ -236,9 +236,10 @@ impl Construction for Sot {
         2..=8
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = *self;
         Ok(crate::sampler::from_fill_reporting(self.units(), move |seed, out, progress| {
-            self.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+            me.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
         }))
     }
 }

@@ -382,14 +382,15 @@ impl Construction for Matched {
 
     /// The smoothed target (thousands of quadratures of the target PCF) is computed here,
     /// once for every set of the shape.
-    fn prepare(&self, shape: crate::sampler::Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: crate::sampler::Shape) -> Result<Box<dyn Prepared>> {
         let (n, dims) = (shape.n(), shape.dims());
         let matching = (n >= 2).then(|| Matching::new(self.shape, n, self.sigma, self.reach));
+        let me = *self;
         Ok(crate::sampler::from_fill_reporting(self.units(), move |seed, out, progress| {
             SETTLED.fill(n, dims, seed, out)?;
             match &matching {
-                Some(m) => self.descend(m, out, progress).map(drop),
-                None => progress.advance(self.units()),
+                Some(m) => me.descend(m, out, progress).map(drop),
+                None => progress.advance(me.units()),
             }
         }))
     }

@@ -179,7 +179,7 @@ impl Construction for Halton {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=HALTON_MAX_DIMS
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
         Ok(Box::new(Radical { randomization: self.randomization, n: shape.n(), tables: plain_tables(shape.dims()) }))
     }
 }
@@ -267,7 +267,7 @@ impl Construction for Hammersley {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=HALTON_MAX_DIMS + 1
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
         let halton = Radical { randomization: self.randomization, n: shape.n(), tables: plain_tables(shape.dims() - 1) };
         Ok(Box::new(Planned { halton }))
     }
@@ -314,7 +314,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
     {
         family: "halton",
         summary: "Halton sequence, prime bases",
-        aliases: &[],
+        aliases: [],
         params: &[],
         counts: ANY,
         dims: "1..=1024",
@@ -325,7 +325,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
     {
         family: "hammersley",
         summary: "Hammersley set: i/n, then Halton",
-        aliases: &[],
+        aliases: [],
         params: &[],
         counts: Counts::AtMost { most: 1 << 32, why: "the first coordinate has 32-bit resolution: at most 2^32 points" },
         dims: "1..=1025",

@@ -10,19 +10,19 @@
 
 use std::ops::RangeInclusive;
 
+use crate::construct::Randomization;
 use crate::construct::counts::ANY;
+use crate::sampler::randomize::{randomized_families, shift};
 use crate::sampler::registry::SamplerEntry;
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
-use crate::registry::About;
 use crate::seed::Seed;
 use crate::spec::{Default, Kind, ParamSpec};
 
-/// The R_d sequence or a Kronecker sequence of given alphas, optionally shifted.
+/// The R_d sequence or a Kronecker sequence of given alphas.
 #[derive(Debug, Clone)]
 pub struct Kronecker {
-    shift: bool,
     /// The user's alphas (None: R_d for whatever dimension is asked).
     alphas: Option<Vec<f64>>,
 }
@@ -44,54 +44,40 @@ pub fn alphas(dims: usize) -> Vec<f64> {
 
 /// A Kronecker sequence prepared for a dimension: the fixed-point increments.
 #[derive(Debug)]
-struct Steps<'a> {
-    kronecker: &'a Kronecker,
+struct Steps {
     steps: Vec<u64>,
 }
 
-/// Random access for one seed: the increments and the seed's shifts.
-#[derive(Debug)]
-struct Shifted<'a> {
-    steps: &'a [u64],
-    shifts: Vec<u64>,
-}
-
-/// Coordinate `index` of the dimension with increment `step` and shift `shift`: the 53
-/// leading bits of index x step + shift mod 2^64.
+/// Coordinate `index` of the dimension with increment `step`: the 53 leading bits of
+/// index x step mod 2^64.
 #[inline]
-fn coordinate(index: u64, step: u64, shift: u64) -> f64 {
-    let x = index.wrapping_mul(step).wrapping_add(shift);
-    (x >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+fn coordinate(index: u64, step: u64) -> f64 {
+    (index.wrapping_mul(step) >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
-impl Steps<'_> {
-    /// The shift of each dimension in turn, drawn from the seed's one stream.
-    fn shifts(&self, seed: Seed) -> impl Iterator<Item = u64> {
-        let (mut rng, shift) = (seed.rng(), self.kronecker.shift);
-        (0..self.steps.len()).map(move |_| if shift { rand_core::Rng::next_u64(&mut rng) } else { 0 })
-    }
-}
-
-impl Prepared for Steps<'_> {
-    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
-        // dimension by dimension, so the shifts need no buffer
+impl Prepared for Steps {
+    fn fill(&self, _seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         let dims = self.steps.len();
-        for (d, (&step, shift)) in self.steps.iter().zip(self.shifts(seed)).enumerate() {
-            for (i, point) in out.chunks_exact_mut(dims).enumerate() {
-                point[d] = coordinate(i as u64, step, shift);
+        for (i, point) in out.chunks_exact_mut(dims).enumerate() {
+            for (x, &step) in point.iter_mut().zip(&self.steps) {
+                *x = coordinate(i as u64, step);
             }
         }
         progress.advance(1)
     }
 
-    fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
-        Some(Box::new(Shifted { steps: &self.steps, shifts: self.shifts(seed).collect() }))
+    fn access(&self, _seed: Seed) -> Option<Box<dyn Access + '_>> {
+        Some(Box::new(Steps { steps: self.steps.clone() }))
+    }
+
+    fn sample_at(&self, _seed: Seed, index: u64, dim: usize) -> Option<Result<f64>> {
+        Some(Ok(coordinate(index, self.steps[dim])))
     }
 }
 
-impl Access for Shifted<'_> {
+impl Access for Steps {
     fn sample(&self, index: u64, dim: usize) -> Result<f64> {
-        Ok(coordinate(index, self.steps[dim], self.shifts[dim]))
+        Ok(coordinate(index, self.steps[dim]))
     }
 }
 
@@ -100,13 +86,13 @@ impl Construction for Kronecker {
         // given alphas fix the dimension: one per axis, none left unused
         self.alphas.as_ref().map_or(1..=usize::MAX, |a| a.len()..=a.len())
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
         let fixed = |a: f64| (a * 18_446_744_073_709_551_616.0) as u64;
         let steps = match &self.alphas {
             Some(given) => given[..shape.dims()].iter().map(|&a| fixed(a)).collect(),
             None => alphas(shape.dims()).into_iter().map(fixed).collect(),
         };
-        Ok(Box::new(Steps { kronecker: self, steps }))
+        Ok(Box::new(Steps { steps }))
     }
 }
 
@@ -117,38 +103,30 @@ const ALPHA: ParamSpec = ParamSpec {
     doc: "the increment of each dimension (irrational in theory; 53 bits here), one per dimension",
 };
 
-fn build(p: &crate::spec::Params, shift: bool, owner: &str) -> Result<Box<dyn Construction>> {
+/// The construction of each entry: the sequence, shifted by the `+shift` stage's code for
+/// `kronecker.shift`.
+fn build(p: &crate::spec::Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
     let alphas = p.reals_or_auto("alpha").map(<[f64]>::to_vec);
     if let Some(a) = alphas.as_ref().and_then(|a| a.iter().find(|&&a| a == 0.0 || a == 1.0)) {
         return Err(Error::Param {
-            owner: owner.into(),
+            owner: if randomization == Randomization::Shift { "kronecker.shift" } else { "kronecker" }.into(),
             param: "alpha".into(),
             reason: format!("{a} makes every point's coordinate the same; expected a number strictly between 0 and 1"),
         });
     }
-    Ok(Box::new(Kronecker { shift, alphas }))
+    let kronecker = Box::new(Kronecker { alphas });
+    Ok(if randomization == Randomization::Shift { shift::over(kronecker) } else { kronecker })
 }
 
-/// The samplers this file registers.
-pub(crate) static ENTRIES: &[SamplerEntry] = &[
-    SamplerEntry {
-        about: About::new("kronecker", "Kronecker sequence frac(i alpha), alpha from the generalized golden ratio (R_d) or given").terse()
-            .aliases(&["weyl", "rd", "r2"])
-            .params(&[ALPHA])
-            .cite(&["weyl1916", "roberts2018"]),
-        counts: ANY,
-        randomized: false,
-        dims: "any d (d <= the alphas given)",
-        build: |p| build(p, false, "kronecker"),
-    },
-    SamplerEntry {
-        about: About::new("kronecker.shift", "the Kronecker sequence (R_d or given alphas) with a random shift mod 1").terse()
-            .aliases(&["kronecker-shift"])
-            .params(&[ALPHA])
-            .cite(&["weyl1916", "roberts2018", "cranley1976"]),
-        counts: ANY,
-        randomized: true,
-        dims: "any d (d <= the alphas given)",
-        build: |p| build(p, true, "kronecker.shift"),
-    },
-];
+/// The samplers this file registers: the sequence and its shift.
+pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!({
+    family: "kronecker",
+    summary: "Kronecker sequence frac(i alpha), alpha from the generalized golden ratio (R_d) or given",
+    aliases: ["weyl", "rd", "r2"],
+    params: &[ALPHA],
+    counts: ANY,
+    dims: "any d (d <= the alphas given)",
+    cite: ["weyl1916", "roberts2018"],
+    build: build,
+    randomizations: [shift],
+});

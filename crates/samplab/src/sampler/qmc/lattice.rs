@@ -1,5 +1,7 @@
 //! Rank-1 lattices: point i is frac(i z / n) for a generating vector z (Sloan & Joe 1994),
-//! randomized by a random shift mod 1 (Cranley & Patterson 1976).
+//! randomized by a random shift mod 1 (Cranley & Patterson 1976): each `.shift` entry is
+//! its lattice under the `+shift` stage's own code, so `lattice.shift` and `lattice+shift`
+//! are the same bytes.
 //!
 //! - The Fibonacci lattice (Sloan & Joe section 5.2): n = F_m, the m-th Fibonacci number,
 //!   z = (1, F_(m-1)).
@@ -16,28 +18,26 @@
 //!   embedded fast CBC of Cools, Kuo & Nuyens (2006) for up to 2^20 points.
 //!
 //! The CBC lattice and the sequence take the baker's (tent) transform x -> 1 - |2x - 1|
-//! (Hickernell 2002) after the shift: `tent=yes`.
+//! (Hickernell 2002) after the shift: `tent=yes` (a wrapper over the shifted lattice).
 
 use rayon::prelude::*;
 use std::ops::RangeInclusive;
 use std::sync::{Arc, Mutex, PoisonError};
 
-use crate::construct::Counts;
+use crate::construct::{Counts, Randomization};
+use crate::sampler::randomize::{randomized_families, shift};
 use crate::sampler::registry::SamplerEntry;
 use crate::construct::cbc::Weights;
 use crate::construct::cbc;
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
-use crate::registry::About;
 use crate::spec::{Default, Kind, ParamSpec};
-use crate::seed::{Seed, uniform};
+use crate::seed::Seed;
 
-/// The Fibonacci lattice, optionally shifted.
+/// The Fibonacci lattice.
 #[derive(Debug, Clone, Copy)]
-pub struct Fibonacci {
-    shift: bool,
-}
+pub struct Fibonacci;
 
 /// The Fibonacci numbers 1, 2, 3, 5, 8, ... up to 2^32, each with its predecessor.
 fn fibonacci() -> impl Iterator<Item = (usize, usize)> + Clone {
@@ -49,30 +49,27 @@ impl Construction for Fibonacci {
         2..=2
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
-        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = *self;
+        Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
 
 impl Fibonacci {
-    fn fill(&self, n: usize, _dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+    fn fill(&self, n: usize, _dims: usize, _seed: Seed, out: &mut [f64]) -> Result<()> {
         let (_, g) = fibonacci().find(|&(f, _)| f == n).expect("a checked count");
-        let mut rng = seed.rng();
-        let shift = if self.shift { [uniform(&mut rng), uniform(&mut rng)] } else { [0.0; 2] };
         for (i, p) in out.chunks_exact_mut(2).enumerate() {
-            let y = (i as u128 * g as u128 % n as u128) as f64 / n as f64;
-            p[0] = wrap(i as f64 / n as f64 + shift[0]);
-            p[1] = wrap(y + shift[1]);
+            p[0] = i as f64 / n as f64;
+            p[1] = (i as u128 * g as u128 % n as u128) as f64 / n as f64;
         }
         Ok(())
     }
 }
 
-/// A Korobov lattice, its a given or searched, optionally shifted.
+/// A Korobov lattice, its a given or searched.
 #[derive(Debug, Clone, Copy)]
 pub struct Korobov {
     a: Option<u64>,
-    shift: bool,
 }
 
 /// The largest n whose a is searched.
@@ -135,19 +132,17 @@ impl Construction for Korobov {
         Ok(())
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
         let (n, dims) = (shape.n(), shape.dims());
         let a = self.a.unwrap_or_else(|| korobov_search(n, dims));
-        Ok(Box::new(Rank1 { z: korobov_vector(a, n, dims), order: Order::Float(n), shift: self.shift, tent: false }))
+        Ok(Box::new(Rank1 { z: korobov_vector(a, n, dims), order: Order::Float(n) }))
     }
 }
 
-/// A CBC lattice for the set's n, optionally shifted and tent-transformed.
+/// A CBC lattice for the set's n.
 #[derive(Debug, Clone, Copy)]
 pub struct Cbc {
     weights: Weights,
-    shift: bool,
-    tent: bool,
 }
 
 impl Construction for Cbc {
@@ -155,19 +150,19 @@ impl Construction for Cbc {
         1..=usize::MAX
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
         let (n, dims) = (shape.n(), shape.dims());
         let z = cbc::construct(n, dims, self.weights, false)?;
-        Ok(Box::new(Rank1 { z, order: Order::Fixed(n), shift: self.shift, tent: self.tent }))
+        Ok(Box::new(Rank1 { z, order: Order::Fixed(n) }))
     }
 }
 
 /// Which points a rank-1 lattice's vector z makes, point i of dimension j:
 #[derive(Debug, Clone, Copy)]
 enum Order {
-    /// frac(i z_j / n) in floating point, shifted in floating point (Korobov);
+    /// frac(i z_j / n) in floating point (Korobov);
     Float(usize),
-    /// frac(i z_j / n) as an exact 64-bit binary fraction, shifted in fixed point (CBC);
+    /// frac(i z_j / n) as an exact 64-bit binary fraction (CBC);
     Fixed(usize),
     /// frac(phi_2(i) z_j), phi_2(i) 2^64 being i's bits reversed, in fixed point (the
     /// embedded sequence: with n = 2^m and i < n the lattice point k z / n of k = phi_2(i) n).
@@ -179,23 +174,12 @@ enum Order {
 struct Rank1 {
     z: Vec<u64>,
     order: Order,
-    shift: bool,
-    tent: bool,
 }
 
-/// The seed's shifts of `dims` dimensions in turn, one 64-bit draw each, from the seed's
-/// one stream (zero when not shifted).
-fn fixed_shifts(seed: Seed, dims: usize, shift: bool) -> impl Iterator<Item = u64> {
-    let mut rng = seed.rng();
-    (0..dims).map(move |_| if shift { rand_core::Rng::next_u64(&mut rng) } else { 0 })
-}
-
-/// The coordinate of the fixed-point fraction `x`: shifted mod 1 by `shift` (exactly, in
-/// fixed point), then tent-transformed.
+/// The coordinate of the fixed-point fraction `x`: its 53 leading bits.
 #[inline]
-fn finish(x: u64, shift: u64, tent: bool) -> f64 {
-    let x = (x.wrapping_add(shift) >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
-    if tent { (1.0 - (2.0 * x - 1.0).abs()).min(crate::numeric::BELOW_ONE) } else { x }
+fn finish(x: u64) -> f64 {
+    (x >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
 impl Rank1 {
@@ -210,67 +194,108 @@ impl Rank1 {
 }
 
 impl Prepared for Rank1 {
-    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
-        // point by point over a block of up to BLOCK dimensions at a time, each block's
-        // shifts drawn in turn into the stack: one pass over the output per block, where a
-        // pass per dimension went d times over memory, and no buffer on the heap
-        const BLOCK: usize = 64;
+    fn fill(&self, _seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         let dims = self.z.len();
-        // the seed's one stream: a uniform per dimension (Float) or its 64 bits (fixed point)
-        let mut rng = seed.rng();
-        let mut fixed = fixed_shifts(seed, dims, self.shift);
-        for (b, zs) in self.z.chunks(BLOCK).enumerate() {
-            let first = b * BLOCK;
-            if let Order::Float(n) = self.order {
-                let mut shifts = [0.0; BLOCK];
-                for u in &mut shifts[..zs.len()] {
-                    *u = if self.shift { uniform(&mut rng) } else { 0.0 };
-                }
-                for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-                    for ((x, &zj), &u) in p[first..first + zs.len()].iter_mut().zip(zs).zip(&shifts) {
-                        *x = wrap((i as u128 * u128::from(zj) % n as u128) as f64 / n as f64 + u);
-                    }
-                }
-            } else {
-                let mut shifts = [0u64; BLOCK];
-                for (s, draw) in shifts.iter_mut().zip(fixed.by_ref().take(zs.len())) {
-                    *s = draw;
-                }
-                for (i, p) in out.chunks_exact_mut(dims).enumerate() {
-                    for ((x, &zj), &shift) in p[first..first + zs.len()].iter_mut().zip(zs).zip(&shifts) {
-                        *x = finish(self.fixed(i as u64, zj), shift, self.tent);
-                    }
-                }
+        for (i, p) in out.chunks_exact_mut(dims).enumerate() {
+            for (x, &zj) in p.iter_mut().zip(&self.z) {
+                *x = match self.order {
+                    Order::Float(n) => (i as u128 * u128::from(zj) % n as u128) as f64 / n as f64,
+                    _ => finish(self.fixed(i as u64, zj)),
+                };
             }
         }
         progress.advance(1)
     }
 
-    fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
-        matches!(self.order, Order::Radical)
-            .then(|| Box::new(Sequence { rank1: self, shifts: fixed_shifts(seed, self.z.len(), self.shift).collect() }) as _)
+    fn access(&self, _seed: Seed) -> Option<Box<dyn Access + '_>> {
+        matches!(self.order, Order::Radical).then(|| Box::new(Sequence { rank1: self }) as _)
+    }
+
+    fn sample_at(&self, _seed: Seed, index: u64, dim: usize) -> Option<Result<f64>> {
+        matches!(self.order, Order::Radical).then(|| Ok(finish(self.fixed(index, self.z[dim]))))
     }
 }
 
-/// Random access to the embedded lattice sequence for one seed: its shifts.
+/// Random access to the embedded lattice sequence.
 #[derive(Debug)]
 struct Sequence<'a> {
     rank1: &'a Rank1,
-    shifts: Vec<u64>,
 }
 
 impl Access for Sequence<'_> {
     fn sample(&self, index: u64, dim: usize) -> Result<f64> {
-        Ok(finish(self.rank1.fixed(index, self.rank1.z[dim]), self.shifts[dim], self.rank1.tent))
+        Ok(finish(self.rank1.fixed(index, self.rank1.z[dim])))
     }
+}
+
+/// The baker's (tent) transform x -> 1 - |2x - 1| (Hickernell 2002) of a lattice's points,
+/// after its shift where it has one: `tent=yes`.
+#[derive(Debug)]
+struct Tent {
+    inner: Box<dyn Construction>,
+}
+
+/// The tent transform of a coordinate, kept below 1.
+#[inline]
+fn tent(x: f64) -> f64 {
+    (1.0 - (2.0 * x - 1.0).abs()).min(crate::numeric::BELOW_ONE)
+}
+
+impl Construction for Tent {
+    fn dims(&self) -> RangeInclusive<usize> {
+        self.inner.dims()
+    }
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        self.inner.check_count(n, dims)
+    }
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        Ok(Box::new(Tented(self.inner.prepare(shape)?)))
+    }
+}
+
+/// A prepared lattice whose points are then tent-transformed.
+struct Tented(Box<dyn Prepared>);
+
+impl Prepared for Tented {
+    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        self.0.fill(seed, out, progress)?;
+        out.iter_mut().for_each(|x| *x = tent(*x));
+        Ok(())
+    }
+    fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
+        Some(Box::new(TentedAccess(self.0.access(seed)?)))
+    }
+    fn sample_at(&self, seed: Seed, index: u64, dim: usize) -> Option<Result<f64>> {
+        Some(self.0.sample_at(seed, index, dim)?.map(tent))
+    }
+}
+
+/// Random access to a tent-transformed sequence.
+#[derive(Debug)]
+struct TentedAccess<'a>(Box<dyn Access + 'a>);
+
+impl Access for TentedAccess<'_> {
+    fn sample(&self, index: u64, dim: usize) -> Result<f64> {
+        self.0.sample(index, dim).map(tent)
+    }
+}
+
+/// A lattice under the entry's randomization (the `+shift` stage's code for `.shift`), then
+/// its tent where `tent=yes`: the shift comes before the tent.
+fn randomized(lattice: Box<dyn Construction>, tented: bool, randomization: Randomization) -> Box<dyn Construction> {
+    let shifted = if randomization == Randomization::Shift { shift::over(lattice) } else { lattice };
+    if tented { Box::new(Tent { inner: shifted }) } else { shifted }
+}
+
+/// Whether a lattice's parameters ask for the tent.
+fn tented(p: &crate::spec::Params) -> bool {
+    p.word("tent") == "yes"
 }
 
 /// The embedded lattice sequence, its vector from a file or constructed.
 #[derive(Debug)]
 pub struct Embedded {
     vector: Vector,
-    shift: bool,
-    tent: bool,
 }
 
 /// The embedded vector for the default weights (gamma_j = j^-2), its first 128 components
@@ -340,12 +365,12 @@ impl Construction for Embedded {
             Vector::File(z) => 1..=z.len(),
         }
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
         let z = match &self.vector {
             Vector::Constructed(memo) => memo.first(shape.dims())?,
             Vector::File(z) => z[..shape.dims()].to_vec(),
         };
-        Ok(Box::new(Rank1 { z, order: Order::Radical, shift: self.shift, tent: self.tent }))
+        Ok(Box::new(Rank1 { z, order: Order::Radical }))
     }
 }
 
@@ -376,11 +401,6 @@ pub fn parse_vector(text: &str, source: &str) -> Result<Vec<u64>> {
         return Err(bad(line, format!("component {zj} is not below the point count {n}")));
     }
     Ok(z)
-}
-
-/// x in [0, 2) taken mod 1.
-fn wrap(x: f64) -> f64 {
-    if x >= 1.0 { x - 1.0 } else { x }
 }
 
 /// Korobov's generator parameter.
@@ -427,11 +447,11 @@ const VECTOR: ParamSpec = ParamSpec {
     doc: "a generating vector in the LDData lattice format (docs/guide/cli.md: lattice generating vectors)",
 };
 
-fn cbc_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Construction>> {
-    Ok(Box::new(Cbc { weights: weights(p), shift, tent: p.word("tent") == "yes" }))
+fn cbc_sampler(p: &crate::spec::Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
+    Ok(randomized(Box::new(Cbc { weights: weights(p) }), tented(p), randomization))
 }
 
-fn embedded_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Construction>> {
+fn embedded_sampler(p: &crate::spec::Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
     let vector = match p.path_or_auto("vector") {
         Some(path) => {
             let text = crate::io::read_small_text(path, crate::io::SPEC_FILE_MAX)?;
@@ -439,8 +459,20 @@ fn embedded_sampler(p: &crate::spec::Params, shift: bool) -> Result<Box<dyn Cons
         }
         None => Vector::Constructed(Constructed::new(weights(p))),
     };
-    Ok(Box::new(Embedded { vector, shift, tent: p.word("tent") == "yes" }))
+    Ok(randomized(Box::new(Embedded { vector }), tented(p), randomization))
 }
+
+fn fibonacci_sampler(_: &crate::spec::Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
+    Ok(randomized(Box::new(Fibonacci), false, randomization))
+}
+
+fn korobov_sampler(p: &crate::spec::Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
+    Ok(randomized(Box::new(Korobov { a: p.int_or_auto("a") }), false, randomization))
+}
+
+/// The Fibonacci counts.
+const FIBONACCI_COUNTS: Counts =
+    Counts::Listed { rule: "n must be a Fibonacci number", list: |_, _| Box::new(fibonacci().map(|(f, _)| f)) };
 
 /// The counts of the fast CBC construction: n a prime or a power of 2 up to 2^24 (the
 /// nearest ones to n lie within a prime gap, under 200 below 2^24, so the list starts 1000
@@ -450,87 +482,53 @@ const CBC_COUNTS: Counts = Counts::Listed {
     list: |_, near| Box::new((near.min(cbc::MAX_N + 1).saturating_sub(1000)..=cbc::MAX_N).filter(|&k| cbc::supports(k))),
 };
 
-/// The samplers this file registers.
-pub(crate) static ENTRIES: &[SamplerEntry] = &[
-    SamplerEntry {
-        about: About::new("lattice", "embedded rank-1 lattice sequence, frac(phi_2(i) z), nets of 2^k points").terse()
-            .aliases(&["rank1", "lattice-sequence"])
-            .params(&[VECTOR, GAMMA, DECAY, TENT])
-            .cite(&["hickernell2000", "cools2006", "hickernell2002"]),
+/// The samplers this file registers: each lattice and its shift.
+pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
+    {
+        family: "lattice",
+        summary: "embedded rank-1 lattice sequence, frac(phi_2(i) z), nets of 2^k points",
+        aliases: ["rank1", "lattice-sequence"],
+        params: &[VECTOR, GAMMA, DECAY, TENT],
         counts: Counts::Any("lattices at powers of 2"),
-        randomized: false,
         dims: "any d (a file's: its dimensions)",
-        build: |p| embedded_sampler(p, false),
+        cite: ["hickernell2000", "cools2006", "hickernell2002"],
+        build: embedded_sampler,
+        randomizations: [shift],
     },
-    SamplerEntry {
-        about: About::new("lattice.shift", "the embedded lattice sequence with a random shift mod 1").terse()
-            .aliases(&["lattice-shift"])
-            .params(&[VECTOR, GAMMA, DECAY, TENT])
-            .cite(&["hickernell2000", "cools2006", "cranley1976"]),
-        counts: Counts::Any("lattices at powers of 2"),
-        randomized: true,
-        dims: "any d (a file's: its dimensions)",
-        build: |p| embedded_sampler(p, true),
-    },
-    SamplerEntry {
-        about: About::new("lattice.cbc", "rank-1 lattice, z by fast component-by-component construction").terse()
-            .aliases(&["cbc"])
-            .params(&[GAMMA, DECAY, TENT])
-            .cite(&["nuyens2006", "sloan1994", "hickernell2002"]),
+    {
+        family: "lattice.cbc",
+        summary: "rank-1 lattice, z by fast component-by-component construction",
+        aliases: ["cbc"],
+        params: &[GAMMA, DECAY, TENT],
         counts: CBC_COUNTS,
-        randomized: false,
         dims: "any d",
-        build: |p| cbc_sampler(p, false),
+        cite: ["nuyens2006", "sloan1994", "hickernell2002"],
+        build: cbc_sampler,
+        randomizations: [shift],
     },
-    SamplerEntry {
-        about: About::new("lattice.cbc.shift", "the CBC lattice with a random shift mod 1").terse()
-            .aliases(&["cbc-shift"])
-            .params(&[GAMMA, DECAY, TENT])
-            .cite(&["nuyens2006", "sloan1994", "cranley1976"]),
-        counts: CBC_COUNTS,
-        randomized: true,
-        dims: "any d",
-        build: |p| cbc_sampler(p, true),
-    },
-    SamplerEntry {
-        about: About::new("lattice.fibonacci", "Fibonacci lattice (i/n, frac(i F_(m-1)/n)), n = F_m").terse()
-            .aliases(&["fibonacci"])
-            .cite(&["sloan1994"]),
-        counts: Counts::Listed { rule: "n must be a Fibonacci number", list: |_, _| Box::new(fibonacci().map(|(f, _)| f)) },
-        randomized: false,
+    {
+        family: "lattice.fibonacci",
+        summary: "Fibonacci lattice (i/n, frac(i F_(m-1)/n)), n = F_m",
+        aliases: ["fibonacci"],
+        params: &[],
+        counts: FIBONACCI_COUNTS,
         dims: "2",
-        build: |_| Ok(Box::new(Fibonacci { shift: false })),
+        cite: ["sloan1994"],
+        build: fibonacci_sampler,
+        randomizations: [shift],
     },
-    SamplerEntry {
-        about: About::new("lattice.fibonacci.shift", "the Fibonacci lattice with a random shift mod 1").terse()
-            .aliases(&["fibonacci-shift"])
-            .cite(&["sloan1994", "cranley1976"]),
-        counts: Counts::Listed { rule: "n must be a Fibonacci number", list: |_, _| Box::new(fibonacci().map(|(f, _)| f)) },
-        randomized: true,
-        dims: "2",
-        build: |_| Ok(Box::new(Fibonacci { shift: true })),
-    },
-    SamplerEntry {
-        about: About::new("lattice.korobov", "Korobov rank-1 lattice, z = (1, a, a^2, ...) mod n").terse()
-            .aliases(&["korobov"])
-            .params(&[A])
-            .cite(&["korobov1959", "sloan1994"]),
+    {
+        family: "lattice.korobov",
+        summary: "Korobov rank-1 lattice, z = (1, a, a^2, ...) mod n",
+        aliases: ["korobov"],
+        params: &[A],
         counts: Counts::Rule("any n (searching a, with a = auto: n <= 2^14)"),
-        randomized: false,
         dims: "any d",
-        build: |p| Ok(Box::new(Korobov { a: p.int_or_auto("a"), shift: false })),
+        cite: ["korobov1959", "sloan1994"],
+        build: korobov_sampler,
+        randomizations: [shift],
     },
-    SamplerEntry {
-        about: About::new("lattice.korobov.shift", "the Korobov lattice with a random shift mod 1").terse()
-            .aliases(&["korobov-shift"])
-            .params(&[A])
-            .cite(&["korobov1959", "sloan1994", "cranley1976"]),
-        counts: Counts::Rule("any n (searching a, with a = auto: n <= 2^14)"),
-        randomized: true,
-        dims: "any d",
-        build: |p| Ok(Box::new(Korobov { a: p.int_or_auto("a"), shift: true })),
-    },
-];
+);
 
 #[cfg(test)]
 mod tests {

@@ -379,8 +379,8 @@ impl Net {
 
 /// A net planned for a count and dimension: its generating matrices, made once.
 #[derive(Debug)]
-struct Planned<'a> {
-    net: &'a Net,
+struct Planned {
+    net: Net,
     matrices: Arc<Matrices>,
     n: usize,
     dims: usize,
@@ -389,7 +389,7 @@ struct Planned<'a> {
     words: Option<Vec<u64>>,
 }
 
-impl Planned<'_> {
+impl Planned {
     /// The engine for `seed`; `bound` caps the prefix tables of an Owen scramble in base b
     /// (the count of points to make; a cache only).
     fn engine(&self, seed: Seed, bound: u64) -> Engine {
@@ -440,7 +440,7 @@ impl Planned<'_> {
 /// The most columns a base-2 fill walks (a word per column on the stack).
 const MAX_WORDS: usize = 64;
 
-impl Prepared for Planned<'_> {
+impl Prepared for Planned {
     fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         match &self.words {
             Some(words) => self.fill_binary(words, seed, out),
@@ -485,7 +485,7 @@ impl Construction for Net {
         Ok(())
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
         let (n, dims) = (shape.n(), shape.dims());
         let matrices = self.matrices(dims)?;
         let words = (matrices.base == 2).then(|| {
@@ -494,7 +494,7 @@ impl Construction for Net {
                 .map(|(d, k)| (0..matrices.rows).fold(0u64, |c, r| c | (u64::from(matrices.digit(d, r, k)) << (63 - r))))
                 .collect()
         });
-        Ok(Box::new(Planned { net: self, matrices, n, dims, words }))
+        Ok(Box::new(Planned { net: self.clone(), matrices, n, dims, words }))
     }
 }
 
@@ -842,7 +842,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
     {
         family: "net",
         summary: "digital net in base b from generating matrices, natural order",
-        aliases: &["digitalnet", "digitalnetb2"],
+        aliases: ["digitalnet", "digitalnetb2"],
         params: &[MATRICES],
         counts: Counts::Rule("n <= b^m (m columns; nets at powers of b)"),
         dims: "up to the file's",
@@ -853,7 +853,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
     {
         family: "faure",
         summary: "Faure (0,s)-sequence, base the smallest prime >= d",
-        aliases: &[],
+        aliases: [],
         params: &[],
         counts: Counts::Any("nets at powers of the base"),
         dims: "1..=251",
@@ -864,7 +864,7 @@ pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
     {
         family: "niederreiter",
         summary: "Niederreiter (t,s)-sequence from irreducible polynomials",
-        aliases: &[],
+        aliases: [],
         params: &[BASE],
         counts: Counts::Any("nets at powers of the base"),
         dims: "1..=1024",

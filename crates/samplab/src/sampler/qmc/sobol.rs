@@ -148,7 +148,7 @@ impl Construction for Sobol {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=SOBOL_MAX_DIMS
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
         // the tables are the baked-in direction numbers: nothing to build
         Ok(Box::new(Planned { sobol: *self, dims: shape.dims() }))
     }
@@ -233,6 +233,10 @@ impl Prepared for Planned {
     fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
         Some(Box::new(SobolAccess { sobol: self.sobol, keys: (0..self.dims).map(|d| DimKey::new(seed, d)).collect() }))
     }
+
+    fn sample_at(&self, seed: Seed, index: u64, dim: usize) -> Option<Result<f64>> {
+        Some(self.sobol.at(index, dim, DimKey::new(seed, dim)))
+    }
 }
 
 /// Random access to a randomized Sobol' sequence: the per-dimension keys, drawn once.
@@ -244,12 +248,19 @@ struct SobolAccess {
 
 impl Access for SobolAccess {
     fn sample(&self, index: u64, dim: usize) -> Result<f64> {
+        self.sobol.at(index, dim, self.keys[dim])
+    }
+}
+
+impl Sobol {
+    /// Coordinate `dim` of point `index` (in Gray-code order) under the dimension's key.
+    fn at(&self, index: u64, dim: usize, key: DimKey) -> Result<f64> {
         let index = u32::try_from(index).map_err(|_| Error::Setting {
             name: "index",
             value: index.to_string(),
             reason: "32-bit Sobol' points stop at index 2^32 - 1".into(),
         })?;
-        Ok(self.sobol.finish(sobol_u32(index ^ (index >> 1), dim), self.keys[dim]))
+        Ok(self.finish(sobol_u32(index ^ (index >> 1), dim), key))
     }
 }
 
@@ -262,7 +273,7 @@ fn build(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Constru
 pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!({
     family: "sobol",
     summary: "Sobol' sequence, Joe-Kuo directions",
-    aliases: &[],
+    aliases: [],
     params: &[],
     counts: Counts::AtMost { most: 1 << 32, why: "32-bit Sobol' points stop at 2^32" },
     dims: "1..=1024",

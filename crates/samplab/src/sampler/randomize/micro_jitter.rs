@@ -14,7 +14,7 @@ use std::ops::RangeInclusive;
 use crate::construct::Counts;
 use crate::sampler::registry::SamplerEntry;
 use super::StageEntry;
-use crate::sampler::{Construction, Prepared, Sampler, Shape};
+use crate::sampler::{Construction, Prepared, Shape};
 use crate::error::Result;
 use crate::progress::Progress;
 use crate::registry::About;
@@ -24,7 +24,7 @@ use crate::spec::{Default, Kind, ParamSpec};
 /// A sampler whose points are micro-jittered.
 #[derive(Debug)]
 pub struct MicroJitter {
-    inner: Box<dyn Sampler>,
+    inner: super::Before,
     fraction: f64,
 }
 
@@ -43,9 +43,9 @@ impl Construction for MicroJitter {
         self.inner.dims()
     }
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        super::counts_of(self.inner.as_ref(), n, dims)
+        self.inner.check_count(n, dims)
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
         // the inner sampler's checks passed with this shape's (the dimension range is its)
         let width = self.fraction * spacing(shape.n(), shape.dims());
         Ok(Box::new(Jittered { inner: self.inner.prepare(shape)?, width }))
@@ -53,12 +53,12 @@ impl Construction for MicroJitter {
 }
 
 /// A planned sampler whose points are then micro-jittered by up to `width` / 2 per axis.
-struct Jittered<'a> {
-    inner: Box<dyn Prepared + 'a>,
+struct Jittered {
+    inner: Box<dyn Prepared>,
     width: f64,
 }
 
-impl Prepared for Jittered<'_> {
+impl Prepared for Jittered {
     fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         self.inner.fill(seed, out, progress)?;
         if self.width == 0.0 {
@@ -99,10 +99,10 @@ pub(crate) static ENTRIES: &[SamplerEntry] = &[SamplerEntry {
     randomized: true,
     dims: "1..=64 (after a spec: the sampler's)",
     build: |p| {
-        Ok(Box::new(MicroJitter { inner: crate::sampler::build("regular")?, fraction: p.real("fraction") }))
+        Ok(Box::new(MicroJitter { inner: super::Before(crate::sampler::build("regular")?), fraction: p.real("fraction") }))
     },
 }];
 
 /// The stage this file registers: micro-jitter after any spec.
 pub(crate) static STAGES: &[StageEntry] =
-    &[StageEntry { about: ABOUT, build: |inner, p| Ok(Box::new(MicroJitter { inner, fraction: p.real("fraction") })) }];
+    &[StageEntry { about: ABOUT, build: |inner, p| Ok(Box::new(MicroJitter { inner: super::Before(inner), fraction: p.real("fraction") })) }];

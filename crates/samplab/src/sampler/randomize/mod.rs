@@ -41,15 +41,27 @@ impl Entry for StageEntry {
     }
 }
 
-/// The count check of the sampler a stage follows, its error left to name the whole spec
-/// (the registered stage fills it in): a stage makes the counts of the sampler before it.
-pub(crate) fn counts_of(inner: &dyn Sampler, n: usize, dims: usize) -> Result<()> {
-    inner.check_count(n, dims).map_err(|e| match e {
-        crate::error::Error::InvalidCount { n, dims, reason, .. } => {
-            crate::error::Error::InvalidCount { sampler: String::new(), n, dims, reason }
-        }
-        other => other,
-    })
+/// The sampler a stage follows, as the stage's construction reads it: a stage makes the
+/// counts of the sampler before it, their error left to name the whole spec (the
+/// registered stage fills it in).
+#[derive(Debug)]
+pub(crate) struct Before(pub(crate) Box<dyn Sampler>);
+
+impl Construction for Before {
+    fn dims(&self) -> std::ops::RangeInclusive<usize> {
+        self.0.dims()
+    }
+    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+        self.0.check_count(n, dims).map_err(|e| match e {
+            crate::error::Error::InvalidCount { n, dims, reason, .. } => {
+                crate::error::Error::InvalidCount { sampler: String::new(), n, dims, reason }
+            }
+            other => other,
+        })
+    }
+    fn prepare(&self, shape: crate::sampler::Shape) -> Result<Box<dyn crate::sampler::Prepared>> {
+        self.0.prepare(shape)
+    }
 }
 
 /// Every stage.
@@ -83,7 +95,10 @@ pub(crate) fn split(spec: &str) -> Result<Option<(&str, &'static StageEntry, Par
 /// - `lms`: `family.lms`, linear matrix scrambling and a digital shift (Matoušek 1998);
 /// - `owen`: `family.owen` (also `family-owen`), Owen's nested uniform scrambling (Owen
 ///   1995, 1997), hash-based (Burley 2020);
-/// - `shift`: `family.shift`, a Cranley–Patterson shift (Cranley & Patterson 1976).
+/// - `shift`: `family.shift` (also `family-shift` and each alias's `-shift`), a
+///   Cranley–Patterson shift (Cranley & Patterson 1976): `build` gets
+///   `Randomization::Shift` and hands its construction to [`shift::over`], the `+shift`
+///   stage's own code (a lattice's tent then wraps the shifted lattice).
 ///
 /// `build(params, randomization)` makes the construction. Adding a randomized family is its
 /// file (the construction, a `build`, and one invocation) plus its name in its folder's list.
@@ -91,7 +106,7 @@ macro_rules! randomized_families {
     ($({
         family: $family:literal,
         summary: $summary:literal,
-        aliases: $aliases:expr,
+        aliases: $aliases:tt,
         params: $params:expr,
         counts: $counts:expr,
         dims: $dims:literal,
@@ -100,31 +115,28 @@ macro_rules! randomized_families {
         randomizations: [$($v:ident),+] $(,)?
     }),+ $(,)?) => {
         &[$(
-            $crate::sampler::randomize::randomized_families!(@entry none, $family, $summary, $aliases, $params, $counts, $dims, $cite, $build),
-            $($crate::sampler::randomize::randomized_families!(@entry $v, $family, $summary, $aliases, $params, $counts, $dims, $cite, $build),)+
+            $crate::sampler::randomize::randomized_families!(@variant none, $family, $summary, $aliases, $params, $counts, $dims, $cite, $build),
+            $($crate::sampler::randomize::randomized_families!(@variant $v, $family, $summary, $aliases, $params, $counts, $dims, $cite, $build),)+
         )+]
     };
-    (@entry $v:ident, $family:literal, $summary:literal, $aliases:expr, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
-        $crate::sampler::randomize::randomized_families!(@variant $v, $family, $summary, $aliases, $params, $counts, $dims, [$($r),*], $build)
+    (@variant none, $family:literal, $summary:literal, [$($alias:literal),*], $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
+        $crate::sampler::randomize::randomized_families!(@make $family, $summary, &[$($alias),*], $params, $counts, $dims, [$($r),*], $build, None, false)
     };
-    (@variant none, $family:literal, $summary:literal, $aliases:expr, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
-        $crate::sampler::randomize::randomized_families!(@make $family, $summary, $aliases, $params, $counts, $dims, [$($r),*], $build, None, false)
-    };
-    (@variant xor, $family:literal, $summary:literal, $aliases:expr, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
+    (@variant xor, $family:literal, $summary:literal, $aliases:tt, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
         $crate::sampler::randomize::randomized_families!(@make concat!($family, ".xor"), concat!($summary, ", random digit scrambling"),
             &[], $params, $counts, $dims, [$($r,)* "matousek1998"], $build, Xor, true)
     };
-    (@variant lms, $family:literal, $summary:literal, $aliases:expr, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
+    (@variant lms, $family:literal, $summary:literal, $aliases:tt, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
         $crate::sampler::randomize::randomized_families!(@make concat!($family, ".lms"), concat!($summary, ", linear matrix scrambling and a digital shift"),
             &[], $params, $counts, $dims, [$($r,)* "matousek1998"], $build, Lms, true)
     };
-    (@variant owen, $family:literal, $summary:literal, $aliases:expr, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
+    (@variant owen, $family:literal, $summary:literal, $aliases:tt, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
         $crate::sampler::randomize::randomized_families!(@make concat!($family, ".owen"), concat!($summary, ", Owen's nested uniform scrambling (hash-based)"),
             &[concat!($family, "-owen")], $params, $counts, $dims, [$($r,)* "owen1995", "owen1997", "burley2020"], $build, Owen, true)
     };
-    (@variant shift, $family:literal, $summary:literal, $aliases:expr, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
+    (@variant shift, $family:literal, $summary:literal, [$($alias:literal),*], $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr) => {
         $crate::sampler::randomize::randomized_families!(@make concat!($family, ".shift"), concat!($summary, ", Cranley-Patterson shift"),
-            &[], $params, $counts, $dims, [$($r,)* "cranley1976"], $build, Shift, true)
+            &[concat!($family, "-shift") $(, concat!($alias, "-shift"))*], $params, $counts, $dims, [$($r,)* "cranley1976"], $build, Shift, true)
     };
     (@make $name:expr, $summary:expr, $aliases:expr, $params:expr, $counts:expr, $dims:literal, [$($r:literal),*], $build:expr, $randomization:ident, $randomized:literal) => {
         $crate::sampler::SamplerEntry {

@@ -14,13 +14,21 @@ use super::StageEntry;
 use crate::error::Result;
 use crate::progress::Progress;
 use crate::registry::About;
-use crate::sampler::{Access, Construction, Prepared, Sampler, Shape, Stream};
+use crate::sampler::{Access, Construction, Prepared, Shape, Stream};
 use crate::seed::{Rng, Seed};
 
-/// A sampler whose sets are shifted.
+/// A construction whose sets are shifted: the `+shift` stage, and every `family.shift`
+/// entry ([`over`]).
 #[derive(Debug)]
 struct Shift {
-    inner: Box<dyn Sampler>,
+    inner: Box<dyn Construction>,
+}
+
+/// `inner`'s sets under a Cranley–Patterson shift: the one code path of `SPEC+shift` and of
+/// the families' `.shift` entries (`randomized_families!`), so `lattice.shift` and
+/// `lattice+shift` are the same bytes.
+pub(crate) fn over(inner: Box<dyn Construction>) -> Box<dyn Construction> {
+    Box::new(Shift { inner })
 }
 
 /// `x` in [0, 1) shifted by the 64-bit fraction `u`, mod 1, to 53 bits.
@@ -40,25 +48,34 @@ fn next(rng: &mut Rng) -> u64 {
     rand_core::Rng::next_u64(rng)
 }
 
+/// Axis `dim`'s offset alone: the stream's draw `dim`.
+fn offset(seed: Seed, dim: usize) -> u64 {
+    let mut rng = offsets(seed);
+    for _ in 0..dim {
+        next(&mut rng);
+    }
+    next(&mut rng)
+}
+
 impl Construction for Shift {
     fn dims(&self) -> RangeInclusive<usize> {
         self.inner.dims()
     }
     fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        super::counts_of(self.inner.as_ref(), n, dims)
+        self.inner.check_count(n, dims)
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
         Ok(Box::new(Shifted { inner: self.inner.prepare(shape)?, dims: shape.dims() }))
     }
 }
 
 /// A planned sampler whose sets are then shifted.
-struct Shifted<'a> {
-    inner: Box<dyn Prepared + 'a>,
+struct Shifted {
+    inner: Box<dyn Prepared>,
     dims: usize,
 }
 
-impl Prepared for Shifted<'_> {
+impl Prepared for Shifted {
     fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         self.inner.fill(seed, out, progress)?;
         // axis by axis, each drawing its offset in turn: no buffer
@@ -78,6 +95,11 @@ impl Prepared for Shifted<'_> {
         let inner = self.inner.access(seed)?;
         let mut rng = offsets(seed);
         Some(Box::new(ShiftedAccess { inner, offsets: (0..self.dims).map(|_| next(&mut rng)).collect() }))
+    }
+    fn sample_at(&self, seed: Seed, index: u64, dim: usize) -> Option<Result<f64>> {
+        let value = self.inner.sample_at(seed, index, dim)?;
+        let offset = offset(seed, dim);
+        Some(value.map(|x| shifted(x, offset)))
     }
     fn stream(&self, seed: Seed) -> Option<Box<dyn Stream + '_>> {
         let inner = self.inner.stream(seed)?;
@@ -125,7 +147,7 @@ pub(crate) static STAGES: &[StageEntry] = &[StageEntry {
     )
     .aliases(&["cranley-patterson", "rotation"])
     .cite(&["cranley1976"]),
-    build: |inner, _| Ok(Box::new(Shift { inner })),
+    build: |inner, _| Ok(over(Box::new(super::Before(inner)))),
 }];
 
 #[cfg(test)]

@@ -118,8 +118,9 @@ impl Construction for Grid {
         }
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
-        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = self.clone();
+        Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
 
@@ -214,8 +215,9 @@ impl Construction for RotatedGrid {
         2..=2
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
-        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = *self;
+        Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
 
@@ -259,8 +261,9 @@ impl Construction for Hexagonal {
         2..=2
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
-        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = *self;
+        Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
 

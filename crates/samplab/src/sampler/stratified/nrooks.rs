@@ -28,8 +28,9 @@ impl Construction for NRooks {
         1..=usize::MAX
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
-        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = *self;
+        Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
 
@@ -69,8 +70,9 @@ impl Construction for OaLhs {
         1..=usize::MAX
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
-        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = *self;
+        Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
 

@@ -24,8 +24,9 @@ impl Construction for Pmj02 {
         2..=2
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
-        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = *self;
+        Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
 
@@ -51,8 +52,9 @@ impl Construction for Cmj {
         2..=2
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared + '_>> {
-        Ok(crate::sampler::from_fill(move |seed, out| self.fill(shape.n(), shape.dims(), seed, out)))
+    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+        let me = *self;
+        Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
 
