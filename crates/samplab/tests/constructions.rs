@@ -433,8 +433,8 @@ fn micro_jitter_alone_with_fraction_one_is_jittered_sampling() {
 }
 
 /// `family.shift` is `family+shift`: one code path (the stage's fixed-point shift), bit for
-/// bit, for every lattice and the Kronecker sequence, in their batches and their random
-/// access; with `tent=yes` the shift comes before the tent (the tent of `lattice+shift`,
+/// bit, for every family with a `.shift` entry (the lattices, Kronecker, the digital
+/// sequences and nets), in their batches and their random access; with `tent=yes` the shift comes before the tent (the tent of `lattice+shift`,
 /// computed here from the plain shifted points), not after it.
 #[test]
 fn a_familys_shift_entry_is_its_shift_stage() {
@@ -445,6 +445,12 @@ fn a_familys_shift_entry_is_its_shift_stage() {
         ("lattice.korobov", 64, 3),
         ("lattice.fibonacci", 55, 2),
         ("kronecker", 100, 4),
+        ("sobol", 64, 3),
+        ("halton", 50, 3),
+        ("hammersley", 50, 3),
+        ("net", 64, 2),
+        ("faure", 49, 3),
+        ("niederreiter", 64, 3),
     ] {
         let entry = set(&format!("{family}.shift"), n, d, 5);
         let staged = set(&format!("{family}+shift"), n, d, 5);

@@ -20,7 +20,9 @@ pub enum Randomization {
     Lms,
     /// Cranley–Patterson rotation (Cranley & Patterson 1976): one uniform offset per
     /// dimension, added modulo 1. Keeps the set a toroidal translate of the original; it
-    /// does not preserve elementary-interval stratification.
+    /// does not preserve elementary-interval stratification. No construction applies it
+    /// itself: every family's `.shift` is its plain construction under the `+shift`
+    /// stage's code (64-bit fixed point).
     Shift,
 }
 

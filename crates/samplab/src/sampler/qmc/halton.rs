@@ -15,15 +15,15 @@ use std::ops::RangeInclusive;
 use std::borrow::Cow;
 
 use crate::numeric::BELOW_ONE;
-use crate::sampler::randomize::randomized_families;
+use crate::sampler::randomize::{randomized_families, shift};
 use crate::construct::{counts::ANY, Counts};
 use crate::sampler::registry::SamplerEntry;
 use crate::construct::radical::{DigitTable, PRIMES};
-use crate::construct::scramble::{OwenDigits, Randomization, hash_unit, owen_scramble_u32};
+use crate::construct::scramble::{OwenDigits, Randomization, owen_scramble_u32};
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::Result;
 use crate::progress::Progress;
-use crate::seed::{Seed, wrap01};
+use crate::seed::Seed;
 use crate::spec::Params;
 
 /// How many dimensions (primes) the Halton sequence supports.
@@ -94,10 +94,8 @@ impl<'a> Odometer<'a> {
 /// table, or (`.xor`) the seed's permuted one.
 #[derive(Debug, Clone)]
 struct Coordinate<'a> {
-    randomization: Randomization,
     table: Cow<'a, DigitTable>,
     owen: Option<OwenDigits>,
-    shift: f64,
 }
 
 impl<'a> Coordinate<'a> {
@@ -108,21 +106,18 @@ impl<'a> Coordinate<'a> {
         let s = seed.derive(dim as u64);
         let base = plain.base;
         Coordinate {
-            randomization,
             table: match randomization {
                 Randomization::Xor => Cow::Owned(DigitTable::new(base, Some(s))),
                 _ => Cow::Borrowed(plain),
             },
             owen: (randomization == Randomization::Owen).then(|| OwenDigits::new(base, s.0, bound)),
-            shift: hash_unit(dim as u64, s.0),
         }
     }
 
     fn value(&self, index: u64) -> f64 {
-        match (&self.owen, self.randomization) {
-            (Some(owen), _) => owen.value(index),
-            (None, Randomization::Shift) => wrap01(self.table.value(index) + self.shift),
-            _ => self.table.value(index),
+        match &self.owen {
+            Some(owen) => owen.value(index),
+            None => self.table.value(index),
         }
     }
 
@@ -148,7 +143,7 @@ fn fill_columns(coords: &[Option<Coordinate<'_>>; BLOCK], start: u64, out: &mut 
                 (None, Some(od)) => {
                     let v = od.value();
                     od.step();
-                    if c.randomization == Randomization::Shift { wrap01(v + c.shift) } else { v }
+                    v
                 }
                 (None, None) => unreachable!("an odometer for every coordinate without Owen scrambling"),
             };
@@ -283,15 +278,16 @@ impl Prepared for Planned {
     fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         let (n, dims) = (self.halton.n, self.halton.tables.len() + 1);
         let s = seed.derive(u64::MAX);
-        let (bits, shift) = (s.bits32(), hash_unit(u64::MAX, s.0));
+        let bits = s.bits32();
         for (i, p) in out.chunks_exact_mut(dims).enumerate() {
             let fixed = ((i as u128) << 32).div_euclid(n as u128) as u32;
             p[0] = match self.halton.randomization {
                 Randomization::None => i as f64 / n as f64,
                 Randomization::Xor => crate::construct::cell_centre(fixed ^ bits),
                 Randomization::Owen => crate::construct::cell_centre(owen_scramble_u32(fixed, bits)),
-                Randomization::Shift => wrap01(i as f64 / n as f64 + shift),
-                Randomization::Lms => unreachable!("Hammersley declares no linear matrix scrambling"),
+                Randomization::Lms | Randomization::Shift => {
+                    unreachable!("Hammersley declares no linear matrix scrambling, and its shift is the +shift stage's")
+                }
             };
         }
         self.halton.fill_from(seed, out, dims, 1);
@@ -301,12 +297,12 @@ impl Prepared for Planned {
 
 /// The construction of each Halton entry.
 fn build_halton(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
-    Ok(Box::new(Halton::new(randomization)))
+    Ok(shift::applied(randomization, |r| Box::new(Halton::new(r))))
 }
 
 /// The construction of each Hammersley entry.
 fn build_hammersley(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
-    Ok(Box::new(Hammersley::new(randomization)))
+    Ok(shift::applied(randomization, |r| Box::new(Hammersley::new(r))))
 }
 
 /// The samplers this file registers: Halton and Hammersley with their randomizations.
@@ -348,7 +344,7 @@ mod tests {
     #[test]
     fn odometer_equals_random_access_bit_for_bit() {
         for base in [2u32, 3, 7, 8161] {
-            for r in [Randomization::None, Randomization::Xor, Randomization::Shift] {
+            for r in [Randomization::None, Randomization::Xor] {
                 let plain = DigitTable::new(base, None);
                 let c = Coordinate::new(&plain, r, Seed(11), 3, 3000);
                 let mut out = vec![0.0; 3000];

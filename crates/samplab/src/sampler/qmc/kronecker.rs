@@ -114,8 +114,7 @@ fn build(p: &crate::spec::Params, randomization: Randomization) -> Result<Box<dy
             reason: format!("{a} makes every point's coordinate the same; expected a number strictly between 0 and 1"),
         });
     }
-    let kronecker = Box::new(Kronecker { alphas });
-    Ok(if randomization == Randomization::Shift { shift::over(kronecker) } else { kronecker })
+    Ok(shift::applied(randomization, |_| Box::new(Kronecker { alphas })))
 }
 
 /// The samplers this file registers: the sequence and its shift.

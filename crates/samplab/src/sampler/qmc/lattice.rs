@@ -283,7 +283,7 @@ impl Access for TentedAccess<'_> {
 /// A lattice under the entry's randomization (the `+shift` stage's code for `.shift`), then
 /// its tent where `tent=yes`: the shift comes before the tent.
 fn randomized(lattice: Box<dyn Construction>, tented: bool, randomization: Randomization) -> Box<dyn Construction> {
-    let shifted = if randomization == Randomization::Shift { shift::over(lattice) } else { lattice };
+    let shifted = shift::applied(randomization, |_| lattice);
     if tented { Box::new(Tent { inner: shifted }) } else { shifted }
 }
 

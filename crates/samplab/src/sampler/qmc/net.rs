@@ -31,14 +31,14 @@ use std::ops::RangeInclusive;
 use std::sync::Arc;
 
 use crate::numeric::BELOW_ONE;
-use crate::sampler::randomize::randomized_families;
+use crate::sampler::randomize::{randomized_families, shift};
 use crate::construct::Counts;
 use crate::sampler::registry::SamplerEntry;
 use crate::construct::scramble::{OwenDigits, Randomization, hash2, owen_scramble_u32};
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
-use crate::seed::{Seed, below, uniform, wrap01};
+use crate::seed::{Seed, below};
 use crate::spec::{Default, Kind, ParamSpec, Params};
 
 /// Generating matrices of a digital net in a prime base: `cols` columns (input digits, so
@@ -541,13 +541,11 @@ impl Draws {
     }
 }
 
-/// One base-2 dimension's randomization for a seed: a digital shift, an Owen key, or a
-/// Cranley-Patterson offset.
+/// One base-2 dimension's randomization for a seed: a digital shift or an Owen key.
 #[derive(Debug, Clone, Copy, Default)]
 struct BinaryKey {
     shift: u64,
     owen: Option<u32>,
-    offset: Option<f64>,
 }
 
 impl BinaryKey {
@@ -563,11 +561,7 @@ impl BinaryKey {
             }
             None => x ^ self.shift,
         };
-        let v = (x >> 11) as f64 * (1.0 / (1u64 << 53) as f64);
-        match self.offset {
-            Some(u) => wrap01(v + u),
-            None => v,
-        }
+        (x >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
     }
 }
 
@@ -590,8 +584,8 @@ fn binary_dimension(words: &[u64], randomization: Randomization, seed: Seed, d: 
         // linear matrix scrambling is followed by a digital shift
         Randomization::Xor | Randomization::Lms => BinaryKey { shift: draws.bits(), ..BinaryKey::default() },
         Randomization::Owen => BinaryKey { owen: Some(draws.bits() as u32), ..BinaryKey::default() },
-        Randomization::Shift => BinaryKey { offset: Some(uniform(&mut draws.0)), ..BinaryKey::default() },
-        Randomization::None => BinaryKey::default(),
+        // a net's shift is the plain net under the +shift stage's code (build_net)
+        Randomization::None | Randomization::Shift => BinaryKey::default(),
     }
 }
 
@@ -645,7 +639,6 @@ struct Prime {
     prefix: Vec<u8>,
     shift: Vec<u8>,
     owen: Option<Vec<OwenDigits>>,
-    offset: Option<Vec<f64>>,
     /// Digits in the exact leading part of a value: the most with b^high <= 2^53.
     high: usize,
     /// b^high and b^P.
@@ -659,7 +652,7 @@ impl Prime {
         let (base, cols, p) = (m.base, m.cols, precision(m.base));
         let b = base as usize;
         let mut columns = vec![0u8; dims * cols * p];
-        let (mut shift, mut owen, mut offset) = (vec![0u8; dims * p], Vec::new(), Vec::new());
+        let (mut shift, mut owen) = (vec![0u8; dims * p], Vec::new());
         for d in 0..dims {
             let mut draws = Draws::new(seed, d);
             // L: lower triangular, row j: uniform digits below the diagonal, a non-zero one on it
@@ -689,8 +682,8 @@ impl Prime {
                     }
                 }
                 Randomization::Owen => owen.push(OwenDigits::new(base, draws.bits(), bound)),
-                Randomization::Shift => offset.push(uniform(&mut draws.0)),
-                Randomization::None => {}
+                // a net's shift is the plain net under the +shift stage's code (build_net)
+                Randomization::None | Randomization::Shift => {}
             }
         }
         let high = (1..).find(|&k| u128::from(base).pow(k) > 1 << 53).expect("powers grow") as usize - 1;
@@ -710,7 +703,6 @@ impl Prime {
             prefix,
             shift,
             owen: (randomization == Randomization::Owen).then_some(owen),
-            offset: (randomization == Randomization::Shift).then_some(offset),
             high,
             powers: [f64::from(base).powi(high as i32), f64::from(base).powi(p as i32)],
         }
@@ -747,11 +739,7 @@ impl Prime {
             let part = &mut v[usize::from(r >= self.high)];
             *part = *part * b + if s >= b { s - b } else { s };
         }
-        let x = (v[0] as f64 / self.powers[0] + v[1] as f64 / self.powers[1]).min(BELOW_ONE);
-        match &self.offset {
-            Some(u) => wrap01(x + u[dim]),
-            None => x,
-        }
+        (v[0] as f64 / self.powers[0] + v[1] as f64 / self.powers[1]).min(BELOW_ONE)
     }
 
     fn fill(&self, out: &mut [f64]) {
@@ -824,17 +812,19 @@ fn niederreiter_source(p: &Params) -> Result<Source> {
 
 /// The construction of each `net` entry.
 fn build_net(p: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
-    Ok(Box::new(Net { source: net_source(p)?, randomization }))
+    let source = net_source(p)?;
+    Ok(shift::applied(randomization, |randomization| Box::new(Net { source, randomization })))
 }
 
 /// The construction of each `faure` entry.
 fn build_faure(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
-    Ok(Box::new(Net { source: Source::Faure, randomization }))
+    Ok(shift::applied(randomization, |randomization| Box::new(Net { source: Source::Faure, randomization })))
 }
 
 /// The construction of each `niederreiter` entry.
 fn build_niederreiter(p: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
-    Ok(Box::new(Net { source: niederreiter_source(p)?, randomization }))
+    let source = niederreiter_source(p)?;
+    Ok(shift::applied(randomization, |randomization| Box::new(Net { source, randomization })))
 }
 
 /// The samplers this file registers: each family plain and with its four randomizations.

@@ -5,16 +5,16 @@
 
 use std::ops::RangeInclusive;
 
-use crate::sampler::randomize::randomized_families;
+use crate::sampler::randomize::{randomized_families, shift};
 use crate::construct::Counts;
 use crate::sampler::registry::SamplerEntry;
-use crate::construct::scramble::{Randomization, hash_unit, owen_scramble_reversed};
+use crate::construct::scramble::{Randomization, owen_scramble_reversed};
 use crate::construct::sobol::{REVERSED_DIRECTIONS, SOBOL_DIRECTIONS, SOBOL_MAX_DIMS, sobol_u32};
 use crate::construct::{cell_centre, unit};
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
 use crate::progress::Progress;
-use crate::seed::{Seed, wrap01};
+use crate::seed::Seed;
 use crate::spec::Params;
 use crate::simd::wide;
 
@@ -39,13 +39,11 @@ impl Sobol {
 #[derive(Debug, Clone, Copy)]
 struct DimKey {
     bits: u32,
-    shift: f64,
 }
 
 impl DimKey {
     fn new(seed: Seed, dim: usize) -> Self {
-        let s = seed.derive(dim as u64);
-        DimKey { bits: s.bits32(), shift: hash_unit(dim as u64, s.0) }
+        DimKey { bits: seed.derive(dim as u64).bits32() }
     }
 }
 
@@ -57,8 +55,7 @@ impl Sobol {
             Randomization::None => unit(x),
             Randomization::Xor => cell_centre(x ^ key.bits),
             Randomization::Owen => cell_centre(owen_scramble_reversed(x.reverse_bits(), key.bits).reverse_bits()),
-            Randomization::Shift => wrap01(unit(x) + key.shift),
-            Randomization::Lms => unreachable!("Sobol' declares no linear matrix scrambling"),
+            Randomization::Lms | Randomization::Shift => unreachable!("{}", UNDECLARED),
         }
     }
 }
@@ -200,16 +197,7 @@ impl Planned {
                     #[inline(always)]
                     |x, j| cell_centre(x ^ keys[j].bits),
                 ),
-                Randomization::Shift => gray_walk(
-                    out,
-                    dims,
-                    first,
-                    count,
-                    false,
-                    #[inline(always)]
-                    |x, j| wrap01(unit(x) + keys[j].shift),
-                ),
-                Randomization::Lms => unreachable!("Sobol' declares no linear matrix scrambling"),
+                Randomization::Lms | Randomization::Shift => unreachable!("{}", UNDECLARED),
             },
         );
     }
@@ -218,7 +206,7 @@ impl Planned {
 impl Prepared for Planned {
     fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
         // the keys of up to CHUNK dimensions at a time, on the stack
-        let mut keys = [DimKey { bits: 0, shift: 0.0 }; CHUNK];
+        let mut keys = [DimKey { bits: 0 }; CHUNK];
         let count = if self.dims <= 3 { self.dims } else { CHUNK };
         for first in (0..self.dims).step_by(count) {
             let keys = &mut keys[..count.min(self.dims - first)];
@@ -264,9 +252,13 @@ impl Sobol {
     }
 }
 
+/// What a Sobol' construction never holds: no linear matrix scrambling is declared, and
+/// `sobol.shift` is the plain sequence under the `+shift` stage's code ([`build`]).
+const UNDECLARED: &str = "Sobol' declares no linear matrix scrambling, and its shift is the +shift stage's";
+
 /// The construction of each entry.
 fn build(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
-    Ok(Box::new(Sobol::new(randomization)))
+    Ok(shift::applied(randomization, |r| Box::new(Sobol::new(r))))
 }
 
 /// The samplers this file registers: Sobol' and its three randomizations.

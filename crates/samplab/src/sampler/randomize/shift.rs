@@ -11,6 +11,7 @@
 use std::ops::RangeInclusive;
 
 use super::StageEntry;
+use crate::construct::Randomization;
 use crate::error::Result;
 use crate::progress::Progress;
 use crate::registry::About;
@@ -29,6 +30,17 @@ struct Shift {
 /// `lattice+shift` are the same bytes.
 pub(crate) fn over(inner: Box<dyn Construction>) -> Box<dyn Construction> {
     Box::new(Shift { inner })
+}
+
+/// The construction `make` gives for an entry's `randomization`, where
+/// `Randomization::Shift` is the plain construction under [`over`]: a family's `.shift`
+/// entry (`randomized_families!`) through the stage's code, so no family shifts its own
+/// points.
+pub(crate) fn applied(
+    randomization: Randomization,
+    make: impl FnOnce(Randomization) -> Box<dyn Construction>,
+) -> Box<dyn Construction> {
+    if randomization == Randomization::Shift { over(make(Randomization::None)) } else { make(randomization) }
 }
 
 /// `x` in [0, 1) shifted by the 64-bit fraction `u`, mod 1, to 53 bits.
