@@ -217,6 +217,12 @@ impl Prepared for Radical {
         let coordinates = (0..self.tables.len()).map(|d| self.coordinate(seed, d, self.n as u64)).collect();
         Some(Box::new(HaltonAccess { coordinates }))
     }
+
+    fn sample_at(&self, seed: Seed, index: u64, dim: usize) -> Option<Result<f64>> {
+        // the one coordinate's keys, its Owen tables at their least (a cache only): a value
+        // drawn alone (per pixel) builds no other dimension's
+        Some(within(index).map(|()| self.coordinate(seed, dim, 1).value(index)))
+    }
 }
 
 /// Random access to a randomized Halton sequence: each dimension's digit tables, built once.
@@ -229,15 +235,21 @@ struct HaltonAccess<'a> {
 /// digits (see [`positions`]), and a double holds no more.
 const HALTON_INDICES: u64 = 1 << 53;
 
+/// Whether `index` is a Halton index.
+fn within(index: u64) -> Result<()> {
+    if index >= HALTON_INDICES {
+        return Err(crate::error::Error::Setting {
+            name: "index",
+            value: index.to_string(),
+            reason: "Halton points stop at index 2^53 - 1 (further digits exceed double precision)".into(),
+        });
+    }
+    Ok(())
+}
+
 impl Access for HaltonAccess<'_> {
     fn sample(&self, index: u64, dim: usize) -> Result<f64> {
-        if index >= HALTON_INDICES {
-            return Err(crate::error::Error::Setting {
-                name: "index",
-                value: index.to_string(),
-                reason: "Halton points stop at index 2^53 - 1 (further digits exceed double precision)".into(),
-            });
-        }
+        within(index)?;
         Ok(self.coordinates[dim].value(index))
     }
 }

@@ -393,9 +393,15 @@ impl Planned {
     /// The engine for `seed`; `bound` caps the prefix tables of an Owen scramble in base b
     /// (the count of points to make; a cache only).
     fn engine(&self, seed: Seed, bound: u64) -> Engine {
+        self.engine_of(self.dims, seed, bound)
+    }
+
+    /// The engine of the first `dims` dimensions (each dimension's randomization is drawn
+    /// from its own stream, so the first ones do not depend on how many follow).
+    fn engine_of(&self, dims: usize, seed: Seed, bound: u64) -> Engine {
         match &self.words {
-            Some(words) => Engine::Binary(Binary::new(words, self.matrices.cols, self.dims, self.net.randomization, seed)),
-            None => Engine::Prime(Prime::new(&self.matrices, self.dims, self.net.randomization, seed, bound)),
+            Some(words) => Engine::Binary(Binary::new(words, self.matrices.cols, dims, self.net.randomization, seed)),
+            None => Engine::Prime(Prime::new(&self.matrices, dims, self.net.randomization, seed, bound)),
         }
     }
 
@@ -451,6 +457,12 @@ impl Prepared for Planned {
 
     fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
         Some(Box::new(self.engine(seed, u64::MAX)))
+    }
+
+    fn sample_at(&self, seed: Seed, index: u64, dim: usize) -> Option<Result<f64>> {
+        // a value drawn alone (per pixel): the dimensions up to its own, Owen tables at
+        // their least (a cache only: the same bits)
+        Some(self.engine_of(dim + 1, seed, 1).sample(index, dim))
     }
 }
 
