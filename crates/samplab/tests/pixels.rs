@@ -481,6 +481,9 @@ fn a_point_set_sequence_per_pixel_is_the_point_set_under_the_pixels_seed() {
     // a set, not a sequence, is refused in words
     let e = prepare("random", film, seed).unwrap_err().to_string();
     assert!(e.contains("sequence with random access"), "{e}");
+    // and so when the set could not make the count either (no count would do)
+    let e = prepare("jitter", Film { spp: 5, ..film }, seed).unwrap_err().to_string();
+    assert!(e.starts_with("jitter: a set, not a sequence"), "{e}");
     assert!(prepare("no-such-family", film, seed).unwrap_err().to_string().contains("unknown pixel sampler"));
 }
 

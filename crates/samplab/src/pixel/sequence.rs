@@ -31,30 +31,56 @@ pub fn pixel_seed(seed: Seed, pixel: [u32; 2], frame: u32) -> Seed {
 /// make the film's samples per pixel in its dimensions (the point set's own errors).
 pub(crate) fn prepare(spec: &str, film: Film, seed: Seed) -> Result<Pixels> {
     let sampler = crate::sampler::build(spec)?;
-    let plan = sampler.plan(film.spp as usize, film.dims as usize)?;
+    let not_a_sequence = || Error::Infeasible {
+        sampler: sampler.spec(),
+        reason: "a set, not a sequence: a point set serves as a pixel sampler when it is a sequence with random \
+                 access (sobol.owen, halton.owen, net.lms, lattice.shift, kronecker, ...)"
+            .into(),
+    };
+    let plan = match sampler.plan(film.spp as usize, film.dims as usize) {
+        Ok(plan) => plan,
+        // a set that cannot make this count is refused as a set first: no count would do
+        Err(e) => {
+            let one = sampler.plan(1, film.dims as usize);
+            return Err(if one.is_ok_and(|p| p.sample_at(seed, 0, 0).is_none()) { not_a_sequence() } else { e });
+        }
+    };
     if plan.sample_at(seed, 0, 0).is_none() {
-        return Err(Error::Setting {
-            name: "sampler",
-            value: plan.spec(),
-            reason: "a point set serves as a pixel sampler when it is a sequence with random access (sobol.owen, \
-                     halton.owen, net.lms, lattice.shift, kronecker, ...); this one is a set"
-                .into(),
-        });
+        return Err(not_a_sequence());
     }
     let spec = plan.spec();
     let inner = Family::from(PerPixel { plan, keys: Keys::new(seed, 0) });
     Ok(Pixels { spec, film, seed, inner, padding: independent::padding(seed) })
 }
 
-impl PixelSampler for PerPixel {
-    /// Point `index` of the pixel's sequence; a key the film does not hold (an index past
-    /// the sequence) gives 0.
+impl PerPixel {
+    /// The seed whose set 0 is the pixel's sequence.
     #[inline]
-    fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
-        let seed = Seed(self.keys.pixel(pixel, frame)).derive(0);
+    fn seed(&self, pixel: [u32; 2], frame: u32) -> Seed {
+        Seed(self.keys.pixel(pixel, frame)).derive(0)
+    }
+
+    /// Coordinate `dim` of point `index` under `seed`; a key the film does not hold (an
+    /// index past the sequence) gives 0.
+    #[inline]
+    fn value(&self, seed: Seed, index: u32, dim: u32) -> f64 {
         match self.plan.sample_at(seed, u64::from(index), dim as usize) {
             Some(Ok(value)) => value,
             _ => 0.0,
         }
+    }
+}
+
+impl PixelSampler for PerPixel {
+    #[inline]
+    fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
+        self.value(self.seed(pixel, frame), index, dim)
+    }
+
+    /// Dimensions `dim .. dim + 4`, the pixel's seed derived once.
+    #[inline]
+    fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
+        let seed = self.seed(pixel, frame);
+        super::four(|k| self.value(seed, index, dim + k))
     }
 }
