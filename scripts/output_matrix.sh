@@ -81,7 +81,7 @@ render a spheres --sampler jitter -n 4 --reference ref.exr --reference-samples 6
 render b sphere-box --sampler sobol.owen -n 8 --mode direct
 render c grids --sampler jitter.uniform -n 4 --pixel area --spp 4
 render d sphere-box --mode obscurance --range 0.5 --sampler jitter -n 4
-render e checker --pixel area --spp 4 --interleave 2x2 --pixel-sampler jitter
+render e checker --pixel area --spp 4 --interleave 2x2 --area-sampler jitter
 render f defocus --spp 4 -n 4
 render g motion --spp 4 -n 4
 render h all --pixel area --spp 4 -n 4 --mode direct --pixel-sampler zsobol

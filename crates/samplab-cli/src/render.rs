@@ -21,7 +21,7 @@ fn after_help() -> String {
          -o uj.exr --reference ref.exr --error-image err.png\n  samplab render grids --light linear --sampler jitter -n 16 -o strat.png\n  \
          samplab render scene.xml --sampler sobol.owen -n 4 --spp 16 --pixel area --mode direct -o out.exr\n  \
          samplab render sphere-box --mode obscurance --range 0.5 --sampler systematic -n 16 -o ao.png\n  \
-         samplab render checker-45 --pixel area --spp 16 --pixel-sampler halton.shift --interleave 4x1 \\\n      \
+         samplab render checker-45 --pixel area --spp 16 --area-sampler halton.shift --interleave 4x1 \\\n      \
          -o il.png\n\n\
          SCENE is a built-in scene or a Mitsuba 3 XML file. Built-in scenes:\n{scenes}\n\
          A missing --reference file is rendered (sobol.owen, --reference-samples light samples, 64 pixel \
@@ -70,14 +70,17 @@ pub struct Args {
     /// default: a Mitsuba scene's film filter (box: area), else center
     #[arg(long)]
     pixel: Option<String>,
-    /// Strategy over the pixel area (spp points), or a pixel sampler (`samplab list pixels`:
-    /// zsobol, sobol.padded, pmj02.bn, dither, openqmc.sobolbn, ...) that then draws every
-    /// dimension of every estimate (film, lens, time, gloss, light samples) in place of
-    /// --sampler and the other strategies; where both lists have a name (sobol, pmj02,
-    /// lattice) it is the point-set sampler, and pixel.NAME the pixel sampler
+    /// Strategy over the pixel area (spp points; any sampler spec)
     #[arg(long, default_value = settings::SECONDARY)]
-    pixel_sampler: String,
-    /// Interleaved sampling: one pixel-sampler pattern of spp x W x H points over a tile of
+    area_sampler: String,
+    /// A pixel sampler (any name `samplab pixels` takes: zsobol, sobol, sobol.padded,
+    /// pmj02.bn, openqmc.sobolbn, a point-set sequence such as sobol.owen or halton.shift per
+    /// pixel, ...) that draws every dimension of every estimate (film, lens, time, gloss,
+    /// light samples) in place of --sampler and the other strategies; default: none, and
+    /// `sobol` in path mode
+    #[arg(long)]
+    pixel_sampler: Option<String>,
+    /// Interleaved sampling: one --area-sampler pattern of spp x W x H points over a tile of
     /// WxH pixels, repeated over the image (needs --pixel area)
     #[arg(long, value_name = "WxH")]
     interleave: Option<String>,
@@ -167,7 +170,9 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         ];
         // with the files the samplers read (a pixel family reads none)
         let roles: Vec<Role<'_>> = roles.into_iter().flatten().collect();
-        crate::refuse_overlap(&[&a.sampler, &a.pixel_sampler], &roles)?;
+        let specs = [&a.sampler, &a.area_sampler, &a.lens_sampler, &a.time_sampler, &a.gloss_sampler];
+        let specs: Vec<&str> = specs.into_iter().chain(&a.pixel_sampler).map(String::as_str).collect();
+        crate::refuse_overlap(&specs, &roles)?;
         for role in &roles {
             if let Role::File(_, p) = role {
                 samplab::io::check_file(p)?;
@@ -189,6 +194,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         mode: a.mode.clone(),
         max_depth: a.max_depth,
         pixel: a.pixel.clone(),
+        area_sampler: a.area_sampler.clone(),
         pixel_sampler: a.pixel_sampler.clone(),
         lens_sampler: a.lens_sampler.clone(),
         time_sampler: a.time_sampler.clone(),
@@ -228,7 +234,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     rendered.image.stage(&mut outputs, &a.output)?;
     let rays = rendered.camera_rays + rendered.shadow_rays;
     // a pixel sampler draws every dimension, the light samples too
-    let sampler = options.pixels.as_ref().map_or_else(|| options.light.spec(), |p| p.spec().to_string());
+    let sampler = options.pixels.as_ref().map_or_else(|| options.light.spec(), |p| p.spec());
     let mut summary = serde_json::json!({
         "scene": a.scene, "sampler": sampler, "n": a.n, "spp": a.spp, "mode": a.mode,
         "pixel": options.footprint.name(), "width": width, "height": height, "seed": a.seed, "seconds": seconds,

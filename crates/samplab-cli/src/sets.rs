@@ -74,7 +74,7 @@ impl SetSource {
                 Ok(Loaded {
                     sets,
                     source: format!("{} n={n} d={} sets={m} seed={}", s.spec(), self.dims, self.seed),
-                    spec: Some(s.spec()),
+                    spec: Some(s.spec().to_string()),
                 })
             }
             (None, Some(path)) => {

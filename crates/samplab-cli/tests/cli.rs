@@ -511,10 +511,8 @@ fn library_settings_are_named_by_their_flags() {
     let out = dir.join("x.png");
     let render = ["render", "spheres", "--res", "8x8", "-o", out.to_str().unwrap()];
     assert_bad_input(&[&render[..], &["--mode", "foo"]].concat(), &["--mode foo: unknown value (one of: visibility"]);
-    assert_bad_input(
-        &[&render[..], &["--pixel-sampler", "jiter"]].concat(),
-        &["--pixel-sampler jiter: unknown sampler"],
-    );
+    assert_bad_input(&[&render[..], &["--area-sampler", "jiter"]].concat(), &["--area-sampler jiter: unknown sampler"]);
+    assert_bad_input(&[&render[..], &["--pixel-sampler", "jiter"]].concat(), &["--pixel-sampler jiter: unknown"]);
     assert_bad_input(&[&render[..], &["--disk-map", "x"]].concat(), &["--disk-map x: unknown value"]);
     assert_bad_input(&[&render[..], &["-n", "0"]].concat(), &["-n 0: light samples per estimate must be at least 1"]);
     assert_bad_input(&[&render[..], &["--spp", "0"]].concat(), &["--spp 0: estimates per pixel must be at least 1"]);

@@ -734,7 +734,8 @@ fn settings(given: Option<&Bound<'_, PyDict>>) -> PyResult<samplab_render::Setti
             "mode" => s.mode = value.extract().map_err(bad)?,
             "max_depth" => s.max_depth = Some(value.extract().map_err(bad)?),
             "pixel" => s.pixel = Some(value.extract().map_err(bad)?),
-            "pixel_sampler" => s.pixel_sampler = value.extract().map_err(bad)?,
+            "area_sampler" => s.area_sampler = value.extract().map_err(bad)?,
+            "pixel_sampler" => s.pixel_sampler = Some(value.extract().map_err(bad)?),
             "lens_sampler" => s.lens_sampler = value.extract().map_err(bad)?,
             "time_sampler" => s.time_sampler = value.extract().map_err(bad)?,
             "gloss_sampler" => s.gloss_sampler = value.extract().map_err(bad)?,
@@ -746,8 +747,8 @@ fn settings(given: Option<&Bound<'_, PyDict>>) -> PyResult<samplab_render::Setti
             "seed" => s.seed = value.extract().map_err(bad)?,
             _ => {
                 return Err(err(format!(
-                    "unknown render setting '{key}' (sampler, n, spp, mode, max_depth, pixel, pixel_sampler, lens_sampler, \
-                     time_sampler, gloss_sampler, pattern, disk_map, range, interleave, res, seed)"
+                    "unknown render setting '{key}' (sampler, n, spp, mode, max_depth, pixel, area_sampler, pixel_sampler, \
+                     lens_sampler, time_sampler, gloss_sampler, pattern, disk_map, range, interleave, res, seed)"
                 )));
             }
         }

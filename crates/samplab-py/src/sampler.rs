@@ -13,7 +13,7 @@ use crate::{err, interruptible, shaped};
 pub struct Sampler {
     /// The spec as given (the registry reads it again for `randomized`).
     given: String,
-    sampler: Box<dyn samplab::Sampler>,
+    sampler: samplab::Sampler,
 }
 
 #[pymethods]
@@ -32,7 +32,7 @@ impl Sampler {
     /// The canonical spec (name and every parameter).
     #[getter]
     fn spec(&self) -> String {
-        self.sampler.spec()
+        self.sampler.spec().to_string()
     }
 
     /// The dimensions it makes, (fewest, most).

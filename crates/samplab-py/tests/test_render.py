@@ -13,11 +13,13 @@ import samplab
     [
         ("spheres", ["--sampler", "jitter", "-n", 4], {"sampler": "jitter", "n": 4}),
         ("sphere-box", ["--mode", "obscurance", "--range", 0.5, "-n", 4], {"mode": "obscurance", "range": 0.5, "n": 4}),
-        ("checker", ["--pixel", "area", "--spp", 4, "--interleave", "2x2", "--pixel-sampler", "jitter"], {"pixel": "area", "spp": 4, "interleave": (2, 2), "pixel_sampler": "jitter"}),
+        ("checker", ["--pixel", "area", "--spp", 4, "--interleave", "2x2", "--area-sampler", "jitter"], {"pixel": "area", "spp": 4, "interleave": (2, 2), "area_sampler": "jitter"}),
         ("defocus", ["--spp", 4, "-n", 4], {"spp": 4, "n": 4}),
         # a pixel sampler: every dimension of every estimate from it
         ("defocus", ["--spp", 4, "-n", 4, "--pixel", "area", "--pixel-sampler", "zsobol"], {"spp": 4, "n": 4, "pixel": "area", "pixel_sampler": "zsobol"}),
-        ("sphere-box", ["--mode", "obscurance", "-n", 4, "--pixel-sampler", "pixel.sobol"], {"mode": "obscurance", "n": 4, "pixel_sampler": "pixel.sobol"}),
+        ("sphere-box", ["--mode", "obscurance", "-n", 4, "--pixel-sampler", "sobol"], {"mode": "obscurance", "n": 4, "pixel_sampler": "sobol"}),
+        # a point-set sequence per pixel
+        ("sphere-box", ["--mode", "obscurance", "-n", 4, "--pixel-sampler", "halton.owen"], {"mode": "obscurance", "n": 4, "pixel_sampler": "halton.owen"}),
         # path tracing: the default pixel sampler, and another at depth 3
         ("glossy-box", ["--mode", "path", "--spp", 4, "--pixel", "area"], {"mode": "path", "spp": 4, "pixel": "area"}),
         ("glossy-box", ["--mode", "path", "--spp", 4, "--max-depth", 3, "--pixel-sampler", "zsobol"], {"mode": "path", "spp": 4, "max_depth": 3, "pixel_sampler": "zsobol"}),
@@ -55,7 +57,8 @@ def test_reference_and_errors_equal_the_cli(cli, tmp_path):
         (lambda: samplab.render("spheres", colour="red"), "unknown render setting 'colour'"),
         (lambda: samplab.render("spheres", res=(0, 10)), "width 0"),
         (lambda: samplab.render("glossy-box", mode="path", max_depth=0), "max_depth = 0: the most segments"),
-        (lambda: samplab.render("glossy-box", mode="path", pixel_sampler="jitter"), "draws every dimension from a pixel sampler"),
+        (lambda: samplab.render("glossy-box", mode="path", pixel_sampler="jitter"), "a set, not a sequence"),
+        (lambda: samplab.render("spheres", pixel_sampler="jitter"), "the strategy over the pixel area alone is the area sampler"),
         # a setting the render would not read
         (lambda: samplab.render("spheres", max_depth=3), "max_depth = 3: read in path mode only"),
         (lambda: samplab.render("glossy-box", mode="path", n=4), "n = 4: not read: the pixel sampler sobol"),

@@ -84,7 +84,7 @@ pub enum Pattern {
 #[derive(Debug)]
 pub struct Options {
     /// The strategy of the light samples.
-    pub light: Box<dyn Sampler>,
+    pub light: Sampler,
     /// Light samples per estimate and light.
     pub n: usize,
     /// Secondary estimates per pixel.
@@ -94,17 +94,17 @@ pub struct Options {
     /// Pixel centre or area.
     pub footprint: Footprint,
     /// Strategy over the pixel area (`spp` points).
-    pub pixel: Box<dyn Sampler>,
+    pub area: Sampler,
     /// Strategy over the lens (`spp` points), used when the camera has an aperture; dealt
     /// to the estimates in a random order per pixel, so that it is not correlated with the
     /// pixel strategy.
-    pub lens: Box<dyn Sampler>,
+    pub lens: Sampler,
     /// Strategy over the shutter interval (`spp` points), used when something moves; dealt
     /// in a random order of its own.
-    pub time: Box<dyn Sampler>,
+    pub time: Sampler,
     /// Strategy over the glossy lobe (`spp` points), for the first glossy bounce of each
     /// estimate when a material is glossy; dealt in a random order of its own.
-    pub gloss: Box<dyn Sampler>,
+    pub gloss: Sampler,
     /// Grouping of light samples.
     pub pattern: Pattern,
     /// Disk map override for every disk light (None: each light's own).
@@ -121,7 +121,7 @@ pub struct Options {
     /// Seed of every random choice.
     pub seed: Seed,
     /// A pixel sampler that draws every dimension instead of the strategies above
-    /// (`light`, `pixel`, `lens`, `time`, `gloss`), prepared for this image, `spp` and at
+    /// (`light`, `area`, `lens`, `time`, `gloss`), prepared for this image, `spp` and at
     /// least [`pixel_dims`] dimensions; it takes patterns per estimate and no interleaving.
     pub pixels: Option<samplab::pixel::Pixels>,
     /// The frame the pixel sampler draws (an animation's frame number: each frame its own
@@ -179,7 +179,7 @@ impl Options {
             spp: 1,
             mode: Mode::Visibility,
             footprint: Footprint::Centre,
-            pixel: sobol()?,
+            area: sobol()?,
             lens: sobol()?,
             time: sobol()?,
             gloss: sobol()?,
@@ -298,7 +298,7 @@ impl Options {
         let mut pixel = None;
         if self.footprint.spreads() {
             if self.interleave.is_none() {
-                pixel = Some(self.pixel.plan(self.spp, 2)?);
+                pixel = Some(self.area.plan(self.spp, 2)?);
             }
         } else if self.interleave.is_some() {
             return Err(Error::Invalid(
@@ -309,9 +309,9 @@ impl Options {
             light,
             pixel,
             tile: self.tile()?,
-            lens: plan_if(scene.camera.aperture > 0.0, self.lens.as_ref(), self.spp, 2)?,
-            time: plan_if(scene.moving(), self.time.as_ref(), self.spp, 1)?,
-            gloss: plan_if(scene.glossy(), self.gloss.as_ref(), self.spp, 2)?,
+            lens: plan_if(scene.camera.aperture > 0.0, &self.lens, self.spp, 2)?,
+            time: plan_if(scene.moving(), &self.time, self.spp, 1)?,
+            gloss: plan_if(scene.glossy(), &self.gloss, self.spp, 2)?,
         })
     }
 }
@@ -350,7 +350,7 @@ impl Options {
 }
 
 /// `sampler` planned for `n` points in `dims` dimensions where `on`, else None.
-fn plan_if(on: bool, sampler: &dyn Sampler, n: usize, dims: usize) -> samplab::Result<Option<Plan>> {
+fn plan_if(on: bool, sampler: &Sampler, n: usize, dims: usize) -> samplab::Result<Option<Plan>> {
     on.then(|| sampler.plan(n, dims)).transpose()
 }
 
@@ -402,7 +402,7 @@ impl Options {
         }
         let cells = width * height;
         let total = self.spp * cells;
-        let pattern = self.pixel.plan(total, 2)?.generate(self.seed.derive_str("pixel"))?.into_vec();
+        let pattern = self.area.plan(total, 2)?.generate(self.seed.derive_str("pixel"))?.into_vec();
         let mut by_cell: Vec<Vec<f64>> = vec![Vec::with_capacity(2 * self.spp); cells];
         for p in pattern.chunks_exact(2) {
             let (x, y) = (p[0] * width as f64, p[1] * height as f64);
@@ -412,7 +412,7 @@ impl Options {
         if let Some((i, cell)) = by_cell.iter().enumerate().find(|(_, c)| c.len() != 2 * self.spp) {
             return Err(Error::Invalid(format!(
                 "interleaved sampling: '{}' puts {} of its {total} points in pixel ({}, {}) of the {width}x{height} tile, not spp = {}",
-                self.pixel.spec(),
+                self.area.spec(),
                 cell.len() / 2,
                 i % width,
                 i / width,

@@ -17,14 +17,15 @@ use crate::scenes::{LightKind, builtin};
 
 /// The default light sampler.
 pub const SAMPLER: &str = "jitter";
-/// The default strategy over the pixel area, the lens, the shutter and the glossy lobe.
+/// The default strategy over the pixel area, the lens, the shutter and the glossy lobe (a
+/// point-set sampler).
 pub const SECONDARY: &str = "sobol.owen";
 /// The default light samples per estimate.
 pub const N: usize = 16;
 /// The default most segments of a path in path mode (pbrt-v4's default `maxdepth`).
 pub const MAX_DEPTH: usize = 5;
-/// The pixel sampler path mode draws from when `pixel_sampler` is left at its default
-/// [`SECONDARY`] (the per-pixel form of that point-set sampler).
+/// The pixel sampler path mode draws from when `pixel_sampler` names none (Burley's
+/// shuffled Owen-scrambled Sobol' per pixel).
 pub const PATH_SAMPLER: &str = "sobol";
 /// Estimators, by name (path mode's depth is set by `max_depth`).
 pub const MODES: [(&str, Mode); 4] = [
@@ -62,8 +63,12 @@ pub struct Settings {
     /// `center`, `area` or `gaussian` (None: the scene's, a Mitsuba film's reconstruction
     /// filter, else `center`).
     pub pixel: Option<String>,
-    /// Strategy over the pixel area.
-    pub pixel_sampler: String,
+    /// Strategy over the pixel area (a point-set sampler: `spp` points per pixel).
+    pub area_sampler: String,
+    /// A pixel sampler (any name `samplab pixels` takes: `zsobol`, `sobol`, `sobol.owen`,
+    /// ...) that draws every dimension of every estimate in place of the strategies; None:
+    /// none, except in path mode ([`PATH_SAMPLER`]).
+    pub pixel_sampler: Option<String>,
     /// Strategy over the lens.
     pub lens_sampler: String,
     /// Strategy over the shutter.
@@ -93,7 +98,8 @@ impl Default for Settings {
             mode: "visibility".into(),
             max_depth: None,
             pixel: None,
-            pixel_sampler: SECONDARY.into(),
+            area_sampler: SECONDARY.into(),
+            pixel_sampler: None,
             lens_sampler: SECONDARY.into(),
             time_sampler: SECONDARY.into(),
             gloss_sampler: SECONDARY.into(),
@@ -117,7 +123,7 @@ fn choose<T: Copy>(name: &'static str, word: &str, table: &[(&str, T)]) -> sampl
 }
 
 /// The sampler `spec` for the setting `name`, its error named by the setting.
-fn sampler(name: &'static str, spec: &str) -> samplab::Result<Box<dyn samplab::Sampler>> {
+fn sampler(name: &'static str, spec: &str) -> samplab::Result<samplab::Sampler> {
     samplab::sampler::build(spec).map_err(|e| samplab::Error::Setting {
         name,
         value: spec.to_string(),
@@ -139,30 +145,16 @@ impl Settings {
         })
     }
 
-    /// The pixel sampler `pixel_sampler` names, prepared for the render, when it names one
-    /// and no point-set sampler (point-set samplers keep their meaning: the pixel area only;
-    /// `pixel.NAME` names the pixel sampler where both lists have NAME). Path mode always
-    /// has one: [`PATH_SAMPLER`] for the default, a pixel sampler's name wherever both lists
-    /// have it, and a point-set sampler is refused.
+    /// The pixel sampler `pixel_sampler` names, prepared for the render; in path mode
+    /// [`PATH_SAMPLER`] where it names none. A point-set sampler that is no sequence is
+    /// refused with a pointer to `area_sampler`, the strategy over the pixel area.
     fn pixels(&self, scene: &Scene, width: usize, height: usize) -> Result<Option<samplab::pixel::Pixels>> {
         let mode = self.mode(scene)?;
-        let path = matches!(mode, Mode::Path { .. });
-        let spec = if path && self.pixel_sampler == SECONDARY { PATH_SAMPLER } else { self.pixel_sampler.as_str() };
-        // a stage (`sobol+shift`) makes a point-set spec
-        let name = spec.split([':', '+']).next().unwrap_or_default();
-        let pixel_sampler = !spec.contains('+') && samplab::pixel::PIXEL_SAMPLERS.lookup(name).is_ok();
-        if path && !pixel_sampler {
-            return Err(samplab::Error::Setting {
-                name: "pixel_sampler",
-                value: spec.to_string(),
-                reason: "path mode draws every dimension from a pixel sampler (see `samplab list pixels`)".into(),
-            }
-            .into());
-        }
-        let point_set = !path && (samplab::sampler::SAMPLERS.lookup(name).is_ok() || spec.contains('+'));
-        if point_set || !pixel_sampler {
-            return Ok(None);
-        }
+        let spec = match (&self.pixel_sampler, mode) {
+            (Some(spec), _) => spec.as_str(),
+            (None, Mode::Path { .. }) => PATH_SAMPLER,
+            (None, _) => return Ok(None),
+        };
         let side = |v: usize| u32::try_from(v).unwrap_or(u32::MAX);
         let film = samplab::pixel::Film {
             width: side(width),
@@ -171,10 +163,14 @@ impl Settings {
             dims: side(crate::render::pixel_dims(self.n, scene.lights.len(), mode)),
         };
         let prepared = samplab::pixel::prepare(spec, film, Seed(self.seed));
-        Ok(Some(prepared.map_err(|e| samplab::Error::Setting {
-            name: "pixel_sampler",
-            value: spec.to_string(),
-            reason: e.to_string(),
+        Ok(Some(prepared.map_err(|e| {
+            let area = match e {
+                samplab::Error::Infeasible { .. } if samplab::sampler::build(spec).is_ok() => {
+                    " (the strategy over the pixel area alone is the area sampler)"
+                }
+                _ => "",
+            };
+            samplab::Error::Setting { name: "pixel_sampler", value: spec.to_string(), reason: format!("{e}{area}") }
         })?))
     }
 
@@ -198,6 +194,7 @@ impl Settings {
         let drawn = format!("not read: the pixel sampler {spec} draws every dimension");
         for (name, value, default) in [
             ("sampler", &self.sampler, SAMPLER),
+            ("area_sampler", &self.area_sampler, SECONDARY),
             ("lens_sampler", &self.lens_sampler, SECONDARY),
             ("time_sampler", &self.time_sampler, SECONDARY),
             ("gloss_sampler", &self.gloss_sampler, SECONDARY),
@@ -230,10 +227,7 @@ impl Settings {
                 Some(word) => choose("pixel", word, &FOOTPRINTS)?,
                 None => scene.footprint.unwrap_or(Footprint::Centre),
             },
-            pixel: match pixels {
-                Some(_) => sampler("pixel_sampler", SECONDARY)?,
-                None => sampler("pixel_sampler", &self.pixel_sampler)?,
-            },
+            area: sampler("area_sampler", &self.area_sampler)?,
             lens: sampler("lens_sampler", &self.lens_sampler)?,
             time: sampler("time_sampler", &self.time_sampler)?,
             gloss: sampler("gloss_sampler", &self.gloss_sampler)?,
@@ -289,7 +283,7 @@ mod tests {
     fn a_setting_the_render_would_not_read_is_refused_and_read_where_it_applies() {
         let d = || Settings { res: Some((4, 3)), ..Settings::default() };
         let path = || Settings { mode: "path".into(), ..d() };
-        let zsobol = || Settings { pixel_sampler: "zsobol".into(), ..d() };
+        let zsobol = || Settings { pixel_sampler: Some("zsobol".into()), ..d() };
         for (s, unread) in [
             (Settings { max_depth: Some(3), ..d() }, "max_depth"),
             (Settings { mode: "direct".into(), range: 2.0, ..d() }, "range"),
@@ -299,6 +293,9 @@ mod tests {
             (Settings { gloss_sampler: "random".into(), ..path() }, "gloss_sampler"),
             (Settings { lens_sampler: "random".into(), ..zsobol() }, "lens_sampler"),
             (Settings { time_sampler: "random".into(), ..zsobol() }, "time_sampler"),
+            (Settings { area_sampler: "jitter".into(), ..zsobol() }, "area_sampler"),
+            (Settings { pixel_sampler: Some("jitter".into()), ..d() }, "pixel_sampler"),
+            (Settings { pixel_sampler: Some("jitter".into()), ..path() }, "pixel_sampler"),
         ] {
             assert_eq!(refused(&s), Some(unread), "{s:?}");
         }
@@ -310,6 +307,9 @@ mod tests {
             Settings { mode: "obscurance".into(), range: 2.0, ..d() },
             Settings { n: 4, sampler: "halton".into(), lens_sampler: "random".into(), ..d() },
             Settings { n: 4, ..zsobol() },
+            Settings { area_sampler: "jitter".into(), ..d() },
+            Settings { pixel_sampler: Some("sobol.owen".into()), ..d() },
+            Settings { pixel_sampler: Some("halton".into()), ..path() },
             Settings { disk_map: Some("polar".into()), ..path() },
         ] {
             assert_eq!(refused(&s), None, "{s:?}");

@@ -218,7 +218,7 @@ fn counts_a_strategy_cannot_make_are_refused_before_any_work() {
     let mut o = Options::new("jitter", 16, 8, 8).unwrap();
     o.footprint = samplab_render::Footprint::Area;
     o.spp = 3;
-    o.pixel = samplab::sampler::build("jitter").unwrap();
+    o.area = samplab::sampler::build("jitter").unwrap();
     assert!(render(&scene, &o, &Progress::SILENT).is_err());
 }
 
@@ -264,7 +264,7 @@ fn an_interleaving_tile_of_regular_points_is_the_regular_pattern_per_pixel() {
         let mut o = Options::new("jitter", 1, 24, 16).unwrap();
         o.footprint = samplab_render::Footprint::Area;
         o.spp = 16;
-        o.pixel = samplab::sampler::build("regular").unwrap();
+        o.area = samplab::sampler::build("regular").unwrap();
         o.interleave = interleave;
         render(&scene, &o, &Progress::SILENT).unwrap().image
     };
@@ -273,7 +273,7 @@ fn an_interleaving_tile_of_regular_points_is_the_regular_pattern_per_pixel() {
     let mut o = Options::new("jitter", 1, 8, 8).unwrap();
     o.footprint = samplab_render::Footprint::Area;
     o.spp = 16;
-    o.pixel = samplab::sampler::build("halton").unwrap();
+    o.area = samplab::sampler::build("halton").unwrap();
     o.interleave = Some((2, 2));
     let e = render(&scene, &o, &Progress::new(&|_| panic!("no row may start"))).unwrap_err().to_string();
     assert!(e.contains("17 of its 64 points") && e.contains("2x2"), "{e}");
@@ -326,7 +326,7 @@ fn a_pixel_sampler_draws_every_dimension_and_converges_to_the_reference() {
         let scene = builtin(name, None).unwrap();
         let converged = options(1).converged("sobol.owen", 64, 1024).unwrap();
         let reference = render(&scene, &converged, &Progress::SILENT).unwrap().image;
-        for spec in ["zsobol", "pixel.sobol", "openqmc.pmjbn", "independent"] {
+        for spec in ["zsobol", "sobol", "openqmc.pmjbn", "independent", "halton.owen"] {
             let rmse = |spp| {
                 let image = render(&scene, &with(&scene, spec, spp, 3), &Progress::SILENT).unwrap().image;
                 image.errors(&reference, false).unwrap().rmse

@@ -311,7 +311,7 @@ pub fn build(options: &Options, stop: &AtomicBool, progress: &Progress) -> Resul
 
 /// The first count from `target` that the sampler can make in 2D (`target` itself where
 /// the counts are a rule of the parameters).
-fn count_from(entry: &SamplerEntry, sampler: &dyn Sampler, target: usize) -> Option<usize> {
+fn count_from(entry: &SamplerEntry, sampler: &Sampler, target: usize) -> Option<usize> {
     let n = match entry.counts {
         Counts::Rule(_) => target,
         counts => counts.first_from(target, 2)?,
@@ -353,7 +353,7 @@ fn measure(
     let mut at: Option<Vec<PointSet>> = None;
     let mut pictured = Vec::new();
     for &target in level.counts() {
-        let Some(n) = count_from(entry, sampler.as_ref(), target) else { continue };
+        let Some(n) = count_from(entry, &sampler, target) else { continue };
         if rows.iter().any(|r: &Row| r.n == n) {
             continue;
         }
@@ -384,7 +384,7 @@ fn measure(
     let low = (n as f64).sqrt() / 2.0;
     let lows: Vec<f64> = radial.iter().enumerate().filter(|(b, _)| (*b + 1) as f64 <= low).map(|(_, v)| *v).collect();
     let measured = Measured {
-        spec: sampler.spec(),
+        spec: sampler.spec().to_string(),
         seed: seed.0,
         n,
         spectrum_sets: sets.len(),
@@ -454,7 +454,7 @@ fn measure_speeds(entries: &[&'static SamplerEntry], stop: &AtomicBool) -> Resul
         let Ok(sampler) = entry.build(&params) else { continue };
         let mut best: Option<Speed> = None;
         for k in (10..=20).step_by(2) {
-            let Some(n) = count_from(entry, sampler.as_ref(), 1 << k) else { break };
+            let Some(n) = count_from(entry, &sampler, 1 << k) else { break };
             let plan = sampler.plan(n, 2)?;
             let mut seconds = f64::INFINITY;
             for run in 0..3u64 {

@@ -12,7 +12,7 @@ fn statistics(c: &mut Criterion) {
     let mut g = c.benchmark_group("spectrum");
     g.sample_size(10);
     for (n, m, res) in [(100_000usize, 2usize, 256usize), (4096, 20, 512), (65536, 2, 128)] {
-        let sets = sampler::generate_sets(sampler::build("random").unwrap().as_ref(), n, 2, Seed(1), m).unwrap();
+        let sets = sampler::generate_sets(&sampler::build("random").unwrap(), n, 2, Seed(1), m).unwrap();
         g.bench_with_input(BenchmarkId::new(format!("{m}x{n}"), res), &sets, |b, sets| {
             b.iter(|| spectrum::statistics(sets, res, Method::Fast { tol: 1e-9 }).unwrap())
         });

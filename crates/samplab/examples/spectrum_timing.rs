@@ -9,7 +9,7 @@ use samplab::spectrum::{self, Method};
 use samplab::{PointSet, Seed, sampler};
 
 fn sets(spec: &str, n: usize, m: usize) -> Vec<PointSet> {
-    sampler::generate_sets(sampler::build(spec).unwrap().as_ref(), n, 2, Seed(1), m).unwrap()
+    sampler::generate_sets(&sampler::build(spec).unwrap(), n, 2, Seed(1), m).unwrap()
 }
 
 fn main() {

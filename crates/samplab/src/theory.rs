@@ -256,7 +256,7 @@ mod tests {
             let f = family.instance(Seed(21), instance).unwrap();
             let n = 16;
             let s = sampler::build(&format!("jitter.gaussian:sigma={sigma}")).unwrap();
-            let estimates: Vec<f64> = sampler::generate_sets(s.as_ref(), n, 2, Seed(5).derive(instance), 200_000)
+            let estimates: Vec<f64> = sampler::generate_sets(&s, n, 2, Seed(5).derive(instance), 200_000)
                 .unwrap()
                 .iter()
                 .map(|set| set.iter().map(|p| f.eval(p)).sum::<f64>() / n as f64)

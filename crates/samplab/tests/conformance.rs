@@ -10,7 +10,7 @@ use samplab::{Error, Seed};
 
 /// A count the entry makes in `d` dimensions, from its declared counts (the first from 16
 /// on), or, for a rule of its parameters, the first from 16 on that it plans.
-fn count_for(e: &SamplerEntry, s: &dyn samplab::Sampler, d: usize) -> usize {
+fn count_for(e: &SamplerEntry, s: &samplab::Sampler, d: usize) -> usize {
     e.counts
         .first_from(16, d)
         .or_else(|| (16..=4096).find(|&n| s.plan(n, d).is_ok()))
@@ -38,7 +38,7 @@ fn every_entry_makes_valid_deterministic_sets() {
         let ds = dims_for(e);
         assert!(!ds.is_empty(), "{}: no testable dimension", e.about.name);
         for d in ds {
-            let n = count_for(e, s.as_ref(), d);
+            let n = count_for(e, &s, d);
             let a = s.generate(n, d, Seed(1)).unwrap_or_else(|err| panic!("{} {d}D: {err}", e.about.name));
             assert_eq!((a.len(), a.dims()), (n, d), "{}", e.about.name);
             assert!(a.in_unit_cube(), "{} {d}D: a point outside [0,1)^d", e.about.name);
@@ -63,7 +63,7 @@ fn randomized_coordinates_on_a_coarse_grid_are_cell_centres_never_0() {
     for e in SAMPLERS.iter().filter(|e| e.randomized) {
         let s = sampler::build(&default_spec(e)).unwrap();
         for d in dims_for(e) {
-            let n = count_for(e, s.as_ref(), d);
+            let n = count_for(e, &s, d);
             for seed in 0..4 {
                 let a = s.generate(n, d, Seed(seed)).unwrap();
                 let scaled = |x: f64, k: i32| x * 2f64.powi(k);
@@ -150,7 +150,7 @@ fn bad_input_errors_name_the_problem() {
 #[test]
 fn parallel_sets_equal_serial_sets() {
     let s = sampler::build("sobol.owen").unwrap();
-    let par = sampler::generate_sets(s.as_ref(), 128, 3, Seed(5), 16).unwrap();
+    let par = sampler::generate_sets(&s, 128, 3, Seed(5), 16).unwrap();
     for (k, p) in par.iter().enumerate() {
         assert_eq!(*p, s.generate(128, 3, Seed(5).derive(k as u64)).unwrap());
     }
@@ -223,7 +223,7 @@ fn specs_round_trip() {
             Err(e) => panic!("{spec}: {e}"),
         };
         let canonical = s.spec();
-        let again = sampler::build(&canonical).unwrap_or_else(|e| panic!("{spec} -> {canonical}: {e}"));
+        let again = sampler::build(canonical).unwrap_or_else(|e| panic!("{spec} -> {canonical}: {e}"));
         assert_eq!(again.spec(), canonical, "{spec}");
         let d = (*s.dims().start()).max(2).min(*s.dims().end());
         let plan = (16..=4096).find_map(|n| s.plan(n, d).ok()).unwrap_or_else(|| panic!("{spec}: no count in {d}D"));

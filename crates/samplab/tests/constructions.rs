@@ -69,7 +69,7 @@ fn kronecker_sequences_of_given_alphas_are_the_formula() {
     }
     // the spec round-trips, and the alphas bound the dimension
     let s = sampler::build(&spec).unwrap();
-    assert_eq!(sampler::build(&s.spec()).unwrap().generate(500, 2, Seed(1)).unwrap(), p);
+    assert_eq!(sampler::build(s.spec()).unwrap().generate(500, 2, Seed(1)).unwrap(), p);
     assert!(s.generate(10, 3, Seed(1)).is_err());
     for bad in ["kronecker:alpha=0.5/1", "kronecker:alpha=0/0.5", "kronecker:alpha=0.5/", "kronecker:alpha=-0.1"] {
         assert!(sampler::build(bad).is_err(), "{bad}");
@@ -406,7 +406,7 @@ fn micro_jitter_moves_each_point_within_its_fraction_of_the_spacing() {
     let s = sampler::build("sobol.owen+microjitter:0.25").unwrap();
     assert_eq!(s.spec(), "sobol.owen+micro-jitter:fraction=0.25");
     assert_eq!(
-        sampler::build(&s.spec()).unwrap().generate(64, 2, Seed(2)).unwrap(),
+        sampler::build(s.spec()).unwrap().generate(64, 2, Seed(2)).unwrap(),
         s.generate(64, 2, Seed(2)).unwrap()
     );
     for bad in ["sobol+micro-jitter:1.5", "sobol+micro-jitter:fraction=x", "nosuch+micro-jitter"] {

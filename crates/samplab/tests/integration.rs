@@ -71,7 +71,7 @@ fn delaunay_piecewise_functions_are_continuous_or_constant_where_expected() {
 }
 
 fn study(samplers: &[&str], integrand: &str, ns: &[usize], sets: usize, instances: usize, seed: u64) -> Vec<Row> {
-    let s: Vec<Box<dyn Sampler>> = samplers.iter().map(|x| sampler::build(x).unwrap()).collect();
+    let s: Vec<Sampler> = samplers.iter().map(|x| sampler::build(x).unwrap()).collect();
     let family = Family::parse(integrand).unwrap();
     experiment::run(
         &Study { samplers: &s, family: (&family).into(), ns, sets, instances, seed: Seed(seed) },
@@ -179,7 +179,7 @@ fn the_stated_standard_errors_are_the_spreads_over_seeds() {
 
 #[test]
 fn bad_studies_are_errors() {
-    let s: Vec<Box<dyn Sampler>> = vec![sampler::build("jitter").unwrap()];
+    let s: Vec<Sampler> = vec![sampler::build("jitter").unwrap()];
     let family = Family::parse("quad").unwrap();
     let run = |ns: &[usize], sets: usize| {
         experiment::run(
@@ -196,7 +196,7 @@ fn bad_studies_are_errors() {
 
 #[test]
 fn a_study_computed_unit_by_unit_through_bytes_equals_the_whole_run() {
-    let s: Vec<Box<dyn Sampler>> = ["random", "jitter"].iter().map(|x| sampler::build(x).unwrap()).collect();
+    let s: Vec<Sampler> = ["random", "jitter"].iter().map(|x| sampler::build(x).unwrap()).collect();
     let family = Family::parse("disk").unwrap();
     let study = Study { samplers: &s, family: (&family).into(), ns: &[16, 64], sets: 20, instances: 3, seed: Seed(4) };
     let whole = experiment::run(&study, &Progress::SILENT).unwrap();

@@ -15,7 +15,7 @@ fn instance(spec: &str) -> Box<dyn Integrand> {
 
 fn predicted(spec: &str, f: &IntegrandSpectrum, n: usize, sets: usize) -> Predicted {
     let s = sampler::build(spec).unwrap();
-    let spectrum = predict::sampler_spectrum(s.as_ref(), n, f.dims, f.res, sets, Seed(5), SILENT).unwrap();
+    let spectrum = predict::sampler_spectrum(&s, n, f.dims, f.res, sets, Seed(5), SILENT).unwrap();
     predict::predict(f, &spectrum).unwrap()
 }
 
@@ -103,7 +103,7 @@ fn shifted_sets_on_trigonometric_integrands_are_predicted_exactly() {
             for n in [16, 64, 256, 1024] {
                 let p = predicted(sampler_spec, &spectrum, n, 8);
                 // measured over 4000 shifted realizations
-                let m = predict::measure(s.as_ref(), f, n, 4000, Seed(9), true, SILENT).unwrap();
+                let m = predict::measure(&s, f, n, 4000, Seed(9), true, SILENT).unwrap();
                 // 3 standard errors, or the formula's rounding (a few ulps of Var(f) / n)
                 // where the set integrates the integrand exactly (a lattice that does not
                 // alias its frequencies) and both are 0 but for rounding
@@ -121,7 +121,7 @@ fn shifted_sets_on_trigonometric_integrands_are_predicted_exactly() {
                     continue;
                 }
                 // the same sum by brute force over the shifts, for the same 8 realizations
-                let sets = sampler::generate_sets(s.as_ref(), n, 2, Seed(5), 8).unwrap();
+                let sets = sampler::generate_sets(&s, n, 2, Seed(5), 8).unwrap();
                 let brute: f64 = sets.iter().map(|set| brute_force(f, set.as_slice(), 16)).sum::<f64>() / 8.0;
                 // to 1e-10, or to the formula's rounding
                 assert!(
@@ -249,7 +249,7 @@ fn jittered_sampling_of_a_disk_converges_as_n_to_the_minus_three_halves() {
     assert!((slope + 1.5).abs() <= 0.05, "predicted exponent {slope}");
     let jitter = sampler::build("jitter").unwrap();
     for (n, (_, p)) in ns.iter().zip(&points).take(2) {
-        let m = predict::measure(jitter.as_ref(), f.as_ref(), *n, 4000, Seed(3), false, SILENT).unwrap();
+        let m = predict::measure(&jitter, f.as_ref(), *n, 4000, Seed(3), false, SILENT).unwrap();
         assert!(
             (p / m.variance - 1.0).abs() <= 0.2,
             "n={n}: predicted {p:.4e}, measured {:.4e} +- {:.1e}",
@@ -268,15 +268,15 @@ fn bad_grids_and_mismatched_spectra_are_refused() {
     );
     let a = predict::integrand_spectrum(f.as_ref(), 16).unwrap();
     let random = sampler::build("random").unwrap();
-    let s = predict::sampler_spectrum(random.as_ref(), 64, 2, 32, 8, Seed(1), SILENT).unwrap();
+    let s = predict::sampler_spectrum(&random, 64, 2, 32, 8, Seed(1), SILENT).unwrap();
     assert!(predict::predict(&a, &s).is_err());
-    let e = predict::sampler_spectrum(random.as_ref(), 64, 2, 16, 4, Seed(1), SILENT).unwrap_err().to_string();
+    let e = predict::sampler_spectrum(&random, 64, 2, 16, 4, Seed(1), SILENT).unwrap_err().to_string();
     assert!(e.starts_with("sets = 4"), "{e}");
 }
 
 fn spectra(spec: &str, ns: &[usize], res: usize, sets: usize) -> Vec<predict::SamplerSpectrum> {
     let s = sampler::build(spec).unwrap();
-    ns.iter().map(|&n| predict::sampler_spectrum(s.as_ref(), n, 2, res, sets, Seed(7), SILENT).unwrap()).collect()
+    ns.iter().map(|&n| predict::sampler_spectrum(&s, n, 2, res, sets, Seed(7), SILENT).unwrap()).collect()
 }
 
 #[test]
@@ -318,9 +318,7 @@ fn the_best_case_exponent_is_what_jitter_shows_on_a_band_limited_integrand() {
     let s = sampler::build("jitter").unwrap();
     let points: Vec<(f64, f64)> = ns
         .iter()
-        .map(|&n| {
-            (n as f64, predict::measure(s.as_ref(), f.as_ref(), n, 4000, Seed(2), true, SILENT).unwrap().variance)
-        })
+        .map(|&n| (n as f64, predict::measure(&s, f.as_ref(), n, 4000, Seed(2), true, SILENT).unwrap().variance))
         .collect();
     let (slope, _) = samplab::experiment::loglog_fit(&points).unwrap();
     assert!((slope - best).abs() <= 0.1, "measured {slope}, predicted best {best}");
@@ -344,10 +342,10 @@ fn the_radial_form_is_the_torus_sum_for_isotropic_spectra() {
     // of the torus sum, and within 20% of the measured variance of shifted sets
     let poisson = sampler::build("poisson.fast").unwrap();
     for n in [256, 1024] {
-        let s = predict::sampler_spectrum(poisson.as_ref(), n, 2, 64, 64, Seed(4), SILENT).unwrap();
+        let s = predict::sampler_spectrum(&poisson, n, 2, 64, 64, Seed(4), SILENT).unwrap();
         let (a, b) = (predict::predict(&spectrum, &s).unwrap(), predict::predict_radial(&spectrum, &s).unwrap());
         assert!((a.variance - b.variance).abs() <= 3.0 * a.se.hypot(b.se), "n={n}: {a:?} {b:?}");
-        let m = predict::measure(poisson.as_ref(), f.as_ref(), n, 2000, Seed(8), true, SILENT).unwrap();
+        let m = predict::measure(&poisson, f.as_ref(), n, 2000, Seed(8), true, SILENT).unwrap();
         assert!((b.variance / m.variance - 1.0).abs() <= 0.2, "n={n}: radial {b:?}, measured {m:?}");
     }
 }

@@ -6,7 +6,7 @@ use samplab::spectrum::{self, Method};
 use samplab::{PointSet, Seed, sampler};
 
 fn sets(spec: &str, n: usize, m: usize, seed: u64) -> Vec<PointSet> {
-    sampler::generate_sets(sampler::build(spec).unwrap().as_ref(), n, 2, Seed(seed), m).unwrap()
+    sampler::generate_sets(&sampler::build(spec).unwrap(), n, 2, Seed(seed), m).unwrap()
 }
 
 #[test]

@@ -1211,8 +1211,10 @@ def render(scene: str, light: Optional[str] = None, reference_samples: Optional[
         ``n`` (16), ``spp`` (1), ``mode`` (``"visibility"``, ``"direct"``,
         ``"obscurance"``, ``"path"``), ``max_depth`` (the scene's ``path`` integrator's,
         else 5), ``pixel`` (``"center"``, ``"area"``, ``"gaussian"``; by default a Mitsuba
-        scene's film filter, else ``"center"``), ``pixel_sampler``, ``lens_sampler``,
-        ``time_sampler``, ``gloss_sampler`` (``"sobol.owen"``), ``pattern`` (``"estimate"``, ``"pixel"``),
+        scene's film filter, else ``"center"``), ``area_sampler``, ``lens_sampler``,
+        ``time_sampler``, ``gloss_sampler`` (point-set strategies, ``"sobol.owen"``),
+        ``pixel_sampler`` (a pixel sampler that draws every dimension, e.g. ``"zsobol"``;
+        none by default, ``"sobol"`` in path mode), ``pattern`` (``"estimate"``, ``"pixel"``),
         ``disk_map``, ``range``, ``interleave`` ((w, h)), ``res`` ((width, height)),
         ``seed``. A setting moved from its default that the render would not read
         (``max_depth`` outside path mode, ``range`` outside obscurance, the strategies

@@ -57,7 +57,7 @@ pub(crate) fn study_units(
     (sets, instances): (usize, usize),
     seed: Seed,
 ) -> Result<(Vec<UnitStats>, Vec<Row>), Error> {
-    let s: Vec<Box<dyn Sampler>> = samplers.iter().map(|x| sampler::build(x)).collect::<Result<_, _>>()?;
+    let s: Vec<Sampler> = samplers.iter().map(|x| sampler::build(x)).collect::<Result<_, _>>()?;
     let family = Family::parse(integrand)?;
     let report = |k| ctx.tick(k);
     let progress = Progress::new(&report).stopped_by(ctx.stop);

@@ -76,7 +76,7 @@ impl Row {
 }
 
 fn variance(ctx: &Ctx) -> Result<Output, Error> {
-    let samplers: Vec<Box<dyn Sampler>> = match ctx.scale {
+    let samplers: Vec<Sampler> = match ctx.scale {
         crate::Scale::Fast => FAST.iter().map(|s| samplab::sampler::build(s)).collect::<Result<_, _>>()?,
         crate::Scale::Full => predict::every_sampler(2),
     };
@@ -102,14 +102,14 @@ fn variance(ctx: &Ctx) -> Result<Output, Error> {
             let seed = ctx.seed.derive(k as u64).derive(n as u64);
             let stop = Progress::until(ctx.stop);
             let sets = s.plan(n, 2)?.generate_sets(seed, MEASURED_SETS, &stop)?;
-            let spectrum = match predict::closed_form(&s.spec(), n, 2, RES) {
+            let spectrum = match predict::closed_form(s.spec(), n, 2, RES) {
                 Some(closed) => closed,
-                None => predict::spectrum_of_sets(&s.spec(), &sets[..SPECTRUM_SETS], RES, &stop)?,
+                None => predict::spectrum_of_sets(s.spec(), &sets[..SPECTRUM_SETS], RES, &stop)?,
             };
             for (i, (_, f)) in integrands.iter().enumerate() {
                 rows.push(Row {
                     integrand: i,
-                    sampler: s.spec(),
+                    sampler: s.spec().to_string(),
                     n,
                     predicted: predict::predict(&spectra[i], &spectrum)?,
                     shifted: predict::measure_sets(f.as_ref(), &sets, seed, true, &stop)?,
@@ -119,7 +119,7 @@ fn variance(ctx: &Ctx) -> Result<Output, Error> {
             spectra_of_s.push(spectrum);
             ctx.advance(1)?;
         }
-        rates.push((s.spec(), predict::small_frequency(&spectra_of_s.iter().collect::<Vec<_>>())));
+        rates.push((s.spec().to_string(), predict::small_frequency(&spectra_of_s.iter().collect::<Vec<_>>())));
     }
     let names: Vec<&str> = integrands.iter().map(|(name, _)| name.as_str()).collect();
     let mut claims = vec![exact_claim(&rows, INTEGRANDS.len() - 1, &names)];

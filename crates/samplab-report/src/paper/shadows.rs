@@ -63,7 +63,7 @@ impl<'a> Setup<'a> {
         let build = |spec: &str| samplab::sampler::build(spec).map_err(|e| Error::Invalid(e.to_string()));
         let mut o = Options::new("sobol.owen", n, self.size.0, self.size.1).map_err(render_error)?;
         o.light = build(light)?;
-        o.pixel = build(self.pixel)?;
+        o.area = build(self.pixel)?;
         o.lens = build(self.lens)?;
         o.time = build(self.time)?;
         o.gloss = build(self.gloss)?;

@@ -1,7 +1,5 @@
 //! Which counts a construction makes: the typed rule each registry entry declares.
 
-use crate::error::{Error, Result};
-
 /// The largest point count samplab will allocate for one set (2^32 points).
 pub const MAX_POINTS: usize = 1 << 32;
 
@@ -40,16 +38,15 @@ impl Counts {
     /// Whether the rule admits `n` points in `dims` dimensions.
     ///
     /// # Errors
-    /// [`Error::InvalidCount`] naming the rule and the nearest valid counts (the sampler's
-    /// name left for the caller).
-    pub fn check(&self, n: usize, dims: usize) -> Result<()> {
-        let invalid = |reason: String| Err(Error::InvalidCount { sampler: String::new(), n, dims, reason });
+    /// Why not, in words: the rule and the nearest valid counts (the sampler makes the
+    /// error that names it).
+    pub fn check(&self, n: usize, dims: usize) -> Result<(), String> {
         match *self {
             Counts::Any(_) | Counts::Rule(_) => Ok(()),
-            Counts::AtMost { most, why } if n as u64 > most => invalid(why.into()),
+            Counts::AtMost { most, why } if n as u64 > most => Err(why.into()),
             Counts::AtMost { .. } => Ok(()),
-            Counts::Grid => exact_root(n, dims).map(|_| ()).or_else(|(lo, hi)| {
-                invalid(format!("a {dims}D grid needs n = k^{dims}; the nearest valid counts are {lo} and {hi}"))
+            Counts::Grid => exact_root(n, dims).map(|_| ()).map_err(|(lo, hi)| {
+                format!("a {dims}D grid needs n = k^{dims}; the nearest valid counts are {lo} and {hi}")
             }),
             Counts::Listed { rule, list } => {
                 if list(dims, n).take_while(|&c| c <= n).any(|c| c == n) {
@@ -62,7 +59,7 @@ impl Counts {
                     (Some(c), None) | (None, Some(c)) => format!("try {c}"),
                     (None, None) => "no count fits".into(),
                 };
-                invalid(format!("{rule}: {near}"))
+                Err(format!("{rule}: {near}"))
             }
         }
     }
@@ -94,7 +91,7 @@ impl Counts {
 }
 
 /// The integer k with k^d == n, if there is one; otherwise the two nearest valid counts.
-pub(crate) fn exact_root(n: usize, dims: usize) -> std::result::Result<usize, (usize, usize)> {
+pub(crate) fn exact_root(n: usize, dims: usize) -> Result<usize, (usize, usize)> {
     let guess = (n as f64).powf(1.0 / dims as f64).round() as usize;
     let pow = |k: usize| k.checked_pow(dims as u32).unwrap_or(usize::MAX);
     for k in guess.saturating_sub(1)..=guess + 1 {

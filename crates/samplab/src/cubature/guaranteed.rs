@@ -110,7 +110,7 @@ pub(super) type Steps = (Vec<(usize, f64, f64)>, bool);
 impl Run<'_> {
     pub(super) fn run(
         &self,
-        sampler: &dyn Sampler,
+        sampler: &Sampler,
         seed: Seed,
         done: impl Fn(f64, f64) -> bool,
         progress: &Progress,

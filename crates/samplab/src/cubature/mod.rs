@@ -234,12 +234,12 @@ pub fn cubature(f: &dyn Integrand, settings: &Settings, progress: &Progress) -> 
     let sampler = sampler::build(spec)?;
     let tolerance = |estimate: f64| settings.abs_tol.max(settings.rel_tol * estimate.abs());
     let (steps, converged, evaluations, kind) = match settings.rule {
-        Rule::Replicated => replicated(f, sampler.as_ref(), settings, progress)?,
+        Rule::Replicated => replicated(f, &sampler, settings, progress)?,
         rule => {
-            let transform = guaranteed_sampler(rule, sampler.as_ref(), f.dims())?;
+            let transform = guaranteed_sampler(rule, &sampler, f.dims())?;
             let run = guaranteed::Run { f, transform, min_n: settings.min_n(), max_n: settings.max_n };
             let (steps, converged) =
-                run.run(sampler.as_ref(), settings.seed, |estimate, bound| bound <= tolerance(estimate), progress)?;
+                run.run(&sampler, settings.seed, |estimate, bound| bound <= tolerance(estimate), progress)?;
             let evaluations = steps.last().map_or(0, |s| s.0);
             let paper = if rule == Rule::Net {
                 "Walsh coefficients of a digital net (Hickernell & Jimenez Rugama 2016)"
@@ -297,8 +297,9 @@ pub fn reference(f: &dyn Integrand, progress: &Progress) -> Result<f64> {
 /// The transform a guaranteed rule needs of `sampler`, or why it cannot use it: a net in
 /// base 2 (Walsh) or a lattice (Fourier), a sequence in natural order, randomized so that
 /// its points are not the same for every seed.
-fn guaranteed_sampler(rule: Rule, sampler: &dyn sampler::Sampler, d: usize) -> Result<guaranteed::Transform> {
-    let spec = sampler.plan(2, d)?.spec();
+fn guaranteed_sampler(rule: Rule, sampler: &sampler::Sampler, d: usize) -> Result<guaranteed::Transform> {
+    let plan = sampler.plan(2, d)?;
+    let spec = plan.spec();
     let family = spec.split(':').next().unwrap_or_default();
     let (transform, allowed): (_, &[&str]) = match rule {
         Rule::Net => (guaranteed::Transform::Walsh, &["net.lms", "net.xor"]),
@@ -307,7 +308,7 @@ fn guaranteed_sampler(rule: Rule, sampler: &dyn sampler::Sampler, d: usize) -> R
     if !allowed.contains(&family) || spec.contains("base=") && !spec.contains("base=2") {
         return Err(Error::Setting {
             name: "sampler",
-            value: spec,
+            value: spec.to_string(),
             reason: format!(
                 "the {} rule needs a randomized sequence in natural order of its kind: {}",
                 if rule == Rule::Net { "net" } else { "lattice" },
@@ -330,7 +331,7 @@ fn replicated_bytes(n: usize, d: usize, r: usize) -> u128 {
 /// The replicated rule: R randomizations, Student's t interval over their means.
 fn replicated(
     f: &dyn Integrand,
-    sampler: &dyn sampler::Sampler,
+    sampler: &sampler::Sampler,
     settings: &Settings,
     progress: &Progress,
 ) -> Result<Outcome> {
@@ -376,7 +377,7 @@ fn replicated(
         if runs.iter().all(|run| run.1 == runs[0].1) {
             return Err(Error::Setting {
                 name: "sampler",
-                value: plan.spec(),
+                value: plan.spec().to_string(),
                 reason: "its randomizations give the same estimate: a deterministic sampler has no spread to bound \
                          the error by (use a randomized one: sobol.owen, halton.owen, lattice.shift, random, ...)"
                     .into(),

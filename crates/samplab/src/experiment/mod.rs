@@ -89,7 +89,7 @@ impl Integrand for Borrowed<'_> {
 /// A study: samplers x counts on one integrand family.
 pub struct Study<'a> {
     /// Samplers by name (their specs).
-    pub samplers: &'a [Box<dyn Sampler>],
+    pub samplers: &'a [Sampler],
     /// The integrands.
     pub family: Integrands<'a>,
     /// The counts N.
@@ -372,7 +372,7 @@ impl Prepared<'_> {
         let (s, c, k) = self.split(u);
         let (sampler, n, f) = (&self.study.samplers[s], self.study.ns[c], &self.instances[k]);
         let spec = sampler.spec();
-        let base = self.study.seed.derive_str(&spec).derive(n as u64).derive(k as u64);
+        let base = self.study.seed.derive_str(spec).derive(n as u64).derive(k as u64);
         let plan = sampler.plan(n, self.study.family.dims())?;
         let exact = f.exact();
         let estimates: Vec<f64> = (0..self.study.sets as u64)
@@ -393,7 +393,7 @@ impl Prepared<'_> {
             variance: stats.sd * stats.sd,
             mse,
             exact,
-            prediction: predict(&spec, f.as_ref(), n).map_or(f64::NAN, |p| p.value),
+            prediction: predict(spec, f.as_ref(), n).map_or(f64::NAN, |p| p.value),
         })
     }
 
@@ -423,10 +423,7 @@ impl Prepared<'_> {
             return Err(Error::Invalid(format!("{} unit results for a study of {} units", units.len(), self.units())));
         }
         let pairs = self.study.samplers.iter().flat_map(|s| self.study.ns.iter().map(move |&n| (s.spec(), n)));
-        Ok(pairs
-            .zip(units.chunks_exact(self.study.instances))
-            .map(|((spec, n), per)| self.row(&spec, n, per))
-            .collect())
+        Ok(pairs.zip(units.chunks_exact(self.study.instances)).map(|((spec, n), per)| self.row(spec, n, per)).collect())
     }
 
     /// The row of (sampler `spec`, count `n`) from its instances' statistics.

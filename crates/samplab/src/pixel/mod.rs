@@ -363,11 +363,10 @@ pub fn prepare_with(spec: &str, film: Film, seed: Seed, progress: &Progress<'_>)
     };
     let spec = canonical(&entry.about, &params);
     film.check()?;
-    entry.spp.check(film.spp as usize, 2).map_err(|e| match e {
-        Error::InvalidCount { reason, .. } => {
-            Error::Setting { name: "spp", value: film.spp.to_string(), reason: format!("{spec}: {reason}") }
-        }
-        other => other,
+    entry.spp.check(film.spp as usize, 2).map_err(|reason| Error::Setting {
+        name: "spp",
+        value: film.spp.to_string(),
+        reason: format!("{spec}: {reason}"),
     })?;
     if film.dims > entry.max_dims {
         return Err(Error::InvalidDims { sampler: spec, dims: film.dims as usize, supported: entry.dims() });

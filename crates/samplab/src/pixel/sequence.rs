@@ -32,7 +32,7 @@ pub fn pixel_seed(seed: Seed, pixel: [u32; 2], frame: u32) -> Seed {
 pub(crate) fn prepare(spec: &str, film: Film, seed: Seed) -> Result<Pixels> {
     let sampler = crate::sampler::build(spec)?;
     let not_a_sequence = || Error::Infeasible {
-        sampler: sampler.spec(),
+        sampler: sampler.spec().to_string(),
         reason: "a set, not a sequence: a point set serves as a pixel sampler when it is a sequence with random \
                  access (sobol.owen, halton.owen, net.lms, lattice.shift, kronecker, ...)"
             .into(),
@@ -48,7 +48,7 @@ pub(crate) fn prepare(spec: &str, film: Film, seed: Seed) -> Result<Pixels> {
     if plan.sample_at(seed, 0, 0).is_none() {
         return Err(not_a_sequence());
     }
-    let spec = plan.spec();
+    let spec = plan.spec().to_string();
     let inner = Family::from(PerPixel { plan, keys: Keys::new(seed, 0) });
     Ok(Pixels { spec, film, seed, inner, padding: independent::padding(seed) })
 }

@@ -225,7 +225,7 @@ pub struct SamplerSpectrum {
 /// # Errors
 /// A count the sampler refuses, a bad resolution, fewer than 8 sets, or a stop.
 pub fn sampler_spectrum(
-    sampler: &dyn Sampler,
+    sampler: &Sampler,
     n: usize,
     dims: usize,
     res: usize,
@@ -233,7 +233,7 @@ pub fn sampler_spectrum(
     seed: Seed,
     progress: &Progress,
 ) -> Result<SamplerSpectrum> {
-    spectrum_of_plan(&sampler.spec(), &sampler.plan(n, dims)?, res, sets, seed, None, progress)
+    spectrum_of_plan(sampler.spec(), &sampler.plan(n, dims)?, res, sets, seed, None, progress)
 }
 
 /// [`sampler_spectrum`] of a plan, through `cache` when given (a measured spectrum found
@@ -502,7 +502,7 @@ pub fn small_frequency(spectra: &[&SamplerSpectrum]) -> Option<SmallFrequency> {
 /// # Errors
 /// A count the sampler refuses, dimensions that differ from the integrand's, or a stop.
 pub fn measure(
-    sampler: &dyn Sampler,
+    sampler: &Sampler,
     f: &dyn Integrand,
     n: usize,
     sets: usize,

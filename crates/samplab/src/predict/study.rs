@@ -15,7 +15,7 @@ use crate::seed::Seed;
 
 /// Every registered sampler, at its default parameters, that makes sets of `dims`
 /// dimensions (what `samplab predict --all` ranks).
-pub fn every_sampler(dims: usize) -> Vec<Box<dyn Sampler>> {
+pub fn every_sampler(dims: usize) -> Vec<Sampler> {
     crate::sampler::SAMPLERS
         .iter()
         .filter_map(|e| crate::sampler::build(e.about.name).ok())
@@ -28,7 +28,7 @@ pub fn every_sampler(dims: usize) -> Vec<Box<dyn Sampler>> {
 /// integrands (and measured sets too), and the (sampler, count) pairs run in parallel.
 pub struct Study<'a> {
     /// The samplers.
-    pub samplers: &'a [Box<dyn Sampler>],
+    pub samplers: &'a [Sampler],
     /// The integrands (one instance each) and their specs.
     pub integrands: &'a [(&'a dyn Integrand, String)],
     /// The counts n.
@@ -184,7 +184,7 @@ impl Study<'_> {
             match self.ns.iter().map(|&n| s.plan(n, dims)).collect::<Result<Vec<_>>>() {
                 Ok(plans) => tasks.extend(plans.into_iter().map(|plan| (s, plan))),
                 Err(bad) => {
-                    skipped.push((s.spec(), bad.to_string()));
+                    skipped.push((s.spec().to_string(), bad.to_string()));
                     progress.advance((self.ns.len() * self.per_pair()) as u64)?;
                 }
             }
@@ -193,8 +193,8 @@ impl Study<'_> {
             .par_iter()
             .map(|(s, plan)| {
                 let spec = s.spec();
-                let seed = self.seed.derive_str(&spec).derive(plan.n() as u64);
-                let spectrum = spectrum_of_plan(&spec, plan, self.res, self.sets, seed, self.cache, progress)?;
+                let seed = self.seed.derive_str(spec).derive(plan.n() as u64);
+                let spectrum = spectrum_of_plan(spec, plan, self.res, self.sets, seed, self.cache, progress)?;
                 let measured = match self.measure {
                     Some((m, shift)) => {
                         let sets = plan.generate_sets(seed.derive(1), m, &Progress::SILENT)?;

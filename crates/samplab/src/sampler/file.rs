@@ -29,18 +29,14 @@ impl Construction for Saved {
     fn dims(&self) -> RangeInclusive<usize> {
         self.set.dims()..=self.set.dims()
     }
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+    fn check_count(&self, shape: &Shape) -> Result<()> {
+        let n = shape.n();
         if n != self.set.len() {
-            return Err(Error::InvalidCount {
-                sampler: String::new(),
-                n,
-                dims,
-                reason: format!("the saved set has {} points", self.set.len()),
-            });
+            return Err(shape.invalid_count(format!("the saved set has {} points", self.set.len())));
         }
         Ok(())
     }
-    fn prepare(&self, _shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, _shape: &Shape) -> Result<Box<dyn Prepared>> {
         Ok(Box::new(Replay { set: Arc::clone(&self.set) }))
     }
 }

@@ -1,6 +1,6 @@
 //! Samplers: every strategy of the four papers plus the modern low-discrepancy ones.
 //!
-//! Planned, then filled (as RustFFT's planner): `plan` (on `dyn Sampler`) checks a count and a
+//! Planned, then filled (as RustFFT's planner): [`Sampler::plan`] checks a count and a
 //! dimension once and returns a [`Plan`], which fills buffers from seeds:
 //! - [`Plan::fill`] / [`Plan::generate`]: a batch of `n` points in `d` dimensions for a seed;
 //! - [`Plan::generate_sets`] (or [`Plan::stack`], in one buffer): `m` independent
@@ -10,7 +10,7 @@
 //!   progressive sequences: Halton, Sobol', nets, the lattice sequence), from the same
 //!   prepared tables; it equals the batch bit for bit.
 //!
-//! The [`Plan`] owns everything prepared before a seed is known ([`Sampler::prepare`]:
+//! The [`Plan`] owns everything prepared before a seed is known ([`Construction::prepare`]:
 //! generating vectors, matrices, digit tables): no sampler keeps a process-wide cache.
 //!
 //! ```
@@ -42,15 +42,17 @@
 //! The mathematics under the families (generating matrices, digit tables, scrambles, CBC
 //! searches) is in [`crate::construct`], which the pixel samplers read as well.
 //!
-//! A sampler outside samplab implements [`Sampler`] (its documentation has one); a built-in
-//! construction implements the crate's `Construction` and is named by its entry.
+//! One trait, [`Construction`], describes every construction, built-in or written outside
+//! samplab (its documentation has one); a [`Sampler`] is a construction with its spec,
+//! named by its registry entry or by [`Sampler::new`].
 
 use std::fmt::Debug;
 use std::ops::RangeInclusive;
+use std::sync::Arc;
 
 use rayon::prelude::*;
 
-use crate::construct::MAX_POINTS;
+use crate::construct::{Counts, MAX_POINTS};
 use crate::error::{Error, Result};
 use crate::points::PointSet;
 use crate::progress::Progress;
@@ -75,13 +77,16 @@ pub static SAMPLERS: crate::registry::Registry<SamplerEntry> = crate::registry::
 
 pub use registry::{SamplerEntry, build, inputs, randomized};
 
-/// The count and dimension a plan was checked for. Only `plan` (on `dyn Sampler`) makes
-/// one, so [`Sampler::prepare`], which takes it, is reached only after every check passed:
-/// the shape is the token that keeps the checks, for samplers written outside samplab too.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// The count and dimension a plan was checked for, and the spec of the sampler it is
+/// for. Only [`Sampler::plan`] makes one, so [`Construction::prepare`], which takes it, is
+/// reached only after every check passed: the shape is the token that keeps the checks, for
+/// constructions written outside samplab too. A construction's errors name its sampler
+/// where they are made ([`Shape::invalid_count`], [`Shape::infeasible`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Shape {
     n: usize,
     dims: usize,
+    sampler: Arc<str>,
 }
 
 impl Shape {
@@ -94,20 +99,40 @@ impl Shape {
     pub fn dims(&self) -> usize {
         self.dims
     }
+
+    /// The spec of the sampler being planned.
+    pub fn sampler(&self) -> &str {
+        &self.sampler
+    }
+
+    /// The error for a count the construction cannot make, `reason` in words (the nearest
+    /// counts that work, where known).
+    pub fn invalid_count(&self, reason: impl Into<String>) -> Error {
+        Error::InvalidCount { sampler: self.sampler.to_string(), n: self.n, dims: self.dims, reason: reason.into() }
+    }
+
+    /// The error for a construction that fails for this shape (or, in a fill, for a seed).
+    pub fn infeasible(&self, reason: impl Into<String>) -> Error {
+        Error::Infeasible { sampler: self.sampler.to_string(), reason: reason.into() }
+    }
 }
 
-/// A sampling strategy: an immutable value; randomness comes from the seed. Make points by
-/// planning first (`plan` on `dyn Sampler`: every check, then [`Sampler::prepare`], once),
-/// then filling from seeds, as often as needed.
+/// A construction: a sampling strategy without its name, an immutable value whose
+/// randomness comes from the seed. A [`Sampler`] is a construction with its spec; every
+/// built-in one is named by its registry entry ([`build`]), and one written outside
+/// samplab by [`Sampler::new`].
 ///
-/// The trait is open: a sampler written outside samplab implements `spec`, `dims` and
+/// Make points by planning first ([`Sampler::plan`]: every check, then
+/// [`Construction::prepare`], once), then filling from seeds, as often as needed.
+///
+/// The trait is open: a construction written outside samplab implements `dims` and
 /// `prepare` (and `check_count` when not every count works), and is then planned, measured
 /// and integrated like a built-in one:
 ///
 /// ```
 /// use std::ops::RangeInclusive;
 /// use samplab::discrepancy::{self, Limits, Metric};
-/// use samplab::sampler::{self, Prepared, Sampler, Shape};
+/// use samplab::sampler::{self, Construction, Prepared, Sampler, Shape};
 /// use samplab::spectrum::{self, Method};
 /// use samplab::{Result, Seed, progress::Progress};
 ///
@@ -118,14 +143,17 @@ impl Shape {
 ///     a: u64,
 /// }
 ///
-/// impl Sampler for Centred {
-///     fn spec(&self) -> String {
-///         format!("centred:a={}", self.a)
-///     }
+/// impl Construction for Centred {
 ///     fn dims(&self) -> RangeInclusive<usize> {
 ///         2..=2
 ///     }
-///     fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+///     fn check_count(&self, shape: &Shape) -> Result<()> {
+///         match shape.n() {
+///             1 => Err(shape.invalid_count("a lattice needs 2 points or more")),
+///             _ => Ok(()),
+///         }
+///     }
+///     fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
 ///         let (n, a) = (shape.n() as f64, self.a as f64);
 ///         Ok(sampler::from_fill(move |_seed, out| {
 ///             for (i, p) in out.chunks_exact_mut(2).enumerate() {
@@ -138,8 +166,9 @@ impl Shape {
 ///     }
 /// }
 ///
-/// let mine: Box<dyn Sampler> = Box::new(Centred { a: 13 });
+/// let mine = Sampler::new("centred:a=13", Centred { a: 13 });
 /// assert!(mine.plan(64, 3).is_err()); // the dimension check holds for it too
+/// assert!(mine.plan(1, 2).unwrap_err().to_string().starts_with("centred:a=13")); // and names it
 /// let plan = mine.plan(64, 2)?;
 /// let points = plan.generate(Seed(1))?;
 /// let star = discrepancy::compute(&Metric::parse("star")?, &points, Limits::default())?;
@@ -149,30 +178,28 @@ impl Shape {
 /// assert!((st.periodogram[8 * 16 + 8] - 1.0).abs() < 1e-12); // the DC of a set is 1
 /// # Ok::<(), samplab::Error>(())
 /// ```
-pub trait Sampler: Send + Sync + Debug {
-    /// The canonical spec (name and parameters), for messages and headers.
-    fn spec(&self) -> String;
-
-    /// The dimensions this method supports.
+pub trait Construction: Send + Sync + Debug {
+    /// The dimensions this construction supports.
     fn dims(&self) -> RangeInclusive<usize>;
 
-    /// Whether exactly `n` points can be made in `dims` dimensions (the dimension is
-    /// already checked); a count the method cannot make is an error naming the nearest
-    /// counts that work (never rounded).
+    /// Whether exactly `shape.n()` points can be made in `shape.dims()` dimensions (the
+    /// dimension is already checked); a count the construction cannot make is an error
+    /// naming the nearest counts that work (never rounded): [`Shape::invalid_count`].
     ///
     /// # Errors
-    /// [`Error::InvalidCount`] for a count the method cannot make.
-    fn check_count(&self, _n: usize, _dims: usize) -> Result<()> {
+    /// [`Error::InvalidCount`] for a count the construction cannot make.
+    fn check_count(&self, _shape: &Shape) -> Result<()> {
         Ok(())
     }
 
     /// Everything a set of `shape` needs before any seed is known (generating vectors,
     /// matrices, digit tables), built once; the [`Plan`] owns it, and every fill, stream
-    /// and random access reads it. Called only by `plan`, after the checks.
+    /// and random access reads it. Called only by [`Sampler::plan`], after the checks.
     ///
     /// # Errors
-    /// Tables that cannot be built (a construction that fails for this count).
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>>;
+    /// Tables that cannot be built (a construction that fails for this count:
+    /// [`Shape::infeasible`]).
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>>;
 
     /// The closed form of the variance of the spectrum of `n` points in `dims` dimensions,
     /// where one is known (Gaussian and box jitter: Subr & Kautz 2013 eqs. 9 and 11 in their
@@ -182,30 +209,126 @@ pub trait Sampler: Send + Sync + Debug {
     }
 }
 
-/// A built-in construction: a [`Sampler`] without its name. The registry gives it one: a
-/// spec resolves to an entry and its parameters, and [`registry::Registered`] wraps the
-/// construction the entry builds with them, deriving its spec from both (so no
-/// construction prints or stores its own name). A construction's errors leave the
-/// sampler's name empty; the registered sampler fills it in.
-pub(crate) trait Construction: Send + Sync + Debug {
-    /// As [`Sampler::dims`].
-    fn dims(&self) -> RangeInclusive<usize>;
+/// A sampler: a [`Construction`] with its spec (name and parameters, for messages and
+/// headers, and in every error its construction makes). [`build`] makes the built-in ones
+/// from a spec; [`Sampler::new`] names one written outside samplab.
+#[derive(Debug)]
+pub struct Sampler {
+    spec: Arc<str>,
+    /// The registry entry's counts, checked before the construction's own rule (none for a
+    /// construction outside samplab, or a stage: it makes the counts of the sampler before it).
+    counts: Option<Counts>,
+    construction: Box<dyn Construction>,
+}
 
-    /// As [`Sampler::check_count`].
-    fn check_count(&self, _n: usize, _dims: usize) -> Result<()> {
-        Ok(())
+impl Sampler {
+    /// The construction `construction` under the spec `spec`.
+    pub fn new(spec: impl Into<String>, construction: impl Construction + 'static) -> Sampler {
+        Sampler { spec: spec.into().into(), counts: None, construction: Box::new(construction) }
     }
 
-    /// As [`Sampler::prepare`].
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>>;
+    /// A registered construction: its entry's `counts` checked first.
+    pub(crate) fn registered(spec: String, counts: Option<Counts>, construction: Box<dyn Construction>) -> Sampler {
+        Sampler { spec: spec.into(), counts, construction }
+    }
 
-    /// As [`Sampler::spectrum_theory`].
-    fn spectrum_theory(&self, _n: usize, _dims: usize) -> Option<crate::construct::spectrum_theory::VarianceTheory> {
-        None
+    /// The canonical spec (name and parameters).
+    pub fn spec(&self) -> &str {
+        &self.spec
+    }
+
+    /// The dimensions this sampler supports.
+    pub fn dims(&self) -> RangeInclusive<usize> {
+        self.construction.dims()
+    }
+
+    /// As [`Construction::spectrum_theory`].
+    pub fn spectrum_theory(&self, n: usize, dims: usize) -> Option<crate::construct::spectrum_theory::VarianceTheory> {
+        self.construction.spectrum_theory(n, dims)
+    }
+
+    /// The shape of `n` points in `dims` dimensions of this sampler, unchecked: for
+    /// [`Sampler::plan`] and the stages, which check it.
+    pub(crate) fn shape(&self, n: usize, dims: usize) -> Shape {
+        Shape { n, dims, sampler: self.spec.clone() }
+    }
+
+    /// The count checks of `shape` (its entry's rule, then the construction's), the errors
+    /// named by `shape`'s sampler (a stage checks the sampler before it under its own name).
+    pub(crate) fn check_count(&self, shape: &Shape) -> Result<()> {
+        if let Some(reason) = self.counts.and_then(|c| c.check(shape.n, shape.dims).err()) {
+            return Err(shape.invalid_count(reason));
+        }
+        self.construction.check_count(shape)
+    }
+
+    /// Prepare `shape`'s count and dimension, the errors named by this sampler (for a stage
+    /// that checked them).
+    pub(crate) fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
+        self.construction.prepare(&self.shape(shape.n, shape.dims))
+    }
+
+    /// Check that the sampler makes `dims` dimensions: the first of `plan`'s checks, for a
+    /// front end that holds a sampler for one dimension before any count.
+    ///
+    /// # Errors
+    /// [`Error::InvalidDims`] naming the dimensions it makes.
+    pub fn check_dims(&self, dims: usize) -> Result<()> {
+        let range = self.dims();
+        if range.contains(&dims) {
+            return Ok(());
+        }
+        Err(Error::InvalidDims {
+            sampler: self.spec().to_string(),
+            dims,
+            supported: format!("{}..={}", range.start(), range.end()),
+        })
+    }
+
+    /// Check that `n` points in `dims` dimensions can be made, and prepare to make them
+    /// ([`Construction::prepare`]: every table built here, once).
+    ///
+    /// # Errors
+    /// An unsupported dimension ([`Error::InvalidDims`]), a count the method cannot make
+    /// ([`Error::InvalidCount`], naming the nearest counts that work), or (Poisson disks) a
+    /// radius that cannot fit `n` points ([`Error::Infeasible`]).
+    ///
+    /// ```
+    /// use samplab::{Seed, sampler};
+    /// let jitter = sampler::build("jitter").unwrap();
+    /// assert!(jitter.plan(15, 2).unwrap_err().to_string().contains("9 and 16"));
+    /// let plan = jitter.plan(16, 2).unwrap();
+    /// let mut buffer = vec![0.0; 32];
+    /// for k in 0..3 {
+    ///     plan.fill(Seed(7).derive(k), &mut buffer).unwrap();
+    /// }
+    /// ```
+    pub fn plan(&self, n: usize, dims: usize) -> Result<Plan> {
+        self.check_dims(dims)?;
+        if n == 0 || n > MAX_POINTS || n.checked_mul(dims).is_none() {
+            return Err(Error::InvalidCount {
+                sampler: self.spec().to_string(),
+                n,
+                dims,
+                reason: format!("n must be in 1..={MAX_POINTS}"),
+            });
+        }
+        let shape = self.shape(n, dims);
+        self.check_count(&shape)?;
+        let prepared = self.construction.prepare(&shape)?;
+        Ok(Plan { shape, prepared })
+    }
+
+    /// `n` points in [0,1)^dims for `seed`: `plan`, then [`Plan::generate`].
+    ///
+    /// # Errors
+    /// As `plan` and [`Plan::fill`].
+    pub fn generate(&self, n: usize, dims: usize, seed: Seed) -> Result<PointSet> {
+        self.plan(n, dims)?.generate(seed)
     }
 }
 
-/// A sampler prepared for one [`Shape`] ([`Sampler::prepare`]): it fills sets from seeds,
+/// A sampler prepared for one [`Shape`] ([`Construction::prepare`]): it fills sets from seeds,
 /// and, for the progressive sequences, gives random access and streams.
 pub trait Prepared: Send + Sync {
     /// Write the set for `seed` into `out` (length `n * dims`, row-major), advancing
@@ -281,77 +404,16 @@ impl<F: Fn(Seed, &mut [f64], &Progress) -> Result<()> + Send + Sync> Prepared fo
     }
 }
 
-impl<'s> dyn Sampler + 's {
-    /// Check that the sampler makes `dims` dimensions: the first of `plan`'s checks, for a
-    /// front end that holds a sampler for one dimension before any count.
-    ///
-    /// # Errors
-    /// [`Error::InvalidDims`] naming the dimensions it makes.
-    pub fn check_dims(&self, dims: usize) -> Result<()> {
-        let range = self.dims();
-        if range.contains(&dims) {
-            return Ok(());
-        }
-        Err(Error::InvalidDims {
-            sampler: self.spec(),
-            dims,
-            supported: format!("{}..={}", range.start(), range.end()),
-        })
-    }
-
-    /// Check that `n` points in `dims` dimensions can be made, and prepare to make them
-    /// ([`Sampler::prepare`]: every table built here, once).
-    ///
-    /// # Errors
-    /// An unsupported dimension ([`Error::InvalidDims`]), a count the method cannot make
-    /// ([`Error::InvalidCount`], naming the nearest counts that work), or (Poisson disks) a
-    /// radius that cannot fit `n` points ([`Error::Infeasible`]).
-    ///
-    /// ```
-    /// use samplab::{Seed, sampler};
-    /// let jitter = sampler::build("jitter").unwrap();
-    /// assert!(jitter.plan(15, 2).unwrap_err().to_string().contains("9 and 16"));
-    /// let plan = jitter.plan(16, 2).unwrap();
-    /// let mut buffer = vec![0.0; 32];
-    /// for k in 0..3 {
-    ///     plan.fill(Seed(7).derive(k), &mut buffer).unwrap();
-    /// }
-    /// ```
-    pub fn plan(&self, n: usize, dims: usize) -> Result<Plan> {
-        self.check_dims(dims)?;
-        if n == 0 || n > MAX_POINTS || n.checked_mul(dims).is_none() {
-            return Err(Error::InvalidCount {
-                sampler: self.spec(),
-                n,
-                dims,
-                reason: format!("n must be in 1..={MAX_POINTS}"),
-            });
-        }
-        self.check_count(n, dims)?;
-        let shape = Shape { n, dims };
-        Ok(Plan { spec: self.spec(), shape, prepared: self.prepare(shape)? })
-    }
-
-    /// `n` points in [0,1)^dims for `seed`: `plan`, then [`Plan::generate`].
-    ///
-    /// # Errors
-    /// As `plan` and [`Plan::fill`].
-    pub fn generate(&self, n: usize, dims: usize, seed: Seed) -> Result<PointSet> {
-        self.plan(n, dims)?.generate(seed)
-    }
-}
-
 /// A sampler checked for one count and dimension, with its prepared tables: fill it from as
 /// many seeds as needed.
 pub struct Plan {
-    spec: String,
     shape: Shape,
     prepared: Box<dyn Prepared>,
 }
 
 impl Debug for Plan {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "Plan({}, n = {}, d = {})", self.spec, self.shape.n, self.shape.dims)
+        write!(f, "Plan({}, n = {}, d = {})", self.shape.sampler, self.shape.n, self.shape.dims)
     }
 }
 
@@ -367,8 +429,8 @@ impl Plan {
     }
 
     /// The sampler's canonical spec.
-    pub fn spec(&self) -> String {
-        self.spec.clone()
+    pub fn spec(&self) -> &str {
+        self.shape.sampler()
     }
 
     /// Write the `n` points for `seed` into `out` (length `n * dims`, row-major), reading
@@ -525,8 +587,8 @@ pub trait Access: Send + Sync + Debug {
 /// `m` realizations of `n` points each, in parallel; realization k uses `seed.derive(k)`.
 ///
 /// # Errors
-/// As `plan` (on `dyn Sampler`) and [`Plan::fill`].
-pub fn generate_sets(sampler: &dyn Sampler, n: usize, dims: usize, seed: Seed, m: usize) -> Result<Vec<PointSet>> {
+/// As [`Sampler::plan`] and [`Plan::fill`].
+pub fn generate_sets(sampler: &Sampler, n: usize, dims: usize, seed: Seed, m: usize) -> Result<Vec<PointSet>> {
     sampler.plan(n, dims)?.generate_sets(seed, m, &Progress::SILENT)
 }
 

@@ -18,7 +18,7 @@ impl Construction for Random {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=usize::MAX
     }
-    fn prepare(&self, _shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, _shape: &Shape) -> Result<Box<dyn Prepared>> {
         Ok(Box::new(Random))
     }
 }

@@ -3,15 +3,10 @@
 //! beside its code, and [`SAMPLERS`] lists those files, one line each. `samplab list`,
 //! `--help` and the conformance tests are generated from it.
 
-use std::ops::RangeInclusive;
-
-use super::{Access, Construction, Prepared, SAMPLERS, Sampler, Shape, Stream};
+use super::{Construction, SAMPLERS, Sampler};
 use crate::construct::Counts;
-use crate::construct::spectrum_theory::VarianceTheory;
-use crate::error::{Error, Result};
-use crate::progress::Progress;
+use crate::error::Result;
 use crate::registry::{About, Entry, canonical};
-use crate::seed::Seed;
 use crate::spec::{Default, Kind, ParamSpec, Params};
 
 /// One registered sampler.
@@ -40,100 +35,16 @@ impl Entry for SamplerEntry {
 }
 
 impl SamplerEntry {
-    /// Build this entry's sampler from resolved parameters.
+    /// Build this entry's sampler from resolved parameters: its construction under the spec
+    /// the entry and the parameters give ([`canonical`], after the construction recorded
+    /// what it chose for an `auto` one).
     ///
     /// # Errors
     /// Parameters that are valid one by one but not together.
-    pub fn build(&'static self, params: &Params) -> Result<Box<dyn Sampler>> {
+    pub fn build(&'static self, params: &Params) -> Result<Sampler> {
         let mut params = params.clone();
         let construction = (self.build)(&mut params)?;
-        Ok(Box::new(Registered { about: &self.about, counts: Some(self.counts), params, construction, on: None }))
-    }
-}
-
-/// A registered sampler: the construction its entry built, with the entry and the
-/// parameters it was built from, which give it its spec ([`canonical`]).
-#[derive(Debug)]
-pub struct Registered {
-    about: &'static About,
-    /// The entry's counts (none for a stage: it makes the counts of the sampler before it).
-    counts: Option<Counts>,
-    params: Params,
-    construction: Box<dyn Construction>,
-    /// For a stage written after another spec (`kronecker+micro-jitter`): that spec.
-    on: Option<String>,
-}
-
-impl Registered {
-    /// The stage `about` with `params` (its `construction`) applied to the sampler of spec
-    /// `on`: its spec is `on+stage`.
-    pub(crate) fn stage(
-        about: &'static About,
-        params: Params,
-        construction: Box<dyn Construction>,
-        on: String,
-    ) -> Self {
-        Registered { about, counts: None, params, construction, on: Some(on) }
-    }
-}
-
-/// `e` with the sampler's name filled in where the construction left it empty.
-pub(crate) fn labelled(e: Error, spec: impl FnOnce() -> String) -> Error {
-    match e {
-        Error::InvalidCount { sampler, n, dims, reason } if sampler.is_empty() => {
-            Error::InvalidCount { sampler: spec(), n, dims, reason }
-        }
-        Error::Infeasible { sampler, reason } if sampler.is_empty() => Error::Infeasible { sampler: spec(), reason },
-        other => other,
-    }
-}
-
-impl Sampler for Registered {
-    fn spec(&self) -> String {
-        let own = canonical(self.about, &self.params);
-        match &self.on {
-            Some(on) => format!("{on}+{own}"),
-            None => own,
-        }
-    }
-    fn dims(&self) -> RangeInclusive<usize> {
-        self.construction.dims()
-    }
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        // a stage on another sampler makes that sampler's counts (its construction checks them)
-        let declared = self.counts.map_or(Ok(()), |c| c.check(n, dims));
-        declared.and_then(|()| self.construction.check_count(n, dims)).map_err(|e| labelled(e, || self.spec()))
-    }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
-        let inner = self.construction.prepare(shape).map_err(|e| labelled(e, || self.spec()))?;
-        Ok(Box::new(Labelled { inner, spec: self.spec() }))
-    }
-    fn spectrum_theory(&self, n: usize, dims: usize) -> Option<VarianceTheory> {
-        self.construction.spectrum_theory(n, dims)
-    }
-}
-
-/// A construction's prepared state whose errors name the sampler.
-struct Labelled {
-    inner: Box<dyn Prepared>,
-    spec: String,
-}
-
-impl Prepared for Labelled {
-    fn fill(&self, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
-        self.inner.fill(seed, out, progress).map_err(|e| labelled(e, || self.spec.clone()))
-    }
-    fn units(&self) -> u64 {
-        self.inner.units()
-    }
-    fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
-        self.inner.access(seed)
-    }
-    fn sample_at(&self, seed: Seed, index: u64, dim: usize) -> Option<Result<f64>> {
-        self.inner.sample_at(seed, index, dim)
-    }
-    fn stream(&self, seed: Seed) -> Option<Box<dyn Stream + '_>> {
-        self.inner.stream(seed)
+        Ok(Sampler::registered(canonical(&self.about, &params), Some(self.counts), construction))
     }
 }
 
@@ -157,12 +68,11 @@ pub(crate) const EDGE: ParamSpec = ParamSpec {
 /// assert_eq!(s.spec(), "jitter.gaussian:sigma=0.25,edge=wrap");
 /// assert!(samplab::sampler::build("jitter.gaussian:sigma=-1").is_err());
 /// ```
-pub fn build(spec: &str) -> Result<Box<dyn Sampler>> {
+pub fn build(spec: &str) -> Result<Sampler> {
     if let Some((before, stage, params)) = super::randomize::split(spec)? {
         let inner = build(before)?;
-        let on = inner.spec();
-        let construction = (stage.build)(inner, &params)?;
-        return Ok(Box::new(Registered::stage(&stage.about, params, construction, on)));
+        let spec = format!("{}+{}", inner.spec(), canonical(&stage.about, &params));
+        return Ok(Sampler::registered(spec, None, (stage.build)(inner, &params)?));
     }
     let (entry, params) = SAMPLERS.resolve(spec)?;
     entry.build(&params)
@@ -212,9 +122,8 @@ mod tests {
     use super::*;
 
     /// The two numbers a count error names ("... 9 and 16", "try 8 and 13").
-    fn named(e: &Error) -> Vec<usize> {
-        let words: Vec<usize> =
-            e.to_string().split(|c: char| !c.is_ascii_digit()).filter_map(|w| w.parse().ok()).collect();
+    fn named(e: &str) -> Vec<usize> {
+        let words: Vec<usize> = e.split(|c: char| !c.is_ascii_digit()).filter_map(|w| w.parse().ok()).collect();
         words[words.len() - 2..].to_vec()
     }
 

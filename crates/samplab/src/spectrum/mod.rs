@@ -248,7 +248,7 @@ pub fn periodogram(set: &PointSet, res: usize, method: Method) -> Result<Vec<f64
 /// use samplab::spectrum::{Method, statistics};
 /// use samplab::{Seed, sampler};
 /// let jitter = sampler::build("jitter").unwrap();
-/// let sets = sampler::generate_sets(jitter.as_ref(), 64, 2, Seed(1), 8).unwrap();
+/// let sets = sampler::generate_sets(&jitter, 64, 2, Seed(1), 8).unwrap();
 /// let st = statistics(&sets, 32, Method::Direct).unwrap();
 /// // S(0) = 1 for every set: the periodogram's DC (index R/2, R/2) is 1
 /// assert!((st.periodogram[16 * 32 + 16] - 1.0).abs() < 1e-12);

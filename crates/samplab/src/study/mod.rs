@@ -146,7 +146,7 @@ fn some<T>(name: &str, values: &[T]) -> Result<()> {
 }
 
 /// The sampler `spec`, checked at `n` points in `d` dimensions.
-fn sampler(spec: &str, n: usize, d: usize) -> Result<Box<dyn crate::Sampler>> {
+fn sampler(spec: &str, n: usize, d: usize) -> Result<crate::Sampler> {
     let sampler = crate::sampler::build(spec)?;
     sampler.plan(n, d)?;
     Ok(sampler)
@@ -154,7 +154,7 @@ fn sampler(spec: &str, n: usize, d: usize) -> Result<Box<dyn crate::Sampler>> {
 
 /// An integration study's samplers and integrands, built.
 struct Integration<'g> {
-    samplers: Vec<Box<dyn crate::Sampler>>,
+    samplers: Vec<crate::Sampler>,
     integrand: String,
     source: Source<'g>,
 }
@@ -288,7 +288,7 @@ impl Description {
                 Limits::new(max_work)?;
                 // checked by planning, not by generating a set (a CCVT of 10^6 points is
                 // not optimized here)
-                let sampler = self::sampler(&sampler, n, d)?.spec();
+                let sampler = self::sampler(&sampler, n, d)?.spec().to_string();
                 let chunks = (0..sets)
                     .step_by(per_chunk)
                     .map(|a| vec![a as u64, sets.min(a.saturating_add(per_chunk)) as u64])

@@ -87,7 +87,7 @@ impl Light {
 fn edge_mse(ctx: &Ctx, spec: &str, n: usize, dims: usize, light: Light, trials: usize) -> Result<Estimate, Error> {
     let s = sampler::build(spec)?;
     let key = ctx.seed.derive_str(spec).derive(dims as u64).derive(light as u64);
-    let sets = sampler::generate_sets(s.as_ref(), n, dims, key, trials)?;
+    let sets = sampler::generate_sets(&s, n, dims, key, trials)?;
     let mut edges = key.derive_str("edges").rng();
     let scale = if dims == 1 { (n * n) as f64 } else { n as f64 };
     let errors: Vec<f64> = sets

@@ -70,7 +70,7 @@ pub(super) fn error_vs_position(ctx: &Ctx) -> Result<Output, Error> {
 fn rms_curve(ctx: &Ctx, spec: &str, n: usize, positions: usize, reps: usize) -> Result<(Vec<(f64, f64)>, f64), Error> {
     let s = sampler::build(spec)?;
     // the same realizations for every position: N x RMS error as a function of y0
-    let sets = sampler::generate_sets(s.as_ref(), n, 1, ctx.seed.derive_str(spec), reps)?;
+    let sets = sampler::generate_sets(&s, n, 1, ctx.seed.derive_str(spec), reps)?;
     let mut curve = Vec::with_capacity(positions);
     let mut max_err: f64 = 0.0;
     for i in 0..positions {
@@ -258,7 +258,7 @@ fn box_worst_case(ctx: &Ctx, trials: usize) -> Result<(Table, Vec<Claim>), Error
     let mut claims = Vec::new();
     for (name, spec) in &STRATEGIES[..3] {
         let s = sampler::build(spec)?;
-        let sets = sampler::generate_sets(s.as_ref(), N, 1, ctx.seed.derive_str("box-worst").derive_str(spec), trials)?;
+        let sets = sampler::generate_sets(&s, N, 1, ctx.seed.derive_str("box-worst").derive_str(spec), trials)?;
         let mut worst: f64 = 0.0;
         for set in &sets {
             let xs = set.as_slice();

@@ -70,13 +70,7 @@ fn edge_variances(ctx: &Ctx, lines: usize, runs: usize) -> Result<Vec<(f64, Esti
         .enumerate()
         .map(|(i, spec)| {
             let s = samplab::sampler::build(spec)?;
-            Ok(samplab::sampler::generate_sets(
-                s.as_ref(),
-                16,
-                2,
-                ctx.seed.derive_str("edge").derive(i as u64),
-                lines * runs,
-            )?)
+            Ok(samplab::sampler::generate_sets(&s, 16, 2, ctx.seed.derive_str("edge").derive(i as u64), lines * runs)?)
         })
         .collect::<Result<_, Error>>()?;
     let mut rng = ctx.seed.derive_str("edge-lines").rng();

@@ -284,7 +284,7 @@ fn ranking_claims(ctx: &Ctx, measured: &[Measured], [p5, p6, _]: &Published) -> 
     let many = ctx.pick(20_000, 100_000);
     let s_of = |spec: &str, k: u64| -> Result<Summary, Error> {
         let sampler = sampler::build(spec)?;
-        let sets = sampler::generate_sets(sampler.as_ref(), N, 2, ctx.seed.derive_str("many").derive(k), many)?;
+        let sets = sampler::generate_sets(&sampler, N, 2, ctx.seed.derive_str("many").derive(k), many)?;
         Ok(Summary::of(&metric_values(&sets, &Metric::parse("l2-star")?)?))
     };
     let (half_many, sep_many) = (s_of("jitter.half", 0)?, s_of("nrooks", 1)?);

@@ -72,7 +72,7 @@ pub(super) const N: usize = 16;
 
 pub(super) fn sets_of(spec: &str, seed: Seed) -> Result<Vec<PointSet>, Error> {
     let s = sampler::build(spec)?;
-    Ok(sampler::generate_sets(s.as_ref(), N, 2, seed, SETS)?)
+    Ok(sampler::generate_sets(&s, N, 2, seed, SETS)?)
 }
 
 pub(super) fn metric_values(sets: &[PointSet], m: &Metric) -> Result<Vec<f64>, Error> {

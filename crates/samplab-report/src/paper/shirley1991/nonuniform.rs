@@ -57,7 +57,7 @@ fn tent_claim() -> Claim {
 fn figures(ctx: &Ctx) -> Result<Vec<Figure>, Error> {
     let jitter = sampler::build("jitter")?;
     let mut figures = Vec::new();
-    let set = sampler::generate_sets(jitter.as_ref(), N, 2, ctx.seed.derive_str("figures"), 1)?.remove(0);
+    let set = sampler::generate_sets(&jitter, N, 2, ctx.seed.derive_str("figures"), 1)?.remove(0);
     for (id, caption, name) in [
         (
             "shirley1991-fig7-polar",

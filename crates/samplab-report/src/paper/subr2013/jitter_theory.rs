@@ -300,7 +300,7 @@ fn jitter_variance(ctx: &Ctx, n: usize, k: f64) -> Result<(usize, Table, f64), E
     .enumerate()
     {
         let s = samplab::sampler::build(spec)?;
-        let sets = samplab::sampler::generate_sets(s.as_ref(), n, 2, ctx.seed.derive(100 + i as u64), m)?;
+        let sets = samplab::sampler::generate_sets(&s, n, 2, ctx.seed.derive(100 + i as u64), m)?;
         let st = spectrum::statistics(&sets, res, Method::default())?;
         let (radial, _) = spectrum::radial(&st.variance, res, 2);
         // the prediction binned exactly like the measurement: each annulus averages |w|
@@ -350,7 +350,7 @@ fn eq6(ctx: &Ctx, n: usize, k: f64) -> Result<(Table, Claim), Error> {
     .enumerate()
     {
         let s = samplab::sampler::build(spec)?;
-        let sets = samplab::sampler::generate_sets(s.as_ref(), n, 2, ctx.seed.derive(200 + i as u64), runs)?;
+        let sets = samplab::sampler::generate_sets(&s, n, 2, ctx.seed.derive(200 + i as u64), runs)?;
         let squares: Vec<f64> = sets
             .iter()
             .map(|set| {

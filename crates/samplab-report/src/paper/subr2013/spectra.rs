@@ -28,7 +28,7 @@ pub(super) fn spectra(ctx: &Ctx) -> Result<Output, Error> {
     let mut low_band = Vec::new();
     for (i, (name, spec)) in strategies.iter().enumerate() {
         let s = samplab::sampler::build(spec)?;
-        let sets = samplab::sampler::generate_sets(s.as_ref(), 256, 2, ctx.seed.derive(i as u64), 20)?;
+        let sets = samplab::sampler::generate_sets(&s, 256, 2, ctx.seed.derive(i as u64), 20)?;
         let st = spectrum::statistics(&sets, res, Method::default())?;
         if i == 1 || i == 3 {
             low_band.push(low_variance(&sets, res)?);
@@ -234,13 +234,8 @@ fn poisson_largest_bias(maxima: [(f64, f64); 5]) -> Claim {
 
 /// Section 5: a randomly rotated and shifted grid, isotropic on average, regular in each set.
 fn rotated_grid(ctx: &Ctx, res: usize) -> Result<Claim, Error> {
-    let rotated = samplab::sampler::generate_sets(
-        samplab::sampler::build("regular.rotated")?.as_ref(),
-        256,
-        2,
-        ctx.seed.derive(99),
-        20,
-    )?;
+    let rotated =
+        samplab::sampler::generate_sets(&samplab::sampler::build("regular.rotated")?, 256, 2, ctx.seed.derive(99), 20)?;
     let mean_aniso = |values: &[f64]| {
         let (_, a) = spectrum::radial(values, res, 2);
         let v: Vec<f64> = a[..res / 4].iter().copied().filter(|x| x.is_finite()).collect();

@@ -16,7 +16,7 @@ use crate::sampler::random::Random;
 use crate::construct::counts::ANY;
 use crate::sampler::registry::SamplerEntry;
 use crate::sampler::{Prepared, Construction, Shape};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Seed, wrap01};
@@ -311,20 +311,17 @@ impl Construction for Ccvt {
         1..=4
     }
 
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+    fn check_count(&self, shape: &Shape) -> Result<()> {
+        let n = shape.n();
         if n.saturating_mul(self.capacity) > 1 << 28 {
-            return Err(Error::InvalidCount {
-                sampler: String::new(),
-                n,
-                dims,
-                reason: format!("{n} sites x capacity {} points exceed 2^28", self.capacity),
-            });
+            return Err(shape.invalid_count(format!("{n} sites x capacity {} points exceed 2^28", self.capacity)));
         }
         Ok(())
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = *self;
+        let shape = shape.clone();
         Ok(crate::sampler::from_fill_reporting(self.units(), move |seed, out, progress| {
             me.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
         }))

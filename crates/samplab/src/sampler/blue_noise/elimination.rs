@@ -40,7 +40,7 @@ use crate::memory::split;
 use crate::construct::counts::ANY;
 use crate::sampler::registry::{EDGE, SamplerEntry};
 use crate::sampler::{Prepared, Construction, Shape};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::registry::About;
 use crate::sampler::random::Random;
 use crate::seed::Seed;
@@ -665,20 +665,17 @@ impl Construction for Elimination {
         1..=4
     }
 
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+    fn check_count(&self, shape: &Shape) -> Result<()> {
+        let n = shape.n();
         if n as f64 * self.ratio > u32::MAX as f64 {
-            return Err(Error::InvalidCount {
-                sampler: String::new(),
-                n,
-                dims,
-                reason: format!("{} candidates exceed 2^32", (n as f64 * self.ratio).ceil()),
-            });
+            return Err(shape.invalid_count(format!("{} candidates exceed 2^32", (n as f64 * self.ratio).ceil())));
         }
         Ok(())
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = *self;
+        let shape = shape.clone();
         Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }

@@ -8,7 +8,7 @@ use std::ops::RangeInclusive;
 use crate::construct::Counts;
 use crate::sampler::registry::SamplerEntry;
 use crate::sampler::{Prepared, Construction, Shape};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::progress::Progress;
 use crate::registry::About;
 use crate::seed::{Seed, below, uniform};
@@ -47,33 +47,25 @@ impl Construction for ForceMatrix {
         1..=4
     }
 
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+    fn check_count(&self, shape: &Shape) -> Result<()> {
+        let (n, dims) = (shape.n(), shape.dims());
         let g = self.grid_size(n, dims);
         let cells = g.checked_pow(dims as u32).unwrap_or(usize::MAX);
         if cells > MAX_CELLS {
-            return Err(Error::InvalidCount {
-                sampler: String::new(),
-                n,
-                dims,
-                reason: format!("the fine grid would have {g}^{dims} cells, more than {MAX_CELLS}"),
-            });
+            return Err(shape.invalid_count(format!("the fine grid would have {g}^{dims} cells, more than {MAX_CELLS}")));
         }
         if n > cells {
-            return Err(Error::InvalidCount {
-                sampler: String::new(),
-                n,
-                dims,
-                reason: format!(
+            return Err(shape.invalid_count(format!(
                     "only {cells} cells in the {g}^{dims} grid; use grid >= {}",
                     (n as f64).powf(1.0 / dims as f64).ceil()
-                ),
-            });
+                )));
         }
         Ok(())
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = self.clone();
+        let shape = shape.clone();
         Ok(crate::sampler::from_fill_reporting(1, move |seed, out, progress| {
             me.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
         }))

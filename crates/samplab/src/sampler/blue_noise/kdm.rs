@@ -38,12 +38,13 @@ impl Construction for Kdm {
         1..=4
     }
 
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        SETTLED.check_count(n, dims)
+    fn check_count(&self, shape: &Shape) -> Result<()> {
+        SETTLED.check_count(shape)
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = *self;
+        let shape = shape.clone();
         Ok(crate::sampler::from_fill_reporting(self.units(), move |seed, out, progress| {
             me.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
         }))

@@ -253,8 +253,9 @@ impl Construction for Lloyd {
         2..=2
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = *self;
+        let shape = shape.clone();
         Ok(crate::sampler::from_fill_reporting(self.units(), move |seed, out, progress| {
             me.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
         }))

@@ -26,7 +26,7 @@ use super::select_in_order;
 use crate::construct::counts::ANY;
 use crate::sampler::registry::{EDGE, SamplerEntry};
 use crate::sampler::{Prepared, Construction, Shape};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::memory::{FAULT_CHUNK, FAULT_IN, filled, refill};
 use crate::progress::Progress;
 use crate::registry::About;
@@ -789,34 +789,34 @@ impl Construction for DartThrowing {
         1..=4
     }
 
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+    fn check_count(&self, shape: &Shape) -> Result<()> {
+        let (n, dims) = (shape.n(), shape.dims());
         let r = self.radius.unwrap_or(AUTO_RELATIVE * packing_distance(n, dims)?);
         // with plain edges the disks may poke out of the square by r/2
         let room = if self.torus { 1.0 } else { (1.0 + r).powi(dims as i32) };
         let most = (room * (packing_distance(1, dims)? / r).powi(dims as i32)).floor();
         if n as f64 > most {
-            return Err(Error::Infeasible {
-                sampler: String::new(),
-                reason: format!(
+            return Err(shape.infeasible(format!(
                     "radius {r} cannot fit {n} points in {dims}D: even the densest packing holds at most {most}; use a radius below {:.6}",
                     packing_distance(n, dims)? * room.powf(1.0 / dims as f64)
-                ),
-            });
+                )));
         }
         Ok(())
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = self.clone();
+        let shape = shape.clone();
         Ok(crate::sampler::from_fill_reporting(1, move |seed, out, progress| {
-            me.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+            me.fill_reporting(&shape, seed, out, progress)
         }))
     }
 }
 
 impl DartThrowing {
 
-    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+    fn fill_reporting(&self, shape: &Shape, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        let (n, dims) = (shape.n(), shape.dims());
         let r = self.radius.unwrap_or(AUTO_RELATIVE * packing_distance(n, dims)?);
         // the one-point-per-cell grid has (sqrt 2 / r)^2 cells: for tiny radii the linked
         // grid (capped at 2^22 cells, several points each) stands in
@@ -832,14 +832,11 @@ impl DartThrowing {
         if best == n {
             return progress.advance(1);
         }
-        Err(Error::Infeasible {
-            sampler: String::new(),
-            reason: format!(
+        Err(shape.infeasible(format!(
                 "radius {r} is too large for {n} points: dart throwing placed at most {best} ({TRIES} tries, {} consecutive misses each); use a smaller radius (the packing limit is {:.6}) or more attempts",
                 self.attempts,
                 packing_distance(n, dims)?
-            ),
-        })
+            )))
     }
 }
 
@@ -939,31 +936,31 @@ impl Construction for Bridson {
         2..=2
     }
 
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+    fn check_count(&self, shape: &Shape) -> Result<()> {
+        let (n, dims) = (shape.n(), shape.dims());
         // Bridson fills the whole square before keeping n: its grid must fit
         let r = self.radius.unwrap_or(0.72 * packing_distance(n, dims)?);
         if DiskGrid::cells(r) > MAX_GRID_CELLS {
-            return Err(Error::Infeasible {
-                sampler: String::new(),
-                reason: format!(
+            return Err(shape.infeasible(format!(
                     "radius {r} would fill the square with about {:.1e} points before keeping {n}; use a radius of at least {:.2e} (or dart throwing, `poisson`)",
                     (packing_distance(1, dims)? / r).powi(2),
                     2f64.sqrt() / MAX_GRID_CELLS.sqrt()
-                ),
-            });
+                )));
         }
         Ok(())
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = self.clone();
-        Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
+        let shape = shape.clone();
+        Ok(crate::sampler::from_fill(move |seed, out| me.fill(&shape, seed, out)))
     }
 }
 
 impl Bridson {
 
-    fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
+    fn fill(&self, shape: &Shape, seed: Seed, out: &mut [f64]) -> Result<()> {
+        let (n, dims) = (shape.n(), shape.dims());
         let mut r = self.radius.unwrap_or(0.72 * packing_distance(n, dims)?);
         let mut rng = seed.rng();
         let mut grid = DiskGrid::new(r, self.torus, n + n / 4);
@@ -975,14 +972,11 @@ impl Bridson {
             bridson(r, self.torus, self.k, &mut rng, &mut grid, &Progress::SILENT)?;
         }
         if grid.len() < n {
-            return Err(Error::Infeasible {
-                sampler: String::new(),
-                reason: format!(
+            return Err(shape.infeasible(format!(
                     "radius {r} fills the square with only {} points (Bridson, k = {}), fewer than {n}; use a smaller radius",
                     grid.len(),
                     self.k
-                ),
-            });
+                )));
         }
         keep_random(grid.points(), 2, n, &mut rng, out);
         Ok(())
@@ -1052,16 +1046,18 @@ impl Construction for Maximal {
         2..=2
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = self.clone();
+        let shape = shape.clone();
         Ok(crate::sampler::from_fill_reporting(1, move |seed, out, progress| {
-            me.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
+            me.fill_reporting(&shape, seed, out, progress)
         }))
     }
 }
 
 impl Maximal {
-    fn fill_reporting(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+    fn fill_reporting(&self, shape: &Shape, seed: Seed, out: &mut [f64], progress: &Progress) -> Result<()> {
+        let (n, dims) = (shape.n(), shape.dims());
         let rmax = packing_distance(n, dims)?;
         for t in 0..8 {
             let s = seed.derive(t);
@@ -1082,10 +1078,7 @@ impl Maximal {
                 }
             }
         }
-        Err(Error::Infeasible {
-            sampler: String::new(),
-            reason: format!("no radius gave a maximal set of exactly {n} points in 8 tries of 64 bisection steps"),
-        })
+        Err(shape.infeasible(format!("no radius gave a maximal set of exactly {n} points in 8 tries of 64 bisection steps")))
     }
 }
 
@@ -1251,7 +1244,8 @@ mod tests {
         let (done, finished) = std::sync::mpsc::channel();
         std::thread::spawn(move || {
             let mut out = vec![0.0; 128];
-            let made = Maximal::new(false).fill_reporting(64, 2, Seed(5), &mut out, &Progress::SILENT);
+            let shape = crate::sampler::Sampler::new("maximal", Maximal::new(false)).shape(64, 2);
+            let made = Maximal::new(false).fill_reporting(&shape, Seed(5), &mut out, &Progress::SILENT);
             done.send(made.map(|()| out)).ok();
         });
         let out = finished.recv_timeout(std::time::Duration::from_secs(30)).expect("the search still runs after 30 s");

@@ -236,8 +236,9 @@ impl Construction for Sot {
         2..=8
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = *self;
+        let shape = shape.clone();
         Ok(crate::sampler::from_fill_reporting(self.units(), move |seed, out, progress| {
             me.fill_reporting(shape.n(), shape.dims(), seed, out, progress)
         }))

@@ -376,13 +376,13 @@ impl Construction for Matched {
         2..=2
     }
 
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        SETTLED.check_count(n, dims)
+    fn check_count(&self, shape: &crate::sampler::Shape) -> Result<()> {
+        SETTLED.check_count(shape)
     }
 
     /// The smoothed target (thousands of quadratures of the target PCF) is computed here,
     /// once for every set of the shape.
-    fn prepare(&self, shape: crate::sampler::Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &crate::sampler::Shape) -> Result<Box<dyn Prepared>> {
         let (n, dims) = (shape.n(), shape.dims());
         let matching = (n >= 2).then(|| Matching::new(self.shape, n, self.sigma, self.reach));
         let me = *self;

@@ -174,7 +174,7 @@ impl Construction for Halton {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=HALTON_MAX_DIMS
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         Ok(Box::new(Radical { randomization: self.randomization, n: shape.n(), tables: plain_tables(shape.dims()) }))
     }
 }
@@ -274,7 +274,7 @@ impl Construction for Hammersley {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=HALTON_MAX_DIMS + 1
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let halton = Radical { randomization: self.randomization, n: shape.n(), tables: plain_tables(shape.dims() - 1) };
         Ok(Box::new(Planned { halton }))
     }

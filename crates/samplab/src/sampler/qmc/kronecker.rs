@@ -86,7 +86,7 @@ impl Construction for Kronecker {
         // given alphas fix the dimension: one per axis, none left unused
         self.alphas.as_ref().map_or(1..=usize::MAX, |a| a.len()..=a.len())
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let fixed = |a: f64| (a * 18_446_744_073_709_551_616.0) as u64;
         let steps = match &self.alphas {
             Some(given) => given[..shape.dims()].iter().map(|&a| fixed(a)).collect(),

@@ -49,8 +49,9 @@ impl Construction for Fibonacci {
         2..=2
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = *self;
+        let shape = shape.clone();
         Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
@@ -120,19 +121,15 @@ impl Construction for Korobov {
         1..=usize::MAX
     }
 
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+    fn check_count(&self, shape: &Shape) -> Result<()> {
+        let n = shape.n();
         if self.a.is_none() && n > SEARCH_MAX {
-            return Err(Error::InvalidCount {
-                sampler: String::new(),
-                n,
-                dims,
-                reason: format!("searching a costs n^2 d / 2: give a=A for n above {SEARCH_MAX}"),
-            });
+            return Err(shape.invalid_count(format!("searching a costs n^2 d / 2: give a=A for n above {SEARCH_MAX}")));
         }
         Ok(())
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let (n, dims) = (shape.n(), shape.dims());
         let a = self.a.unwrap_or_else(|| korobov_search(n, dims));
         Ok(Box::new(Rank1 { z: korobov_vector(a, n, dims), order: Order::Float(n) }))
@@ -150,7 +147,7 @@ impl Construction for Cbc {
         1..=usize::MAX
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let (n, dims) = (shape.n(), shape.dims());
         let z = cbc::construct(n, dims, self.weights, false)?;
         Ok(Box::new(Rank1 { z, order: Order::Fixed(n) }))
@@ -245,10 +242,10 @@ impl Construction for Tent {
     fn dims(&self) -> RangeInclusive<usize> {
         self.inner.dims()
     }
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        self.inner.check_count(n, dims)
+    fn check_count(&self, shape: &Shape) -> Result<()> {
+        self.inner.check_count(shape)
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         Ok(Box::new(Tented(self.inner.prepare(shape)?)))
     }
 }
@@ -365,7 +362,7 @@ impl Construction for Embedded {
             Vector::File(z) => 1..=z.len(),
         }
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let z = match &self.vector {
             Vector::Constructed(memo) => memo.first(shape.dims())?,
             Vector::File(z) => z[..shape.dims()].to_vec(),

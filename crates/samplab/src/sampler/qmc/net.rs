@@ -479,7 +479,8 @@ impl Construction for Net {
             Source::Niederreiter(_) => 1..=MAX_DIMS,
         }
     }
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+    fn check_count(&self, shape: &Shape) -> Result<()> {
+        let (n, dims) = (shape.n(), shape.dims());
         let cols = match &self.source {
             Source::Sobol => 32,
             Source::File(m) => m.cols,
@@ -487,17 +488,12 @@ impl Construction for Net {
         };
         let most = u128::from(self.base(dims)).pow(cols as u32);
         if n as u128 > most {
-            return Err(Error::InvalidCount {
-                sampler: String::new(),
-                n,
-                dims,
-                reason: format!("the matrices have {cols} columns: at most {} points", most),
-            });
+            return Err(shape.invalid_count(format!("the matrices have {cols} columns: at most {} points", most)));
         }
         Ok(())
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let (n, dims) = (shape.n(), shape.dims());
         let matrices = self.matrices(dims)?;
         let words = (matrices.base == 2).then(|| {

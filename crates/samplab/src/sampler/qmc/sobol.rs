@@ -145,7 +145,7 @@ impl Construction for Sobol {
     fn dims(&self) -> RangeInclusive<usize> {
         1..=SOBOL_MAX_DIMS
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         // the tables are the baked-in direction numbers: nothing to build
         Ok(Box::new(Planned { sobol: *self, dims: shape.dims() }))
     }

@@ -42,10 +42,10 @@ impl Construction for MicroJitter {
     fn dims(&self) -> RangeInclusive<usize> {
         self.inner.dims()
     }
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        self.inner.check_count(n, dims)
+    fn check_count(&self, shape: &Shape) -> Result<()> {
+        self.inner.check_count(shape)
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         // the inner sampler's checks passed with this shape's (the dimension range is its)
         let width = self.fraction * spacing(shape.n(), shape.dims());
         Ok(Box::new(Jittered { inner: self.inner.prepare(shape)?, width }))

@@ -23,7 +23,7 @@ pub mod shift;
 
 /// How a stage builds its construction over the sampler before it, from resolved
 /// parameters.
-pub(crate) type StageBuild = fn(Box<dyn Sampler>, &Params) -> Result<Box<dyn Construction>>;
+pub(crate) type StageBuild = fn(Sampler, &Params) -> Result<Box<dyn Construction>>;
 
 /// A stage: a randomization written after any spec, applied to the points of the sampler
 /// before it.
@@ -42,24 +42,19 @@ impl Entry for StageEntry {
 }
 
 /// The sampler a stage follows, as the stage's construction reads it: a stage makes the
-/// counts of the sampler before it, their error left to name the whole spec (the
-/// registered stage fills it in).
+/// counts of the sampler before it, their errors naming the whole spec (the stage's shape),
+/// and its tables, their errors naming the sampler that makes them.
 #[derive(Debug)]
-pub(crate) struct Before(pub(crate) Box<dyn Sampler>);
+pub(crate) struct Before(pub(crate) Sampler);
 
 impl Construction for Before {
     fn dims(&self) -> std::ops::RangeInclusive<usize> {
         self.0.dims()
     }
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        self.0.check_count(n, dims).map_err(|e| match e {
-            crate::error::Error::InvalidCount { n, dims, reason, .. } => {
-                crate::error::Error::InvalidCount { sampler: String::new(), n, dims, reason }
-            }
-            other => other,
-        })
+    fn check_count(&self, shape: &crate::sampler::Shape) -> Result<()> {
+        self.0.check_count(shape)
     }
-    fn prepare(&self, shape: crate::sampler::Shape) -> Result<Box<dyn crate::sampler::Prepared>> {
+    fn prepare(&self, shape: &crate::sampler::Shape) -> Result<Box<dyn crate::sampler::Prepared>> {
         self.0.prepare(shape)
     }
 }

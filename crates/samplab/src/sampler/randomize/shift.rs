@@ -73,10 +73,10 @@ impl Construction for Shift {
     fn dims(&self) -> RangeInclusive<usize> {
         self.inner.dims()
     }
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
-        self.inner.check_count(n, dims)
+    fn check_count(&self, shape: &Shape) -> Result<()> {
+        self.inner.check_count(shape)
     }
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         Ok(Box::new(Shifted { inner: self.inner.prepare(shape)?, dims: shape.dims() }))
     }
 }

@@ -13,7 +13,7 @@ use crate::construct::Counts;
 use crate::sampler::registry::SamplerEntry;
 use crate::construct::counts::exact_root;
 use crate::sampler::{Prepared, Construction, Shape};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::numeric::BELOW_ONE;
 use crate::registry::About;
 use crate::seed::{Rng, Seed, normal, uniform, wrap01};
@@ -110,16 +110,19 @@ impl Construction for Grid {
         }
     }
 
-    fn check_count(&self, n: usize, dims: usize) -> Result<()> {
+    fn check_count(&self, shape: &Shape) -> Result<()> {
         // the other grids' counts are their entries' (n = k^d)
         match self.displacement {
-            Displacement::Uniform { offsets } => self.per_offset(n, offsets, dims).map(|_| ()),
+            Displacement::Uniform { offsets } => {
+                per_offset(shape.n(), offsets, shape.dims()).map(|_| ()).map_err(|why| shape.invalid_count(why))
+            }
             _ => Ok(()),
         }
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = self.clone();
+        let shape = shape.clone();
         Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
@@ -129,7 +132,8 @@ impl Grid {
     fn fill(&self, n: usize, dims: usize, seed: Seed, out: &mut [f64]) -> Result<()> {
         if let Displacement::Uniform { offsets } = self.displacement
             && offsets > 1 {
-                let each = self.per_offset(n, offsets, dims)?;
+                // checked when planned
+                let each = n / offsets;
                 let one = Grid::new(Displacement::Uniform { offsets: 1 });
                 for (j, block) in out.chunks_exact_mut(each * dims).enumerate() {
                     one.fill(each, dims, seed.derive(j as u64), block)?;
@@ -168,21 +172,19 @@ impl Grid {
     }
 }
 
-impl Grid {
-    /// The points of each of `offsets` systematic grids making n: n / offsets = k^d.
-    fn per_offset(&self, n: usize, offsets: usize, dims: usize) -> Result<usize> {
-        if !n.is_multiple_of(offsets) {
-            return Err(Error::InvalidCount {
-                sampler: String::new(),
-                n,
-                dims,
-                reason: format!("n must be a multiple of offsets = {offsets}"),
-            });
-        }
-        Counts::Grid.check(n / offsets, dims)?;
-        Ok(n / offsets)
+/// The points of each of `offsets` systematic grids making n (n / offsets = k^d), or why
+/// there are none.
+fn per_offset(n: usize, offsets: usize, dims: usize) -> std::result::Result<usize, String> {
+    if !n.is_multiple_of(offsets) {
+        return Err(format!("n must be a multiple of offsets = {offsets}"));
     }
+    exact_root(n / offsets, dims).map(|_| n / offsets).map_err(|(lo, hi)| {
+        let (lo, hi) = (lo * offsets, hi * offsets);
+        format!("each of the {offsets} grids needs k^{dims} points; the nearest valid counts are {lo} and {hi}")
+    })
+}
 
+impl Grid {
     /// The coordinate of a point in cell `cell` (of width `inv`), drawing from `rng`.
     fn place(&self, cell: f64, shared: f64, inv: f64, rng: &mut Rng) -> f64 {
         let within = |t: f64| ((cell + t) * inv).min(BELOW_ONE);
@@ -215,8 +217,9 @@ impl Construction for RotatedGrid {
         2..=2
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = *self;
+        let shape = shape.clone();
         Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
@@ -261,8 +264,9 @@ impl Construction for Hexagonal {
         2..=2
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = *self;
+        let shape = shape.clone();
         Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }

@@ -24,8 +24,9 @@ impl Construction for Pmj02 {
         2..=2
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = *self;
+        let shape = shape.clone();
         Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
@@ -52,8 +53,9 @@ impl Construction for Cmj {
         2..=2
     }
 
-    fn prepare(&self, shape: Shape) -> Result<Box<dyn Prepared>> {
+    fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let me = *self;
+        let shape = shape.clone();
         Ok(crate::sampler::from_fill(move |seed, out| me.fill(shape.n(), shape.dims(), seed, out)))
     }
 }
