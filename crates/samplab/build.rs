@@ -4,10 +4,13 @@
 //! Output: `$OUT_DIR/sobol_directions.rs` holding `SOBOL_DIRECTIONS: [[u32; 32]; 1024]`,
 //! where entry [j][k] is the direction number v_k = m_k * 2^(31-k) of dimension j
 //! (dimension 0 is van der Corput: m_k = 1), and the same numbers bit-reversed as
-//! `REVERSED_DIRECTIONS` (Owen scrambling works on reversed digits). Recurrence: Bratley & Fox (1988), eq. in
-//! Joe & Kuo (2008) section 2: m_k = 2a_1 m_{k-1} ^ 4a_2 m_{k-2} ^ ... ^ 2^s m_{k-s} ^ m_{k-s}.
+//! `REVERSED_DIRECTIONS` (Owen scrambling works on reversed digits), read by
+//! `src/construct/joe_kuo.rs`, the reader `net:directions=FILE` uses too.
 
 use std::fmt::Write as _;
+
+#[path = "src/construct/joe_kuo.rs"]
+mod joe_kuo;
 
 /// A digest (FNV-1a, 64 bits) of every file under `src/` and `data/`, paths and contents in
 /// sorted order: what a measured value depends on, for keys of values kept between runs.
@@ -38,30 +41,7 @@ fn main() {
     let src = "data/new-joe-kuo-6.1024.txt";
     println!("cargo::rerun-if-changed={src}");
     let text = std::fs::read_to_string(src).expect("reading the direction-number file");
-    let mut table: Vec<[u32; 32]> = vec![std::array::from_fn(|k| 1u32 << (31 - k))];
-    for (lineno, line) in text.lines().enumerate() {
-        if line.starts_with('#') || line.starts_with('d') || line.trim().is_empty() {
-            continue;
-        }
-        let f: Vec<u64> = line
-            .split_whitespace()
-            .map(|t| t.parse().unwrap_or_else(|_| panic!("{src}:{}: not a number", lineno + 1)))
-            .collect();
-        let (s, a) = (f[1] as usize, f[2]);
-        assert_eq!(f.len(), 3 + s, "{src}:{}: expected {s} initial m", lineno + 1);
-        let mut m = [0u64; 32];
-        m[..s].copy_from_slice(&f[3..]);
-        for k in s..32 {
-            let mut v = m[k - s] ^ (m[k - s] << s);
-            for i in 1..s {
-                if (a >> (s - 1 - i)) & 1 == 1 {
-                    v ^= m[k - i] << i;
-                }
-            }
-            m[k] = v;
-        }
-        table.push(std::array::from_fn(|k| (m[k] << (31 - k)) as u32));
-    }
+    let table = joe_kuo::directions(&text).unwrap_or_else(|(line, why)| panic!("{src}:{line}: {why}"));
     let mut out = String::new();
     let reversed: Vec<[u32; 32]> = table.iter().map(|row| row.map(u32::reverse_bits)).collect();
     for (name, what, rows) in [

@@ -21,6 +21,7 @@ bib! {
     ahmed2022 => "A. G. M. Ahmed, J. Ren, P. Wonka. Gaussian blue noise. ACM TOG 41(6), SIGGRAPH Asia 2022.",
     balzer2009 => "M. Balzer, T. Schlömer, O. Deussen. Capacity-constrained point distributions: a variant of Lloyd's method. ACM TOG 28(3), SIGGRAPH 2009.",
     blinn1977 => "J. F. Blinn. Models of light reflection for computer synthesized pictures. SIGGRAPH 1977.",
+    bratley1988 => "P. Bratley, B. L. Fox. Algorithm 659: implementing Sobol's quasirandom sequence generator. ACM TOMS 14(1), 1988.",
     bratley1992 => "P. Bratley, B. L. Fox, H. Niederreiter. Implementation and tests of low-discrepancy sequences. ACM TOMACS 2(3), 1992.",
     bridson2007 => "R. Bridson. Fast Poisson disk sampling in arbitrary dimensions. SIGGRAPH sketches, 2007.",
     burley2020 => "B. Burley. Practical hash-based Owen scrambling. JCGT 9(4), 2020.",

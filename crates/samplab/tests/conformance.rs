@@ -204,6 +204,7 @@ fn specs_round_trip() {
                 (Kind::Choice(words), _) => words[0].to_string(),
                 (Kind::Path, _) if name.starts_with("lattice") => format!("{fixtures}lattice_vector.txt"),
                 (Kind::Path, _) if name == "file" => format!("{fixtures}saved16.txt"),
+                (Kind::Path, _) if p.name == "directions" => format!("{fixtures}../../data/new-joe-kuo-6.1024.txt"),
                 (Kind::Path, _) => format!("{fixtures}net_b3.txt"),
                 (Kind::Reals { .. }, _) => "0.4142135623730951/0.7320508075688772".into(),
             };

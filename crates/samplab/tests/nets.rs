@@ -215,3 +215,52 @@ fn bad_matrix_files_are_refused_with_their_line() {
     assert!(s.plan(1, 1).unwrap().access(Seed(1)).unwrap().sample(4, 0).is_err());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A Joe & Kuo direction-number file (`net:directions=FILE`): the published table (the
+/// first 1024 dimensions of new-joe-kuo-6.21201) gives scipy's first 2^10 Sobol' points
+/// bit for bit;
+/// a table of other valid initial numbers keeps Sobol's t-value bound, the sum of the
+/// polynomials' degrees less one (Joe & Kuo 2008, section 2), counted on every elementary
+/// interval; and a malformed line is refused with its line.
+#[test]
+fn joe_kuo_direction_files_give_their_sobol_nets() {
+    let data = concat!(env!("CARGO_MANIFEST_DIR"), "/data/new-joe-kuo-6.1024.txt");
+    let text = std::fs::read_to_string(fixture("scipy_sobol.json")).unwrap();
+    let scipy: serde_json::Value = serde_json::from_str(&text).unwrap();
+    // scipy draws the first 2^10 points in Gray-code order, a net in natural order: the same set
+    let ours = sorted(points(&set(&format!("net:directions={data}"), 1024, 16, 0)));
+    assert!(ours == sorted(rows(&scipy["sobol_16d_first_1024"])), "the published table against scipy");
+    let dir = std::env::temp_dir().join(format!("samplab-joe-kuo-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let write = |name: &str, text: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    // x + 1 and x^2 + x + 1 with initial numbers other than Joe & Kuo's: t = 0 + 0 + 1
+    let other = write("other.txt", "d s a m_i\n2 1 0 1\n3 2 1 1 1\n");
+    for v in VARIANTS {
+        let spec = format!("net{v}:directions={other}");
+        for m in 1..=10 {
+            assert_net(&set(&spec, 1 << m, 3, 5), 2, m, 1, &spec);
+        }
+        // and not t = 0: the bound is met
+        assert!(std::panic::catch_unwind(|| assert_net(&set(&spec, 1 << 6, 3, 5), 2, 6, 0, &spec)).is_err(), "{spec}");
+    }
+    // the comment is line 1
+    for (body, line, why) in [
+        ("2 1 0 2\n", 2, "m_1 = 2 must be odd and below 2^1"),
+        ("2 1 0 1\n3 2 1 1 5\n", 3, "m_2 = 5 must be odd and below 2^2"),
+        ("2 1 0 1\n4 2 1 1 3\n", 3, "dimension 4 where 3 comes next"),
+        ("2 2 2 1 3\n", 2, "a = 2 has more than s - 1 = 1 bits"),
+        ("2 1 0 1 1\n", 2, "degree 1 needs 1 initial numbers m_1 .. m_1, got 2"),
+        ("2 1 0 x\n", 2, "'x' is not a whole number"),
+    ] {
+        let path = write("bad.txt", &format!("# a comment\n{body}"));
+        let e = sampler::build(&format!("net:directions={path}")).unwrap_err().to_string();
+        assert!(e.contains(&format!("bad.txt:{line}: {why}")), "{body:?}: {e}");
+    }
+    let e = sampler::build(&format!("net:directions={other},matrices={other}")).unwrap_err().to_string();
+    assert!(e.contains("matrices or directions, not both"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -25,6 +25,8 @@
 //!
 //! The pieces:
 //! - [`sobol`]: Sobol' generating matrices (Joe & Kuo 2008) and their byte tables;
+//! - [`joe_kuo`]: the reader of Joe & Kuo's direction-number files (the baked-in table's,
+//!   at build time, and any a user brings);
 //! - [`radical`]: the first primes and radical-inverse digit tables (identity or permuted);
 //! - [`scramble`]: the randomizations' vocabulary ([`Randomization`]) and the scrambles
 //!   (Owen's nested uniform scramble by hashing, digit permutations in any base);
@@ -38,6 +40,7 @@
 
 pub mod cbc;
 pub mod counts;
+pub mod joe_kuo;
 pub mod pbrt;
 pub mod pmj02;
 pub mod radical;

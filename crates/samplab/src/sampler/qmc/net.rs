@@ -128,11 +128,14 @@ impl Matrices {
 
     /// The Sobol' matrices of Joe & Kuo (2008), 32 x 32 bits, for `dims` dimensions.
     fn sobol(dims: usize) -> Matrices {
-        let digits = (0..dims)
-            .flat_map(|d| crate::construct::sobol::direction_numbers(d).into_iter())
-            .flat_map(|v| (0..32).map(move |r| ((v >> (31 - r)) & 1) as u8))
-            .collect();
-        Matrices { base: 2, dims, cols: 32, rows: 32, digits }
+        Matrices::from_directions((0..dims).map(crate::construct::sobol::direction_numbers))
+    }
+
+    /// The 32 x 32-bit Sobol' matrices of the direction numbers of each dimension (column k
+    /// of a dimension the k-th number, row 0 its most significant bit).
+    fn from_directions(directions: impl Iterator<Item = [u32; 32]>) -> Matrices {
+        let digits: Vec<u8> = directions.flatten().flat_map(|v| (0..32).map(move |r| ((v >> (31 - r)) & 1) as u8)).collect();
+        Matrices { base: 2, dims: digits.len() / (32 * 32), cols: 32, rows: 32, digits }
     }
 
     /// Faure's matrices for `dims` dimensions (module docs): base p the smallest prime >= d,
@@ -798,15 +801,30 @@ const BASE: ParamSpec = ParamSpec {
     doc: "a prime: the field of the polynomials and of the digits",
 };
 
-fn read_matrices(path: &str) -> Result<Source> {
-    let text = crate::io::read_small_text(path, crate::io::SPEC_FILE_MAX)?;
-    Ok(Source::File(Arc::new(Matrices::parse(&text, path)?)))
-}
+/// The direction-number file parameter.
+const DIRECTIONS: ParamSpec = ParamSpec {
+    name: "directions",
+    kind: Kind::Path,
+    default: Default::Auto("none: the matrices"),
+    doc: "Sobol' direction numbers in Joe & Kuo's format (new-joe-kuo-6.21201: `d s a m_1 .. m_s` per line from \
+          d = 2), the net their Sobol' matrices, 32 x 32 bits, with van der Corput's first",
+};
 
 fn net_source(p: &Params) -> Result<Source> {
-    match p.path_or_auto("matrices") {
-        Some(path) => read_matrices(path),
-        None => Ok(Source::Sobol),
+    let read = |path: &str| crate::io::read_small_text(path, crate::io::SPEC_FILE_MAX);
+    match (p.path_or_auto("matrices"), p.path_or_auto("directions")) {
+        (Some(_), Some(_)) => Err(Error::Param {
+            owner: "net".into(),
+            param: "directions".into(),
+            reason: "give matrices or directions, not both".into(),
+        }),
+        (Some(path), None) => Ok(Source::File(Arc::new(Matrices::parse(&read(path)?, path)?))),
+        (None, Some(path)) => {
+            let table = crate::construct::joe_kuo::directions(&read(path)?)
+                .map_err(|(line, reason)| Error::Parse { location: format!("{path}:{line}"), reason })?;
+            Ok(Source::File(Arc::new(Matrices::from_directions(table.into_iter()))))
+        }
+        (None, None) => Ok(Source::Sobol),
     }
 }
 
@@ -841,10 +859,10 @@ pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
         family: "net",
         summary: "digital net in base b from generating matrices, natural order",
         aliases: ["digitalnet", "digitalnetb2"],
-        params: &[MATRICES],
+        params: &[MATRICES, DIRECTIONS],
         counts: Counts::Rule("n <= b^m (m columns; nets at powers of b)"),
         dims: "up to the file's",
-        cite: ["niederreiter1992", "joe2008"],
+        cite: ["niederreiter1992", "joe2008", "bratley1988"],
         build: build_net,
         randomizations: [xor, lms, owen, shift],
     },

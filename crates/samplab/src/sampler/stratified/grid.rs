@@ -178,6 +178,9 @@ fn per_offset(n: usize, offsets: usize, dims: usize) -> std::result::Result<usiz
     if !n.is_multiple_of(offsets) {
         return Err(format!("n must be a multiple of offsets = {offsets}"));
     }
+    if offsets == 1 {
+        return Counts::Grid.check(n, dims).map(|()| n);
+    }
     exact_root(n / offsets, dims).map(|_| n / offsets).map_err(|(lo, hi)| {
         let (lo, hi) = (lo * offsets, hi * offsets);
         format!("each of the {offsets} grids needs k^{dims} points; the nearest valid counts are {lo} and {hi}")

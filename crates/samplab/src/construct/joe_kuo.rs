@@ -1,0 +1,84 @@
+//! Sobol' direction numbers in Joe & Kuo's file format (Joe & Kuo 2008, the files
+//! `new-joe-kuo-6.21201` and its kin; `#` starts a comment, as in samplab's other formats):
+//! a line `d s a m_1 ... m_s` per dimension d from 2 on, where s is the degree of the
+//! dimension's primitive polynomial, a its inner coefficients as a number (bit s-1-i is
+//! a_i), and m_k the initial direction integers (odd, below 2^k).
+//! Dimension 1 is van der Corput's (every m_k = 1). The remaining m_k follow Bratley &
+//! Fox's recurrence (Joe & Kuo 2008, section 2):
+//! m_k = 2 a_1 m_{k-1} ^ 4 a_2 m_{k-2} ^ ... ^ 2^{s-1} a_{s-1} m_{k-s+1} ^ 2^s m_{k-s} ^ m_{k-s}.
+//!
+//! One reader for the table baked in at build time (`build.rs` includes this file) and for
+//! any table a user brings (`net:directions=FILE`). It imports nothing, so `build.rs` can.
+
+/// The direction numbers of each dimension, dimension 0 (van der Corput's) first: entry
+/// `[j][k]` is v_k = m_{k+1} 2^(31-k), column k of dimension j's generating matrix with row 0
+/// the most significant bit. A malformed line is an error with its line number (1-based)
+/// and the reason in words.
+///
+/// # Errors
+/// `(line, reason)`: a token that is not a whole number, a dimension out of sequence, a
+/// degree outside 1..=31 or a coefficient number of more than s - 1 bits, the wrong count
+/// of initial numbers, or an m_k that is even or not below 2^k.
+pub fn directions(text: &str) -> Result<Vec<[u32; 32]>, (usize, String)> {
+    let mut table: Vec<[u32; 32]> = vec![std::array::from_fn(|k| 1u32 << (31 - k))];
+    let mut header_allowed = true;
+    for (i, line) in text.lines().enumerate() {
+        let lineno = i + 1;
+        // `#` starts a comment
+        let line = line.split('#').next().unwrap_or_default().trim();
+        if line.is_empty() {
+            continue;
+        }
+        let tokens: Vec<&str> = line.split_whitespace().collect();
+        let numbers: Result<Vec<u64>, &str> = tokens.iter().map(|t| t.parse::<u64>().map_err(|_| *t)).collect();
+        let f = match numbers {
+            Ok(f) => f,
+            // Joe & Kuo's column titles (`d s a m_i`) before the first dimension
+            Err(_) if header_allowed && tokens.first() == Some(&"d") => {
+                header_allowed = false;
+                continue;
+            }
+            Err(t) => {
+                return Err((lineno, format!("'{}' is not a whole number", t.chars().take(24).collect::<String>())));
+            }
+        };
+        header_allowed = false;
+        let want = table.len() as u64 + 1;
+        if f.len() < 4 {
+            return Err((lineno, format!("expected d s a m_1 .. m_s, got {} numbers", f.len())));
+        }
+        let (d, s, a) = (f[0], f[1], f[2]);
+        if d != want {
+            return Err((lineno, format!("dimension {d} where {want} comes next (the lines start at 2, in order)")));
+        }
+        if !(1..=31).contains(&s) {
+            return Err((lineno, format!("degree s = {s} is not in 1..=31")));
+        }
+        let s = s as usize;
+        if a >> (s - 1) != 0 {
+            return Err((lineno, format!("a = {a} has more than s - 1 = {} bits", s - 1)));
+        }
+        if f.len() != 3 + s {
+            return Err((lineno, format!("degree {s} needs {s} initial numbers m_1 .. m_{s}, got {}", f.len() - 3)));
+        }
+        let mut m = [0u64; 32];
+        for (k, &mk) in f[3..].iter().enumerate() {
+            // m_{k+1} is odd and below 2^(k+1)
+            if mk % 2 == 0 || mk >> (k + 1) != 0 {
+                return Err((lineno, format!("m_{} = {mk} must be odd and below 2^{}", k + 1, k + 1)));
+            }
+        }
+        m[..s].copy_from_slice(&f[3..]);
+        for k in s..32 {
+            let mut v = m[k - s] ^ (m[k - s] << s);
+            for i in 1..s {
+                if (a >> (s - 1 - i)) & 1 == 1 {
+                    v ^= m[k - i] << i;
+                }
+            }
+            m[k] = v;
+        }
+        table.push(std::array::from_fn(|k| (m[k] << (31 - k)) as u32));
+    }
+    Ok(table)
+}
