@@ -50,6 +50,7 @@ bib! {
     korobov1959 => "N. M. Korobov. The approximate computation of multiple integrals. Dokl. Akad. Nauk SSSR 124, 1959.",
     lagae2008 => "A. Lagae, P. Dutré. A comparison of methods for generating Poisson disk distributions. Computer Graphics Forum 27(1), 2008 (the relative radius).",
     laine2011 => "S. Laine, T. Karras. Stratified sampling for stochastic transparency. EGSR 2011.",
+    larcher2003 => "G. Larcher, F. Pillichshammer. Sums of distances to the nearest integer and the discrepancy of digital nets. Acta Arithmetica 106(4), 2003.",
     lloyd1982 => "S. P. Lloyd. Least squares quantization in PCM. IEEE Trans. Inf. Theory 28(2), 1982.",
     matousek1998 => "J. Matousek. On the L2-discrepancy for anchored boxes. J. Complexity 14, 1998 (random digit scrambling).",
     mckay1979 => "M. D. McKay, R. J. Beckman, W. J. Conover. A comparison of three methods for selecting values of input variables. Technometrics 21(2), 1979.",

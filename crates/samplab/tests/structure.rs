@@ -114,10 +114,18 @@ fn nrooks_one_per_row_and_column_in_every_pair_of_dimensions() {
 
 #[test]
 fn digital_nets_for_m_1_to_12() {
-    let specs = ["sobol", "sobol.xor", "sobol.owen", "pmj02", "hammersley", "hammersley.xor", "hammersley.owen"];
-    for spec in specs {
+    let sets = [
+        "hammersley",
+        "hammersley.xor",
+        "hammersley.owen",
+        "lp",
+        "larcher-pillichshammer.xor",
+        "larcher-pillichshammer.owen",
+    ];
+    let specs = ["sobol", "sobol.xor", "sobol.owen", "pmj02"];
+    for spec in specs.into_iter().chain(sets) {
         for seed in [1u64, 2] {
-            if spec.starts_with("hammersley") {
+            if sets.contains(&spec) {
                 for m in 1..=12 {
                     assert_02_net(make(spec, 1 << m, 2, seed).as_slice(), m, spec);
                 }

@@ -5,6 +5,8 @@
 //!   numbers, in Gray-code order.
 //! - [`halton`]: radical inverses in prime bases: the Halton sequence (Halton 1960) and the
 //!   Hammersley set (Hammersley & Handscomb 1964).
+//! - [`larcher`]: the Larcher–Pillichshammer set (Larcher & Pillichshammer 2003), a 2D
+//!   digital net of the least star discrepancy.
 //! - [`net`]: digital nets and sequences in a prime base from generating matrices
 //!   (Niederreiter 1992): a file's, Faure's (1982) and Niederreiter's (1988).
 //! - [`kronecker`]: Kronecker sequences frac(i alpha) (Weyl 1916), Roberts' R_d by default.
@@ -17,5 +19,5 @@
 
 crate::registry::registry_files! {
     /// The files of this family, in listing order.
-    pub(crate) static FILES: Family<crate::sampler::SamplerEntry> = [sobol, halton, net, kronecker, lattice];
+    pub(crate) static FILES: Family<crate::sampler::SamplerEntry> = [sobol, halton, larcher, net, kronecker, lattice];
 }
