@@ -43,6 +43,7 @@ bib! {
     helmer2021 => "A. Helmer, P. Christensen, A. Kensler. Stochastic generation of (t,s) sample sequences. EGSR 2021.",
     hickernell2000 => "F. J. Hickernell, H. S. Hong, P. L'Ecuyer, C. Lemieux. Extensible lattice sequences for quasi-Monte Carlo quadrature. SIAM J. Sci. Comput. 22(3), 2000.",
     hickernell2002 => "F. J. Hickernell. Obtaining O(N^-2+e) convergence for lattice quadrature rules. Monte Carlo and Quasi-Monte Carlo Methods 2000, Springer, 2002.",
+    hilbert1891 => "D. Hilbert. Über die stetige Abbildung einer Linie auf ein Flächenstück. Math. Ann. 38, 1891.",
     ishigami1990 => "T. Ishigami, T. Homma. An importance quantification technique in uncertainty analysis for computer models. ISUMA 1990.",
     joe2008 => "S. Joe, F. Y. Kuo. Constructing Sobol sequences with better two-dimensional projections. SIAM J. Sci. Comput. 30(5), 2008.",
     keister1996 => "B. D. Keister. Multidimensional quadrature algorithms. Computers in Physics 10(2), 1996.",

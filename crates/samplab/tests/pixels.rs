@@ -132,6 +132,35 @@ fn each_pixels_samples_keep_their_stratification_on_elementary_intervals() {
     assert!(!is_02_net(&xy));
 }
 
+/// ZSobol's screen order (Ahmed & Wonka 2020) keeps every aligned 2^k x 2^k block of pixels
+/// one run of the sequence, so the block's samples together are a (0, m, 2)-net in each
+/// pair of dimensions: in Morton order (pbrt-v4's) and along the Hilbert curve alike, which
+/// visit the pixels in different orders.
+#[test]
+fn zsobols_aligned_blocks_of_pixels_are_nets_in_morton_and_hilbert_order() {
+    let film = Film { width: 8, height: 8, spp: 4, dims: 4 };
+    let [morton, hilbert] = ["zsobol", "zsobol:curve=hilbert"].map(|spec| prepare(spec, film, Seed(5)).unwrap());
+    for (name, p) in [("morton", &morton), ("hilbert", &hilbert)] {
+        for k in 0..=3u32 {
+            let side = 1u32 << k;
+            for (bx, by) in [(0, 0), (1, 0), (0, 1), (1, 1)]
+                .into_iter()
+                .filter(|&(x, y)| (x + 1) * side <= 8 && (y + 1) * side <= 8)
+            {
+                for pair in 0..2 {
+                    let xy: Vec<[f64; 2]> = (0..side * side)
+                        .flat_map(|c| (0..4).map(move |i| (bx * side + c % side, by * side + c / side, i)))
+                        .map(|(x, y, i)| [0, 1].map(|j| p.sample([x, y], 0, i, 2 * pair + j)))
+                        .collect();
+                    assert!(is_02_net(&xy), "{name}: block {side}x{side} at ({bx},{by}), pair {pair}");
+                }
+            }
+        }
+    }
+    // the two orders give pixel (1, 0) different runs of the sequence
+    assert_ne!(morton.sample([1, 0], 0, 0, 0), hilbert.sample([1, 0], 0, 0, 0));
+}
+
 #[test]
 fn stratified_puts_one_sample_in_every_cell_of_each_pair() {
     for (spp, columns, rows) in [(16u32, 4u32, 4u32), (12, 4, 3), (7, 7, 1)] {

@@ -30,6 +30,7 @@
 //! - [`radical`]: the first primes and radical-inverse digit tables (identity or permuted);
 //! - [`scramble`]: the randomizations' vocabulary ([`Randomization`]) and the scrambles
 //!   (Owen's nested uniform scramble by hashing, digit permutations in any base);
+//! - [`curve`]: the Hilbert curve's order of the screen's pixels (beside pbrt's Morton order);
 //! - [`pbrt`]: pbrt-v4's hashes, permutation, Morton order and scrambles, bit for bit;
 //! - [`pmj02`]: the stochastic pmj02 construction (Helmer et al. 2021);
 //! - [`cbc`]: fast component-by-component searches for rank-1 lattices (Nuyens & Cools 2006);
@@ -40,6 +41,7 @@
 
 pub mod cbc;
 pub mod counts;
+pub mod curve;
 pub mod joe_kuo;
 pub mod pbrt;
 pub mod pmj02;

@@ -2,16 +2,27 @@
 //! sequence over the whole screen, pixels visited in Morton order, with a random
 //! permutation of every base-4 digit of the Morton index that depends on the digits above
 //! it, so that neighbouring pixels get well-spread, different parts of the sequence: the
-//! error is spread over the screen as blue noise.
+//! error is spread over the screen as blue noise. `curve=hilbert` visits the pixels along a
+//! Hilbert curve instead ([`crate::construct::curve::hilbert2`]): every aligned block of
+//! pixels is still one run of the index, and consecutive pixels are neighbours.
 
 use super::RANDOMIZE;
 use crate::construct::pbrt::{Scramble, Sobol2, frame_seed, hash_words, mix_bits, morton2};
 use super::{Family, Film, POWER_OF_TWO_SPP, Pairs, PixelEntry, Mapping, MappingKind};
+use crate::construct::curve::hilbert2;
 use crate::error::Result;
 use crate::registry::About;
 use crate::progress::Progress;
 use crate::seed::Seed;
-use crate::spec::Params;
+use crate::spec::{Default, Kind, ParamSpec, Params};
+
+/// The order pixels are visited in.
+const CURVE: ParamSpec = ParamSpec {
+    name: "curve",
+    kind: Kind::Choice(&["morton", "hilbert"]),
+    default: Default::Word("morton"),
+    doc: "the screen order of the pixels: Morton's (pbrt-v4's, Ahmed & Wonka 2020) or a Hilbert curve's",
+};
 
 pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
     about: About::new(
@@ -20,16 +31,16 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[PixelEntry {
          permutations (pbrt-v4's ZSobolSampler, bit for bit)",
     )
     .aliases(&["zsobolsampler"])
-    .params(&[RANDOMIZE])
+    .params(&[RANDOMIZE, CURVE])
     .terse()
-    .cite(&["ahmed2020", "pharr2023", "burley2020"]),
+    .cite(&["ahmed2020", "pharr2023", "burley2020", "hilbert1891"]),
     spp: POWER_OF_TWO_SPP,
     dims_note: "pairs of 2D Sobol'",
     max_dims: super::MAX_DIMS,
     mapping: Mapping {
         kind: MappingKind::ScreenOrder,
         family: "sobol",
-        how: "sample i of pixel p is Sobol' point P(morton(p) * spp + i), P \
+        how: "sample i of pixel p is Sobol' point P(morton(p) * spp + i) (or hilbert(p)), P \
               permuting each base-4 digit by a hash of the digits above it and of the dimension pair; \
               dimensions 2k, 2k+1 are Sobol' dimensions 0, 1 scrambled by Hash(2k + 2, seed) \
               (frame 0 uses the seed's low 32 bits as pbrt's seed)",
@@ -71,6 +82,8 @@ const PERMUTATIONS: [[u8; 4]; 24] = [
 pub(crate) struct ZSobol {
     seed: u64,
     scramble: Scramble,
+    /// The Hilbert curve's order (the film's side, a power of two, is 2^order); None: Morton's.
+    hilbert: Option<u32>,
     log2_spp: u32,
     base4_digits: u32,
     sobol: Sobol2,
@@ -84,6 +97,7 @@ fn build(p: &Params, film: Film, seed: Seed, _: &Progress<'_>) -> Result<Family>
     Ok(Family::from(ZSobol {
         seed: seed.0,
         scramble: Scramble::from_word(p.word("randomize")),
+        hilbert: (p.word("curve") == "hilbert").then(|| side.ilog2()),
         log2_spp,
         base4_digits: side.ilog2() + log2_spp.div_ceil(2),
         sobol: Sobol2::default(),
@@ -132,12 +146,16 @@ impl ZSobol {
 }
 
 impl Pairs for ZSobol {
-    /// The sample's Morton index and pbrt's seed for the frame.
+    /// The sample's Morton (or Hilbert) index and pbrt's seed for the frame.
     type Key = (u64, u32);
 
     #[inline(always)]
     fn key(&self, pixel: [u32; 2], frame: u32, index: u32) -> (u64, u32) {
-        ((morton2(pixel[0], pixel[1]) << self.log2_spp) | u64::from(index), frame_seed(self.seed, frame))
+        let order = match self.hilbert {
+            None => morton2(pixel[0], pixel[1]),
+            Some(order) => hilbert2(order, pixel[0], pixel[1]),
+        };
+        ((order << self.log2_spp) | u64::from(index), frame_seed(self.seed, frame))
     }
 
     #[inline(always)]
