@@ -264,3 +264,36 @@ fn joe_kuo_direction_files_give_their_sobol_nets() {
     assert!(e.contains("matrices or directions, not both"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Gray-code order (Antonov & Saleev 1979): the default matrices in Gray-code order are
+/// `sobol`'s points bit for bit (which are scipy's, `structure.rs`), point i + 1 is point i
+/// with the one column of i's lowest zero bit added, random access equals the batch under
+/// every randomization and the set is the natural order's; a base-3 file is refused.
+#[test]
+fn gray_code_order_is_sobols_and_steps_by_one_column() {
+    for m in [4, 10] {
+        assert_eq!(points(&set("net:order=gray", 1 << m, 6, 1)), points(&set("sobol", 1 << m, 6, 1)), "m = {m}");
+    }
+    let gray = set("net:order=gray", 1 << 10, 4, 1);
+    let fixed = |i: usize, d: usize| (gray.point(i)[d] * 4_294_967_296.0) as u32;
+    for i in 0..(1usize << 10) - 1 {
+        for d in 0..4 {
+            let column = samplab::construct::sobol::direction_numbers(d)[i.trailing_ones() as usize];
+            assert_eq!(fixed(i, d) ^ fixed(i + 1, d), column, "point {i}, dimension {d}");
+        }
+    }
+    assert_ne!(points(&set("net", 16, 2, 1)), points(&set("net:order=gray", 16, 2, 1)), "natural order is not Gray's");
+    for v in VARIANTS {
+        let plan = sampler::build(&format!("net{v}:order=gray")).unwrap().plan(256, 4).unwrap();
+        let batch = plan.generate(Seed(3)).unwrap();
+        let access = plan.access(Seed(3)).unwrap();
+        for i in 0..256 {
+            for d in 0..4 {
+                assert_eq!(access.sample(i as u64, d).unwrap(), batch.point(i)[d], "net{v}: point {i}, dimension {d}");
+            }
+        }
+        assert_eq!(sorted(points(&batch)), sorted(points(&set(&format!("net{v}"), 256, 4, 3))), "net{v}");
+    }
+    let e = sampler::build(&format!("net:order=gray,matrices={}", fixture("net_b3.txt"))).unwrap_err().to_string();
+    assert!(e.contains("Gray-code order is for base-2 matrices"), "{e}");
+}

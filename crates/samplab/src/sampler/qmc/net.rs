@@ -356,6 +356,9 @@ enum Source {
 pub struct Net {
     source: Source,
     randomization: Randomization,
+    /// Base 2: the points in Gray-code order (point i is natural point i ^ (i >> 1), so
+    /// consecutive points differ by one column: Antonov & Saleev 1979).
+    gray: bool,
 }
 
 impl Net {
@@ -422,6 +425,8 @@ impl Planned {
             // steps[k][j]: the running XOR of dimension d0 + j's columns up to k (by column,
             // then dimension: a point's step is one contiguous row)
             let mut steps = [[0u64; CHUNK]; MAX_WORDS];
+            // natural order steps by the running XOR of the columns up to the index's lowest
+            // zero bit, Gray-code order by that column alone
             let mut keys = [BinaryKey::default(); CHUNK];
             let mut columns = [0u64; MAX_WORDS];
             for (j, key) in keys.iter_mut().take(count).enumerate() {
@@ -430,7 +435,7 @@ impl Planned {
                 let mut running = 0;
                 for (step, &column) in steps.iter_mut().zip(&columns[..used]) {
                     running ^= column;
-                    step[j] = running;
+                    step[j] = if self.net.gray { column } else { running };
                 }
             }
             let mut state = [0u64; CHUNK];
@@ -459,13 +464,13 @@ impl Prepared for Planned {
     }
 
     fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
-        Some(Box::new(self.engine(seed, u64::MAX)))
+        Some(Box::new(Ordered { engine: self.engine(seed, u64::MAX), gray: self.net.gray }))
     }
 
     fn sample_at(&self, seed: Seed, index: u64, dim: usize) -> Option<Result<f64>> {
         // a value drawn alone (per pixel): the dimensions up to its own, Owen tables at
         // their least (a cache only: the same bits)
-        Some(self.engine_of(dim + 1, seed, 1).sample(index, dim))
+        Some(Ordered { engine: self.engine_of(dim + 1, seed, 1), gray: self.net.gray }.sample(index, dim))
     }
 }
 
@@ -534,6 +539,20 @@ impl Access for Engine {
             Engine::Binary(e) => e.value(e.digits(index, dim), dim),
             Engine::Prime(e) => e.value(&e.digits(index, dim), dim),
         })
+    }
+}
+
+/// An engine's points in natural or Gray-code order.
+#[derive(Debug)]
+struct Ordered {
+    engine: Engine,
+    gray: bool,
+}
+
+impl Access for Ordered {
+    fn sample(&self, index: u64, dim: usize) -> Result<f64> {
+        // the Gray code of an index below b^cols is below it too: the same range
+        self.engine.sample(if self.gray { index ^ (index >> 1) } else { index }, dim)
     }
 }
 
@@ -801,6 +820,14 @@ const BASE: ParamSpec = ParamSpec {
     doc: "a prime: the field of the polynomials and of the digits",
 };
 
+/// The order of the points.
+const ORDER: ParamSpec = ParamSpec {
+    name: "order",
+    kind: Kind::Choice(&["natural", "gray"]),
+    default: Default::Word("natural"),
+    doc: "natural, or Gray-code order (base 2: point i is natural point i ^ (i >> 1), as sobol orders its points)",
+};
+
 /// The direction-number file parameter.
 const DIRECTIONS: ParamSpec = ParamSpec {
     name: "directions",
@@ -839,18 +866,23 @@ fn niederreiter_source(p: &Params) -> Result<Source> {
 /// The construction of each `net` entry.
 fn build_net(p: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
     let source = net_source(p)?;
-    Ok(shift::applied(randomization, |randomization| Box::new(Net { source, randomization })))
+    let gray = p.word("order") == "gray";
+    if gray && !matches!(&source, Source::Sobol) && !matches!(&source, Source::File(m) if m.base == 2) {
+        let reason = "Gray-code order is for base-2 matrices (consecutive points one column apart)".into();
+        return Err(Error::Param { owner: "net".into(), param: "order".into(), reason });
+    }
+    Ok(shift::applied(randomization, |randomization| Box::new(Net { source, randomization, gray })))
 }
 
 /// The construction of each `faure` entry.
 fn build_faure(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
-    Ok(shift::applied(randomization, |randomization| Box::new(Net { source: Source::Faure, randomization })))
+    Ok(shift::applied(randomization, |randomization| Box::new(Net { source: Source::Faure, randomization, gray: false })))
 }
 
 /// The construction of each `niederreiter` entry.
 fn build_niederreiter(p: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
     let source = niederreiter_source(p)?;
-    Ok(shift::applied(randomization, |randomization| Box::new(Net { source, randomization })))
+    Ok(shift::applied(randomization, |randomization| Box::new(Net { source, randomization, gray: false })))
 }
 
 /// The samplers this file registers: each family plain and with its four randomizations.
@@ -859,10 +891,10 @@ pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
         family: "net",
         summary: "digital net in base b from generating matrices, natural order",
         aliases: ["digitalnet", "digitalnetb2"],
-        params: &[MATRICES, DIRECTIONS],
+        params: &[MATRICES, DIRECTIONS, ORDER],
         counts: Counts::Rule("n <= b^m (m columns; nets at powers of b)"),
         dims: "up to the file's",
-        cite: ["niederreiter1992", "joe2008", "bratley1988"],
+        cite: ["niederreiter1992", "joe2008", "bratley1988", "antonov1979"],
         build: build_net,
         randomizations: [xor, lms, owen, shift],
     },
