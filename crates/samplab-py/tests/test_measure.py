@@ -64,9 +64,11 @@ def test_every_metric_and_warp_runs():
         value = samplab.discrepancy(m["name"], x)
         # discrepancies, distances and the relative radius lie in [0, 1]; a pair correlation
         # is a density ratio (1 for white noise), the effective Nyquist frequency a multiple
-        # of a grid's (above 1 for a hexagonal lattice), the oscillation 10 x an RMS
+        # of a grid's (above 1 for a hexagonal lattice), the oscillation 10 x an RMS; the
+        # t-value of 2^6 points lies in 0..=6
         unbounded = ("pcf", "rdf", "nyquist", "oscillation")
-        assert 0 <= value <= (np.inf if m["name"] in unbounded else 1), m["name"]
+        upper = 6 if m["name"] == "t-value" else np.inf if m["name"] in unbounded else 1
+        assert 0 <= value <= upper, m["name"]
     for w in samplab.warps():
         y = samplab.warp(w["name"], x)
         assert y.ndim == 2 and y.shape[0] <= 64 and np.isfinite(y).all(), w["name"]

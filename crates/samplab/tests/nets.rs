@@ -297,3 +297,76 @@ fn gray_code_order_is_sobols_and_steps_by_one_column() {
     let e = sampler::build(&format!("net:order=gray,matrices={}", fixture("net_b3.txt"))).unwrap_err().to_string();
     assert!(e.contains("Gray-code order is for base-2 matrices"), "{e}");
 }
+
+/// The t-value metric against every elementary interval of base 2 enumerated box by box
+/// (each box [a_j 2^-d_j, (a_j + 1) 2^-d_j) compared exactly in floating point, its points
+/// counted), and against the constructions' known t: Faure's sets are (0, m, s)-nets in
+/// base b >= s, Sobol's first two dimensions and the Larcher-Pillichshammer set are
+/// (0, m, 2)-nets, scrambled or not; a set with one point moved is not, and uniform random
+/// points are far from it.
+#[test]
+fn the_t_value_metric_is_the_least_t_of_every_elementary_interval() {
+    use samplab::discrepancy::{Limits, Metric, compute};
+    let t_value = |p: &PointSet, spec: &str| compute(&Metric::parse(spec).unwrap(), p, Limits::default()).unwrap();
+    // the least t such that every box of volume 2^(t-m) holds 2^t points
+    let naive = |p: &PointSet, m: u32| -> f64 {
+        let s = p.dims();
+        let holds = |t: u32| {
+            let k = m - t;
+            let mut splits: Vec<Vec<u32>> = vec![vec![]];
+            for _ in 0..s {
+                splits = splits.into_iter().flat_map(|v| (0..=k).map(move |d| [v.clone(), vec![d]].concat())).collect();
+            }
+            splits.into_iter().filter(|v| v.iter().sum::<u32>() == k).all(|d| {
+                (0..1u64 << k).all(|code| {
+                    // the box's corner a_j: consecutive bits of `code`, d_j of them per axis
+                    let mut shift = 0;
+                    let corner: Vec<u64> = d
+                        .iter()
+                        .map(|&dj| {
+                            let a = (code >> shift) & ((1 << dj) - 1);
+                            shift += dj;
+                            a
+                        })
+                        .collect();
+                    let inside = p
+                        .iter()
+                        .filter(|x| {
+                            (0..s).all(|j| {
+                                let side = (1u64 << d[j]) as f64;
+                                x[j] >= corner[j] as f64 / side && x[j] < (corner[j] + 1) as f64 / side
+                            })
+                        })
+                        .count();
+                    inside == 1 << t
+                })
+            })
+        };
+        (0..=m).find(|&t| holds(t)).unwrap() as f64
+    };
+    for (spec, d, m) in
+        [("sobol", 3, 6u32), ("sobol.owen", 4, 5), ("lp", 2, 6), ("jitter", 2, 4), ("random", 2, 4), ("random", 3, 5)]
+    {
+        let p = set(spec, 1 << m, d, 7);
+        assert_eq!(t_value(&p, "t-value"), naive(&p, m), "{spec} {d}D");
+    }
+    for m in 1..=10 {
+        for spec in ["sobol", "sobol.owen", "lp", "larcher-pillichshammer.xor", "hammersley"] {
+            assert_eq!(t_value(&set(spec, 1 << m, 2, 3), "t-value"), 0.0, "{spec}, m = {m}");
+        }
+    }
+    for spec in ["faure", "faure.owen"] {
+        assert_eq!(t_value(&set(spec, 3usize.pow(5), 3, 1), "t-value:base=3"), 0.0, "{spec}");
+    }
+    // one point moved onto another: no longer a (0, m, 2)-net
+    let mut moved = set("sobol", 256, 2, 1).as_slice().to_vec();
+    moved[0] = moved[2];
+    moved[1] = moved[3];
+    assert!(t_value(&PointSet::new(2, moved).unwrap(), "t-value") > 0.0);
+    assert!(t_value(&set("random", 1024, 2, 1), "t-value") >= 5.0);
+    // the pairs of a 6D Sobol' set are no worse than the whole set
+    let sobol6 = set("sobol", 1024, 6, 1);
+    assert!(t_value(&sobol6, "t-value:projection=pairs") <= t_value(&sobol6, "t-value"));
+    let e = compute(&Metric::parse("t-value").unwrap(), &set("random", 100, 2, 1), Limits::default()).unwrap_err();
+    assert!(e.to_string().contains("100 points are not a power of the base 2"), "{e}");
+}

@@ -89,7 +89,7 @@ impl Entry for MetricEntry {
 crate::registry::registry_files! {
     /// Every metric, in listing order, gathered from the files that declare them.
     pub static METRICS: Registry<MetricEntry> =
-        ("metric", "METRICS  (values are never squared)") from [star, extreme, l2, bound, projected, spacing, aliasing];
+        ("metric", "METRICS  (values are never squared)") from [star, extreme, l2, bound, projected, spacing, aliasing, tvalue];
 }
 
 /// A discrepancy to compute: a registered metric with its parameters.
