@@ -19,6 +19,7 @@ macro_rules! bib {
 bib! {
     ahmed2020 => "A. G. M. Ahmed, P. Wonka. Screen-space blue-noise diffusion of Monte Carlo sampling error via hierarchical ordering of pixels. ACM TOG 39(6), SIGGRAPH Asia 2020.",
     ahmed2022 => "A. G. M. Ahmed, J. Ren, P. Wonka. Gaussian blue noise. ACM TOG 41(6), SIGGRAPH Asia 2022.",
+    ahmed2025sz => "A. G. M. Ahmed, M. Pharr, V. Ostromoukhov, H. Huang. SZ sequences: binary-constructed (0, 2^q)-sequences. ACM Trans. Graph. (SIGGRAPH Asia), 2025; the q = 2 matrices as OpenQMC builds them (its pull request #108).",
     antonov1979 => "I. A. Antonov, V. M. Saleev. An economic method of computing LP_tau-sequences. USSR Comput. Math. Math. Phys. 19(1), 1979.",
     balzer2009 => "M. Balzer, T. Schlömer, O. Deussen. Capacity-constrained point distributions: a variant of Lloyd's method. ACM TOG 28(3), SIGGRAPH 2009.",
     blinn1977 => "J. F. Blinn. Models of light reflection for computer synthesized pictures. SIGGRAPH 1977.",

@@ -358,6 +358,16 @@ fn the_t_value_metric_is_the_least_t_of_every_elementary_interval() {
     for spec in ["faure", "faure.owen"] {
         assert_eq!(t_value(&set(spec, 3usize.pow(5), 3, 1), "t-value:base=3"), 0.0, "{spec}");
     }
+    // SZ (Ahmed et al. 2025): a (0, 4)-sequence in base 4, as every randomization that keeps
+    // nets leaves it; its binary pairs are not all (0, m, 2)-nets (the price of base 4)
+    for spec in ["sz", "sz.owen", "sz.xor", "sz.lms"] {
+        for k in 1..=5 {
+            let p = set(spec, 4usize.pow(k), 4, 5);
+            assert_eq!(t_value(&p, "t-value:base=4"), 0.0, "{spec}, 4^{k} points");
+        }
+    }
+    assert!(t_value(&set("sz", 4096, 4, 1), "t-value:projection=pairs") > 0.0);
+    assert!(t_value(&set("sobol", 4096, 4, 1), "t-value:base=4") > 0.0);
     // one point moved onto another: no longer a (0, m, 2)-net
     let mut moved = set("sobol", 256, 2, 1).as_slice().to_vec();
     moved[0] = moved[2];

@@ -6,6 +6,7 @@ pub mod prediction;
 pub mod ramamoorthi2012;
 pub mod renderer;
 pub mod sbert2006;
+pub mod sequences2020;
 pub(crate) mod shadows;
 pub mod shirley1991;
 pub mod subr2013;
@@ -19,6 +20,7 @@ pub fn all() -> Vec<Paper> {
         ramamoorthi2012::paper(),
         renderer::paper(),
         prediction::paper(),
+        sequences2020::paper(),
     ]
 }
 

@@ -10,7 +10,7 @@
 //!   studies        experiment, study, predict, cubature
 //!   measures       discrepancy, spectrum, spatial, screen, theory, stats, integrand, warp, io
 //!   front doors    sampler (point sets)            pixel (per-pixel draws)
-//!   constructions  construct: sobol, radical, scramble, pbrt, pmj02, cbc, counts, spectrum_theory
+//!   constructions  construct: sobol, sz, radical, scramble, pbrt, pmj02, cbc, counts, spectrum_theory
 //!   base           numeric, seed, simd, progress, memory, error, spec, registry, points
 //! ```
 //!
@@ -33,6 +33,7 @@
 //! - [`curve`]: the Hilbert curve's order of the screen's pixels (beside pbrt's Morton order);
 //! - [`pbrt`]: pbrt-v4's hashes, permutation, Morton order and scrambles, bit for bit;
 //! - [`pmj02`]: the stochastic pmj02 construction (Helmer et al. 2021);
+//! - [`sz`]: the SZ generating matrices (Ahmed et al. 2025), a (0, 4)-sequence in base 4;
 //! - [`cbc`]: fast component-by-component searches for rank-1 lattices (Nuyens & Cools 2006);
 //! - [`counts`]: which counts a construction makes ([`Counts`]);
 //! - [`spectrum_theory`]: the closed-form spectra of jittered sampling (Subr & Kautz 2013),
@@ -49,6 +50,7 @@ pub mod radical;
 pub mod scramble;
 pub mod sobol;
 pub mod spectrum_theory;
+pub mod sz;
 
 pub use counts::{Counts, MAX_POINTS};
 pub use scramble::Randomization;

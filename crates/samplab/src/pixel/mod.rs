@@ -198,6 +198,7 @@ families! {
     OpenQmcPmjBn(openqmc::OpenQmc<::openqmc::PmjBnSampler>),
     OpenQmcLattice(openqmc::OpenQmc<::openqmc::LatticeSampler>),
     OpenQmcLatticeBn(openqmc::OpenQmc<::openqmc::LatticeBnSampler>),
+    OpenQmcSz(openqmc::OpenQmc<openqmc::SzSampler>),
     Sequence(sequence::PerPixel),
 }
 

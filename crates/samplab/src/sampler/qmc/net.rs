@@ -13,7 +13,9 @@
 //!   compute them: dimension j takes the j-th monic irreducible polynomial p_j over F_b
 //!   (by degree, then by coefficients), and row r = Q e_j + u of C_j holds the terms
 //!   u, u+1, ... of a linear recurring sequence whose characteristic polynomial is
-//!   p_j^(Q+1); a (t, s)-sequence with t = sum_j (deg p_j - 1).
+//!   p_j^(Q+1); a (t, s)-sequence with t = sum_j (deg p_j - 1);
+//! - the SZ matrices (Ahmed et al. 2025, [`crate::construct::sz`]): four binary matrices
+//!   that are a (0, 4)-sequence in base 4.
 //!
 //! Randomizations, each on the digits, seeded per dimension (so random access equals the
 //! batch):
@@ -349,6 +351,8 @@ enum Source {
     Faure,
     /// Niederreiter's in a base.
     Niederreiter(u32),
+    /// The SZ matrices (Ahmed et al. 2025), four dimensions.
+    Sz,
 }
 
 /// A digital net or sequence with a randomization.
@@ -369,12 +373,13 @@ impl Net {
             Source::Sobol => Arc::new(Matrices::sobol(dims)),
             Source::Faure => Arc::new(Matrices::faure(dims)),
             Source::Niederreiter(b) => Arc::new(Matrices::niederreiter(*b, dims)?),
+            Source::Sz => Arc::new(Matrices::from_directions(crate::construct::sz::SZ.into_iter().take(dims))),
         })
     }
 
     fn base(&self, dims: usize) -> u32 {
         match &self.source {
-            Source::Sobol => 2,
+            Source::Sobol | Source::Sz => 2,
             Source::File(m) => m.base,
             Source::Faure => faure_base(dims),
             Source::Niederreiter(b) => *b,
@@ -485,12 +490,13 @@ impl Construction for Net {
             Source::File(m) => 1..=m.dims,
             Source::Faure => 1..=MAX_BASE as usize,
             Source::Niederreiter(_) => 1..=MAX_DIMS,
+            Source::Sz => 1..=crate::construct::sz::SZ.len(),
         }
     }
     fn check_count(&self, shape: &Shape) -> Result<()> {
         let (n, dims) = (shape.n(), shape.dims());
         let cols = match &self.source {
-            Source::Sobol => 32,
+            Source::Sobol | Source::Sz => 32,
             Source::File(m) => m.cols,
             _ => columns_for_all_sets(self.base(dims)),
         };
@@ -885,6 +891,11 @@ fn build_niederreiter(p: &mut Params, randomization: Randomization) -> Result<Bo
     Ok(shift::applied(randomization, |randomization| Box::new(Net { source, randomization, gray: false })))
 }
 
+/// The construction of each `sz` entry.
+fn build_sz(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
+    Ok(shift::applied(randomization, |randomization| Box::new(Net { source: Source::Sz, randomization, gray: false })))
+}
+
 /// The samplers this file registers: each family plain and with its four randomizations.
 pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
     {
@@ -918,6 +929,17 @@ pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
         dims: "1..=1024",
         cite: ["niederreiter1988", "bratley1992"],
         build: build_niederreiter,
+        randomizations: [xor, lms, owen, shift],
+    },
+    {
+        family: "sz",
+        summary: "SZ sequence (q = 2): a (0,4)-sequence in base 4 in binary, Sobol's first two dimensions",
+        aliases: [],
+        params: &[],
+        counts: Counts::Any("nets at powers of 4 (and of 2 in dimensions 0, 1)"),
+        dims: "1..=4",
+        cite: ["ahmed2025sz"],
+        build: build_sz,
         randomizations: [xor, lms, owen, shift],
     },
 );
