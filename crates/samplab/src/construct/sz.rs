@@ -2,7 +2,7 @@
 //! Binary-Constructed (0, 2^q)-Sequences"), the case q = 2: a (0, 4)-sequence in base 4
 //! written as four binary matrices, of which the first two are Sobol's.
 //!
-//! The field GF(4) is GF(2)[x] / (x^2 + x + 1); each of its elements acts on it (basis 1, x)
+//! The field GF(4) is GF(2)\[x\] / (x^2 + x + 1); each of its elements acts on it (basis 1, x)
 //! as a 2 x 2 binary matrix, so a matrix over GF(4) is a binary matrix of 2 x 2 blocks. The
 //! matrix of a symbol s is the base-4 Pascal matrix of s (the paper's eq. 24): block (i, j)
 //! is s^(j - i) where binom(j, i) is odd and zero elsewhere (Faure's matrices in base 4, whose
@@ -24,7 +24,7 @@ type Block = [[u32; 2]; 2];
 /// The identity block: the symbol 1.
 const ONE: Block = [[1, 0], [0, 1]];
 
-/// The block of x in GF(2)[x] / (x^2 + x + 1), a generator of GF(4)'s multiplicative group
+/// The block of x in GF(2)\[x\] / (x^2 + x + 1), a generator of GF(4)'s multiplicative group
 /// (its cube is 1, its square is not): x times (a + b x) is b + (a + b) x.
 const ALPHA: Block = [[0, 1], [1, 1]];
 
