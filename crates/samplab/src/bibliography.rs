@@ -32,6 +32,7 @@ bib! {
     cook1986 => "R. L. Cook. Stochastic sampling in computer graphics. ACM TOG 5(1), 1986.",
     cools2006 => "R. Cools, F. Y. Kuo, D. Nuyens. Constructing embedded lattice rules for multivariate integration. SIAM J. Sci. Comput. 28(6), 2006.",
     cranley1976 => "R. Cranley, T. N. L. Patterson. Randomization of number theoretic methods for multiple integration. SIAM J. Numer. Anal. 13(6), 1976.",
+    cycles => "Blender Cycles, the production path tracer of Blender (Apache-2.0), github.com/blender/cycles: its sampling patterns (kernel/sample/pattern.h, sobol_burley.h, tabulated_sobol.h; scene/integrator.cpp, tabulated_sobol.cpp), reproduced bit for bit from commit 97dbe6f (2026-07-13).",
     du1999 => "Q. Du, V. Faber, M. Gunzburger. Centroidal Voronoi tessellations: applications and algorithms. SIAM Review 41(4), 1999.",
     ebeida2012 => "M. Ebeida, S. Mitchell, A. Patney, A. Davidson, J. Owens. A simple algorithm for maximal Poisson-disk sampling in high dimensions. Eurographics 2012.",
     fattal2011 => "R. Fattal. Blue-noise point sampling using kernel density model. ACM TOG 30(4), SIGGRAPH 2011.",

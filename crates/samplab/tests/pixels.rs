@@ -104,6 +104,46 @@ fn openqmc_sz_equals_openqmc_sobol_sampler_since_pull_request_108_bit_for_bit() 
     assert!(agree(0) && agree(1) && !agree(2) && !agree(3));
 }
 
+#[test]
+fn cycles_five_patterns_equal_cycles_bit_for_bit() {
+    // made by scripts/cycles/patterns.sh from Cycles' own headers (its first line names the
+    // commit): 11 settings x 4 pixels x 64 samples x 8 dimensions, the frames' seeds and the A/B
+    // classes
+    let text = include_str!("fixtures/cycles_patterns.txt");
+    let mut prepared: Option<(String, Pixels)> = None;
+    let (mut checked, mut classes) = (0, 0);
+    for line in text.lines().filter(|l| !l.starts_with('#')) {
+        let f: Vec<&str> = line.split(' ').collect();
+        let num = |k: usize| f[k].parse::<u32>().unwrap();
+        if f[0] == "frame_seed" {
+            let theirs = u32::from_str_radix(f[3], 16).unwrap();
+            assert_eq!(samplab::construct::cycles::hash_uint2(num(1), num(2)), theirs, "{line}");
+            classes += 1;
+            continue;
+        }
+        if f[0] == "class_a" {
+            assert_eq!(samplab::construct::cycles::sample_is_class_a(num(1)), f[2] == "1", "{line}");
+            classes += 1;
+            continue;
+        }
+        let name = format!("cycles.{}", f[0].replace('_', "-"));
+        let spec = if f[3] == "1" { name } else { format!("{name}:scrambling={}", f[3]) };
+        let key = format!("{spec} {} {}", f[1], f[2]);
+        if prepared.as_ref().is_none_or(|(k, _)| *k != key) {
+            let film = Film { width: 64, height: 41, spp: num(1), dims: 8 };
+            prepared = Some((key.clone(), prepare(&spec, film, Seed(u64::from(num(2)))).unwrap()));
+        }
+        let p = &prepared.as_ref().unwrap().1;
+        for d in 0..8 {
+            let theirs = u32::from_str_radix(f[7 + d], 16).unwrap();
+            let ours = p.sample([num(4), num(5)], 0, num(6), d as u32) as f32;
+            assert_eq!(ours.to_bits(), theirs, "{line}: dimension {d}");
+            checked += 1;
+        }
+    }
+    assert_eq!((checked, classes), (11 * 4 * 64 * 8, 9 + 64));
+}
+
 /// The implementation type of an OpenQMC sampler alias.
 trait Imp {
     type T: openqmc::SamplerImpl;

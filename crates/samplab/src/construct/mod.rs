@@ -10,7 +10,7 @@
 //!   studies        experiment, study, predict, cubature
 //!   measures       discrepancy, spectrum, spatial, screen, theory, stats, integrand, warp, io
 //!   front doors    sampler (point sets)            pixel (per-pixel draws)
-//!   constructions  construct: sobol, sz, radical, scramble, pbrt, pmj02, cbc, counts, spectrum_theory
+//!   constructions  construct: sobol, sz, radical, scramble, pbrt, cycles, pmj02, cbc, counts, spectrum_theory
 //!   base           numeric, seed, simd, progress, memory, error, spec, registry, points
 //! ```
 //!
@@ -31,6 +31,7 @@
 //! - [`scramble`]: the randomizations' vocabulary ([`Randomization`]) and the scrambles
 //!   (Owen's nested uniform scramble by hashing, digit permutations in any base);
 //! - [`curve`]: the Hilbert curve's order of the screen's pixels (beside pbrt's Morton order);
+//! - [`cycles`]: Blender Cycles' hashes, scrambles and tables, bit for bit;
 //! - [`pbrt`]: pbrt-v4's hashes, permutation, Morton order and scrambles, bit for bit;
 //! - [`pmj02`]: the stochastic pmj02 construction (Helmer et al. 2021);
 //! - [`sz`]: the SZ generating matrices (Ahmed et al. 2025), a (0, 4)-sequence in base 4;
@@ -43,6 +44,7 @@
 pub mod cbc;
 pub mod counts;
 pub mod curve;
+pub mod cycles;
 pub mod joe_kuo;
 pub mod pbrt;
 pub mod pmj02;

@@ -47,31 +47,9 @@ pub fn mix_bits(mut v: u64) -> u64 {
 /// pbrt's `PermutationElement(i, l, p)`: element i of a permutation of 0..l keyed by p
 /// (Kensler 2013's hash permutation with cycle walking, then pbrt's final rotation by p).
 #[inline]
-pub fn permutation_element(mut i: u32, l: u32, p: u32) -> u32 {
+pub fn permutation_element(i: u32, l: u32, p: u32) -> u32 {
     let w = u32::MAX >> (l.max(2) - 1).leading_zeros();
-    loop {
-        i ^= p;
-        i = i.wrapping_mul(0xe170_893d);
-        i ^= p >> 16;
-        i ^= (i & w) >> 4;
-        i ^= p >> 8;
-        i = i.wrapping_mul(0x0929_eb3f);
-        i ^= p >> 23;
-        i ^= (i & w) >> 1;
-        i = i.wrapping_mul(1 | p >> 27);
-        i = i.wrapping_mul(0x6935_fa69);
-        i ^= (i & w) >> 11;
-        i = i.wrapping_mul(0x74dc_b303);
-        i ^= (i & w) >> 2;
-        i = i.wrapping_mul(0x9e50_1cc3);
-        i ^= (i & w) >> 2;
-        i = i.wrapping_mul(0xc860_a3df);
-        i &= w;
-        i ^= i >> 5;
-        if i < l {
-            return i.wrapping_add(p) % l;
-        }
-    }
+    super::scramble::kensler_permute(i, l, w, p).wrapping_add(p) % l
 }
 
 /// Morton code of (x, y): x in the even bits, y in the odd ones.

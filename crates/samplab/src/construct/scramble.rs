@@ -47,6 +47,37 @@ pub fn owen_scramble_reversed(mut x: u32, seed: u32) -> u32 {
     x
 }
 
+/// Element i of a permutation of 0 .. l keyed by p: Kensler's (2013) hash of i within
+/// the bits of `mask` (the least all-ones word covering l - 1, as the caller rounds it),
+/// walked until it falls below l. pbrt-v4's `PermutationElement` and Cycles'
+/// `hash_shuffle_uint` are this walk with their own masks and ends.
+#[inline(always)]
+pub fn kensler_permute(mut i: u32, l: u32, mask: u32, p: u32) -> u32 {
+    loop {
+        i ^= p;
+        i = i.wrapping_mul(0xe170_893d);
+        i ^= p >> 16;
+        i ^= (i & mask) >> 4;
+        i ^= p >> 8;
+        i = i.wrapping_mul(0x0929_eb3f);
+        i ^= p >> 23;
+        i ^= (i & mask) >> 1;
+        i = i.wrapping_mul(1 | p >> 27);
+        i = i.wrapping_mul(0x6935_fa69);
+        i ^= (i & mask) >> 11;
+        i = i.wrapping_mul(0x74dc_b303);
+        i ^= (i & mask) >> 2;
+        i = i.wrapping_mul(0x9e50_1cc3);
+        i ^= (i & mask) >> 2;
+        i = i.wrapping_mul(0xc860_a3df);
+        i &= mask;
+        i ^= i >> 5;
+        if i < l {
+            return i;
+        }
+    }
+}
+
 /// A 32-bit hash of two words (for per-node permutation seeds).
 #[inline]
 pub fn hash2(a: u32, b: u32) -> u32 {

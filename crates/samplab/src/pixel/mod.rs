@@ -64,7 +64,7 @@ crate::registry::registry_files! {
     pub static PIXEL_SAMPLERS: Registry<PixelEntry> = ("pixel sampler",
         "PIXEL SAMPLERS  (spec: name[.none|.xor|.owen][:key=value,...], or a point-set sequence per pixel: sobol.owen, \
          halton.owen, lattice.shift, ...; values keyed by seed, pixel, frame, index, dimension)")
-        from [independent, stratified, sobol, zsobol, halton, pmj, lattice, dither, heitz, openqmc];
+        from [independent, stratified, sobol, zsobol, halton, pmj, lattice, dither, heitz, openqmc, cycles];
 }
 
 /// The most dimensions a pixel sampler is prepared for.
@@ -199,6 +199,7 @@ families! {
     OpenQmcLattice(openqmc::OpenQmc<::openqmc::LatticeSampler>),
     OpenQmcLatticeBn(openqmc::OpenQmc<::openqmc::LatticeBnSampler>),
     OpenQmcSz(openqmc::OpenQmc<openqmc::SzSampler>),
+    Cycles(cycles::Cycles),
     Sequence(sequence::PerPixel),
 }
 

@@ -420,10 +420,13 @@ fn dither_fades(names: &[&str], measured: &[Errors]) -> Result<Claim, Error> {
 /// The groups of families whose RMSE curves share a chart (small multiples: 17 curves in one
 /// band were unreadable): an id suffix, what the group is, and whether a family belongs.
 /// Independent sampling is drawn in every chart, the reference.
-const RMSE_GROUPS: [(&str, &str, Member); 3] = [
+const RMSE_GROUPS: [(&str, &str, Member); 4] = [
     ("", "the families whose images and spectra are shown", |name| SHOWN.contains(&name)),
-    ("-sequences", "the other per-pixel sequences", |name| !SHOWN.contains(&name) && !name.starts_with("openqmc.")),
+    ("-sequences", "the other per-pixel sequences", |name| {
+        !SHOWN.contains(&name) && !name.starts_with("openqmc.") && !name.starts_with("cycles.")
+    }),
     ("-openqmc", "OpenQMC's samplers", |name| name.starts_with("openqmc.")),
+    ("-cycles", "Blender Cycles' patterns", |name| name.starts_with("cycles.")),
 ];
 
 /// Whether a family belongs to a group of [`RMSE_GROUPS`].
