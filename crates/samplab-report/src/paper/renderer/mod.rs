@@ -4,6 +4,7 @@
 //! their error over 16 frames; the claims of the samplers' own papers, and samplab's
 //! questions about them, with criteria fixed in this file before any run.
 
+mod ab;
 mod masks;
 mod scenes;
 
@@ -29,6 +30,13 @@ pub fn paper() -> Paper {
                 source: "Ahmed & Wonka 2020, Heitz et al. 2019, Georgiev & Fajardo 2016",
                 parameters: "every pixel sampler family on sphere-box (direct lighting, one light sample per estimate), defocus (direct lighting, thin lens) and glossy-box (path tracing, max depth 5), over the pixel area; 1, 4, 16 spp at 64 x 64 pixels (fast) or 1 to 1024 spp at 96 x 96 (full; heitz2019 to 256); references: the pixel sampler sobol at 1024 (fast) or 8192 (full) spp; heitz2019 on a 32-pixel tile (fast) or its default 64 (full); 16 frames at 4 spp for the low-frequency energy and the flicker",
                 run: scenes::scenes,
+            },
+            Experiment {
+                id: "ab-variance",
+                title: "Cycles' A/B variance estimate, per family",
+                source: "Blender Cycles' adaptive sampling (sample_is_class_A, after Christensen et al. 2018, section 10.2.1); samplab's question (issue 93)",
+                parameters: "every pixel sampler family at 4, 16, 64 spp (fast) or 4 to 1024 (full); 32 x 32 pixels, 64 frames; per pixel a half-plane edge and a Gaussian bump in dimensions 0-1; the A/B estimate (A - B)^2 / 4 against the variance over the frames; bootstrap over the pixels (200 resamples)",
+                run: ab::ab_variance,
             },
         ],
     }
