@@ -5,8 +5,8 @@
 // (src/scene/integrator.cpp) derives from the seed, the sample count and the pattern, which
 // setup() below follows line by line (that file needs the whole scene to compile).
 // One line per sample: pattern spp seed scrambling x y sample, then dimensions 0-7 as the
-// IEEE-754 singles Cycles returns, in hex; dimension d is component d % 4 of path_rng_4D's
-// draw for dimension set d / 4.
+// IEEE-754 singles Cycles returns, in hex; dimension d is component d % 2 of path_rng_2D's
+// draw for dimension set d / 2 (Cycles' kernel draws in 1D, 2D and 3D, never 4D).
 #include "kernel/sample/pattern.h"
 #include "scene/tabulated_sobol.h"
 
@@ -53,7 +53,7 @@ int main() {
                          "blue_noise_round"};
   struct Case { int pattern, spp; uint seed; float scrambling; };
   const Case cases[] = {
-      {0, 16, 0, 1.0f}, {0, 12, 7, 1.0f}, {1, 16, 0, 1.0f}, {1, 300, 7, 1.0f}, {1, 16, 3, 0.25f},
+      {0, 16, 0, 1.0f}, {0, 12, 7, 1.0f}, {0, 1, 3, 1.0f}, {1, 16, 0, 1.0f}, {1, 300, 7, 1.0f}, {1, 16, 3, 0.25f},
       {2, 16, 0, 1.0f}, {2, 12, 7, 1.0f}, {3, 16, 0, 1.0f}, {3, 12, 7, 1.0f}, {4, 12, 7, 1.0f},
       {4, 16, 5, 1.0f},
   };
@@ -64,10 +64,10 @@ int main() {
       const uint rng_pixel = path_rng_pixel_init(nullptr, 0, p[0], p[1]);
       for (int sample = 0; sample < 64; ++sample) {
         std::printf("%s %d %u %g %d %d %d", names[c.pattern], c.spp, c.seed, c.scrambling, p[0], p[1], sample);
-        for (int set = 0; set < 2; ++set) {
-          const float4 v = path_rng_4D(nullptr, rng_pixel, sample, set);
-          const float f[4] = {v.x, v.y, v.z, v.w};
-          for (int k = 0; k < 4; ++k) {
+        for (int set = 0; set < 4; ++set) {
+          const float2 v = path_rng_2D(nullptr, rng_pixel, sample, set);
+          const float f[2] = {v.x, v.y};
+          for (int k = 0; k < 2; ++k) {
             uint bits;
             std::memcpy(&bits, &f[k], 4);
             std::printf(" %08x", bits);

@@ -107,7 +107,7 @@ fn openqmc_sz_equals_openqmc_sobol_sampler_since_pull_request_108_bit_for_bit() 
 #[test]
 fn cycles_five_patterns_equal_cycles_bit_for_bit() {
     // made by scripts/cycles/patterns.sh from Cycles' own headers (its first line names the
-    // commit): 11 settings x 4 pixels x 64 samples x 8 dimensions, the frames' seeds and the A/B
+    // commit): 12 settings x 4 pixels x 64 samples x 8 dimensions (four 2D draws), the frames' seeds and the A/B
     // classes
     let text = include_str!("fixtures/cycles_patterns.txt");
     let mut prepared: Option<(String, Pixels)> = None;
@@ -141,7 +141,7 @@ fn cycles_five_patterns_equal_cycles_bit_for_bit() {
             checked += 1;
         }
     }
-    assert_eq!((checked, classes), (11 * 4 * 64 * 8, 9 + 64));
+    assert_eq!((checked, classes), (12 * 4 * 64 * 8, 9 + 64));
 }
 
 /// The implementation type of an OpenQMC sampler alias.

@@ -12,7 +12,7 @@ use crate::construct::scramble::kensler_permute;
 pub use crate::construct::scramble::{
     owen_scramble_reversed as reversed_bit_owen, owen_scramble_u32 as nested_uniform_scramble,
 };
-use crate::construct::sobol::direction_numbers;
+use crate::construct::sobol::{ByteTables, byte_tables, owen_digits, reversed_digits};
 
 /// [0, 2^32) to [0, 1) in single precision, as Cycles maps it (`uint_to_float_excl`: over
 /// 2^32 + 512, so that the largest value stays below 1).
@@ -137,51 +137,42 @@ pub fn sample_is_class_a(sample: u32) -> bool {
     (sample & 0xaaaa_aaaa).count_ones() & 1 == 1
 }
 
-/// Sobol' dimensions 0-3 (Joe & Kuo's, as Cycles' `sobol_burley_table` holds them,
-/// bit-reversed) read a byte of the reversed index at a time: `[dimension][byte][value]`.
-static SOBOL_BYTES: std::sync::LazyLock<Box<[[[u32; 256]; 4]; 4]>> = std::sync::LazyLock::new(|| {
-    let mut t = Box::new([[[0u32; 256]; 4]; 4]);
-    for (d, bytes) in t.iter_mut().enumerate() {
-        let directions = direction_numbers(d);
-        for (b, table) in bytes.iter_mut().enumerate() {
-            for (v, entry) in table.iter_mut().enumerate() {
-                // bit p of the reversed index (from the top) selects direction number p
-                *entry =
-                    (0..8).filter(|k| v >> (7 - k) & 1 == 1).fold(0, |x, k| x ^ directions[8 * b + k].reverse_bits());
-            }
-        }
-    }
-    t
-});
+/// The per-draw seeds of a 2D draw (`sobol_burley_sample_2D`): the index shuffle's, then
+/// each dimension's scramble's.
+const SOBOL_2D_SEEDS: [u32; 3] = [0xf8ad_e99a, 0xe0aa_af76, 0x9496_4d4e];
 
-/// Owen-scrambled Sobol' dimension `dimension` (0-3) at a bit-reversed index
-/// (`sobol_burley`), as a single.
-#[inline(always)]
-pub fn sobol_burley(rev_index: u32, dimension: usize, seed: u32) -> f32 {
-    let reversed = if dimension == 0 {
-        rev_index.reverse_bits()
-    } else {
-        let t = &SOBOL_BYTES[dimension];
-        t[0][(rev_index >> 24) as usize]
-            ^ t[1][(rev_index >> 16 & 0xff) as usize]
-            ^ t[2][(rev_index >> 8 & 0xff) as usize]
-            ^ t[3][(rev_index & 0xff) as usize]
-    };
-    to_unit(reversed_bit_owen(reversed, seed).reverse_bits())
+/// Cycles' Sobol-Burley sampler: Sobol' dimensions 0-1 (Joe & Kuo's, which Cycles'
+/// `sobol_burley_table` holds bit-reversed), read through samplab's byte tables.
+#[derive(Debug, Clone)]
+pub(crate) struct SobolBurley {
+    tables: [ByteTables; 2],
 }
 
-/// The per-draw seeds of a 4D draw (`sobol_burley_sample_4D`): the index shuffle's, then
-/// each dimension's scramble's.
-const SOBOL_4D_SEEDS: [u32; 5] = [0xc2c1_a055, 0x3946_8210, 0xe9d8_a845, 0x5f32_b482, 0x1524_cc56];
+impl SobolBurley {
+    pub(crate) fn new() -> SobolBurley {
+        SobolBurley { tables: std::array::from_fn(byte_tables) }
+    }
 
-/// A 4D draw of shuffled Owen-scrambled Sobol' (`sobol_burley_sample_4D`): sample `index`
-/// of the sequence `seed`, for the dimension set `set`, the shuffled index masked to
-/// `mask` (reversed: the sample count's bits).
-#[inline]
-pub fn sobol_burley_4d(index: u32, set: u32, seed: u32, mask: u32) -> [f32; 4] {
-    let seed = seed ^ hash_hp(set);
-    let shuffled = reversed_bit_owen(index.reverse_bits(), seed ^ SOBOL_4D_SEEDS[0]) & mask;
-    std::array::from_fn(|d| sobol_burley(shuffled, d, seed ^ SOBOL_4D_SEEDS[d + 1]))
+    /// Owen-scrambled Sobol' dimension `dimension` (0-1) at a bit-reversed index
+    /// (`sobol_burley`), as a single.
+    #[inline(always)]
+    pub(crate) fn value(&self, rev_index: u32, dimension: usize, seed: u32) -> f32 {
+        to_unit(owen_digits(reversed_digits(&self.tables[dimension], rev_index.reverse_bits()), seed))
+    }
+
+    /// A 2D draw of shuffled Owen-scrambled Sobol' (`sobol_burley_sample_2D`): sample
+    /// `index` of the sequence `seed`, for the dimension set `set`, the shuffled index
+    /// masked to `mask` (reversed: the sample count's bits). Cycles' 3D and 4D draws derive
+    /// their dimensions' seeds by XOR with constants whose lowest bits are fixed, and the
+    /// lowest bit of a seed alone flips a value's first digit: with 4D draws (this family's
+    /// first version, 2026-12-07, 128 x 128 pixels at 4 spp) dimensions 2 and 3 were always
+    /// in the same half and 1 and 3 always in opposite halves. Its 2D draws are not tied.
+    #[inline(always)]
+    pub(crate) fn sample_2d(&self, index: u32, set: u32, seed: u32, mask: u32) -> [f32; 2] {
+        let seed = seed ^ hash_hp(set);
+        let shuffled = reversed_bit_owen(index.reverse_bits(), seed ^ SOBOL_2D_SEEDS[0]) & mask;
+        std::array::from_fn(|d| self.value(shuffled, d, seed ^ SOBOL_2D_SEEDS[d + 1]))
+    }
 }
 
 /// The 4D patterns of Cycles' tabulated Sobol' (`tabulated_sobol_generate_4D`): `size`
@@ -266,14 +257,17 @@ mod tests {
     }
 
     #[test]
-    fn the_byte_tables_are_the_direction_numbers_bit_loop() {
-        for d in 1..4 {
-            let directions = direction_numbers(d);
+    fn the_byte_tables_are_cycles_bit_loop_over_the_direction_numbers() {
+        // Cycles' loop: each set bit of the reversed index, from the top, selects a
+        // bit-reversed direction number
+        let sobol = SobolBurley::new();
+        for d in 0..2 {
+            let directions = crate::construct::sobol::direction_numbers(d);
             for rev in [1u32, 0x8000_0000, 0xdead_beef, 0x0123_4567, u32::MAX] {
                 let want =
                     (0..32).filter(|p| rev >> (31 - p) & 1 == 1).fold(0, |x, p| x ^ directions[p].reverse_bits());
                 let seed = 0x9e37_79b9;
-                assert_eq!(sobol_burley(rev, d, seed), to_unit(reversed_bit_owen(want, seed).reverse_bits()));
+                assert_eq!(sobol.value(rev, d, seed), to_unit(reversed_bit_owen(want, seed).reverse_bits()));
             }
         }
     }

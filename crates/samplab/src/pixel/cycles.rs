@@ -6,8 +6,8 @@
 //! per-pixel sections follow a scrambled Morton curve, for blue-noise error
 //! (`blue_noise_pure`, `blue_noise_first`, `blue_noise_round`).
 //!
-//! Dimension d is component d % 4 of Cycles' 4D draw (`path_rng_4D`) for the dimension set
-//! d / 4; the seed's low 32 bits are Cycles' seed, and frame f > 0 draws with
+//! Dimension d is component d % 2 of Cycles' 2D draw (`path_rng_2D`) for the dimension set
+//! d / 2 (its kernel draws pairs and triples, never 4D); the seed's low 32 bits are Cycles' seed, and frame f > 0 draws with
 //! `hash_uint2(seed, f)`, the seed Cycles gives each frame of its pixel jitter.
 
 use std::sync::Arc;
@@ -15,8 +15,8 @@ use std::sync::Arc;
 use super::{Family, Film, Mapping, MappingKind, PixelEntry, PixelSampler};
 use crate::construct::counts::ANY;
 use crate::construct::cycles::{
-    hash_iqnt2d, hash_shuffle, hash_uint, hash_uint2, hash_wang_seeded, morton2d, nested_uniform_scramble,
-    nested_uniform_scramble_base4, sobol_burley_4d, tabulated_sobol, to_unit,
+    SobolBurley, hash_iqnt2d, hash_shuffle, hash_uint, hash_uint2, hash_wang_seeded, morton2d, nested_uniform_scramble,
+    nested_uniform_scramble_base4, tabulated_sobol, to_unit,
 };
 use crate::error::Result;
 use crate::progress::Progress;
@@ -48,14 +48,14 @@ enum Pattern {
     BlueRound,
 }
 
-const HOW: &str = "Cycles' path_rng_4D(rng_pixel, sample, d / 4) draws dimensions 4(d / 4) .. 4(d / 4) + 3";
+const HOW: &str = "Cycles' path_rng_2D(rng_pixel, sample, d / 2) draws dimensions 2(d / 2) and 2(d / 2) + 1";
 
 macro_rules! entries {
     ($($name:literal, $pattern:ident, $params:expr, $summary:literal;)+) => {
         pub(crate) static ENTRIES: &[PixelEntry] = &[$(PixelEntry {
             about: About::new($name, $summary).params($params).cite(&["cycles"]),
             spp: ANY,
-            dims_note: "4D domains",
+            dims_note: "2D domains",
             max_dims: super::MAX_DIMS,
             mapping: Mapping { kind: MappingKind::External, family: "sobol", how: HOW },
             build: |p: &Params, film: Film, seed: Seed, _: &Progress<'_>| -> Result<Family> {
@@ -95,6 +95,8 @@ pub(crate) struct Cycles {
     scrambling: f32,
     size: u32,
     tables: Arc<[[f32; 4]]>,
+    /// Sobol' dimensions 0-3 (the other patterns).
+    sobol: SobolBurley,
 }
 
 /// Cycles' `next_power_of_two`: the least power of two above x (1 for 0).
@@ -129,6 +131,7 @@ impl Cycles {
             scrambling,
             size,
             tables,
+            sobol: SobolBurley::new(),
         }
     }
 
@@ -139,27 +142,28 @@ impl Cycles {
         if frame == 0 { self.seed0 } else { hash_uint2(self.seed, frame) }
     }
 
-    /// The 4D draw of dimension set `set` (`path_rng_4D`).
+    /// The 2D draw of dimension set `set` (`path_rng_2D`).
     #[inline(always)]
-    fn block(&self, [x, y]: [u32; 2], frame: u32, sample: u32, set: u32) -> [f32; 4] {
+    fn block(&self, [x, y]: [u32; 2], frame: u32, sample: u32, set: u32) -> [f32; 2] {
         let seed = self.kernel_seed(frame);
         match self.pattern {
-            Pattern::SobolBurley => sobol_burley_4d(sample, set, hash_iqnt2d(x, y) ^ seed, self.mask),
+            Pattern::SobolBurley => self.sobol.sample_2d(sample, set, hash_iqnt2d(x, y) ^ seed, self.mask),
             Pattern::Tabulated => self.tabulated(hash_iqnt2d(x, y) ^ seed, seed, sample, set),
             Pattern::BluePure | Pattern::BlueRound | Pattern::BlueFirst => {
                 let pixel = nested_uniform_scramble_base4(morton2d(x, y), seed);
                 if self.pattern == Pattern::BlueFirst && sample == 0 {
-                    return sobol_burley_4d(pixel, set, 0x0cd0_519f, u32::MAX);
+                    return self.sobol.sample_2d(pixel, set, 0x0cd0_519f, u32::MAX);
                 }
                 let first = u32::from(self.pattern == Pattern::BlueFirst);
-                sobol_burley_4d((sample - first).wrapping_add(pixel.wrapping_mul(self.length)), set, 0, u32::MAX)
+                self.sobol.sample_2d((sample - first).wrapping_add(pixel.wrapping_mul(self.length)), set, 0, u32::MAX)
             }
         }
     }
 
-    /// A tabulated 4D draw (`tabulated_sobol_sample_4D`).
+    /// A tabulated 2D draw (`tabulated_sobol_sample_2D`: the first two values of the
+    /// table's 4D point).
     #[inline(always)]
-    fn tabulated(&self, rng_hash: u32, kernel_seed: u32, sample: u32, set: u32) -> [f32; 4] {
+    fn tabulated(&self, rng_hash: u32, kernel_seed: u32, sample: u32, set: u32) -> [f32; 2] {
         let seed = if self.scrambling < 1.0 { kernel_seed } else { rng_hash };
         let pattern = hash_shuffle(set, PATTERNS, seed);
         let mask = self.size - 1;
@@ -168,7 +172,8 @@ impl Cycles {
         // Cycles' `% (size * 256)` of 32-bit arithmetic: the tables' length, a power of two
         // that divides 2^32, so a mask of the exact sum
         let index = (pattern as usize * self.size as usize + sample as usize) & (self.tables.len() - 1);
-        let mut v = self.tables[index];
+        let point = self.tables[index];
+        let mut v = [point[0], point[1]];
         if self.scrambling < 1.0 {
             for (k, x) in v.iter_mut().enumerate() {
                 let jitter = to_unit(hash_wang_seeded(set, rng_hash ^ JITTER_KEYS[k])) * self.scrambling;
@@ -180,20 +185,21 @@ impl Cycles {
     }
 }
 
-/// The keys of the four dimensions' scrambling-distance shifts.
-const JITTER_KEYS: [u32; 4] = [0, 0xca0e_1151, 0xbf60_4c5a, 0x9963_4d1d];
+/// The keys of the two dimensions' scrambling-distance shifts.
+const JITTER_KEYS: [u32; 2] = [0, 0xca0e_1151];
 
 impl PixelSampler for Cycles {
     #[inline(always)]
     fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
-        f64::from(self.block(pixel, frame, index, dim / 4)[(dim % 4) as usize])
+        f64::from(self.block(pixel, frame, index, dim / 2)[(dim % 2) as usize])
     }
 
     #[inline(always)]
     fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
-        if !dim.is_multiple_of(4) {
+        if !dim.is_multiple_of(2) {
             return super::one_by_one(self, pixel, frame, index, dim);
         }
-        self.block(pixel, frame, index, dim / 4).map(f64::from)
+        let ([a, b], [c, d]) = (self.block(pixel, frame, index, dim / 2), self.block(pixel, frame, index, dim / 2 + 1));
+        [a, b, c, d].map(f64::from)
     }
 }
