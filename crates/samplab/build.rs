@@ -1,11 +1,14 @@
-//! Bakes the Joe–Kuo (2008) Sobol' direction numbers into a Rust table at build time.
+//! Bakes the Joe–Kuo (2008) and OneTwo (Bonneel et al. 2025) Sobol' direction numbers into
+//! Rust tables at build time.
 //!
-//! Input: `data/new-joe-kuo-6.1024.txt` (`d s a m_1..m_s` per line, dimensions 2..=1024).
+//! Input: `data/new-joe-kuo-6.1024.txt` (`d s a m_1..m_s` per line, dimensions 2..=1024) and
+//! `data/onetwo-692.txt` (the same format, 692 dimensions).
 //! Output: `$OUT_DIR/sobol_directions.rs` holding `SOBOL_DIRECTIONS: [[u32; 32]; 1024]`,
 //! where entry [j][k] is the direction number v_k = m_k * 2^(31-k) of dimension j
 //! (dimension 0 is van der Corput: m_k = 1), and the same numbers bit-reversed as
-//! `REVERSED_DIRECTIONS` (Owen scrambling works on reversed digits), read by
-//! `src/construct/joe_kuo.rs`, the reader `net:directions=FILE` uses too.
+//! `SOBOL_REVERSED` (Owen scrambling works on reversed digits), read by
+//! `src/construct/joe_kuo.rs`, the reader `net:directions=FILE` uses too; `ONETWO_DIRECTIONS`
+//! likewise (its nets run in natural order, without the reversed table).
 
 use std::fmt::Write as _;
 
@@ -34,21 +37,24 @@ fn source_digest() -> String {
     format!("{h:016x}")
 }
 
-fn main() {
-    println!("cargo::rerun-if-changed=src");
-    println!("cargo::rerun-if-changed=data");
-    println!("cargo::rustc-env=SAMPLAB_SOURCE_DIGEST={}", source_digest());
-    let src = "data/new-joe-kuo-6.1024.txt";
+/// The direction table of `src` as Rust: `{prefix}_DIRECTIONS`, and with `reversed` its
+/// bit-reversed twin `{prefix}_REVERSED`.
+fn baked(src: &str, prefix: &str, what: &str, reversed: bool) -> String {
     println!("cargo::rerun-if-changed={src}");
-    let text = std::fs::read_to_string(src).expect("reading the direction-number file");
+    let text = std::fs::read_to_string(src).expect("reading a direction-number file");
     let table = joe_kuo::directions(&text).unwrap_or_else(|(line, why)| panic!("{src}:{line}: {why}"));
     let mut out = String::new();
-    let reversed: Vec<[u32; 32]> = table.iter().map(|row| row.map(u32::reverse_bits)).collect();
-    for (name, what, rows) in [
-        ("SOBOL_DIRECTIONS", "Joe–Kuo direction numbers", &table),
-        ("REVERSED_DIRECTIONS", "The same direction numbers bit-reversed (for Owen scrambling)", &reversed),
-    ] {
-        writeln!(out, "/// {what}, {} dimensions x 32 bits.", rows.len()).unwrap();
+    let flipped: Vec<[u32; 32]> = table.iter().map(|row| row.map(u32::reverse_bits)).collect();
+    let mut tables = vec![(format!("{prefix}_DIRECTIONS"), format!("{what} direction numbers"), &table)];
+    if reversed {
+        tables.push((
+            format!("{prefix}_REVERSED"),
+            format!("{what} direction numbers bit-reversed (for Owen scrambling)"),
+            &flipped,
+        ));
+    }
+    for (name, doc, rows) in tables {
+        writeln!(out, "/// {doc}, {} dimensions x 32 bits.", rows.len()).unwrap();
         writeln!(out, "pub(crate) static {name}: [[u32; 32]; {}] = [", rows.len()).unwrap();
         for row in rows.iter() {
             out.push('[');
@@ -59,6 +65,15 @@ fn main() {
         }
         out.push_str("];\n");
     }
+    out
+}
+
+fn main() {
+    println!("cargo::rerun-if-changed=src");
+    println!("cargo::rerun-if-changed=data");
+    println!("cargo::rustc-env=SAMPLAB_SOURCE_DIGEST={}", source_digest());
+    let out = baked("data/new-joe-kuo-6.1024.txt", "SOBOL", "Joe–Kuo", true)
+        + &baked("data/onetwo-692.txt", "ONETWO", "The OneTwo (Bonneel et al. 2025)", false);
     let dest = std::path::Path::new(&std::env::var("OUT_DIR").unwrap()).join("sobol_directions.rs");
     std::fs::write(dest, out).expect("writing the direction table");
 }

@@ -260,6 +260,15 @@ fn joe_kuo_direction_files_give_their_sobol_nets() {
         let e = sampler::build(&format!("net:directions={path}")).unwrap_err().to_string();
         assert!(e.contains(&format!("bad.txt:{line}: {why}")), "{body:?}: {e}");
     }
+    // the OneTwo table's numbering: van der Corput's dimension written out, then from 1
+    let written_out = write("written-out.txt", "d s a m_i\n0 0 0 # van der Corput\n1 1 0 1\n2 2 1 1 1\n");
+    assert_eq!(
+        points(&set(&format!("net:directions={written_out}"), 256, 3, 0)),
+        points(&set(&format!("net:directions={other}"), 256, 3, 0))
+    );
+    let late = write("late.txt", "2 1 0 1\n0 0 0\n");
+    let e = sampler::build(&format!("net:directions={late}")).unwrap_err().to_string();
+    assert!(e.contains("late.txt:2: expected d s a m_1 .. m_s, got 3 numbers"), "{e}");
     let e = sampler::build(&format!("net:directions={other},matrices={other}")).unwrap_err().to_string();
     assert!(e.contains("matrices or directions, not both"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
@@ -379,4 +388,204 @@ fn the_t_value_metric_is_the_least_t_of_every_elementary_interval() {
     assert!(t_value(&sobol6, "t-value:projection=pairs") <= t_value(&sobol6, "t-value"));
     let e = compute(&Metric::parse("t-value").unwrap(), &set("random", 100, 2, 1), Limits::default()).unwrap_err();
     assert!(e.to_string().contains("100 points are not a power of the base 2"), "{e}");
+}
+
+/// The least t of the 2D digital net in base b that the first m columns of two generating
+/// matrices make (`c[k][r]`: the digit in row r of column k): the least t such that for
+/// every k1 + k2 = m - t the first k1 rows of the one and the first k2 rows of the other are
+/// linearly independent over GF(b) (Niederreiter 1992, theorem 4.28), by elimination.
+fn pair_t(c1: &[Vec<u8>], c2: &[Vec<u8>], m: usize, base: u8) -> usize {
+    let b = u32::from(base);
+    let row = |c: &[Vec<u8>], r: usize| (0..m).map(|k| u32::from(c[k][r])).collect::<Vec<u32>>();
+    let independent = |mut rows: Vec<Vec<u32>>| {
+        let n = rows.len();
+        let mut rank = 0;
+        for col in 0..m {
+            let Some(p) = (rank..n).find(|&i| rows[i][col] != 0) else { continue };
+            rows.swap(rank, p);
+            // scale the pivot row to 1 (b is prime: x^(b-2) is x's inverse)
+            let inverse = (0..b - 2).fold(1, |acc, _| acc * rows[rank][col] % b);
+            rows[rank].iter_mut().for_each(|x| *x = *x * inverse % b);
+            let pivot = rows[rank].clone();
+            for (i, r) in rows.iter_mut().enumerate() {
+                let f = r[col];
+                if i != rank && f != 0 {
+                    r.iter_mut().zip(&pivot).for_each(|(x, &y)| *x = (*x + (b - f) * y) % b);
+                }
+            }
+            rank += 1;
+        }
+        rank == n
+    };
+    (0..=m)
+        .find(|&t| {
+            (0..=m - t)
+                .all(|k1| independent((0..k1).map(|r| row(c1, r)).chain((0..m - t - k1).map(|r| row(c2, r))).collect()))
+        })
+        .unwrap()
+}
+
+/// A binary generating matrix as digits: `[k][r]`, from its columns as 32-bit words (row 0
+/// the most significant bit).
+fn binary_digits(columns: &[u32; 32]) -> Vec<Vec<u8>> {
+    columns.iter().map(|&v| (0..32).map(|r| (v >> (31 - r) & 1) as u8).collect()).collect()
+}
+
+/// OneTwo (Bonneel et al. 2025): samplab's unscrambled points are the authors' sampler's,
+/// bit for bit, from their own exported matrices (`scripts/onetwo/fixture.sh`: 22 of the
+/// 692 dimensions x 94 indices up to 2^32 - 1), though samplab derives its matrices from the
+/// direction numbers alone.
+#[test]
+fn onetwo_is_the_authors_sampler_bit_for_bit() {
+    let text = std::fs::read_to_string(fixture("onetwo.txt")).unwrap();
+    let plan = sampler::build("onetwo").unwrap().plan(1 << 20, 692).unwrap();
+    let access = plan.access(Seed(0)).unwrap();
+    let mut checked = 0;
+    for line in text.lines().filter(|l| !l.starts_with('#')) {
+        let f: Vec<&str> = line.split_whitespace().collect();
+        let (d, i): (usize, u64) = (f[0].parse().unwrap(), f[1].parse().unwrap());
+        let theirs = u32::from_str_radix(f[2], 16).unwrap();
+        let ours = access.sample(i, d).unwrap() * 4_294_967_296.0;
+        assert_eq!(ours, f64::from(theirs), "dimension {d}, index {i}");
+        checked += 1;
+    }
+    assert_eq!(checked, 22 * 94);
+}
+
+/// The property the OneTwo direction numbers were built for: every pair of dimensions
+/// (2k, 2k + 1), all 346 of them, is a (1, 2)-sequence (every prefix of 2^m points a
+/// (1, m, 2)-net, checked to m = 24; dimensions 0-1 a (0, 2)-sequence), by ranks of the
+/// matrices. The rank
+/// count is checked against the box-counting t-value metric on the points. Joe & Kuo's
+/// Sobol' pairs are not (1, 2)-sequences, nor OneTwo's pairs (2k + 1, 2k + 2), and one bit
+/// flipped in a OneTwo matrix breaks its pair.
+#[test]
+fn onetwo_pairs_of_dimensions_are_one_two_sequences() {
+    use samplab::construct::sobol::{direction_numbers, onetwo_direction_numbers};
+    use samplab::discrepancy::{Limits, Metric, compute};
+    let onetwo: Vec<Vec<Vec<u8>>> = (0..692).map(|d| binary_digits(&onetwo_direction_numbers(d))).collect();
+    // up to 2^24 points, past any count a renderer draws per pixel
+    let worst = |c: &[Vec<Vec<u8>>], j: usize| (1..=24).map(|m| pair_t(&c[j], &c[j + 1], m, 2)).max().unwrap();
+    assert_eq!(worst(&onetwo, 0), 0, "dimensions 0-1");
+    for j in (0..692).step_by(2) {
+        assert!(worst(&onetwo, j) <= 1, "dimensions {j}-{}", j + 1);
+    }
+    let sobol: Vec<Vec<Vec<u8>>> = (0..64).map(|d| binary_digits(&direction_numbers(d))).collect();
+    assert!((0..64).step_by(2).any(|j| worst(&sobol, j) > 1), "Joe & Kuo's pairs");
+    assert!((1..63).step_by(2).any(|j| worst(&onetwo, j) > 1), "OneTwo's odd pairs");
+    let mut flipped = onetwo.clone();
+    flipped[5][3][2] ^= 1;
+    assert!(worst(&flipped, 4) > 1, "one bit flipped");
+    // the rank count against the boxes, on the points
+    let metric = Metric::parse("t-value").unwrap();
+    let points = set("onetwo", 1 << 10, 12, 0);
+    for j in 0..11 {
+        for m in [4u32, 7, 10] {
+            let pair: Vec<f64> = points.iter().take(1 << m).flat_map(|x| [x[j], x[j + 1]]).collect();
+            let t = compute(&metric, &PointSet::new(2, pair).unwrap(), Limits::default()).unwrap();
+            assert_eq!(
+                t,
+                pair_t(&onetwo[j], &onetwo[j + 1], m as usize, 2) as f64,
+                "dimensions {j}-{}, m = {m}",
+                j + 1
+            );
+        }
+    }
+}
+
+/// The quad-optimized sequence in base 3 (Ostromoukhov et al. 2024): its generating
+/// matrices are those the authors' `samplerGF3` prints (`scripts/quad3/fixture.sh`: 46
+/// dimensions, 9 x 9 digits), its points follow them (point 3^k is column k), and each pair
+/// of dimensions (2k, 2k + 1) is a (0, m, 2)-net in base 3 for every m up to the 10 columns,
+/// by ranks (the rank count checked against the box-counting metric on the points), which a
+/// digit changed in one matrix breaks. Consecutive pairs (2k + 1, 2k + 2) are not all
+/// (0, m, 2)-nets, and no more than 3^10 points are made.
+#[test]
+fn quad_optimized_is_the_authors_and_its_pairs_are_zero_two_sequences_in_base_3() {
+    use samplab::construct::quad_optimized::matrices;
+    use samplab::discrepancy::{Limits, Metric, compute};
+    let text = std::fs::read_to_string(fixture("quad_optimized.txt")).unwrap();
+    let mut theirs: Vec<Vec<Vec<u8>>> = Vec::new();
+    for line in text.lines().filter(|l| !l.starts_with('#')) {
+        if line.starts_with("d=") {
+            theirs.push(Vec::new());
+        } else {
+            theirs.last_mut().unwrap().push(line.split_whitespace().map(|t| t.parse().unwrap()).collect());
+        }
+    }
+    assert_eq!(theirs.len(), 46);
+    let ours = matrices(48);
+    for (d, rows) in theirs.iter().enumerate() {
+        for (r, row) in rows.iter().enumerate() {
+            for (k, &digit) in row.iter().enumerate() {
+                assert_eq!(ours[d][k][r], digit, "dimension {d}, row {r}, column {k}");
+            }
+        }
+    }
+    let plan = sampler::build("quad-optimized").unwrap().plan(3usize.pow(10), 48).unwrap();
+    let access = plan.access(Seed(0)).unwrap();
+    for (d, matrix) in ours.iter().enumerate() {
+        for (k, column) in matrix.iter().enumerate() {
+            let x: f64 = column.iter().enumerate().map(|(r, &y)| f64::from(y) * 3f64.powi(-(r as i32 + 1))).sum();
+            let got = access.sample(3u64.pow(k as u32), d).unwrap();
+            assert!((got - x).abs() < 1e-12, "dimension {d}, point 3^{k}: {got} against {x}");
+        }
+    }
+    let worst = |c: &[Vec<Vec<u8>>], j: usize| (1..=10).map(|m| pair_t(&c[j], &c[j + 1], m, 3)).max().unwrap();
+    for j in (0..48).step_by(2) {
+        assert_eq!(worst(&ours, j), 0, "dimensions {j}-{}", j + 1);
+    }
+    assert!((1..47).step_by(2).any(|j| worst(&ours, j) > 0), "the odd pairs");
+    let mut changed = ours.clone();
+    changed[3][2][0] = (changed[3][2][0] + 1) % 3;
+    assert!(worst(&changed, 2) > 0, "one digit changed");
+    let e = sampler::build("quad-optimized").unwrap().plan(3usize.pow(10) + 1, 2).unwrap_err().to_string();
+    assert!(e.contains("at most 59049 points"), "{e}");
+    let metric = Metric::parse("t-value:base=3").unwrap();
+    let points = set("quad-optimized", 729, 6, 0);
+    for j in 0..5 {
+        for m in [3u32, 6] {
+            let pair: Vec<f64> = points.iter().take(3usize.pow(m)).flat_map(|x| [x[j], x[j + 1]]).collect();
+            let t = compute(&metric, &PointSet::new(2, pair).unwrap(), Limits::default()).unwrap();
+            assert_eq!(t, pair_t(&ours[j], &ours[j + 1], m as usize, 3) as f64, "dimensions {j}-{}, m = {m}", j + 1);
+        }
+    }
+}
+
+/// The xi-sequence (Ahmed et al. 2023): samplab's unscrambled points are the authors' code's
+/// (`xi.h`, `scripts/xi/fixture.sh`: 284 indices up to 2^32 - 1) bit for bit, and the two
+/// dimensions are a (0, 2)-sequence, by ranks for every prefix of 2^m points to m = 32; one
+/// bit flipped in a column breaks it, and so does a vector a without xi (b = a shifted).
+#[test]
+fn xi_is_the_authors_sequence_and_a_zero_two_sequence() {
+    use samplab::construct::xi::{XI, xi_matrices};
+    let text = std::fs::read_to_string(fixture("xi.txt")).unwrap();
+    let plan = sampler::build("xi").unwrap().plan(1 << 20, 2).unwrap();
+    let access = plan.access(Seed(0)).unwrap();
+    let mut checked = 0;
+    for line in text.lines().filter(|l| !l.starts_with('#')) {
+        let f: Vec<&str> = line.split_whitespace().collect();
+        let i: u64 = f[0].parse().unwrap();
+        for d in 0..2 {
+            let theirs = u32::from_str_radix(f[1 + d], 16).unwrap();
+            assert_eq!(access.sample(i, d).unwrap() * 4_294_967_296.0, f64::from(theirs), "point {i}, dimension {d}");
+        }
+        checked += 1;
+    }
+    assert_eq!(checked, 284);
+    let worst = |c: &[[u32; 32]; 2]| {
+        (1..=32).map(|m| pair_t(&binary_digits(&c[0]), &binary_digits(&c[1]), m, 2)).max().unwrap()
+    };
+    assert_eq!(worst(&XI), 0);
+    assert_eq!(worst(&xi_matrices([0xC000_0000, 0x8000_0000])), 0, "another vector a");
+    let mut flipped = XI;
+    flipped[1][7] ^= 1 << 28;
+    assert!(worst(&flipped) > 0, "one bit flipped");
+    let mut shifted = XI;
+    for c in &mut shifted {
+        for k in 0..16 {
+            c[2 * k + 1] = c[2 * k] >> 1;
+        }
+    }
+    assert!(worst(&shifted) > 0, "b = a shifted");
 }

@@ -3,7 +3,9 @@
 //! a line `d s a m_1 ... m_s` per dimension d from 2 on, where s is the degree of the
 //! dimension's primitive polynomial, a its inner coefficients as a number (bit s-1-i is
 //! a_i), and m_k the initial direction integers (odd, below 2^k).
-//! Dimension 1 is van der Corput's (every m_k = 1). The remaining m_k follow Bratley &
+//! Dimension 1 is van der Corput's (every m_k = 1). Bonneel et al. (2025) publish their
+//! OneTwo table with that dimension written out as a first line `0 0 0` and the rest
+//! numbered from 1; the reader takes both numberings. The remaining m_k follow Bratley &
 //! Fox's recurrence (Joe & Kuo 2008, section 2):
 //! m_k = 2 a_1 m_{k-1} ^ 4 a_2 m_{k-2} ^ ... ^ 2^{s-1} a_{s-1} m_{k-s+1} ^ 2^s m_{k-s} ^ m_{k-s}.
 //!
@@ -16,12 +18,15 @@
 /// and the reason in words.
 ///
 /// # Errors
-/// `(line, reason)`: a token that is not a whole number, a dimension out of sequence, a
-/// degree outside 1..=31 or a coefficient number of more than s - 1 bits, the wrong count
+/// `(line, reason)`: a token that is not a whole number, a dimension out of sequence (from
+/// 2, or from 1 after a first line `0 0 0`), a
+/// degree outside 1..=32 or a coefficient number of more than s - 1 bits, the wrong count
 /// of initial numbers, or an m_k that is even or not below 2^k.
 pub fn directions(text: &str) -> Result<Vec<[u32; 32]>, (usize, String)> {
     let mut table: Vec<[u32; 32]> = vec![std::array::from_fn(|k| 1u32 << (31 - k))];
     let mut header_allowed = true;
+    // the number of the first dimension after van der Corput's: 2, or 1 after `0 0 0`
+    let mut first = 2u64;
     for (i, line) in text.lines().enumerate() {
         let lineno = i + 1;
         // `#` starts a comment
@@ -43,16 +48,24 @@ pub fn directions(text: &str) -> Result<Vec<[u32; 32]>, (usize, String)> {
             }
         };
         header_allowed = false;
-        let want = table.len() as u64 + 1;
+        if f == [0, 0, 0] && table.len() == 1 && first == 2 {
+            // van der Corput's dimension written out (the OneTwo table's first line)
+            first = 1;
+            continue;
+        }
+        let want = table.len() as u64 + first - 1;
         if f.len() < 4 {
             return Err((lineno, format!("expected d s a m_1 .. m_s, got {} numbers", f.len())));
         }
         let (d, s, a) = (f[0], f[1], f[2]);
         if d != want {
-            return Err((lineno, format!("dimension {d} where {want} comes next (the lines start at 2, in order)")));
+            return Err((
+                lineno,
+                format!("dimension {d} where {want} comes next (the lines start at {first}, in order)"),
+            ));
         }
-        if !(1..=31).contains(&s) {
-            return Err((lineno, format!("degree s = {s} is not in 1..=31")));
+        if !(1..=32).contains(&s) {
+            return Err((lineno, format!("degree s = {s} is not in 1..=32")));
         }
         let s = s as usize;
         if a >> (s - 1) != 0 {

@@ -1,6 +1,8 @@
 //! The Sobol' sequence's generating matrices (Sobol' 1967) with the Joe-Kuo direction
 //! numbers (Joe & Kuo 2008, new-joe-kuo-6.21201, first 1024 dimensions, baked in by
-//! `build.rs`), and the byte tables that draw one point's digits in four lookups.
+//! `build.rs`), and the byte tables that draw one point's digits in four lookups; and the
+//! OneTwo direction numbers (Bonneel, Coeurjolly, Iehl & Ostromoukhov 2025), 692 dimensions
+//! whose consecutive pairs the authors built as (1, 2)-sequences, baked in the same way.
 
 use super::scramble::owen_scramble_reversed;
 
@@ -34,6 +36,18 @@ pub fn sobol_u32(index: u32, dim: usize) -> u32 {
 /// When `dim` is not below [`SOBOL_MAX_DIMS`].
 pub fn direction_numbers(dim: usize) -> [u32; 32] {
     SOBOL_DIRECTIONS[dim]
+}
+
+/// How many dimensions the OneTwo table holds.
+pub const ONETWO_MAX_DIMS: usize = ONETWO_DIRECTIONS.len();
+
+/// The 32 OneTwo direction numbers of dimension `dim` (Bonneel et al. 2025: column k of its
+/// generating matrix, row 0 the most significant bit).
+///
+/// # Panics
+/// When `dim` is not below [`ONETWO_MAX_DIMS`].
+pub fn onetwo_direction_numbers(dim: usize) -> [u32; 32] {
+    ONETWO_DIRECTIONS[dim]
 }
 
 /// The byte tables of one dimension's generator, bit-reversed: entry [b][v] is the XOR of

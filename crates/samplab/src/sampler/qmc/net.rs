@@ -15,7 +15,12 @@
 //!   u, u+1, ... of a linear recurring sequence whose characteristic polynomial is
 //!   p_j^(Q+1); a (t, s)-sequence with t = sum_j (deg p_j - 1);
 //! - the SZ matrices (Ahmed et al. 2025, [`crate::construct::sz`]): four binary matrices
-//!   that are a (0, 4)-sequence in base 4.
+//!   that are a (0, 4)-sequence in base 4;
+//! - the OneTwo Sobol' matrices (Bonneel et al. 2025, [`crate::construct::sobol`]): 692
+//!   dimensions from the authors' direction numbers, natural order as their sampler draws;
+//! - the quad-optimized matrices in base 3 (Ostromoukhov et al. 2024,
+//!   [`crate::construct::quad_optimized`]): Sobol's construction over GF(3), 48 dimensions;
+//! - the xi-sequence's (Ahmed et al. 2023, [`crate::construct::xi`]): a 2D (0, 2)-sequence.
 //!
 //! Randomizations, each on the digits, seeded per dimension (so random access equals the
 //! batch):
@@ -353,6 +358,12 @@ enum Source {
     Niederreiter(u32),
     /// The SZ matrices (Ahmed et al. 2025), four dimensions.
     Sz,
+    /// The OneTwo Sobol' matrices (Bonneel et al. 2025).
+    OneTwo,
+    /// The quad-optimized base-3 matrices (Ostromoukhov et al. 2024).
+    QuadOptimized,
+    /// The xi-sequence's two matrices (Ahmed et al. 2023).
+    Xi,
 }
 
 /// A digital net or sequence with a randomization.
@@ -374,15 +385,34 @@ impl Net {
             Source::Faure => Arc::new(Matrices::faure(dims)),
             Source::Niederreiter(b) => Arc::new(Matrices::niederreiter(*b, dims)?),
             Source::Sz => Arc::new(Matrices::from_directions(crate::construct::sz::SZ.into_iter().take(dims))),
+            Source::OneTwo => {
+                Arc::new(Matrices::from_directions((0..dims).map(crate::construct::sobol::onetwo_direction_numbers)))
+            }
+            Source::Xi => Arc::new(Matrices::from_directions(crate::construct::xi::XI.into_iter().take(dims))),
+            Source::QuadOptimized => {
+                // the rows below the construction's are zero: a scramble randomizes them too
+                let rows = precision(3);
+                let digits = crate::construct::quad_optimized::matrices(dims)
+                    .into_iter()
+                    .flatten()
+                    .flat_map(|mut column| {
+                        column.resize(rows, 0);
+                        column
+                    })
+                    .collect::<Vec<u8>>();
+                let cols = digits.len() / (dims * rows);
+                Arc::new(Matrices { base: 3, dims, cols, rows, digits })
+            }
         })
     }
 
     fn base(&self, dims: usize) -> u32 {
         match &self.source {
-            Source::Sobol | Source::Sz => 2,
+            Source::Sobol | Source::Sz | Source::OneTwo | Source::Xi => 2,
             Source::File(m) => m.base,
             Source::Faure => faure_base(dims),
             Source::Niederreiter(b) => *b,
+            Source::QuadOptimized => 3,
         }
     }
 
@@ -491,13 +521,17 @@ impl Construction for Net {
             Source::Faure => 1..=MAX_BASE as usize,
             Source::Niederreiter(_) => 1..=MAX_DIMS,
             Source::Sz => 1..=crate::construct::sz::SZ.len(),
+            Source::OneTwo => 1..=crate::construct::sobol::ONETWO_MAX_DIMS,
+            Source::QuadOptimized => 1..=crate::construct::quad_optimized::QUAD_OPTIMIZED_MAX_DIMS,
+            Source::Xi => 1..=2,
         }
     }
     fn check_count(&self, shape: &Shape) -> Result<()> {
         let (n, dims) = (shape.n(), shape.dims());
         let cols = match &self.source {
-            Source::Sobol | Source::Sz => 32,
+            Source::Sobol | Source::Sz | Source::OneTwo | Source::Xi => 32,
             Source::File(m) => m.cols,
+            Source::QuadOptimized => crate::construct::quad_optimized::QUAD_OPTIMIZED_COLUMNS,
             _ => columns_for_all_sets(self.base(dims)),
         };
         let most = u128::from(self.base(dims)).pow(cols as u32);
@@ -882,18 +916,37 @@ fn build_net(p: &mut Params, randomization: Randomization) -> Result<Box<dyn Con
 
 /// The construction of each `faure` entry.
 fn build_faure(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
-    Ok(shift::applied(randomization, |randomization| Box::new(Net { source: Source::Faure, randomization, gray: false })))
+    fixed(Source::Faure, randomization)
 }
 
 /// The construction of each `niederreiter` entry.
 fn build_niederreiter(p: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
-    let source = niederreiter_source(p)?;
+    fixed(niederreiter_source(p)?, randomization)
+}
+
+/// A net of given matrices in natural order with a randomization.
+fn fixed(source: Source, randomization: Randomization) -> Result<Box<dyn Construction>> {
     Ok(shift::applied(randomization, |randomization| Box::new(Net { source, randomization, gray: false })))
 }
 
 /// The construction of each `sz` entry.
 fn build_sz(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
-    Ok(shift::applied(randomization, |randomization| Box::new(Net { source: Source::Sz, randomization, gray: false })))
+    fixed(Source::Sz, randomization)
+}
+
+/// The construction of each `onetwo` entry.
+fn build_onetwo(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
+    fixed(Source::OneTwo, randomization)
+}
+
+/// The construction of each `xi` entry.
+fn build_xi(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
+    fixed(Source::Xi, randomization)
+}
+
+/// The construction of each `quad-optimized` entry.
+fn build_quad_optimized(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
+    fixed(Source::QuadOptimized, randomization)
 }
 
 /// The samplers this file registers: each family plain and with its four randomizations.
@@ -940,6 +993,39 @@ pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
         dims: "1..=4",
         cite: ["ahmed2025sz"],
         build: build_sz,
+        randomizations: [xor, lms, owen, shift],
+    },
+    {
+        family: "onetwo",
+        summary: "OneTwo Sobol' sequence: direction numbers whose consecutive pairs are (1,2)-sequences, natural order",
+        aliases: ["onetwo-sobol"],
+        params: &[],
+        counts: Counts::Any("nets at powers of 2"),
+        dims: "1..=692",
+        cite: ["bonneel2025onetwo"],
+        build: build_onetwo,
+        randomizations: [xor, lms, owen, shift],
+    },
+    {
+        family: "quad-optimized",
+        summary: "quad-optimized low-discrepancy sequence: Sobol's construction in base 3, the authors' table",
+        aliases: ["qolds"],
+        params: &[],
+        counts: Counts::Rule("n <= 3^10 (the authors' 10 columns; nets at powers of 3)"),
+        dims: "1..=48",
+        cite: ["ostromoukhov2024quad"],
+        build: build_quad_optimized,
+        randomizations: [xor, lms, owen, shift],
+    },
+    {
+        family: "xi",
+        summary: "xi-sequence: a 2D (0,2)-sequence from one vector and xi, the authors' default",
+        aliases: ["xi-sequence"],
+        params: &[],
+        counts: Counts::Any("nets at powers of 2"),
+        dims: "1..=2",
+        cite: ["ahmed2023xi"],
+        build: build_xi,
         randomizations: [xor, lms, owen, shift],
     },
 );

@@ -9,7 +9,7 @@ use crate::sampler::randomize::{randomized_families, shift};
 use crate::construct::Counts;
 use crate::sampler::registry::SamplerEntry;
 use crate::construct::scramble::{Randomization, owen_scramble_reversed};
-use crate::construct::sobol::{REVERSED_DIRECTIONS, SOBOL_DIRECTIONS, SOBOL_MAX_DIMS, sobol_u32};
+use crate::construct::sobol::{SOBOL_REVERSED, SOBOL_DIRECTIONS, SOBOL_MAX_DIMS, sobol_u32};
 use crate::construct::{cell_centre, unit};
 use crate::sampler::{Access, Prepared, Construction, Shape};
 use crate::error::{Error, Result};
@@ -67,7 +67,7 @@ impl Sobol {
 /// `first + j` to the coordinate, given j.
 #[inline(always)]
 fn gray_walk(out: &mut [f64], dims: usize, first: usize, count: usize, reversed: bool, finish: impl Fn(u32, usize) -> f64) {
-    let table: &[[u32; 32]] = if reversed { &REVERSED_DIRECTIONS } else { &SOBOL_DIRECTIONS };
+    let table: &[[u32; 32]] = if reversed { &SOBOL_REVERSED } else { &SOBOL_DIRECTIONS };
     let directions = &table[first..first + count];
     match (dims, count) {
         // fixed sizes let the compiler interleave the coordinates' work
