@@ -42,6 +42,28 @@ fn zsobol_padded_sobol_and_halton_equal_pbrt_v4_bit_for_bit() {
 }
 
 #[test]
+fn pbrt_onetwo_equals_the_authors_pbrt_sampler_bit_for_bit() {
+    // made by scripts/onetwo/pixels.sh from the OneTwo paper's pbrt-v4 tree (its first line
+    // names the commit): 2 seeds x 4 pixels x 64 samples x 10 dimensions (0-7, 100, 691)
+    let text = include_str!("fixtures/onetwo_pixels.txt");
+    let film = Film { width: 64, height: 64, spp: 64, dims: 692 };
+    let mut prepared: Option<(u32, Pixels)> = None;
+    let mut checked = 0;
+    for line in text.lines().filter(|l| !l.starts_with('#')) {
+        let f: Vec<u32> = line.split(' ').take(6).map(|t| t.parse().unwrap()).collect();
+        let (seed, pixel, index, dim) = (f[1], [f[2], f[3]], f[4], f[5]);
+        if prepared.as_ref().is_none_or(|(s, _)| *s != seed) {
+            prepared = Some((seed, prepare("pbrt.onetwo", film, Seed(u64::from(seed))).unwrap()));
+        }
+        let ours = (prepared.as_ref().unwrap().1.sample(pixel, 0, index, dim) as f32).min(ONE_MINUS_EPSILON);
+        let theirs = f32::from_bits(u32::from_str_radix(line.rsplit(' ').next().unwrap(), 16).unwrap());
+        assert_eq!(ours.to_bits(), theirs.to_bits(), "{line}: samplab {ours}, theirs {theirs}");
+        checked += 1;
+    }
+    assert_eq!(checked, 2 * 4 * 64 * 10);
+}
+
+#[test]
 fn openqmc_families_equal_openqmc_rs_called_directly() {
     use openqmc::{
         LatticeBnSampler, LatticeSampler, PmjBnSampler, PmjSampler, Sampler, SamplerImpl, SobolBnSampler, SobolSampler,

@@ -97,18 +97,24 @@ impl Scramble {
             Scramble::None => v,
             Scramble::Xor => v ^ seed,
             Scramble::FastOwen => owen_scramble_u32(v, seed),
-            Scramble::Owen => {
-                let mut v = v ^ ((seed & 1) << 31);
-                for b in 1..32 {
-                    let above = v & (u32::MAX << (32 - b));
-                    if (mix_bits(u64::from(above ^ seed)) as u32) & (1 << b) != 0 {
-                        v ^= 1 << (31 - b);
-                    }
-                }
-                v
-            }
+            Scramble::Owen => owen_bit_by_bit([v], [seed])[0],
         }
     }
+}
+
+/// pbrt's `OwenScrambler`: digit b flipped by bit b of `MixBits` of the digits above it
+/// XOR the seed, one hash per digit, for several values in lockstep (their hash chains are
+/// independent, so the processor overlaps them).
+#[inline(always)]
+pub fn owen_bit_by_bit<const N: usize>(v: [u32; N], seed: [u32; N]) -> [u32; N] {
+    let mut v: [u32; N] = std::array::from_fn(|k| v[k] ^ ((seed[k] & 1) << 31));
+    for b in 1..32 {
+        for k in 0..N {
+            let above = v[k] & (u32::MAX << (32 - b));
+            v[k] ^= (((mix_bits(u64::from(above ^ seed[k])) as u32) >> b) & 1) << (31 - b);
+        }
+    }
+    v
 }
 
 /// The first two dimensions of Sobol' (van der Corput and its partner), whose 32-bit

@@ -62,7 +62,12 @@ pub(crate) struct ByteTables {
 }
 
 pub(crate) fn byte_tables(dim: usize) -> ByteTables {
-    let c = direction_numbers(dim).map(u32::reverse_bits);
+    byte_tables_of(direction_numbers(dim))
+}
+
+/// The [`ByteTables`] of any 32 columns (the OneTwo table's, say).
+pub(crate) fn byte_tables_of(columns: [u32; 32]) -> ByteTables {
+    let c = columns.map(u32::reverse_bits);
     let table = |b: usize| -> [u32; 256] {
         std::array::from_fn(|v| (0..8).filter(|k| v >> k & 1 == 1).fold(0, |x, k| x ^ c[8 * b + k]))
     };
