@@ -60,6 +60,14 @@ impl Estimate {
         Estimate { value: s.mean, se: s.standard_error() }
     }
 
+    /// A value with the standard error of its bootstrap `draws` (their sample standard
+    /// deviation, summed plainly in their order).
+    pub fn bootstrapped(value: f64, draws: &[f64]) -> Estimate {
+        let mean = draws.iter().sum::<f64>() / draws.len() as f64;
+        let se = (draws.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / (draws.len() - 1) as f64).sqrt();
+        Estimate { value, se }
+    }
+
     /// An exact value.
     pub fn exact(value: f64) -> Estimate {
         Estimate { value, se: 0.0 }

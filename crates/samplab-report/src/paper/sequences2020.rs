@@ -150,9 +150,7 @@ fn means(ctx: &Ctx, sobol: &[Squared], sz: &[Squared]) -> Vec<[Estimate; 2]> {
             [&AT_POWERS_OF_4[..], &AT_TWICE[..]].map(|counts| {
                 let value = geometric_mean(&point[k], counts);
                 let draws: Vec<f64> = resamples.iter().map(|b| geometric_mean(&b[k], counts)).collect();
-                let mean = draws.iter().sum::<f64>() / draws.len() as f64;
-                let se = (draws.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / (draws.len() - 1) as f64).sqrt();
-                Estimate { value, se }
+                Estimate::bootstrapped(value, &draws)
             })
         })
         .collect()

@@ -101,9 +101,7 @@ fn ratio_estimate(pixels: &[Pixel], w: usize, seed: Seed) -> Estimate {
             ratio(pixels, picks.into_iter(), w)
         })
         .collect();
-    let mean = draws.iter().sum::<f64>() / draws.len() as f64;
-    let se = (draws.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / (draws.len() - 1) as f64).sqrt();
-    Estimate { value, se }
+    Estimate::bootstrapped(value, &draws)
 }
 
 pub(super) fn ab_variance(ctx: &Ctx) -> Result<Output, Error> {
