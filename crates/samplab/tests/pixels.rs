@@ -174,18 +174,23 @@ impl<T: openqmc::SamplerImpl> Imp for openqmc::Sampler<T> {
     type T = T;
 }
 
-/// Whether the points `xy` (2^m of them) have one point in every elementary interval
-/// 2^-a x 2^-b, a + b = m: a (0,m,2)-net in base 2.
-fn is_02_net(xy: &[[f64; 2]]) -> bool {
-    let m = xy.len().trailing_zeros();
-    (0..=m).all(|a| {
-        let (cx, cy) = (1usize << a, 1usize << (m - a));
-        let mut seen = vec![false; xy.len()];
-        xy.iter().all(|p| {
-            let cell = (p[1] * cy as f64) as usize * cx + (p[0] * cx as f64) as usize;
-            !std::mem::replace(&mut seen[cell], true)
-        })
+/// Whether the points `xy` (2^m of them) have 2^t points in every elementary interval
+/// 2^-a x 2^-b, a + b = m - t: a (t,m,2)-net in base 2.
+fn is_net(xy: &[[f64; 2]], t: u32) -> bool {
+    let k = xy.len().trailing_zeros() - t;
+    (0..=k).all(|a| {
+        let (cx, cy) = (1usize << a, 1usize << (k - a));
+        let mut count = vec![0usize; cx * cy];
+        for p in xy {
+            count[(p[1] * cy as f64) as usize * cx + (p[0] * cx as f64) as usize] += 1;
+        }
+        count.iter().all(|&c| c == 1 << t)
     })
+}
+
+/// Whether the points `xy` (2^m of them) are a (0,m,2)-net in base 2.
+fn is_02_net(xy: &[[f64; 2]]) -> bool {
+    is_net(xy, 0)
 }
 
 /// Whether the values hit every one of their count's equal intervals once.
@@ -217,6 +222,30 @@ fn each_pixels_samples_keep_their_stratification_on_elementary_intervals() {
             }
         }
     }
+    // pbrt.onetwo (the OneTwo paper's pbrt sampler): every pair (2k, 2k+1) a (1,m,2)-net,
+    // the first a (0,m,2)-net, each dimension stratified, at every power of two of a pixel's
+    // samples (its Owen scrambles keep the nets of the OneTwo matrices)
+    let film = Film { width: 70, height: 70, spp: 256, dims: 16 };
+    let p = prepare("pbrt.onetwo", film, Seed(11)).unwrap();
+    for (x, y, frame) in [(0, 0, 0), (69, 4, 0), (2, 33, 7)] {
+        for m in [4u32, 6, 8] {
+            for k in 0..8 {
+                let xy: Vec<[f64; 2]> =
+                    (0..1 << m).map(|i| [0, 1].map(|j| p.sample([x, y], frame, i, 2 * k + j))).collect();
+                assert!(is_net(&xy, u32::from(k > 0)), "pbrt.onetwo 2^{m} pixel ({x},{y}) frame {frame} pair {k}");
+            }
+            for d in 0..16 {
+                let v: Vec<f64> = (0..1 << m).map(|i| p.sample([x, y], frame, i, d)).collect();
+                assert!(is_stratified_1d(&v), "pbrt.onetwo 2^{m} ({x},{y}) dim {d}");
+            }
+        }
+    }
+    // and the odd pairs (2k+1, 2k+2) are not all (1,m,2)-nets: the promise is the pairs'
+    let odd = (0..7).any(|k| {
+        let xy: Vec<[f64; 2]> = (0..256).map(|i| [1, 2].map(|j| p.sample([0, 0], 0, i, 2 * k + j))).collect();
+        !is_net(&xy, 1)
+    });
+    assert!(odd, "pbrt.onetwo's odd pairs");
     // the test can fail: independent values are not nets
     let p = prepare("independent", Film { width: 1, height: 1, spp: 16, dims: 2 }, Seed(11)).unwrap();
     let xy: Vec<[f64; 2]> = (0..16).map(|i| [p.sample([0, 0], 0, i, 0), p.sample([0, 0], 0, i, 1)]).collect();
