@@ -1,14 +1,15 @@
 // Cycles' five sampling patterns drawn as samplab's pixel_throughput example draws its
 // families: 256 x 256 pixels x 64 dimensions (path_rng_2D for dimension sets 0-31 of each
 // pixel, the pixel's rng_pixel from path_rng_pixel_init) at one sample index per run, 16
-// spp, counted in 4D draws (two 2D draws each) as samplab's example counts them; the median of at least 7 rounds and 2 s per pattern. Prints one JSON
-// object per pattern. Built and run by throughput.sh, with the stub globals of patterns.sh.
+// spp, counted in 4D draws (two 2D draws each) as samplab's example counts them, timed by
+// ../peer_timing.h per pattern. Prints one JSON object per pattern. Built and run by
+// throughput.sh, with the stub globals of patterns.sh.
 #include "kernel/sample/pattern.h"
 #include "scene/tabulated_sobol.h"
 
-#include <algorithm>
-#include <chrono>
-#include <cstdio>
+#include "../peer_timing.h"
+
+#include <string>
 #include <vector>
 
 using namespace ccl;
@@ -30,7 +31,6 @@ static double run(int sample, volatile int *keep_x) {
 }
 
 int main() {
-  using clock = std::chrono::steady_clock;
   const char *names[] = {"sobol_burley", "tabulated_sobol", "blue_noise_pure", "blue_noise_first"};
   const int spp = 16;
   for (int pattern = 0; pattern < 4; ++pattern) {
@@ -48,18 +48,7 @@ int main() {
       tabulated_sobol_generate_4D(lut.data() + j * MIN_TAB_SOBOL_SAMPLES, MIN_TAB_SOBOL_SAMPLES, j);
     }
     sample_pattern_lut = reinterpret_cast<float *>(lut.data());
-    volatile int keep_x = 0;
-    std::vector<double> times;
-    double sink = 0;
-    const auto start = clock::now();
-    while (times.size() < 7 ||
-           (std::chrono::duration<double>(clock::now() - start).count() < 2.0 && times.size() < 60)) {
-      const auto t = clock::now();
-      sink += run(static_cast<int>(times.size() % spp), &keep_x);
-      times.push_back(std::chrono::duration<double>(clock::now() - t).count());
-    }
-    std::sort(times.begin(), times.end());
-    std::printf("{\"peer\": \"Cycles %s\", \"draws_per_second\": %.4e, \"checksum\": %.3f}\n", names[pattern],
-                256.0 * 256.0 * 16.0 / times[times.size() / 2], sink);
+    const std::string peer = std::string("Cycles ") + names[pattern];
+    report_median(peer.c_str(), run);
   }
 }
