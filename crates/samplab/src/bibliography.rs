@@ -69,6 +69,7 @@ bib! {
     owen1995 => "A. B. Owen. Randomly permuted (t,m,s)-nets and (t,s)-sequences. Monte Carlo and Quasi-Monte Carlo Methods, 1995.",
     owen1997 => "A. B. Owen. Monte Carlo variance of scrambled net quadrature. SIAM J. Numer. Anal. 34(5), 1997.",
     paulin2020 => "L. Paulin, N. Bonneel, D. Coeurjolly, J.-C. Iehl, A. Webanck, M. Desbrun, V. Ostromoukhov. Sliced optimal transport sampling. ACM TOG 39(4), 2020.",
+    paulin2021cascaded => "L. Paulin, D. Coeurjolly, J.-C. Iehl, N. Bonneel, A. Keller, V. Ostromoukhov. Cascaded Sobol' sampling. ACM Trans. Graph. 40(6), SIGGRAPH Asia 2021.",
     petersen1962 => "D. P. Petersen, D. Middleton. Sampling and reconstruction of wave-number-limited functions in N-dimensional Euclidean spaces. Information and Control 5, 1962.",
     pharr2023 => "M. Pharr, W. Jakob, G. Humphreys. Physically Based Rendering: From Theory to Implementation, 4th edition (pbrt-v4). MIT Press, 2023.",
     psa2012 => "T. Schlömer, D. Heck. psa: point set analysis, software, University of Konstanz, 2012 (thresholds and normalization of the effective Nyquist frequency and oscillation).",

@@ -266,6 +266,12 @@ fn joe_kuo_direction_files_give_their_sobol_nets() {
         points(&set(&format!("net:directions={written_out}"), 256, 3, 0)),
         points(&set(&format!("net:directions={other}"), 256, 3, 0))
     );
+    // the Cascaded Sobol' table's: from 1 with van der Corput's left out
+    let left_out = write("left-out.txt", "d s a m_i\n1 1 0 1\n2 2 1 1 1\n");
+    assert_eq!(
+        points(&set(&format!("net:directions={left_out}"), 256, 3, 0)),
+        points(&set(&format!("net:directions={other}"), 256, 3, 0))
+    );
     let late = write("late.txt", "2 1 0 1\n0 0 0\n");
     let e = sampler::build(&format!("net:directions={late}")).unwrap_err().to_string();
     assert!(e.contains("late.txt:2: expected d s a m_1 .. m_s, got 3 numbers"), "{e}");
@@ -588,4 +594,70 @@ fn xi_is_the_authors_sequence_and_a_zero_two_sequence() {
         }
     }
     assert!(worst(&shifted) > 0, "b = a shifted");
+}
+
+/// Cascaded Sobol' (Paulin et al. 2021): samplab's points are the cascade as the paper
+/// describes it, computed here a point at a time (each dimension's 1D Sobol' net drawn at
+/// the previous coordinate's first m digits read as an index), of Joe & Kuo's generators and
+/// of a file's in the authors' numbering. Every pair of consecutive dimensions is a
+/// (0, m, 2)-net at 2^m points, by ranks (31 pairs, m up to 16) and by the box-counting
+/// metric on the points, scrambled or not; pairs two apart are not all; a generator whose
+/// top-left block is singular breaks its pair; a count that is not a power of 2 is refused.
+#[test]
+fn cascaded_sobol_is_the_papers_cascade_and_its_consecutive_pairs_are_zero_nets() {
+    use samplab::construct::cascaded::matrices;
+    use samplab::construct::sobol::direction_numbers;
+    use samplab::discrepancy::{Limits, Metric, compute};
+    let cascade = |generators: &dyn Fn(usize) -> [u32; 32], i: u32, dims: usize, m: u32| {
+        let mut index = i;
+        (0..dims)
+            .map(|d| {
+                let c = generators(d);
+                let x = (0..32).filter(|&k| index >> k & 1 == 1).fold(0u32, |x, k| x ^ c[k]);
+                index = x.checked_shr(32 - m).unwrap_or(0);
+                f64::from(x) / 4_294_967_296.0
+            })
+            .collect::<Vec<f64>>()
+    };
+    for m in [0, 1, 3, 8, 12] {
+        let p = set("cascaded", 1 << m, 8, 0);
+        for i in 0..1u32 << m {
+            assert_eq!(p.point(i as usize), cascade(&direction_numbers, i, 8, m), "m = {m}, point {i}");
+        }
+    }
+    let dir = std::env::temp_dir().join(format!("samplab-cascaded-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("table.dat");
+    // the authors' numbering: from 1, van der Corput's dimension left out; a generator twice
+    std::fs::write(&path, "d s a   m_i\n1 1 0\t 1\n2 1 0\t 1\n3 2 1\t 1 3\n").unwrap();
+    let table = samplab::construct::joe_kuo::directions(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let p = set(&format!("cascaded:directions={}", path.display()), 1 << 10, 4, 0);
+    for i in 0..1u32 << 10 {
+        assert_eq!(p.point(i as usize), cascade(&|d| table[d], i, 4, 10), "the file's, point {i}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    let worst = |g: &[Vec<[u32; 32]>], j: usize, k: usize| {
+        (1..=16).map(|m| pair_t(&binary_digits(&g[m][j]), &binary_digits(&g[m][k]), m, 2)).max().unwrap()
+    };
+    let of = |generators: &[[u32; 32]]| (0..=16).map(|m| matrices(generators.to_vec(), m)).collect::<Vec<_>>();
+    let joe_kuo: Vec<[u32; 32]> = (0..32).map(direction_numbers).collect();
+    let g = of(&joe_kuo);
+    for j in 0..31 {
+        assert_eq!(worst(&g, j, j + 1), 0, "dimensions {j}-{}", j + 1);
+    }
+    assert!((0..30).any(|j| worst(&g, j, j + 2) > 0), "pairs two apart");
+    let mut singular = joe_kuo.clone();
+    singular[5][2] ^= 1 << 29; // column 2 loses its diagonal digit
+    assert!(worst(&of(&singular), 4, 5) > 0, "a singular generator");
+    let metric = Metric::parse("t-value").unwrap();
+    for v in ["", ".xor", ".lms", ".owen"] {
+        let points = set(&format!("cascaded{v}"), 1 << 10, 6, 3);
+        for j in 0..5 {
+            let pair: Vec<f64> = points.iter().flat_map(|x| [x[j], x[j + 1]]).collect();
+            let t = compute(&metric, &PointSet::new(2, pair).unwrap(), Limits::default()).unwrap();
+            assert_eq!(t, 0.0, "cascaded{v}, dimensions {j}-{}", j + 1);
+        }
+    }
+    let e = sampler::build("cascaded").unwrap().plan(100, 2).unwrap_err().to_string();
+    assert!(e.contains("n = 2^m (the matrices depend on m): try 64 and 128"), "{e}");
 }

@@ -4,7 +4,7 @@
 //! on each pair of dimensions of 2D integrands, 1024 realizations, 4096 samples), and the
 //! structure OpenQMC's README states (a (0, 4)-sequence in base 4, Sobol's first two
 //! dimensions), counted on elementary intervals. Then the pairs of dimensions of the OneTwo
-//! Sobol' sequence (Bonneel et al. 2025), the quad-optimized base-3 sequence (Ostromoukhov et
+//! Sobol' sequence (Bonneel et al. 2025), Cascaded Sobol' (Paulin et al. 2021), the quad-optimized base-3 sequence (Ostromoukhov et
 //! al. 2024) and the xi-sequence (Ahmed et al. 2023) beside Sobol's and Niederreiter's, and
 //! the structure their authors' repositories state. Criteria are fixed in this file before
 //! any run.
@@ -42,9 +42,9 @@ pub fn paper() -> Paper {
             },
             Experiment {
                 id: "projections",
-                title: "The pairs of dimensions of OneTwo, quad-optimized and xi",
-                source: "Bonneel et al. 2025 (OneTwo) and the README of its supplement; Ostromoukhov et al. 2024 (quad-optimized); Ahmed et al. 2023 (xi) and Samplin' Safari's name for it",
-                parameters: "sobol and onetwo (base 2, 4096 points), niederreiter:base=3 and quad-optimized (base 3, 3^7 = 2187 points) in 16 dimensions, xi in 2; the largest t over the pairs (2k, 2k + 1), over the pairs (2k + 1, 2k + 2), and over every pair, counted on elementary intervals; the claims at every prefix of b^m points, m = 1..12 (base 2) or 1..7 (base 3), onetwo's over its first 32 dimensions",
+                title: "The pairs of dimensions of OneTwo, Cascaded Sobol', quad-optimized and xi",
+                source: "Bonneel et al. 2025 (OneTwo) and the README of its supplement; Paulin et al. 2021 (Cascaded Sobol', here of Joe & Kuo's generators); Ostromoukhov et al. 2024 (quad-optimized); Ahmed et al. 2023 (xi) and Samplin' Safari's name for it",
+                parameters: "sobol, onetwo and cascaded (base 2, 4096 points), niederreiter:base=3 and quad-optimized (base 3, 3^7 = 2187 points) in 16 dimensions, xi in 2; the largest t over the pairs (2k, 2k + 1), over the pairs (2k + 1, 2k + 2), and over every pair, counted on elementary intervals; the claims at every prefix of b^m points, m = 1..12 (base 2) or 1..7 (base 3), onetwo's over its first 32 dimensions",
                 run: projections,
             },
         ],
@@ -301,9 +301,10 @@ fn t_values(ctx: &Ctx) -> Result<Output, Error> {
 }
 
 /// The projections table's samplers: spec, base, points, dimensions.
-const P_SAMPLERS: [(&str, u32, usize, usize); 5] = [
+const P_SAMPLERS: [(&str, u32, usize, usize); 6] = [
     ("sobol", 2, 4096, 16),
     ("onetwo", 2, 4096, 16),
+    ("cascaded", 2, 4096, 16),
     ("niederreiter:base=3", 3, 2187, 16),
     ("quad-optimized", 3, 2187, 16),
     ("xi", 2, 4096, 2),

@@ -5,7 +5,8 @@
 //! a_i), and m_k the initial direction integers (odd, below 2^k).
 //! Dimension 1 is van der Corput's (every m_k = 1). Bonneel et al. (2025) publish their
 //! OneTwo table with that dimension written out as a first line `0 0 0` and the rest
-//! numbered from 1; the reader takes both numberings. The remaining m_k follow Bratley &
+//! numbered from 1, and Paulin et al. (2021) their Cascaded Sobol' table numbered from 1
+//! with it left out; the reader takes all three. The remaining m_k follow Bratley &
 //! Fox's recurrence (Joe & Kuo 2008, section 2):
 //! m_k = 2 a_1 m_{k-1} ^ 4 a_2 m_{k-2} ^ ... ^ 2^{s-1} a_{s-1} m_{k-s+1} ^ 2^s m_{k-s} ^ m_{k-s}.
 //!
@@ -19,13 +20,13 @@
 ///
 /// # Errors
 /// `(line, reason)`: a token that is not a whole number, a dimension out of sequence (from
-/// 2, or from 1 after a first line `0 0 0`), a
+/// 2, or from 1, after a first line `0 0 0` or not), a
 /// degree outside 1..=32 or a coefficient number of more than s - 1 bits, the wrong count
 /// of initial numbers, or an m_k that is even or not below 2^k.
 pub fn directions(text: &str) -> Result<Vec<[u32; 32]>, (usize, String)> {
     let mut table: Vec<[u32; 32]> = vec![std::array::from_fn(|k| 1u32 << (31 - k))];
     let mut header_allowed = true;
-    // the number of the first dimension after van der Corput's: 2, or 1 after `0 0 0`
+    // the number of the first dimension after van der Corput's: 2, or 1 (after `0 0 0` or not)
     let mut first = 2u64;
     for (i, line) in text.lines().enumerate() {
         let lineno = i + 1;
@@ -52,6 +53,10 @@ pub fn directions(text: &str) -> Result<Vec<[u32; 32]>, (usize, String)> {
             // van der Corput's dimension written out (the OneTwo table's first line)
             first = 1;
             continue;
+        }
+        if table.len() == 1 && first == 2 && f.first() == Some(&1) {
+            // numbered from 1 with van der Corput's dimension left out (Paulin et al.'s table)
+            first = 1;
         }
         let want = table.len() as u64 + first - 1;
         if f.len() < 4 {

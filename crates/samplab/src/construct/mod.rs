@@ -10,8 +10,8 @@
 //!   studies        experiment, study, predict, cubature
 //!   measures       discrepancy, spectrum, spatial, screen, theory, stats, integrand, warp, io
 //!   front doors    sampler (point sets)            pixel (per-pixel draws)
-//!   constructions  construct: sobol, sz, quad_optimized, xi, radical, scramble, pbrt, cycles,
-//!                  pmj02, cbc, counts, spectrum_theory
+//!   constructions  construct: sobol, sz, quad_optimized, xi, cascaded, radical, scramble, pbrt,
+//!                  cycles, pmj02, cbc, counts, spectrum_theory
 //!   base           numeric, seed, simd, progress, memory, error, spec, registry, points
 //! ```
 //!
@@ -38,12 +38,14 @@
 //! - [`sz`]: the SZ generating matrices (Ahmed et al. 2025), a (0, 4)-sequence in base 4;
 //! - [`quad_optimized`]: the quad-optimized base-3 matrices (Ostromoukhov et al. 2024);
 //! - [`xi`]: the xi-sequence's matrices (Ahmed et al. 2023), a 2D (0, 2)-sequence;
+//! - [`cascaded`]: Cascaded Sobol' (Paulin et al. 2021), consecutive pairs (0, m, 2)-nets;
 //! - [`cbc`]: fast component-by-component searches for rank-1 lattices (Nuyens & Cools 2006);
 //! - [`counts`]: which counts a construction makes ([`Counts`]);
 //! - [`spectrum_theory`]: the closed-form spectra of jittered sampling (Subr & Kautz 2013),
 //!   a construction's own theory beside its measured spectra;
 //! - fixed point to the unit interval: [`unit()`] and [`cell_centre`].
 
+pub mod cascaded;
 pub mod cbc;
 pub mod counts;
 pub mod curve;

@@ -145,6 +145,12 @@ impl Matrices {
         Matrices { base: 2, dims: digits.len() / (32 * 32), cols: 32, rows: 32, digits }
     }
 
+    /// The first `cols` columns of each dimension: the net of base^cols points.
+    fn first_columns(self, cols: usize) -> Matrices {
+        let digits = self.digits.chunks_exact(self.cols * self.rows).flat_map(|d| &d[..cols * self.rows]).copied().collect();
+        Matrices { cols, digits, ..self }
+    }
+
     /// Faure's matrices for `dims` dimensions (module docs): base p the smallest prime >= d,
     /// enough columns for 2^32 points.
     pub fn faure(dims: usize) -> Matrices {
@@ -364,6 +370,9 @@ enum Source {
     QuadOptimized,
     /// The xi-sequence's two matrices (Ahmed et al. 2023).
     Xi,
+    /// Cascaded Sobol' (Paulin et al. 2021) of Joe & Kuo's generators or a file's: the
+    /// matrices depend on the count.
+    Cascaded(Option<Arc<Vec<[u32; 32]>>>),
 }
 
 /// A digital net or sequence with a randomization.
@@ -377,8 +386,9 @@ pub struct Net {
 }
 
 impl Net {
-    /// The matrices for `dims` dimensions: a file's, or the construction's, made here.
-    fn matrices(&self, dims: usize) -> Result<Arc<Matrices>> {
+    /// The matrices for `dims` dimensions and `n` points: a file's, or the construction's,
+    /// made here.
+    fn matrices(&self, dims: usize, n: usize) -> Result<Arc<Matrices>> {
         Ok(match &self.source {
             Source::File(m) => Arc::clone(m),
             Source::Sobol => Arc::new(Matrices::sobol(dims)),
@@ -389,6 +399,16 @@ impl Net {
                 Arc::new(Matrices::from_directions((0..dims).map(crate::construct::sobol::onetwo_direction_numbers)))
             }
             Source::Xi => Arc::new(Matrices::from_directions(crate::construct::xi::XI.into_iter().take(dims))),
+            Source::Cascaded(file) => {
+                // n = 2^m (the count rule); m columns (one for a single point)
+                let m = n.trailing_zeros() as usize;
+                let generators: Vec<[u32; 32]> = match file {
+                    Some(table) => table[..dims].to_vec(),
+                    None => (0..dims).map(crate::construct::sobol::direction_numbers).collect(),
+                };
+                let cascade = Matrices::from_directions(crate::construct::cascaded::matrices(generators, m).into_iter());
+                Arc::new(cascade.first_columns(m.max(1)))
+            }
             Source::QuadOptimized => {
                 // the rows below the construction's are zero: a scramble randomizes them too
                 let rows = precision(3);
@@ -408,7 +428,7 @@ impl Net {
 
     fn base(&self, dims: usize) -> u32 {
         match &self.source {
-            Source::Sobol | Source::Sz | Source::OneTwo | Source::Xi => 2,
+            Source::Sobol | Source::Sz | Source::OneTwo | Source::Xi | Source::Cascaded(_) => 2,
             Source::File(m) => m.base,
             Source::Faure => faure_base(dims),
             Source::Niederreiter(b) => *b,
@@ -524,12 +544,14 @@ impl Construction for Net {
             Source::OneTwo => 1..=crate::construct::sobol::ONETWO_MAX_DIMS,
             Source::QuadOptimized => 1..=crate::construct::quad_optimized::QUAD_OPTIMIZED_MAX_DIMS,
             Source::Xi => 1..=2,
+            Source::Cascaded(Some(table)) => 1..=table.len(),
+            Source::Cascaded(None) => 1..=crate::construct::sobol::SOBOL_MAX_DIMS,
         }
     }
     fn check_count(&self, shape: &Shape) -> Result<()> {
         let (n, dims) = (shape.n(), shape.dims());
         let cols = match &self.source {
-            Source::Sobol | Source::Sz | Source::OneTwo | Source::Xi => 32,
+            Source::Sobol | Source::Sz | Source::OneTwo | Source::Xi | Source::Cascaded(_) => 32,
             Source::File(m) => m.cols,
             Source::QuadOptimized => crate::construct::quad_optimized::QUAD_OPTIMIZED_COLUMNS,
             _ => columns_for_all_sets(self.base(dims)),
@@ -543,7 +565,7 @@ impl Construction for Net {
 
     fn prepare(&self, shape: &Shape) -> Result<Box<dyn Prepared>> {
         let (n, dims) = (shape.n(), shape.dims());
-        let matrices = self.matrices(dims)?;
+        let matrices = self.matrices(dims, n)?;
         let words = (matrices.base == 2).then(|| {
             (0..dims)
                 .flat_map(|d| (0..matrices.cols).map(move |k| (d, k)))
@@ -877,20 +899,35 @@ const DIRECTIONS: ParamSpec = ParamSpec {
           d = 2), the net their Sobol' matrices, 32 x 32 bits, with van der Corput's first",
 };
 
+/// The cascade's 1D generators.
+const GENERATORS: ParamSpec = ParamSpec {
+    name: "directions",
+    kind: Kind::Path,
+    default: Default::Auto("none: Joe & Kuo's"),
+    doc: "the 1D Sobol' generators of the cascade, one per dimension, in Joe & Kuo's format (numbered from 2; or \
+          from 1, van der Corput's first dimension left out or written `0 0 0`, as the authors' table \
+          cascaded_sobol_init_tab.dat numbers them)",
+};
+
+fn read_text(path: &str) -> Result<String> {
+    crate::io::read_small_text(path, crate::io::SPEC_FILE_MAX)
+}
+
+/// A Joe-Kuo direction-number file's table, van der Corput's dimension first.
+fn read_directions(path: &str) -> Result<Vec<[u32; 32]>> {
+    crate::construct::joe_kuo::directions(&read_text(path)?)
+        .map_err(|(line, reason)| Error::Parse { location: format!("{path}:{line}"), reason })
+}
+
 fn net_source(p: &Params) -> Result<Source> {
-    let read = |path: &str| crate::io::read_small_text(path, crate::io::SPEC_FILE_MAX);
     match (p.path_or_auto("matrices"), p.path_or_auto("directions")) {
         (Some(_), Some(_)) => Err(Error::Param {
             owner: "net".into(),
             param: "directions".into(),
             reason: "give matrices or directions, not both".into(),
         }),
-        (Some(path), None) => Ok(Source::File(Arc::new(Matrices::parse(&read(path)?, path)?))),
-        (None, Some(path)) => {
-            let table = crate::construct::joe_kuo::directions(&read(path)?)
-                .map_err(|(line, reason)| Error::Parse { location: format!("{path}:{line}"), reason })?;
-            Ok(Source::File(Arc::new(Matrices::from_directions(table.into_iter()))))
-        }
+        (Some(path), None) => Ok(Source::File(Arc::new(Matrices::parse(&read_text(path)?, path)?))),
+        (None, Some(path)) => Ok(Source::File(Arc::new(Matrices::from_directions(read_directions(path)?.into_iter())))),
         (None, None) => Ok(Source::Sobol),
     }
 }
@@ -942,6 +979,12 @@ fn build_onetwo(_: &mut Params, randomization: Randomization) -> Result<Box<dyn 
 /// The construction of each `xi` entry.
 fn build_xi(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
     fixed(Source::Xi, randomization)
+}
+
+/// The construction of each `cascaded` entry.
+fn build_cascaded(p: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
+    let generators = p.path_or_auto("directions").map(read_directions).transpose()?;
+    fixed(Source::Cascaded(generators.map(Arc::new)), randomization)
 }
 
 /// The construction of each `quad-optimized` entry.
@@ -1015,6 +1058,17 @@ pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
         dims: "1..=48",
         cite: ["ostromoukhov2024quad"],
         build: build_quad_optimized,
+        randomizations: [xor, lms, owen, shift],
+    },
+    {
+        family: "cascaded",
+        summary: "Cascaded Sobol': each dimension a 1D Sobol' net drawn at the previous coordinate's digits, consecutive pairs (0,m,2)-nets",
+        aliases: ["cascaded-sobol"],
+        params: &[GENERATORS],
+        counts: Counts::Listed { rule: "n = 2^m (the matrices depend on m)", list: |_, _| Box::new((0..=32).map(|k| 1usize << k)) },
+        dims: "up to the generators' (1024 of Joe & Kuo's)",
+        cite: ["paulin2021cascaded", "joe2008"],
+        build: build_cascaded,
         randomizations: [xor, lms, owen, shift],
     },
     {
