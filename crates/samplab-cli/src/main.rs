@@ -35,6 +35,7 @@ mod render;
 mod reproduce;
 mod sets;
 mod spectrum;
+mod tvalues;
 
 #[global_allocator]
 static ALLOCATOR: alloc::Checked = alloc::Checked;
@@ -100,6 +101,9 @@ enum Command {
     /// A tileable blue-noise mask by void-and-cluster (Ulichney 1993), 1-4 values per pixel,
     /// as .npy or .png (the masks of the dither and pmj02.bn pixel samplers).
     Mask(mask::Args),
+    /// The t of every projection of a sampler's nets at b^1 .. b^m points: a digital net's
+    /// from its generating matrices, any other set's counted on its points.
+    TValues(tvalues::Args),
 }
 
 /// The exit code of a bug (a panic): 70, EX_SOFTWARE of sysexits.h.
@@ -229,6 +233,7 @@ fn run(cli: Cli) -> ExitCode {
         Command::Pixels(a) => pixels::run(&a),
         Command::ImageMetrics(a) => image_metrics::run(&a),
         Command::Mask(a) => mask::run(&a),
+        Command::TValues(a) => tvalues::run(&a),
     })
 }
 

@@ -921,3 +921,35 @@ fn a_randomization_word_names_the_same_scramble_in_pixels_and_generate() {
         }
     }
 }
+
+/// `samplab t-values` prints the library's table (a digital net's from its matrices, any
+/// other set's counted on its points), and refuses bad input in one line.
+#[test]
+fn t_values_are_the_librarys_and_bad_input_is_refused() {
+    use samplab::discrepancy::Limits;
+    use samplab::discrepancy::tvalue::projection_table;
+    for (spec, projection, from_matrices) in [("cascaded.owen", "pairs", true), ("pmj02", "all", false)] {
+        let out =
+            samplab(&["t-values", spec, "-d", "2", "--m", "6", "--projection", projection, "--seed", "4", "--json"]);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let value: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let table =
+            projection_table(&sampler::build(spec).unwrap(), 2, 6, projection, None, Seed(4), &Limits::default())
+                .unwrap();
+        assert_eq!(table.from_matrices, from_matrices);
+        assert_eq!(value["from_matrices"], from_matrices);
+        let t: Vec<Vec<usize>> = value["projections"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| serde_json::from_value(p["t"].clone()).unwrap())
+            .collect();
+        assert_eq!(t, table.t, "{spec}");
+    }
+    assert_bad_input(&["t-values", "onetwo", "--projection", "triples"], &["projection triples"]);
+    assert_bad_input(&["t-values", "onetwo", "-d", "3", "--projection", "quadruples"], &["quadruples of a 3D set"]);
+    assert_bad_input(&["t-values", "onetwo", "--m", "0"], &["--m 0"]);
+    assert_bad_input(&["t-values", "onetwo", "--base", "3"], &["base 3 for matrices in base 2"]);
+    assert_bad_input(&["t-values", "onetwo", "--m", "33"], &["2^33 points", "at most 2^32"]);
+    assert_bad_input(&["t-values", "onetw"], &["unknown sampler 'onetw'"]);
+}

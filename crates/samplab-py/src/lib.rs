@@ -417,6 +417,33 @@ fn discrepancy(
     })
 }
 
+/// The t of each projection of a sampler's nets at b^1 .. b^m points, as
+/// `samplab t-values --json` prints it.
+#[pyfunction]
+#[pyo3(signature = (spec, dims, m, projection, base, seed, max_work=None))]
+#[allow(clippy::too_many_arguments)] // the CLI's options, one for one
+fn t_values(
+    py: Python<'_>,
+    spec: &str,
+    dims: usize,
+    m: usize,
+    projection: &str,
+    base: Option<u32>,
+    seed: u64,
+    max_work: Option<f64>,
+) -> PyResult<String> {
+    if m == 0 {
+        return Err(err("m = 0: the nets start at m = 1"));
+    }
+    let sampler = samplab::sampler::build(spec).map_err(err)?;
+    let limits = Limits::new(max_work).map_err(err)?;
+    interruptible(py, usize::MAX, |stop| {
+        let limits = limits.stopped_by(Progress::until(stop));
+        samplab::discrepancy::tvalue::projection_table(&sampler, dims, m, projection, base, Seed(seed), &limits)
+            .map(|table| table.json(sampler.spec(), Seed(seed)))
+    })
+}
+
 /// A metric's canonical spec and flags ([`Metric::flags`]) as JSON.
 #[pyfunction]
 fn metric_flags(metric: &str) -> PyResult<String> {
@@ -1002,6 +1029,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(discrepancy, m)?)?;
     m.add_function(wrap_pyfunction!(metric_flags, m)?)?;
+    m.add_function(wrap_pyfunction!(t_values, m)?)?;
     m.add_function(wrap_pyfunction!(spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(predict, m)?)?;

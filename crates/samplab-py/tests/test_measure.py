@@ -214,3 +214,18 @@ def test_predict_takes_callables_and_arrays_with_their_errors():
         samplab.predict(np.array([[1.0, np.inf]]), "random", 64, res=16, sets=8)
     with pytest.raises(samplab.Error, match="expected a spec string"):
         samplab.predict(3, "random", 64)
+
+
+def test_t_values_equal_the_cli(cli):
+    """The Python face prints the same table as ``samplab t-values --json``, from the
+    matrices for a net and counted on the points for any other set, and refuses bad input
+    with samplab.Error."""
+    for spec, projection, dims in [("cascaded.owen", "pairs", 4), ("pmj02", "all", 2), ("onetwo", "quadruples", 5)]:
+        ours = samplab.t_values(spec, dims=dims, m=8, projection=projection, seed=7)
+        theirs = json.loads(cli("t-values", spec, "-d", dims, "--m", 8, "--projection", projection, "--seed", 7, "--json"))
+        assert ours == theirs
+    assert samplab.t_values("cascaded", dims=3, m=6)["from_matrices"]
+    assert all(max(p["t"]) == 0 for p in samplab.t_values("cascaded", dims=6, m=10)["projections"])
+    for bad in [dict(projection="triples"), dict(m=0), dict(base=3), dict(dims=1.5)]:
+        with pytest.raises(samplab.Error):
+            samplab.t_values("onetwo", **bad)

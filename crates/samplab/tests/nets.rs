@@ -6,8 +6,10 @@
 //! One test samples (the randomizations' unbiasedness); its doc comment gives its failure
 //! probability and least work. The others check properties that hold for every draw.
 
+use samplab::discrepancy::tvalue::of_matrices;
 use samplab::progress::Progress;
 use samplab::sampler;
+use samplab::sampler::qmc::net::Matrices;
 use samplab::{PointSet, Seed};
 
 fn set(spec: &str, n: usize, d: usize, seed: u64) -> PointSet {
@@ -394,41 +396,41 @@ fn the_t_value_metric_is_the_least_t_of_every_elementary_interval() {
     assert!(t_value(&sobol6, "t-value:projection=pairs") <= t_value(&sobol6, "t-value"));
     let e = compute(&Metric::parse("t-value").unwrap(), &set("random", 100, 2, 1), Limits::default()).unwrap_err();
     assert!(e.to_string().contains("100 points are not a power of the base 2"), "{e}");
+    // consecutive pairs and quadruples: the worst of the counts from the matrices
+    let plan = sampler::build("onetwo.owen").unwrap().plan(1 << 10, 9).unwrap();
+    let points = plan.generate(Seed(2)).unwrap();
+    let worst = |width: usize| {
+        (0..=9 - width)
+            .map(|j| {
+                of_matrices(
+                    plan.generating_matrices().unwrap(),
+                    &(j..j + width).collect::<Vec<_>>(),
+                    10,
+                    &Limits::default(),
+                )
+                .unwrap()
+            })
+            .max()
+            .unwrap() as f64
+    };
+    assert_eq!(t_value(&points, "t-value:projection=consecutive"), worst(2));
+    assert_eq!(t_value(&points, "t-value:projection=quadruples"), worst(4));
+    assert!(worst(4) > worst(2));
+    let e =
+        compute(&Metric::parse("t-value:projection=quadruples").unwrap(), &set("sobol", 64, 3, 1), Limits::default())
+            .unwrap_err();
+    assert!(e.to_string().contains("quadruples of a 3D set"), "{e}");
 }
 
 /// The least t of the 2D digital net in base b that the first m columns of two generating
-/// matrices make (`c[k][r]`: the digit in row r of column k): the least t such that for
-/// every k1 + k2 = m - t the first k1 rows of the one and the first k2 rows of the other are
-/// linearly independent over GF(b) (Niederreiter 1992, theorem 4.28), by elimination.
+/// matrices make (`c[k][r]`: the digit in row r of column k), by samplab's rank count
+/// ([`of_matrices`], checked against the box count in
+/// `t_from_the_matrices_is_the_box_count_of_every_net`).
 fn pair_t(c1: &[Vec<u8>], c2: &[Vec<u8>], m: usize, base: u8) -> usize {
-    let b = u32::from(base);
-    let row = |c: &[Vec<u8>], r: usize| (0..m).map(|k| u32::from(c[k][r])).collect::<Vec<u32>>();
-    let independent = |mut rows: Vec<Vec<u32>>| {
-        let n = rows.len();
-        let mut rank = 0;
-        for col in 0..m {
-            let Some(p) = (rank..n).find(|&i| rows[i][col] != 0) else { continue };
-            rows.swap(rank, p);
-            // scale the pivot row to 1 (b is prime: x^(b-2) is x's inverse)
-            let inverse = (0..b - 2).fold(1, |acc, _| acc * rows[rank][col] % b);
-            rows[rank].iter_mut().for_each(|x| *x = *x * inverse % b);
-            let pivot = rows[rank].clone();
-            for (i, r) in rows.iter_mut().enumerate() {
-                let f = r[col];
-                if i != rank && f != 0 {
-                    r.iter_mut().zip(&pivot).for_each(|(x, &y)| *x = (*x + (b - f) * y) % b);
-                }
-            }
-            rank += 1;
-        }
-        rank == n
-    };
-    (0..=m)
-        .find(|&t| {
-            (0..=m - t)
-                .all(|k1| independent((0..k1).map(|r| row(c1, r)).chain((0..m - t - k1).map(|r| row(c2, r))).collect()))
-        })
-        .unwrap()
+    let rows = c1[0].len();
+    let digits = [c1, c2].iter().flat_map(|c| c[..m].iter().flatten().copied()).collect();
+    let matrices = Matrices::new(base.into(), 2, m, rows, digits).unwrap();
+    of_matrices(&matrices, &[0, 1], m, &samplab::discrepancy::Limits::default()).unwrap()
 }
 
 /// A binary generating matrix as digits: `[k][r]`, from its columns as 32-bit words (row 0
@@ -660,4 +662,81 @@ fn cascaded_sobol_is_the_papers_cascade_and_its_consecutive_pairs_are_zero_nets(
     }
     let e = sampler::build("cascaded").unwrap().plan(100, 2).unwrap_err().to_string();
     assert!(e.contains("n = 2^m (the matrices depend on m): try 64 and 128"), "{e}");
+}
+
+/// The t of a digital net from its generating matrices (rank counts over GF(b)) is the t
+/// its points have, counted on every elementary interval: every family with matrices, at
+/// every m up to 12 in base 2 (5 in base 3, 4 in base 5), on every projection of 4
+/// dimensions (xi: its 2), scrambled too. Faure's nets have t = 0 (Faure 1982) and
+/// Niederreiter's in base 2 at most the sum of the degrees less one (Niederreiter 1988,
+/// reached: 0, 0, 1, 3 in 1 to 4 dimensions); a flipped digit changes the count, too many
+/// columns or an axis past the dimensions is an error, and so is more work than allowed.
+#[test]
+fn t_from_the_matrices_is_the_box_count_of_every_net() {
+    use samplab::discrepancy::{Limits, Metric, compute};
+    let families = [
+        ("net", "", 2, 12),
+        ("niederreiter", "", 2, 12),
+        ("sz", "", 2, 12),
+        ("onetwo", "", 2, 12),
+        ("cascaded", "", 2, 12),
+        ("xi", "", 2, 12),
+        ("faure", "", 5, 4),
+        ("niederreiter", ":base=3", 3, 5),
+        ("quad-optimized", "", 3, 5),
+    ];
+    for (family, params, b, most) in families {
+        let b: usize = b;
+        for v in ["", ".owen"] {
+            let spec = format!("{family}{v}{params}");
+            let sampler = sampler::build(&spec).unwrap();
+            let dims = if spec.starts_with("xi") { 2 } else { 4 };
+            let metric = Metric::parse(&format!("t-value:base={b}")).unwrap();
+            for m in 1..=most {
+                let plan = sampler.plan(b.pow(m as u32), dims).unwrap();
+                let matrices = plan.generating_matrices().unwrap();
+                let points = plan.generate(Seed(5)).unwrap();
+                // every projection: the subsets of the axes
+                for mask in 1..1usize << dims {
+                    let axes: Vec<usize> = (0..dims).filter(|a| mask >> a & 1 == 1).collect();
+                    let xs: Vec<f64> =
+                        points.iter().flat_map(|p| axes.iter().map(|&a| p[a]).collect::<Vec<f64>>()).collect();
+                    let boxes = compute(&metric, &PointSet::new(axes.len(), xs).unwrap(), Limits::default()).unwrap();
+                    let ranks = of_matrices(matrices, &axes, m, &Limits::default()).unwrap();
+                    assert_eq!(ranks as f64, boxes, "{spec}, m = {m}, axes {axes:?}");
+                }
+            }
+        }
+    }
+    let t = |spec: &str, dims: usize, m: usize| {
+        let b = if spec == "faure" { 5usize } else { 2 };
+        let plan = sampler::build(spec).unwrap().plan(b.pow(m as u32), dims).unwrap();
+        of_matrices(plan.generating_matrices().unwrap(), &(0..dims).collect::<Vec<_>>(), m, &Limits::default()).unwrap()
+    };
+    assert!((1..=8).all(|m| t("faure", 5, m) == 0));
+    for (dims, sum) in [(1, 0), (2, 0), (3, 1), (4, 3)] {
+        let worst = (1..=20).map(|m| t("niederreiter", dims, m)).max().unwrap();
+        assert_eq!(worst, sum, "niederreiter in {dims} dimensions");
+    }
+    let mut digits = vec![0u8; 2 * 8 * 8];
+    for d in 0..2 {
+        for k in 0..8 {
+            // van der Corput and its reverse: the Hammersley net, t = 0
+            let r = if d == 0 { k } else { 7 - k };
+            digits[(d * 8 + k) * 8 + r] = 1;
+        }
+    }
+    let hammersley = Matrices::new(2, 2, 8, 8, digits.clone()).unwrap();
+    assert_eq!(of_matrices(&hammersley, &[0, 1], 8, &Limits::default()).unwrap(), 0);
+    // the reverse loses its last column's digit: the second coordinates' first digit is
+    // always 0, so no interval of the upper half holds a point, t = m
+    digits[(8 + 7) * 8] = 0;
+    let broken = Matrices::new(2, 2, 8, 8, digits).unwrap();
+    assert_eq!(of_matrices(&broken, &[0, 1], 8, &Limits::default()).unwrap(), 8);
+    let e = of_matrices(&hammersley, &[0, 1], 9, &Limits::default()).unwrap_err().to_string();
+    assert!(e.contains("9 columns of matrices with 8"), "{e}");
+    let e = of_matrices(&hammersley, &[0, 2], 8, &Limits::default()).unwrap_err().to_string();
+    assert!(e.contains("axis 2 of matrices in 2 dimensions"), "{e}");
+    let small = Limits::new(Some(100.0)).unwrap();
+    assert!(matches!(of_matrices(&hammersley, &[0, 1], 8, &small), Err(samplab::Error::WorkLimit { .. })));
 }

@@ -81,6 +81,7 @@ __all__ = [
     "save",
     "load",
     "discrepancy",
+    "t_values",
     "discrepancy_flags",
     "spectrum",
     "integrate",
@@ -768,6 +769,66 @@ def discrepancy(metric: str, points: Any, max_work: Optional[float] = None) -> U
     a = _points(points, stack=True)
     v = np.asarray(_samplab.discrepancy(metric, a, None if max_work is None else _real("max_work", max_work)))
     return float(v[0]) if np.ndim(points) == 2 else v
+
+
+def t_values(
+    spec: str,
+    dims: int = 2,
+    m: int = 12,
+    projection: str = "consecutive",
+    base: Optional[int] = None,
+    seed: int = DEFAULT_SEED,
+    max_work: Optional[float] = None,
+) -> Dict[str, Any]:
+    """The t of every projection of a sampler's nets at b^1 .. b^m points, as
+    ``samplab t-values --json``.
+
+    A digital net's (``net``, ``faure``, ``niederreiter``, ``sz``, ``onetwo``, ``cascaded``,
+    ``quad-optimized``, ``xi`` and their ``.xor``, ``.lms``, ``.owen``) comes from its
+    generating matrices, by ranks over GF(b): the t of its points under each such scramble.
+    Any other sampler's is counted on the points of one set (``seed``) in ``base`` (2 when
+    not given).
+
+    Parameters
+    ----------
+    spec : str
+        The sampler.
+    dims : int, default 2
+        Dimensions.
+    m : int, default 12
+        The largest m.
+    projection : str, default "consecutive"
+        ``"consecutive"`` (the pairs (j, j + 1)), ``"pairs"`` (every 2D projection),
+        ``"quadruples"`` (j .. j + 3) or ``"all"`` (the whole set).
+    base : int, optional
+        The base of a sampler without generating matrices.
+    seed : int, default DEFAULT_SEED
+        The seed of the set counted (samplers without generating matrices).
+    max_work : float, optional
+        Refuse more work than this many steps (``WorkLimitError``).
+
+    Returns
+    -------
+    dict
+        ``source``, ``base``, ``from_matrices`` and ``projections``: each ``{"axes": [...],
+        "t": [t at m = 1, 2, ...]}``.
+
+    Examples
+    --------
+    >>> table = samplab.t_values("onetwo", dims=4, m=10)
+    >>> [max(p["t"]) for p in table["projections"]]
+    [0, 1, 1]
+    """
+    text = _samplab.t_values(
+        spec,
+        _count("dims", dims),
+        _count("m", m),
+        projection,
+        None if base is None else _count("base", base),
+        _seed(seed),
+        None if max_work is None else _real("max_work", max_work),
+    )
+    return json.loads(text)
 
 
 def discrepancy_flags(metric: str) -> Dict[str, Any]:

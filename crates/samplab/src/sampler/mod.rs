@@ -364,6 +364,12 @@ pub trait Prepared: Send + Sync {
     fn stream(&self, _seed: Seed) -> Option<Box<dyn Stream + '_>> {
         None
     }
+
+    /// A digital net's generating matrices, whose t its randomizations keep (a digital
+    /// shift, a linear matrix scramble, Owen's): `None` for the other samplers.
+    fn generating_matrices(&self) -> Option<&qmc::net::Matrices> {
+        None
+    }
 }
 
 /// The prepared state of a sampler that needs no tables: `fill(seed, out)` writes one set
@@ -497,6 +503,13 @@ impl Plan {
     /// for the indices below n, and on past n as far as the sequence goes.
     pub fn access(&self, seed: Seed) -> Option<Box<dyn Access + '_>> {
         self.prepared.access(seed)
+    }
+
+    /// The generating matrices of a digital net (the families of `net`: their t, from
+    /// [`crate::discrepancy::tvalue::of_matrices`], is the points' under every randomization
+    /// but a Cranley-Patterson shift); `None` for the other samplers.
+    pub fn generating_matrices(&self) -> Option<&qmc::net::Matrices> {
+        self.prepared.generating_matrices()
     }
 
     /// Coordinate `dim` of point `index` for `seed`, as [`Plan::access`] gives it, without

@@ -128,6 +128,11 @@ impl Matrices {
         self.cols
     }
 
+    /// How many rows (output digits) each column has.
+    pub fn rows(&self) -> usize {
+        self.rows
+    }
+
     /// Digit (row `r`, column `k`) of dimension `d`'s matrix.
     pub fn digit(&self, d: usize, r: usize, k: usize) -> u32 {
         u32::from(self.digits[(d * self.cols + k) * self.rows + r])
@@ -526,6 +531,11 @@ impl Prepared for Planned {
         // a value drawn alone (per pixel): the dimensions up to its own, Owen tables at
         // their least (a cache only: the same bits)
         Some(Ordered { engine: self.engine_of(dim + 1, seed, 1), gray: self.net.gray }.sample(index, dim))
+    }
+
+    fn generating_matrices(&self) -> Option<&Matrices> {
+        // Gray-code order makes the same sets of b^m points
+        Some(&self.matrices)
     }
 }
 
