@@ -105,6 +105,14 @@ fn the_atlas_agrees_with_the_cli_and_with_itself_on_any_thread_count() {
         );
         let cli = json(&spec.join("spectrum.json"));
         assert_eq!(m["radial"], cli["statistics"]["periodogram"]["radial"], "{s}: the radial spectrum");
+        // the t-value at a power of 2: the largest over the same sets
+        let t = m["t_value"].as_f64().unwrap_or_else(|| panic!("{s}: no t-value at {n} points"));
+        let out = samplab(
+            &["discrepancy", "t-value", "--sampler", s, "-n", &n, "--sets", &sets, "--seed", &seed, "--json"],
+            "2",
+        );
+        let cli: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(cli["metrics"][0]["max"].as_f64().unwrap(), t, "{s}: the t-value");
     }
 }
 

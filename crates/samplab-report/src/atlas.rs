@@ -191,6 +191,9 @@ pub struct Measured {
     pub nyquist: f64,
     /// Mean relative radius over the sets (the `relative-radius` metric).
     pub relative_radius: f64,
+    /// The largest t, in base 2, of the sets as (t, m, 2)-nets (the `t-value` metric), when
+    /// n is a power of 2: t = 0 is a (0, m, 2)-net, t = m no stratification at all.
+    pub t_value: Option<f64>,
     /// Radii (absolute, on the unit torus) and the mean pair correlation there.
     pub pcf: Vec<(f64, f64)>,
 }
@@ -321,10 +324,19 @@ fn count_from(entry: &SamplerEntry, sampler: &Sampler, target: usize) -> Option<
 
 /// The mean of `metric` over `sets`, each computed as `samplab discrepancy` does.
 fn mean_metric(metric: &str, sets: &[PointSet]) -> Result<f64, Error> {
+    Ok(samplab::stats::Summary::of(&metric_values(metric, sets)?).mean)
+}
+
+/// The largest value of `metric` over `sets`.
+fn max_metric(metric: &str, sets: &[PointSet]) -> Result<f64, Error> {
+    Ok(samplab::stats::Summary::of(&metric_values(metric, sets)?).max)
+}
+
+/// `metric` of each of `sets`.
+fn metric_values(metric: &str, sets: &[PointSet]) -> Result<Vec<f64>, Error> {
     let metric = Metric::parse(metric)?;
     let limits = Limits::new(None)?;
-    let values: Vec<f64> = sets.iter().map(|s| discrepancy::compute(&metric, s, limits)).collect::<Result<_, _>>()?;
-    Ok(samplab::stats::Summary::of(&values).mean)
+    Ok(sets.iter().map(|s| discrepancy::compute(&metric, s, limits)).collect::<Result<_, _>>()?)
 }
 
 /// What the figures need beyond the numbers: set 0 at each pictured count, and the
@@ -392,6 +404,7 @@ fn measure(
         low_frequency_energy: n as f64 * lows.iter().sum::<f64>() / lows.len().max(1) as f64,
         nyquist: mean_metric("nyquist", &sets)?,
         relative_radius: mean_metric("relative-radius", &sets)?,
+        t_value: if n.is_power_of_two() { Some(max_metric("t-value", &sets)?) } else { None },
         pcf: pair_correlation(&sets)?,
         radial,
         slopes: slopes(&rows),
@@ -857,8 +870,14 @@ fn measured_html(p: &Page, m: &Measured, options: &Options) -> String {
     }
     let _ = writeln!(
         h,
-        "</table>\n<p>At {} points: low-frequency energy {:.3} (mean periodogram over 0 &lt; |w| &le; sqrt(n)/2; white noise 1), effective Nyquist frequency {:.3}, relative radius {:.3}.</p>",
-        m.n, m.low_frequency_energy, m.nyquist, m.relative_radius
+        "</table>\n<p>At {} points: low-frequency energy {:.3} (mean periodogram over 0 &lt; |w| &le; sqrt(n)/2; white noise 1), effective Nyquist frequency {:.3}, relative radius {:.3}; {}.</p>",
+        m.n,
+        m.low_frequency_energy,
+        m.nyquist,
+        m.relative_radius,
+        m.t_value.map_or("no t-value (n is not a power of 2)".into(), |t| format!(
+            "t-value {t} in base 2, the largest over the sets (t = 0: a (0, m, 2)-net; <code>samplab t-values</code> gives each count's)"
+        ))
     );
     h
 }
@@ -907,7 +926,7 @@ fn uses_html(p: &Page, options: &Options) -> String {
 
 fn comparison_page(pages: &[Page], speeds: &Speeds, options: &Options) -> String {
     let mut h = format!(
-        "<p>Every sampler of samplab's registry, at its default parameters, measured the same way in 2D ({}). Click a column to sort. Slopes are log-log fits against n = 16 to 16384; single values are at 1024 points (or the first count from 1024 the sampler makes). Speed: {}.</p>\n",
+        "<p>Every sampler of samplab's registry, at its default parameters, measured the same way in 2D ({}). Click a column to sort. Slopes are log-log fits against n = 16 to 16384; single values are at 1024 points (or the first count from 1024 the sampler makes); the t-value is the largest t over those sets as (t, m, 2)-nets in base 2 (t = 0 at best), where the count is a power of 2. Speed: {}.</p>\n",
         scale_words(options),
         escape(&speeds.measured)
     );
@@ -915,7 +934,7 @@ fn comparison_page(pages: &[Page], speeds: &Speeds, options: &Options) -> String
     for (_, what) in INTEGRANDS {
         let _ = write!(h, "<th data-sort=\"n\">RMSE slope, {what}</th>");
     }
-    h.push_str("<th data-sort=\"n\">star at 1024</th><th data-sort=\"n\">L2-star at 1024</th><th data-sort=\"n\">low-frequency energy</th><th data-sort=\"n\">effective Nyquist</th><th data-sort=\"n\">relative radius</th><th data-sort=\"n\">points/s</th></tr></thead><tbody>\n");
+    h.push_str("<th data-sort=\"n\">star at 1024</th><th data-sort=\"n\">L2-star at 1024</th><th data-sort=\"n\">low-frequency energy</th><th data-sort=\"n\">effective Nyquist</th><th data-sort=\"n\">relative radius</th><th data-sort=\"n\">t-value at 1024</th><th data-sort=\"n\">points/s</th></tr></thead><tbody>\n");
     let num = |v: Option<f64>, digits: usize| {
         v.filter(|x| x.is_finite())
             .map_or("<td data-v=\"\">-</td>".into(), |x| format!("<td data-v=\"{x}\">{x:.digits$}</td>"))
@@ -940,6 +959,7 @@ fn comparison_page(pages: &[Page], speeds: &Speeds, options: &Options) -> String
         h += &num(m.map(|m| m.low_frequency_energy), 3);
         h += &num(m.map(|m| m.nyquist), 3);
         h += &num(m.map(|m| m.relative_radius), 3);
+        h += &num(m.and_then(|m| m.t_value), 0);
         let speed = speeds.samplers.get(name).map(|s| s.n as f64 / s.seconds);
         h += &speed
             .filter(|x| x.is_finite())
