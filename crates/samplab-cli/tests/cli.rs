@@ -946,6 +946,20 @@ fn t_values_are_the_librarys_and_bad_input_is_refused() {
             .collect();
         assert_eq!(t, table.t, "{spec}");
     }
+    // a set counted on its points is the one `samplab generate --seed` writes (set 0): two
+    // random points are a (0, 1, 2)-net for one seed in four, so 16 seeds tell sets apart
+    let (mut seen, mut ts) = (Vec::new(), Vec::new());
+    for seed in 1..=16 {
+        let seed = seed.to_string();
+        let table = samplab(&["t-values", "random", "--m", "1", "--projection", "all", "--seed", &seed, "--json"]);
+        let table: serde_json::Value = serde_json::from_slice(&table.stdout).unwrap();
+        let metric = samplab(&["discrepancy", "t-value", "--sampler", "random", "-n", "2", "--seed", &seed, "--json"]);
+        let metric: serde_json::Value = serde_json::from_slice(&metric.stdout).unwrap();
+        ts.push(table["projections"][0]["t"][0].as_f64().unwrap());
+        seen.push(metric["metrics"][0]["mean"].as_f64().unwrap());
+    }
+    assert_eq!(ts, seen);
+    assert!(ts.contains(&0.0) && ts.contains(&1.0), "{ts:?}");
     assert_bad_input(&["t-values", "onetwo", "--projection", "triples"], &["projection triples"]);
     assert_bad_input(&["t-values", "onetwo", "-d", "3", "--projection", "quadruples"], &["quadruples of a 3D set"]);
     assert_bad_input(&["t-values", "onetwo", "--m", "0"], &["--m 0"]);

@@ -151,8 +151,9 @@ impl ProjectionTable {
 
 /// The [`ProjectionTable`] of `sampler` in `dims` dimensions, for `kind` (as
 /// [`projections`]), at b^m points for m = 1..=`most`; `base` is the matrices' for a
-/// digital net, the one given (2 when none) otherwise, where `seed` makes the sets. The
-/// progress of `limits` advances by one per m.
+/// digital net, the one given (2 when none) otherwise, where set 0 of `seed` is counted
+/// (the set `samplab generate --seed` writes). The progress of `limits` advances by one
+/// per m.
 ///
 /// # Errors
 /// The sampler's own (a count it cannot make), a base that disagrees with the matrices',
@@ -192,7 +193,8 @@ pub fn projection_table(
                 }
             }
             None => {
-                let points = plan.generate(seed)?;
+                // set 0 of the seed, as `samplab generate --seed` writes it
+                let points = plan.generate(seed.derive(0))?;
                 let width = axes[0].len();
                 let work = axes.len() as f64 * (1..=m).map(|k| choose(k + width - 1, width - 1)).sum::<f64>() * points.len() as f64;
                 limits.allow("the t-value", &points, work)?;
