@@ -244,9 +244,17 @@ impl<'a> Limits<'a> {
     /// # Errors
     /// [`Error::WorkLimit`] when `work` exceeds [`Limits::max_work`].
     pub(crate) fn allow(&self, what: &str, points: &PointSet, work: f64) -> Result<()> {
+        self.allow_points(what, points.len(), points.dims(), work)
+    }
+
+    /// [`Limits::allow`] for `n` points in `dims` dimensions not made yet.
+    ///
+    /// # Errors
+    /// [`Error::WorkLimit`] when `work` exceeds [`Limits::max_work`].
+    pub(crate) fn allow_points(&self, what: &str, n: usize, dims: usize, work: f64) -> Result<()> {
         if work > self.max_work {
             return Err(Error::WorkLimit {
-                what: format!("{what} of {} points in {}D", points.len(), points.dims()),
+                what: format!("{what} of {n} points in {dims}D"),
                 work,
                 limit: self.max_work,
             });

@@ -182,6 +182,14 @@ pub fn projection_table(
     if !(2..=64).contains(&b) || (b as f64).powi(most as i32) > 2f64.powi(32) {
         return Err(Error::Invalid(format!("t-value: {b}^{most} points (base 2 to 64, at most 2^32 points)")));
     }
+    if !from_matrices {
+        // every count's box count, refused before any set is made
+        let width = axes[0].len();
+        let work: f64 = (1..=most)
+            .map(|m| axes.len() as f64 * (1..=m).map(|k| choose(k + width - 1, width - 1)).sum::<f64>() * f64::from(b).powi(m as i32))
+            .sum();
+        limits.allow_points("the t-value", (b as usize).pow(most as u32), dims, work)?;
+    }
     let mut t = vec![Vec::with_capacity(most); axes.len()];
     let mut cells = Vec::new();
     for m in 1..=most {
@@ -195,9 +203,6 @@ pub fn projection_table(
             None => {
                 // set 0 of the seed, as `samplab generate --seed` writes it
                 let points = plan.generate(seed.derive(0))?;
-                let width = axes[0].len();
-                let work = axes.len() as f64 * (1..=m).map(|k| choose(k + width - 1, width - 1)).sum::<f64>() * points.len() as f64;
-                limits.allow("the t-value", &points, work)?;
                 for (row, a) in t.iter_mut().zip(&axes) {
                     limits.progress.check()?;
                     row.push(t_of(&points, a, b as usize, m, &mut cells));
