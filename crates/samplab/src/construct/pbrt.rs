@@ -156,6 +156,20 @@ pub fn frame_seed(seed: u64, frame: u32) -> u32 {
     if frame == 0 { seed as u32 } else { hash_words(&[seed as u32, frame]) as u32 }
 }
 
+/// How many base-`base` digits pbrt's Halton sampler randomizes (its single-precision loops
+/// in `DigitPermutation` and `OwenScrambledRadicalInverse`): until (base - 1) b^-n no longer
+/// changes 1 - (base - 1) b^-n in `f32` (`with_top` false: until b^-n no longer changes
+/// 1 - b^-n).
+pub fn halton_digit_count(base: u32, with_top: bool) -> u32 {
+    let (inv, top) = (1.0 / base as f32, if with_top { (base - 1) as f32 } else { 1.0 });
+    let (mut n, mut inv_m) = (0, 1.0f32);
+    while 1.0 - top * inv_m < 1.0 {
+        n += 1;
+        inv_m *= inv;
+    }
+    n
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -6,7 +6,7 @@
 //! (the offset found by the Chinese remainder theorem). Every value is computed in
 //! single precision as pbrt computes it, so the values equal pbrt's bit for bit.
 
-use crate::construct::pbrt::{frame_seed, hash_words, mix_bits, permutation_element};
+use crate::construct::pbrt::{frame_seed, halton_digit_count, hash_words, mix_bits, permutation_element};
 use super::{four, Family, Film, PixelEntry, PixelSampler, Mapping, MappingKind};
 use crate::construct::counts::ANY;
 use crate::error::Result;
@@ -74,18 +74,6 @@ struct Digits {
     permutations: Vec<u16>,
 }
 
-/// How many digits pbrt's single-precision loops take in `base`: until (base - 1) b^-n no
-/// longer changes 1 - (base - 1) b^-n (`with_top` false: until b^-n no longer changes 1 - b^-n).
-fn digit_count(base: u32, with_top: bool) -> u32 {
-    let (inv, top) = (1.0 / base as f32, if with_top { (base - 1) as f32 } else { 1.0 });
-    let (mut n, mut inv_m) = (0, 1.0f32);
-    while 1.0 - top * inv_m < 1.0 {
-        n += 1;
-        inv_m *= inv;
-    }
-    n
-}
-
 /// The permutation of digit position `j` in `base` for `seed`, applied to `a`.
 #[inline]
 fn permute(base: u32, j: u32, seed: u32, a: u32) -> u32 {
@@ -94,7 +82,7 @@ fn permute(base: u32, j: u32, seed: u32, a: u32) -> u32 {
 
 impl Digits {
     fn new(base: u32, seed: u32) -> Digits {
-        let n = digit_count(base, true);
+        let n = halton_digit_count(base, true);
         let permutations = (0..n).flat_map(|j| (0..base).map(move |a| permute(base, j, seed, a) as u16)).collect();
         Digits { base, permutations }
     }
@@ -160,7 +148,7 @@ impl Halton {
         Randomize::PermuteDigits => bases.iter().map(|&b| Digits::new(b, frame_seed(seed.0, 0))).collect(),
         _ => Vec::new(),
     };
-    let positions = bases.iter().map(|&b| digit_count(b, randomize != Randomize::Owen)).collect();
+    let positions = bases.iter().map(|&b| halton_digit_count(b, randomize != Randomize::Owen)).collect();
     let (mut scales, mut exponents) = ([1u64; 2], [0u32; 2]);
     for (i, side) in [film.width, film.height].into_iter().enumerate() {
         while scales[i] < u64::from(side.min(MAX_RESOLUTION)) {
