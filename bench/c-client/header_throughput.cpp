@@ -129,6 +129,7 @@ int main() {
     std::vector<uint32_t> tables(samplab::sobol_tables_size(DIMS));
     samplab::sobol_tables(SEED, DIMS, tables.data());
     compare("sobol", samplab::Sobol(SEED, tables.data(), DIMS), "tables");
+    compare("lattice", samplab::Lattice(SEED));
     compare("sobol.padded", samplab::PaddedSobol(SEED, SPP, Scramble::FastOwen));
     compare("zsobol", samplab::ZSobol(SEED, SIDE, SIDE, SPP, Scramble::FastOwen));
     // pbrt's digit permutations as a table, as pbrt's HaltonSampler keeps them

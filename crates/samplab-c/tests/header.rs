@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
 use samplab::Seed;
+use samplab::construct::cbc::{self, Weights};
 use samplab::construct::pbrt::halton_digit_count;
 use samplab::construct::radical::PRIMES;
 use samplab::construct::sobol::{SOBOL_MAX_DIMS, direction_numbers};
@@ -21,6 +22,9 @@ fn include_dir() -> PathBuf {
 /// How many dimensions pbrt's Halton sampler (and the header's) has: its prime table's.
 const HALTON_DIMS: usize = 1000;
 
+/// How many dimensions the pixel family `lattice` has.
+const LATTICE_DIMS: usize = 1024;
+
 /// The text of `include/samplab/tables.hpp`: the Sobol' direction numbers, the primes and
 /// the Halton digit counts, each as a macro that the host and the device arrays both expand.
 fn tables() -> String {
@@ -28,11 +32,16 @@ fn tables() -> String {
         "/* The tables of samplers.hpp, generated from samplab's by the test `header.rs`\n \
          * (SAMPLAB_WRITE_HEADER=1 cargo test -p samplab-c --test header): do not edit.\n \
          * Sobol': Joe & Kuo 2008 (new-joe-kuo-6.21201), column k of dimension d bit-reversed\n \
-         * (bit 0 the most significant digit). Halton: the first primes, and how many digits pbrt-v4's\n \
+         * (bit 0 the most significant digit). Lattice: the pixel family's generating vector\n \
+         * (embedded fast CBC for 2^16 points, Nuyens & Cools 2006, weights (j + 1)^-2). Halton: the first primes, and how many digits pbrt-v4's\n \
          * single-precision loops randomize in each base ([0] Owen, [1] digit permutations). */\n\
          #ifndef SAMPLAB_TABLES_HPP\n#define SAMPLAB_TABLES_HPP\n\n#include <stdint.h>\n\n",
     );
-    writeln!(t, "#define SAMPLAB_SOBOL_DIMS {SOBOL_MAX_DIMS}\n#define SAMPLAB_HALTON_DIMS {HALTON_DIMS}\n").unwrap();
+    writeln!(
+        t,
+        "#define SAMPLAB_SOBOL_DIMS {SOBOL_MAX_DIMS}\n#define SAMPLAB_HALTON_DIMS {HALTON_DIMS}\n#define SAMPLAB_LATTICE_DIMS {LATTICE_DIMS}\n"
+    )
+    .unwrap();
     t.push_str("#define SAMPLAB_SOBOL_TABLE { \\\n");
     for d in 0..SOBOL_MAX_DIMS {
         let columns: Vec<String> = direction_numbers(d).iter().map(|c| format!("0x{:x}", c.reverse_bits())).collect();
@@ -51,16 +60,26 @@ fn tables() -> String {
             .collect();
         writeln!(t, "    {}, \\", counts.join(",")).unwrap();
     }
+    // the pixel family's generating vector: embedded fast CBC for 2^16 points, weights
+    // (j + 1)^-2 (greedy, so the first d components are every film's of d dimensions)
+    t.push_str("}\n\n#define SAMPLAB_LATTICE_TABLE { \\\n");
+    let z = cbc::construct(1 << 16, LATTICE_DIMS, Weights::decaying(2.0), true).unwrap();
+    for chunk in z.chunks(16) {
+        let z: Vec<String> = chunk.iter().map(u64::to_string).collect();
+        writeln!(t, "    {}, \\", z.join(",")).unwrap();
+    }
     t.push_str(
         "}\n\nnamespace samplab {\nnamespace tables {\n\n\
          static const uint32_t sobol_reversed[SAMPLAB_SOBOL_DIMS][32] = SAMPLAB_SOBOL_TABLE;\n\
          static const uint32_t primes[SAMPLAB_HALTON_DIMS] = SAMPLAB_PRIME_TABLE;\n\
-         static const uint8_t halton_digits[SAMPLAB_HALTON_DIMS][2] = SAMPLAB_HALTON_DIGITS_TABLE;\n\n\
+         static const uint8_t halton_digits[SAMPLAB_HALTON_DIMS][2] = SAMPLAB_HALTON_DIGITS_TABLE;\n\
+         static const uint32_t lattice[SAMPLAB_LATTICE_DIMS] = SAMPLAB_LATTICE_TABLE;\n\n\
          #ifdef SAMPLAB_DEVICE_TABLE\n\
          static SAMPLAB_DEVICE_TABLE const uint32_t sobol_reversed_device[SAMPLAB_SOBOL_DIMS][32] = SAMPLAB_SOBOL_TABLE;\n\
          static SAMPLAB_DEVICE_TABLE const uint32_t primes_device[SAMPLAB_HALTON_DIMS] = SAMPLAB_PRIME_TABLE;\n\
          static SAMPLAB_DEVICE_TABLE const uint8_t halton_digits_device[SAMPLAB_HALTON_DIMS][2] = \
          SAMPLAB_HALTON_DIGITS_TABLE;\n\
+         static SAMPLAB_DEVICE_TABLE const uint32_t lattice_device[SAMPLAB_LATTICE_DIMS] = SAMPLAB_LATTICE_TABLE;\n\
          #endif\n\n}  // namespace tables\n}  // namespace samplab\n\n#endif\n",
     );
     t
@@ -168,6 +187,9 @@ fn the_header_gives_the_librarys_values_on_a_million_keys_per_family() {
     let film = |width, height, spp, dims| Film { width, height, spp, dims };
     let hd = |spp, dims| film(1920, 1080, spp, dims);
     pixel_family(&exe, "independent", "independent", "-", hd(64, 64), MILLION);
+    // films of fewer dimensions than the table: the vector's components are greedy
+    pixel_family(&exe, "lattice", "lattice", "-", hd(64, 64), MILLION / 2);
+    pixel_family(&exe, "lattice", "lattice", "-", film(64, 48, 1 << 18, LATTICE_DIMS as u32), MILLION / 2);
     // past 2^16 samples the index's high digits are read too
     pixel_family(&exe, "sobol", "sobol", "-", film(64, 48, 1 << 18, SOBOL_MAX_DIMS as u32), MILLION);
     pixel_family(&exe, "sobol", "sobol+table", "-", film(64, 48, 1 << 18, 600), MILLION / 4);

@@ -84,6 +84,7 @@ int main(int argc, char** argv) {
     const uint32_t spp = (uint32_t)std::atoi(argv[5]);
     if (family == "independent") return pixels(samplab::Independent(seed));
     if (family == "sobol") return pixels(samplab::Sobol(seed));
+    if (family == "lattice") return pixels(samplab::Lattice(seed));
     if (family == "sobol+table") {
         // the tables of the first 300 dimensions (the others computed)
         std::vector<uint32_t> tables(samplab::sobol_tables_size(300));

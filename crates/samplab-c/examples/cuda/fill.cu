@@ -30,6 +30,11 @@ extern "C" __global__ void padded_sobol(uint64_t seed, uint32_t w, uint32_t h, u
     fill_pixels(samplab::PaddedSobol(seed, spp, samplab::Scramble::FastOwen), w, h, spp, frame, dim, out);
 }
 
+extern "C" __global__ void lattice(uint64_t seed, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame, uint32_t dim,
+                                   double* out) {
+    fill_pixels(samplab::Lattice(seed), w, h, spp, frame, dim, out);
+}
+
 // The family's struct is made once on the host and passed by value.
 extern "C" __global__ void zsobol(samplab::ZSobol f, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame, uint32_t dim,
                                   double* out) {

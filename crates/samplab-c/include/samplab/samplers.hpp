@@ -637,6 +637,37 @@ struct ZSobol : detail::Family<ZSobol> {
 
 };
 
+/* `lattice`: a rank-1 lattice sequence per pixel (Cools, Kuo & Nuyens 2006; the embedded
+ * fast-CBC vector for 2^16 points of Nuyens & Cools 2006) in radical-inverse order, the
+ * index nested-uniform scrambled by the pixel's hash (Burley 2020), so that each pixel's
+ * first 2^m samples are a shifted lattice, and a random shift per pixel and dimension
+ * (Cranley & Patterson 1976): frac(phi_2(i) z_d + shift), exact in 32-bit fixed point;
+ * dimensions below SAMPLAB_LATTICE_DIMS. */
+struct Lattice : detail::Family<Lattice> {
+    detail::Keys keys;
+
+    SAMPLAB_HD explicit Lattice(uint64_t seed) : keys(seed) {}
+
+    struct Draw : detail::OneAtATime<Draw> {
+        const Lattice* f;
+        /* The pixel's key, the part of its dimensions' keys that depends on it alone, and
+         * phi_2 of the shuffled index in 32-bit fixed point. */
+        uint32_t key, salt, radical;
+
+        SAMPLAB_HD double sample(uint32_t dim) const {
+            const uint32_t shift = key ^ (f->keys.word(dim) + salt);
+            return detail::unit(radical * SAMPLAB_TABLE(lattice)[dim] + shift);
+        }
+    };
+
+    SAMPLAB_HD Draw at(uint32_t x, uint32_t y, uint32_t frame, uint32_t index) const {
+        const uint64_t k = keys.pixel(x, y, frame);
+        const uint32_t key = (uint32_t)k;
+        return Draw{{}, this, key, 0x9E3779B9u + (key << 6) + (key >> 2),
+                    detail::owen_scramble_reversed(detail::reverse_bits(index), (uint32_t)(k >> 32))};
+    }
+};
+
 /* pbrt-v4's RandomizeStrategy for its Halton sampler. */
 enum class HaltonRandomize { None, PermuteDigits, Owen };
 
