@@ -130,6 +130,15 @@ int main() {
     samplab::sobol_tables(SEED, DIMS, tables.data());
     compare("sobol", samplab::Sobol(SEED, tables.data(), DIMS), "tables");
     compare("lattice", samplab::Lattice(SEED));
+    for (const char* spec : {"pmj02", "pmj02.bn"}) {
+        // the pool (and mask) through the C interface, as a renderer gets them
+        char error[256];
+        SamplabPixels* p = samplab_pixels_new(spec, SIDE, SIDE, SPP, DIMS, SEED, error, sizeof error);
+        std::vector<uint32_t> words(samplab_pixels_header_tables(p, nullptr, 0));
+        samplab_pixels_header_tables(p, words.data(), words.size());
+        samplab_pixels_free(p);
+        compare(spec, samplab::Pmj02(SEED, SPP, words.data(), std::strcmp(spec, "pmj02") == 0 ? 0 : 64), "tables");
+    }
     compare("sobol.padded", samplab::PaddedSobol(SEED, SPP, Scramble::FastOwen));
     compare("zsobol", samplab::ZSobol(SEED, SIDE, SIDE, SPP, Scramble::FastOwen));
     // pbrt's digit permutations as a table, as pbrt's HaltonSampler keeps them

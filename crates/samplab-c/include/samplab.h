@@ -152,6 +152,19 @@ int32_t samplab_pixel_sample4(const struct SamplabPixels *sampler,
                               double *out);
 
 /*
+ The tables that the header-only C++ families (`samplab/samplers.hpp`) read for this
+ prepared sampler: `pmj02`'s pool (16 x spp points of four 32-bit words) and, for
+ `pmj02.bn`, then its blue-noise mask (size x size x 2 words). Returns how many words the
+ tables hold (0 for the families that need none) and copies them to `out` when `out` is
+ not NULL and `len` holds them all (nothing is written otherwise: call once with NULL to
+ size the buffer).
+
+ # Safety
+ `sampler` is null or live; `out` is null or points to `len` writable words.
+ */
+size_t samplab_pixels_header_tables(const struct SamplabPixels *sampler, uint32_t *out, size_t len);
+
+/*
  The canonical spec of a prepared sampler (e.g. "zsobol"), NUL-terminated, valid until
  the sampler is freed; NULL for a NULL sampler.
 

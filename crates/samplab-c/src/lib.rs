@@ -281,6 +281,31 @@ pub unsafe extern "C" fn samplab_pixel_sample4(
     0
 }
 
+/// The tables that the header-only C++ families (`samplab/samplers.hpp`) read for this
+/// prepared sampler: `pmj02`'s pool (16 x spp points of four 32-bit words) and, for
+/// `pmj02.bn`, then its blue-noise mask (size x size x 2 words). Returns how many words the
+/// tables hold (0 for the families that need none) and copies them to `out` when `out` is
+/// not NULL and `len` holds them all (nothing is written otherwise: call once with NULL to
+/// size the buffer).
+///
+/// # Safety
+/// `sampler` is null or live; `out` is null or points to `len` writable words.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn samplab_pixels_header_tables(
+    sampler: *const SamplabPixels,
+    out: *mut u32,
+    len: usize,
+) -> usize {
+    // SAFETY: the caller passes a live sampler or null
+    let Some(s) = (unsafe { sampler.as_ref() }) else { return 0 };
+    let tables = s.pixels.header_tables();
+    if !out.is_null() && len >= tables.len() {
+        // SAFETY: the caller gives `len` writable words at `out`, and len >= tables.len()
+        unsafe { std::ptr::copy_nonoverlapping(tables.as_ptr(), out, tables.len()) };
+    }
+    tables.len()
+}
+
 /// The canonical spec of a prepared sampler (e.g. "zsobol"), NUL-terminated, valid until
 /// the sampler is freed; NULL for a NULL sampler.
 ///

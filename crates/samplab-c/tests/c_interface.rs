@@ -249,3 +249,31 @@ fn a_polled_preparation_stops_when_told() {
     // SAFETY: made above, freed once
     unsafe { samplab_c::samplab_pixels_free(quick) };
 }
+
+/// `samplab_pixels_header_tables` gives the library's tables: sized by a NULL call, copied
+/// whole into a buffer that holds them, nothing written into one that does not.
+#[test]
+fn the_header_tables_through_the_c_interface_are_the_librarys() {
+    use samplab_c::*;
+    let film = Film { width: 8, height: 8, spp: 16, dims: 8 };
+    for (spec, words) in [("pmj02", 64 * 16), ("pmj02.bn:mask=16", 64 * 16 + 16 * 16 * 2), ("zsobol", 0)] {
+        let name = std::ffi::CString::new(spec).unwrap();
+        let mut error = [0 as std::ffi::c_char; 256];
+        // SAFETY: a NUL-terminated spec and a writable error buffer of its length
+        let s = unsafe { samplab_pixels_new(name.as_ptr(), 8, 8, 16, 8, 3, error.as_mut_ptr(), error.len()) };
+        assert!(!s.is_null(), "{spec}");
+        let ours = prepare(spec, film, Seed(3)).unwrap().header_tables();
+        assert_eq!(ours.len(), words, "{spec}");
+        // SAFETY: a live sampler; NULL, then buffers of the lengths given
+        unsafe {
+            assert_eq!(samplab_pixels_header_tables(s, std::ptr::null_mut(), 0), words, "{spec}");
+            let mut short = vec![7u32; words.saturating_sub(1)];
+            assert_eq!(samplab_pixels_header_tables(s, short.as_mut_ptr(), short.len()), words);
+            assert!(short.iter().all(|&w| w == 7), "{spec}: written into a short buffer");
+            let mut out = vec![0u32; words];
+            assert_eq!(samplab_pixels_header_tables(s, out.as_mut_ptr(), out.len()), words);
+            assert_eq!(out, ours, "{spec}");
+            samplab_pixels_free(s);
+        }
+    }
+}

@@ -160,12 +160,13 @@ fn first_difference(name: &str, keys: &[Key], header: &[f64], ours: impl Fn(&Key
     }
 }
 
-/// One pixel family through the header and the library: `count` keys of `film`.
+/// One pixel family through the header and the library: `count` keys of `film` (the
+/// family's header tables, where it has any, passed in a file beside the program).
 fn pixel_family(exe: &Path, spec: &str, family: &str, randomize: &str, film: Film, count: usize) {
     let seed = mix64(spec.len() as u64 ^ u64::from(film.spp)) | 1 << 40;
     let pixels = prepare(spec, film, Seed(seed)).unwrap();
     let keys = keys(film, count, seed);
-    let args = [
+    let mut args = [
         family,
         &seed.to_string(),
         &film.width.to_string(),
@@ -173,7 +174,14 @@ fn pixel_family(exe: &Path, spec: &str, family: &str, randomize: &str, film: Fil
         &film.spp.to_string(),
         randomize,
     ]
-    .map(str::to_string);
+    .map(str::to_string)
+    .to_vec();
+    let tables = pixels.header_tables();
+    if !tables.is_empty() {
+        let path = exe.with_file_name(format!("tables-{}", film.spp));
+        std::fs::write(&path, tables.iter().flat_map(|w| w.to_le_bytes()).collect::<Vec<u8>>()).unwrap();
+        args.push(path.display().to_string());
+    }
     let header = header_values(exe, &args, &keys);
     first_difference(spec, &keys, &header, |k| pixels.sample([k[0], k[1]], k[2], k[3], k[4]));
 }
@@ -206,6 +214,11 @@ fn the_header_gives_the_librarys_values_on_a_million_keys_per_family() {
         for spp in [64, 32] {
             pixel_family(&exe, &format!("zsobol:randomize={randomize}"), "zsobol", randomize, hd(spp, 64), MILLION / 8);
         }
+    }
+    // a power of two samples (the index nested-uniform scrambled) and not (hashed)
+    for spp in [64, 100] {
+        pixel_family(&exe, "pmj02", "pmj02", "-", hd(spp, 64), MILLION / 4);
+        pixel_family(&exe, "pmj02.bn", "pmj02.bn", "64", hd(spp, 64), MILLION / 4);
     }
     for randomize in ["none", "permutedigits", "owen"] {
         pixel_family(

@@ -1,6 +1,6 @@
 // The header's values for keys read from standard input, for the test `header.rs`.
 //
-//   header_values FAMILY SEED WIDTH HEIGHT SPP RANDOMIZE < keys > values
+//   header_values FAMILY SEED WIDTH HEIGHT SPP RANDOMIZE [TABLES] < keys > values
 //
 // sobol+table and halton+table draw their first dimensions from samplab::sobol_tables and
 // samplab::halton_permutations. A key is five little-endian u32 (x, y, frame, index, dimension; a point set reads index and
@@ -73,9 +73,20 @@ int pixels(const Family& f) {
 
 }  // namespace
 
+// The words of a file of little-endian u32 (a family's header tables).
+std::vector<uint32_t> words_of(const char* path) {
+    std::vector<uint32_t> words;
+    if (FILE* f = std::fopen(path, "rb")) {
+        uint32_t w;
+        while (std::fread(&w, sizeof w, 1, f) == 1) words.push_back(w);
+        std::fclose(f);
+    }
+    return words;
+}
+
 int main(int argc, char** argv) {
-    if (argc != 7) {
-        std::fprintf(stderr, "usage: header_values FAMILY SEED WIDTH HEIGHT SPP RANDOMIZE < keys\n");
+    if (argc != 7 && argc != 8) {
+        std::fprintf(stderr, "usage: header_values FAMILY SEED WIDTH HEIGHT SPP RANDOMIZE [TABLES] < keys\n");
         return 2;
     }
     const std::string family = argv[1], randomize = argv[6];
@@ -94,6 +105,13 @@ int main(int argc, char** argv) {
     if (family == "sobol.padded") return pixels(samplab::PaddedSobol(seed, spp, scramble_of(randomize)));
     if (family == "zsobol") return pixels(samplab::ZSobol(seed, width, height, spp, scramble_of(randomize)));
     if (family == "halton") return pixels(samplab::Halton(seed, width, height, halton_of(randomize)));
+    if (family == "pmj02" || family == "pmj02.bn") {
+        // the tables samplab_pixels_header_tables gives, from a file; pmj02.bn's mask side as
+        // its RANDOMIZE
+        const std::vector<uint32_t> tables = words_of(argc == 8 ? argv[7] : "");
+        const uint32_t side = family == "pmj02.bn" ? (uint32_t)std::atoi(argv[6]) : 0;
+        return pixels(samplab::Pmj02(seed, spp, tables.data(), side));
+    }
     if (family == "halton+table") {
         // the frame-0 digit permutations of the first 200 dimensions from a table
         std::vector<uint32_t> table(samplab::halton_permutations_size(200));

@@ -41,6 +41,13 @@ extern "C" __global__ void zsobol(samplab::ZSobol f, uint32_t w, uint32_t h, uin
     fill_pixels(f, w, h, spp, frame, dim, out);
 }
 
+// Its pool (and pmj02.bn's mask) in device memory: samplab_pixels_header_tables' words,
+// copied with cudaMemcpy, the pointer given to samplab::Pmj02's constructor on the host.
+extern "C" __global__ void pmj02(samplab::Pmj02 f, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame, uint32_t dim,
+                                 double* out) {
+    fill_pixels(f, w, h, spp, frame, dim, out);
+}
+
 extern "C" __global__ void halton(samplab::Halton f, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame, uint32_t dim,
                                   double* out) {
     fill_pixels(f, w, h, spp, frame, dim, out);

@@ -165,6 +165,34 @@ SAMPLAB_HD uint32_t permutation_element(uint32_t i, uint32_t l, uint32_t p) {
     return (i + p) % l;
 }
 
+/* Element i of a permutation of 0..len keyed by `key` (Kensler 2013, section 3): a keyed
+ * bijection of the least power-of-two range holding len, masked at every step, walked until
+ * it lands below len. i < len. */
+SAMPLAB_HD uint32_t permute(uint32_t i, uint32_t len, uint32_t key) {
+    if (len <= 1) return 0;
+    const uint32_t mask = 0xFFFFFFFFu >> leading_zeros(len - 1);
+    do {
+        i ^= key;
+        i = (i * 0xe170893du) & mask;
+        i ^= key >> 16;
+        i ^= (i & mask) >> 4;
+        i ^= key >> 8;
+        i = (i * 0x0929eb3fu) & mask;
+        i ^= key >> 23;
+        i ^= (i & mask) >> 1;
+        i = (i * (1u | key >> 27)) & mask;
+        i = (i * 0x6935fa69u) & mask;
+        i ^= (i & mask) >> 11;
+        i = (i * 0x74dcb303u) & mask;
+        i ^= (i & mask) >> 2;
+        i = (i * 0x9e501cc3u) & mask;
+        i ^= (i & mask) >> 2;
+        i = (i * 0xc860a3dfu) & mask;
+        i ^= (i & mask) >> 5;
+    } while (i >= len);
+    return i;
+}
+
 /* pbrt-v4's OwenScrambler: digit b flipped by bit b of MixBits of the digits above it XOR
  * the seed. */
 SAMPLAB_HD uint32_t owen_bit_by_bit(uint32_t v, uint32_t seed) {
@@ -255,6 +283,9 @@ SAMPLAB_HD uint32_t halton_digits(uint32_t dim, uint32_t with_top) { return SAMP
 SAMPLAB_HD uint64_t mul_high(uint64_t a, uint64_t b) {
 #ifdef SAMPLAB_ON_DEVICE
     return __umul64hi(a, b);
+#elif defined(__SIZEOF_INT128__)
+    __extension__ typedef unsigned __int128 u128;  // GCC's and Clang's, not ISO C++'s
+    return (uint64_t)(((u128)a * b) >> 64);
 #else
     const uint64_t a0 = a & 0xFFFFFFFFu, a1 = a >> 32, b0 = b & 0xFFFFFFFFu, b1 = b >> 32;
     const uint64_t low = a0 * b0, mid1 = a1 * b0, mid2 = a0 * b1;
@@ -315,6 +346,11 @@ struct Keys {
         return mix64(base ^ (p * 0x9E3779B97F4A7C15ull) ^ ((uint64_t)frame * 0xC2B2AE3D27D4EB4Full));
     }
 
+    /* The key of a whole frame (a pattern shared by every pixel). */
+    SAMPLAB_HD uint64_t frame(uint32_t frame) const {
+        return mix64(base ^ 0xA0761D6478BD642Full ^ ((uint64_t)frame * 0xC2B2AE3D27D4EB4Full));
+    }
+
     /* Dimension dim's word: the same for every pixel. */
     SAMPLAB_HD uint32_t word(uint32_t dim) const { return (uint32_t)(rekey(base, (uint64_t)dim + 1) >> 32); }
 
@@ -331,6 +367,13 @@ SAMPLAB_HD uint64_t derive(uint64_t seed, uint64_t key) {
     return detail::mix64(detail::mix64(seed ^ 0x9E3779B97F4A7C15ull) + key);
 }
 
+/* A sub-seed for a named purpose (samplab's Seed::derive_str: the label's FNV-1a, mixed). */
+SAMPLAB_HD uint64_t derive_str(uint64_t seed, const char* label) {
+    uint64_t h = 0xCBF29CE484222325ull;
+    for (; *label; ++label) h = (h ^ (uint64_t)(uint8_t)*label) * 0x100000001B3ull;
+    return derive(seed, detail::mix64(h));
+}
+
 /* The seed of set k that `samplab generate --seed SEED` writes (set 0 unless --sets). */
 SAMPLAB_HD uint64_t set_seed(uint64_t seed, uint64_t k) { return derive(seed, k); }
 
@@ -344,11 +387,7 @@ enum class Randomization { None, Xor, Owen, Shift };
 /* The Cranley-Patterson offset of axis dim of a set (Cranley & Patterson 1976): draw dim of
  * the set's offset stream. O(dim): keep it once per dimension where a loop draws many. */
 SAMPLAB_HD uint64_t shift_offset(uint64_t seed, uint32_t dim) {
-    // the label "shift", hashed as samplab's Seed::derive_str hashes a label (FNV-1a)
-    uint64_t label = 0xCBF29CE484222325ull;
-    const char name[] = "shift";
-    for (uint32_t k = 0; k < 5; ++k) label = (label ^ (uint64_t)(uint8_t)name[k]) * 0x100000001B3ull;
-    detail::Pcg64 rng(derive(seed, detail::mix64(label)));
+    detail::Pcg64 rng(derive_str(seed, "shift"));
     uint64_t u = rng.next();
     for (uint32_t k = 0; k < dim; ++k) u = rng.next();
     return u;
@@ -665,6 +704,88 @@ struct Lattice : detail::Family<Lattice> {
         const uint32_t key = (uint32_t)k;
         return Draw{{}, this, key, 0x9E3779B9u + (key << 6) + (key >> 2),
                     detail::owen_scramble_reversed(detail::reverse_bits(index), (uint32_t)(k >> 32))};
+    }
+};
+
+/* `pmj02` and `pmj02.bn`: progressive multi-jittered (0, 2) sequences per pixel
+ * (Christensen, Kensler & Kilpatrick 2018; the stochastic construction of Helmer, Christensen &
+ * Kensler 2021) from a pool of 16 entries made when the family is prepared: `tables` are
+ * samplab_pixels_header_tables' words for a sampler prepared through the C interface with
+ * the same spec, film and seed (the pool, and pmj02.bn's mask of side `mask`, 64 unless its
+ * spec says otherwise), in the memory the draws run in.
+ *   pmj02: dimensions 4k .. 4k + 3 are the pool entry named by the top 4 bits of a hash h of
+ *   (pixel, frame, k), its sample a scramble of the index (a nested uniform one for a
+ *   power-of-two spp, so each prefix of 2^j samples is a net), digitally shifted by h;
+ *   pmj02.bn: pair k is the first sequence of entry k mod 16 at a per-pixel permutation of
+ *   the index, shifted mod 1 by the blue-noise mask read at the pixel (Georgiev & Fajardo
+ *   2016), the mask offset by a hash of (frame, k). */
+struct Pmj02 : detail::Family<Pmj02> {
+    detail::Keys keys, offsets;
+    uint32_t spp;
+    const uint32_t* pool;
+    const uint32_t* mask;
+    uint32_t side;
+
+    /* `pmj02` (mask_side 0) or `pmj02.bn` (the mask's side). */
+    SAMPLAB_HD Pmj02(uint64_t seed, uint32_t spp_, const uint32_t* tables, uint32_t mask_side = 0)
+        : keys(seed), offsets(derive_str(seed, "dither offsets")), spp(spp_), pool(tables),
+          mask(mask_side ? tables + 64ull * spp_ : nullptr), side(mask_side) {}
+
+    /* The scrambled index of the sample whose index is `index` (`reversed`: its 16 low bits,
+     * below spp, reversed) under the 32-bit key `key`. */
+    SAMPLAB_HD uint32_t scrambled(uint32_t reversed, uint32_t index, uint32_t key) const {
+        if ((spp & (spp - 1)) == 0) {
+            const uint32_t bits = detail::lowest_bit(spp);
+            return (detail::owen_scramble_reversed(reversed, key) >> (16 - bits)) & (spp - 1);
+        }
+        return detail::permute(index % spp, spp, key);
+    }
+
+    struct Draw : detail::ByPairs<Draw> {
+        const Pmj02* f;
+        uint64_t key;
+        uint32_t x, y, frame, index, reversed;
+
+        /* pmj02's block of dimensions 4b .. 4b + 3 as 32-bit fixed point. */
+        SAMPLAB_HD void block(uint32_t b, uint32_t* v) const {
+            const uint64_t h = detail::rekey(key, b);
+            const uint32_t* p = f->pool + 4ull * ((h >> 60) * f->spp + f->scrambled(reversed, index, (uint32_t)h));
+            const uint64_t shifts[4] = {0x9E3779B97F4A7C15ull, 0xC2B2AE3D27D4EB4Full, 0x165667B19E3779F9ull,
+                                        0xD6E8FEB86659FD93ull};
+            for (uint32_t d = 0; d < 4; ++d) v[d] = p[d] ^ (uint32_t)detail::mul_high(h, shifts[d]);
+        }
+
+        SAMPLAB_HD void pair(uint32_t dim, double* uv) const {
+            const uint32_t k = dim / 2;
+            if (!f->mask) {
+                uint32_t v[4];
+                block(k / 2, v);
+                uv[0] = detail::unit(v[k % 2 * 2]);
+                uv[1] = detail::unit(v[k % 2 * 2 + 1]);
+                return;
+            }
+            const uint32_t i = f->scrambled(reversed, index, (uint32_t)detail::rekey(key, k));
+            const uint32_t* p = f->pool + 4ull * ((k % 16) * f->spp + i);
+            const uint64_t fk = f->offsets.frame(frame);
+            const uint32_t word = f->offsets.word(k);
+            const uint32_t ox = (uint32_t)fk, oy = (uint32_t)(fk >> 32);
+            const uint32_t mx = (x + (ox ^ (word + 0x9E3779B9u + (ox << 6) + (ox >> 2)))) % f->side;
+            const uint32_t my = (y + (oy ^ (word + 0x9E3779B9u + (oy << 6) + (oy >> 2)))) % f->side;
+            const uint32_t* m = f->mask + 2ull * ((uint64_t)my * f->side + mx);
+            uv[0] = detail::unit(p[0] + m[0]);
+            uv[1] = detail::unit(p[1] + m[1]);
+        }
+
+        SAMPLAB_HD void sample4(uint32_t dim, double* v) const {
+            if (f->mask || dim % 4 != 0) return detail::ByPairs<Draw>::sample4(dim, v);
+            uint32_t b[4];
+            block(dim / 4, b);
+            for (uint32_t d = 0; d < 4; ++d) v[d] = detail::unit(b[d]);
+        }
+    };
+
+    SAMPLAB_HD Draw at(uint32_t x, uint32_t y, uint32_t frame, uint32_t index) const {
+        return Draw{{}, this, keys.pixel(x, y, frame), x, y, frame, index, detail::reverse_bits(index & (spp - 1)) >> 16};
     }
 };
 

@@ -65,9 +65,19 @@ impl Shifts {
         let f = self.keys.frame(frame);
         let (ox, oy) = (self.keys.dim(f as u32, pair), self.keys.dim((f >> 32) as u32, pair));
         let (x, y) = (pixel[0].wrapping_add(ox), pixel[1].wrapping_add(oy));
-        let fixed = |c| (self.mask.value(x, y, c) * 4_294_967_296.0) as u32;
-        [fixed(0), fixed(1)]
+        [fixed(self.mask.value(x, y, 0)), fixed(self.mask.value(x, y, 1))]
     }
+
+    /// The mask's values in 32-bit fixed point, row-major, its two channels last.
+    pub(super) fn fixed_mask(&self) -> impl Iterator<Item = u32> + '_ {
+        self.mask.values().iter().map(|&v| fixed(v))
+    }
+}
+
+/// A mask value in [0, 1) as 32-bit fixed point (truncated).
+#[inline]
+fn fixed(v: f64) -> u32 {
+    (v * 4_294_967_296.0) as u32
 }
 
 #[derive(Debug)]

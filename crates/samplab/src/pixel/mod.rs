@@ -438,6 +438,18 @@ impl Pixels {
         self.inner.sample(pixel, frame, index, dim)
     }
 
+    /// The tables that the header-only C++ families (`crates/samplab-c/include/samplab/samplers.hpp`)
+    /// read for this family, made when it was prepared: `pmj02`'s pool (16 x spp points of
+    /// four 32-bit coordinates, entry-major), and for `pmj02.bn` its pool then its mask's two
+    /// channels in 32-bit fixed point (size x size x 2, row-major); empty for the other
+    /// families (the header computes theirs, or holds them).
+    pub fn header_tables(&self) -> Vec<u32> {
+        match &self.inner {
+            Family::Pmj(p) => p.header_tables(),
+            _ => Vec::new(),
+        }
+    }
+
     /// Dimensions `dim .. dim + 4` of one sample.
     #[inline]
     pub fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {

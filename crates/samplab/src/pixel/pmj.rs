@@ -139,6 +139,15 @@ fn permute_out_of_line(i: u32, len: u32, key: u32) -> u32 {
 const SHIFTS: [u64; 4] = [0x9E37_79B9_7F4A_7C15, 0xC2B2_AE3D_27D4_EB4F, 0x1656_67B1_9E37_79F9, 0xD6E8_FEB8_6659_FD93];
 
 impl Pmj {
+    /// [`super::Pixels::header_tables`]: the pool, then the mask where there is one.
+    pub(super) fn header_tables(&self) -> Vec<u32> {
+        let mut t: Vec<u32> = self.pool.iter().flatten().copied().collect();
+        if let Some(shifts) = &self.shifts {
+            t.extend(shifts.fixed_mask());
+        }
+        t
+    }
+
     /// The position in an entry of the pixel's sample whose index is `index` (`reversed`
     /// its 16 bits reversed), scrambled by `key`.
     #[inline(always)]
