@@ -8,13 +8,36 @@
  *
  * usage: pathtracer SPEC SIZE SPP DIMS SEED OUT.f32
  * writes SIZE x SIZE floats (the luminance of each pixel, row 0 at the top) to OUT.f32 and
- * prints the mean path length and the share of values drawn past DIMS. */
+ * prints the mean path length and the share of values drawn past DIMS.
+ *
+ * The same file compiled as C++ (`c++ -x c++ -std=c++17 -DSAMPLAB_HEADER`) draws from the
+ * header-only samplers instead (samplab/samplers.hpp: inlined, no library to link), for the
+ * families that need no tables (SPEC a bare name); past DIMS it draws samplab::Unbounded's
+ * padding, as the library does. Both builds write the same image bytes (the test
+ * crates/samplab-c/tests/header.rs). */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
+/* SAMPLE(name, x, y, i) declares sample i of pixel (x, y), VALUE(name, dim) draws from it */
+#ifdef SAMPLAB_HEADER
+#include <samplab/samplers.hpp>
+
+#include <vector>
+/* a family of the header, drawn past the film's dimensions as the library pads: its draw
+ * made once per sample */
+#define SAMPLER template <class Sampler>
+#define SAMPLE(name, x, y, i) const auto name = s.at(x, y, 0, i)
+#define VALUE(name, dim) name.sample(dim)
+#else
 #include "samplab.h"
+typedef const SamplabPixels *Sampler;
+#define SAMPLER
+#define SAMPLE(name, x, y, i) const uint32_t name = i
+#define VALUE(name, dim) samplab_pixel_sample(s, x, y, 0, name, dim)
+#endif
 
 typedef struct { double x, y, z; } V;
 static V v(double x, double y, double z) { V r = {x, y, z}; return r; }
@@ -61,17 +84,9 @@ static int hit(V o, V d, double *t, V *n, double *albedo, double *emit, int *mir
     return *t < 1e29;
 }
 
-int main(int argc, char **argv) {
-    if (argc != 7) {
-        fprintf(stderr, "usage: pathtracer SPEC SIZE SPP DIMS SEED OUT.f32\n");
-        return 2;
-    }
-    uint32_t size = (uint32_t)atoi(argv[2]), spp = (uint32_t)atoi(argv[3]), dims = (uint32_t)atoi(argv[4]);
-    char error[256];
-    SamplabPixels *s = samplab_pixels_new(argv[1], size, size, spp, dims, strtoull(argv[5], NULL, 10), error, sizeof error);
-    if (!s) { fprintf(stderr, "pathtracer: %s\n", error); return 2; }
-    float *image = malloc(sizeof(float) * size * size);
-    if (!image) return 2;
+/* Render SIZE x SIZE pixels at spp samples into `image`; the mean bounces a path and the
+ * share of values drawn past dims into stats[0], stats[1]. */
+SAMPLER static void render(Sampler s, uint32_t size, uint32_t spp, uint32_t dims, float *image, double *stats) {
     const V eye = v(0.5, 0.5, -1.2);
     double bounces = 0, past = 0, drawn = 0;
     for (uint32_t y = 0; y < size; ++y)
@@ -79,7 +94,8 @@ int main(int argc, char **argv) {
             double sum = 0;
             for (uint32_t i = 0; i < spp; ++i) {
                 uint32_t dim = 0;
-#define DRAW() (drawn += 1, past += dim >= dims, samplab_pixel_sample(s, x, y, 0, i, dim++))
+                SAMPLE(sample, x, y, i);
+#define DRAW() (drawn += 1, past += dim >= dims, VALUE(sample, dim++))
                 double px = (x + DRAW()) / size, py = 1.0 - (y + DRAW()) / size;
                 V o = eye, d = unit(sub(v(px, py, 0.0), eye));
                 double weight = 1.0;
@@ -107,14 +123,50 @@ int main(int argc, char **argv) {
             }
             image[y * size + x] = (float)(sum / spp);
         }
+    stats[0] = bounces / ((double)size * size * spp);
+    stats[1] = past / drawn;
+}
+
+int main(int argc, char **argv) {
+    if (argc != 7) {
+        fprintf(stderr, "usage: pathtracer SPEC SIZE SPP DIMS SEED OUT.f32\n");
+        return 2;
+    }
+    uint32_t size = (uint32_t)atoi(argv[2]), spp = (uint32_t)atoi(argv[3]), dims = (uint32_t)atoi(argv[4]);
+    uint64_t seed = strtoull(argv[5], NULL, 10);
+    float *image = (float *)malloc(sizeof(float) * size * size);
+    if (!image) return 2;
+    double stats[2];
+#ifdef SAMPLAB_HEADER
+    const char *spec = argv[1];
+    /* sobol's and halton's tables for the film's dimensions, as the library keeps them */
+    std::vector<uint32_t> tables(samplab::sobol_tables_size(dims)), permutations(samplab::halton_permutations_size(dims));
+    samplab::sobol_tables(seed, dims, tables.data());
+    samplab::halton_permutations(seed, dims, permutations.data());
+    using samplab::Unbounded;
+    if (!strcmp(spec, "independent")) render(Unbounded<samplab::Independent>(seed, samplab::Independent(seed), dims), size, spp, dims, image, stats);
+    else if (!strcmp(spec, "sobol")) render(Unbounded<samplab::Sobol>(seed, samplab::Sobol(seed, tables.data(), dims), dims), size, spp, dims, image, stats);
+    else if (!strcmp(spec, "sobol.padded")) render(Unbounded<samplab::PaddedSobol>(seed, samplab::PaddedSobol(seed, spp), dims), size, spp, dims, image, stats);
+    else if (!strcmp(spec, "zsobol")) render(Unbounded<samplab::ZSobol>(seed, samplab::ZSobol(seed, size, size, spp), dims), size, spp, dims, image, stats);
+    else if (!strcmp(spec, "lattice")) render(Unbounded<samplab::Lattice>(seed, samplab::Lattice(seed), dims), size, spp, dims, image, stats);
+    else if (!strcmp(spec, "halton")) render(Unbounded<samplab::Halton>(seed, samplab::Halton(seed, size, size, samplab::HaltonRandomize::PermuteDigits, permutations.data(), dims), dims), size, spp, dims, image, stats);
+    else { fprintf(stderr, "pathtracer: %s is not a header family without tables\n", spec); return 2; }
+#else
+    char error[256];
+    SamplabPixels *s = samplab_pixels_new(argv[1], size, size, spp, dims, seed, error, sizeof error);
+    if (!s) { fprintf(stderr, "pathtracer: %s\n", error); return 2; }
+    render(s, size, spp, dims, image, stats);
+    const char *spec = samplab_pixels_spec(s);
+#endif
     FILE *out = fopen(argv[6], "wb");
     if (!out || fwrite(image, sizeof(float), size * size, out) != size * size || fclose(out) != 0) {
         fprintf(stderr, "pathtracer: cannot write %s\n", argv[6]);
         return 2;
     }
-    printf("%s: %.2f bounces a path, %.3f%% of values past %u dimensions\n", samplab_pixels_spec(s),
-           bounces / ((double)size * size * spp), 100.0 * past / drawn, dims);
+    printf("%s: %.2f bounces a path, %.3f%% of values past %u dimensions\n", spec, stats[0], 100.0 * stats[1], dims);
+#ifndef SAMPLAB_HEADER
     samplab_pixels_free(s);
+#endif
     free(image);
     return 0;
 }

@@ -789,6 +789,31 @@ struct Pmj02 : detail::Family<Pmj02> {
     }
 };
 
+/* A family F drawn past its film's `dims` dimensions as the C interface's samplab_pixel_sample
+ * and the library's Pixels::sample_padded draw (a path with no depth limit): independent
+ * values under a seed of their own, never F's (which stop at their tables). */
+template <class F>
+struct Unbounded : detail::Family<Unbounded<F>> {
+    F family;
+    Independent padding;
+    uint32_t dims;
+
+    SAMPLAB_HD Unbounded(uint64_t seed, const F& f, uint32_t dims_)
+        : family(f), padding(derive_str(seed, "pixel padding")), dims(dims_) {}
+
+    struct Draw : detail::OneAtATime<Draw> {
+        typename F::Draw family;
+        Independent::Draw padding;
+        uint32_t dims;
+
+        SAMPLAB_HD double sample(uint32_t dim) const { return dim < dims ? family.sample(dim) : padding.sample(dim); }
+    };
+
+    SAMPLAB_HD Draw at(uint32_t x, uint32_t y, uint32_t frame, uint32_t index) const {
+        return Draw{{}, family.at(x, y, frame, index), padding.at(x, y, frame, index), dims};
+    }
+};
+
 /* pbrt-v4's RandomizeStrategy for its Halton sampler. */
 enum class HaltonRandomize { None, PermuteDigits, Owen };
 
