@@ -236,6 +236,12 @@ fn the_header_gives_the_librarys_values_on_a_million_keys_per_family() {
     pixel_family(&exe, "halton", "halton+table", "permutedigits", hd(16, 400), MILLION / 4);
     // a film smaller than a tile, and one that is not square
     pixel_family(&exe, "halton", "halton", "permutedigits", film(20, 10, 7, 40), 10_000);
+    // the point-set sequences served per pixel (the shift's offsets cost O(dim): 64 dims)
+    for randomize in ["xor", "owen", "shift"] {
+        let dims = if randomize == "shift" { 64 } else { SOBOL_MAX_DIMS as u32 };
+        let spec = format!("sobol.{randomize}");
+        pixel_family(&exe, &spec, "sobol-sequence", randomize, film(64, 48, 1 << 18, dims), MILLION / 3 + 1);
+    }
     for randomize in ["none", "xor", "owen", "shift"] {
         // any index of the 32-bit sequence; the shift's offsets cost O(dim) each: 64 dims
         let dims = if randomize == "shift" { 64 } else { SOBOL_MAX_DIMS as u32 };

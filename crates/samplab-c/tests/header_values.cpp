@@ -118,6 +118,7 @@ int main(int argc, char** argv) {
         samplab::halton_permutations(seed, 200, table.data());
         return pixels(samplab::Halton(seed, width, height, halton_of(randomize), table.data(), 200));
     }
+    if (family == "sobol-sequence") return pixels(samplab::SobolSequence(seed, randomization_of(randomize)));
     if (family == "points:sobol") {
         const samplab::Randomization r = randomization_of(randomize);
         return run([&](const uint32_t* k) { return samplab::sobol_point(r, seed, k[3], k[4]); });

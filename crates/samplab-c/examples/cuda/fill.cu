@@ -53,6 +53,12 @@ extern "C" __global__ void halton(samplab::Halton f, uint32_t w, uint32_t h, uin
     fill_pixels(f, w, h, spp, frame, dim, out);
 }
 
+// `samplab pixels sobol.owen`: the Owen-scrambled Sobol' sequence per pixel.
+extern "C" __global__ void sobol_owen_per_pixel(uint64_t seed, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame,
+                                                uint32_t dim, double* out) {
+    fill_pixels(samplab::SobolSequence(seed, samplab::Randomization::Owen), w, h, spp, frame, dim, out);
+}
+
 // Points 0..n of an Owen-scrambled Sobol' set in `dims` dimensions, row-major (n x dims).
 extern "C" __global__ void sobol_owen_points(uint64_t seed, uint32_t n, uint32_t dims, double* out) {
     const uint64_t k = (uint64_t)blockIdx.x * blockDim.x + threadIdx.x;

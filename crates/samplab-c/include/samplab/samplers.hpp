@@ -789,6 +789,29 @@ struct Pmj02 : detail::Family<Pmj02> {
     }
 };
 
+/* `sobol[.xor|.owen|.shift]` as a pixel sampler: the point-set sequence per pixel, each
+ * pixel's sequence set 0 of the seed its key names (as `samplab pixels sobol.owen` serves a
+ * point-set sequence), so one randomization word names one scramble through both front
+ * doors; dimensions below SAMPLAB_SOBOL_DIMS. */
+struct SobolSequence : detail::Family<SobolSequence> {
+    detail::Keys keys;
+    Randomization randomization;
+
+    SAMPLAB_HD SobolSequence(uint64_t seed, Randomization r) : keys(seed), randomization(r) {}
+
+    struct Draw : detail::OneAtATime<Draw> {
+        Randomization randomization;
+        uint64_t seed;
+        uint32_t index;
+
+        SAMPLAB_HD double sample(uint32_t dim) const { return sobol_point(randomization, seed, index, dim); }
+    };
+
+    SAMPLAB_HD Draw at(uint32_t x, uint32_t y, uint32_t frame, uint32_t index) const {
+        return Draw{{}, randomization, set_seed(keys.pixel(x, y, frame), 0), index};
+    }
+};
+
 /* A family F drawn past its film's `dims` dimensions as the C interface's samplab_pixel_sample
  * and the library's Pixels::sample_padded draw (a path with no depth limit): independent
  * values under a seed of their own, never F's (which stop at their tables). */
