@@ -1,6 +1,8 @@
 // A minimal CUDA use of samplab's header: each thread writes one value of a pixel family, or
-// one coordinate of a point set, straight into device memory. The kernels are the ones
-// scripts/check-cuda-header compiles to PTX for sm_80 and sm_90, warnings as errors.
+// one coordinate of a point set, straight into device memory. Every kernel takes plain
+// words (launchable from CuPy as from C++). scripts/check-cuda-header compiles them to PTX
+// for sm_80 and sm_90, warnings as errors; bench/gpu.py runs them on a device and compares
+// their bytes with the CPU's.
 //
 //   nvcc -std=c++17 -I crates/samplab-c/include -arch=sm_90 --ptx fill.cu
 #include <samplab/samplers.hpp>
@@ -15,48 +17,28 @@ __device__ void fill_pixels(const Family& f, uint32_t width, uint32_t height, ui
     out[k] = f.sample(pixel % width, pixel / width, frame, i, dim);
 }
 
-extern "C" __global__ void independent(uint64_t seed, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame, uint32_t dim,
-                                       double* out) {
-    fill_pixels(samplab::Independent(seed), w, h, spp, frame, dim, out);
-}
+// One kernel per family: (seed, width, height, spp, frame, dim, out), the family made from
+// them in each thread (a few integer operations).
+#define SAMPLAB_FILL(name, family)                                                                             \
+    extern "C" __global__ void name(uint64_t seed, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame,         \
+                                    uint32_t dim, double* out) {                                                 \
+        fill_pixels(family, w, h, spp, frame, dim, out);                                                         \
+    }
 
-extern "C" __global__ void sobol(uint64_t seed, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame, uint32_t dim,
-                                 double* out) {
-    fill_pixels(samplab::Sobol(seed), w, h, spp, frame, dim, out);
-}
+SAMPLAB_FILL(independent, samplab::Independent(seed))
+SAMPLAB_FILL(sobol, samplab::Sobol(seed))
+SAMPLAB_FILL(sobol_padded, samplab::PaddedSobol(seed, spp))
+SAMPLAB_FILL(zsobol, samplab::ZSobol(seed, w, h, spp))
+SAMPLAB_FILL(lattice, samplab::Lattice(seed))
+SAMPLAB_FILL(halton, samplab::Halton(seed, w, h))
+// `samplab pixels sobol.owen`: the Owen-scrambled Sobol' sequence per pixel
+SAMPLAB_FILL(sobol_owen_per_pixel, samplab::SobolSequence(seed, samplab::Randomization::Owen))
 
-extern "C" __global__ void padded_sobol(uint64_t seed, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame, uint32_t dim,
-                                        double* out) {
-    fill_pixels(samplab::PaddedSobol(seed, spp, samplab::Scramble::FastOwen), w, h, spp, frame, dim, out);
-}
-
-extern "C" __global__ void lattice(uint64_t seed, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame, uint32_t dim,
-                                   double* out) {
-    fill_pixels(samplab::Lattice(seed), w, h, spp, frame, dim, out);
-}
-
-// The family's struct is made once on the host and passed by value.
-extern "C" __global__ void zsobol(samplab::ZSobol f, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame, uint32_t dim,
-                                  double* out) {
-    fill_pixels(f, w, h, spp, frame, dim, out);
-}
-
-// Its pool (and pmj02.bn's mask) in device memory: samplab_pixels_header_tables' words,
-// copied with cudaMemcpy, the pointer given to samplab::Pmj02's constructor on the host.
-extern "C" __global__ void pmj02(samplab::Pmj02 f, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame, uint32_t dim,
-                                 double* out) {
-    fill_pixels(f, w, h, spp, frame, dim, out);
-}
-
-extern "C" __global__ void halton(samplab::Halton f, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame, uint32_t dim,
-                                  double* out) {
-    fill_pixels(f, w, h, spp, frame, dim, out);
-}
-
-// `samplab pixels sobol.owen`: the Owen-scrambled Sobol' sequence per pixel.
-extern "C" __global__ void sobol_owen_per_pixel(uint64_t seed, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame,
-                                                uint32_t dim, double* out) {
-    fill_pixels(samplab::SobolSequence(seed, samplab::Randomization::Owen), w, h, spp, frame, dim, out);
+// pmj02 (mask 0) and pmj02.bn (the mask's side): `tables` in device memory, the words of
+// samplab_pixels_header_tables (samplab.pixel_header_tables in Python) copied there.
+extern "C" __global__ void pmj02(uint64_t seed, uint32_t w, uint32_t h, uint32_t spp, uint32_t frame, uint32_t dim,
+                                 const uint32_t* tables, uint32_t mask, double* out) {
+    fill_pixels(samplab::Pmj02(seed, spp, tables, mask), w, h, spp, frame, dim, out);
 }
 
 // Points 0..n of an Owen-scrambled Sobol' set in `dims` dimensions, row-major (n x dims).
