@@ -88,6 +88,8 @@ FAMILIES = [
     ("sobol", "sobol", None),
     ("sobol.padded", "sobol_padded", None),
     ("zsobol", "zsobol", None),
+    ("zsobol:curve=hilbert", "zsobol_hilbert", None),
+    ("stratified", "stratified", None),
     ("lattice", "lattice", None),
     ("halton", "halton", None),
     ("sobol.owen", "sobol_owen_per_pixel", None),

@@ -148,6 +148,7 @@ int main(int argc, char **argv) {
     else if (!strcmp(spec, "sobol")) render(Unbounded<samplab::Sobol>(seed, samplab::Sobol(seed, tables.data(), dims), dims), size, spp, dims, image, stats);
     else if (!strcmp(spec, "sobol.padded")) render(Unbounded<samplab::PaddedSobol>(seed, samplab::PaddedSobol(seed, spp), dims), size, spp, dims, image, stats);
     else if (!strcmp(spec, "zsobol")) render(Unbounded<samplab::ZSobol>(seed, samplab::ZSobol(seed, size, size, spp), dims), size, spp, dims, image, stats);
+    else if (!strcmp(spec, "stratified")) render(Unbounded<samplab::Stratified>(seed, samplab::Stratified(seed, spp), dims), size, spp, dims, image, stats);
     else if (!strcmp(spec, "lattice")) render(Unbounded<samplab::Lattice>(seed, samplab::Lattice(seed), dims), size, spp, dims, image, stats);
     else if (!strcmp(spec, "halton")) render(Unbounded<samplab::Halton>(seed, samplab::Halton(seed, size, size, samplab::HaltonRandomize::PermuteDigits, permutations.data(), dims), dims), size, spp, dims, image, stats);
     else { fprintf(stderr, "pathtracer: %s is not a header family without tables\n", spec); return 2; }

@@ -197,6 +197,20 @@ fn the_header_gives_the_librarys_values_on_a_million_keys_per_family() {
     let film = |width, height, spp, dims| Film { width, height, spp, dims };
     let hd = |spp, dims| film(1920, 1080, spp, dims);
     pixel_family(&exe, "independent", "independent", "-", hd(64, 64), MILLION);
+    // a prime, a square and a rectangular count of strata
+    for spp in [7, 64, 96] {
+        pixel_family(&exe, "stratified", "stratified", "-", hd(spp, 64), MILLION / 3 + 1);
+    }
+    // the Hilbert curve's order, on a film whose sides are not a power of two
+    pixel_family(&exe, "zsobol:curve=hilbert", "zsobol-hilbert", "fastowen", hd(32, 64), MILLION / 2);
+    pixel_family(
+        &exe,
+        "zsobol:curve=hilbert,randomize=owen",
+        "zsobol-hilbert",
+        "owen",
+        film(100, 60, 64, 64),
+        MILLION / 2,
+    );
     // films of fewer dimensions than the table: the vector's components are greedy
     pixel_family(&exe, "lattice", "lattice", "-", hd(64, 64), MILLION / 2);
     pixel_family(&exe, "lattice", "lattice", "-", film(64, 48, 1 << 18, LATTICE_DIMS as u32), MILLION / 2);
@@ -304,7 +318,7 @@ fn the_path_tracer_renders_the_same_image_through_the_header() {
     let (c, header) = (dir.join("pathtracer-c"), dir.join("pathtracer-header"));
     common::compile(&source, &c);
     compile_cxx(&source, &header, &["-x", "c++", "-DSAMPLAB_HEADER"]);
-    for family in ["independent", "sobol", "sobol.padded", "zsobol", "lattice", "halton"] {
+    for family in ["independent", "stratified", "sobol", "sobol.padded", "zsobol", "lattice", "halton"] {
         let image = |exe: &Path| {
             let out = dir.join("image.f32");
             let run = Command::new(exe).args([family, "16", "16", "12", "7"]).arg(&out).output().unwrap();

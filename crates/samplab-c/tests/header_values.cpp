@@ -104,6 +104,9 @@ int main(int argc, char** argv) {
     }
     if (family == "sobol.padded") return pixels(samplab::PaddedSobol(seed, spp, scramble_of(randomize)));
     if (family == "zsobol") return pixels(samplab::ZSobol(seed, width, height, spp, scramble_of(randomize)));
+    if (family == "zsobol-hilbert")
+        return pixels(samplab::ZSobol(seed, width, height, spp, scramble_of(randomize), samplab::Curve::Hilbert));
+    if (family == "stratified") return pixels(samplab::Stratified(seed, spp));
     if (family == "halton") return pixels(samplab::Halton(seed, width, height, halton_of(randomize)));
     if (family == "pmj02" || family == "pmj02.bn") {
         // the tables samplab_pixels_header_tables gives, from a file; pmj02.bn's mask side as

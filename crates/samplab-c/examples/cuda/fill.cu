@@ -29,6 +29,8 @@ SAMPLAB_FILL(independent, samplab::Independent(seed))
 SAMPLAB_FILL(sobol, samplab::Sobol(seed))
 SAMPLAB_FILL(sobol_padded, samplab::PaddedSobol(seed, spp))
 SAMPLAB_FILL(zsobol, samplab::ZSobol(seed, w, h, spp))
+SAMPLAB_FILL(zsobol_hilbert, samplab::ZSobol(seed, w, h, spp, samplab::Scramble::FastOwen, samplab::Curve::Hilbert))
+SAMPLAB_FILL(stratified, samplab::Stratified(seed, spp))
 SAMPLAB_FILL(lattice, samplab::Lattice(seed))
 SAMPLAB_FILL(halton, samplab::Halton(seed, w, h))
 // `samplab pixels sobol.owen`: the Owen-scrambled Sobol' sequence per pixel

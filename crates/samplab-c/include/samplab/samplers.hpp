@@ -216,6 +216,26 @@ SAMPLAB_HD uint64_t spread_bits(uint32_t x) {
 
 SAMPLAB_HD uint64_t morton2(uint32_t x, uint32_t y) { return (spread_bits(y) << 1) | spread_bits(x); }
 
+/* The index of pixel (x, y) along the Hilbert curve of a 2^order x 2^order screen (Hilbert
+ * 1891): quadrants in the order lower left, upper left, upper right, lower right. */
+SAMPLAB_HD uint64_t hilbert2(uint32_t order, uint32_t x, uint32_t y) {
+    uint64_t index = 0;
+    for (uint32_t level = order; level-- > 0;) {
+        const uint32_t s = 1u << level, right = (x & s) ? 1u : 0u, up = (y & s) ? 1u : 0u;
+        index = (index << 2) | ((3u * right) ^ up);
+        if (up == 0) {
+            if (right == 1) {
+                x = ~x;
+                y = ~y;
+            }
+            const uint32_t t = x;
+            x = y;
+            y = t;
+        }
+    }
+    return index;
+}
+
 /* The seed pbrt's samplers get for a frame: frame 0 the low 32 bits of samplab's seed,
  * a later frame their hash with the frame. */
 SAMPLAB_HD uint32_t frame_seed(uint64_t seed, uint32_t frame) {
@@ -621,19 +641,23 @@ struct PaddedSobol : detail::Family<PaddedSobol> {
 
 };
 
-/* `zsobol`: pbrt-v4's ZSobolSampler (Ahmed & Wonka 2020): one Sobol' sequence over the
- * screen, pixels in Morton order, each base-4 digit of the Morton index permuted by a hash
- * of the digits above it. spp must be a power of two. */
+/* The order `zsobol` visits the pixels in (its `curve` setting). */
+enum class Curve { Morton, Hilbert };
+
+/* `zsobol[:curve=hilbert]`: pbrt-v4's ZSobolSampler (Ahmed & Wonka 2020): one Sobol'
+ * sequence over the screen, pixels in Morton order (or along a Hilbert curve), each base-4
+ * digit of the index permuted by a hash of the digits above it. spp must be a power of two. */
 struct ZSobol : detail::Family<ZSobol> {
     uint64_t seed;
-    uint32_t log2_spp, base4_digits;
+    uint32_t log2_spp, base4_digits, order;
     Scramble scramble;
+    Curve curve;
 
-    SAMPLAB_HD ZSobol(uint64_t seed_, uint32_t width, uint32_t height, uint32_t spp, Scramble s = Scramble::FastOwen)
-        : seed(seed_), scramble(s) {
+    SAMPLAB_HD ZSobol(uint64_t seed_, uint32_t width, uint32_t height, uint32_t spp, Scramble s = Scramble::FastOwen,
+                      Curve c = Curve::Morton)
+        : seed(seed_), order(0), scramble(s), curve(c) {
         log2_spp = 31 - detail::leading_zeros(spp);
-        uint32_t side = 1, order = 0;
-        for (const uint32_t most = width > height ? width : height; side < most; side <<= 1) ++order;
+        for (uint32_t side = 1, most = width > height ? width : height; side < most; side <<= 1) ++order;
         base4_digits = order + (log2_spp + 1) / 2;
     }
 
@@ -671,9 +695,47 @@ struct ZSobol : detail::Family<ZSobol> {
     };
 
     SAMPLAB_HD Draw at(uint32_t x, uint32_t y, uint32_t frame, uint32_t index) const {
-        return Draw{{}, this, (detail::morton2(x, y) << log2_spp) | index, detail::frame_seed(seed, frame)};
+        const uint64_t place = curve == Curve::Hilbert ? detail::hilbert2(order, x, y) : detail::morton2(x, y);
+        return Draw{{}, this, (place << log2_spp) | index, detail::frame_seed(seed, frame)};
     }
 
+};
+
+/* `stratified`: jittered a x b strata per pixel for each pair of dimensions (a the largest
+ * divisor of spp not above its square root), sample i in stratum pi(i), pi a hashed
+ * permutation of (seed, pixel, frame, pair) (Kensler 2013); pairs independent. */
+struct Stratified : detail::Family<Stratified> {
+    detail::Keys keys;
+    uint32_t spp, columns, rows;
+
+    SAMPLAB_HD Stratified(uint64_t seed, uint32_t spp_) : keys(seed), spp(spp_) {
+        uint64_t root = 1;
+        while ((root + 1) * (root + 1) <= spp) ++root;
+        rows = (uint32_t)root;
+        while (spp % rows != 0) --rows;
+        columns = spp / rows;
+    }
+
+    struct Draw : detail::ByPairs<Draw> {
+        const Stratified* f;
+        uint64_t key;
+        uint32_t index;
+
+        SAMPLAB_HD void pair(uint32_t dim, double* uv) const {
+            const uint64_t k = detail::rekey(key, dim / 2);
+            const uint32_t stratum = detail::permute(index % f->spp, f->spp, (uint32_t)k);
+            const uint64_t jitter = detail::rekey(k, (uint64_t)index + 1);
+            const double below_one = 0x1.fffffffffffffp-1;
+            const double u = ((double)(stratum % f->columns) + detail::unit((uint32_t)jitter)) / f->columns;
+            const double v = ((double)(stratum / f->columns) + detail::unit((uint32_t)(jitter >> 32))) / f->rows;
+            uv[0] = u < below_one ? u : below_one;
+            uv[1] = v < below_one ? v : below_one;
+        }
+    };
+
+    SAMPLAB_HD Draw at(uint32_t x, uint32_t y, uint32_t frame, uint32_t index) const {
+        return Draw{{}, this, keys.pixel(x, y, frame), index};
+    }
 };
 
 /* `lattice`: a rank-1 lattice sequence per pixel (Cools, Kuo & Nuyens 2006; the embedded
