@@ -39,7 +39,9 @@ fn tables() -> String {
          * (bit 0 the most significant digit). Lattice: the pixel family's generating vector\n \
          * (embedded fast CBC for 2^16 points, Nuyens & Cools 2006, weights (j + 1)^-2). Halton: the first primes, and how many digits pbrt-v4's\n \
          * single-precision loops randomize in each base ([0] Owen, [1] digit permutations). */\n\
-         #ifndef SAMPLAB_TABLES_HPP\n#define SAMPLAB_TABLES_HPP\n\n#include <stdint.h>\n\n",
+         #ifndef SAMPLAB_TABLES_HPP\n#define SAMPLAB_TABLES_HPP\n\n\
+         /* the fixed-width types: samplers.hpp declares them for NVRTC */\n\
+         #ifndef __CUDACC_RTC__\n#include <stdint.h>\n#endif\n\n",
     );
     writeln!(
         t,

@@ -1,5 +1,6 @@
-/* samplab's samplers as header-only C++: host C++17 and CUDA (HIP's macros and intrinsics
- * are taken too, untested).
+/* samplab's samplers as header-only C++: host C++17 and CUDA, by nvcc or by NVRTC (CuPy's
+ * RawModule: `-std=c++17 -I<this folder's parent>`); HIP's macros and intrinsics are taken
+ * too, untested.
  *
  * Every value is a pure function of its keys, the same bits as the Rust library (and so as
  * `samplab pixels` and `samplab generate`): a pixel sampler's value of (seed, pixel, frame,
@@ -21,7 +22,19 @@
 #ifndef SAMPLAB_SAMPLERS_HPP
 #define SAMPLAB_SAMPLERS_HPP
 
+/* NVRTC (CuPy's RawModule, PyTorch's CUDA extensions at run time) has no C library
+ * headers: the fixed-width types are declared here for it. */
+#if defined(__CUDACC_RTC__)
+#ifndef SAMPLAB_NVRTC_TYPES
+#define SAMPLAB_NVRTC_TYPES
+typedef unsigned char uint8_t;
+typedef unsigned int uint32_t;
+typedef long long int64_t;
+typedef unsigned long long uint64_t;
+#endif
+#else
 #include <stdint.h>
+#endif
 
 #if defined(__CUDACC__) || defined(__HIPCC__)
 #define SAMPLAB_HD __host__ __device__ __forceinline__

@@ -7,7 +7,10 @@
 #ifndef SAMPLAB_TABLES_HPP
 #define SAMPLAB_TABLES_HPP
 
+/* the fixed-width types: samplers.hpp declares them for NVRTC */
+#ifndef __CUDACC_RTC__
 #include <stdint.h>
+#endif
 
 #define SAMPLAB_SOBOL_DIMS 1024
 #define SAMPLAB_HALTON_DIMS 1000
