@@ -132,8 +132,8 @@ def check_bytes(cp, mod, samplab, lib, out):
                    check=True, capture_output=True)
     cpu = np.load(path).reshape(n, d)
     device = cp.empty((n, d), dtype=cp.float64)
-    launch(cp, mod.get_function("sobol_owen_points"), n * d,
-           (np.uint64(set_seed(seed, 0)), np.uint32(n), np.uint32(d), device))
+    launch(cp, mod.get_function("sobol_points"), n * d,
+           (np.uint64(set_seed(seed, 0)), np.uint32(0), np.uint32(n), np.uint32(d), np.uint32(2), device))
     same = np.array_equal(cp.asnumpy(device).view(np.uint64), cpu.view(np.uint64))
     print(f"bytes {'sobol.owen set':14} {'equal' if same else 'DIFFER'}", flush=True)
     rows.append(("sobol.owen set", None if same else "differs"))
@@ -162,9 +162,9 @@ def throughput(cp, mod, lib):
     out = cp.empty(values, dtype=cp.float64)
     source = cp.zeros(values, dtype=cp.float64)
     results["copy (device to device)"] = values / median_seconds(cp, lambda: cp.copyto(out, source))
-    k = mod.get_function("sobol_owen_points")
-    results["samplab sobol.owen points"] = values / median_seconds(
-        cp, lambda: launch(cp, k, values, (np.uint64(set_seed(7, 0)), np.uint32(n), np.uint32(d), out)))
+    k = mod.get_function("sobol_points")
+    owen = (np.uint64(set_seed(7, 0)), np.uint32(0), np.uint32(n), np.uint32(d), np.uint32(2), out)
+    results["samplab sobol.owen points"] = values / median_seconds(cp, lambda: launch(cp, k, values, owen))
     gen = curand.createGenerator(curand.CURAND_RNG_QUASI_SCRAMBLED_SOBOL64)
     curand.setQuasiRandomGeneratorDimensions(gen, d)
     results["cuRAND scrambled Sobol' 64"] = values / median_seconds(

@@ -76,10 +76,13 @@ fn tables() -> String {
     }
     t.push_str(
         "}\n\nnamespace samplab {\nnamespace tables {\n\n\
+         /* the host's copies (NVRTC compiles device code only) */\n\
+         #ifndef __CUDACC_RTC__\n\
          static const uint32_t sobol_reversed[SAMPLAB_SOBOL_DIMS][32] = SAMPLAB_SOBOL_TABLE;\n\
          static const uint32_t primes[SAMPLAB_HALTON_DIMS] = SAMPLAB_PRIME_TABLE;\n\
          static const uint8_t halton_digits[SAMPLAB_HALTON_DIMS][2] = SAMPLAB_HALTON_DIGITS_TABLE;\n\
-         static const uint32_t lattice[SAMPLAB_LATTICE_DIMS] = SAMPLAB_LATTICE_TABLE;\n\n\
+         static const uint32_t lattice[SAMPLAB_LATTICE_DIMS] = SAMPLAB_LATTICE_TABLE;\n\
+         #endif\n\n\
          #ifdef SAMPLAB_DEVICE_TABLE\n\
          static SAMPLAB_DEVICE_TABLE const uint32_t sobol_reversed_device[SAMPLAB_SOBOL_DIMS][32] = SAMPLAB_SOBOL_TABLE;\n\
          static SAMPLAB_DEVICE_TABLE const uint32_t primes_device[SAMPLAB_HALTON_DIMS] = SAMPLAB_PRIME_TABLE;\n\

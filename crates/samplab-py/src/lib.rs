@@ -302,6 +302,17 @@ fn pixels<'py>(
     shaped(py, data, &[frames, height, width, spp, dims].map(|k| k as usize))
 }
 
+/// The CUDA source of `samplab.gpu`'s kernels, one text that NVRTC compiles (CuPy's
+/// RawModule): the header-only samplers' tables and header, then the kernels of
+/// `crates/samplab-c/examples/cuda/fill.cu`, each file in the place of its `#include`.
+#[pyfunction]
+fn cuda_source() -> String {
+    const TABLES: &str = include_str!("../../samplab-c/include/samplab/tables.hpp");
+    const SAMPLERS: &str = include_str!("../../samplab-c/include/samplab/samplers.hpp");
+    const KERNELS: &str = include_str!("../../samplab-c/examples/cuda/fill.cu");
+    KERNELS.replace("#include <samplab/samplers.hpp>", &SAMPLERS.replace("#include \"tables.hpp\"", TABLES))
+}
+
 /// The seed of pixel (x, y) in `frame` under `seed`, under which a point-set sequence
 /// served per pixel draws its points.
 #[pyfunction]
@@ -1022,6 +1033,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<sampler::Sampler>()?;
     m.add_function(wrap_pyfunction!(pixels, m)?)?;
     m.add_function(wrap_pyfunction!(pixel_seed, m)?)?;
+    m.add_function(wrap_pyfunction!(cuda_source, m)?)?;
     m.add_function(wrap_pyfunction!(blue_noise_mask, m)?)?;
     m.add_function(wrap_pyfunction!(image_metrics, m)?)?;
     m.add_function(wrap_pyfunction!(warp, m)?)?;

@@ -43,9 +43,12 @@ extern "C" __global__ void pmj02(uint64_t seed, uint32_t w, uint32_t h, uint32_t
     fill_pixels(samplab::Pmj02(seed, spp, tables, mask), w, h, spp, frame, dim, out);
 }
 
-// Points 0..n of an Owen-scrambled Sobol' set in `dims` dimensions, row-major (n x dims).
-extern "C" __global__ void sobol_owen_points(uint64_t seed, uint32_t n, uint32_t dims, double* out) {
+// Points start .. start + n of a Sobol' set in `dims` dimensions, row-major (n x dims), under
+// `randomization` (0 none, 1 xor, 2 owen, 3 shift) and the set's seed.
+extern "C" __global__ void sobol_points(uint64_t seed, uint32_t start, uint32_t n, uint32_t dims,
+                                        uint32_t randomization, double* out) {
     const uint64_t k = (uint64_t)blockIdx.x * blockDim.x + threadIdx.x;
     if (k >= (uint64_t)n * dims) return;
-    out[k] = samplab::sobol_point(samplab::Randomization::Owen, seed, (uint32_t)(k / dims), (uint32_t)(k % dims));
+    const samplab::Randomization r = (samplab::Randomization)randomization;
+    out[k] = samplab::sobol_point(r, seed, start + (uint32_t)(k / dims), (uint32_t)(k % dims));
 }

@@ -1245,10 +1245,13 @@
 namespace samplab {
 namespace tables {
 
+/* the host's copies (NVRTC compiles device code only) */
+#ifndef __CUDACC_RTC__
 static const uint32_t sobol_reversed[SAMPLAB_SOBOL_DIMS][32] = SAMPLAB_SOBOL_TABLE;
 static const uint32_t primes[SAMPLAB_HALTON_DIMS] = SAMPLAB_PRIME_TABLE;
 static const uint8_t halton_digits[SAMPLAB_HALTON_DIMS][2] = SAMPLAB_HALTON_DIGITS_TABLE;
 static const uint32_t lattice[SAMPLAB_LATTICE_DIMS] = SAMPLAB_LATTICE_TABLE;
+#endif
 
 #ifdef SAMPLAB_DEVICE_TABLE
 static SAMPLAB_DEVICE_TABLE const uint32_t sobol_reversed_device[SAMPLAB_SOBOL_DIMS][32] = SAMPLAB_SOBOL_TABLE;
