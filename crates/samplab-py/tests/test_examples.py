@@ -2,7 +2,8 @@
 blocks in order, in one namespace per page that starts empty (a page imports what it uses)
 but for the reader's own data the text names without making it (an image and its
 reference, a stack of them), as the reader would paste them into one session. The shell
-examples are run by crates/samplab-cli/tests/examples.rs."""
+examples are run by crates/samplab-cli/tests/examples.rs. A block whose first line is
+`# needs a CUDA device` runs only where CuPy finds one (samplab.gpu's)."""
 
 import pathlib
 import re
@@ -28,6 +29,16 @@ def readers_data():
     return {"reference": reference, "image": noisy(), "stack": noisy(3)}
 
 
+def cuda_device():
+    """Whether CuPy is installed and finds a CUDA device."""
+    try:
+        import cupy
+
+        return cupy.cuda.runtime.getDeviceCount() > 0
+    except Exception:
+        return False
+
+
 def test_the_blocks_are_found():
     page = "text\n```python\nx = 1\n```\n```sh\nls\n```\n```python\ny = 2\n```\n"
     assert blocks(page) == ["x = 1\n", "y = 2\n"]
@@ -44,4 +55,6 @@ def test_every_python_example_runs(page, tmp_path, monkeypatch):
     namespace = {"__name__": "__main__", **readers_data()}
     with dask.config.set({"temporary-directory": str(tmp_path / "dask")}):
         for k, code in enumerate(blocks(page.read_text())):
+            if code.startswith("# needs a CUDA device") and not cuda_device():
+                continue
             exec(compile(code, f"{page.relative_to(ROOT)}, Python block {k + 1}", "exec"), namespace)
