@@ -1,14 +1,11 @@
-//! Bakes the Joe–Kuo (2008) and OneTwo (Bonneel et al. 2025) Sobol' direction numbers into
-//! Rust tables at build time.
+//! Bakes the Joe–Kuo (2008) Sobol' direction numbers into Rust tables at build time.
 //!
-//! Input: `data/new-joe-kuo-6.1024.txt` (`d s a m_1..m_s` per line, dimensions 2..=1024) and
-//! `data/onetwo-692.txt` (the same format, 692 dimensions).
+//! Input: `data/new-joe-kuo-6.1024.txt` (`d s a m_1..m_s` per line, dimensions 2..=1024).
 //! Output: `$OUT_DIR/sobol_directions.rs` holding `SOBOL_DIRECTIONS: [[u32; 32]; 1024]`,
 //! where entry [j][k] is the direction number v_k = m_k * 2^(31-k) of dimension j
 //! (dimension 0 is van der Corput: m_k = 1), and the same numbers bit-reversed as
 //! `SOBOL_REVERSED` (Owen scrambling works on reversed digits), read by
-//! `src/construct/joe_kuo.rs`, the reader `net:directions=FILE` uses too; `ONETWO_DIRECTIONS`
-//! likewise (its nets run in natural order, without the reversed table).
+//! `src/construct/joe_kuo.rs`, the reader `net:directions=FILE` uses too.
 
 use std::fmt::Write as _;
 
@@ -37,22 +34,22 @@ fn source_digest() -> String {
     format!("{h:016x}")
 }
 
-/// The direction table of `src` as Rust: `{prefix}_DIRECTIONS`, and with `reversed` its
-/// bit-reversed twin `{prefix}_REVERSED`.
-fn baked(src: &str, prefix: &str, what: &str, reversed: bool) -> String {
+/// The direction table of `src` as Rust: `{prefix}_DIRECTIONS` and its bit-reversed twin
+/// `{prefix}_REVERSED`.
+fn baked(src: &str, prefix: &str, what: &str) -> String {
     println!("cargo::rerun-if-changed={src}");
     let text = std::fs::read_to_string(src).expect("reading a direction-number file");
     let table = joe_kuo::directions(&text).unwrap_or_else(|(line, why)| panic!("{src}:{line}: {why}"));
     let mut out = String::new();
     let flipped: Vec<[u32; 32]> = table.iter().map(|row| row.map(u32::reverse_bits)).collect();
-    let mut tables = vec![(format!("{prefix}_DIRECTIONS"), format!("{what} direction numbers"), &table)];
-    if reversed {
-        tables.push((
+    let tables = [
+        (format!("{prefix}_DIRECTIONS"), format!("{what} direction numbers"), &table),
+        (
             format!("{prefix}_REVERSED"),
             format!("{what} direction numbers bit-reversed (for Owen scrambling)"),
             &flipped,
-        ));
-    }
+        ),
+    ];
     for (name, doc, rows) in tables {
         writeln!(out, "/// {doc}, {} dimensions x 32 bits.", rows.len()).unwrap();
         writeln!(out, "pub(crate) static {name}: [[u32; 32]; {}] = [", rows.len()).unwrap();
@@ -72,8 +69,7 @@ fn main() {
     println!("cargo::rerun-if-changed=src");
     println!("cargo::rerun-if-changed=data");
     println!("cargo::rustc-env=SAMPLAB_SOURCE_DIGEST={}", source_digest());
-    let out = baked("data/new-joe-kuo-6.1024.txt", "SOBOL", "Joe–Kuo", true)
-        + &baked("data/onetwo-692.txt", "ONETWO", "The OneTwo (Bonneel et al. 2025)", false);
+    let out = baked("data/new-joe-kuo-6.1024.txt", "SOBOL", "Joe–Kuo");
     let dest = std::path::Path::new(&std::env::var("OUT_DIR").unwrap()).join("sobol_directions.rs");
     std::fs::write(dest, out).expect("writing the direction table");
 }

@@ -8,16 +8,16 @@ use crate::bar::Bar;
 
 /// The t of each projection of a sampler's nets.
 #[derive(clap::Args)]
-#[command(after_help = "A digital net's t (net, faure, niederreiter, sz, onetwo, cascaded, quad-optimized, xi, and \
+#[command(after_help = "A digital net's t (net, faure, niederreiter, sz, cascaded, xi, and \
                   their .xor, .lms and .owen) comes from its generating matrices, by ranks over GF(b) \
                   (Niederreiter 1992, theorem 4.28): the t of its points under every such scramble. Any \
                   other sampler's is counted on the points of one set (--seed), interval by interval, in \
                   --base. t = 0 is the best a projection can do.\n\nExamples:\n  \
-                  samplab t-values onetwo -d 8 --m 16 --projection consecutive\n  \
+                  samplab t-values net -d 8 --m 16 --projection consecutive\n  \
                   samplab t-values cascaded -d 6 --m 12 --projection pairs --json\n  \
                   samplab t-values pmj02 --m 10 --projection all")]
 pub struct Args {
-    /// Sampler spec, e.g. sobol, net:directions=FILE, onetwo.owen, pmj02
+    /// Sampler spec, e.g. sobol, net:directions=FILE, cascaded.owen, pmj02
     spec: String,
     /// Dimensions
     #[arg(short, long, default_value_t = 2)]

@@ -960,11 +960,11 @@ fn t_values_are_the_librarys_and_bad_input_is_refused() {
     }
     assert_eq!(ts, seen);
     assert!(ts.contains(&0.0) && ts.contains(&1.0), "{ts:?}");
-    assert_bad_input(&["t-values", "onetwo", "--projection", "triples"], &["projection triples"]);
-    assert_bad_input(&["t-values", "onetwo", "-d", "3", "--projection", "quadruples"], &["quadruples of a 3D set"]);
-    assert_bad_input(&["t-values", "onetwo", "--m", "0"], &["--m 0"]);
-    assert_bad_input(&["t-values", "onetwo", "--base", "3"], &["base 3 for matrices in base 2"]);
-    assert_bad_input(&["t-values", "onetwo", "--m", "33"], &["2^33 points", "at most 2^32"]);
+    assert_bad_input(&["t-values", "cascaded", "--projection", "triples"], &["projection triples"]);
+    assert_bad_input(&["t-values", "cascaded", "-d", "3", "--projection", "quadruples"], &["quadruples of a 3D set"]);
+    assert_bad_input(&["t-values", "cascaded", "--m", "0"], &["--m 0"]);
+    assert_bad_input(&["t-values", "cascaded", "--base", "3"], &["base 3 for matrices in base 2"]);
+    assert_bad_input(&["t-values", "net", "--m", "33"], &["2^33 points", "at most 2^32"]);
     assert_bad_input(&["t-values", "onetw"], &["unknown sampler 'onetw'"]);
     // refused before any set is made (2^30 points would take 16 GiB)
     assert_bad_input(&["t-values", "random", "--m", "30", "--projection", "all"], &["over the work limit"]);

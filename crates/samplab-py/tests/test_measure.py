@@ -220,7 +220,7 @@ def test_t_values_equal_the_cli(cli):
     """The Python face prints the same table as ``samplab t-values --json``, from the
     matrices for a net and counted on the points for any other set, and refuses bad input
     with samplab.Error."""
-    for spec, projection, dims in [("cascaded.owen", "pairs", 4), ("pmj02", "all", 2), ("onetwo", "quadruples", 5)]:
+    for spec, projection, dims in [("cascaded.owen", "pairs", 4), ("pmj02", "all", 2), ("net.owen", "quadruples", 5)]:
         ours = samplab.t_values(spec, dims=dims, m=8, projection=projection, seed=7)
         theirs = json.loads(cli("t-values", spec, "-d", dims, "--m", 8, "--projection", projection, "--seed", 7, "--json"))
         assert ours == theirs
@@ -228,4 +228,4 @@ def test_t_values_equal_the_cli(cli):
     assert all(max(p["t"]) == 0 for p in samplab.t_values("cascaded", dims=6, m=10)["projections"])
     for bad in [dict(projection="triples"), dict(m=0), dict(base=3), dict(dims=1.5)]:
         with pytest.raises(samplab.Error):
-            samplab.t_values("onetwo", **bad)
+            samplab.t_values("net", **bad)

@@ -41,10 +41,9 @@ fn per_seed_tables(name: &str, dims: usize) -> bool {
     // a permuted digit table per base and seed (the permutations are the randomization);
     // Owen's nested scramble in a prime base tabulates its first digits per seed
     let radical = matches!(name, "halton.xor" | "hammersley.xor" | "halton.owen" | "hammersley.owen");
-    // the digital nets in an odd prime base (Faure's base is the least prime >= d, the
-    // quad-optimized sequence's is 3) build their columns and digit states per seed; base 2
-    // walks them on the stack
-    let prime_net = (name.starts_with("faure") && dims > 2) || name.starts_with("quad-optimized");
+    // the digital nets in an odd prime base (Faure's base is the least prime >= d) build
+    // their columns and digit states per seed; base 2 walks them on the stack
+    let prime_net = name.starts_with("faure") && dims > 2;
     radical || prime_net
 }
 

@@ -1,5 +1,5 @@
 //! The pixel samplers against independent references: pbrt-v4's own values (a fixture
-//! made by `scripts/pbrt/pixel_samplers.sh` from pbrt's headers), `openqmc-rs` called
+//! of the values pbrt's own headers print), `openqmc-rs` called
 //! directly, and the stratification each family promises, counted on elementary intervals.
 
 use samplab::Seed;
@@ -42,28 +42,6 @@ fn zsobol_padded_sobol_and_halton_equal_pbrt_v4_bit_for_bit() {
 }
 
 #[test]
-fn pbrt_onetwo_equals_the_authors_pbrt_sampler_bit_for_bit() {
-    // made by scripts/onetwo/pixels.sh from the OneTwo paper's pbrt-v4 tree (its first line
-    // names the commit): 2 seeds x 4 pixels x 64 samples x 10 dimensions (0-7, 100, 691)
-    let text = include_str!("fixtures/onetwo_pixels.txt");
-    let film = Film { width: 64, height: 64, spp: 64, dims: 692 };
-    let mut prepared: Option<(u32, Pixels)> = None;
-    let mut checked = 0;
-    for line in text.lines().filter(|l| !l.starts_with('#')) {
-        let f: Vec<u32> = line.split(' ').take(6).map(|t| t.parse().unwrap()).collect();
-        let (seed, pixel, index, dim) = (f[1], [f[2], f[3]], f[4], f[5]);
-        if prepared.as_ref().is_none_or(|(s, _)| *s != seed) {
-            prepared = Some((seed, prepare("pbrt.onetwo", film, Seed(u64::from(seed))).unwrap()));
-        }
-        let ours = (prepared.as_ref().unwrap().1.sample(pixel, 0, index, dim) as f32).min(ONE_MINUS_EPSILON);
-        let theirs = f32::from_bits(u32::from_str_radix(line.rsplit(' ').next().unwrap(), 16).unwrap());
-        assert_eq!(ours.to_bits(), theirs.to_bits(), "{line}: samplab {ours}, theirs {theirs}");
-        checked += 1;
-    }
-    assert_eq!(checked, 2 * 4 * 64 * 10);
-}
-
-#[test]
 fn openqmc_families_equal_openqmc_rs_called_directly() {
     use openqmc::{
         LatticeBnSampler, LatticeSampler, PmjBnSampler, PmjSampler, Sampler, SamplerImpl, SobolBnSampler, SobolSampler,
@@ -99,8 +77,7 @@ fn openqmc_families_equal_openqmc_rs_called_directly() {
 
 #[test]
 fn openqmc_sz_equals_openqmc_sobol_sampler_since_pull_request_108_bit_for_bit() {
-    // made by scripts/openqmc/sz_fixture.sh from OpenQMC's headers (its first line names the
-    // commit): 2 keys x 4 pixels x 64 samples x 8 dimensions
+    // the values OpenQMC's own headers print (its first line names the commit): 2 keys x 4 pixels x 64 samples x 8 dimensions
     let text = include_str!("fixtures/openqmc_sz.txt");
     let film = Film { width: 512, height: 301, spp: 64, dims: 8 };
     let mut prepared: Option<(u32, Pixels)> = None;
@@ -128,8 +105,7 @@ fn openqmc_sz_equals_openqmc_sobol_sampler_since_pull_request_108_bit_for_bit() 
 
 #[test]
 fn cycles_five_patterns_equal_cycles_bit_for_bit() {
-    // made by scripts/cycles/patterns.sh from Cycles' own headers (its first line names the
-    // commit): 12 settings x 4 pixels x 64 samples x 8 dimensions (four 2D draws), the frames' seeds and the A/B
+    // the values Cycles' own headers print (its first line names the commit): 12 settings x 4 pixels x 64 samples x 8 dimensions (four 2D draws), the frames' seeds and the A/B
     // classes
     let text = include_str!("fixtures/cycles_patterns.txt");
     let mut prepared: Option<(String, Pixels)> = None;
@@ -174,23 +150,18 @@ impl<T: openqmc::SamplerImpl> Imp for openqmc::Sampler<T> {
     type T = T;
 }
 
-/// Whether the points `xy` (2^m of them) have 2^t points in every elementary interval
-/// 2^-a x 2^-b, a + b = m - t: a (t,m,2)-net in base 2.
-fn is_net(xy: &[[f64; 2]], t: u32) -> bool {
-    let k = xy.len().trailing_zeros() - t;
+/// Whether the points `xy` (2^m of them) are a (0,m,2)-net in base 2: one point in every
+/// elementary interval 2^-a x 2^-b, a + b = m.
+fn is_02_net(xy: &[[f64; 2]]) -> bool {
+    let k = xy.len().trailing_zeros();
     (0..=k).all(|a| {
         let (cx, cy) = (1usize << a, 1usize << (k - a));
         let mut count = vec![0usize; cx * cy];
         for p in xy {
             count[(p[1] * cy as f64) as usize * cx + (p[0] * cx as f64) as usize] += 1;
         }
-        count.iter().all(|&c| c == 1 << t)
+        count.iter().all(|&c| c == 1)
     })
-}
-
-/// Whether the points `xy` (2^m of them) are a (0,m,2)-net in base 2.
-fn is_02_net(xy: &[[f64; 2]]) -> bool {
-    is_net(xy, 0)
 }
 
 /// Whether the values hit every one of their count's equal intervals once.
@@ -222,30 +193,6 @@ fn each_pixels_samples_keep_their_stratification_on_elementary_intervals() {
             }
         }
     }
-    // pbrt.onetwo (the OneTwo paper's pbrt sampler): every pair (2k, 2k+1) a (1,m,2)-net,
-    // the first a (0,m,2)-net, each dimension stratified, at every power of two of a pixel's
-    // samples (its Owen scrambles keep the nets of the OneTwo matrices)
-    let film = Film { width: 70, height: 70, spp: 256, dims: 16 };
-    let p = prepare("pbrt.onetwo", film, Seed(11)).unwrap();
-    for (x, y, frame) in [(0, 0, 0), (69, 4, 0), (2, 33, 7)] {
-        for m in [4u32, 6, 8] {
-            for k in 0..8 {
-                let xy: Vec<[f64; 2]> =
-                    (0..1 << m).map(|i| [0, 1].map(|j| p.sample([x, y], frame, i, 2 * k + j))).collect();
-                assert!(is_net(&xy, u32::from(k > 0)), "pbrt.onetwo 2^{m} pixel ({x},{y}) frame {frame} pair {k}");
-            }
-            for d in 0..16 {
-                let v: Vec<f64> = (0..1 << m).map(|i| p.sample([x, y], frame, i, d)).collect();
-                assert!(is_stratified_1d(&v), "pbrt.onetwo 2^{m} ({x},{y}) dim {d}");
-            }
-        }
-    }
-    // and the odd pairs (2k+1, 2k+2) are not all (1,m,2)-nets: the promise is the pairs'
-    let odd = (0..7).any(|k| {
-        let xy: Vec<[f64; 2]> = (0..256).map(|i| [1, 2].map(|j| p.sample([0, 0], 0, i, 2 * k + j))).collect();
-        !is_net(&xy, 1)
-    });
-    assert!(odd, "pbrt.onetwo's odd pairs");
     // the test can fail: independent values are not nets
     let p = prepare("independent", Film { width: 1, height: 1, spp: 16, dims: 2 }, Seed(11)).unwrap();
     let xy: Vec<[f64; 2]> = (0..16).map(|i| [p.sample([0, 0], 0, i, 0), p.sample([0, 0], 0, i, 1)]).collect();

@@ -783,8 +783,8 @@ def t_values(
     """The t of every projection of a sampler's nets at b^1 .. b^m points, as
     ``samplab t-values --json``.
 
-    A digital net's (``net``, ``faure``, ``niederreiter``, ``sz``, ``onetwo``, ``cascaded``,
-    ``quad-optimized``, ``xi`` and their ``.xor``, ``.lms``, ``.owen``) comes from its
+    A digital net's (``net``, ``faure``, ``niederreiter``, ``sz``, ``cascaded``, ``xi`` and
+    their ``.xor``, ``.lms``, ``.owen``) comes from its
     generating matrices, by ranks over GF(b): the t of its points under each such scramble.
     Any other sampler's is counted on the points of one set (``seed``) in ``base`` (2 when
     not given).
@@ -815,9 +815,9 @@ def t_values(
 
     Examples
     --------
-    >>> table = samplab.t_values("onetwo", dims=4, m=10)
+    >>> table = samplab.t_values("net", dims=4, m=10)
     >>> [max(p["t"]) for p in table["projections"]]
-    [0, 1, 1]
+    [0, 1, 2]
     """
     text = _samplab.t_values(
         spec,

@@ -2,7 +2,7 @@
 //! (Cycles' `util/hash.h`, `kernel/sample/util.h`, `kernel/sample/sobol_burley.h` and
 //! `scene/tabulated_sobol.cpp`, Apache-2.0), written here from their definitions so that
 //! [`crate::pixel`]'s `cycles.*` families give Cycles' values bit for bit (the fixture
-//! `tests/fixtures/cycles_patterns.txt`, made by `scripts/cycles/patterns.sh` from Cycles'
+//! `tests/fixtures/cycles_patterns.txt`, printed by Cycles'
 //! own source). Floats are single precision and every operation is Cycles' own, in its
 //! order, so the values are the same singles.
 

@@ -25,30 +25,10 @@
 /// of initial numbers, or an m_k that is even or not below 2^k.
 pub fn directions(text: &str) -> Result<Vec<[u32; 32]>, (usize, String)> {
     let mut table: Vec<[u32; 32]> = vec![std::array::from_fn(|k| 1u32 << (31 - k))];
-    let mut header_allowed = true;
     // the number of the first dimension after van der Corput's: 2, or 1 (after `0 0 0` or not)
     let mut first = 2u64;
-    for (i, line) in text.lines().enumerate() {
-        let lineno = i + 1;
-        // `#` starts a comment
-        let line = line.split('#').next().unwrap_or_default().trim();
-        if line.is_empty() {
-            continue;
-        }
-        let tokens: Vec<&str> = line.split_whitespace().collect();
-        let numbers: Result<Vec<u64>, &str> = tokens.iter().map(|t| t.parse::<u64>().map_err(|_| *t)).collect();
-        let f = match numbers {
-            Ok(f) => f,
-            // Joe & Kuo's column titles (`d s a m_i`) before the first dimension
-            Err(_) if header_allowed && tokens.first() == Some(&"d") => {
-                header_allowed = false;
-                continue;
-            }
-            Err(t) => {
-                return Err((lineno, format!("'{}' is not a whole number", t.chars().take(24).collect::<String>())));
-            }
-        };
-        header_allowed = false;
+    for line in numbered_lines(text) {
+        let (lineno, f) = line?;
         if f == [0, 0, 0] && table.len() == 1 && first == 2 {
             // van der Corput's dimension written out (the OneTwo table's first line)
             first = 1;
@@ -99,4 +79,27 @@ pub fn directions(text: &str) -> Result<Vec<[u32; 32]>, (usize, String)> {
         table.push(std::array::from_fn(|k| (m[k] << (31 - k)) as u32));
     }
     Ok(table)
+}
+
+/// The lines of a direction table that hold numbers, as `(line number, numbers)`, 1-based:
+/// `#` starts a comment, blank lines are skipped, and so is a title line of words (`d s a
+/// m_i`) before the first line of numbers. The base-3 reader (`sobol3`) shares it.
+///
+/// # Errors
+/// `(line, reason)` for a token that is not a whole number.
+pub fn numbered_lines(text: &str) -> impl Iterator<Item = Result<(usize, Vec<u64>), (usize, String)>> + '_ {
+    let mut title_allowed = true;
+    text.lines().enumerate().filter_map(move |(i, line)| {
+        let line = line.split('#').next().unwrap_or_default().trim();
+        if line.is_empty() {
+            return None;
+        }
+        let tokens: Vec<&str> = line.split_whitespace().collect();
+        let allowed = std::mem::replace(&mut title_allowed, false);
+        match tokens.iter().map(|t| t.parse::<u64>().map_err(|_| *t)).collect::<Result<Vec<u64>, &str>>() {
+            Ok(f) => Some(Ok((i + 1, f))),
+            Err(_) if allowed && tokens[0] == "d" => None,
+            Err(t) => Some(Err((i + 1, format!("'{}' is not a whole number", t.chars().take(24).collect::<String>())))),
+        }
+    })
 }

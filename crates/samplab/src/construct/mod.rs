@@ -10,7 +10,7 @@
 //!   studies        experiment, study, predict, cubature
 //!   measures       discrepancy, spectrum, spatial, screen, theory, stats, integrand, warp, io
 //!   front doors    sampler (point sets)            pixel (per-pixel draws)
-//!   constructions  construct: sobol, sz, quad_optimized, xi, cascaded, radical, scramble, pbrt,
+//!   constructions  construct: sobol, sobol3, sz, xi, cascaded, radical, scramble, pbrt,
 //!                  cycles, pmj02, cbc, counts, spectrum_theory
 //!   base           numeric, seed, simd, progress, memory, error, spec, registry, points
 //! ```
@@ -36,7 +36,8 @@
 //! - [`pbrt`]: pbrt-v4's hashes, permutation, Morton order and scrambles, bit for bit;
 //! - [`pmj02`]: the stochastic pmj02 construction (Helmer et al. 2021);
 //! - [`sz`]: the SZ generating matrices (Ahmed et al. 2025), a (0, 4)-sequence in base 4;
-//! - [`quad_optimized`]: the quad-optimized base-3 matrices (Ostromoukhov et al. 2024);
+//! - [`sobol3`]: Sobol's construction over GF(3) from a table in the format of the
+//!   quad-optimized sequences (Ostromoukhov et al. 2024);
 //! - [`xi`]: the xi-sequence's matrices (Ahmed et al. 2023), a 2D (0, 2)-sequence;
 //! - [`cascaded`]: Cascaded Sobol' (Paulin et al. 2021), consecutive pairs (0, m, 2)-nets;
 //! - [`cbc`]: fast component-by-component searches for rank-1 lattices (Nuyens & Cools 2006);
@@ -53,10 +54,10 @@ pub mod cycles;
 pub mod joe_kuo;
 pub mod pbrt;
 pub mod pmj02;
-pub mod quad_optimized;
 pub mod radical;
 pub mod scramble;
 pub mod sobol;
+pub mod sobol3;
 pub mod spectrum_theory;
 pub mod sz;
 pub mod xi;

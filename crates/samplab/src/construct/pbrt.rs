@@ -1,7 +1,7 @@
 //! The integer functions pbrt-v4's samplers are built from (Pharr, Jakob & Humphreys 2023,
 //! `util/hash.h`, `util/math.h`, `util/lowdiscrepancy.h`), written here from their
 //! definitions so that `zsobol` and `sobol.padded` give pbrt's values bit for bit (the
-//! fixture `tests/fixtures/pbrt_pixel_samplers.txt` and `scripts/pbrt/`).
+//! fixture `tests/fixtures/pbrt_pixel_samplers.txt`, the values pbrt's own headers print).
 
 use super::scramble::owen_scramble_u32;
 use super::unit;
@@ -97,22 +97,19 @@ impl Scramble {
             Scramble::None => v,
             Scramble::Xor => v ^ seed,
             Scramble::FastOwen => owen_scramble_u32(v, seed),
-            Scramble::Owen => owen_bit_by_bit([v], [seed])[0],
+            Scramble::Owen => owen_bit_by_bit(v, seed),
         }
     }
 }
 
 /// pbrt's `OwenScrambler`: digit b flipped by bit b of `MixBits` of the digits above it
-/// XOR the seed, one hash per digit, for several values in lockstep (their hash chains are
-/// independent, so the processor overlaps them).
+/// XOR the seed, one hash per digit.
 #[inline(always)]
-pub fn owen_bit_by_bit<const N: usize>(v: [u32; N], seed: [u32; N]) -> [u32; N] {
-    let mut v: [u32; N] = std::array::from_fn(|k| v[k] ^ ((seed[k] & 1) << 31));
+pub fn owen_bit_by_bit(v: u32, seed: u32) -> u32 {
+    let mut v = v ^ ((seed & 1) << 31);
     for b in 1..32 {
-        for k in 0..N {
-            let above = v[k] & (u32::MAX << (32 - b));
-            v[k] ^= (((mix_bits(u64::from(above ^ seed[k])) as u32) >> b) & 1) << (31 - b);
-        }
+        let above = v & (u32::MAX << (32 - b));
+        v ^= (((mix_bits(u64::from(above ^ seed)) as u32) >> b) & 1) << (31 - b);
     }
     v
 }

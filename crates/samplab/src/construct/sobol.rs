@@ -1,8 +1,6 @@
 //! The Sobol' sequence's generating matrices (Sobol' 1967) with the Joe-Kuo direction
 //! numbers (Joe & Kuo 2008, new-joe-kuo-6.21201, first 1024 dimensions, baked in by
-//! `build.rs`), and the byte tables that draw one point's digits in four lookups; and the
-//! OneTwo direction numbers (Bonneel, Coeurjolly, Iehl & Ostromoukhov 2025), 692 dimensions
-//! whose consecutive pairs the authors built as (1, 2)-sequences, baked in the same way.
+//! `build.rs`), and the byte tables that draw one point's digits in four lookups.
 
 use super::scramble::owen_scramble_reversed;
 
@@ -38,18 +36,6 @@ pub fn direction_numbers(dim: usize) -> [u32; 32] {
     SOBOL_DIRECTIONS[dim]
 }
 
-/// How many dimensions the OneTwo table holds.
-pub const ONETWO_MAX_DIMS: usize = ONETWO_DIRECTIONS.len();
-
-/// The 32 OneTwo direction numbers of dimension `dim` (Bonneel et al. 2025: column k of its
-/// generating matrix, row 0 the most significant bit).
-///
-/// # Panics
-/// When `dim` is not below [`ONETWO_MAX_DIMS`].
-pub fn onetwo_direction_numbers(dim: usize) -> [u32; 32] {
-    ONETWO_DIRECTIONS[dim]
-}
-
 /// The byte tables of one dimension's generator, bit-reversed: entry [b][v] is the XOR of
 /// the reversed columns that byte b of the index selects when it equals v. Reversed digits
 /// are what the Owen scramble of Burley 2020 works on, so a value costs one reversal.
@@ -62,12 +48,7 @@ pub(crate) struct ByteTables {
 }
 
 pub(crate) fn byte_tables(dim: usize) -> ByteTables {
-    byte_tables_of(direction_numbers(dim))
-}
-
-/// The [`ByteTables`] of any 32 columns (the OneTwo table's, say).
-pub(crate) fn byte_tables_of(columns: [u32; 32]) -> ByteTables {
-    let c = columns.map(u32::reverse_bits);
+    let c = direction_numbers(dim).map(u32::reverse_bits);
     let table = |b: usize| -> [u32; 256] {
         std::array::from_fn(|v| (0..8).filter(|k| v >> k & 1 == 1).fold(0, |x, k| x ^ c[8 * b + k]))
     };

@@ -1,6 +1,6 @@
 //! Blender Cycles' five sampling patterns (its `kernel/sample/pattern.h` and the settings
-//! `scene/integrator.cpp` derives), bit for bit against a fixture built from Cycles' own
-//! source by `scripts/cycles/patterns.sh`: shuffled Owen-scrambled Sobol' per pixel
+//! `scene/integrator.cpp` derives), bit for bit against a fixture of the values Cycles' own
+//! source prints (`tests/fixtures/cycles_patterns.txt`): shuffled Owen-scrambled Sobol' per pixel
 //! (`sobol_burley`), 256 precomputed 4D tables shuffled per pixel and dimension, with its
 //! scrambling distance (`tabulated_sobol`), and one Sobol' sequence over the screen whose
 //! per-pixel sections follow a scrambled Morton curve, for blue-noise error

@@ -186,7 +186,6 @@ families! {
     Stratified(stratified::Stratified),
     Sobol(sobol::Burley),
     Padded(sobol::Padded),
-    OneTwo(sobol::OneTwo),
     ZSobol(zsobol::ZSobol),
     Halton(halton::Halton),
     Pmj(pmj::Pmj),

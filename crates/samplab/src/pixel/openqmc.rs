@@ -3,7 +3,7 @@
 //! samplers sit in the same tables as samplab's; and its `SobolSampler` as its pull request
 //! #108 remade it, on the SZ matrices ([`crate::construct::sz`]): `openqmc-rs`'s state,
 //! domains and scrambles, the matrices of dimensions 2 and 3 samplab's (checked bit for bit
-//! against a fixture built from that source by `scripts/openqmc/sz_fixture.sh`).
+//! against a fixture of the values that source prints, `tests/fixtures/openqmc_sz.txt`).
 
 use std::marker::PhantomData;
 

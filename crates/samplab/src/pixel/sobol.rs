@@ -1,17 +1,13 @@
 //! Owen-scrambled Sobol' per pixel: the true high-dimensional sequence shuffled per pixel
-//! (Burley 2020), pbrt-v4's padded 2D Sobol' (Pharr, Jakob & Humphreys 2023), and the OneTwo
-//! paper's pbrt-v4 sampler (Bonneel et al. 2025).
+//! (Burley 2020) and pbrt-v4's padded 2D Sobol' (Pharr, Jakob & Humphreys 2023).
 
 use super::RANDOMIZE;
-use crate::construct::pbrt::{Scramble, Sobol2, frame_seed, hash_words, owen_bit_by_bit, permutation_element};
+use crate::construct::pbrt::{Scramble, Sobol2, frame_seed, hash_words, permutation_element};
 use super::{one_by_one, Family, Film, Keys, Pairs, PixelEntry, PixelSampler, Mapping, MappingKind};
 use crate::construct::{counts::ANY, unit};
 use crate::error::Result;
 use crate::registry::About;
-use crate::construct::sobol::{
-    ByteTables, ONETWO_MAX_DIMS, ReversedLow, SOBOL_MAX_DIMS, byte_tables_of, onetwo_direction_numbers, owen_digits,
-    reversed_digits,
-};
+use crate::construct::sobol::{ReversedLow, SOBOL_MAX_DIMS, owen_digits};
 use crate::construct::scramble::owen_scramble_reversed;
 use crate::progress::Progress;
 use crate::seed::Seed;
@@ -60,28 +56,6 @@ pub(crate) static ENTRIES: &[PixelEntry] = &[
                   (bit for bit; frame 0 uses the seed's low 32 bits as pbrt's seed)",
         },
         build: build_padded,
-    },
-    PixelEntry {
-        about: About::new(
-            "pbrt.onetwo",
-            "the OneTwo paper's pbrt-v4 sampler (OneTwoSampler): dimension d is OneTwo dimension d at the \
-             pixel's sample index, Owen-scrambled bit by bit by Hash(pixel, seed, d)",
-        )
-        .aliases(&["onetwosampler"])
-        .terse()
-        .cite(&["bonneel2025onetwo", "pharr2023"]),
-        spp: super::Counts::Any("each pixel's first 2^m samples: every pair (2k, 2k+1) a (1,m,2)-net"),
-        dims_note: "the OneTwo table",
-        max_dims: ONETWO_MAX_DIMS as u32,
-        mapping: Mapping {
-            kind: MappingKind::PerPixel,
-            family: "onetwo",
-            how: "sample i of every pixel is OneTwo point i, unshuffled; dimension d scrambled by pbrt's \
-                  bit-by-bit Owen scramble seeded with Hash(pixel, seed, d), as the authors' sample12 (bit for \
-                  bit; frame 0 uses the seed's low 32 bits as pbrt's seed); how the sampler deals these \
-                  dimensions to the camera and the integrator is the renderer's",
-        },
-        build: build_onetwo,
     },
 ];
 
@@ -165,44 +139,3 @@ impl Pairs for Padded {
     }
 }
 
-/// The OneTwo paper's pbrt-v4 sampler (`OneTwoSampler::sample12`).
-#[derive(Debug)]
-pub(crate) struct OneTwo {
-    seed: u64,
-    /// Each dimension's OneTwo columns as byte tables.
-    tables: Vec<ByteTables>,
-}
-
-fn build_onetwo(_: &Params, film: Film, seed: Seed, _: &Progress<'_>) -> Result<Family> {
-    let tables = (0..film.dims as usize).map(|d| byte_tables_of(onetwo_direction_numbers(d))).collect();
-    Ok(Family::from(OneTwo { seed: seed.0, tables }))
-}
-
-impl OneTwo {
-    /// Dimensions `dim .. dim + N` of sample `index`: the OneTwo digits and their seeds
-    /// `Hash(pixel, seed, d)`, scrambled in lockstep.
-    #[inline(always)]
-    fn values<const N: usize>(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; N] {
-        let seed = frame_seed(self.seed, frame);
-        let d = |k: usize| dim + k as u32;
-        let digits = std::array::from_fn(|k| reversed_digits(&self.tables[d(k) as usize], index).reverse_bits());
-        let seeds = std::array::from_fn(|k| hash_words(&[pixel[0], pixel[1], seed, d(k)]) as u32);
-        owen_bit_by_bit::<N>(digits, seeds).map(unit)
-    }
-}
-
-impl PixelSampler for OneTwo {
-    #[inline(always)]
-    fn sample(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> f64 {
-        self.values::<1>(pixel, frame, index, dim)[0]
-    }
-
-    #[inline(always)]
-    fn sample4(&self, pixel: [u32; 2], frame: u32, index: u32, dim: u32) -> [f64; 4] {
-        if dim as usize + 4 > self.tables.len() {
-            // past the last dimension: only a caller's out-of-range key comes here
-            return one_by_one(self, pixel, frame, index, dim);
-        }
-        self.values::<4>(pixel, frame, index, dim)
-    }
-}

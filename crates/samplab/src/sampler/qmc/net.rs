@@ -7,6 +7,11 @@
 //! The generating matrices C_j:
 //! - from a file (`net:matrices=FILE`), in the LDData "dnet" format (see [`Matrices::parse`]);
 //!   by default the Sobol' matrices of Joe & Kuo (2008);
+//! - from a table of Sobol' direction numbers (`net:directions=FILE`): in base 2 in Joe &
+//!   Kuo's format ([`crate::construct::joe_kuo`]; the OneTwo table of Bonneel et al. 2025
+//!   reads as it is published), in base 3 (`base=3`) in the format of the quad-optimized
+//!   sequences of Ostromoukhov et al. 2024 ([`crate::construct::sobol3`]); samplab ships
+//!   neither authors' table (nothing taken from another repository is committed here);
 //! - Faure's (Faure 1982): base p the smallest prime >= d, C_j = P^j with P the Pascal
 //!   matrix mod p, entry (r, k) = binom(k, r) j^(k-r); a (0, s)-sequence in base p;
 //! - Niederreiter's (Niederreiter 1988), as Bratley, Fox & Niederreiter (1992, section 3.3)
@@ -16,10 +21,6 @@
 //!   p_j^(Q+1); a (t, s)-sequence with t = sum_j (deg p_j - 1);
 //! - the SZ matrices (Ahmed et al. 2025, [`crate::construct::sz`]): four binary matrices
 //!   that are a (0, 4)-sequence in base 4;
-//! - the OneTwo Sobol' matrices (Bonneel et al. 2025, [`crate::construct::sobol`]): 692
-//!   dimensions from the authors' direction numbers, natural order as their sampler draws;
-//! - the quad-optimized matrices in base 3 (Ostromoukhov et al. 2024,
-//!   [`crate::construct::quad_optimized`]): Sobol's construction over GF(3), 48 dimensions;
 //! - the xi-sequence's (Ahmed et al. 2023, [`crate::construct::xi`]): a 2D (0, 2)-sequence.
 //!
 //! Randomizations, each on the digits, seeded per dimension (so random access equals the
@@ -369,10 +370,6 @@ enum Source {
     Niederreiter(u32),
     /// The SZ matrices (Ahmed et al. 2025), four dimensions.
     Sz,
-    /// The OneTwo Sobol' matrices (Bonneel et al. 2025).
-    OneTwo,
-    /// The quad-optimized base-3 matrices (Ostromoukhov et al. 2024).
-    QuadOptimized,
     /// The xi-sequence's two matrices (Ahmed et al. 2023).
     Xi,
     /// Cascaded Sobol' (Paulin et al. 2021) of Joe & Kuo's generators or a file's: the
@@ -400,9 +397,6 @@ impl Net {
             Source::Faure => Arc::new(Matrices::faure(dims)),
             Source::Niederreiter(b) => Arc::new(Matrices::niederreiter(*b, dims)?),
             Source::Sz => Arc::new(Matrices::from_directions(crate::construct::sz::SZ.into_iter().take(dims))),
-            Source::OneTwo => {
-                Arc::new(Matrices::from_directions((0..dims).map(crate::construct::sobol::onetwo_direction_numbers)))
-            }
             Source::Xi => Arc::new(Matrices::from_directions(crate::construct::xi::XI.into_iter().take(dims))),
             Source::Cascaded(file) => {
                 // n = 2^m (the count rule); m columns (one for a single point)
@@ -414,30 +408,15 @@ impl Net {
                 let cascade = Matrices::from_directions(crate::construct::cascaded::matrices(generators, m).into_iter());
                 Arc::new(cascade.first_columns(m.max(1)))
             }
-            Source::QuadOptimized => {
-                // the rows below the construction's are zero: a scramble randomizes them too
-                let rows = precision(3);
-                let digits = crate::construct::quad_optimized::matrices(dims)
-                    .into_iter()
-                    .flatten()
-                    .flat_map(|mut column| {
-                        column.resize(rows, 0);
-                        column
-                    })
-                    .collect::<Vec<u8>>();
-                let cols = digits.len() / (dims * rows);
-                Arc::new(Matrices { base: 3, dims, cols, rows, digits })
-            }
         })
     }
 
     fn base(&self, dims: usize) -> u32 {
         match &self.source {
-            Source::Sobol | Source::Sz | Source::OneTwo | Source::Xi | Source::Cascaded(_) => 2,
+            Source::Sobol | Source::Sz | Source::Xi | Source::Cascaded(_) => 2,
             Source::File(m) => m.base,
             Source::Faure => faure_base(dims),
             Source::Niederreiter(b) => *b,
-            Source::QuadOptimized => 3,
         }
     }
 
@@ -551,8 +530,6 @@ impl Construction for Net {
             Source::Faure => 1..=MAX_BASE as usize,
             Source::Niederreiter(_) => 1..=MAX_DIMS,
             Source::Sz => 1..=crate::construct::sz::SZ.len(),
-            Source::OneTwo => 1..=crate::construct::sobol::ONETWO_MAX_DIMS,
-            Source::QuadOptimized => 1..=crate::construct::quad_optimized::QUAD_OPTIMIZED_MAX_DIMS,
             Source::Xi => 1..=2,
             Source::Cascaded(Some(table)) => 1..=table.len(),
             Source::Cascaded(None) => 1..=crate::construct::sobol::SOBOL_MAX_DIMS,
@@ -561,9 +538,8 @@ impl Construction for Net {
     fn check_count(&self, shape: &Shape) -> Result<()> {
         let (n, dims) = (shape.n(), shape.dims());
         let cols = match &self.source {
-            Source::Sobol | Source::Sz | Source::OneTwo | Source::Xi | Source::Cascaded(_) => 32,
+            Source::Sobol | Source::Sz | Source::Xi | Source::Cascaded(_) => 32,
             Source::File(m) => m.cols,
-            Source::QuadOptimized => crate::construct::quad_optimized::QUAD_OPTIMIZED_COLUMNS,
             _ => columns_for_all_sets(self.base(dims)),
         };
         let most = u128::from(self.base(dims)).pow(cols as u32);
@@ -905,8 +881,18 @@ const DIRECTIONS: ParamSpec = ParamSpec {
     name: "directions",
     kind: Kind::Path,
     default: Default::Auto("none: the matrices"),
-    doc: "Sobol' direction numbers in Joe & Kuo's format (new-joe-kuo-6.21201: `d s a m_1 .. m_s` per line from \
-          d = 2), the net their Sobol' matrices, 32 x 32 bits, with van der Corput's first",
+    doc: "Sobol' direction numbers: in base 2 in Joe & Kuo's format (new-joe-kuo-6.21201: `d s a m_1 .. m_s` per \
+          line from d = 2, or the OneTwo table as its authors publish it), the net their Sobol' matrices, 32 x 32 \
+          bits, with van der Corput's first; with base=3 the quad-optimized sequences' format (`i s a m_1 .. m_s`, \
+          a and the m_k read in base 3), Sobol's construction over GF(3)",
+};
+
+/// The field of a direction-number file.
+const DIRECTIONS_BASE: ParamSpec = ParamSpec {
+    name: "base",
+    kind: Kind::Int { min: 2, max: 3 },
+    default: Default::Auto("2"),
+    doc: "the field of the directions file: 2 (Joe & Kuo's format) or 3 (Ostromoukhov et al. 2024's)",
 };
 
 /// The cascade's 1D generators.
@@ -929,14 +915,29 @@ fn read_directions(path: &str) -> Result<Vec<[u32; 32]>> {
         .map_err(|(line, reason)| Error::Parse { location: format!("{path}:{line}"), reason })
 }
 
+/// A base-3 direction file's matrices ([`crate::construct::sobol3`]), every column the
+/// output digits hold.
+fn read_directions3(path: &str) -> Result<Matrices> {
+    let rows = precision(3);
+    let bad = |line: usize, reason: String| Error::Parse { location: format!("{path}:{line}"), reason };
+    let dims = crate::construct::sobol3::matrices(&read_text(path)?, rows).map_err(|(line, why)| bad(line, why))?;
+    if dims.is_empty() {
+        return Err(bad(1, "no dimensions: expected a line i s a m_1 .. m_s per dimension".into()));
+    }
+    let digits: Vec<u8> = dims.iter().flatten().flatten().copied().collect();
+    Ok(Matrices { base: 3, dims: dims.len(), cols: rows, rows, digits })
+}
+
 fn net_source(p: &Params) -> Result<Source> {
+    let base = p.int_or_auto("base");
+    let param = |param: &str, reason: &str| Error::Param { owner: "net".into(), param: param.into(), reason: reason.into() };
     match (p.path_or_auto("matrices"), p.path_or_auto("directions")) {
-        (Some(_), Some(_)) => Err(Error::Param {
-            owner: "net".into(),
-            param: "directions".into(),
-            reason: "give matrices or directions, not both".into(),
-        }),
+        (Some(_), Some(_)) => Err(param("directions", "give matrices or directions, not both")),
+        (_, None) if base == Some(3) => {
+            Err(param("base", "base 3 is not realizable without a directions file (the base is that file's field)"))
+        }
         (Some(path), None) => Ok(Source::File(Arc::new(Matrices::parse(&read_text(path)?, path)?))),
+        (None, Some(path)) if base == Some(3) => Ok(Source::File(Arc::new(read_directions3(path)?))),
         (None, Some(path)) => Ok(Source::File(Arc::new(Matrices::from_directions(read_directions(path)?.into_iter())))),
         (None, None) => Ok(Source::Sobol),
     }
@@ -981,11 +982,6 @@ fn build_sz(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Cons
     fixed(Source::Sz, randomization)
 }
 
-/// The construction of each `onetwo` entry.
-fn build_onetwo(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
-    fixed(Source::OneTwo, randomization)
-}
-
 /// The construction of each `xi` entry.
 fn build_xi(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
     fixed(Source::Xi, randomization)
@@ -997,21 +993,16 @@ fn build_cascaded(p: &mut Params, randomization: Randomization) -> Result<Box<dy
     fixed(Source::Cascaded(generators.map(Arc::new)), randomization)
 }
 
-/// The construction of each `quad-optimized` entry.
-fn build_quad_optimized(_: &mut Params, randomization: Randomization) -> Result<Box<dyn Construction>> {
-    fixed(Source::QuadOptimized, randomization)
-}
-
 /// The samplers this file registers: each family plain and with its four randomizations.
 pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
     {
         family: "net",
         summary: "digital net in base b from generating matrices, natural order",
         aliases: ["digitalnet", "digitalnetb2"],
-        params: &[MATRICES, DIRECTIONS, ORDER],
+        params: &[MATRICES, DIRECTIONS, DIRECTIONS_BASE, ORDER],
         counts: Counts::Rule("n <= b^m (m columns; nets at powers of b)"),
         dims: "up to the file's",
-        cite: ["niederreiter1992", "joe2008", "bratley1988", "antonov1979"],
+        cite: ["niederreiter1992", "joe2008", "bratley1988", "antonov1979", "bonneel2025onetwo", "ostromoukhov2024quad"],
         build: build_net,
         randomizations: [xor, lms, owen, shift],
     },
@@ -1046,28 +1037,6 @@ pub(crate) static ENTRIES: &[SamplerEntry] = randomized_families!(
         dims: "1..=4",
         cite: ["ahmed2025sz"],
         build: build_sz,
-        randomizations: [xor, lms, owen, shift],
-    },
-    {
-        family: "onetwo",
-        summary: "OneTwo Sobol' sequence: direction numbers whose consecutive pairs are (1,2)-sequences, natural order",
-        aliases: ["onetwo-sobol"],
-        params: &[],
-        counts: Counts::Any("nets at powers of 2"),
-        dims: "1..=692",
-        cite: ["bonneel2025onetwo"],
-        build: build_onetwo,
-        randomizations: [xor, lms, owen, shift],
-    },
-    {
-        family: "quad-optimized",
-        summary: "quad-optimized low-discrepancy sequence: Sobol's construction in base 3, the authors' table",
-        aliases: ["qolds"],
-        params: &[],
-        counts: Counts::Rule("n <= 3^10 (the authors' 10 columns; nets at powers of 3)"),
-        dims: "1..=48",
-        cite: ["ostromoukhov2024quad"],
-        build: build_quad_optimized,
         randomizations: [xor, lms, owen, shift],
     },
     {
