@@ -20,6 +20,7 @@ pub(crate) use say;
 mod alloc;
 mod atlas;
 mod bar;
+mod conform;
 mod cubature;
 mod discrepancy;
 mod generate;
@@ -48,7 +49,7 @@ static ALLOCATOR: alloc::Checked = alloc::Checked;
     about,
     long_about = None,
     max_term_width = 100,
-    after_help = "Exit codes: 0 done; 2 an error (one line on stderr: bad input, a refused output, a failed\nwrite, stdout closed); 130 stopped by Ctrl-C, SIGTERM or SIGHUP (nothing written); 141 stdout\nclosed by its reader (a broken pipe, as `| head`: quiet, as a process killed by SIGPIPE);\n70 a bug.\n\nEnvironment: SAMPLAB_SIMD=baseline|avx2|avx512 limits the vector instructions the hot loops use\n(every tier makes the same bytes; for testing and timing a narrower path)."
+    after_help = "Exit codes: 0 done; 1 a check of `samplab conform` failed (its lines say which); 2 an error\n(one line on stderr: bad input, a refused output, a failed write, stdout closed); 130 stopped by\nCtrl-C, SIGTERM or SIGHUP (nothing written); 141 stdout closed by its reader (a broken pipe, as\n`| head`: quiet, as a process killed by SIGPIPE); 70 a bug.\n\nEnvironment: SAMPLAB_SIMD=baseline|avx2|avx512 limits the vector instructions the hot loops use\n(every tier makes the same bytes; for testing and timing a narrower path)."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -104,6 +105,10 @@ enum Command {
     /// The t of every projection of a sampler's nets at b^1 .. b^m points: a digital net's
     /// from its generating matrices, any other set's counted on its points.
     TValues(tvalues::Args),
+    /// Referee your own sampler: samples dumped from your implementation checked against
+    /// samplab's entry of that name (bit for bit with its seed; range, uniformity, nets and
+    /// distinct pixels without); one line per check, exit 1 when one fails.
+    Conform(conform::Args),
 }
 
 /// The exit code of a bug (a panic): 70, EX_SOFTWARE of sysexits.h.
@@ -234,6 +239,7 @@ fn run(cli: Cli) -> ExitCode {
         Command::ImageMetrics(a) => image_metrics::run(&a),
         Command::Mask(a) => mask::run(&a),
         Command::TValues(a) => tvalues::run(&a),
+        Command::Conform(a) => conform::run(&a),
     })
 }
 
@@ -246,6 +252,8 @@ fn finish(result: anyhow::Result<()>) -> ExitCode {
             ExitCode::from(bar::STOPPED)
         }
         Err(e) if e.chain().any(|c| c.is::<BrokenPipe>()) => ExitCode::from(BROKEN_PIPE),
+        // the lines said which check failed
+        Err(e) if e.chain().any(|c| c.is::<conform::Failed>()) => ExitCode::from(1),
         Err(e) => {
             // one line: the chain of causes joined, the library's settings named by their flags
             let msg = e.chain().map(in_flags).collect::<Vec<_>>().join(": ").replace('\n', " ");

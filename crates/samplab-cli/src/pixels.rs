@@ -60,7 +60,7 @@ pub struct Args {
 }
 
 /// `WIDTHxHEIGHT` as two whole numbers.
-fn parse_res(text: &str) -> Result<(u32, u32), String> {
+pub(crate) fn parse_res(text: &str) -> Result<(u32, u32), String> {
     let bad = || format!("'{text}': expected WIDTHxHEIGHT, e.g. 64x48");
     let (w, h) = text.split_once(['x', 'X']).ok_or_else(bad)?;
     Ok((w.trim().parse().map_err(|_| bad())?, h.trim().parse().map_err(|_| bad())?))

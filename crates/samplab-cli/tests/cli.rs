@@ -969,3 +969,68 @@ fn t_values_are_the_librarys_and_bad_input_is_refused() {
     // refused before any set is made (2^30 points would take 16 GiB)
     assert_bad_input(&["t-values", "random", "--m", "30", "--projection", "all"], &["over the work limit"]);
 }
+
+/// `samplab conform` prints the library's checks, one line each, exits 0 when they pass
+/// and 1 when one fails (a single-precision .npy of pixels compared as singles), and
+/// refuses bad input in one line with exit 2.
+#[test]
+fn conform_prints_the_librarys_checks_and_exits_1_on_a_failure() {
+    use samplab::conform::{Layout, Precision, conform};
+    use samplab::progress::Progress;
+    let dir = temp("conform");
+    let mine = dir.join("mine.txt").display().to_string();
+    assert!(
+        samplab(&["generate", "net.owen", "-n", "128", "-d", "3", "--sets", "3", "--seed", "7", "-o", &mine])
+            .status
+            .success()
+    );
+    let out = samplab(&["conform", &mine, "--as", "net.owen", "--seed", "7"]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    let sets = io::read(std::path::Path::new(&mine), None).unwrap();
+    let checks = conform(&sets, "net.owen", &Layout::Sets, Some(Seed(7)), Precision::Found, &Progress::SILENT).unwrap();
+    let lines: String = checks.iter().map(|c| format!("PASS  {:<10} {}\n", c.name, c.detail)).collect();
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), lines);
+    // claimed as the XOR scramble: the reference check fails, exit 1, the lines on stdout
+    let out = samplab(&["conform", &mine, "--as", "net.xor", "--seed", "7", "--json"]);
+    assert_eq!(out.status.code(), Some(1));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let failed: Vec<&str> =
+        json.as_array().unwrap().iter().filter(|c| c["passed"] == false).map(|c| c["name"].as_str().unwrap()).collect();
+    assert_eq!(failed, ["reference"]);
+    // a film's pixels in single precision, as a renderer writes them: pass; one pixel copied
+    // over another: distinct fails
+    let film = samplab::pixel::Film { width: 3, height: 2, spp: 8, dims: 2 };
+    let p = samplab::pixel::prepare("zsobol", film, Seed(5)).unwrap();
+    let mut pixels: Vec<samplab::points::PointSet> = (0..2)
+        .flat_map(|y| (0..3).map(move |x| [x, y]))
+        .map(|xy| {
+            let v = (0..8).flat_map(|i| (0..2).map(move |d| (i, d))).map(|(i, d)| p.sample(xy, 0, i, d) as f32);
+            samplab::points::PointSet::new(2, v.map(f64::from).collect()).unwrap()
+        })
+        .collect();
+    let npy = dir.join("pixels.npy");
+    let write = |sets: &[samplab::points::PointSet]| {
+        // the header says float64: its '<f8' becomes '<f4', the values singles
+        let mut bytes = io::npy_header(&[6, 8, 2]);
+        let at = bytes.windows(3).position(|w| w == b"<f8").unwrap();
+        bytes[at + 2] = b'4';
+        bytes.extend(sets.iter().flat_map(|s| s.as_slice().iter().flat_map(|&x| (x as f32).to_le_bytes())));
+        std::fs::write(&npy, bytes).unwrap();
+    };
+    write(&pixels);
+    let npy_path = npy.display().to_string();
+    let out = samplab(&["conform", &npy_path, "--as", "zsobol", "--seed", "5", "--res", "3x2"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{text}");
+    assert!(text.contains("bit for bit (single precision)"), "{text}");
+    pixels[4] = pixels[1].clone();
+    write(&pixels);
+    let out = samplab(&["conform", &npy_path, "--as", "zsobol", "--res", "3x2"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    assert!(text.contains("FAIL  distinct   1 repeat an earlier one, as samplab's do not; the first: pixel (1, 1) at frame 0 equals pixel (1, 0) at frame 0"), "{text}");
+    assert_bad_input(&["conform", &mine, "--as", "nosuch"], &["unknown sampler 'nosuch'"]);
+    assert_bad_input(&["conform", &mine, "--as", "zsobol", "--res", "2x2"], &["4 pixels for 3 sets"]);
+    assert_bad_input(&["conform", &mine, "--as", "net", "--frame", "2"], &["--res"]);
+    assert_bad_input(&["conform", &mine], &["--as"]);
+}

@@ -428,6 +428,29 @@ fn discrepancy(
     })
 }
 
+/// The checks of `samplab conform` on `points` as samplab's `spec`, as `--json` prints them:
+/// the sets are realizations, or with `res` the pixels of a film row by row at `frame`.
+#[pyfunction]
+#[pyo3(signature = (points, spec, seed=None, res=None, frame=0, single=false))]
+fn conform(
+    py: Python<'_>,
+    points: PyReadonlyArray3<f64>,
+    spec: &str,
+    seed: Option<u64>,
+    res: Option<(u32, u32)>,
+    frame: u32,
+    single: bool,
+) -> PyResult<String> {
+    use samplab::conform::{Layout, Precision};
+    let sets = point_sets(&points)?;
+    let layout = res.map_or(Layout::Sets, |(w, h)| Layout::film(w, h, frame));
+    let precision = if single { Precision::Single } else { Precision::Found };
+    let checks = interruptible(py, points.len(), |stop| {
+        samplab::conform::conform(&sets, spec, &layout, seed.map(Seed), precision, &Progress::until(stop))
+    })?;
+    serde_json::to_string(&checks).map_err(err)
+}
+
 /// The t of each projection of a sampler's nets at b^1 .. b^m points, as
 /// `samplab t-values --json` prints it.
 #[pyfunction]
@@ -1042,6 +1065,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(discrepancy, m)?)?;
     m.add_function(wrap_pyfunction!(metric_flags, m)?)?;
     m.add_function(wrap_pyfunction!(t_values, m)?)?;
+    m.add_function(wrap_pyfunction!(conform, m)?)?;
     m.add_function(wrap_pyfunction!(spectrum, m)?)?;
     m.add_function(wrap_pyfunction!(integrate, m)?)?;
     m.add_function(wrap_pyfunction!(predict, m)?)?;

@@ -229,3 +229,26 @@ def test_t_values_equal_the_cli(cli):
     for bad in [dict(projection="triples"), dict(m=0), dict(base=3), dict(dims=1.5)]:
         with pytest.raises(samplab.Error):
             samplab.t_values("net", **bad)
+
+
+def test_conform_equals_the_cli(cli, tmp_path):
+    """The Python face gives ``samplab conform --json``'s checks: samplab's own sets pass,
+    the XOR scramble claimed as Owen's fails the reference check alone, a float32 film of
+    pixels is compared in single precision, and bad input is refused with samplab.Error."""
+    mine = samplab.generate("net.owen", n=128, d=3, sets=3, seed=7)
+    path = tmp_path / "mine.npy"
+    np.save(path, mine)
+    ours = samplab.conform(mine, "net.owen", seed=7)
+    assert ours == json.loads(cli("conform", path, "--as", "net.owen", "--seed", 7, "--json"))
+    assert [c["name"] for c in ours] == ["range", "reference", "uniform", "nets", "distinct"]
+    assert all(c["passed"] for c in ours)
+    xor = samplab.conform(mine, "net.xor", seed=7)
+    assert [c["name"] for c in xor if not c["passed"]] == ["reference"]
+    film = samplab.pixels("zsobol", res=(4, 2), spp=8, dims=2, seed=5)[0]  # (height, width, spp, dims)
+    singles = film.reshape(8, 8, 2).astype(np.float32)
+    checks = samplab.conform(singles, "zsobol", seed=5, res=(4, 2))
+    assert all(c["passed"] for c in checks), checks
+    assert "single precision" in checks[1]["detail"]
+    for bad in [dict(as_="nosuch"), dict(as_="zsobol", res=(3, 2)), dict(as_="net", res=(1, 2, 3)), dict(as_="net", frame=-1)]:
+        with pytest.raises(samplab.Error):
+            samplab.conform(mine, **bad)

@@ -28,6 +28,7 @@
 #![deny(missing_docs)]
 
 pub mod bibliography;
+pub mod conform;
 pub mod construct;
 pub mod cubature;
 pub(crate) mod dataflow;

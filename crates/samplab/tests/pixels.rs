@@ -9,25 +9,32 @@ use samplab::registry::Entry;
 /// pbrt's `FloatOneMinusEpsilon`.
 const ONE_MINUS_EPSILON: f32 = 0.999_999_94;
 
+/// A line of the pbrt-v4 fixture: its fields, samplab's spec for the sampler and
+/// randomization it names, and the seed that gives pbrt's values (pbrt's Owen-scrambled
+/// Halton ignores its seed; samplab's is pbrt's at seed 0).
+pub(crate) fn pbrt_line(line: &str) -> (Vec<&str>, String, u32) {
+    let f: Vec<&str> = line.split(' ').collect();
+    let (name, randomize) = match (f[0], f[1]) {
+        ("halton", r) => ("halton", r),
+        (sobol, "permutedigits") => (if sobol == "zsobol" { "zsobol" } else { "sobol.padded" }, "xor"),
+        (sobol, r) => (if sobol == "zsobol" { "zsobol" } else { "sobol.padded" }, r),
+    };
+    let seed = if (name, randomize) == ("halton", "owen") { 0 } else { f[5].parse().unwrap() };
+    (f, format!("{name}:randomize={randomize}"), seed)
+}
+
 #[test]
 fn zsobol_padded_sobol_and_halton_equal_pbrt_v4_bit_for_bit() {
     let text = include_str!("fixtures/pbrt_pixel_samplers.txt");
     let mut checked = 0;
     let mut prepared: Option<(String, Pixels)> = None;
     for line in text.lines().filter(|l| !l.starts_with('#')) {
-        let f: Vec<&str> = line.split(' ').collect();
+        let (f, spec, seed) = pbrt_line(line);
         let num = |k: usize| f[k].parse::<u32>().unwrap();
-        let (name, randomize) = match (f[0], f[1]) {
-            ("halton", r) => ("halton", r),
-            (sobol, "permutedigits") => (if sobol == "zsobol" { "zsobol" } else { "sobol.padded" }, "xor"),
-            (sobol, r) => (if sobol == "zsobol" { "zsobol" } else { "sobol.padded" }, r),
-        };
-        // pbrt's Owen-scrambled Halton ignores its seed; samplab's is pbrt's at seed 0
-        let seed = if (name, randomize) == ("halton", "owen") { 0 } else { num(5) };
-        let key = format!("{name}:randomize={randomize} {} {} {} {seed}", num(2), num(3), num(4));
+        let key = format!("{spec} {} {} {} {seed}", num(2), num(3), num(4));
         if prepared.as_ref().is_none_or(|(k, _)| *k != key) {
             let film = Film { width: num(3), height: num(4), spp: num(2), dims: 8 };
-            let p = prepare(&format!("{name}:randomize={randomize}"), film, Seed(u64::from(seed))).unwrap();
+            let p = prepare(&spec, film, Seed(u64::from(seed))).unwrap();
             prepared = Some((key.clone(), p));
         }
         let p = &prepared.as_ref().unwrap().1;

@@ -5,6 +5,8 @@
 //! its bound once in two runs).
 #[path = "architecture.rs"]
 mod architecture;
+#[path = "conform.rs"]
+mod conform;
 #[path = "conformance.rs"]
 mod conformance;
 #[path = "constructions.rs"]

@@ -82,6 +82,7 @@ __all__ = [
     "load",
     "discrepancy",
     "t_values",
+    "conform",
     "discrepancy_flags",
     "spectrum",
     "integrate",
@@ -828,6 +829,70 @@ def t_values(
         _seed(seed),
         None if max_work is None else _real("max_work", max_work),
     )
+    return json.loads(text)
+
+
+def conform(
+    points: Any,
+    as_: str,
+    *,
+    seed: Optional[int] = None,
+    res: Optional[Tuple[int, int]] = None,
+    frame: int = 0,
+    single: bool = False,
+) -> List[Dict[str, Any]]:
+    """Referee your own sampler: samples from your implementation checked against
+    samplab's entry ``as_``, as ``samplab conform --json``.
+
+    Checks: ``range`` (every value in [0, 1)), ``reference`` (with ``seed``: every value
+    equals samplab's bit for bit; in single precision for a float32 array or with
+    ``single``), ``uniform`` (each dimension by Kolmogorov-Smirnov, p >= 0.001 / d),
+    ``nets`` (a digital net's point sets: each pair (j, j + 1) of every prefix of b^m points
+    no worse than samplab's matrices) and ``distinct`` (sets or pixels that differ where
+    samplab's do).
+
+    Parameters
+    ----------
+    points : array_like
+        Shape (n, d) or (sets, n, d): realizations (set k made with sub-seed k of ``seed``,
+        as ``generate(..., sets=...)`` makes them), or with ``res`` a film's pixels row by
+        row, each set one pixel's samples.
+    as_ : str
+        What they should be: a sampler spec (with ``res``, a pixel family).
+    seed : int, optional
+        The seed they were made with: adds the ``reference`` check.
+    res : (int, int), optional
+        The film's (width, height) when the sets are pixels.
+    frame : int, default 0
+        The frame the pixels were drawn at.
+    single : bool, default False
+        Compare in single precision (values that are singles are found without it).
+
+    Returns
+    -------
+    list of dict
+        One per check: ``name``, ``passed``, ``number`` (the number behind it) and
+        ``detail`` (in words, with the first failing key).
+
+    Examples
+    --------
+    >>> mine = samplab.generate("net.xor", n=256, d=3, sets=2, seed=7)
+    >>> [(c["name"], c["passed"]) for c in samplab.conform(mine, "net.owen", seed=7)]
+    [('range', True), ('reference', False), ('uniform', True), ('nets', True), ('distinct', True)]
+    """
+    a = _points(points, stack=True)
+
+    def word(name: str, value: Any) -> int:
+        v = _count(name, value)
+        if v >= 2**32:
+            raise Error(f"{name} = {v}: out of range [0, 2^32)")
+        return v
+
+    if res is not None:
+        if np.ndim(res) != 1 or len(res) != 2:
+            raise Error(f"res = {res!r}: expected (width, height)")
+        res = (word("width", res[0]), word("height", res[1]))
+    text = _samplab.conform(a, as_, None if seed is None else _seed(seed), res, word("frame", frame), bool(single))
     return json.loads(text)
 
 

@@ -7,7 +7,7 @@
 //! doors import this module and never each other.
 //!
 //! ```text
-//!   studies        experiment, study, predict, cubature
+//!   studies        experiment, study, predict, cubature, conform
 //!   measures       discrepancy, spectrum, spatial, screen, theory, stats, integrand, warp, io
 //!   front doors    sampler (point sets)            pixel (per-pixel draws)
 //!   constructions  construct: sobol, sobol3, sz, xi, cascaded, radical, scramble, pbrt,

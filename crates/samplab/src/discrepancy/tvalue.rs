@@ -81,6 +81,13 @@ fn t_of(points: &PointSet, axes: &[usize], b: usize, m: usize, cells: &mut Vec<u
     m - strength
 }
 
+/// The least t of `points` (b^m of them) as a (t, m, s)-net in base b over all their axes,
+/// counted interval by interval.
+pub fn counted(points: &PointSet, b: usize, m: usize) -> usize {
+    let axes: Vec<usize> = (0..points.dims()).collect();
+    t_of(points, &axes, b, m, &mut Vec::new())
+}
+
 /// C(n, k) as a float (the number of compositions, for the work estimate).
 fn choose(n: usize, k: usize) -> f64 {
     (0..k).fold(1.0, |c, i| c * (n - i) as f64 / (i + 1) as f64)

@@ -1,0 +1,83 @@
+//! `samplab conform`: the checks of [`samplab::conform`] on samples someone's own
+//! implementation wrote, one line each; exit 1 when one fails.
+
+use std::path::PathBuf;
+
+use samplab::Seed;
+use samplab::conform::{Check, Layout, Precision, conform};
+use samplab::io::{self, Format};
+
+/// Check samples dumped from your own sampler against samplab's entry of the same name.
+#[derive(clap::Args)]
+#[command(after_help = "The file holds sets of points (text, CSV, JSON or .npy of shape (n, d) or (sets, n, d)): \
+                  realizations of a point set, set k made with sub-seed k of --seed as `samplab generate \
+                  --sets` makes them; or with --res, the pixels of a film in row-major order, each set a \
+                  pixel's samples (n = spp) at --frame. Checks: range (every value in [0, 1)), reference \
+                  (with --seed: every value equals samplab's, bit for bit; in single precision for a \
+                  float32 .npy or with --single), uniform (each dimension, Kolmogorov-Smirnov, p >= \
+                  0.001 / d), nets (a digital net's point sets: each pair (j, j + 1) of every prefix of b^m \
+                  points no worse than samplab's matrices) and distinct (sets or pixels that differ where \
+                  samplab's differ). One line per check; exit 1 when one fails.\n\nExamples:\n  \
+                  samplab generate net.owen -n 256 -d 4 --sets 4 --seed 7 -o mine.txt\n  \
+                  samplab conform mine.txt --as net.owen --seed 7\n  \
+                  samplab conform mine.txt --as net.owen --json   # without the seed: the properties")]
+pub struct Args {
+    /// The samples: a point-set file (text, CSV, JSON, .npy)
+    file: PathBuf,
+    /// What they should be: a samplab sampler spec (point sets, or with --res a pixel family)
+    #[arg(long = "as", value_name = "SPEC")]
+    spec: String,
+    /// The seed they were made with: adds the bit-for-bit reference check
+    #[arg(long)]
+    seed: Option<u64>,
+    /// The sets are the pixels of a WIDTHxHEIGHT film, row by row
+    #[arg(long, value_parser = crate::pixels::parse_res)]
+    res: Option<(u32, u32)>,
+    /// The frame the pixels were drawn at (with --res)
+    #[arg(long, default_value_t = 0, requires = "res")]
+    frame: u32,
+    /// Compare in single precision (a text file of floats; a float32 .npy is found alone)
+    #[arg(long)]
+    single: bool,
+    /// The file's format, when its extension does not say
+    #[arg(long)]
+    format: Option<String>,
+    /// Print JSON instead of lines
+    #[arg(long)]
+    json: bool,
+}
+
+/// A check failed: the lines say which; the exit code is 1.
+#[derive(Debug)]
+pub(crate) struct Failed;
+
+impl std::fmt::Display for Failed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("a conformance check failed")
+    }
+}
+
+impl std::error::Error for Failed {}
+
+pub fn run(a: &Args) -> anyhow::Result<()> {
+    let format = a.format.as_deref().map(Format::from_name).transpose()?;
+    // every finite value: a value outside the unit cube is the range check's to report
+    let sets = io::read_within(&a.file, format, &(f64::MIN..=f64::MAX))?;
+    let layout = match a.res {
+        Some((w, h)) => Layout::film(w, h, a.frame),
+        None => Layout::Sets,
+    };
+    let precision = if a.single { Precision::Single } else { Precision::Found };
+    let stop = samplab::progress::Progress::until(&crate::bar::STOP);
+    let checks = conform(&sets, &a.spec, &layout, a.seed.map(Seed), precision, &stop)?;
+    let out = if a.json { format!("{:#}\n", serde_json::json!(checks)) } else { lines(&checks) };
+    crate::emit(None, out.as_bytes())?;
+    if checks.iter().all(|c| c.passed) { Ok(()) } else { Err(Failed.into()) }
+}
+
+fn lines(checks: &[Check]) -> String {
+    checks
+        .iter()
+        .map(|c| format!("{}  {:<10} {}\n", if c.passed { "PASS" } else { "FAIL" }, c.name, c.detail))
+        .collect()
+}
