@@ -54,7 +54,7 @@ def test_study_arguments_are_checked_with_samplab_errors(tmp_path):
     with pytest.raises(samplab.Error, match="samplers: empty"):
         Study.integrate([], "quad", [16])
     study = Study.integrate(["random"], "quad", [16], sets=2, instances=1)
-    with pytest.raises(samplab.Error, match="not a Dask client"):
+    with pytest.raises(samplab.Error, match="neither a Dask client nor a concurrent.futures.Executor"):
         study.run("nope")
     file = tmp_path / "file"
     file.write_text("mine")

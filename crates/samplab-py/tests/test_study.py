@@ -311,3 +311,28 @@ def test_an_integration_study_of_your_function_runs_on_dask(client, tmp_path):
     assert abs(computed.params["exact"] - exact) < 1e-9
     with pytest.raises(samplab.Error, match="a family takes neither"):
         Study.integrate("random", "quad", 16, d=2, exact=1.0)
+
+
+def test_a_process_pool_or_any_executor_gives_the_same_bytes(tmp_path):
+    """Any concurrent.futures executor runs a study: a process pool of spawned workers and a
+    thread pool give the local run's bytes (a render study's reference computed first and
+    handed to the other chunks), a checkpoint written on the pool is reused here, and an
+    object that is neither a Dask client nor an executor is refused."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
+
+    integrate = Study.integrate(["random", "jitter"], "quad", [16, 64], units_per_chunk=1, sets=6, instances=3, seed=2)
+    render = Study.render("spheres", [5, 6, 7], reference_samples=64, seeds_per_chunk=2, sampler="jitter", n=4,
+                          res=(32, 24))
+    local = [s.run(progress=False).to_json() for s in (integrate, render)]
+    with ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("spawn")) as pool:
+        assert [s.run(pool, progress=False).to_json() for s in (integrate, render)] == local
+        on_pool = integrate.run(pool, checkpoint=str(tmp_path), progress=False)
+        assert on_pool.computed == len(integrate.chunks)
+    again = integrate.run(checkpoint=str(tmp_path), progress=False)
+    assert (again.reused, again.to_json()) == (len(integrate.chunks), local[0])
+    with ThreadPoolExecutor(2) as pool:
+        assert [s.run(pool, progress=False).to_json() for s in (integrate, render)] == local
+    with pytest.raises(samplab.Error, match="neither a Dask client nor a concurrent.futures.Executor"):
+        integrate.run(object(), progress=False)
+

@@ -1,6 +1,6 @@
 """Studies that outgrow one machine: integration error, spectrum statistics, discrepancy
-statistics and rendered error, split into chunks that run here or on a Dask cluster and
-merge to the same bits.
+statistics and rendered error, split into chunks that run here, on a Dask cluster or on any
+``concurrent.futures`` executor (a process pool, say), and merge to the same bits.
 
 A study is a fixed list of chunks, decided by its description alone (never by the cluster).
 The library describes every kind (``samplab::study`` and ``samplab_render::study`` in
@@ -10,8 +10,8 @@ keeps checkpoints and plots. Adding a kind is a constructor here.
 
 Every number of a chunk is a function of the study and the chunk alone (realization k is
 seeded by ``seed.derive(k)``), and partial results are merged in chunk order whatever order
-the workers finish in, so ``study.run()``, ``study.run(client)`` on any cluster, any resumed
-run, and the CLI give the same bytes.
+the workers finish in, so ``study.run()``, ``study.run(client)`` on any cluster or executor,
+any resumed run, and the CLI give the same bytes.
 
 A checkpoint directory keeps each finished chunk in its own file, whole or absent, checked
 when read back (``samplab::study::Checkpoint``): a file that fails any check is refused with
@@ -20,6 +20,7 @@ an error naming it, never used.
 
 from __future__ import annotations
 
+import concurrent.futures
 import hashlib
 import inspect
 import json
@@ -178,13 +179,19 @@ class Study:
         retries: int = 3,
     ) -> "StudyResult":
         """Compute the missing chunks (here, one after the other, each in parallel on the
-        Rust core; or on the Dask ``client``'s workers), keep each finished chunk in
-        ``checkpoint`` if given, and merge. ``progress``: a progress bar with the time left
-        on stderr (default: when stderr is a terminal or in Jupyter). ``retries``: how many
-        times Dask retries a chunk whose task failed (chunks of a lost worker are recomputed
-        by the scheduler anyway)."""
-        if client is not None and not callable(getattr(client, "submit", None)):
-            raise Error(f"client: {client!r} is not a Dask client (give a dask.distributed.Client, or nothing to run here)")
+        Rust core; on the Dask ``client``'s workers; or on ``client`` a
+        ``concurrent.futures.Executor``, such as a ``ProcessPoolExecutor``), keep each finished chunk in ``checkpoint`` if given, and merge.
+        ``progress``: a progress bar with the time left on stderr (default: when stderr is a
+        terminal or in Jupyter). ``retries``: how many times Dask retries a chunk whose task
+        failed (chunks of a lost worker are recomputed by the scheduler anyway; an executor
+        does not retry). A process pool should start its workers by ``spawn`` or
+        ``forkserver``: a fork of a process whose thread pool has started can hang."""
+        dask = callable(getattr(client, "scatter", None)) and callable(getattr(client, "submit", None))
+        if client is not None and not dask and not isinstance(client, concurrent.futures.Executor):
+            raise Error(
+                f"client: {client!r} is neither a Dask client nor a concurrent.futures.Executor "
+                "(give one, or nothing to run here)"
+            )
         start = time.monotonic()
         store = None
         if checkpoint:
@@ -207,8 +214,10 @@ class Study:
         try:
             if client is None:
                 self._run_here(todo, results, done)
-            else:
+            elif dask:
                 self._run_dask(client, todo, results, done, retries)
+            else:
+                self._run_executor(client, todo, results, done)
         finally:
             bar.close()
         data, text, table = _merge(self.kind, self.params, [results[i] for i in range(len(self.chunks))])
@@ -245,6 +254,21 @@ class Study:
         futures = {submit(i, dependency): i for i in todo if i not in results}
         for future in as_completed(list(futures)):
             done(futures[future], future.result())
+
+
+    def _run_executor(self, executor: Any, todo: List[int], results: Dict[int, bytes], done: Any) -> None:
+        def submit(i: int, dependency: Optional[bytes] = None) -> Any:
+            return executor.submit(_compute, self.kind, self.params, self.chunks[i], dependency, self.function)
+
+        dependency = self._dependency(results, lambda i: submit(i).result(), done)
+        futures = {submit(i, dependency): i for i in todo if i not in results}
+        try:
+            for future in concurrent.futures.as_completed(futures):
+                done(futures[future], future.result())
+        finally:
+            # a failed or stopped run leaves no chunk computing behind it
+            for future in futures:
+                future.cancel()
 
 
 def _compute(kind: str, params: Dict[str, Any], chunk: Any, dependency: Optional[bytes] = None, function: Any = None) -> bytes:
