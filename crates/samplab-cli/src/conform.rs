@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use samplab::Seed;
-use samplab::conform::{Check, Layout, Precision, conform};
+use samplab::conform::{Check, Claim, Layout, Precision, conform};
 use samplab::io::{self, Format};
 
 /// Check samples dumped from your own sampler against samplab's entry of the same name.
@@ -13,11 +13,15 @@ use samplab::io::{self, Format};
                   realizations of a point set, set k made with sub-seed k of --seed as `samplab generate \
                   --sets` makes them; or with --res, the pixels of a film in row-major order, each set a \
                   pixel's samples (n = spp) at --frame. Checks: range (every value in [0, 1)), reference \
-                  (with --seed: every value equals samplab's, bit for bit; in single precision for a \
-                  float32 .npy or with --single), uniform (each dimension, Kolmogorov-Smirnov, p >= \
-                  0.001 / d), nets (a digital net's point sets: each pair (j, j + 1) of every prefix of b^m \
-                  points no worse than samplab's matrices) and distinct (sets or pixels that differ where \
-                  samplab's differ). One line per check; exit 1 when one fails.\n\nExamples:\n  \
+                  (with --seed: every value equals samplab's, bit for bit or within --ulps; in single \
+                  precision for a float32 .npy or with --single, in 32-bit fixed point where every value \
+                  is a multiple of 2^-32), uniform (each dimension, Kolmogorov-Smirnov, p >= 0.001 / d), \
+                  independent (consecutive dimensions' correlation, |r| sqrt N <= 5), unbiased (30 sets or \
+                  more: the means of x_j and x_j x_(j+1) within 5 standard errors), nets (a digital net's \
+                  point sets: each pair (j, j + 1) of every prefix of b^m points no worse than samplab's \
+                  matrices) and distinct (sets or pixels that differ where samplab's differ); a statistical \
+                  check runs where samplab's own sets pass it. One line per check; exit 1 when one \
+                  fails.\n\nExamples:\n  \
                   samplab generate net.owen -n 256 -d 4 --sets 4 --seed 7 -o mine.txt\n  \
                   samplab conform mine.txt --as net.owen --seed 7\n  \
                   samplab conform mine.txt --as net.owen --json   # without the seed: the properties")]
@@ -36,6 +40,9 @@ pub struct Args {
     /// The frame the pixels were drawn at (with --res)
     #[arg(long, default_value_t = 0, requires = "res")]
     frame: u32,
+    /// How many units in the last place a value may differ from samplab's (reference)
+    #[arg(long, default_value_t = 0)]
+    ulps: u64,
     /// Compare in single precision (a text file of floats; a float32 .npy is found alone)
     #[arg(long)]
     single: bool,
@@ -68,8 +75,8 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         None => Layout::Sets,
     };
     let precision = if a.single { Precision::Single } else { Precision::Found };
-    let stop = samplab::progress::Progress::until(&crate::bar::STOP);
-    let checks = conform(&sets, &a.spec, &layout, a.seed.map(Seed), precision, &stop)?;
+    let claim = Claim { spec: &a.spec, layout, seed: a.seed.map(Seed), precision, ulps: a.ulps };
+    let checks = conform(&sets, &claim, &samplab::progress::Progress::until(&crate::bar::STOP))?;
     let out = if a.json { format!("{:#}\n", serde_json::json!(checks)) } else { lines(&checks) };
     crate::emit(None, out.as_bytes())?;
     if checks.iter().all(|c| c.passed) { Ok(()) } else { Err(Failed.into()) }

@@ -975,7 +975,7 @@ fn t_values_are_the_librarys_and_bad_input_is_refused() {
 /// refuses bad input in one line with exit 2.
 #[test]
 fn conform_prints_the_librarys_checks_and_exits_1_on_a_failure() {
-    use samplab::conform::{Layout, Precision, conform};
+    use samplab::conform::{Claim, conform};
     use samplab::progress::Progress;
     let dir = temp("conform");
     let mine = dir.join("mine.txt").display().to_string();
@@ -987,7 +987,8 @@ fn conform_prints_the_librarys_checks_and_exits_1_on_a_failure() {
     let out = samplab(&["conform", &mine, "--as", "net.owen", "--seed", "7"]);
     assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
     let sets = io::read(std::path::Path::new(&mine), None).unwrap();
-    let checks = conform(&sets, "net.owen", &Layout::Sets, Some(Seed(7)), Precision::Found, &Progress::SILENT).unwrap();
+    let claim = Claim { seed: Some(Seed(7)), ..Claim::sets("net.owen") };
+    let checks = conform(&sets, &claim, &Progress::SILENT).unwrap();
     let lines: String = checks.iter().map(|c| format!("PASS  {:<10} {}\n", c.name, c.detail)).collect();
     assert_eq!(String::from_utf8(out.stdout).unwrap(), lines);
     // claimed as the XOR scramble: the reference check fails, exit 1, the lines on stdout

@@ -431,7 +431,8 @@ fn discrepancy(
 /// The checks of `samplab conform` on `points` as samplab's `spec`, as `--json` prints them:
 /// the sets are realizations, or with `res` the pixels of a film row by row at `frame`.
 #[pyfunction]
-#[pyo3(signature = (points, spec, seed=None, res=None, frame=0, single=false))]
+#[pyo3(signature = (points, spec, seed=None, res=None, frame=0, single=false, ulps=0))]
+#[allow(clippy::too_many_arguments)] // the CLI's options, one for one
 fn conform(
     py: Python<'_>,
     points: PyReadonlyArray3<f64>,
@@ -440,14 +441,15 @@ fn conform(
     res: Option<(u32, u32)>,
     frame: u32,
     single: bool,
+    ulps: u64,
 ) -> PyResult<String> {
-    use samplab::conform::{Layout, Precision};
+    use samplab::conform::{Claim, Layout, Precision};
     let sets = point_sets(&points)?;
     let layout = res.map_or(Layout::Sets, |(w, h)| Layout::film(w, h, frame));
     let precision = if single { Precision::Single } else { Precision::Found };
-    let checks = interruptible(py, points.len(), |stop| {
-        samplab::conform::conform(&sets, spec, &layout, seed.map(Seed), precision, &Progress::until(stop))
-    })?;
+    let claim = Claim { spec, layout, seed: seed.map(Seed), precision, ulps };
+    let checks =
+        interruptible(py, points.len(), |stop| samplab::conform::conform(&sets, &claim, &Progress::until(stop)))?;
     serde_json::to_string(&checks).map_err(err)
 }
 

@@ -240,10 +240,13 @@ def test_conform_equals_the_cli(cli, tmp_path):
     np.save(path, mine)
     ours = samplab.conform(mine, "net.owen", seed=7)
     assert ours == json.loads(cli("conform", path, "--as", "net.owen", "--seed", 7, "--json"))
-    assert [c["name"] for c in ours] == ["range", "reference", "uniform", "nets", "distinct"]
+    assert [c["name"] for c in ours] == ["range", "reference", "uniform", "independent", "nets", "distinct"]
     assert all(c["passed"] for c in ours)
     xor = samplab.conform(mine, "net.xor", seed=7)
     assert [c["name"] for c in xor if not c["passed"]] == ["reference"]
+    off = np.nextafter(mine, 1.0)  # one ulp up everywhere
+    assert not samplab.conform(off, "net.owen", seed=7)[1]["passed"]
+    assert samplab.conform(off, "net.owen", seed=7, ulps=1)[1]["passed"]
     film = samplab.pixels("zsobol", res=(4, 2), spp=8, dims=2, seed=5)[0]  # (height, width, spp, dims)
     singles = film.reshape(8, 8, 2).astype(np.float32)
     checks = samplab.conform(singles, "zsobol", seed=5, res=(4, 2))

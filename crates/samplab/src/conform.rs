@@ -4,12 +4,21 @@
 //!
 //! - `range`: every value in [0, 1) (a float conversion that rounds 1 - 2^-32 up to 1.0
 //!   fails here);
-//! - `reference` (with a seed): every value equals samplab's for the same key, bit for bit;
-//!   a file of single-precision values is compared with samplab's rounded to the nearest
-//!   single and kept below 1 (the conversion pbrt-v4 and Cycles make);
+//! - `reference` (with a seed): every value equals samplab's for the same key, bit for bit
+//!   (or within a given number of units in the last place); a file of single-precision
+//!   values is compared with samplab's rounded to the nearest single and kept below 1 (the
+//!   conversion pbrt-v4 and Cycles make), a file of 32-bit fixed-point values (every value a
+//!   multiple of 2^-32: a `uint32` array) with samplab's cut to 32 bits;
 //! - `uniform`: each dimension, pooled over the sets, against the uniform distribution by
 //!   Kolmogorov-Smirnov (the asymptotic distribution with Stephens' 1970 correction): fails
 //!   when the smallest p-value is below 0.001 / d (Bonferroni over the d dimensions);
+//! - `independent` (where samplab's own sets pass it): each pair of consecutive dimensions'
+//!   Pearson correlation r over every point, against independence: fails when |r| sqrt N
+//!   passes 5 (N points; a seed shared across dimensions fails here);
+//! - `unbiased` (30 sets or pixels or more, where samplab's own pass it): the integrals of
+//!   x_j (1/2) and x_j x_(j+1) (1/4), each set's estimate its mean, the mean over the sets
+//!   against the exact value in standard errors of that mean: fails past 5 (values cut to a
+//!   few bits fail here, though every dimension still looks uniform);
 //! - `nets` (a digital net's point sets): every prefix of b^m points, each pair of
 //!   consecutive dimensions counted interval by interval, has no larger t than samplab's
 //!   generating matrices give (every scramble samplab offers keeps it);
@@ -67,45 +76,73 @@ pub struct Check {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Precision {
     /// As the values are found: single precision when every value is a single (a float32
-    /// file), else double.
+    /// file), 32-bit fixed point when every value is a multiple of 2^-32, else double.
     Found,
     /// Single precision: both sides rounded to the nearest single (a text file of singles
     /// written as decimals).
     Single,
 }
 
+/// What the user's samples claim to be.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Claim<'a> {
+    /// samplab's entry: a point-set spec, or with a pixel layout a pixel family's.
+    pub spec: &'a str,
+    /// How the sets map to samplab's keys.
+    pub layout: Layout,
+    /// The seed they were made with: the `reference` check's (none: that check is left out).
+    pub seed: Option<Seed>,
+    /// How `reference` compares.
+    pub precision: Precision,
+    /// How many units in the last place (of the precision compared) a value may be off.
+    pub ulps: u64,
+}
+
+impl<'a> Claim<'a> {
+    /// `spec`'s realizations, no seed, compared bit for bit as found.
+    pub fn sets(spec: &'a str) -> Claim<'a> {
+        Claim { spec, layout: Layout::Sets, seed: None, precision: Precision::Found, ulps: 0 }
+    }
+}
+
+/// The bound on |r| sqrt N (`independent`) and on |z| (`unbiased`).
+const SIGMAS: f64 = 5.0;
+
+/// The fewest sets `unbiased` measures a standard error from.
+const UNBIASED_SETS: usize = 30;
+
 /// The p-value below which `uniform` fails, before the Bonferroni division by d.
 const UNIFORM_ALPHA: f64 = 1e-3;
 
 /// The checks of `sets` (the user's values: one set per realization or pixel, each n
-/// points in d dimensions) as samplab's `spec` laid out by `layout`, with `seed` the
-/// `reference` check's (none: that check is left out), compared at `precision`; stopped
-/// when `progress` says so.
+/// points in d dimensions) as what `claim` says they are; stopped when `progress` says so.
 ///
 /// # Errors
 /// An unknown `spec`, sets of different shapes, a layout whose pixels do not match the sets
 /// or lie off the film, a shape the sampler cannot make, more memory than allowed, or a
 /// stop ([`Error::Interrupted`]).
-pub fn conform(
-    sets: &[PointSet],
-    spec: &str,
-    layout: &Layout,
-    seed: Option<Seed>,
-    precision: Precision,
-    progress: &Progress<'_>,
-) -> Result<Vec<Check>> {
+pub fn conform(sets: &[PointSet], claim: &Claim<'_>, progress: &Progress<'_>) -> Result<Vec<Check>> {
     let (n, d) = shape(sets)?;
-    let reference = Reference::new(spec, layout, sets.len(), n, d)?;
+    let layout = &claim.layout;
+    let reference = Reference::new(claim.spec, layout, sets.len(), n, d)?;
     let mut checks = vec![range(sets)];
-    if let Some(seed) = seed {
-        checks.push(matches(sets, &reference.made(seed, progress)?, layout, precision));
+    if let Some(seed) = claim.seed {
+        checks.push(matches(sets, &reference.made(seed, progress)?, claim));
     }
     progress.check()?;
     checks.push(uniform(sets));
+    // samplab's own sets under its default seed: a statistical check applies where they pass it
+    let own = reference.made(Seed::DEFAULT, progress)?;
+    if d > 1 && independent(&own).passed {
+        checks.push(independent(sets));
+    }
+    if sets.len() >= UNBIASED_SETS && unbiased(&own).passed {
+        checks.push(unbiased(sets));
+    }
     if let Some(check) = nets(sets, &reference, progress)? {
         checks.push(check);
     }
-    if sets.len() > 1 && reference.varies(progress)? {
+    if sets.len() > 1 && own[0] != own[1] {
         checks.push(distinct(sets, layout));
     }
     Ok(checks)
@@ -175,18 +212,6 @@ impl Reference {
             }
         }
     }
-
-    /// Whether samplab's own first two sets (or pixels) differ under one seed.
-    fn varies(&self, progress: &Progress<'_>) -> Result<bool> {
-        let made = match self {
-            Reference::Sets { sampler, n, d, .. } => sampler.plan(*n, *d)?.generate_sets(Seed::DEFAULT, 2, progress)?,
-            Reference::Pixels { spec, film, keys } => {
-                let two = Reference::Pixels { spec: spec.clone(), film: *film, keys: keys[..2].to_vec() };
-                two.made(Seed::DEFAULT, progress)?
-            }
-        };
-        Ok(made[0] != made[1])
-    }
 }
 
 /// The words for set k's key.
@@ -212,37 +237,151 @@ fn range(sets: &[PointSet]) -> Check {
     Check { name: "range", passed: count == 0, number: count as f64, detail }
 }
 
-/// samplab's value as the user's file holds it: itself, or the nearest single below 1.
-fn as_single(x: f64) -> f64 {
-    f64::from((x as f32).min(1.0 - f32::EPSILON / 2.0))
+/// The precision a `reference` comparison runs at.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Compared {
+    Double,
+    Single,
+    Fixed32,
 }
 
-fn matches(sets: &[PointSet], ours: &[PointSet], layout: &Layout, precision: Precision) -> Check {
-    // a file whose every value is a single was written in single precision
-    let single =
-        precision == Precision::Single || sets.iter().all(|s| s.as_slice().iter().all(|&x| f64::from(x as f32) == x));
-    let convert = |x: f64| if single { as_single(x) } else { x };
-    let theirs_as = |x: f64| if precision == Precision::Single { f64::from(x as f32) } else { x };
+impl Compared {
+    /// What the values and the claim say.
+    fn of(sets: &[PointSet], precision: Precision) -> Compared {
+        let all = |f: &dyn Fn(f64) -> bool| sets.iter().all(|s| s.as_slice().iter().all(|&x| f(x)));
+        if precision == Precision::Single || all(&|x| f64::from(x as f32) == x) {
+            Compared::Single
+        } else if all(&|x| (x * 4_294_967_296.0).fract() == 0.0) {
+            Compared::Fixed32
+        } else {
+            Compared::Double
+        }
+    }
+
+    /// samplab's value as such a file holds it: itself, the nearest single below 1, or cut
+    /// to 32 bits.
+    fn ours(self, x: f64) -> f64 {
+        match self {
+            Compared::Double => x,
+            Compared::Single => f64::from((x as f32).min(1.0 - f32::EPSILON / 2.0)),
+            Compared::Fixed32 => (x * 4_294_967_296.0).floor() / 4_294_967_296.0,
+        }
+    }
+
+    /// The user's value at this precision (a single written as a decimal, read back).
+    fn theirs(self, x: f64) -> f64 {
+        if self == Compared::Single { f64::from(x as f32) } else { x }
+    }
+
+    /// How many units in the last place apart two values are, at this precision.
+    fn ulps(self, a: f64, b: f64) -> u64 {
+        // the bit patterns of floats ordered as integers (negative ones mirrored below 0)
+        fn ordered(bits: i64, sign: i64) -> i64 {
+            if bits < 0 { sign - bits } else { bits }
+        }
+        match self {
+            Compared::Double => ordered(a.to_bits() as i64, i64::MIN).abs_diff(ordered(b.to_bits() as i64, i64::MIN)),
+            Compared::Single => {
+                let bits = |x: f64| i64::from((x as f32).to_bits() as i32);
+                ordered(bits(a), i64::from(i32::MIN)).abs_diff(ordered(bits(b), i64::from(i32::MIN)))
+            }
+            Compared::Fixed32 => ((a - b).abs() * 4_294_967_296.0) as u64,
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Compared::Double => "double precision",
+            Compared::Single => "single precision",
+            Compared::Fixed32 => "32-bit fixed point",
+        }
+    }
+}
+
+fn matches(sets: &[PointSet], ours: &[PointSet], claim: &Claim<'_>) -> Check {
+    let compared = Compared::of(sets, claim.precision);
     let mut differ = 0usize;
     let mut first = None;
     for (k, (theirs, ours)) in sets.iter().zip(ours).enumerate() {
         for (i, (&t, &o)) in theirs.as_slice().iter().zip(ours.as_slice()).enumerate() {
-            let t = theirs_as(t);
-            if t.to_bits() != convert(o).to_bits() {
+            let (t, o) = (compared.theirs(t), compared.ours(o));
+            if compared.ulps(t, o) > claim.ulps {
                 differ += 1;
-                first.get_or_insert((k, i / theirs.dims(), i % theirs.dims(), t, convert(o)));
+                first.get_or_insert((k, i / theirs.dims(), i % theirs.dims(), t, o));
             }
         }
     }
-    let precision = if single { "single precision" } else { "double precision" };
+    let within = if claim.ulps == 0 { "bit for bit".to_string() } else { format!("within {} ulps", claim.ulps) };
+    let precision = compared.name();
     let detail = match first {
-        None => format!("every value equals samplab's, bit for bit ({precision})"),
+        None => format!("every value equals samplab's, {within} ({precision})"),
         Some((k, i, j, t, o)) => format!(
-            "{differ} values differ from samplab's ({precision}); the first: {}, sample {i}, dimension {j}: {t:?} where samplab has {o:?}",
-            key(layout, k)
+            "{differ} values differ from samplab's ({within}, {precision}); the first: {}, sample {i}, dimension {j}: {t:?} where samplab has {o:?}",
+            key(&claim.layout, k)
         ),
     };
     Check { name: "reference", passed: differ == 0, number: differ as f64, detail }
+}
+
+/// Pearson's correlation of two equally long columns (0 where one is constant).
+fn correlation(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len() as f64;
+    let (ma, mb) = (a.iter().sum::<f64>() / n, b.iter().sum::<f64>() / n);
+    let (mut sab, mut saa, mut sbb) = (0.0, 0.0, 0.0);
+    for (&x, &y) in a.iter().zip(b) {
+        sab += (x - ma) * (y - mb);
+        saa += (x - ma) * (x - ma);
+        sbb += (y - mb) * (y - mb);
+    }
+    if saa == 0.0 || sbb == 0.0 { 0.0 } else { sab / (saa * sbb).sqrt() }
+}
+
+fn independent(sets: &[PointSet]) -> Check {
+    let d = sets[0].dims();
+    let column = |j: usize| -> Vec<f64> { sets.iter().flat_map(|s| s.iter().map(move |p| p[j])).collect() };
+    let n = sets.iter().map(PointSet::len).sum::<usize>() as f64;
+    let (mut worst, mut at) = (0.0f64, (0, 0.0));
+    for j in 0..d - 1 {
+        let r = correlation(&column(j), &column(j + 1));
+        if r.abs() * n.sqrt() >= worst {
+            (worst, at) = (r.abs() * n.sqrt(), (j, r));
+        }
+    }
+    let (j, r) = at;
+    let detail = format!(
+        "the largest correlation of consecutive dimensions, {j}-{}: r = {r:.3e}, |r| sqrt N = {worst:.3} (N = {n}), against {SIGMAS}",
+        j + 1
+    );
+    Check { name: "independent", passed: worst <= SIGMAS, number: worst, detail }
+}
+
+fn unbiased(sets: &[PointSet]) -> Check {
+    let d = sets[0].dims();
+    let m = sets.len() as f64;
+    // x_j (1/2) and x_j x_(j+1) (1/4): an integrand's name, its exact value, its value at p
+    type Integrand = (String, f64, Box<dyn Fn(&[f64]) -> f64>);
+    let singles = (0..d).map(|j| -> Integrand { (format!("x_{j}"), 0.5, Box::new(move |p: &[f64]| p[j])) });
+    let pairs = (0..d.saturating_sub(1))
+        .map(|j| -> Integrand { (format!("x_{j} x_{}", j + 1), 0.25, Box::new(move |p: &[f64]| p[j] * p[j + 1])) });
+    let mut worst: Option<(f64, String, f64, f64)> = None;
+    for (name, exact, f) in singles.chain(pairs) {
+        let estimates: Vec<f64> = sets.iter().map(|s| s.iter().map(&f).sum::<f64>() / s.len() as f64).collect();
+        let mean = estimates.iter().sum::<f64>() / m;
+        let se = (estimates.iter().map(|e| (e - mean) * (e - mean)).sum::<f64>() / (m - 1.0) / m).sqrt();
+        let z = match (mean - exact).abs() {
+            0.0 => 0.0,
+            off if se == 0.0 => f64::INFINITY * off,
+            off => off / se,
+        };
+        if worst.as_ref().is_none_or(|w| z > w.0) {
+            worst = Some((z, name, mean, exact));
+        }
+    }
+    let (z, name, mean, exact) = worst.expect("one dimension at least");
+    let detail = format!(
+        "the largest |z| over the means of {m} estimates, {name}: {mean:.6} against {exact}, |z| = {z:.3}, against {SIGMAS}"
+    );
+    Check { name: "unbiased", passed: z <= SIGMAS, number: z, detail }
 }
 
 /// The Kolmogorov-Smirnov p-value of the statistic `dn` over `n` values: the asymptotic

@@ -840,16 +840,20 @@ def conform(
     res: Optional[Tuple[int, int]] = None,
     frame: int = 0,
     single: bool = False,
+    ulps: int = 0,
 ) -> List[Dict[str, Any]]:
     """Referee your own sampler: samples from your implementation checked against
     samplab's entry ``as_``, as ``samplab conform --json``.
 
     Checks: ``range`` (every value in [0, 1)), ``reference`` (with ``seed``: every value
-    equals samplab's bit for bit; in single precision for a float32 array or with
-    ``single``), ``uniform`` (each dimension by Kolmogorov-Smirnov, p >= 0.001 / d),
-    ``nets`` (a digital net's point sets: each pair (j, j + 1) of every prefix of b^m points
-    no worse than samplab's matrices) and ``distinct`` (sets or pixels that differ where
-    samplab's do).
+    equals samplab's bit for bit, or within ``ulps``; in single precision for a float32
+    array or with ``single``, in 32-bit fixed point where every value is a multiple of
+    2^-32), ``uniform`` (each dimension by Kolmogorov-Smirnov, p >= 0.001 / d),
+    ``independent`` (consecutive dimensions' correlation, |r| sqrt N <= 5), ``unbiased`` (30
+    sets or more: the means of x_j and x_j x_(j+1) within 5 standard errors), ``nets`` (a
+    digital net's point sets: each pair (j, j + 1) of every prefix of b^m points no worse
+    than samplab's matrices) and ``distinct`` (sets or pixels that differ where samplab's
+    do); a statistical check runs where samplab's own sets pass it.
 
     Parameters
     ----------
@@ -867,6 +871,8 @@ def conform(
         The frame the pixels were drawn at.
     single : bool, default False
         Compare in single precision (values that are singles are found without it).
+    ulps : int, default 0
+        How many units in the last place a value may differ from samplab's.
 
     Returns
     -------
@@ -877,8 +883,9 @@ def conform(
     Examples
     --------
     >>> mine = samplab.generate("net.xor", n=256, d=3, sets=2, seed=7)
-    >>> [(c["name"], c["passed"]) for c in samplab.conform(mine, "net.owen", seed=7)]
-    [('range', True), ('reference', False), ('uniform', True), ('nets', True), ('distinct', True)]
+    >>> checks = samplab.conform(mine, "net.owen", seed=7)
+    >>> [c["name"] for c in checks], [c["name"] for c in checks if not c["passed"]]
+    (['range', 'reference', 'uniform', 'independent', 'nets', 'distinct'], ['reference'])
     """
     a = _points(points, stack=True)
 
@@ -892,7 +899,9 @@ def conform(
         if np.ndim(res) != 1 or len(res) != 2:
             raise Error(f"res = {res!r}: expected (width, height)")
         res = (word("width", res[0]), word("height", res[1]))
-    text = _samplab.conform(a, as_, None if seed is None else _seed(seed), res, word("frame", frame), bool(single))
+    text = _samplab.conform(
+        a, as_, None if seed is None else _seed(seed), res, word("frame", frame), bool(single), _count("ulps", ulps)
+    )
     return json.loads(text)
 
 
