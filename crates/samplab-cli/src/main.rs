@@ -36,6 +36,7 @@ mod render;
 mod reproduce;
 mod sets;
 mod spectrum;
+mod study;
 mod tvalues;
 
 #[global_allocator]
@@ -109,6 +110,9 @@ enum Command {
     /// samplab's entry of that name (bit for bit with its seed; range, uniformity, nets and
     /// distinct pixels without); one line per check, exit 1 when one fails.
     Conform(conform::Args),
+    /// A study's chunks as separate jobs (a Slurm array, say): plan it, run each chunk
+    /// anywhere into one folder, merge them into the bytes one process makes.
+    Study(study::Args),
 }
 
 /// The exit code of a bug (a panic): 70, EX_SOFTWARE of sysexits.h.
@@ -240,6 +244,7 @@ fn run(cli: Cli) -> ExitCode {
         Command::Mask(a) => mask::run(&a),
         Command::TValues(a) => tvalues::run(&a),
         Command::Conform(a) => conform::run(&a),
+        Command::Study(a) => study::run(&a),
     })
 }
 

@@ -1035,3 +1035,57 @@ fn conform_prints_the_librarys_checks_and_exits_1_on_a_failure() {
     assert_bad_input(&["conform", &mine, "--as", "net", "--frame", "2"], &["--res"]);
     assert_bad_input(&["conform", &mine], &["--as"]);
 }
+
+/// `samplab study plan / run / merge`: a study's chunks run as separate processes, in any
+/// order, merge to what one process prints (`samplab integrate --json`); a render study's
+/// chunk 0 (its reference) must come first; a missing chunk, a chunk past the plan and a
+/// plan changed after it was written are refused in one line.
+#[test]
+fn study_chunks_run_as_separate_jobs_merge_to_the_bytes_of_one_process() {
+    let dir = temp("study");
+    let p = |name: &str| dir.join(name).display().to_string();
+    let study = r#"{"kind": "integrate", "samplers": ["random", "jitter"], "integrand": "quad", "n": [16, 64],
+                    "sets": 6, "instances": 3, "seed": 2, "units_per_chunk": 5}"#;
+    std::fs::write(p("study.json"), study).unwrap();
+    let out = samplab(&["study", "plan", &p("study.json"), "-o", &p("plan.json")]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stdout).starts_with("3 chunks, fingerprint "));
+    assert_bad_input(
+        &["study", "merge", &p("plan.json"), "--dir", &p("chunks")],
+        &["3 of 3 chunks are missing, the first 0"],
+    );
+    for chunk in ["2", "0", "1"] {
+        let out = samplab(&["study", "run", &p("plan.json"), "--chunk", chunk, "--dir", &p("chunks")]);
+        assert!(out.status.success(), "chunk {chunk}: {}", String::from_utf8_lossy(&out.stderr));
+    }
+    let merged = samplab(&["study", "merge", &p("plan.json"), "--dir", &p("chunks"), "--csv", &p("rows.csv")]);
+    assert!(merged.status.success(), "{}", String::from_utf8_lossy(&merged.stderr));
+    let integrate = "integrate --sampler random --sampler jitter --integrand quad -n 16,64 --sets 6 --instances 3";
+    let one = samplab(&format!("{integrate} --seed 2 --json").split(' ').collect::<Vec<_>>());
+    assert_eq!(String::from_utf8_lossy(&merged.stdout), String::from_utf8_lossy(&one.stdout));
+    assert!(std::fs::read_to_string(p("rows.csv")).unwrap().lines().count() > 1);
+    assert_bad_input(
+        &["study", "run", &p("plan.json"), "--chunk", "3", "--dir", &p("chunks")],
+        &["the plan has 3 chunks"],
+    );
+    // a changed plan is refused
+    let changed = std::fs::read_to_string(p("plan.json")).unwrap().replacen("\"seed\": 2", "\"seed\": 3", 1);
+    std::fs::write(p("changed.json"), changed).unwrap();
+    assert_bad_input(&["study", "merge", &p("changed.json"), "--dir", &p("chunks")], &["the plan was changed"]);
+    // a render study: chunk 0 renders the reference the others compare with
+    let render = r#"{"kind": "render", "scene": "spheres", "seeds": [5, 6, 7], "reference_samples": 64,
+                     "seeds_per_chunk": 2, "sampler": "jitter", "n": 4, "res": [32, 24]}"#;
+    std::fs::write(p("render.json"), render).unwrap();
+    assert!(samplab(&["study", "plan", &p("render.json"), "-o", &p("render-plan.json")]).status.success());
+    let run = |chunk: &str| samplab(&["study", "run", &p("render-plan.json"), "--chunk", chunk, "--dir", &p("render")]);
+    assert_bad_input(
+        &["study", "run", &p("render-plan.json"), "--chunk", "1", "--dir", &p("render")],
+        &["chunk 0's result feeds the others; run chunk 0 first"],
+    );
+    for chunk in ["0", "2", "1"] {
+        assert!(run(chunk).status.success(), "render chunk {chunk}");
+    }
+    let merged = samplab(&["study", "merge", &p("render-plan.json"), "--dir", &p("render")]);
+    let errors: serde_json::Value = serde_json::from_slice(&merged.stdout).unwrap();
+    assert_eq!(errors["errors"].as_array().map(Vec::len), Some(3), "{errors}");
+}

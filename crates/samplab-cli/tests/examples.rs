@@ -110,7 +110,7 @@ fn inputs(line: &str) -> Vec<String> {
     for w in words.iter().filter(|w| !written.contains(w)) {
         let name = w.strip_prefix("image:").or_else(|| w.strip_prefix("file:path=")).unwrap_or(w);
         let name = name.split('+').next().unwrap_or(name);
-        if [".exr", ".xml", ".txt", ".npy"].iter().any(|e| name.ends_with(e)) {
+        if [".exr", ".xml", ".txt", ".npy", ".json"].iter().any(|e| name.ends_with(e)) {
             out.push(name.to_string());
         }
     }
@@ -140,6 +140,12 @@ fn make_input(name: &str, dir: &Path, cache: &Path) -> Result<(), String> {
         "points.txt" => run(&["generate", "jitter", "-n", "64", "-o", name]),
         "sets.txt" => run(&["generate", "jitter", "-n", "64", "--sets", "4", "-o", name]),
         "best.npy" => run(&["generate", "sobol.owen", "-n", "256", "-o", name]),
+        // a study of two chunks (`samplab study`)
+        "study.json" => std::fs::write(
+            dir.join(name),
+            r#"{"kind": "integrate", "samplers": ["random", "jitter"], "integrand": "quad", "n": [16, 64], "sets": 60, "units_per_chunk": 20}"#,
+        )
+        .map_err(|e| format!("writing the study: {e}")),
         // renders of one scene at one size, each of its own seed: frames, `sN.exr` at N spp,
         // a reference at 1024, an image to integrate
         n if n.ends_with(".exr") => {
