@@ -17,9 +17,9 @@ use samplab::io::{self, Format};
                   precision for a float32 .npy or with --single, in 32-bit fixed point where every value \
                   is a multiple of 2^-32), uniform (each dimension, Kolmogorov-Smirnov, p >= 0.001 / d), \
                   independent (consecutive dimensions' correlation, |r| sqrt N <= 5), unbiased (30 sets or \
-                  more: the means of x_j and x_j x_(j+1) within 5 standard errors), nets (a digital net's \
-                  point sets: each pair (j, j + 1) of every prefix of b^m points no worse than samplab's \
-                  matrices) and distinct (sets or pixels that differ where samplab's differ); a statistical \
+                  more: the means of x_j and x_j x_(j+1) within 5 standard errors), nets (each pair (j, j \
+                  + 1) of every prefix of b^m points no worse a net than samplab's matrices make, or \
+                  without matrices a (0, m, 2)-net where 64 of samplab's own sets all are) and distinct (sets or pixels that differ where samplab's differ); a statistical \
                   check runs where samplab's own sets pass it. One line per check; exit 1 when one \
                   fails.\n\nExamples:\n  \
                   samplab generate net.owen -n 256 -d 4 --sets 4 --seed 7 -o mine.txt\n  \

@@ -19,9 +19,12 @@
 //!   x_j (1/2) and x_j x_(j+1) (1/4), each set's estimate its mean, the mean over the sets
 //!   against the exact value in standard errors of that mean: fails past 5 (values cut to a
 //!   few bits fail here, though every dimension still looks uniform);
-//! - `nets` (a digital net's point sets): every prefix of b^m points, each pair of
-//!   consecutive dimensions counted interval by interval, has no larger t than samplab's
-//!   generating matrices give (every scramble samplab offers keeps it);
+//! - `nets`: every prefix of b^m points (of the first 64 sets), each pair of consecutive
+//!   dimensions counted interval by interval, has no larger t than samplab promises: its
+//!   generating matrices' t for a digital net's point sets (every scramble samplab offers
+//!   keeps it), else a (0, m, 2)-net in base 2 wherever each of 64 of samplab's own sets (32
+//!   pixels at least) is one (a pixel family's nets; a dimension off by one in the padding
+//!   fails here without a seed);
 //! - `distinct` (several sets or pixels, where samplab's own differ): no set equals an
 //!   earlier one (a seed shared across pixels or realizations fails here).
 
@@ -139,7 +142,7 @@ pub fn conform(sets: &[PointSet], claim: &Claim<'_>, progress: &Progress<'_>) ->
     if sets.len() >= UNBIASED_SETS && unbiased(&own).passed {
         checks.push(unbiased(sets));
     }
-    if let Some(check) = nets(sets, &reference, progress)? {
+    if let Some(check) = nets(sets, &reference, &own, progress)? {
         checks.push(check);
     }
     if sets.len() > 1 && own[0] != own[1] {
@@ -429,23 +432,61 @@ fn uniform(sets: &[PointSet]) -> Check {
     Check { name: "uniform", passed: p >= bound, number: p, detail }
 }
 
-/// `nets` for a digital net's point sets, else none.
-fn nets(sets: &[PointSet], reference: &Reference, progress: &Progress<'_>) -> Result<Option<Check>> {
-    let Reference::Sets { sampler, n, d, .. } = reference else { return Ok(None) };
-    let plan = sampler.plan(*n, *d)?;
-    let Some(matrices) = plan.generating_matrices() else { return Ok(None) };
-    let b = matrices.base() as usize;
+/// The most sets of the user's `nets` counts, and how many of samplab's own it reads a
+/// promise from where there are no matrices.
+const NETS_SETS: usize = 64;
+
+/// The fewest own sets a promise without matrices is read from: a pair of random points is
+/// a (0, 1, 2)-net one time in four, so 32 sets all being one is a structure (4^-32).
+const NETS_OWN: usize = 32;
+
+/// `nets`: each pair (j, j + 1) of every prefix of b^m points of the user's first 64 sets
+/// no worse a net than samplab promises: its generating matrices' t (a digital net's point
+/// sets, in its base), else a (0, m, 2)-net in base 2 where every one of its own 64 sets
+/// (pixels: its own values of the user's first 64 pixels, 32 at least) is one. None for a
+/// set of fewer than 2 points or of one dimension.
+fn nets(sets: &[PointSet], reference: &Reference, own: &[PointSet], progress: &Progress<'_>) -> Result<Option<Check>> {
+    let (n, d) = (sets[0].len(), sets[0].dims());
+    if n < 2 || d < 2 {
+        return Ok(None);
+    }
+    let (plan, own) = match reference {
+        Reference::Sets { sampler, .. } => {
+            let plan = sampler.plan(n, d)?;
+            let own = if plan.generating_matrices().is_some() {
+                Vec::new()
+            } else {
+                plan.generate_sets(Seed::DEFAULT, NETS_SETS, progress)?
+            };
+            (Some(plan), own)
+        }
+        Reference::Pixels { .. } => (None, own.iter().take(NETS_SETS).cloned().collect()),
+    };
+    let matrices = plan.as_ref().and_then(crate::sampler::Plan::generating_matrices);
+    if matrices.is_none() && own.len() < NETS_OWN {
+        return Ok(None);
+    }
+    let b = matrices.map_or(2, |m| m.base() as usize);
+    let most = matrices.map_or(usize::MAX, crate::sampler::qmc::net::Matrices::cols);
     let limits = Limits::default();
+    let pair = |s: &PointSet, j: usize, count: usize| -> Result<PointSet> {
+        PointSet::new(2, s.iter().take(count).flat_map(|p| [p[j], p[j + 1]]).collect())
+    };
     let mut worst: Option<(usize, usize, usize, usize, usize)> = None;
     let mut excess = 0usize;
-    for m in (1..).take_while(|&m| b.checked_pow(m as u32).is_some_and(|p| p <= *n) && m <= matrices.cols()) {
+    for m in (1..).take_while(|&m| b.checked_pow(m as u32).is_some_and(|p| p <= n) && m <= most) {
         let count = b.pow(m as u32);
-        for j in 0..d.saturating_sub(1) {
+        for j in 0..d - 1 {
             progress.check()?;
-            let promised = tvalue::of_matrices(matrices, &[j, j + 1], m, &limits)?;
-            for (k, s) in sets.iter().enumerate() {
-                let pair: Vec<f64> = s.iter().take(count).flat_map(|p| [p[j], p[j + 1]]).collect();
-                let t = tvalue::counted(&PointSet::new(2, pair)?, b, m);
+            let promised = match matrices {
+                Some(matrices) => tvalue::of_matrices(matrices, &[j, j + 1], m, &limits)?,
+                None => {
+                    let mut ts = own.iter().map(|s| pair(s, j, count).map(|p| tvalue::counted(&p, b, m)));
+                    if ts.try_fold(true, |all, t| t.map(|t| all && t == 0))? { 0 } else { continue }
+                }
+            };
+            for (k, s) in sets.iter().enumerate().take(NETS_SETS) {
+                let t = tvalue::counted(&pair(s, j, count)?, b, m);
                 if t > promised && t - promised > excess {
                     excess = t - promised;
                     worst = Some((k, m, j, t, promised));
@@ -453,13 +494,11 @@ fn nets(sets: &[PointSet], reference: &Reference, progress: &Progress<'_>) -> Re
             }
         }
     }
+    let whose = if matrices.is_some() { "samplab's matrices" } else { "samplab's own sets" };
     let detail = match worst {
-        None => format!("every prefix of {b}^m points: each pair (j, j + 1) no worse than samplab's matrices"),
+        None => format!("every prefix of {b}^m points: each pair (j, j + 1) no worse than {whose}"),
         Some((k, m, j, t, promised)) => {
-            format!(
-                "set {k}, {b}^{m} points, dimensions {j}-{}: t = {t} where samplab's matrices give {promised}",
-                j + 1
-            )
+            format!("set {k}, {b}^{m} points, dimensions {j}-{}: t = {t} where {whose} give {promised}", j + 1)
         }
     };
     Ok(Some(Check { name: "nets", passed: excess == 0, number: excess as f64, detail }))

@@ -95,12 +95,12 @@ fn each_planted_defect_fails_its_check() {
     assert!(detail.contains("sample 2, dimension 2"), "{detail}");
     // and without the seed, its pair of dimensions 1-2 is a worse net than Joe & Kuo's
     assert_eq!(failed(&check(&wrong, "net", Layout::Sets, None).unwrap()), ["nets"]);
-    // a warp left in (x^2): not uniform
+    // a warp left in (x^2): not uniform (and no more a net)
     let squared: Vec<PointSet> = sets("sobol.owen", 1024, 2, 3, 1)
         .iter()
         .map(|s| PointSet::new(2, s.as_slice().iter().map(|x| x * x).collect()).unwrap())
         .collect();
-    assert_eq!(failed(&check(&squared, "sobol.owen", Layout::Sets, None).unwrap()), ["uniform"]);
+    assert_eq!(failed(&check(&squared, "sobol.owen", Layout::Sets, None).unwrap()), ["uniform", "nets"]);
     // values cut to 8 bits: every dimension still looks uniform, the integrals are biased
     let cut: Vec<PointSet> = sets("sobol.owen", 256, 2, 3, 64)
         .iter()
@@ -122,15 +122,24 @@ fn each_planted_defect_fails_its_check() {
     // a float conversion that rounds 1 - 2^-32 up to 1.0
     let mut rounded = sets("sobol.owen", 64, 2, 1, 1);
     let mut values = rounded[0].as_slice().to_vec();
-    values[21] = f64::from((1.0 - 2f64.powi(-32)) as f32);
+    // the largest value, in [1 - 2^-6, 1) as the net's last cell: as if it were 1 - 2^-32
+    let largest = (0..values.len()).max_by(|&a, &b| values[a].total_cmp(&values[b])).unwrap();
+    values[largest] = f64::from((1.0 - 2f64.powi(-32)) as f32);
     rounded[0] = PointSet::new(2, values).unwrap();
     assert_eq!(failed(&check(&rounded, "sobol.owen", Layout::Sets, None).unwrap()), ["range"]);
-    // a dimension off by one in the padding: dimension j drawn as j + 1
+    // a dimension off by one in the padding: dimension j drawn as j + 1; without the seed,
+    // its pairs (2k, 2k + 1) are no more nets (on a film of 32 pixels at least)
     let off = film("sobol.padded", Film { dims: 6, ..f }, 2, |[x, y], _, j| [x, y, (j + 1) % 6]);
     let checks = check(&off, "sobol.padded", Layout::film(4, 4, 0), Some(2)).unwrap();
     assert_eq!(failed(&checks), ["reference"], "{checks:#?}");
     let detail = &checks.iter().find(|c| c.name == "reference").unwrap().detail;
     assert!(detail.contains("sample 0, dimension 0"), "{detail}");
+    let off = film("sobol.padded", Film { dims: 6, ..f8 }, 2, |[x, y], _, j| [x, y, (j + 1) % 6]);
+    let checks = check(&off, "sobol.padded", Layout::film(8, 8, 0), None).unwrap();
+    assert_eq!(failed(&checks), ["nets"], "{checks:#?}");
+    let right = film("sobol.padded", Film { dims: 6, ..f8 }, 2, |[x, y], _, j| [x, y, j]);
+    let checks = check(&right, "sobol.padded", Layout::film(8, 8, 0), None).unwrap();
+    assert!(names(&checks).contains(&"nets") && failed(&checks).is_empty(), "{checks:#?}");
 }
 
 /// The fixtures' values from pbrt-v4's own samplers and OpenQMC's own `SobolSampler`

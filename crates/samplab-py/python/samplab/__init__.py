@@ -850,9 +850,10 @@ def conform(
     array or with ``single``, in 32-bit fixed point where every value is a multiple of
     2^-32), ``uniform`` (each dimension by Kolmogorov-Smirnov, p >= 0.001 / d),
     ``independent`` (consecutive dimensions' correlation, |r| sqrt N <= 5), ``unbiased`` (30
-    sets or more: the means of x_j and x_j x_(j+1) within 5 standard errors), ``nets`` (a
-    digital net's point sets: each pair (j, j + 1) of every prefix of b^m points no worse
-    than samplab's matrices) and ``distinct`` (sets or pixels that differ where samplab's
+    sets or more: the means of x_j and x_j x_(j+1) within 5 standard errors), ``nets``
+    (each pair (j, j + 1) of every prefix of b^m points no worse a net than samplab's
+    matrices make, or without matrices a (0, m, 2)-net where 64 of samplab's own sets all
+    are) and ``distinct`` (sets or pixels that differ where samplab's
     do); a statistical check runs where samplab's own sets pass it.
 
     Parameters
