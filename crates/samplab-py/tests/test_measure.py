@@ -244,6 +244,12 @@ def test_conform_equals_the_cli(cli, tmp_path):
     assert all(c["passed"] for c in ours)
     xor = samplab.conform(mine, "net.xor", seed=7)
     assert [c["name"] for c in xor if not c["passed"]] == ["reference"]
+    # 32-bit fixed point, as a renderer's integers: samplab's values cut to 32 bits
+    words = np.floor(mine * 2.0**32).astype(np.uint32)
+    fixed = samplab.conform(words, "net.owen", seed=7)
+    assert all(c["passed"] for c in fixed) and "32-bit fixed point" in fixed[1]["detail"], fixed
+    np.save(tmp_path / "words.npy", words)
+    assert json.loads(cli("conform", tmp_path / "words.npy", "--as", "net.owen", "--seed", 7, "--json")) == fixed
     off = np.nextafter(mine, 1.0)  # one ulp up everywhere
     assert not samplab.conform(off, "net.owen", seed=7)[1]["passed"]
     assert samplab.conform(off, "net.owen", seed=7, ulps=1)[1]["passed"]

@@ -861,7 +861,8 @@ def conform(
     points : array_like
         Shape (n, d) or (sets, n, d): realizations (set k made with sub-seed k of ``seed``,
         as ``generate(..., sets=...)`` makes them), or with ``res`` a film's pixels row by
-        row, each set one pixel's samples.
+        row, each set one pixel's samples. A uint32 array is 32-bit fixed point (u / 2^32),
+        as the CLI reads a uint32 ``.npy``.
     as_ : str
         What they should be: a sampler spec (with ``res``, a pixel family).
     seed : int, optional
@@ -888,6 +889,8 @@ def conform(
     >>> [c["name"] for c in checks], [c["name"] for c in checks if not c["passed"]]
     (['range', 'reference', 'uniform', 'independent', 'nets', 'distinct'], ['reference'])
     """
+    if np.asarray(points).dtype == np.uint32:
+        points = np.asarray(points, dtype=np.float64) / 2.0**32
     a = _points(points, stack=True)
 
     def word(name: str, value: Any) -> int:

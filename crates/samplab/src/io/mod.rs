@@ -120,7 +120,10 @@ static FORMAT_ENTRIES: &[FormatEntry] = &[
     },
     FormatEntry { about: About::new("csv", "comma separated with a header row x0,x1,..."), format: Format::Csv },
     FormatEntry {
-        about: About::new("npy", "NumPy f64 array, (n, d) or (m, n, d); f32 and big-endian ones read too"),
+        about: About::new(
+            "npy",
+            "NumPy f64 array, (n, d) or (m, n, d); f32, u32 (32-bit fixed point, u / 2^32) and big-endian ones read too",
+        ),
         format: Format::Npy,
     },
     FormatEntry { about: About::new("json", "{\"sets\": [[[x, y], ...], ...]} with metadata"), format: Format::Json },
@@ -452,15 +455,18 @@ fn decode_npy(bytes: &[u8], name: &str, domain: &RangeInclusive<f64>) -> Result<
         Some(header[i..].trim_start().trim_start_matches(':').trim_start())
     };
     let descr = field("descr").ok_or_else(|| bad("header has no descr".into()))?;
-    // float64 or float32 in either byte order, each value widened exactly to f64
+    // float64 or float32 in either byte order, each value widened exactly to f64; uint32,
+    // a renderer's 32-bit fixed point, u / 2^32 (exact)
     let (width, value): (usize, fn(&[u8]) -> f64) = match descr.get(..5) {
         Some("'<f8'") => (8, |c| f64::from_le_bytes(c.try_into().expect("8 bytes"))),
         Some("'>f8'") => (8, |c| f64::from_be_bytes(c.try_into().expect("8 bytes"))),
         Some("'<f4'") => (4, |c| f64::from(f32::from_le_bytes(c.try_into().expect("4 bytes")))),
         Some("'>f4'") => (4, |c| f64::from(f32::from_be_bytes(c.try_into().expect("4 bytes")))),
+        Some("'<u4'") => (4, |c| f64::from(u32::from_le_bytes(c.try_into().expect("4 bytes"))) / 4_294_967_296.0),
+        Some("'>u4'") => (4, |c| f64::from(u32::from_be_bytes(c.try_into().expect("4 bytes"))) / 4_294_967_296.0),
         _ => {
             return Err(bad(format!(
-                "dtype {} is not float64 or float32 ('<f8', '>f8', '<f4', '>f4')",
+                "dtype {} is not float64, float32 or uint32 ('<f8', '>f8', '<f4', '>f4', '<u4', '>u4')",
                 crate::error::excerpt(descr.split(',').next().unwrap_or("").trim().trim_matches('\''))
             )));
         }
@@ -648,9 +654,19 @@ mod tests {
             // a body sized for the other width is refused
             assert!(decode(&npy_of(descr, "(3, 4)", &body), Format::Npy, "mem").is_err(), "{descr}");
         }
-        for descr in ["<i8", "<f2", "|u1", "<c16"] {
+        for descr in ["<i8", "<f2", "|u1", "<c16", "<u8"] {
             let err = decode(&npy_of(descr, "(3, 2)", &[0; 48]), Format::Npy, "mem").unwrap_err().to_string();
-            assert!(err.contains("is not float64 or float32"), "{descr}: {err}");
+            assert!(err.contains("is not float64, float32 or uint32"), "{descr}: {err}");
+        }
+        // uint32 in either byte order: 32-bit fixed point, u / 2^32
+        let words = [0u32, 1, 1 << 31, u32::MAX, 0x5555_5555, 3 << 30];
+        let fractions: Vec<f64> = words.iter().map(|&u| f64::from(u) * 2f64.powi(-32)).collect();
+        for (descr, body) in [
+            ("<u4", words.iter().flat_map(|u| u.to_le_bytes()).collect::<Vec<u8>>()),
+            (">u4", words.iter().flat_map(|u| u.to_be_bytes()).collect()),
+        ] {
+            let sets = decode(&npy_of(descr, "(3, 2)", &body), Format::Npy, "mem").unwrap();
+            assert_eq!(sets, vec![PointSet::from_raw(2, fractions.clone())], "{descr}");
         }
     }
 
