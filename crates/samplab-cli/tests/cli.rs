@@ -989,7 +989,7 @@ fn conform_prints_the_librarys_checks_and_exits_1_on_a_failure() {
     let sets = io::read(std::path::Path::new(&mine), None).unwrap();
     let claim = Claim { seed: Some(Seed(7)), ..Claim::sets("net.owen") };
     let checks = conform(&sets, &claim, &Progress::SILENT).unwrap();
-    let lines: String = checks.iter().map(|c| format!("PASS  {:<10} {}\n", c.name, c.detail)).collect();
+    let lines: String = checks.iter().map(|c| format!("PASS  {:<11} {}\n", c.name, c.detail)).collect();
     assert_eq!(String::from_utf8(out.stdout).unwrap(), lines);
     // claimed as the XOR scramble: the reference check fails, exit 1, the lines on stdout
     let out = samplab(&["conform", &mine, "--as", "net.xor", "--seed", "7", "--json"]);
@@ -1029,7 +1029,17 @@ fn conform_prints_the_librarys_checks_and_exits_1_on_a_failure() {
     let out = samplab(&["conform", &npy_path, "--as", "zsobol", "--res", "3x2"]);
     let text = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(1), "{text}");
-    assert!(text.contains("FAIL  distinct   1 repeat an earlier one, as samplab's do not; the first: pixel (1, 1) at frame 0 equals pixel (1, 0) at frame 0"), "{text}");
+    assert!(text.contains("FAIL  distinct    1 repeat an earlier one, as samplab's do not; the first: pixel (1, 1) at frame 0 equals pixel (1, 0) at frame 0"), "{text}");
+    // an array of `samplab pixels`' shape names its film, two frames here
+    let film = dir.join("film.npy").display().to_string();
+    let made = samplab(&[
+        "pixels", "zsobol", "--res", "4x4", "--spp", "8", "--dims", "2", "--frames", "2", "--seed", "5", "-o", &film,
+    ]);
+    assert!(made.status.success());
+    let out = samplab(&["conform", &film, "--as", "zsobol", "--seed", "5"]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stdout));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("all 32 differ"));
+    assert_bad_input(&["conform", &film, "--as", "zsobol", "--res", "4x4"], &["gives its film"]);
     assert_bad_input(&["conform", &mine, "--as", "nosuch"], &["unknown sampler 'nosuch'"]);
     assert_bad_input(&["conform", &mine, "--as", "zsobol", "--res", "2x2"], &["4 pixels for 3 sets"]);
     assert_bad_input(&["conform", &mine, "--as", "net", "--frame", "2"], &["--res"]);

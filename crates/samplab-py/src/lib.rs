@@ -429,9 +429,10 @@ fn discrepancy(
 }
 
 /// The checks of `samplab conform` on `points` as samplab's `spec`, as `--json` prints them:
-/// the sets are realizations, or with `res` the pixels of a film row by row at `frame`.
+/// the sets are realizations, or with `res` the pixels of a film row by row at each of
+/// `frames` frames from `frame`.
 #[pyfunction]
-#[pyo3(signature = (points, spec, seed=None, res=None, frame=0, single=false, ulps=0))]
+#[pyo3(signature = (points, spec, seed=None, res=None, frame=0, single=false, ulps=0, frames=1))]
 #[allow(clippy::too_many_arguments)] // the CLI's options, one for one
 fn conform(
     py: Python<'_>,
@@ -442,10 +443,12 @@ fn conform(
     frame: u32,
     single: bool,
     ulps: u64,
+    frames: u32,
 ) -> PyResult<String> {
     use samplab::conform::{Claim, Layout, Precision};
     let sets = point_sets(&points)?;
-    let layout = res.map_or(Layout::Sets, |(w, h)| Layout::film(w, h, frame));
+    let last = frame.checked_add(frames).ok_or_else(|| err(format!("frames {frame} + {frames} past 2^32")))?;
+    let layout = res.map_or(Layout::Sets, |(w, h)| Layout::frames(w, h, frame..last));
     let precision = if single { Precision::Single } else { Precision::Found };
     let claim = Claim { spec, layout, seed: seed.map(Seed), precision, ulps };
     let checks =

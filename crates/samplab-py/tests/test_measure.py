@@ -253,7 +253,12 @@ def test_conform_equals_the_cli(cli, tmp_path):
     off = np.nextafter(mine, 1.0)  # one ulp up everywhere
     assert not samplab.conform(off, "net.owen", seed=7)[1]["passed"]
     assert samplab.conform(off, "net.owen", seed=7, ulps=1)[1]["passed"]
-    film = samplab.pixels("zsobol", res=(4, 2), spp=8, dims=2, seed=5)[0]  # (height, width, spp, dims)
+    # the shape pixels() returns, two frames: the film from the shape
+    frames = samplab.pixels("zsobol", res=(4, 2), spp=8, dims=2, frames=2, seed=5)
+    assert all(c["passed"] for c in samplab.conform(frames, "zsobol", seed=5))
+    with pytest.raises(samplab.Error, match="gives its film"):
+        samplab.conform(frames, "zsobol", res=(4, 2))
+    film = frames[0]  # (height, width, spp, dims)
     singles = film.reshape(8, 8, 2).astype(np.float32)
     checks = samplab.conform(singles, "zsobol", seed=5, res=(4, 2))
     assert all(c["passed"] for c in checks), checks

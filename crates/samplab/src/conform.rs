@@ -56,7 +56,13 @@ pub enum Layout {
 impl Layout {
     /// Every pixel of a `width` x `height` film in row-major order (y, then x), at `frame`.
     pub fn film(width: u32, height: u32, frame: u32) -> Layout {
-        let keys = (0..height).flat_map(|y| (0..width).map(move |x| [x, y, frame])).collect();
+        Layout::frames(width, height, frame..frame + 1)
+    }
+
+    /// Every pixel of a `width` x `height` film at each of `frames`, frame by frame, row by
+    /// row: the order of `samplab pixels`' array (frames, height, width, spp, dims).
+    pub fn frames(width: u32, height: u32, frames: std::ops::Range<u32>) -> Layout {
+        let keys = frames.flat_map(|f| (0..height).flat_map(move |y| (0..width).map(move |x| [x, y, f]))).collect();
         Layout::Pixels { width, height, keys }
     }
 }

@@ -861,8 +861,9 @@ def conform(
     points : array_like
         Shape (n, d) or (sets, n, d): realizations (set k made with sub-seed k of ``seed``,
         as ``generate(..., sets=...)`` makes them), or with ``res`` a film's pixels row by
-        row, each set one pixel's samples. A uint32 array is 32-bit fixed point (u / 2^32),
-        as the CLI reads a uint32 ``.npy``.
+        row, each set one pixel's samples; or (frames, height, width, spp, d), the shape
+        ``pixels`` returns, a film whose shape gives ``res``. A uint32 array is 32-bit fixed
+        point (u / 2^32), as the CLI reads a uint32 ``.npy``.
     as_ : str
         What they should be: a sampler spec (with ``res``, a pixel family).
     seed : int, optional
@@ -891,6 +892,13 @@ def conform(
     """
     if np.asarray(points).dtype == np.uint32:
         points = np.asarray(points, dtype=np.float64) / 2.0**32
+    frames = 1
+    if np.ndim(points) == 5:
+        if res is not None:
+            raise Error("res: the array's shape (frames, height, width, spp, d) gives its film")
+        shape = np.shape(points)
+        frames, res = shape[0], (shape[2], shape[1])
+        points = np.reshape(points, (shape[0] * shape[1] * shape[2], shape[3], shape[4]))
     a = _points(points, stack=True)
 
     def word(name: str, value: Any) -> int:
@@ -904,7 +912,8 @@ def conform(
             raise Error(f"res = {res!r}: expected (width, height)")
         res = (word("width", res[0]), word("height", res[1]))
     text = _samplab.conform(
-        a, as_, None if seed is None else _seed(seed), res, word("frame", frame), bool(single), _count("ulps", ulps)
+        a, as_, None if seed is None else _seed(seed), res, word("frame", frame), bool(single), _count("ulps", ulps),
+        word("frames", frames),
     )
     return json.loads(text)
 

@@ -122,7 +122,7 @@ static FORMAT_ENTRIES: &[FormatEntry] = &[
     FormatEntry {
         about: About::new(
             "npy",
-            "NumPy f64 array, (n, d) or (m, n, d); f32, u32 (32-bit fixed point, u / 2^32) and big-endian ones read too",
+            "NumPy f64 array, (n, d) or (m, n, d), or a film's (frames, height, width, spp, d); f32, u32 (32-bit fixed point, u / 2^32) and big-endian ones read too",
         ),
         format: Format::Npy,
     },
@@ -438,7 +438,25 @@ fn decode_within(bytes: &[u8], format: Format, name: &str, domain: &RangeInclusi
     Ok(sets)
 }
 
-fn decode_npy(bytes: &[u8], name: &str, domain: &RangeInclusive<f64>) -> Result<Vec<PointSet>> {
+/// An .npy file's header: its shape, each value's width in bytes and decoder, and where the
+/// data starts.
+struct NpyHeader {
+    shape: Vec<usize>,
+    width: usize,
+    value: fn(&[u8]) -> f64,
+    data: usize,
+}
+
+/// The shape of the .npy file whose first bytes are `bytes` (its header: `samplab pixels`
+/// writes (frames, height, width, spp, dims)); `name` is used in error messages.
+///
+/// # Errors
+/// [`Error::Parse`]: not an .npy header, or one whose dtype or shape samplab does not read.
+pub fn npy_shape(bytes: &[u8], name: &str) -> Result<Vec<usize>> {
+    Ok(npy_header_of(bytes, name)?.shape)
+}
+
+fn npy_header_of(bytes: &[u8], name: &str) -> Result<NpyHeader> {
     let bad = |reason: String| Error::Parse { location: name.into(), reason };
     if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
         return Err(bad("not an .npy file (bad magic)".into()));
@@ -487,16 +505,25 @@ fn decode_npy(bytes: &[u8], name: &str, domain: &RangeInclusive<f64>) -> Result<
         .filter(|s| !s.is_empty())
         .map(|s| s.parse().map_err(|_| bad(format!("bad shape {}", crate::error::excerpt(inner)))))
         .collect::<Result<_>>()?;
+    Ok(NpyHeader { shape, width, value, data: start + header_len })
+}
+
+fn decode_npy(bytes: &[u8], name: &str, domain: &RangeInclusive<f64>) -> Result<Vec<PointSet>> {
+    let bad = |reason: String| Error::Parse { location: name.into(), reason };
+    let NpyHeader { shape, width, value, data } = npy_header_of(bytes, name)?;
+    let inner = shape.iter().map(usize::to_string).collect::<Vec<_>>().join(", ");
+    // a film's values as `samplab pixels` writes them: a set per pixel, frame by frame, row by row
     let (m, n, d) = match shape[..] {
         [n, d] => (1, n, d),
         [m, n, d] => (m, n, d),
-        _ => return Err(bad(format!("shape ({inner}) is not (n, d) or (m, n, d)"))),
+        [frames, h, w, spp, d] => (frames.saturating_mul(h).saturating_mul(w), spp, d),
+        _ => return Err(bad(format!("shape ({inner}) is not (n, d), (m, n, d) or (frames, height, width, spp, d)"))),
     };
     // the data bytes, checked: a shape whose byte count passes 2^64 once wrapped to match
     // a short file (found by fuzzing)
     let size = m.checked_mul(n).and_then(|x| x.checked_mul(d)).and_then(|x| x.checked_mul(width));
     let size = size.ok_or_else(|| bad(format!("shape ({inner}) is too large")))?;
-    let body = &bytes[start + header_len..];
+    let body = &bytes[data..];
     if d == 0 || body.len() != size {
         return Err(bad(format!("shape ({inner}) needs {size} data bytes, file has {}", body.len())));
     }
@@ -668,6 +695,25 @@ mod tests {
             let sets = decode(&npy_of(descr, "(3, 2)", &body), Format::Npy, "mem").unwrap();
             assert_eq!(sets, vec![PointSet::from_raw(2, fractions.clone())], "{descr}");
         }
+    }
+
+    #[test]
+    fn npy_of_a_film_reads_a_set_per_pixel_frame_by_frame_row_by_row() {
+        // (frames 2, height 1, width 3, spp 2, dims 1): value [f, y, x, i, 0] = 8f + 2x + i
+        let values: Vec<f64> = (0..12).map(|k| f64::from((k / 6) * 8 + (k % 6)) / 16.0).collect();
+        let body: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+        let bytes = npy_of("<f8", "(2, 1, 3, 2, 1)", &body);
+        assert_eq!(npy_shape(&bytes, "mem").unwrap(), [2, 1, 3, 2, 1]);
+        let sets = decode(&bytes, Format::Npy, "mem").unwrap();
+        let pixels: Vec<Vec<f64>> = sets.iter().map(|s| s.as_slice().to_vec()).collect();
+        let expect: Vec<Vec<f64>> = values.chunks(2).map(<[f64]>::to_vec).collect();
+        assert_eq!(pixels, expect);
+        let err = decode(&npy_of("<f8", "(1, 1, 2, 3)", &[0; 48]), Format::Npy, "mem").unwrap_err().to_string();
+        assert!(
+            err.contains("shape (1, 1, 2, 3) is not (n, d), (m, n, d) or (frames, height, width, spp, d)"),
+            "{err}"
+        );
+        assert!(npy_shape(b"not npy", "mem").is_err());
     }
 
     #[test]
