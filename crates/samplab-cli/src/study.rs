@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
 use samplab::progress::Progress;
-use samplab::study::Checkpoint;
+use samplab::study::{Checkpoint, fingerprint};
 use samplab_render::study::{Study, read};
 use serde_json::{Value, json};
 
@@ -75,12 +75,6 @@ struct Plan {
     study: Study,
     chunks: Vec<Vec<u64>>,
     fingerprint: String,
-}
-
-/// FNV-1a (64 bits) of `text`, in hex: the study's identity in its chunk files.
-fn fingerprint(text: &str) -> String {
-    let h = text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3));
-    format!("{h:016x}")
 }
 
 impl Plan {

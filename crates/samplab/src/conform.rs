@@ -23,7 +23,7 @@
 //!   dimensions counted interval by interval, has no larger t than samplab promises: its
 //!   generating matrices' t for a digital net's point sets (every scramble samplab offers
 //!   keeps it), else a (0, m, 2)-net in base 2 wherever each of 64 of samplab's own sets (32
-//!   pixels at least) is one (a pixel family's nets; a dimension off by one in the padding
+//!   pixels at least; point sets of at most 2^17 values) is one (a pixel family's nets; a dimension off by one in the padding
 //!   fails here without a seed);
 //! - `distinct` (several sets or pixels, where samplab's own differ): no set equals an
 //!   earlier one (a seed shared across pixels or realizations fails here).
@@ -446,11 +446,16 @@ const NETS_SETS: usize = 64;
 /// a (0, 1, 2)-net one time in four, so 32 sets all being one is a structure (4^-32).
 const NETS_OWN: usize = 32;
 
+/// The most values of samplab's own point sets `nets` makes for a promise without matrices
+/// (32 MiB; larger sets are not given one).
+const NETS_OWN_VALUES: usize = 1 << 22;
+
 /// `nets`: each pair (j, j + 1) of every prefix of b^m points of the user's first 64 sets
 /// no worse a net than samplab promises: its generating matrices' t (a digital net's point
 /// sets, in its base), else a (0, m, 2)-net in base 2 where every one of its own 64 sets
-/// (pixels: its own values of the user's first 64 pixels, 32 at least) is one. None for a
-/// set of fewer than 2 points or of one dimension.
+/// (pixels: its own values of the user's first 64 pixels; 32 at least, and for point sets
+/// as many as fit 2^22 values) is one. None for a set of fewer than 2 points or of one
+/// dimension, or without matrices and without 32 own sets.
 fn nets(sets: &[PointSet], reference: &Reference, own: &[PointSet], progress: &Progress<'_>) -> Result<Option<Check>> {
     let (n, d) = (sets[0].len(), sets[0].dims());
     if n < 2 || d < 2 {
@@ -459,10 +464,12 @@ fn nets(sets: &[PointSet], reference: &Reference, own: &[PointSet], progress: &P
     let (plan, own) = match reference {
         Reference::Sets { sampler, .. } => {
             let plan = sampler.plan(n, d)?;
-            let own = if plan.generating_matrices().is_some() {
+            // as many own sets as fit NETS_OWN_VALUES, up to NETS_SETS
+            let fit = NETS_SETS.min(NETS_OWN_VALUES / (n * d));
+            let own = if plan.generating_matrices().is_some() || fit < NETS_OWN {
                 Vec::new()
             } else {
-                plan.generate_sets(Seed::DEFAULT, NETS_SETS, progress)?
+                plan.generate_sets(Seed::DEFAULT, fit, progress)?
             };
             (Some(plan), own)
         }

@@ -14,6 +14,12 @@ use crate::io::write_atomic;
 
 const MAGIC: &[u8] = b"samplab-chunk 1\n";
 
+/// A study's fingerprint from its description `text`: the SHA-256, in hex (what names its
+/// chunk files; Python's `Study` hashes its own canonical description the same way).
+pub fn fingerprint(text: &str) -> String {
+    Sha256::digest(text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect()
+}
+
 /// The chunk files of one study in one folder.
 #[derive(Debug)]
 pub struct Checkpoint {

@@ -22,7 +22,7 @@
 //! A [`Checkpoint`] keeps finished chunks on disk, each checked when read back.
 
 mod checkpoint;
-pub use checkpoint::Checkpoint;
+pub use checkpoint::{Checkpoint, fingerprint};
 
 use serde::{Deserialize, Serialize};
 
