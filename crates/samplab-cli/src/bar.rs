@@ -104,6 +104,7 @@ impl Experiments {
             Event::Length(units) => running.get(&task).iter().for_each(|b| b.set_length(units)),
             Event::Advanced(units) => running.get(&task).iter().for_each(|b| b.inc(units)),
             Event::Finished(_) => running.remove(&task).iter().for_each(ProgressBar::finish),
+            _ => {}
         }
     }
 }

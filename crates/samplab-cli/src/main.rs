@@ -290,7 +290,18 @@ fn in_flags(cause: &(dyn std::error::Error + 'static)) -> String {
         }
         Some(e @ samplab::Error::WorkLimit { .. }) => format!("{e}; raise it with --max-work"),
         Some(e @ samplab::Error::Memory { .. }) => format!("{e}; set another limit with --max-memory"),
-        _ => cause.to_string(),
+        Some(samplab::Error::InSet { set, error }) => format!("set {set}: {}", in_flags(&**error)),
+        Some(samplab::Error::ForeignEntry { folder, entry }) => {
+            format!(
+                "{folder}: holds '{entry}', which samplab did not write; name a new folder, or pass --force to replace it"
+            )
+        }
+        _ => match cause.downcast_ref::<samplab_render::Error>() {
+            Some(e @ samplab_render::Error::PathOutsideScene { .. }) => {
+                format!("{e}; allow it with --allow-paths-outside-scene")
+            }
+            _ => cause.to_string(),
+        },
     }
 }
 

@@ -445,7 +445,7 @@ fn argument_errors_are_one_line() {
         ("$S render spheres --res 8x8 --max-depth 3 -o r.png", "--max-depth 3: read in path mode only"),
         ("$S render spheres --res 8x8 --mode path -n 4 -o r.png", "-n 4: not read: the pixel sampler sobol"),
         ("$S --max-memory 8X list", "not a size"),
-        ("$S discrepancy star --sampler random -n 1 -d 50000", "up to 1000 dimensions"),
+        ("$S discrepancy star --sampler random -n 1 -d 50000", "takes 1 to 1000 dimensions"),
     ] {
         let (out, _) = sh(&dir, cmd);
         refused(&out, cmd, expect);

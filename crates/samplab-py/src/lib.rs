@@ -46,29 +46,30 @@ pub(crate) fn err<E: std::fmt::Display + 'static>(e: E) -> PyErr {
         Some(samplab_render::Error::Samplab(e)) => Some(e),
         _ => match any.downcast_ref::<samplab_report::Error>() {
             Some(samplab_report::Error::Samplab(e)) => Some(e),
-            _ => any.downcast_ref::<InSet>().map(|s| &s.error),
+            _ => None,
         },
     });
-    let file = match any.downcast_ref::<samplab_render::Error>() {
-        Some(samplab_render::Error::Image { path, .. }) => Some(path.clone()),
-        _ => None,
-    };
-    typed(library, file, &e.to_string()).unwrap_or_else(|| Error::new_err(e.to_string()))
-}
-
-/// A library failure on one set of a stack, typed as the failure itself.
-struct InSet {
-    set: usize,
-    error: samplab::Error,
-}
-
-impl std::fmt::Display for InSet {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "set {}: {}", self.set, self.error)?;
-        if matches!(self.error, samplab::Error::WorkLimit { .. }) {
-            write!(f, "; raise it with max_work")?;
+    let (file, message) = match any.downcast_ref::<samplab_render::Error>() {
+        Some(samplab_render::Error::Image { path, .. }) => (Some(path.clone()), e.to_string()),
+        Some(e @ samplab_render::Error::PathOutsideScene { .. }) => {
+            (None, format!("{e}; allow it with allow_paths_outside_scene=True"))
         }
-        Ok(())
+        _ => (None, library.map_or_else(|| e.to_string(), in_keywords)),
+    };
+    typed(library.map(samplab::Error::innermost), file, &message).unwrap_or_else(|| Error::new_err(message))
+}
+
+/// A library error's message, with the hints that name Python's keywords.
+fn in_keywords(e: &samplab::Error) -> String {
+    match e {
+        samplab::Error::WorkLimit { .. } => format!("{e}; raise it with max_work"),
+        samplab::Error::InSet { set, error } => format!("set {set}: {}", in_keywords(error)),
+        samplab::Error::ForeignEntry { folder, entry } => {
+            format!(
+                "{folder}: holds '{entry}', which samplab did not write; name a new folder, or pass force=True to replace it"
+            )
+        }
+        e => e.to_string(),
     }
 }
 
@@ -213,33 +214,23 @@ fn entries<'py, E: Entry>(py: Python<'py>, registry: &Registry<E>) -> PyResult<B
             q.set_item("name", p.name)?;
             q.set_item("doc", p.doc)?;
             q.set_item("range", p.range_text())?;
+            q.set_item("kind", p.kind.name())?;
             match p.kind {
-                Kind::Real { min, max } => {
-                    q.set_item("kind", "real")?;
+                Kind::Real { min, max } | Kind::Reals { min, max } => {
                     q.set_item("min", min)?;
                     q.set_item("max", max)?;
                 }
                 Kind::Int { min, max } => {
-                    q.set_item("kind", "int")?;
                     q.set_item("min", min)?;
                     q.set_item("max", max)?;
                 }
-                Kind::Choice(c) => {
-                    q.set_item("kind", "choice")?;
-                    q.set_item("choices", c.to_vec())?;
-                }
-                Kind::Path => q.set_item("kind", "path")?,
-                Kind::Reals { min, max } => {
-                    q.set_item("kind", "reals")?;
-                    q.set_item("min", min)?;
-                    q.set_item("max", max)?;
-                }
+                Kind::Choice(c) => q.set_item("choices", c.to_vec())?,
+                _ => {}
             }
             match p.default {
                 Default::Number(x) => q.set_item("default", x)?,
                 Default::Int(x) => q.set_item("default", x)?,
-                Default::Word(w) => q.set_item("default", w)?,
-                Default::Auto(how) => q.set_item("default", format!("auto ({how})"))?,
+                _ => q.set_item("default", p.default_text())?,
             }
             params.append(q)?;
         }
@@ -420,11 +411,10 @@ fn discrepancy(
         sets.par_iter()
             .enumerate()
             .map(|(k, s)| {
-                progress.check().map_err(|error| InSet { set: k, error })?;
-                samplab::discrepancy::compute(&m, s, limits.stopped_by(progress))
-                    .map_err(|error| InSet { set: k, error })
+                progress.check()?;
+                samplab::discrepancy::compute(&m, s, limits.stopped_by(progress)).map_err(|e| e.in_set(k))
             })
-            .collect::<Result<Vec<f64>, InSet>>()
+            .collect::<samplab::Result<Vec<f64>>>()
     })
 }
 
@@ -1042,6 +1032,7 @@ impl Watched {
                 self.percent = percent;
             }
             samplab_report::Event::Finished(_) => self.done = self.done.max(self.total),
+            _ => return None,
         }
         Some((self.paper.clone(), self.experiment.clone(), self.done, self.total))
     }

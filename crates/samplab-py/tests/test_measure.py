@@ -86,7 +86,7 @@ def test_every_metric_and_warp_runs():
         (lambda: samplab.discrepancy("star", [["a", "b"]]), "dtype"),
         (lambda: samplab.discrepancy("stra", [[0.5, 0.5]]), "did you mean star"),
         (lambda: samplab.discrepancy("star", np.random.default_rng(0).random((400, 5)), max_work=1e5), "max_work"),
-        (lambda: samplab.warp("disk.concentric", np.zeros((3, 3))), "needs 2D"),
+        (lambda: samplab.warp("disk.concentric", np.zeros((3, 3))), "takes 2D points, not 3D"),
     ],
 )
 def test_bad_arrays_raise(call, message):

@@ -230,7 +230,7 @@ def test_bad_studies_are_refused_before_any_work():
         Study.spectrum("jitter", 64, sets=100, res=16, sets_per_chunk=48)
     with pytest.raises(samplab.Error, match="9 and 16"):
         Study.spectrum("jitter", 15, sets=100, res=16)
-    with pytest.raises(samplab.Error, match="resolution"):
+    with pytest.raises(samplab.Error, match="res = 15: must be even and positive"):
         Study.spectrum("jitter", 16, sets=100, res=15)
     with pytest.raises(samplab.Error, match="sets"):
         Study.integrate(["random"], "quad", [16], sets=1)

@@ -4,6 +4,7 @@ use thiserror::Error;
 
 /// Everything that can go wrong in the renderer.
 #[derive(Debug, Error)]
+#[non_exhaustive]
 pub enum Error {
     /// A scene file (Mitsuba XML or OBJ) that is malformed or asks for what is unsupported.
     #[error("{file}:{line}: {message}")]
@@ -15,9 +16,19 @@ pub enum Error {
         /// What is wrong, naming the element.
         message: String,
     },
-    /// An option or value out of range.
-    #[error("{0}")]
-    Invalid(String),
+    /// A scene file naming a file outside its folder: read only where the caller allows it
+    /// ([`crate::mitsuba::Paths::Anywhere`]; each front end names its switch).
+    #[error("{file}:{line}: filename {name} {why}")]
+    PathOutsideScene {
+        /// The scene file.
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// The file named, shortened for display.
+        name: String,
+        /// How it leads out.
+        why: &'static str,
+    },
     /// An image that cannot be read, written or compared.
     #[error("{path}: {message}")]
     Image {
@@ -33,3 +44,8 @@ pub enum Error {
 
 /// The renderer's result type.
 pub type Result<T> = std::result::Result<T, Error>;
+
+/// The refusal of the render setting `name` = `value` (named as in [`crate::Settings`]).
+pub(crate) fn setting(name: &'static str, value: impl ToString, reason: impl Into<String>) -> Error {
+    Error::Samplab(samplab::Error::Setting { name, value: value.to_string(), reason: reason.into() })
+}

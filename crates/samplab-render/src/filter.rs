@@ -9,6 +9,7 @@
 
 /// Where in the pixel the camera rays go.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Footprint {
     /// Every estimate through the pixel centre.
     Centre,

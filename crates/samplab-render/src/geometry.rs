@@ -68,6 +68,7 @@ impl Aabb {
 
 /// A traceable shape.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Shape {
     /// A sphere whose centre moves linearly: `centre + time * velocity`.
     Sphere {

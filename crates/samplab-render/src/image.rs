@@ -87,7 +87,10 @@ impl Image {
     /// # Panics
     /// Never: every slice is of the length read.
     pub fn from_bytes(bytes: &[u8]) -> Result<Image> {
-        let bad = || Error::Invalid(format!("{} bytes are not an image's", bytes.len()));
+        let bad = || {
+            let reason = format!("{} bytes are not an image's", bytes.len());
+            Error::Samplab(samplab::Error::Parse { location: "an image".into(), reason })
+        };
         let word = |k: usize| bytes.get(8 * k..8 * k + 8).map(|b| u64::from_le_bytes(b.try_into().expect("8 bytes")));
         let (width, height) = (word(0).ok_or_else(bad)? as usize, word(1).ok_or_else(bad)? as usize);
         let has_visibility = *bytes.get(16).ok_or_else(bad)? == 1;
@@ -121,25 +124,32 @@ impl Image {
     /// Different sizes, a penumbra asked of a reference without a visibility channel, or
     /// no pixel to compare.
     pub fn errors(&self, reference: &Image, penumbra: bool) -> Result<Errors> {
-        let invalid = |m: String| Error::Invalid(m);
         if (self.width, self.height) != (reference.width, reference.height) {
-            return Err(invalid(format!(
-                "the image is {}x{} but the reference is {}x{}",
-                self.width, self.height, reference.width, reference.height
-            )));
+            return Err(Error::Samplab(samplab::Error::Mismatch {
+                what: "the image".into(),
+                expected: format!("{}x{}, as the reference", reference.width, reference.height),
+                got: format!("{}x{}", self.width, self.height),
+            }));
         }
         let mask: Vec<bool> = match (&reference.visibility, penumbra) {
             (_, false) => vec![true; self.width * self.height],
             (Some(v), true) => v.iter().map(|&v| v > PENUMBRA.0 && v < PENUMBRA.1).collect(),
             (None, true) => {
-                return Err(invalid("the reference has no visibility channel V to find the penumbra".into()));
+                let reason = "the reference has no visibility channel V to find the penumbra";
+                return Err(crate::error::setting("penumbra", true, reason));
             }
         };
         let (a, b) = (self.luminance(), reference.luminance());
         let diffs: Vec<(f64, f64)> =
             a.iter().zip(&b).zip(&mask).filter(|(_, m)| **m).map(|((x, r), _)| (x - r, *r)).collect();
         if diffs.is_empty() {
-            return Err(invalid("no pixel to compare (the reference has no penumbra)".into()));
+            return Err(samplab::Error::TooFew {
+                what: "the error in the penumbra (the reference has none)".into(),
+                least: 1,
+                of: "pixel",
+                got: 0,
+            }
+            .into());
         }
         let count = diffs.len() as f64;
         let mse = diffs.iter().map(|(d, _)| d * d).sum::<f64>() / count;

@@ -15,6 +15,7 @@ use crate::geometry::{Ray, plane_t};
 
 /// The light's geometry.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum LightShape {
     /// A segment from `a` to `b`, emitting equally in all directions (per unit length).
     Segment {
@@ -67,6 +68,7 @@ enum Outline {
 
 /// How the unit square is mapped to a disk light.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum DiskMap {
     /// Shirley & Chiu's concentric map (area-preserving, low distortion).
     Concentric,

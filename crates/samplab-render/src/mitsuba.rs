@@ -40,6 +40,7 @@ use crate::scenes::cuboid;
 
 /// Where the files a scene names (OBJ meshes) may be.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
 pub enum Paths {
     /// In the scene's folder or below it: a path with `..`, an absolute path, or a link
     /// leading out of the folder is refused, so a scene received from someone else cannot
@@ -243,9 +244,11 @@ impl Reader<'_, '_> {
         if self.paths == Paths::Anywhere {
             return Ok(path);
         }
-        let refuse = |why: &str| {
-            let name = samplab::error::excerpt(name);
-            self.fail(node, format!("filename {name} {why}; allow it with --allow-paths-outside-scene"))
+        let refuse = |why: &'static str| Error::PathOutsideScene {
+            file: self.file.into(),
+            line: self.doc.text_pos_at(node.range().start).row as usize,
+            name: samplab::error::excerpt(name),
+            why,
         };
         if Path::new(name).components().any(|c| !matches!(c, Component::Normal(_) | Component::CurDir)) {
             return Err(refuse("leads outside the scene's folder"));

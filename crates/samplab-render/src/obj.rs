@@ -26,6 +26,7 @@ pub const FLAT: f64 = 1e-3;
 /// Whether a mesh's vertex normals are read (Mitsuba's default) or ignored (its shapes'
 /// `face_normals`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Normals {
     /// A face's vertex normals say which side is its front.
     Vertex,

@@ -43,7 +43,7 @@ use samplab::sampler::{Plan, Sampler};
 use samplab::seed::{Rng, Seed, shuffle, uniform};
 
 use crate::bsdf::phong_lobe;
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, setting};
 use crate::filter::Footprint;
 use crate::geometry::Ray;
 use crate::image::Image;
@@ -54,6 +54,7 @@ use samplab::simd::wide;
 
 /// What each light sample estimates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Mode {
     /// Monte Carlo for visibility only; unoccluded shading by a fixed quadrature.
     Visibility,
@@ -71,6 +72,7 @@ pub enum Mode {
 
 /// How light samples are grouped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Pattern {
     /// Each estimate draws its own `n`-point pattern (secondary estimates, Subr & Kautz
     /// 2013 Fig. 8; offsets x points, Sbert et al. 2006 Table 1).
@@ -254,37 +256,33 @@ impl Options {
     /// Every sampler of the render planned for its counts: the checks of
     /// [`Options::check`], done once.
     fn plans(&self, scene: &Scene) -> Result<Plans> {
-        for (what, v) in [("width", self.width), ("height", self.height)] {
-            if v == 0 || v > MAX_SIDE {
-                return Err(Error::Invalid(format!("image {what} {v} is out of range 1..={MAX_SIDE}")));
-            }
+        if [self.width, self.height].iter().any(|&v| v == 0 || v > MAX_SIDE) {
+            let size = format!("{}x{}", self.width, self.height);
+            return Err(setting("res", size, format!("each side must be in 1..={MAX_SIDE}")));
         }
         for (name, v, what) in [("n", self.n, "light samples per estimate"), ("spp", self.spp, "estimates per pixel")] {
             if v == 0 {
-                let reason = format!("{what} must be at least 1");
-                return Err(samplab::Error::Setting { name, value: v.to_string(), reason }.into());
+                return Err(setting(name, v, format!("{what} must be at least 1")));
             }
         }
         let per_pattern = match self.pattern {
             Pattern::PerEstimate => self.n,
             Pattern::PerPixel => {
-                self.n.checked_mul(self.spp).ok_or_else(|| Error::Invalid("n x spp overflows".into()))?
+                self.n.checked_mul(self.spp).ok_or_else(|| setting("spp", self.spp, "n x spp overflows"))?
             }
         };
         if self.mode == Mode::Obscurance {
             if !(self.range.is_finite() && self.range > 0.0) {
-                return Err(Error::Invalid(format!("obscurance range {} must be a positive number", self.range)));
+                return Err(setting("range", self.range, "the obscurance range must be a positive number"));
             }
             if self.pattern == Pattern::PerPixel {
-                return Err(Error::Invalid("obscurance takes a pattern per estimate, not per pixel".into()));
+                return Err(setting("pattern", "pixel", "obscurance takes a pattern per estimate"));
             }
         }
         if let Mode::Path { max_depth } = self.mode {
             crate::path::check_depth(max_depth as usize)?;
             if self.pixels.is_none() {
-                return Err(Error::Invalid(
-                    "path mode draws every dimension from a pixel sampler (see `samplab list pixels`)".into(),
-                ));
+                return Err(setting("pixel_sampler", "none", "path mode draws every dimension from a pixel sampler"));
             }
         }
         if let Some(p) = &self.pixels {
@@ -300,10 +298,9 @@ impl Options {
             if self.interleave.is_none() {
                 pixel = Some(self.area.plan(self.spp, 2)?);
             }
-        } else if self.interleave.is_some() {
-            return Err(Error::Invalid(
-                "interleaved sampling spreads samples over pixel areas: it needs the area footprint".into(),
-            ));
+        } else if let Some((w, h)) = self.interleave {
+            let reason = "interleaved sampling spreads samples over pixel areas: it needs the area footprint";
+            return Err(setting("interleave", format!("{w}x{h}"), reason));
         }
         Ok(Plans {
             light,
@@ -321,29 +318,20 @@ impl Options {
     /// strategy is planned.
     fn pixel_sampler_plans(&self, p: &samplab::pixel::Pixels, scene: &Scene) -> Result<Plans> {
         if self.pattern == Pattern::PerPixel || self.interleave.is_some() {
-            return Err(Error::Invalid(format!(
-                "the pixel sampler {} draws each estimate's samples from its own dimensions: it takes \
-                 patterns per estimate and no interleaving",
-                p.spec()
-            )));
+            let reason = "draws each estimate's samples from its own dimensions: it takes patterns per estimate and no \
+                          interleaving";
+            return Err(setting("pixel_sampler", p.spec(), reason));
         }
         let film = p.film();
         let need = pixel_dims(self.n, scene.lights.len(), self.mode);
         if (film.width as usize, film.height as usize, film.spp as usize) != (self.width, self.height, self.spp)
             || (film.dims as usize) < need
         {
-            return Err(Error::Invalid(format!(
-                "the pixel sampler {} is prepared for {}x{} pixels, {} spp, {} dimensions; this render needs \
-                 {}x{}, {} spp, {need} dimensions",
-                p.spec(),
-                film.width,
-                film.height,
-                film.spp,
-                film.dims,
-                self.width,
-                self.height,
-                self.spp
-            )));
+            return Err(Error::Samplab(samplab::Error::Mismatch {
+                what: format!("the pixel sampler {}", p.spec()),
+                expected: format!("{}x{} pixels, {} spp, {need} dimensions or more", self.width, self.height, self.spp),
+                got: format!("{}x{} pixels, {} spp, {} dimensions", film.width, film.height, film.spp, film.dims),
+            }));
         }
         Ok(Plans { light: Vec::new(), pixel: None, tile: None, lens: None, time: None, gloss: None })
     }
@@ -396,9 +384,11 @@ impl Options {
     fn tile(&self) -> Result<Option<Tile>> {
         let Some((width, height)) = self.interleave else { return Ok(None) };
         if !(1..=MAX_TILE).contains(&width) || !(1..=MAX_TILE).contains(&height) {
-            return Err(Error::Invalid(format!(
-                "interleaving tile {width}x{height} is out of range 1..={MAX_TILE} per side"
-            )));
+            return Err(setting(
+                "interleave",
+                format!("{width}x{height}"),
+                format!("each side must be in 1..={MAX_TILE}"),
+            ));
         }
         let cells = width * height;
         let total = self.spp * cells;
@@ -410,14 +400,15 @@ impl Options {
             by_cell[r * width + c].extend([x - c as f64, y - r as f64]);
         }
         if let Some((i, cell)) = by_cell.iter().enumerate().find(|(_, c)| c.len() != 2 * self.spp) {
-            return Err(Error::Invalid(format!(
-                "interleaved sampling: '{}' puts {} of its {total} points in pixel ({}, {}) of the {width}x{height} tile, not spp = {}",
-                self.area.spec(),
+            let reason = format!(
+                "interleaved sampling: it puts {} of its {total} points in pixel ({}, {}) of the {width}x{height} tile, \
+                 not spp = {}",
                 cell.len() / 2,
                 i % width,
                 i / width,
                 self.spp
-            )));
+            );
+            return Err(setting("area_sampler", self.area.spec(), reason));
         }
         Ok(Some(Tile { width, height, spp: self.spp, points: by_cell.concat() }))
     }

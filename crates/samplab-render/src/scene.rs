@@ -11,6 +11,7 @@ use crate::packet::{Packet, WIDTH, packets};
 
 /// A surface colour that may vary with position.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Texture {
     /// One colour.
     Constant(DVec3),
@@ -53,6 +54,7 @@ fn checker(even: DVec3, odd: DVec3, size: f64, angle: f64, p: DVec3) -> DVec3 {
 
 /// How a surface reflects.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Finish {
     /// Lambertian: reflected radiance = albedo / pi x irradiance.
     Diffuse,
@@ -77,6 +79,7 @@ pub enum Finish {
 
 /// A microfacet distribution (Walter et al. 2007).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Distribution {
     /// Beckmann's.
     Beckmann,
@@ -115,6 +118,7 @@ impl Material {
 
 /// A surface point seen by a camera ray.
 #[derive(Debug, Clone, Copy)]
+#[non_exhaustive]
 pub enum Seen {
     /// Nothing: black background.
     Nothing,

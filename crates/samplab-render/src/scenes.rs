@@ -19,6 +19,7 @@ use crate::scene::{Finish, Material, Scene, Texture};
 
 /// The kinds of light a built-in scene can be lit by (`--light`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum LightKind {
     /// A square.
     Square,
@@ -39,16 +40,22 @@ impl LightKind {
         ("gaussian", LightKind::Gaussian),
     ];
 
+    /// The kind's name.
+    pub fn name(self) -> &'static str {
+        Self::ALL.iter().find(|(_, k)| *k == self).map_or("", |(n, _)| n)
+    }
+
     /// The kind called `name`.
     ///
     /// # Errors
-    /// An unknown name, listing the known ones.
+    /// An unknown name, with the closest known ones.
     pub fn parse(name: &str) -> Result<LightKind> {
         Self::ALL.iter().find(|(n, _)| n.eq_ignore_ascii_case(name)).map(|(_, k)| *k).ok_or_else(|| {
-            Error::Invalid(format!(
-                "unknown light '{name}' (known: {})",
-                Self::ALL.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
-            ))
+            Error::Samplab(samplab::Error::UnknownName {
+                kind: "light",
+                name: name.into(),
+                suggestions: samplab::error::closest_names(name, Self::ALL.iter().map(|(n, _)| *n)),
+            })
         })
     }
 }
@@ -195,7 +202,8 @@ pub fn builtin(name: &str, light: Option<LightKind>) -> Result<Scene> {
         (Some(default), chosen) => chosen.unwrap_or(default),
         (None, None) => LightKind::Square,
         (None, Some(_)) => {
-            return Err(Error::Invalid(format!("scene '{}' has no area light to replace", entry.about.name)));
+            let reason = format!("scene '{}' has no area light to replace", entry.about.name);
+            return Err(crate::error::setting("light", light.map_or("", |k| k.name()), reason));
         }
     };
     Ok((entry.build)(kind))

@@ -256,8 +256,10 @@ pub fn load_scene(name: &str, light: Option<&str>, paths: Paths) -> Result<Scene
     let kind = light.map(LightKind::parse).transpose()?;
     if name.to_ascii_lowercase().ends_with(".xml") {
         if kind.is_some() {
-            return Err(crate::Error::Invalid(
-                "a light replaces a built-in scene's light; a Mitsuba scene brings its own".into(),
+            return Err(crate::error::setting(
+                "light",
+                light.unwrap_or_default(),
+                "a light replaces a built-in scene's light; a Mitsuba scene brings its own",
             ));
         }
         return crate::mitsuba::load(Path::new(name), paths);

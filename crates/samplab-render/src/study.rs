@@ -193,7 +193,7 @@ impl Kind {
 /// # Errors
 /// Text that is not a JSON object, an unknown kind, or [`Kind::read`]'s errors.
 pub fn read(arguments: &str) -> Result<(Study, usize)> {
-    let bad = |e: serde_json::Error| invalid(format!("not a study's arguments: {e}"));
+    let bad = |e: serde_json::Error| parse("a study's arguments", e);
     let arguments: serde_json::Map<String, Value> = serde_json::from_str(arguments).map_err(bad)?;
     let kind = arguments.get("kind").and_then(Value::as_str).unwrap_or_default();
     Kind::named(kind)?.read(&arguments)
@@ -261,6 +261,7 @@ pub struct RenderStudy {
 
 /// A study of any kind.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum Study {
     /// Integration, spectrum or discrepancy (the library's kinds).
     Library(Description),
@@ -268,8 +269,9 @@ pub enum Study {
     Render(Box<RenderStudy>),
 }
 
-fn invalid(what: String) -> Error {
-    Error::Invalid(what)
+/// The refusal of JSON that is not `what`.
+fn parse(what: &str, e: impl std::fmt::Display) -> Error {
+    Error::Samplab(samplab::Error::Parse { location: what.into(), reason: e.to_string() })
 }
 
 impl Study {
@@ -278,11 +280,11 @@ impl Study {
     /// # Errors
     /// JSON that is not a study description, naming what is wrong.
     pub fn from_json(text: &str) -> Result<Study> {
-        Study::from_value(serde_json::from_str(text).map_err(|e| invalid(format!("not a study description: {e}")))?)
+        Study::from_value(serde_json::from_str(text).map_err(|e| parse("a study description", e))?)
     }
 
     fn from_value(mut value: Value) -> Result<Study> {
-        let bad = |e: serde_json::Error| invalid(format!("not a study description: {e}"));
+        let bad = |e: serde_json::Error| parse("a study description", e);
         if value.get("kind").and_then(Value::as_str) == Some("render") {
             value.as_object_mut().map(|o| o.remove("kind"));
             Ok(Study::Render(Box::new(serde_json::from_value(value).map_err(bad)?)))
@@ -324,10 +326,12 @@ impl Study {
             }
             Study::Render(r) => {
                 if per_chunk == 0 {
-                    return Err(invalid("seeds_per_chunk = 0: must be at least 1".into()));
+                    return Err(crate::error::setting("seeds_per_chunk", 0, "must be at least 1"));
                 }
                 if r.seeds.is_empty() {
-                    return Err(invalid("seeds: give at least one seed".into()));
+                    return Err(
+                        samplab::Error::TooFew { what: "a render study".into(), least: 1, of: "seed", got: 0 }.into()
+                    );
                 }
                 // the scene and the settings, before any render
                 let scene = load_scene(&r.scene, r.light.as_deref(), Paths::InsideScene)?;
@@ -345,6 +349,9 @@ impl Study {
     ///
     /// # Errors
     /// A chunk without what it needs, or the computation's error.
+    ///
+    /// # Panics
+    /// Never: a list of the errors' numbers always serializes.
     pub fn compute(
         &self,
         chunk: &[u64],
@@ -361,14 +368,16 @@ impl Study {
             let options = r.settings.options(&scene)?.reference(&scene, r.reference_samples)?;
             return Ok(crate::render(&scene, &options, progress)?.image.to_bytes());
         }
-        let reference = Image::from_bytes(first.ok_or_else(|| invalid("an error chunk needs the reference".into()))?)?;
+        let none = || samplab::Error::TooFew { what: "an error chunk".into(), least: 1, of: "reference image", got: 0 };
+        let reference = Image::from_bytes(first.ok_or_else(none)?)?;
         let mut errors = Vec::with_capacity(chunk.len());
         for &seed in chunk {
             let settings = Settings { seed, ..r.settings.clone() };
             let image = crate::render(&scene, &settings.options(&scene)?, progress)?.image;
             errors.push(image.errors(&reference, r.penumbra)?);
         }
-        serde_json::to_vec(&errors).map_err(|e| invalid(e.to_string()))
+        // a list of maps of names to numbers always serializes
+        Ok(serde_json::to_vec(&errors).expect("errors as JSON"))
     }
 
     /// Every chunk's result, in chunk order, into the study's result.
@@ -383,11 +392,15 @@ impl Study {
         let mut errors: Vec<serde_json::Map<String, Value>> = Vec::new();
         for part in parts.iter().skip(1) {
             let chunk: Vec<serde_json::Map<String, Value>> =
-                serde_json::from_slice(part).map_err(|e| invalid(format!("a render chunk that is not errors: {e}")))?;
+                serde_json::from_slice(part).map_err(|e| parse("a render chunk's errors", e))?;
             errors.extend(chunk);
         }
         if errors.len() != r.seeds.len() {
-            return Err(invalid(format!("the chunks hold {} renders, not {}", errors.len(), r.seeds.len())));
+            return Err(Error::Samplab(samplab::Error::Mismatch {
+                what: "the chunks' renders".into(),
+                expected: r.seeds.len().to_string(),
+                got: errors.len().to_string(),
+            }));
         }
         let names: Vec<String> = errors.first().map(|e| e.keys().cloned().collect()).unwrap_or_default();
         let column = |name: &str| errors.iter().map(|e| e[name].as_f64().unwrap_or(f64::NAN)).collect::<Vec<f64>>();

@@ -347,5 +347,5 @@ fn a_pixel_sampler_draws_every_dimension_and_converges_to_the_reference() {
     // a sampler prepared for another film is refused before any work
     let wrong = Options { spp: 8, ..with(&all, "zsobol", 4, 3) };
     let e = render(&all, &wrong, &Progress::new(&|_| panic!("no row may start"))).unwrap_err().to_string();
-    assert!(e.contains("prepared for 32x24 pixels, 4 spp"), "{e}");
+    assert!(e.contains("zsobol: got 32x24 pixels, 4 spp"), "{e}");
 }

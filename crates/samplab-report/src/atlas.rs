@@ -388,7 +388,10 @@ fn measure(
         }
         progress.check()?;
     }
-    let sets = at.ok_or_else(|| Error::Invalid(format!("{}: no count near {AT} in 2D", entry.about.name)))?;
+    let sets = at.ok_or_else(|| samplab::Error::Infeasible {
+        what: entry.about.name.into(),
+        reason: format!("no count near {AT} in 2D"),
+    })?;
     let n = sets[0].len();
     let res = level.resolution();
     let st = spectrum::statistics(&sets, res, spectrum::Method::of(false, 1e-9))?;

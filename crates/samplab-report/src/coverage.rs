@@ -36,6 +36,7 @@ pub struct Item {
 
 /// The status of an item, from its claims' verdicts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Status {
     /// Every claim reproduced.
     Reproduced,
@@ -163,7 +164,7 @@ pub fn audit(items: &[Item], claims: &[&Claim], made: &[&str]) -> Vec<String> {
 /// # Errors
 /// The first mismatch, naming it.
 pub fn check(key: &str, items: &[Item], experiments: &[&str], claims: &[&Claim]) -> Result<(), Error> {
-    let bad = |m: String| Err(Error::Invalid(format!("published.json {key}.coverage: {m}")));
+    let bad = |m: String| Err(Error::Coverage { paper: key.into(), reason: format!("published.json: {m}") });
     for it in items {
         match (&it.experiment, &it.not_attempted) {
             (Some(e), None) if experiments.contains(&e.as_str()) => {}

@@ -16,6 +16,7 @@ pub const Z: f64 = 3.0;
 /// The verdict on a claim.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Default)]
 #[serde(rename_all = "kebab-case")]
+#[non_exhaustive]
 pub enum Verdict {
     /// The measurement supports the claim under its criterion.
     Reproduced,

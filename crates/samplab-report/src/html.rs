@@ -261,10 +261,10 @@ fn overview_html(
     for it in items {
         let Some(fig) = &it.key else { continue };
         let Some(figure) = figures.iter().find(|f| &f.id == fig) else {
-            return Err(Error::Invalid(format!(
-                "{} coverage: the key figure {fig} of {} is not a figure of the run",
-                paper.key, it.item
-            )));
+            return Err(Error::Coverage {
+                paper: paper.key.into(),
+                reason: format!("the key figure {fig} of {} is not a figure of the run", it.item),
+            });
         };
         let _ = writeln!(
             h,
@@ -349,7 +349,7 @@ pub(crate) fn write_report(
             .collect();
         let breaches = coverage::audit(&items, &claims, &made);
         if !breaches.is_empty() {
-            return Err(Error::Invalid(format!("{} coverage audit: {}", paper.key, breaches.join("; "))));
+            return Err(Error::Coverage { paper: paper.key.into(), reason: format!("audit: {}", breaches.join("; ")) });
         }
         let (cov, status_counts) = coverage_table(&items, &claims);
         let figures: Vec<&Figure> = done.iter().flat_map(|d| &d.output.figures).collect();

@@ -29,6 +29,7 @@ pub mod published;
 
 /// Errors of the report crate.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum Error {
     /// A library error (sampler, metric, ...).
     #[error(transparent)]
@@ -44,13 +45,26 @@ pub enum Error {
     /// A plot could not be drawn.
     #[error("plot: {0}")]
     Plot(String),
-    /// Bad options (an unknown paper, ...).
+    /// A renderer's error other than the library's (a scene that does not load, ...).
+    #[error(transparent)]
+    Render(samplab_render::Error),
+    /// A paper's coverage (its items in `published.json`, their experiments, claims and
+    /// figures) that does not hold together.
+    #[error("{paper} coverage: {reason}")]
+    Coverage {
+        /// The paper's key.
+        paper: String,
+        /// What does not hold, naming the item.
+        reason: String,
+    },
+    /// What fits none of the typed cases.
     #[error("{0}")]
     Invalid(String),
 }
 
 /// Experiment scale: `Fast` (the default, minutes on two cores) or `Full` (the papers' own).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[non_exhaustive]
 pub enum Scale {
     /// Reduced parameters.
     Fast,
@@ -61,6 +75,7 @@ pub enum Scale {
 /// What a run tells whoever watches it (a terminal's bars, a Python callback), in order:
 /// each experiment starts, says how many units of work it has, advances, and finishes.
 #[derive(Debug, Clone, Copy)]
+#[non_exhaustive]
 pub enum Event<'e> {
     /// Experiment `experiment` of paper `paper` started.
     Started {
@@ -129,6 +144,7 @@ impl Ctx<'_> {
 /// A table cell.
 #[derive(Debug, Clone, Serialize)]
 #[serde(untagged)]
+#[non_exhaustive]
 pub enum Cell {
     /// Text.
     Text(String),

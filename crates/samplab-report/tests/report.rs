@@ -44,6 +44,7 @@ fn run(papers: &[Paper], out: &Path, threads: usize) -> (Claims, Vec<String>) {
             samplab_report::Event::Length(n) => format!("length {n}"),
             samplab_report::Event::Advanced(_) => return,
             samplab_report::Event::Finished(_) => "finish".into(),
+            other => format!("{other:?}"),
         };
         events.lock().unwrap().push(format!("{task} {text}"));
     };

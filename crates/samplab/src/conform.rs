@@ -37,6 +37,7 @@ use crate::seed::Seed;
 
 /// How the user's sets map to samplab's keys.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum Layout {
     /// Realizations of a point set: set k is samplab's made with `seed.derive(k)` (the sets
     /// `samplab generate --sets` writes).
@@ -83,6 +84,7 @@ pub struct Check {
 
 /// How the `reference` check compares.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Precision {
     /// As the values are found: single precision when every value is a single (a float32
     /// file), 32-bit fixed point when every value is a multiple of 2^-32, else double.
@@ -159,13 +161,10 @@ pub fn conform(sets: &[PointSet], claim: &Claim<'_>, progress: &Progress<'_>) ->
 
 /// The common (n, d) of the sets.
 fn shape(sets: &[PointSet]) -> Result<(usize, usize)> {
-    let first = sets.first().ok_or_else(|| Error::Invalid("conform: no sets".into()))?;
-    let (n, d) = (first.len(), first.dims());
-    if let Some(k) = sets.iter().position(|s| (s.len(), s.dims()) != (n, d)) {
-        let (m, e) = (sets[k].len(), sets[k].dims());
-        return Err(Error::Invalid(format!("conform: set {k} has {m} points in {e}D, set 0 {n} in {d}D")));
+    if sets.is_empty() {
+        return Err(Error::TooFew { what: "conform".into(), least: 1, of: "set", got: 0 });
     }
-    Ok((n, d))
+    crate::spectrum::Sets::Given(sets).shape()
 }
 
 /// samplab's side: the point-set sampler or the prepared pixel family.
@@ -184,19 +183,27 @@ impl Reference {
             }
             Layout::Pixels { width, height, keys } => {
                 if keys.len() != m {
-                    return Err(Error::Invalid(format!("conform: {} pixels for {m} sets", keys.len())));
+                    return Err(Error::Mismatch {
+                        what: "conform's pixels".into(),
+                        expected: format!("one per set, {m}"),
+                        got: keys.len().to_string(),
+                    });
                 }
                 if let Some(p) = keys.iter().find(|p| p[0] >= *width || p[1] >= *height) {
-                    return Err(Error::Invalid(format!(
-                        "conform: pixel ({}, {}) off a {width} x {height} film",
-                        p[0], p[1]
-                    )));
+                    return Err(Error::Setting {
+                        name: "res",
+                        value: format!("{width}x{height}"),
+                        reason: format!("pixel ({}, {}) is off the film", p[0], p[1]),
+                    });
                 }
-                let count = |v: usize, what: &str| {
-                    u32::try_from(v).map_err(|_| Error::Invalid(format!("conform: {v} {what} per pixel")))
+                let count = |v: usize, name: &'static str| {
+                    u32::try_from(v).map_err(|_| Error::Setting {
+                        name,
+                        value: v.to_string(),
+                        reason: "more per pixel than 2^32 - 1".into(),
+                    })
                 };
-                let film =
-                    Film { width: *width, height: *height, spp: count(n, "samples")?, dims: count(d, "dimensions")? };
+                let film = Film { width: *width, height: *height, spp: count(n, "spp")?, dims: count(d, "dims")? };
                 Reference::Pixels { spec: spec.into(), film, keys: keys.clone() }
             }
         })

@@ -4,6 +4,7 @@ use thiserror::Error;
 
 /// Everything that can go wrong in samplab's library calls.
 #[derive(Debug, Error, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum Error {
     /// A sampler cannot make exactly `n` points (e.g. a grid sampler asked for a non-power).
     #[error("{sampler}: cannot make {n} points in {dims}D: {reason}")]
@@ -47,11 +48,12 @@ pub enum Error {
         /// What is wrong, with the valid range.
         reason: String,
     },
-    /// A randomized construction that could not finish (e.g. Poisson disks that do not fit).
-    #[error("{sampler}: {reason}")]
+    /// A construction or computation that could not finish (Poisson disks that do not fit,
+    /// Voronoi cells that do not close, a value beyond double precision).
+    #[error("{what}: {reason}")]
     Infeasible {
-        /// The sampler's canonical name.
-        sampler: String,
+        /// The sampler's canonical name, or the computation.
+        what: String,
         /// What could not be done, with numbers.
         reason: String,
     },
@@ -106,9 +108,104 @@ pub enum Error {
     /// Work stopped on request (Ctrl-C, SIGTERM, a stop flag: [`crate::progress`]).
     #[error("interrupted")]
     Interrupted,
-    /// Arguments that do not fit together (e.g. mismatched dimensions).
+    /// Points, sets or integrands in a dimension the computation does not take.
+    #[error("{what} takes {takes}, not {got}D")]
+    Dimension {
+        /// The computation, e.g. `the exact extreme discrepancy`.
+        what: String,
+        /// The dimensions it takes, in words (`2D points`, `1 to 6 dimensions`).
+        takes: String,
+        /// The dimension given.
+        got: usize,
+    },
+    /// Inputs whose sizes or dimensions do not agree with one another.
+    #[error("{what}: got {got}, expected {expected}")]
+    Mismatch {
+        /// Which input, e.g. `set 3`.
+        what: String,
+        /// What it should be (set by the other inputs).
+        expected: String,
+        /// What it is.
+        got: String,
+    },
+    /// Fewer inputs than a computation needs (an empty set, one set for a variance).
+    #[error("{what} needs at least {}, got {got}", counted(*.least, .of))]
+    TooFew {
+        /// The computation.
+        what: String,
+        /// The least number it takes.
+        least: usize,
+        /// Of what, in the singular (`point`, `set`).
+        of: &'static str,
+        /// The number given.
+        got: usize,
+    },
+    /// A point coordinate outside the unit cube [0, 1]^d.
+    #[error("point {point} coordinate {coordinate} is {value} (outside [0, 1])")]
+    OutsideUnitCube {
+        /// The point's index.
+        point: usize,
+        /// The coordinate's index.
+        coordinate: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// A number that must be finite and is NaN or infinite.
+    #[error("{what} is {value}, not a finite number")]
+    NotFinite {
+        /// Which number, e.g. `point 3 coordinate 1`.
+        what: String,
+        /// Its value.
+        value: f64,
+    },
+    /// An output folder that holds an entry samplab did not write: it is replaced only when
+    /// the caller says so ([`crate::io::Replace::Force`]; each front end names its switch).
+    #[error("{folder}: holds '{entry}', which samplab did not write; name a new folder, or allow replacing it")]
+    ForeignEntry {
+        /// The folder.
+        folder: String,
+        /// The first entry samplab did not write, relative to the folder.
+        entry: String,
+    },
+    /// A failure on one set of a stack (a discrepancy of set 7 over its work limit): the
+    /// failure itself, with the set's index.
+    #[error("set {set}: {error}")]
+    InSet {
+        /// The set's index in the stack.
+        set: u64,
+        /// What went wrong there.
+        error: Box<Error>,
+    },
+    /// What fits none of the typed cases (few: each is one of a kind).
     #[error("{0}")]
     Invalid(String),
+}
+
+impl Error {
+    /// This failure as one on set `set` of a stack ([`Error::InSet`]); a stop stays a stop.
+    pub fn in_set(self, set: usize) -> Error {
+        match self {
+            Error::Interrupted => self,
+            error => Error::InSet { set: set as u64, error: Box::new(error) },
+        }
+    }
+
+    /// The failure itself, inside any [`Error::InSet`].
+    pub fn innermost(&self) -> &Error {
+        match self {
+            Error::InSet { error, .. } => error.innermost(),
+            e => e,
+        }
+    }
+}
+
+/// `n` of `what`, in the plural where `n` is not 1 (`1 point`, `2 sets`, `2 axes`).
+fn counted(n: usize, what: &str) -> String {
+    match (n, what) {
+        (1, _) => format!("1 {what}"),
+        (_, "axis") => format!("{n} axes"),
+        _ => format!("{n} {what}s"),
+    }
 }
 
 fn suggest(s: &[String]) -> String {

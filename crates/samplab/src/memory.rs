@@ -199,9 +199,12 @@ fn huge_pages<T>(v: &[T]) {
 /// G, T (with or without `iB`, any case) are powers of 1024; kB, MB, GB, TB powers of 1000.
 ///
 /// # Errors
-/// [`Error::Invalid`] for anything else, or a size past 2^64 - 1 bytes.
+/// [`Error::Parse`] for anything else, or a size past 2^64 - 1 bytes.
 pub fn parse_size(text: &str) -> Result<u64> {
-    let bad = || Error::Invalid(format!("'{text}' is not a size (e.g. 8G, 8GiB, 512MB, 100k or bytes)"));
+    let bad = || Error::Parse {
+        location: format!("'{text}'"),
+        reason: "not a size (e.g. 8G, 8GiB, 512MB, 100k or bytes)".into(),
+    };
     let t = text.trim();
     let digits = t.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(t.len());
     let (number, unit) = (&t[..digits], &t[digits..]);

@@ -20,18 +20,20 @@ impl PointSet {
     /// `dims` is zero, `data.len()` is not a multiple of `dims`, or a coordinate is not finite.
     pub fn new(dims: usize, data: Vec<f64>) -> Result<Self> {
         if dims == 0 {
-            return Err(Error::Invalid("a point set needs at least one dimension".into()));
+            return Err(Error::TooFew { what: "a point set".into(), least: 1, of: "dimension", got: 0 });
         }
         if !data.len().is_multiple_of(dims) {
-            return Err(Error::Invalid(format!("{} coordinates do not make whole {dims}D points", data.len())));
+            return Err(Error::Mismatch {
+                what: format!("{} coordinates", data.len()),
+                expected: format!("whole {dims}D points (a multiple of {dims})"),
+                got: format!("{} over", data.len() % dims),
+            });
         }
         if let Some(i) = data.iter().position(|x| !x.is_finite()) {
-            return Err(Error::Invalid(format!(
-                "point {} coordinate {} is not finite ({})",
-                i / dims,
-                i % dims,
-                data[i]
-            )));
+            return Err(Error::NotFinite {
+                what: format!("point {} coordinate {}", i / dims, i % dims),
+                value: data[i],
+            });
         }
         Ok(PointSet { dims, data })
     }

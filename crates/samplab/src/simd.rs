@@ -14,6 +14,7 @@ use crate::error::{Error, Result};
 
 /// An instruction set [`wide`] compiles hot loops for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+#[non_exhaustive]
 pub enum Tier {
     /// x86-64's baseline (SSE2), or whatever the target has off x86-64.
     Baseline,
@@ -58,12 +59,12 @@ impl Tier {
     /// The tier [`LIMIT_VARIABLE`] asks for (unset: the processor's).
     ///
     /// # Errors
-    /// [`Error::Invalid`] for a word that names no tier, or a tier this processor lacks.
+    /// [`Error::Parse`] for a word that names no tier, or a tier this processor lacks.
     pub fn from_environment() -> Result<Tier> {
         let detected = Tier::detected();
         let Some(value) = std::env::var_os(LIMIT_VARIABLE) else { return Ok(detected) };
         let word = value.to_string_lossy();
-        let bad = |reason: String| Error::Invalid(format!("{LIMIT_VARIABLE}={word}: {reason}"));
+        let bad = |reason: String| Error::Parse { location: format!("{LIMIT_VARIABLE}={word}"), reason };
         let tier = Tier::ALL
             .into_iter()
             .find(|t| t.name() == word)

@@ -328,10 +328,16 @@ const PACKING_DENSITY: [f64; 8] = {
 /// # Errors
 /// Dimensions outside 1..=8 (no packing density is tabulated here) or n = 0.
 pub fn packing_radius(n: usize, dims: usize) -> Result<f64> {
-    if !(1..=PACKING_DENSITY.len()).contains(&dims) || n == 0 {
-        return Err(Error::Invalid(format!(
-            "the packing radius needs 1 to 8 dimensions and n >= 1, not {n} points in {dims}D"
-        )));
+    let what = || "the packing radius".to_string();
+    if !(1..=PACKING_DENSITY.len()).contains(&dims) {
+        return Err(Error::Dimension {
+            what: what(),
+            takes: format!("1 to {} dimensions", PACKING_DENSITY.len()),
+            got: dims,
+        });
+    }
+    if n == 0 {
+        return Err(Error::TooFew { what: what(), least: 1, of: "point", got: n });
     }
     Ok((PACKING_DENSITY[dims - 1] / (n as f64 * unit_ball_volume(dims))).powf(1.0 / dims as f64))
 }
@@ -343,7 +349,7 @@ pub fn packing_radius(n: usize, dims: usize) -> Result<f64> {
 /// As [`packing_radius`], or fewer than 2 points.
 pub fn relative_radius(points: &PointSet) -> Result<f64> {
     if points.len() < 2 {
-        return Err(Error::Invalid("the relative radius needs at least 2 points".into()));
+        return Err(Error::TooFew { what: "the relative radius".into(), least: 2, of: "point", got: points.len() });
     }
     Ok(min_distance(points, true) / (2.0 * packing_radius(points.len(), points.dims())?))
 }
@@ -357,14 +363,15 @@ fn sphere_surface(dims: usize) -> f64 {
 /// to 1/2 does not meet itself; 0 too when `zero`), and a set of at least 2 points.
 fn check_radii(points: &PointSet, radii: &[f64], zero: bool) -> Result<()> {
     if points.len() < 2 {
-        return Err(Error::Invalid("a pair correlation needs at least 2 points".into()));
+        return Err(Error::TooFew { what: "a pair correlation".into(), least: 2, of: "point", got: points.len() });
     }
+    let setting = |value: String, reason: String| Error::Setting { name: "radii", value, reason };
     if let Some(r) = radii.iter().find(|&&r| !((r > 0.0 || (zero && r == 0.0)) && r <= 0.5)) {
         let range = if zero { "[0, 0.5]" } else { "(0, 0.5]" };
-        return Err(Error::Invalid(format!("radius {r} is outside {range} (distances on the unit torus)")));
+        return Err(setting(r.to_string(), format!("outside {range} (distances on the unit torus)")));
     }
-    if radii.windows(2).any(|w| w[0] >= w[1]) {
-        return Err(Error::Invalid("the radii must increase".into()));
+    if let Some(w) = radii.windows(2).find(|w| w[0] >= w[1]) {
+        return Err(setting(format!("{}, {}", w[0], w[1]), "the radii must increase".into()));
     }
     Ok(())
 }
@@ -385,7 +392,11 @@ fn check_radii(points: &PointSet, radii: &[f64], zero: bool) -> Result<()> {
 pub fn pcf(points: &PointSet, radii: &[f64], sigma: f64) -> Result<Vec<f64>> {
     check_radii(points, radii, false)?;
     if !(sigma > 0.0 && sigma.is_finite()) {
-        return Err(Error::Invalid(format!("the kernel width sigma must be positive, not {sigma}")));
+        return Err(Error::Setting {
+            name: "sigma",
+            value: sigma.to_string(),
+            reason: "the kernel width must be positive".into(),
+        });
     }
     let Some(&last) = radii.last() else { return Ok(Vec::new()) };
     let cut = 6.0 * sigma;

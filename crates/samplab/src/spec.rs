@@ -44,6 +44,7 @@ impl Spec {
 
 /// What values a parameter takes.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Kind {
     /// A real number in [min, max].
     Real {
@@ -75,6 +76,7 @@ pub enum Kind {
 
 /// The default of a parameter.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Default {
     /// A real number (for [`Kind::Real`]).
     Number(f64),
@@ -97,6 +99,19 @@ pub struct ParamSpec {
     pub default: Default,
     /// One line: what it means, with its unit.
     pub doc: &'static str,
+}
+
+impl Kind {
+    /// The kind's one-word name: `real`, `int`, `choice`, `path` or `reals`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Kind::Real { .. } => "real",
+            Kind::Int { .. } => "int",
+            Kind::Choice(_) => "choice",
+            Kind::Path => "path",
+            Kind::Reals { .. } => "reals",
+        }
+    }
 }
 
 impl ParamSpec {
@@ -139,6 +154,7 @@ impl ParamSpec {
 
 /// A resolved parameter value.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum Value {
     /// A real number ([`Kind::Real`]).
     Number(f64),

@@ -181,11 +181,11 @@ fn bad_requests_are_errors() {
     let e = check(&two, "nosuch", Layout::Sets, None).unwrap_err().to_string();
     assert!(e.contains("unknown sampler"), "{e}");
     let e = check(&two, "random", Layout::film(3, 1, 0), None).unwrap_err().to_string();
-    assert!(e.contains("3 pixels for 2 sets"), "{e}");
+    assert!(e.contains("conform's pixels: got 3, expected one per set, 2"), "{e}");
     let layout = Layout::Pixels { width: 2, height: 2, keys: vec![[0, 0, 0], [2, 0, 0]] };
     let e = check(&two, "sobol", layout, None).unwrap_err().to_string();
-    assert!(e.contains("pixel (2, 0) off a 2 x 2 film"), "{e}");
+    assert!(e.contains("res = 2x2: pixel (2, 0) is off the film"), "{e}");
     let mixed = vec![two[0].clone(), sets("random", 8, 2, 1, 1).remove(0)];
     let e = check(&mixed, "random", Layout::Sets, None).unwrap_err().to_string();
-    assert!(e.contains("set 1 has 8 points in 2D, set 0 16 in 2D"), "{e}");
+    assert!(e.contains("set 1: got 8 2D points, expected 16 2D points, as set 0"), "{e}");
 }

@@ -207,6 +207,7 @@ fn specs_round_trip() {
                 (Kind::Path, _) if p.name == "directions" => format!("{fixtures}../../data/new-joe-kuo-6.1024.txt"),
                 (Kind::Path, _) => format!("{fixtures}net_b3.txt"),
                 (Kind::Reals { .. }, _) => "0.4142135623730951/0.7320508075688772".into(),
+                (kind, _) => panic!("{name}.{}: no test value for a parameter of kind {kind:?}", p.name),
             };
             let other = if name == "file" && p.name != "path" { format!("{spec},") } else { format!("{name}:") };
             specs.push(format!("{other}{}={value}", p.name));

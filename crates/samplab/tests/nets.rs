@@ -446,7 +446,7 @@ fn the_t_value_metric_is_the_least_t_of_every_elementary_interval() {
     let e =
         compute(&Metric::parse("t-value:projection=quadruples").unwrap(), &set("sobol", 64, 3, 1), Limits::default())
             .unwrap_err();
-    assert!(e.to_string().contains("quadruples of a 3D set"), "{e}");
+    assert!(e.to_string().contains("quadruples takes sets of 4 or more dimensions, not 3D"), "{e}");
 }
 
 /// The least t of the 2D digital net in base b that the first m columns of two generating
@@ -695,9 +695,9 @@ fn t_from_the_matrices_is_the_box_count_of_every_net() {
     let broken = Matrices::new(2, 2, 8, 8, digits).unwrap();
     assert_eq!(of_matrices(&broken, &[0, 1], 8, &Limits::default()).unwrap(), 8);
     let e = of_matrices(&hammersley, &[0, 1], 9, &Limits::default()).unwrap_err().to_string();
-    assert!(e.contains("9 columns of matrices with 8"), "{e}");
+    assert!(e.contains("generating matrices: got 8, expected 9 columns"), "{e}");
     let e = of_matrices(&hammersley, &[0, 2], 8, &Limits::default()).unwrap_err().to_string();
-    assert!(e.contains("axis 2 of matrices in 2 dimensions"), "{e}");
+    assert!(e.contains("axis 2 takes matrices of more than 2 dimensions, not 2D"), "{e}");
     let small = Limits::new(Some(100.0)).unwrap();
     assert!(matches!(of_matrices(&hammersley, &[0, 1], 8, &small), Err(samplab::Error::WorkLimit { .. })));
     std::fs::remove_file(&gf3).ok();

@@ -60,7 +60,7 @@ impl<'a> Setup<'a> {
     }
 
     fn options(&self, light: &str, n: usize, spp: usize, seed: Seed) -> Result<Options, Error> {
-        let build = |spec: &str| samplab::sampler::build(spec).map_err(|e| Error::Invalid(e.to_string()));
+        let build = |spec: &str| samplab::sampler::build(spec).map_err(Error::from);
         let mut o = Options::new("sobol.owen", n, self.size.0, self.size.1).map_err(render_error)?;
         o.light = build(light)?;
         o.area = build(self.pixel)?;
@@ -130,7 +130,7 @@ pub(crate) fn scene(name: &str, kind: Option<LightKind>) -> Result<Scene, Error>
 pub(crate) fn render_error(e: samplab_render::Error) -> Error {
     match e {
         samplab_render::Error::Samplab(e) => Error::Samplab(e),
-        e => Error::Invalid(e.to_string()),
+        e => Error::Render(e),
     }
 }
 

@@ -247,7 +247,12 @@ impl Search {
 /// n not a prime or a power of 2 up to [`MAX_N`], or `embedded` for n not a power of 2.
 pub fn construct(n: usize, dims: usize, weights: Weights, embedded: bool) -> Result<Vec<u64>> {
     if !supports(n) || (embedded && !n.is_power_of_two()) {
-        return Err(Error::Invalid(format!("fast CBC needs n a prime or a power of 2 up to 2^24, not {n}")));
+        let reason = if embedded {
+            "an embedded fast CBC lattice takes a power of 2 up to 2^24"
+        } else {
+            "fast CBC takes a prime or a power of 2 up to 2^24"
+        };
+        return Err(Error::Setting { name: "n", value: n.to_string(), reason: reason.into() });
     }
     if n == 1 {
         return Ok(vec![0; dims]);

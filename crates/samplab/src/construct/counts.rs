@@ -9,6 +9,7 @@ pub(crate) const ANY: Counts = Counts::Any("");
 /// Which counts n a sampler makes, declared in its entry: a typed rule that checks a count
 /// (naming the nearest valid ones), finds valid counts and prints the listing line.
 #[derive(Debug, Clone, Copy)]
+#[non_exhaustive]
 pub enum Counts {
     /// Any n (up to [`MAX_POINTS`]); the note says where the structure is best ("nets at
     /// powers of two"), or is empty.

@@ -68,6 +68,7 @@ pub fn morton2(x: u32, y: u32) -> u64 {
 
 /// pbrt's `RandomizeStrategy` for its Sobol' samplers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Scramble {
     /// The deterministic sequence.
     None,

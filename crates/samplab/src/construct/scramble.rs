@@ -3,6 +3,7 @@
 
 /// How a low-discrepancy construction is randomized.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Randomization {
     /// The deterministic construction.
     None,

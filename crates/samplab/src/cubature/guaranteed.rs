@@ -169,7 +169,7 @@ pub(super) fn bytes(n: usize, d: usize) -> u128 {
 /// The refusal of an integrand's non-finite value.
 pub(super) fn non_finite(x: &[f64], value: f64) -> Error {
     let at: Vec<String> = x.iter().map(|v| format!("{v}")).collect();
-    Error::Invalid(format!("the integrand is {value} at x = ({}): cubature needs finite values", at.join(", ")))
+    Error::NotFinite { what: format!("the integrand at x = ({})", at.join(", ")), value }
 }
 
 #[cfg(test)]

@@ -33,6 +33,7 @@ use crate::seed::Seed;
 /// Which bound stops the doubling.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum Rule {
     /// Student's t interval over independent randomizations (probabilistic).
     Replicated,

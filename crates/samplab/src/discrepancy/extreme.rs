@@ -522,6 +522,6 @@ fn extreme(_: &Params, points: &PointSet, limits: Limits) -> Result<f64> {
             limits.allow("the exact extreme discrepancy", points, n * n * n.log2().max(1.0))?;
             extreme_2d(x, limits.progress)
         }
-        d => Err(Error::Invalid(format!("the exact extreme discrepancy is implemented in 1D and 2D, not {d}D"))),
+        d => Err(Error::Dimension { what: "the exact extreme discrepancy".into(), takes: "1D and 2D points".into(), got: d }),
     }
 }

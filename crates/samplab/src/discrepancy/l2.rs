@@ -321,10 +321,13 @@ impl Form {
         let log = 0.5 * (log_scale + bracket.ln());
         let value = log.exp();
         if value == 0.0 || !value.is_finite() {
-            return Err(Error::Invalid(format!(
-                "the value, 10^{:.1}, is outside the double-precision range (10^-308 to 10^308) in {dims} dimensions",
-                log / std::f64::consts::LN_10
-            )));
+            return Err(Error::Infeasible {
+                what: format!("the L2 discrepancy in {dims} dimensions"),
+                reason: format!(
+                    "its value, 10^{:.1}, is outside the double-precision range (10^-308 to 10^308)",
+                    log / std::f64::consts::LN_10
+                ),
+            });
         }
         Ok(value)
     }

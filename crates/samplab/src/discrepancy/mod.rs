@@ -277,9 +277,7 @@ pub fn check_unit_cube(points: &PointSet) -> Result<()> {
     let (dims, xs) = (points.dims(), points.as_slice());
     let block = xs.par_chunks(BLOCK).position_first(|b| b.iter().fold(false, |any, x| any | outside(x)));
     match block.and_then(|b| xs[b * BLOCK..].iter().position(outside).map(|i| b * BLOCK + i)) {
-        Some(at) => {
-            Err(Error::Invalid(format!("point {} coordinate {} is {} (outside [0, 1])", at / dims, at % dims, xs[at])))
-        }
+        Some(at) => Err(Error::OutsideUnitCube { point: at / dims, coordinate: at % dims, value: xs[at] }),
         None => Ok(()),
     }
 }
@@ -292,7 +290,7 @@ pub fn check_unit_cube(points: &PointSet) -> Result<()> {
 pub fn compute(metric: &Metric, points: &PointSet, limits: Limits) -> Result<f64> {
     check_unit_cube(points)?;
     if points.is_empty() {
-        return Err(Error::Invalid("the set is empty".into()));
+        return Err(Error::TooFew { what: "a discrepancy".into(), least: 1, of: "point", got: 0 });
     }
     (metric.entry.compute)(&metric.params, points, limits)
 }
@@ -306,7 +304,11 @@ pub fn compute(metric: &Metric, points: &PointSet, limits: Limits) -> Result<f64
 /// As [`compute`]; one CDF per dimension is required.
 pub fn generalized(points: &PointSet, cdfs: &[&dyn Fn(f64) -> f64], anchored: bool, limits: Limits) -> Result<f64> {
     if cdfs.len() != points.dims() {
-        return Err(Error::Invalid(format!("{} CDFs for {}D points", cdfs.len(), points.dims())));
+        return Err(Error::Mismatch {
+            what: "the CDFs".into(),
+            expected: format!("one per dimension of {}D points", points.dims()),
+            got: cdfs.len().to_string(),
+        });
     }
     let mapped: Vec<f64> = points
         .iter()

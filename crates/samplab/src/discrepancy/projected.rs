@@ -31,7 +31,7 @@ pub(crate) static ENTRIES: &[MetricEntry] = &[MetricEntry::new(
 
 fn projected(params: &Params, points: &PointSet, _: Limits) -> Result<f64> {
     if points.dims() != 2 {
-        return Err(Error::Invalid(format!("projected discrepancy needs 2D points, got {}D", points.dims())));
+        return Err(Error::Dimension { what: "projected discrepancy".into(), takes: "2D points".into(), got: points.dims() });
     }
     let u = projected_uniform(points, params.real("angle"));
     Ok(if params.word("kind") == "extreme" { extreme::extreme_1d(&u) } else { star::star_1d(&u) })

@@ -690,10 +690,11 @@ fn star(_: &Params, points: &PointSet, limits: Limits) -> Result<f64> {
         1 => star_1d(x),
         2 => star_2d(x, limits.progress)?,
         _ if d > DEM_DIMS => {
-            return Err(Error::Invalid(format!(
-                "the exact star discrepancy is computed up to {DEM_DIMS} dimensions (its recursion goes one level \
-                 deeper per axis), not {d}; its work, n^(1 + d/2), is beyond reach there for any n > 1"
-            )));
+            return Err(Error::Dimension {
+                what: "the exact star discrepancy".into(),
+                takes: format!("1 to {DEM_DIMS} dimensions (its work, n^(1 + d/2), is beyond reach past them for any n > 1)"),
+                got: d,
+            });
         }
         _ => {
             limits.allow("the exact star discrepancy", points, star_dem_work(points.len(), d))?;

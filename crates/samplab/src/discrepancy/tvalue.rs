@@ -93,6 +93,11 @@ fn choose(n: usize, k: usize) -> f64 {
     (0..k).fold(1.0, |c, i| c * (n - i) as f64 / (i + 1) as f64)
 }
 
+/// The refusal of the t-value's parameter `param`.
+fn param(param: &str, reason: String) -> Error {
+    Error::Param { owner: "t-value".into(), param: param.into(), reason }
+}
+
 /// The axes of each projection of `kind` (`all`, `pairs`, `consecutive` or `quadruples`,
 /// the words of the `t-value` metric's `projection`) of an `s`-dimensional set.
 ///
@@ -103,10 +108,10 @@ pub fn projections(kind: &str, s: usize) -> Result<Vec<Vec<usize>>> {
         "all" => s,
         "quadruples" => 4,
         "pairs" | "consecutive" => 2,
-        _ => return Err(Error::Invalid(format!("t-value: projection {kind}: expected all, pairs, consecutive or quadruples"))),
+        _ => return Err(param("projection", format!("'{kind}': expected all, pairs, consecutive or quadruples"))),
     };
     if width > s || s == 0 {
-        return Err(Error::Invalid(format!("t-value: {kind} of a {s}D set")));
+        return Err(Error::Dimension { what: format!("the t-value of {kind}"), takes: format!("sets of {width} or more dimensions"), got: s });
     }
     Ok(match kind {
         "pairs" => (0..s).flat_map(|i| (i + 1..s).map(move |j| vec![i, j])).collect(),
@@ -181,13 +186,13 @@ pub fn projection_table(
     let from_matrices = probed.is_some();
     let b = match (probed.map(Matrices::base), base) {
         (Some(m), Some(given)) if m != given => {
-            return Err(Error::Invalid(format!("t-value: base {given} for matrices in base {m}")));
+            return Err(param("base", format!("{given} for matrices in base {m}")));
         }
         (Some(m), _) => m,
         (None, given) => given.unwrap_or(2),
     };
     if !(2..=64).contains(&b) || (b as f64).powi(most as i32) > 2f64.powi(32) {
-        return Err(Error::Invalid(format!("t-value: {b}^{most} points (base 2 to 64, at most 2^32 points)")));
+        return Err(param("base", format!("{b}^{most} points (base 2 to 64, at most 2^32 points)")));
     }
     if !from_matrices {
         // every count's box count, refused before any set is made
@@ -224,9 +229,9 @@ pub fn projection_table(
 fn t_value(p: &Params, points: &PointSet, limits: Limits) -> Result<f64> {
     let b = p.int("base") as usize;
     let n = points.len();
-    let m = (0..=64).find(|&m| b.checked_pow(m as u32) == Some(n)).ok_or_else(|| {
-        Error::Invalid(format!("t-value: {n} points are not a power of the base {b}"))
-    })?;
+    let m = (0..=64)
+        .find(|&m| b.checked_pow(m as u32) == Some(n))
+        .ok_or_else(|| param("base", format!("{n} points are not a power of the base {b}")))?;
     let projections = projections(p.word("projection"), points.dims())?;
     let width = projections[0].len();
     // each strength k counts the points once per composition of k into the axes
@@ -296,15 +301,16 @@ fn independent(rows: &[Vec<u8>], b: u32) -> bool {
 /// than `limits` allow (the compositions of m digits among the axes, each an elimination),
 /// or a stop.
 pub fn of_matrices(matrices: &Matrices, axes: &[usize], m: usize, limits: &Limits) -> Result<usize> {
+    let what = || "the t-value of generating matrices".to_string();
     if m > matrices.cols() {
-        return Err(Error::Invalid(format!("t-value: {m} columns of matrices with {}", matrices.cols())));
+        return Err(Error::Mismatch { what: what(), expected: format!("{m} columns"), got: matrices.cols().to_string() });
     }
-    if let Some(a) = axes.iter().find(|&&a| a >= matrices.dims()) {
-        return Err(Error::Invalid(format!("t-value: axis {a} of matrices in {} dimensions", matrices.dims())));
+    if let Some(&a) = axes.iter().find(|&&a| a >= matrices.dims()) {
+        return Err(Error::Dimension { what: format!("axis {a}"), takes: format!("matrices of more than {a} dimensions"), got: matrices.dims() });
     }
     let s = axes.len();
     if s == 0 {
-        return Err(Error::Invalid("t-value: no axis".into()));
+        return Err(Error::TooFew { what: what(), least: 1, of: "axis", got: 0 });
     }
     let work = choose(m + s - 1, s - 1) * (m * m) as f64;
     if work > limits.max_work {

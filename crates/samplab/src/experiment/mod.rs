@@ -18,6 +18,7 @@ use crate::theory;
 /// The integrands of a study: instances of a registered family, or one integrand given by
 /// the caller (a Python function, say) with its name.
 #[derive(Clone, Copy)]
+#[non_exhaustive]
 pub enum Integrands<'a> {
     /// Instance k of the family for the study's seed.
     Family(&'a Family),
@@ -277,7 +278,10 @@ impl UnitStats {
     /// Never: the length is checked first.
     pub fn from_bytes(bytes: &[u8]) -> Result<UnitStats> {
         if bytes.len() != 40 {
-            return Err(Error::Invalid(format!("a unit's statistics are 40 bytes, got {}", bytes.len())));
+            return Err(Error::Parse {
+                location: "a unit's statistics".into(),
+                reason: format!("{} bytes, expected 40", bytes.len()),
+            });
         }
         let v: Vec<f64> =
             bytes.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().expect("8-byte chunks"))).collect();
@@ -364,10 +368,14 @@ impl Prepared<'_> {
     /// before each realization.
     ///
     /// # Errors
-    /// `u` out of range ([`Error::Invalid`]), a sampler's fill, a stop.
+    /// `u` out of range ([`Error::Setting`]), a sampler's fill, a stop.
     pub fn unit(&self, u: usize, progress: &Progress) -> Result<UnitStats> {
         if u >= self.units() {
-            return Err(Error::Invalid(format!("unit {u} of a study of {} units", self.units())));
+            return Err(Error::Setting {
+                name: "unit",
+                value: u.to_string(),
+                reason: format!("past the study's {} units", self.units()),
+            });
         }
         let (s, c, k) = self.split(u);
         let (sampler, n, f) = (&self.study.samplers[s], self.study.ns[c], &self.instances[k]);
@@ -417,10 +425,14 @@ impl Prepared<'_> {
     /// in pieces: the same arithmetic in the same order as [`run`], so the same bits).
     ///
     /// # Errors
-    /// [`Error::Invalid`] when `units` is not one per unit.
+    /// [`Error::Mismatch`] when `units` is not one per unit.
     pub fn rows(&self, units: &[UnitStats]) -> Result<Vec<Row>> {
         if units.len() != self.units() {
-            return Err(Error::Invalid(format!("{} unit results for a study of {} units", units.len(), self.units())));
+            return Err(Error::Mismatch {
+                what: "the unit results".into(),
+                expected: format!("one per unit of the study, {}", self.units()),
+                got: units.len().to_string(),
+            });
         }
         let pairs = self.study.samplers.iter().flat_map(|s| self.study.ns.iter().map(move |&n| (s.spec(), n)));
         Ok(pairs.zip(units.chunks_exact(self.study.instances)).map(|((spec, n), per)| self.row(spec, n, per)).collect())

@@ -33,7 +33,7 @@ impl Delaunay {
         let vertex_weights: Vec<f64> = sites.iter().map(|_| uniform(rng)).collect();
         let t =
             DelaunayTriangulation::<Point2<f64>>::bulk_load(sites.iter().map(|p| Point2::new(p[0], p[1])).collect())
-                .map_err(|e| Error::Invalid(format!("Delaunay triangulation failed: {e:?}")))?;
+                .map_err(|e| Error::Infeasible { what: "a Delaunay triangulation".into(), reason: format!("{e:?}") })?;
         let mut triangles = Vec::new();
         let mut weights = Vec::new();
         for face in t.inner_faces() {

@@ -34,18 +34,24 @@ impl Grid {
     pub fn new(width: usize, height: usize, values: Vec<f64>) -> Result<Grid> {
         let cells = width.checked_mul(height).filter(|&c| c > 0 && c <= MAX_CELLS);
         let Some(cells) = cells else {
-            return Err(Error::Invalid(format!(
-                "a grid integrand needs 1 to {MAX_CELLS} cells, not {width} x {height}"
-            )));
+            return Err(Error::Setting {
+                name: "cells",
+                value: format!("{width} x {height}"),
+                reason: format!("a grid integrand takes 1 to {MAX_CELLS} cells"),
+            });
         };
         if values.len() != cells {
-            return Err(Error::Invalid(format!(
-                "a {width} x {height} grid needs {cells} values, not {}",
-                values.len()
-            )));
+            return Err(Error::Mismatch {
+                what: format!("the values of a {width} x {height} grid"),
+                expected: cells.to_string(),
+                got: values.len().to_string(),
+            });
         }
         if let Some(i) = values.iter().position(|v| !v.is_finite()) {
-            return Err(Error::Invalid(format!("grid cell ({}, {}) is {}", i % width, i / width, values[i])));
+            return Err(Error::NotFinite {
+                what: format!("grid cell ({}, {})", i % width, i / width),
+                value: values[i],
+            });
         }
         let mean = values.iter().sum::<f64>() / cells as f64;
         let square = values.iter().map(|v| v * v).sum::<f64>() / cells as f64;

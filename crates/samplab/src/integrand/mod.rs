@@ -474,6 +474,7 @@ pub struct IntegrandEntry {
 
 /// How many dimensions a family's integrands have.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Dims {
     /// Always this many.
     Fixed(usize),

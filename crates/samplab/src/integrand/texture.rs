@@ -13,6 +13,7 @@ use crate::error::{Error, Result};
 
 /// How a point reads the texels.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Lookup {
     /// The texel under the point (nearest).
     Box,

@@ -82,6 +82,7 @@ pub fn csv_line<S: AsRef<str>>(fields: impl IntoIterator<Item = S>) -> String {
 
 /// A point-set file format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Format {
     /// White-space separated, `#` comments and set separators.
     Text,
@@ -152,19 +153,33 @@ impl Format {
 ///
 /// # Errors
 /// Sets of different dimensions; for npy, sets of different sizes.
+///
+/// # Panics
+/// Never: JSON of numbers and strings always serializes.
 pub fn encode(sets: &[PointSet], format: Format, header: &[String]) -> Result<Vec<u8>> {
     let dims = sets.first().map_or(1, PointSet::dims);
-    if sets.iter().any(|s| s.dims() != dims) {
-        return Err(Error::Invalid("cannot write sets of different dimensions to one file".into()));
+    if let Some(k) = sets.iter().position(|s| s.dims() != dims) {
+        return Err(Error::Mismatch {
+            what: format!("set {k} (one file takes sets of one dimension)"),
+            expected: format!("{dims}D, as set 0"),
+            got: format!("{}D", sets[k].dims()),
+        });
     }
     let n = sets.first().map_or(0, PointSet::len);
-    if format == Format::Npy && sets.iter().any(|s| s.len() != n) {
-        return Err(Error::Invalid("npy needs sets of equal size; use text, csv or json".into()));
+    if format == Format::Npy
+        && let Some(k) = sets.iter().position(|s| s.len() != n)
+    {
+        return Err(Error::Mismatch {
+            what: format!("set {k} (npy takes sets of equal size; use text, csv or json)"),
+            expected: format!("{n} points, as set 0"),
+            got: format!("{} points", sets[k].len()),
+        });
     }
     if format == Format::Json {
         let sets: Vec<Vec<&[f64]>> = sets.iter().map(|s| s.iter().collect()).collect();
         let v = serde_json::json!({ "header": header, "dims": dims, "sets": sets });
-        let mut out = serde_json::to_vec(&v).map_err(|e| Error::Invalid(e.to_string()))?;
+        // a JSON value of finite numbers and strings always serializes
+        let mut out = serde_json::to_vec(&v).expect("JSON of numbers and strings");
         out.push(b'\n');
         return Ok(out);
     }
@@ -296,7 +311,11 @@ pub fn write_stream(
     progress: &Progress,
 ) -> Result<()> {
     if format == Format::Json {
-        return Err(Error::Invalid("JSON is written whole; stream text, csv or npy".into()));
+        return Err(Error::Setting {
+            name: "format",
+            value: "json".into(),
+            reason: "JSON is written whole; stream text, csv or npy".into(),
+        });
     }
     // at least 8 bytes a coordinate (npy exactly; text and CSV take about 20): refused
     // before any work when the disk cannot hold it

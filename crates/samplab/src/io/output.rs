@@ -206,6 +206,7 @@ pub(crate) fn replace_entry(path: &Path, bytes: &[u8]) -> Result<()> {
 
 /// What a command reads or writes, for [`refuse_overlap`].
 #[derive(Debug, Clone, Copy)]
+#[non_exhaustive]
 pub enum Role<'a> {
     /// A file or folder the command reads (its name, e.g. `--reference`, for the message).
     Input(&'a str, &'a Path),
@@ -450,6 +451,7 @@ pub(crate) fn write_atomic_with(
 
 /// Whether an existing output folder may be replaced.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
 pub enum Replace {
     /// Only a folder samplab made (everything in it listed in its manifest).
     #[default]
@@ -514,7 +516,7 @@ fn entries(dir: &Path) -> Result<Vec<String>> {
 /// Check that `out` may be written as a folder under `replace` (module docs).
 ///
 /// # Errors
-/// [`Error::Io`] saying why not, in one line.
+/// [`Error::Io`] saying why not, in one line, or [`Error::ForeignEntry`].
 pub fn check_folder(out: &Path, replace: Replace) -> Result<()> {
     refuse_dash(out, "folder")?;
     let refuse = |reason: String| Err(Error::Io { path: out.display().to_string(), reason });
@@ -531,9 +533,7 @@ pub fn check_folder(out: &Path, replace: Replace) -> Result<()> {
         Existing::Folder if replace == Replace::Force => Ok(()),
         Existing::Folder => match foreign_entry(out)? {
             None => Ok(()),
-            Some(name) => refuse(format!(
-                "holds '{name}', which samplab did not write; name a new folder, or pass --force to replace it"
-            )),
+            Some(entry) => Err(Error::ForeignEntry { folder: out.display().to_string(), entry }),
         },
     }
 }
@@ -651,8 +651,8 @@ mod tests {
         write_folder::<Error>(&out, Replace::IfOurs, fill).unwrap();
         // a file the user put there: refused, the folder untouched
         std::fs::write(out.join("sub/precious.txt"), "mine").unwrap();
-        let err = write_folder::<Error>(&out, Replace::IfOurs, fill).unwrap_err().to_string();
-        assert!(err.contains("'sub/precious.txt'") && err.contains("--force"), "{err}");
+        let err = write_folder::<Error>(&out, Replace::IfOurs, fill).unwrap_err();
+        assert!(matches!(&err, Error::ForeignEntry { entry, .. } if entry == "sub/precious.txt"), "{err}");
         assert_eq!(std::fs::read(out.join("sub/precious.txt")).unwrap(), b"mine");
         // forced: replaced
         write_folder::<Error>(&out, Replace::Force, fill).unwrap();

@@ -282,6 +282,7 @@ pub struct Mapping {
 
 /// The ways a point-set family becomes a pixel sampler.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum MappingKind {
     /// No structure to map: every value a hash of the keys.
     Hashed,

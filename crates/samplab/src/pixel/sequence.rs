@@ -32,7 +32,7 @@ pub fn pixel_seed(seed: Seed, pixel: [u32; 2], frame: u32) -> Seed {
 pub(crate) fn prepare(spec: &str, film: Film, seed: Seed) -> Result<Pixels> {
     let sampler = crate::sampler::build(spec)?;
     let not_a_sequence = || Error::Infeasible {
-        sampler: sampler.spec().to_string(),
+        what: sampler.spec().to_string(),
         reason: "a set, not a sequence: a point set serves as a pixel sampler when it is a sequence with random \
                  access (sobol.owen, halton.owen, net.lms, lattice.shift, kronecker, ...)"
             .into(),

@@ -122,7 +122,7 @@ pub fn integrand_spectrum(f: &dyn Integrand, res: usize) -> Result<IntegrandSpec
     check_res(res)?;
     let dims = f.dims();
     if !(1..=2).contains(&dims) {
-        return Err(Error::Invalid(format!("prediction works on 1D and 2D integrands, not {dims}D")));
+        return Err(Error::Dimension { what: "prediction".into(), takes: "1D and 2D integrands".into(), got: dims });
     }
     if let (Some(_), Some(square)) = (f.fourier([0, 0]), f.exact_square()) {
         let power = frequencies(res, dims)
@@ -180,7 +180,7 @@ fn sampled(f: &dyn Integrand, res: usize, side: usize) -> Result<(Vec<f64>, f64)
     if let Some(i) = values.iter().position(|v| !v.is_finite()) {
         let (c, r) = (i % side, i / side);
         let point = if dims == 1 { format!("{}", at(c)) } else { format!("({}, {})", at(c), at(r)) };
-        return Err(Error::Invalid(format!("the integrand is {} at {point}", values[i])));
+        return Err(Error::NotFinite { what: format!("the integrand at {point}"), value: values[i] });
     }
     let plane = crate::screen::Plane::new(side, rows, values)?;
     // |DFT|^2 / cells, of the values less their mean: |F(k)|^2 = that / cells
@@ -308,10 +308,7 @@ pub fn closed_form(spec: &str, n: usize, dims: usize, res: usize) -> Option<Samp
 pub fn spectrum_of_sets(spec: &str, sets: &[PointSet], res: usize, progress: &Progress) -> Result<SamplerSpectrum> {
     check_res(res)?;
     check_sets(sets.len())?;
-    let (n, dims) = (sets[0].len(), sets[0].dims());
-    if sets.iter().any(|s| s.len() != n || s.dims() != dims) {
-        return Err(Error::Invalid("the sets of a spectrum must all have one size and dimension".into()));
-    }
+    let (n, dims) = crate::spectrum::Sets::Given(sets).shape()?;
     let method = Method::Fast { tol: TOLERANCE };
     let each: Vec<Vec<f64>> = sets
         .par_iter()
@@ -380,10 +377,11 @@ pub fn predict_radial(f: &IntegrandSpectrum, s: &SamplerSpectrum) -> Result<Pred
 /// the standard error from the same of its batches.
 fn weighted(f: &IntegrandSpectrum, s: &SamplerSpectrum, view: impl Fn(&[f64]) -> Vec<f64>) -> Result<Predicted> {
     if f.res != s.res || f.dims != s.dims {
-        return Err(Error::Invalid(format!(
-            "the integrand's spectrum is {}D at {} and the sampler's {}D at {}",
-            f.dims, f.res, s.dims, s.res
-        )));
+        return Err(Error::Mismatch {
+            what: "the sampler's spectrum".into(),
+            expected: format!("{}D at resolution {}, as the integrand's", f.dims, f.res),
+            got: format!("{}D at resolution {}", s.dims, s.res),
+        });
     }
     let one = |p: &[f64]| {
         let correction: f64 = f.power.iter().zip(view(p)).map(|(w, p)| w * (p - 1.0)).sum();
@@ -527,8 +525,15 @@ pub fn measure_sets(
     progress: &Progress,
 ) -> Result<Predicted> {
     let dims = f.dims();
-    if sets.len() < 2 || sets.iter().any(|s| s.dims() != dims) {
-        return Err(Error::Invalid(format!("a measured variance needs at least 2 sets of {dims}D points")));
+    if sets.len() < 2 {
+        return Err(Error::TooFew { what: "a measured variance".into(), least: 2, of: "set", got: sets.len() });
+    }
+    if let Some(s) = sets.iter().find(|s| s.dims() != dims) {
+        return Err(Error::Dimension {
+            what: format!("a {dims}D integrand"),
+            takes: format!("{dims}D sets"),
+            got: s.dims(),
+        });
     }
     let exact = f.exact();
     let errors: Vec<f64> = sets

@@ -146,17 +146,21 @@ impl Study<'_> {
             return setting("n", n, "counts must be positive");
         }
         if self.ns.is_empty() {
-            return Err(Error::Invalid("a prediction needs at least one count n".into()));
+            return Err(Error::TooFew { what: "a prediction".into(), least: 1, of: "count n", got: 0 });
         }
         if let Some((m, _)) = self.measure.filter(|&(m, _)| m < 2) {
             return setting("measure", m, "a measured variance needs at least 2 realizations");
         }
         let Some((first, _)) = self.integrands.first() else {
-            return Err(Error::Invalid("a prediction needs at least one integrand".into()));
+            return Err(Error::TooFew { what: "a prediction".into(), least: 1, of: "integrand", got: 0 });
         };
         let dims = first.dims();
-        if let Some((_, spec)) = self.integrands.iter().find(|(f, _)| f.dims() != dims) {
-            return Err(Error::Invalid(format!("{spec}: the integrands of one prediction must all be {dims}D")));
+        if let Some((f, spec)) = self.integrands.iter().find(|(f, _)| f.dims() != dims) {
+            return Err(Error::Dimension {
+                what: format!("{spec} (the integrands of one prediction share the first's dimension)"),
+                takes: format!("{dims}D"),
+                got: f.dims(),
+            });
         }
         Ok(dims)
     }

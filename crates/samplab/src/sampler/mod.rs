@@ -113,7 +113,7 @@ impl Shape {
 
     /// The error for a construction that fails for this shape (or, in a fill, for a seed).
     pub fn infeasible(&self, reason: impl Into<String>) -> Error {
-        Error::Infeasible { sampler: self.sampler.to_string(), reason: reason.into() }
+        Error::Infeasible { what: self.sampler.to_string(), reason: reason.into() }
     }
 }
 

@@ -30,10 +30,11 @@ use crate::points::PointSet;
 /// sorted by |k|^2: (|k|^2, P) pairs.
 fn powers(set: &PointSet, reach: usize) -> Result<Vec<(u64, f64)>> {
     if set.dims() != 2 {
-        return Err(Error::Invalid(format!(
-            "the effective Nyquist frequency and oscillation are measured on 2D sets, not {}D",
-            set.dims()
-        )));
+        return Err(Error::Dimension {
+            what: "the effective Nyquist frequency and oscillation".into(),
+            takes: "2D sets".into(),
+            got: set.dims(),
+        });
     }
     let res = 2 * (reach + 1);
     // the periodogram, its NUFFT's oversampled grid and the sorted list: about 64 bytes a
@@ -78,9 +79,10 @@ pub fn effective_nyquist(set: &PointSet) -> Result<f64> {
     }
     let start = disks.partition_point(|&(r2, _)| (r2 as f64) < root * root / 4.0);
     let Some(high) = disks[start..].iter().position(|&(_, mean)| mean > 0.5).map(|i| i + start) else {
-        return Err(Error::Invalid(format!(
-            "the mean power stays below 0.5 out to |k| = {reach} (2 sqrt(n)): no effective Nyquist frequency"
-        )));
+        return Err(Error::Infeasible {
+            what: "the effective Nyquist frequency".into(),
+            reason: format!("the mean power stays below 0.5 out to |k| = {reach} (2 sqrt(n))"),
+        });
     };
     let edge = match disks[..high].iter().rposition(|&(_, mean)| mean < 0.1) {
         Some(low) => (disks[low + 1].0 as f64).sqrt(),
@@ -108,9 +110,10 @@ pub fn oscillation(set: &PointSet) -> Result<f64> {
     }
     let mean = |b: usize| rings[b].0 / rings[b].1 as f64;
     let Some(start) = (1..=first).find(|&b| mean(b) >= 0.98) else {
-        return Err(Error::Invalid(format!(
-            "the radial mean power stays below 0.98 out to |k| = {first} (2 sqrt(n)): no oscillation window"
-        )));
+        return Err(Error::Infeasible {
+            what: "the oscillation window".into(),
+            reason: format!("the radial mean power stays below 0.98 out to |k| = {first} (2 sqrt(n))"),
+        });
     };
     let window = start..=start + span;
     let total: usize = window.clone().map(|b| rings[b].1).sum();

@@ -97,7 +97,7 @@ pub fn direct_dft(points: &PointSet, res: usize) -> Result<Vec<Complex>> {
             }
             Ok(out.into_iter().map(|c| [c[0] * inv, c[1] * inv]).collect())
         }
-        _ => Err(Error::Invalid(format!("spectra are computed for 1D and 2D sets, not {d}D"))),
+        _ => Err(Error::Dimension { what: "a spectrum".into(), takes: "1D and 2D sets".into(), got: d }),
     }
 }
 
@@ -106,7 +106,11 @@ const DFT_CHUNK: usize = 2048;
 
 fn check_res(res: usize) -> Result<()> {
     if res == 0 || res % 2 == 1 {
-        return Err(Error::Invalid(format!("resolution {res}: must be even and positive (index R/2 is DC)")));
+        return Err(Error::Setting {
+            name: "res",
+            value: res.to_string(),
+            reason: "must be even and positive (index R/2 is DC)".into(),
+        });
     }
     Ok(())
 }
@@ -200,6 +204,7 @@ pub fn radial_csv(st: &Statistics, names: &[&str], curves: &[Radial]) -> String 
 
 /// How each set's spectrum is computed.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Method {
     /// The direct DFT, O(N R^d): the reference.
     Direct,
@@ -278,7 +283,12 @@ pub fn statistics_with_progress(
 /// As [`statistics`], memory, or a stop ([`Error::Interrupted`]).
 pub fn statistics_of(sets: Sets, res: usize, method: Method, progress: &Progress) -> Result<Statistics> {
     if sets.len() < 2 {
-        return Err(Error::Invalid(format!("the variance of the spectrum needs at least 2 sets, got {}", sets.len())));
+        return Err(Error::TooFew {
+            what: "the variance of the spectrum".into(),
+            least: 2,
+            of: "set",
+            got: sets.len(),
+        });
     }
     let (n, d) = sets.shape()?;
     let spectra = Spectra::new(res, d, method)?;

@@ -79,10 +79,14 @@ impl Nufft {
     pub fn new(res: usize, dims: usize, tol: f64) -> Result<Nufft> {
         super::check_res(res)?;
         if !(1e-14..=1e-1).contains(&tol) {
-            return Err(Error::Invalid(format!("tolerance {tol}: expected a number in [1e-14, 0.1]")));
+            return Err(Error::Setting {
+                name: "tol",
+                value: tol.to_string(),
+                reason: "expected a number in [1e-14, 0.1]".into(),
+            });
         }
         if !(1..=2).contains(&dims) {
-            return Err(Error::Invalid(format!("the fast path handles 1D and 2D, not {dims}D")));
+            return Err(Error::Dimension { what: "the fast spectrum".into(), takes: "1D and 2D".into(), got: dims });
         }
         // FINUFFT's w = ceil(log10(1/tol)) + 1 bounds the error of random data; structured
         // sets (grids, nets) add the per-point errors coherently (measured: 15 x tol), so
@@ -156,14 +160,22 @@ impl Nufft {
         weights: Option<&[f64]>,
         out: &mut Vec<Complex>,
     ) -> Result<()> {
-        if weights.is_some_and(|w| w.len() != points.len()) {
-            return Err(Error::Invalid("one weight per point is needed".into()));
+        if let Some(w) = weights.filter(|w| w.len() != points.len()) {
+            return Err(Error::Mismatch {
+                what: "the weights".into(),
+                expected: format!("one per point, {}", points.len()),
+                got: w.len().to_string(),
+            });
         }
-        if let Some(j) = weights.and_then(|w| w.iter().position(|c| !c.is_finite())) {
-            return Err(Error::Invalid(format!("weight {j} is not a finite number")));
+        if let Some((j, &c)) = weights.and_then(|w| w.iter().enumerate().find(|(_, c)| !c.is_finite())) {
+            return Err(Error::NotFinite { what: format!("weight {j}"), value: c });
         }
         if points.dims() != self.dims {
-            return Err(Error::Invalid(format!("planned for {}D points, got {}D", self.dims, points.dims())));
+            return Err(Error::Dimension {
+                what: "this transform".into(),
+                takes: format!("{}D points (as planned)", self.dims),
+                got: points.dims(),
+            });
         }
         // the complex rows (8 bytes a grid cell) and the output (at most 4), with room
         let (g, cells) = (self.grid, (self.grid as u128).pow(self.dims as u32));
@@ -485,7 +497,7 @@ mod tests {
         let points = PointSet::new(2, vec![0.1, 0.2, 0.3, 0.4]).unwrap();
         for bad in [f64::NAN, f64::INFINITY] {
             let err = plan.transform_weighted(&points, Some(&[1.0, bad])).unwrap_err().to_string();
-            assert!(err.contains("weight 1 is not a finite number"), "{err}");
+            assert!(err.contains("weight 1 is") && err.contains("not a finite number"), "{err}");
         }
         assert!(plan.transform_weighted(&points, Some(&[1.0, -2.0])).is_ok());
     }

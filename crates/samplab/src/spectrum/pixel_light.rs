@@ -10,7 +10,7 @@ use crate::seed::{Seed, uniform};
 use crate::spectrum::Complex;
 use crate::spectrum::nufft::Nufft;
 
-/// How each pixel's N light samples are placed (Ramamoorthi et al. section 4).
+/// How each pixel's N light samples are placed (Ramamoorthi et al. section 4; the paper's four, a closed set).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Pattern {
     /// Stratum centres (k - 1/2)/N, the same in every pixel ("uniform").
@@ -162,7 +162,7 @@ impl Analysis {
 /// Never: the lattice's coordinates are finite.
 pub fn visibility_spectrum(scene: &Scene, grid: usize, res: usize) -> Result<Vec<f64>> {
     if grid == 0 {
-        return Err(Error::Invalid("visibility spectrum: an empty grid".into()));
+        return Err(Error::TooFew { what: "a visibility spectrum".into(), least: 1, of: "grid cell", got: 0 });
     }
     let centre = |i: usize| (i as f64 + 0.5) / grid as f64;
     let data: Vec<f64> = (0..grid * grid).flat_map(|k| [centre(k / grid), centre(k % grid)]).collect();
@@ -179,11 +179,15 @@ pub fn visibility_spectrum(scene: &Scene, grid: usize, res: usize) -> Result<Vec
 /// # Errors
 /// beta <= 1, an odd resolution, or no pixels.
 pub fn analyse(scene: &Scene, pattern: Pattern, pixels: usize, n: usize, res: usize, seed: Seed) -> Result<Analysis> {
-    if scene.beta <= 1.0 || pixels == 0 || n == 0 {
-        return Err(Error::Invalid(format!(
-            "pixel-light analysis needs beta > 1 (got {}), pixels and samples",
-            scene.beta
-        )));
+    if scene.beta <= 1.0 || scene.beta.is_nan() {
+        return Err(Error::Setting {
+            name: "beta",
+            value: scene.beta.to_string(),
+            reason: "a pixel-light analysis needs beta > 1".into(),
+        });
+    }
+    if let Some((of, got)) = [("pixel", pixels), ("sample", n)].into_iter().find(|&(_, c)| c == 0) {
+        return Err(Error::TooFew { what: "a pixel-light analysis".into(), least: 1, of, got });
     }
     let pts = pattern_points(pattern, pixels, n, seed);
     let vis: Vec<f64> = pts.iter().map(|p| scene.visibility(p[0], p[1])).collect();

@@ -45,6 +45,7 @@ const UNIT_BYTES: usize = 40;
 /// What a study computes: its kind and parameters, the same on every machine.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
+#[non_exhaustive]
 pub enum Description {
     /// `samplab integrate`: every sampler at every count on `instances` instances of the
     /// integrand family, `sets` realizations each.
@@ -123,24 +124,27 @@ pub struct Merged {
     pub statistics: Option<Statistics>,
 }
 
-fn invalid(what: String) -> Error {
-    Error::Invalid(what)
+/// The refusal of a study's setting `name` = `value`.
+fn setting(name: &'static str, value: impl ToString, reason: impl Into<String>) -> Error {
+    Error::Setting { name, value: value.to_string(), reason: reason.into() }
 }
 
 /// `count` items at `per_chunk` a chunk, refused past [`MAX_CHUNKS`].
-fn chunk_count(name: &str, items: usize, per_chunk: usize) -> Result<usize> {
+fn chunk_count(name: &'static str, items: usize, per_chunk: usize) -> Result<usize> {
     let count = items.div_ceil(per_chunk.max(1));
     if count > MAX_CHUNKS {
-        return Err(invalid(format!(
-            "{name} = {items} at {per_chunk} per chunk make {count} chunks, more than {MAX_CHUNKS}; put more in each chunk"
-        )));
+        let reason = format!(
+            "at {per_chunk} per chunk they make {count} chunks, more than {MAX_CHUNKS}; put more in each chunk"
+        );
+        return Err(setting(name, items, reason));
     }
     Ok(count)
 }
 
-fn some<T>(name: &str, values: &[T]) -> Result<()> {
+/// At least one of `values`, each a `what`.
+fn some<T>(what: &'static str, values: &[T]) -> Result<()> {
     if values.is_empty() {
-        return Err(invalid(format!("{name}: empty; give at least one")));
+        return Err(Error::TooFew { what: "a study".into(), least: 1, of: what, got: 0 });
     }
     Ok(())
 }
@@ -196,26 +200,33 @@ impl<'g> Integration<'g> {
         };
         let samplers = samplers.iter().map(|s| crate::sampler::build(s)).collect::<Result<Vec<_>>>()?;
         if n.contains(&0) {
-            return Err(invalid("counts must be positive".into()));
+            return Err(setting("n", 0, "counts must be positive"));
         }
         let source = match (d, exact, given) {
             (None, None, None) => Source::Family(crate::integrand::Family::parse(integrand)?),
-            (None, None, Some(_)) => return Err(invalid("a function was given but the study declares none".into())),
+            (None, None, Some(_)) => {
+                return Err(setting("integrand", "a function", "the study declares a family, not a function"));
+            }
             (Some(d), Some(exact), given) => {
-                if *d == 0 || !exact.is_finite() {
-                    return Err(invalid(format!(
-                        "d = {d}, exact = {exact}: a given integrand needs d >= 1 and a finite exact"
-                    )));
+                if *d == 0 {
+                    return Err(setting("d", d, "a given integrand needs d >= 1"));
                 }
-                if given.is_some_and(|f| f.dims() != *d) {
-                    return Err(invalid(format!(
-                        "the given integrand has {} dimensions, the study {d}",
-                        given.map_or(0, |f| f.dims())
-                    )));
+                if !exact.is_finite() {
+                    return Err(setting("exact", exact, "a given integrand needs a finite exact integral"));
+                }
+                if let Some(f) = given.filter(|f| f.dims() != *d) {
+                    return Err(Error::Dimension {
+                        what: "the study".into(),
+                        takes: format!("{d}D integrands (its d)"),
+                        got: f.dims(),
+                    });
                 }
                 given.map_or(Source::Declared(Declared { dims: *d, exact: *exact }), Source::Given)
             }
-            _ => return Err(invalid("a given integrand needs both d and exact".into())),
+            (d, _, _) => {
+                let missing = if d.is_none() { "d" } else { "exact" };
+                return Err(setting(missing, "none", "a given integrand needs both d and exact"));
+            }
         };
         Ok(Integration { samplers, integrand: integrand.clone(), source })
     }
@@ -243,12 +254,12 @@ impl Description {
                 Description::Integrate { .. } => "units_per_chunk",
                 _ => "sets_per_chunk",
             };
-            return Err(invalid(format!("{name} = 0: must be at least 1")));
+            return Err(setting(name, 0, "must be at least 1"));
         }
         match self {
             Description::Integrate { ref samplers, ref n, sets, instances, seed, .. } => {
-                some("samplers", samplers)?;
-                some("n", n)?;
+                some("sampler", samplers)?;
+                some("count n", n)?;
                 let units = samplers.len() * n.len() * instances;
                 chunk_count("units", units, per_chunk)?;
                 let built = Integration::new(&self, None)?;
@@ -262,12 +273,14 @@ impl Description {
             Description::Spectrum { ref sampler, n, d, sets, res, direct, tolerance, .. } => {
                 let blocks = per_chunk / BLOCK;
                 if !per_chunk.is_multiple_of(BLOCK) || !blocks.is_power_of_two() {
-                    return Err(invalid(format!(
-                        "sets_per_chunk = {per_chunk}: must be 16 times a power of two (16, 32, 64, ...)"
-                    )));
+                    return Err(setting(
+                        "sets_per_chunk",
+                        per_chunk,
+                        "must be 16 times a power of two (16, 32, 64, ...)",
+                    ));
                 }
                 if sets < 2 {
-                    return Err(invalid(format!("sets = {sets}: the variance of the spectrum needs at least 2 sets")));
+                    return Err(setting("sets", sets, "the variance of the spectrum needs at least 2 sets"));
                 }
                 chunk_count("sets", sets, per_chunk)?;
                 self::sampler(sampler, n, d)?;
@@ -278,10 +291,10 @@ impl Description {
             }
             Description::Discrepancy { metrics, sampler, n, d, sets, seed, max_work } => {
                 if sets == 0 {
-                    return Err(invalid("sets = 0: must be at least 1".into()));
+                    return Err(setting("sets", 0, "must be at least 1"));
                 }
                 chunk_count("sets", sets, per_chunk)?;
-                some("metrics", &metrics)?;
+                some("metric", &metrics)?;
                 for m in &metrics {
                     Metric::parse(m)?;
                 }
@@ -314,11 +327,15 @@ impl Description {
     /// given where it declares none.
     pub fn compute_with(&self, chunk: &[u64], given: Option<&dyn Integrand>, progress: &Progress) -> Result<Vec<u8>> {
         use rayon::prelude::*;
-        let bad = || invalid(format!("chunk {chunk:?} is not a chunk of this study"));
+        let bad = || setting("chunk", format!("{chunk:?}"), "not a chunk of this study");
         match self {
             Description::Integrate { samplers, n, sets, instances, seed, d, .. } => {
                 if d.is_some() && given.is_none() {
-                    return Err(invalid("the study's integrand is a function: give it to compute a chunk".into()));
+                    return Err(setting(
+                        "integrand",
+                        "none",
+                        "the study's integrand is a function: give it to compute a chunk",
+                    ));
                 }
                 let built = Integration::new(self, given)?;
                 let study = built.study(n, *sets, *instances, *seed);
@@ -364,13 +381,8 @@ impl Description {
                         .enumerate()
                         .map(|(k, s)| {
                             progress.check()?;
-                            crate::discrepancy::compute(&m, s, limits.stopped_by(*progress)).map_err(|e| match e {
-                                Error::Interrupted => e,
-                                Error::WorkLimit { .. } => {
-                                    invalid(format!("set {}: {e}; raise it with max_work", first + k as u64))
-                                }
-                                e => invalid(format!("set {}: {e}", first + k as u64)),
-                            })
+                            crate::discrepancy::compute(&m, s, limits.stopped_by(*progress))
+                                .map_err(|e| e.in_set(first as usize + k))
                         })
                         .collect::<Result<Vec<f64>>>()?;
                     out.extend(values.iter().flat_map(|v| v.to_le_bytes()));
@@ -433,9 +445,9 @@ impl Description {
                 let names = crate::spectrum::STATISTICS;
                 let curves = crate::spectrum::radials(&st, &names);
                 let mut json = Vec::new();
-                let bad = |e: &dyn std::fmt::Display| invalid(format!("the merged spectrum: {e}"));
-                crate::spectrum::write_json(&mut json, &st, &names, &curves).map_err(|e| bad(&e))?;
-                let json = String::from_utf8(json).map_err(|e| bad(&e))?;
+                // writing to memory cannot fail, and the writer writes UTF-8
+                crate::spectrum::write_json(&mut json, &st, &names, &curves).expect("JSON written to memory");
+                let json = String::from_utf8(json).expect("UTF-8 JSON");
                 let csv = crate::spectrum::radial_csv(&st, &names, &curves);
                 Ok(Merged { json, csv, statistics: Some(st) })
             }
@@ -444,7 +456,10 @@ impl Description {
                 let mut values = vec![Vec::with_capacity(*sets); k];
                 for part in parts {
                     if part.is_empty() || part.len() % (8 * k) != 0 {
-                        return Err(invalid(format!("a discrepancy chunk of {} bytes for {k} metrics", part.len())));
+                        return Err(Error::Parse {
+                            location: "a discrepancy chunk".into(),
+                            reason: format!("{} bytes for {k} metrics", part.len()),
+                        });
                     }
                     let per = part.len() / (8 * k);
                     for (m, row) in part.chunks(8 * per).enumerate() {
@@ -453,7 +468,11 @@ impl Description {
                     }
                 }
                 if values.iter().any(|v| v.len() != *sets) {
-                    return Err(invalid(format!("the chunks hold {} sets, not {sets}", values[0].len())));
+                    return Err(Error::Mismatch {
+                        what: "the chunks' sets".into(),
+                        expected: sets.to_string(),
+                        got: values[0].len().to_string(),
+                    });
                 }
                 let metrics = metrics.iter().map(|m| Metric::parse(m)).collect::<Result<Vec<_>>>()?;
                 let source = format!("{sampler} n={n} d={d} sets={sets} seed={seed}");

@@ -44,7 +44,11 @@ pub fn apply(warp: &dyn Warp, points: &PointSet) -> Result<PointSet> {
     if let Some(d) = warp.input_dims()
         && d != points.dims()
     {
-        return Err(Error::Invalid(format!("warp {} needs {d}D points, got {}D", warp.name(), points.dims())));
+        return Err(Error::Dimension {
+            what: format!("warp {}", warp.name()),
+            takes: format!("{d}D points"),
+            got: points.dims(),
+        });
     }
     let out_dims = warp.output_dims(points.dims());
     let mut data = Vec::with_capacity(points.len() * out_dims);

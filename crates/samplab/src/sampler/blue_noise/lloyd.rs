@@ -47,6 +47,7 @@ pub struct Lloyd {
 
 /// How [`centroids`] finds the Voronoi cells (the module's notes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Cells {
     /// One Delaunay triangulation of the points and their copies (one thread).
     Delaunay,
@@ -86,10 +87,20 @@ pub fn centroids(points: &[f64], torus: bool, cells: Cells) -> Result<Vec<f64>> 
             return Ok(c);
         }
         if margin >= 2.0 {
-            return Err(Error::Invalid(format!("the Voronoi cells of {n} points did not close within a margin of 2")));
+            return Err(infeasible(format!("the Voronoi cells of {n} points did not close within a margin of 2")));
         }
         margin *= 2.0;
     }
+}
+
+/// A relaxation that cannot go on (Voronoi cells that do not close or do not form).
+fn infeasible(reason: String) -> Error {
+    Error::Infeasible { what: "lloyd".into(), reason }
+}
+
+/// Two sites at one place: the Voronoi cell of one is empty.
+fn coincident() -> Error {
+    infeasible("coincident points: a Voronoi cell is empty".into())
 }
 
 /// The centroids with copies within `margin` of the square, or None if a cell's
@@ -116,7 +127,7 @@ fn try_centroids(points: &[f64], torus: bool, margin: f64) -> Result<Option<Vec<
         }
     }
     let tri: DelaunayTriangulation<Site> =
-        DelaunayTriangulation::bulk_load(sites).map_err(|e| Error::Invalid(format!("Voronoi cells: {e}")))?;
+        DelaunayTriangulation::bulk_load(sites).map_err(|e| infeasible(format!("Voronoi cells: {e}")))?;
     let mut out = vec![f64::NAN; 2 * n];
     for v in tri.vertices() {
         let site = *v.data();
@@ -140,7 +151,7 @@ fn try_centroids(points: &[f64], torus: bool, margin: f64) -> Result<Option<Vec<
         (out[2 * i], out[2 * i + 1]) = moved([p.x, p.y], &corners, torus);
     }
     if out.iter().any(|x| x.is_nan()) {
-        return Err(Error::Invalid("coincident points: a Voronoi cell is empty".into()));
+        return Err(coincident());
     }
     Ok(Some(out))
 }
@@ -196,7 +207,7 @@ fn clipped_centroids(points: &[f64], torus: bool) -> Result<Option<Vec<f64>>> {
                     let mut far = farthest(corners);
                     for &(d2, dx, dy) in near.iter() {
                         if d2 == 0.0 {
-                            return Err(Error::Invalid("coincident points: a Voronoi cell is empty".into()));
+                            return Err(coincident());
                         }
                         if d2 >= 4.0 * far {
                             continue;

@@ -68,6 +68,7 @@ use rayon::prelude::*;
 
 /// A target radial power spectrum (frequencies in units of sqrt(n)).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Shape {
     /// P = 0 below `nu`, 1 above.
     Step {

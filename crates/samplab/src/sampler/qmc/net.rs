@@ -101,7 +101,7 @@ impl Matrices {
     /// A base that is not a prime below 256, a digit not below the base, or sizes that do
     /// not match.
     pub fn new(base: u32, dims: usize, cols: usize, rows: usize, digits: Vec<u8>) -> Result<Matrices> {
-        let invalid = |reason: String| Err(Error::Invalid(format!("generating matrices: {reason}")));
+        let invalid = |reason: String| Err(Error::Param { owner: "net".into(), param: "matrices".into(), reason });
         if !is_prime(base) || base > MAX_BASE {
             return invalid(format!("base {base} is not a prime up to {MAX_BASE}"));
         }
@@ -191,7 +191,11 @@ impl Matrices {
     /// A base that is not a prime up to 251.
     pub fn niederreiter(base: u32, dims: usize) -> Result<Matrices> {
         if !is_prime(base) || base > MAX_BASE {
-            return Err(Error::Invalid(format!("Niederreiter: base {base} is not a prime up to {MAX_BASE}")));
+            return Err(Error::Param {
+                owner: "net.niederreiter".into(),
+                param: "base".into(),
+                reason: format!("{base} is not a prime up to {MAX_BASE}"),
+            });
         }
         let (cols, rows) = (columns_for_all_sets(base), precision(base));
         let b = base as u64;

@@ -23,6 +23,7 @@ use crate::construct::spectrum_theory::{self as theory, VarianceTheory};
 /// How each grid point is displaced inside (or around) its cell. Offsets are fractions of
 /// the grid spacing 1/k.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Displacement {
     /// Cell centres (Shirley 1991 "regular").
     Regular,
