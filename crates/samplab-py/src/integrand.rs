@@ -1,15 +1,17 @@
 //! Integrands from Python: a family spec, a 2D array of values (a [`Grid`]), or a vectorized
-//! callable, evaluated in batches with the GIL taken for each batch.
+//! callable, evaluated in batches with the GIL taken for each batch; and what is computed
+//! of one integrand alone: its values, its reference integral, adaptive cubature.
 
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicBool, Ordering};
-
+use crate::errors::err;
+use crate::interrupt::interruptible_raising;
+use crate::points::shaped;
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use samplab::Seed;
 use samplab::integrand::{Family, Grid, Integrand};
-
-use crate::err;
+use samplab::progress::Progress;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// A Python function f(x) of an (n, d) array returning n values, with its integral when
 /// known. The first exception it raises (or a wrong shape, or a value that is not finite)
@@ -159,4 +161,66 @@ impl Given {
     pub fn has_exact(&self) -> bool {
         !matches!(self, Given::Callable(Callable { exact: None, .. }))
     }
+}
+
+/// The integral of `integrand` (a family spec, instance 0 for the seed, or a callable of
+/// `dims` dimensions with integral `exact` when known) to a tolerance:
+/// [`samplab::cubature::cubature`] with `settings` (JSON, any of its fields), as the JSON
+/// `samplab cubature --json` prints.
+#[pyfunction]
+pub(crate) fn cubature(
+    py: Python<'_>,
+    integrand: Bound<'_, PyAny>,
+    dims: usize,
+    exact: Option<f64>,
+    settings: &str,
+) -> PyResult<String> {
+    let settings: samplab::cubature::Settings =
+        serde_json::from_str(settings).map_err(|e| err(format!("cubature settings: {e}")))?;
+    let (given, name) = Given::from_python(&integrand, settings.seed.0, dims, exact)?;
+    let f = given.integrand();
+    let flags: Vec<&AtomicBool> = given.stop().into_iter().collect();
+    let outcome = interruptible_raising(py, usize::MAX, &flags, |stop| {
+        samplab::cubature::cubature(f, &settings, &Progress::until(stop))
+    });
+    if let Some(e) = given.failure() {
+        return Err(e);
+    }
+    Ok(outcome?.to_json(&name, given.has_exact().then(|| f.exact())).to_string())
+}
+
+/// The integral of the callable `f` of `dims` dimensions for reference:
+/// [`samplab::cubature::reference`].
+#[pyfunction]
+pub(crate) fn reference(py: Python<'_>, f: Bound<'_, PyAny>, dims: usize) -> PyResult<f64> {
+    let (given, _) = Given::from_python(&f, Seed::DEFAULT.0, dims, None)?;
+    let flags: Vec<&AtomicBool> = given.stop().into_iter().collect();
+    let value = interruptible_raising(py, usize::MAX, &flags, |stop| {
+        samplab::cubature::reference(given.integrand(), &Progress::until(stop))
+    });
+    if let Some(e) = given.failure() {
+        return Err(e);
+    }
+    value
+}
+
+/// Instance `instance` of the integrand family `spec` for `seed`: its values at the rows of
+/// an (n, d) array, and its exact integral.
+#[pyfunction]
+pub(crate) fn integrand_eval<'py>(
+    py: Python<'py>,
+    spec: &str,
+    instance: u64,
+    seed: u64,
+    points: PyReadonlyArray2<f64>,
+) -> PyResult<(Bound<'py, PyAny>, f64)> {
+    let f = samplab::integrand::Family::parse(spec).and_then(|fam| fam.instance(Seed(seed), instance)).map_err(err)?;
+    let d = points.shape()[1];
+    if d != f.dims() {
+        return Err(err(format!("{spec}: takes {}D points, got {d}D", f.dims())));
+    }
+    let data = points.as_slice().map_err(|_| err("points: the array must be C-contiguous"))?;
+    let values: Vec<f64> = py.detach(|| data.chunks_exact(d).map(|x| f.eval(x)).collect());
+    let n = values.len();
+    Ok((shaped(py, values, &[n])?, f.exact()))
 }

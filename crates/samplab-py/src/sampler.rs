@@ -6,7 +6,9 @@ use pyo3::prelude::*;
 use samplab::Seed;
 use samplab::progress::Progress;
 
-use crate::{err, interruptible, shaped};
+use crate::errors::err;
+use crate::interrupt::interruptible;
+use crate::points::shaped;
 
 /// One sampler, built from `spec` (the registry's checks run once, here).
 #[pyclass(module = "samplab._samplab", frozen)]
