@@ -16,7 +16,8 @@ use serde_json::{Value, json};
 #[derive(clap::Args)]
 #[command(after_help = "A study file is JSON: {\"kind\": \"integrate\" | \"spectrum\" | \"discrepancy\" | \
                   \"render\", and the arguments of Python's Study constructor of that kind, with its \
-                  *_per_chunk}, e.g. {\"kind\": \"integrate\", \"samplers\": [\"random\", \"jitter\"], \
+                  *_per_chunk, a render study's settings (\"n\", \"res\", ...) among them as the \
+                  constructor's keywords; a key no kind declares is refused}, e.g. {\"kind\": \"integrate\", \"samplers\": [\"random\", \"jitter\"], \
                   \"integrand\": \"quad\", \"n\": [16, 64], \"sets\": 60, \"units_per_chunk\": 20} (the \
                   Python guide lists every kind's arguments). The plan names the study's fingerprint; \
                   each chunk file is checked against it when read.\n\n\

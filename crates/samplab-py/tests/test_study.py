@@ -336,3 +336,45 @@ def test_a_process_pool_or_any_executor_gives_the_same_bytes(tmp_path):
     with pytest.raises(samplab.Error, match="neither a Dask client nor a concurrent.futures.Executor"):
         integrate.run(object(), progress=False)
 
+
+
+# One small study of each kind the library declares (``samplab_render::study::KINDS``), as
+# the arguments of its constructor and of the CLI's STUDY.json alike.
+EVERY_KIND = {
+    "integrate": dict(samplers=["random", "jitter"], integrand="quad", n=[16, 64], sets=6, instances=3, seed=2,
+                      units_per_chunk=5),
+    "spectrum": dict(sampler="jitter.gaussian:sigma=0.25", n=64, sets=40, res=16, seed=8, sets_per_chunk=16),
+    "discrepancy": dict(metrics=["star", "l2-star"], sampler="nrooks", n=16, sets=30, seed=3, sets_per_chunk=7),
+    "render": dict(scene="spheres", seeds=[5, 6, 7], reference_samples=64, seeds_per_chunk=2, sampler="jitter", n=4,
+                   res=[32, 24]),
+}
+
+
+def test_every_kind_gives_one_process_bytes_on_a_pool_dask_and_the_job_array_cli(client, cli, tmp_path):
+    """Each study kind of the library's one list, run in this process, on a spawned process
+    pool, on Dask, and as a job array of separate `samplab study run` processes (chunks in
+    reverse order, a render's chunk 0 first): the same bytes everywhere, and the CLI's
+    merge prints exactly what `to_json` returns."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    from samplab import _samplab
+
+    kinds = [k["kind"] for k in json.loads(_samplab.study_kinds())]
+    assert sorted(kinds) == sorted(EVERY_KIND), "a study kind without an example here"
+    with ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("spawn")) as pool:
+        for kind, arguments in EVERY_KIND.items():
+            study = getattr(Study, kind)(**arguments)
+            local = study.run(progress=False).to_json()
+            assert study.run(pool, progress=False).to_json() == local, kind
+            assert study.run(client, progress=False).to_json() == local, kind
+            folder = tmp_path / kind
+            folder.mkdir()
+            (folder / "study.json").write_text(json.dumps({"kind": kind, **arguments}))
+            cli("study", "plan", folder / "study.json", "-o", folder / "plan.json")
+            order = list(reversed(range(len(study.chunks))))
+            if kind == "render":
+                order = [0] + order[:-1]
+            for chunk in order:
+                cli("study", "run", folder / "plan.json", "--chunk", chunk, "--dir", folder / "chunks")
+            assert cli("study", "merge", folder / "plan.json", "--dir", folder / "chunks") == local, kind

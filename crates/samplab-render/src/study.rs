@@ -149,13 +149,16 @@ impl Kind {
 
     /// The study a front end's arguments describe, and its chunk size: `arguments` holds
     /// the kind's parameters by name (a declared default where one is absent), its chunk
-    /// keyword and, for a kind with a `rest`, an object of every other keyword. Each value
+    /// keyword and, for a kind with a `rest`, every other keyword, side by side with them
+    /// (as a constructor's keywords: `{"scene": "spheres", "n": 4}`, `n` a render
+    /// setting); a kind without a `rest` refuses any other keyword. Each value
     /// is read by its declared type: a count is a whole number in [0, 2^64) (a float such
     /// as 64.0 or a bool is refused), `counts` and `names` take one value or a list, a
     /// `seed` of null is the default seed.
     ///
     /// # Errors
-    /// The first argument that is missing or of the wrong type, named.
+    /// The first argument that is missing, of the wrong type or (without a `rest`) unknown,
+    /// named.
     ///
     /// # Panics
     /// Never: the declared defaults are JSON (a test reads every one).
@@ -171,14 +174,22 @@ impl Kind {
                 .ok_or_else(|| Error::from(setting(p.name, &Value::Null, "must be given")))?;
             description.insert(p.name.into(), typed(p.of, p.name, &value)?);
         }
+        let (name, default) = self.per_chunk;
+        let declared = |k: &str| k == "kind" || k == name || self.parameters.iter().any(|p| p.name == k);
+        let mut others = arguments.iter().filter(|(k, _)| !declared(k));
         if let Some(rest) = self.rest {
-            let others = arguments.get(rest).cloned().unwrap_or_else(|| Value::Object(Default::default()));
+            let others: serde_json::Map<String, Value> = others.map(|(k, v)| (k.clone(), v.clone())).collect();
             if let Some(seed) = others.get("seed") {
                 return Err(setting("seed", seed, "give the seeds as `seeds`").into());
             }
-            description.insert(rest.into(), others);
+            description.insert(rest.into(), Value::Object(others));
+        } else if let Some((unknown, _)) = others.next() {
+            let known = self.parameters.iter().map(|p| p.name).chain([name]);
+            let suggestions = samplab::error::closest_names(unknown, known);
+            return Err(
+                samplab::Error::UnknownName { kind: "study parameter", name: unknown.clone(), suggestions }.into()
+            );
         }
-        let (name, default) = self.per_chunk;
         let per_chunk = match arguments.get(name) {
             Some(v) => usize::try_from(count(name, v)?.as_u64().unwrap_or(0)).unwrap_or(usize::MAX),
             None => default,

@@ -67,6 +67,8 @@ def _constructor(kind: str) -> Any:
     def make(cls: Any, *args: Any, **kwargs: Any) -> "Study":
         arguments = inspect.Signature(signature).bind(cls, *args, **kwargs).arguments
         del arguments["cls"]
+        # the other keywords side by side with the parameters, as STUDY.json gives them
+        arguments.update(arguments.pop(rest, {}) if rest else {})
         function = _function(arguments)
         described, chunks, feeds = _samplab.study_plan(json.dumps({"kind": kind, **arguments}, default=_plain))
         params = json.loads(described)

@@ -28,7 +28,22 @@ fn arguments_are_read_by_their_declared_types() {
         refused(r#"{"kind": "integrate", "integrand": "quad", "n": 16}"#).starts_with("samplers = null: must be given")
     );
     assert!(refused(r#"{"kind": "spectra"}"#).contains("unknown study kind 'spectra'"));
-    assert!(refused(r#"{"kind": "render", "scene": "box", "seeds": 1, "settings": {"seed": 3}}"#).contains("seeds"));
+    assert!(
+        refused(r#"{"kind": "render", "scene": "box", "seeds": 1, "seed": 3}"#).contains("give the seeds as `seeds`")
+    );
+    // a keyword no parameter declares: refused where the kind has no rest, with the
+    // closest names; a render setting side by side with a render study's parameters
+    assert_eq!(
+        refused(&integrate(r#""n": 16, "set": 6"#)),
+        "unknown study parameter 'set' (did you mean sets, seed, d?)"
+    );
+    let (render, _) = read(r#"{"kind": "render", "scene": "spheres", "seeds": 1, "n": 4, "res": [32, 24]}"#).unwrap();
+    let described: Value = serde_json::from_str(&render.to_json()).unwrap();
+    assert_eq!(
+        (&described["settings"]["n"], &described["settings"]["res"]),
+        (&serde_json::json!(4), &serde_json::json!([32, 24]))
+    );
+    assert!(refused(r#"{"kind": "render", "scene": "spheres", "seeds": 1, "nn": 4}"#).contains("nn"));
 }
 
 fn study(seeds: Vec<u64>) -> Study {
