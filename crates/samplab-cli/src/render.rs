@@ -4,7 +4,6 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, bail};
-use samplab::seed::Seed;
 use samplab_render::mitsuba::Paths;
 use samplab_render::scenes;
 use samplab_render::settings::{self, Settings};
@@ -42,69 +41,9 @@ pub struct Args {
     /// Replace a built-in scene's light: square, disk, linear, gaussian
     #[arg(long)]
     light: Option<String>,
-    /// Strategy of the light samples (any sampler spec; see `samplab list samplers`)
-    #[arg(long, default_value = settings::SAMPLER)]
-    sampler: String,
-    /// Light samples per estimate and light
-    #[arg(short, default_value_t = settings::N)]
-    n: usize,
-    /// Secondary estimates per pixel (each one camera ray and n shadow rays per light)
-    #[arg(long, default_value_t = 1)]
-    spp: usize,
-    /// visibility (Monte Carlo for visibility only), direct (full light sampling),
-    /// obscurance (no lights: the sampler's n points are cosine-weighted directions) or path
-    /// (path tracing with next-event estimation and MIS, as Mitsuba 3's `path`; every
-    /// dimension from the pixel sampler --pixel-sampler, `sobol` by default; --sampler, -n
-    /// and the other strategies do not apply)
-    #[arg(long, default_value = "visibility")]
-    mode: String,
-    /// Path mode: the most segments of a path (Mitsuba's max_depth: 2 is direct lighting);
-    /// default: a Mitsuba scene's `path` integrator's max_depth, else 5
-    #[arg(long)]
-    max_depth: Option<usize>,
-    /// Obscurance mode: the distance beyond which a surface no longer obscures
-    #[arg(long, default_value_t = 1.0)]
-    range: f64,
-    /// Camera rays through the pixel centre (center), over its area (area, a box filter) or
-    /// over Mitsuba 3's windowed Gaussian filter (gaussian: stddev 0.5 pixel, radius 2);
-    /// default: a Mitsuba scene's film filter (box: area), else center
-    #[arg(long)]
-    pixel: Option<String>,
-    /// Strategy over the pixel area (spp points; any sampler spec)
-    #[arg(long, default_value = settings::SECONDARY)]
-    area_sampler: String,
-    /// A pixel sampler (any name `samplab pixels` takes: zsobol, sobol, sobol.padded,
-    /// pmj02.bn, openqmc.sobolbn, a point-set sequence such as sobol.owen or halton.shift per
-    /// pixel, ...) that draws every dimension of every estimate (film, lens, time, gloss,
-    /// light samples) in place of --sampler and the other strategies; default: none, and
-    /// `sobol` in path mode
-    #[arg(long)]
-    pixel_sampler: Option<String>,
-    /// Interleaved sampling: one --area-sampler pattern of spp x W x H points over a tile of
-    /// WxH pixels, repeated over the image (needs --pixel area)
-    #[arg(long, value_name = "WxH")]
-    interleave: Option<String>,
-    /// Strategy over the lens (spp points), for scenes with an aperture
-    #[arg(long, default_value = settings::SECONDARY)]
-    lens_sampler: String,
-    /// Strategy over the shutter time (spp points), for scenes that move
-    #[arg(long, default_value = settings::SECONDARY)]
-    time_sampler: String,
-    /// Strategy over the glossy lobe (spp points), for scenes with an imperfect mirror
-    #[arg(long, default_value = settings::SECONDARY)]
-    gloss_sampler: String,
-    /// estimate: an n-point pattern per estimate; pixel: one spp x n pattern per pixel dealt out
-    #[arg(long, default_value = "estimate")]
-    pattern: String,
-    /// Square-to-disk map for disk lights: concentric, polar, reject
-    #[arg(long)]
-    disk_map: Option<String>,
-    /// Image size WxH (default: the scene's)
-    #[arg(long)]
-    res: Option<String>,
-    /// Seed of every random choice
-    #[arg(long, default_value_t = Seed::DEFAULT.0)]
-    seed: u64,
+    /// The render settings (one table: `samplab_render::Settings`)
+    #[command(flatten)]
+    settings: Settings,
     /// Output image (.exr linear with a visibility channel V, or .png sRGB)
     #[arg(short, long)]
     output: PathBuf,
@@ -126,15 +65,6 @@ pub struct Args {
     /// Print the summary as JSON on stdout
     #[arg(long)]
     json: bool,
-}
-
-/// A size WIDTHxHEIGHT given to `flag`.
-fn size(flag: &str, text: &str) -> anyhow::Result<(usize, usize)> {
-    let parse = || {
-        let (w, h) = text.split_once(['x', 'X'])?;
-        Some((w.trim().parse().ok()?, h.trim().parse().ok()?))
-    };
-    parse().with_context(|| format!("{flag}: '{text}' is not WIDTHxHEIGHT (e.g. 256x192)"))
 }
 
 fn check_extension(flag: &str, path: &Path, allowed: &[&str]) -> anyhow::Result<()> {
@@ -170,8 +100,9 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         ];
         // with the files the samplers read (a pixel family reads none)
         let roles: Vec<Role<'_>> = roles.into_iter().flatten().collect();
-        let specs = [&a.sampler, &a.area_sampler, &a.lens_sampler, &a.time_sampler, &a.gloss_sampler];
-        let specs: Vec<&str> = specs.into_iter().chain(&a.pixel_sampler).map(String::as_str).collect();
+        let s = &a.settings;
+        let specs = [&s.sampler, &s.area_sampler, &s.lens_sampler, &s.time_sampler, &s.gloss_sampler];
+        let specs: Vec<&str> = specs.into_iter().chain(&s.pixel_sampler).map(String::as_str).collect();
         crate::refuse_overlap(&specs, &roles)?;
         for role in &roles {
             if let Role::File(_, p) = role {
@@ -187,25 +118,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     }
     let paths = if a.allow_paths_outside_scene { Paths::Anywhere } else { Paths::InsideScene };
     let scene = settings::load_scene(&a.scene, a.light.as_deref(), paths)?;
-    let settings = Settings {
-        sampler: a.sampler.clone(),
-        n: a.n,
-        spp: a.spp,
-        mode: a.mode.clone(),
-        max_depth: a.max_depth,
-        pixel: a.pixel.clone(),
-        area_sampler: a.area_sampler.clone(),
-        pixel_sampler: a.pixel_sampler.clone(),
-        lens_sampler: a.lens_sampler.clone(),
-        time_sampler: a.time_sampler.clone(),
-        gloss_sampler: a.gloss_sampler.clone(),
-        pattern: a.pattern.clone(),
-        disk_map: a.disk_map.clone(),
-        range: a.range,
-        interleave: a.interleave.as_deref().map(|t| size("--interleave", t)).transpose()?,
-        res: a.res.as_deref().map(|r| size("--res", r)).transpose()?,
-        seed: a.seed,
-    };
+    let settings = &a.settings;
     let options = settings.options(&scene)?;
     let (width, height) = (options.width, options.height);
     // every output is staged and appears with the others, or none does
@@ -236,8 +149,8 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     // a pixel sampler draws every dimension, the light samples too
     let sampler = options.pixels.as_ref().map_or_else(|| options.light.spec(), |p| p.spec());
     let mut summary = serde_json::json!({
-        "scene": a.scene, "sampler": sampler, "n": a.n, "spp": a.spp, "mode": a.mode,
-        "pixel": options.footprint.name(), "width": width, "height": height, "seed": a.seed, "seconds": seconds,
+        "scene": a.scene, "sampler": sampler, "n": settings.n, "spp": settings.spp, "mode": settings.mode,
+        "pixel": options.footprint.name(), "width": width, "height": height, "seed": settings.seed, "seconds": seconds,
         "camera_rays": rendered.camera_rays, "shadow_rays": rendered.shadow_rays,
         "rays_per_second": rays as f64 / seconds, "errors": errors,
         "penumbra_only": a.penumbra,
@@ -253,7 +166,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     // light samples per estimate, or a path's most segments
     let per = match options.mode {
         samplab_render::Mode::Path { max_depth } => format!("depth {max_depth}"),
-        _ => format!("x{}", a.n),
+        _ => format!("x{}", settings.n),
     };
     let error_text = errors.map_or(String::new(), |e| {
         format!(
@@ -268,8 +181,8 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
         "{} {width}x{height}, {} {per} x{} spp, seed {}: {seconds:.2} s, {:.1} M rays/s{error_text} -> {}",
         a.scene,
         sampler,
-        a.spp,
-        a.seed,
+        settings.spp,
+        settings.seed,
         rays as f64 / seconds / 1e6,
         a.output.display()
     );

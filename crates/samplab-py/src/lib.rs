@@ -64,6 +64,7 @@ fn _samplab(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(integrand::integrand_eval, m)?)?;
     m.add_function(wrap_pyfunction!(report::reproduce, m)?)?;
     m.add_function(wrap_pyfunction!(render::render, m)?)?;
+    m.add_function(wrap_pyfunction!(render::render_settings, m)?)?;
     m.add_function(wrap_pyfunction!(render::image_errors, m)?)?;
     m.add_function(wrap_pyfunction!(render::read_exr, m)?)?;
     Ok(())

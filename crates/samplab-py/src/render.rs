@@ -4,43 +4,59 @@ use crate::errors::err;
 use crate::interrupt::interruptible;
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyReadonlyArray3, PyUntypedArrayMethods};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyList};
 use samplab::progress::Progress;
+
+/// Every render setting with its CLI flag, default (None where it has none) and help, in
+/// declaration order ([`samplab_render::settings::table`]): what `samplab.render`'s
+/// docstring lists.
+#[pyfunction]
+pub(crate) fn render_settings(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
+    let list = PyList::empty(py);
+    for d in samplab_render::settings::table() {
+        let item = PyDict::new(py);
+        item.set_item("name", d.name)?;
+        item.set_item("flag", d.flag)?;
+        item.set_item("default", d.default)?;
+        item.set_item("help", d.help)?;
+        list.append(item)?;
+    }
+    Ok(list)
+}
 
 /// Render settings from Python keywords, over the defaults of [`Settings`] (the CLI's).
 pub(crate) fn settings(given: Option<&Bound<'_, PyDict>>) -> PyResult<samplab_render::Settings> {
-    let mut s = samplab_render::Settings::default();
-    let Some(given) = given else { return Ok(s) };
-    for (key, value) in given.iter() {
+    let mut named = serde_json::Map::new();
+    for (key, value) in given.into_iter().flat_map(|d| d.iter()) {
         let key: String = key.extract()?;
-        let bad = |e: PyErr| err(format!("{key}: {e}"));
-        match key.as_str() {
-            "sampler" => s.sampler = value.extract().map_err(bad)?,
-            "n" => s.n = value.extract().map_err(bad)?,
-            "spp" => s.spp = value.extract().map_err(bad)?,
-            "mode" => s.mode = value.extract().map_err(bad)?,
-            "max_depth" => s.max_depth = Some(value.extract().map_err(bad)?),
-            "pixel" => s.pixel = Some(value.extract().map_err(bad)?),
-            "area_sampler" => s.area_sampler = value.extract().map_err(bad)?,
-            "pixel_sampler" => s.pixel_sampler = Some(value.extract().map_err(bad)?),
-            "lens_sampler" => s.lens_sampler = value.extract().map_err(bad)?,
-            "time_sampler" => s.time_sampler = value.extract().map_err(bad)?,
-            "gloss_sampler" => s.gloss_sampler = value.extract().map_err(bad)?,
-            "pattern" => s.pattern = value.extract().map_err(bad)?,
-            "disk_map" => s.disk_map = value.extract().map_err(bad)?,
-            "range" => s.range = value.extract().map_err(bad)?,
-            "interleave" => s.interleave = value.extract().map_err(bad)?,
-            "res" => s.res = value.extract().map_err(bad)?,
-            "seed" => s.seed = value.extract().map_err(bad)?,
-            _ => {
-                return Err(err(format!(
-                    "unknown render setting '{key}' (sampler, n, spp, mode, max_depth, pixel, area_sampler, pixel_sampler, \
-                     lens_sampler, time_sampler, gloss_sampler, pattern, disk_map, range, interleave, res, seed)"
-                )));
-            }
-        }
+        let value = json_of(&value).map_err(|e| err(format!("{key}: {e}")))?;
+        named.insert(key, value);
     }
-    Ok(s)
+    samplab_render::settings::from_named(named).map_err(err)
+}
+
+/// A keyword's value as JSON: None, a bool, a whole number, a float, a string, or a
+/// list or tuple of them.
+fn json_of(value: &Bound<'_, PyAny>) -> PyResult<serde_json::Value> {
+    use pyo3::types::{PyBool, PyFloat, PyString};
+    use serde_json::Value;
+    Ok(if value.is_none() {
+        Value::Null
+    } else if value.is_instance_of::<PyBool>() {
+        Value::Bool(value.extract()?)
+    } else if let Ok(i) = value.extract::<i64>() {
+        Value::from(i)
+    } else if let Ok(u) = value.extract::<u64>() {
+        Value::from(u)
+    } else if value.is_instance_of::<PyFloat>() {
+        serde_json::Number::from_f64(value.extract()?).map_or(Value::Null, Value::Number)
+    } else if value.is_instance_of::<PyString>() {
+        Value::String(value.extract()?)
+    } else if let Ok(items) = value.try_iter() {
+        Value::Array(items.map(|v| json_of(&v?)).collect::<PyResult<_>>()?)
+    } else {
+        return Err(err(format!("{} is not a number, a string or a list of them", value.repr()?)));
+    })
 }
 
 /// An image as a dictionary: rgb (h, w, 3) and visibility (h, w) float32 arrays.

@@ -44,73 +44,143 @@ pub const FOOTPRINTS: [(&str, Footprint); 4] = [
 /// Light-sample groupings, by name.
 pub const PATTERNS: [(&str, Pattern); 2] = [("estimate", Pattern::PerEstimate), ("pixel", Pattern::PerPixel)];
 
-/// Everything a render takes besides the scene, in words and numbers (in JSON, every field
-/// optional: a missing one takes its default).
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+/// Everything a render takes besides the scene, in words and numbers: the one table of
+/// render settings. Its fields are the CLI's flags (with their help and defaults, through
+/// clap), Python's keywords and a study's keys (through serde; a missing one takes its
+/// default, [`Settings::default`] being clap's defaults), and [`table`] lists them for
+/// documentation. A new setting is a new field here, read by [`Settings::options`].
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize, clap::Args)]
 #[serde(default, deny_unknown_fields)]
 pub struct Settings {
-    /// Light sampler spec.
+    /// Strategy of the light samples (any sampler spec; see `samplab list samplers`)
+    #[arg(long, default_value = SAMPLER)]
     pub sampler: String,
-    /// Light samples per estimate and light.
+    /// Light samples per estimate and light
+    #[arg(short, default_value_t = N)]
     pub n: usize,
-    /// Secondary estimates per pixel.
+    /// Secondary estimates per pixel (each one camera ray and n shadow rays per light)
+    #[arg(long, default_value_t = 1)]
     pub spp: usize,
-    /// `visibility`, `direct`, `obscurance` or `path`.
+    /// visibility (Monte Carlo for visibility only), direct (full light sampling),
+    /// obscurance (no lights: the sampler's n points are cosine-weighted directions) or path
+    /// (path tracing with next-event estimation and MIS, as Mitsuba 3's `path`; every
+    /// dimension from the pixel sampler, `sobol` by default; the light sampler, n and the
+    /// other strategies do not apply)
+    #[arg(long, default_value = "visibility")]
     pub mode: String,
-    /// Path mode: the most segments of a path (None: the scene's, a Mitsuba scene's `path`
-    /// integrator's `max_depth`, else [`MAX_DEPTH`]).
+    /// Path mode: the most segments of a path (Mitsuba's max_depth: 2 is direct lighting);
+    /// default: a Mitsuba scene's `path` integrator's max_depth, else 5
+    #[arg(long)]
     pub max_depth: Option<usize>,
-    /// `center`, `area` or `gaussian` (None: the scene's, a Mitsuba film's reconstruction
-    /// filter, else `center`).
+    /// Camera rays through the pixel centre (center), over its area (area, a box filter) or
+    /// over Mitsuba 3's windowed Gaussian filter (gaussian: stddev 0.5 pixel, radius 2);
+    /// default: a Mitsuba scene's film filter (box: area), else center
+    #[arg(long)]
     pub pixel: Option<String>,
-    /// Strategy over the pixel area (a point-set sampler: `spp` points per pixel).
+    /// Strategy over the pixel area (spp points; any sampler spec)
+    #[arg(long, default_value = SECONDARY)]
     pub area_sampler: String,
-    /// A pixel sampler (any name `samplab pixels` takes: `zsobol`, `sobol`, `sobol.owen`,
-    /// ...) that draws every dimension of every estimate in place of the strategies; None:
-    /// none, except in path mode ([`PATH_SAMPLER`]).
+    /// A pixel sampler (any name `samplab pixels` takes: zsobol, sobol, sobol.padded,
+    /// pmj02.bn, openqmc.sobolbn, a point-set sequence such as sobol.owen or halton.shift per
+    /// pixel, ...) that draws every dimension of every estimate (film, lens, time, gloss,
+    /// light samples) in place of the light sampler and the other strategies; default: none,
+    /// and `sobol` in path mode
+    #[arg(long)]
     pub pixel_sampler: Option<String>,
-    /// Strategy over the lens.
+    /// Strategy over the lens (spp points), for scenes with an aperture
+    #[arg(long, default_value = SECONDARY)]
     pub lens_sampler: String,
-    /// Strategy over the shutter.
+    /// Strategy over the shutter time (spp points), for scenes that move
+    #[arg(long, default_value = SECONDARY)]
     pub time_sampler: String,
-    /// Strategy over the glossy lobe.
+    /// Strategy over the glossy lobe (spp points), for scenes with an imperfect mirror
+    #[arg(long, default_value = SECONDARY)]
     pub gloss_sampler: String,
-    /// `estimate` or `pixel`.
+    /// estimate: an n-point pattern per estimate; pixel: one spp x n pattern per pixel dealt out
+    #[arg(long, default_value = "estimate")]
     pub pattern: String,
-    /// `concentric`, `polar` or `reject` for every disk light (None: each light's own).
+    /// Square-to-disk map for disk lights: concentric, polar, reject; default: each light's own
+    #[arg(long)]
     pub disk_map: Option<String>,
-    /// Obscurance range.
+    /// Obscurance mode: the distance beyond which a surface no longer obscures
+    #[arg(long, default_value_t = 1.0)]
     pub range: f64,
-    /// Interleaving tile (width, height).
+    /// Interleaved sampling: one area-sampler pattern of spp x W x H points over a tile of
+    /// WxH pixels, repeated over the image (needs the area pixel footprint)
+    #[arg(long, value_name = "WxH", value_parser = size)]
     pub interleave: Option<(usize, usize)>,
-    /// Image size (None: the scene's).
+    /// Image size WxH (default: the scene's)
+    #[arg(long, value_name = "WxH", value_parser = size)]
     pub res: Option<(usize, usize)>,
-    /// Seed.
+    /// Seed of every random choice
+    #[arg(long, default_value_t = Seed::DEFAULT.0)]
     pub seed: u64,
 }
 
+/// A size `WIDTHxHEIGHT` (e.g. `256x192`).
+fn size(text: &str) -> std::result::Result<(usize, usize), String> {
+    let parse = || {
+        let (w, h) = text.split_once(['x', 'X'])?;
+        Some((w.trim().parse().ok()?, h.trim().parse().ok()?))
+    };
+    parse().ok_or_else(|| format!("'{text}' is not WIDTHxHEIGHT (e.g. 256x192)"))
+}
+
+/// The settings as clap sees them: the command the flags are parsed by.
+fn command() -> clap::Command {
+    <Settings as clap::Args>::augment_args(clap::Command::new("settings").no_binary_name(true))
+}
+
 impl Default for Settings {
+    /// Every setting at its declared default.
+    ///
+    /// # Panics
+    /// Never: every setting has a default or is optional (a test parses none).
     fn default() -> Self {
-        Settings {
-            sampler: SAMPLER.into(),
-            n: N,
-            spp: 1,
-            mode: "visibility".into(),
-            max_depth: None,
-            pixel: None,
-            area_sampler: SECONDARY.into(),
-            pixel_sampler: None,
-            lens_sampler: SECONDARY.into(),
-            time_sampler: SECONDARY.into(),
-            gloss_sampler: SECONDARY.into(),
-            pattern: "estimate".into(),
-            disk_map: None,
-            range: 1.0,
-            interleave: None,
-            res: None,
-            seed: Seed::DEFAULT.0,
-        }
+        let matches = command().try_get_matches_from(std::iter::empty::<&str>()).expect("settings with defaults");
+        <Settings as clap::FromArgMatches>::from_arg_matches(&matches).expect("defaults that parse")
     }
+}
+
+/// One setting, as the front ends document it.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Described {
+    /// Its name: the field, Python's keyword, a study's key.
+    pub name: String,
+    /// Its CLI flag (`--area-sampler`, `-n`).
+    pub flag: String,
+    /// Its default in words (None: optional, the scene's or none).
+    pub default: Option<String>,
+    /// What it does.
+    pub help: String,
+}
+
+/// Every setting, in declaration order, with its flag, default and help.
+pub fn table() -> Vec<Described> {
+    command()
+        .get_arguments()
+        .map(|a| Described {
+            name: a.get_id().to_string(),
+            flag: a.get_long().map_or_else(|| format!("-{}", a.get_short().unwrap_or('?')), |l| format!("--{l}")),
+            default: a.get_default_values().first().map(|v| v.to_string_lossy().into_owned()),
+            help: a.get_help().map(ToString::to_string).unwrap_or_default(),
+        })
+        .collect()
+}
+
+/// Settings from named values (Python's keywords, a study's keys) over the defaults.
+///
+/// # Errors
+/// A name that is no setting ([`samplab::Error::UnknownName`], with the closest ones), or a
+/// value of the wrong type, named.
+pub fn from_named(values: serde_json::Map<String, serde_json::Value>) -> samplab::Result<Settings> {
+    let names: Vec<String> = table().into_iter().map(|d| d.name).collect();
+    if let Some(unknown) = values.keys().find(|k| !names.contains(k)) {
+        let suggestions = samplab::error::closest_names(unknown, names.iter().map(String::as_str));
+        return Err(samplab::Error::UnknownName { kind: "render setting", name: unknown.clone(), suggestions });
+    }
+    serde_json::from_value(serde_json::Value::Object(values))
+        .map_err(|e| samplab::Error::Parse { location: "render settings".into(), reason: e.to_string() })
 }
 
 /// The value `table` gives `word` (case-insensitive), or a setting error listing the words.
@@ -270,6 +340,35 @@ pub fn load_scene(name: &str, light: Option<&str>, paths: Paths) -> Result<Scene
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The one table's three views agree: clap's arguments are serde's fields, in order;
+    /// the defaults are clap's (read back through serde); a flag parses into its field;
+    /// named values are read over the defaults, an unknown name refused with the closest.
+    #[test]
+    fn the_settings_table_is_one_for_flags_keywords_and_keys() {
+        let fields: Vec<String> = match serde_json::to_value(Settings::default()).unwrap() {
+            serde_json::Value::Object(m) => m.keys().cloned().collect(),
+            v => panic!("{v}"),
+        };
+        let mut names: Vec<String> = table().into_iter().map(|d| d.name).collect();
+        names.sort();
+        let mut sorted = fields.clone();
+        sorted.sort();
+        assert_eq!(names, sorted);
+        let d = Settings::default();
+        assert_eq!((d.sampler.as_str(), d.n, d.spp, d.seed), (SAMPLER, N, 1, Seed::DEFAULT.0));
+        assert_eq!((d.area_sampler.as_str(), d.range, d.res), (SECONDARY, 1.0, None));
+        let parsed = command().try_get_matches_from(["-n", "4", "--res", "32x24", "--area-sampler", "jitter"]).unwrap();
+        let parsed = <Settings as clap::FromArgMatches>::from_arg_matches(&parsed).unwrap();
+        let named = serde_json::json!({"n": 4, "res": [32, 24], "area_sampler": "jitter"});
+        let serde_json::Value::Object(named) = named else { unreachable!() };
+        assert_eq!(from_named(named).unwrap(), parsed);
+        assert_eq!(parsed, Settings { n: 4, res: Some((32, 24)), area_sampler: "jitter".into(), ..d });
+        let mut unknown = serde_json::Map::new();
+        unknown.insert("spps".into(), 4.into());
+        let e = from_named(unknown).unwrap_err().to_string();
+        assert_eq!(e, "unknown render setting 'spps' (did you mean spp, res, seed?)");
+    }
 
     /// The setting `options` refuses for `s` on the spheres scene, if any.
     fn refused(s: &Settings) -> Option<&'static str> {

@@ -1355,19 +1355,14 @@ def render(scene: str, light: Optional[str] = None, reference_samples: Optional[
     allow_paths_outside_scene : bool, default False
         Let a Mitsuba scene name meshes outside its own folder (for scenes you trust).
     **settings
-        The CLI's flags, with its defaults: ``sampler`` (light strategy, ``"jitter"``),
-        ``n`` (16), ``spp`` (1), ``mode`` (``"visibility"``, ``"direct"``,
-        ``"obscurance"``, ``"path"``), ``max_depth`` (the scene's ``path`` integrator's,
-        else 5), ``pixel`` (``"center"``, ``"area"``, ``"gaussian"``; by default a Mitsuba
-        scene's film filter, else ``"center"``), ``area_sampler``, ``lens_sampler``,
-        ``time_sampler``, ``gloss_sampler`` (point-set strategies, ``"sobol.owen"``),
-        ``pixel_sampler`` (a pixel sampler that draws every dimension, e.g. ``"zsobol"``;
-        none by default, ``"sobol"`` in path mode), ``pattern`` (``"estimate"``, ``"pixel"``),
-        ``disk_map``, ``range``, ``interleave`` ((w, h)), ``res`` ((width, height)),
-        ``seed``. A setting moved from its default that the render would not read
-        (``max_depth`` outside path mode, ``range`` outside obscurance, the strategies
-        and, in path mode, ``n`` where a pixel sampler draws every dimension) raises
-        ``samplab.Error``.
+        The render settings, one keyword per CLI flag (``area_sampler`` is
+        ``--area-sampler``), each at the CLI's default when not given; a setting moved
+        from its default that the render would not read (``max_depth`` outside path mode,
+        ``range`` outside obscurance, the strategies and, in path mode, ``n`` where a pixel
+        sampler draws every dimension) raises ``samplab.Error``. Sizes are tuples
+        (``res=(width, height)``, ``interleave=(w, h)``). The settings:
+
+{settings}
 
     Returns
     -------
@@ -1385,6 +1380,19 @@ def render(scene: str, light: Optional[str] = None, reference_samples: Optional[
         settings["seed"] = _seed(settings["seed"])
     samples = None if reference_samples is None else _count("reference_samples", reference_samples)
     return _samplab.render(scene, light, settings, samples, bool(allow_paths_outside_scene))
+
+
+def _settings_doc() -> str:
+    """The render settings' numpydoc lines, from the library's one table of them."""
+    lines = []
+    for s in _samplab.render_settings():
+        default = "" if s["default"] is None else f", default {s['default']}"
+        lines.append(f"        - ``{s['name']}`` ({s['flag']}{default}): {s['help']}")
+    return "\n".join(lines)
+
+
+assert render.__doc__ is not None
+render.__doc__ = render.__doc__.replace("{settings}", _settings_doc())
 
 
 def _image(a: Any, what: str, ndim: int) -> np.ndarray:
