@@ -168,15 +168,15 @@ impl Given {
 /// [`samplab::cubature::cubature`] with `settings` (JSON, any of its fields), as the JSON
 /// `samplab cubature --json` prints.
 #[pyfunction]
-pub(crate) fn cubature(
-    py: Python<'_>,
+pub(crate) fn cubature<'py>(
+    py: Python<'py>,
     integrand: Bound<'_, PyAny>,
     dims: usize,
     exact: Option<f64>,
-    settings: &str,
-) -> PyResult<String> {
-    let settings: samplab::cubature::Settings =
-        serde_json::from_str(settings).map_err(|e| err(format!("cubature settings: {e}")))?;
+    settings: Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let settings: samplab::cubature::Settings = serde_json::from_value(crate::convert::json_of(&settings)?)
+        .map_err(|e| err(format!("cubature settings: {e}")))?;
     let (given, name) = Given::from_python(&integrand, settings.seed.0, dims, exact)?;
     let f = given.integrand();
     let flags: Vec<&AtomicBool> = given.stop().into_iter().collect();
@@ -186,7 +186,7 @@ pub(crate) fn cubature(
     if let Some(e) = given.failure() {
         return Err(e);
     }
-    Ok(outcome?.to_json(&name, given.has_exact().then(|| f.exact())).to_string())
+    crate::convert::py_of(py, &outcome?.to_json(&name, given.has_exact().then(|| f.exact())))
 }
 
 /// The integral of the callable `f` of `dims` dimensions for reference:

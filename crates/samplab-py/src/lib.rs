@@ -12,6 +12,7 @@
 //! not, and this one cost 15 s of the tests' build for nothing.
 #![cfg(not(test))]
 
+mod convert;
 mod errors;
 mod integrand;
 mod interrupt;

@@ -43,8 +43,8 @@ pub(crate) fn discrepancy(
 #[pyfunction]
 #[pyo3(signature = (points, spec, seed=None, res=None, frame=0, single=false, ulps=0, frames=1))]
 #[allow(clippy::too_many_arguments)] // the CLI's options, one for one
-pub(crate) fn conform(
-    py: Python<'_>,
+pub(crate) fn conform<'py>(
+    py: Python<'py>,
     points: PyReadonlyArray3<f64>,
     spec: &str,
     seed: Option<u64>,
@@ -53,7 +53,7 @@ pub(crate) fn conform(
     single: bool,
     ulps: u64,
     frames: u32,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     use samplab::conform::{Claim, Layout, Precision};
     let sets = point_sets(&points)?;
     let last = frame.checked_add(frames).ok_or_else(|| err(format!("frames {frame} + {frames} past 2^32")))?;
@@ -62,7 +62,7 @@ pub(crate) fn conform(
     let claim = Claim { spec, layout, seed: seed.map(Seed), precision, ulps };
     let checks =
         interruptible(py, points.len(), |stop| samplab::conform::conform(&sets, &claim, &Progress::until(stop)))?;
-    serde_json::to_string(&checks).map_err(err)
+    crate::convert::py_from(py, &checks)
 }
 
 /// The t of each projection of a sampler's nets at b^1 .. b^m points, as
@@ -70,8 +70,8 @@ pub(crate) fn conform(
 #[pyfunction]
 #[pyo3(signature = (spec, dims, m, projection, base, seed, max_work=None))]
 #[allow(clippy::too_many_arguments)] // the CLI's options, one for one
-pub(crate) fn t_values(
-    py: Python<'_>,
+pub(crate) fn t_values<'py>(
+    py: Python<'py>,
     spec: &str,
     dims: usize,
     m: usize,
@@ -79,23 +79,24 @@ pub(crate) fn t_values(
     base: Option<u32>,
     seed: u64,
     max_work: Option<f64>,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     if m == 0 {
         return Err(err("m = 0: the nets start at m = 1"));
     }
     let sampler = samplab::sampler::build(spec).map_err(err)?;
     let limits = Limits::new(max_work).map_err(err)?;
-    interruptible(py, usize::MAX, |stop| {
+    let text = interruptible(py, usize::MAX, |stop| {
         let limits = limits.stopped_by(Progress::until(stop));
         samplab::discrepancy::tvalue::projection_table(&sampler, dims, m, projection, base, Seed(seed), &limits)
             .map(|table| table.json(sampler.spec(), Seed(seed)))
-    })
+    })?;
+    crate::convert::py_from_text(py, &text)
 }
 
 /// A metric's canonical spec and flags ([`Metric::flags`]) as JSON.
 #[pyfunction]
-pub(crate) fn metric_flags(metric: &str) -> PyResult<String> {
-    serde_json::to_string(&Metric::parse(metric).map_err(err)?.flags()).map_err(err)
+pub(crate) fn metric_flags<'py>(py: Python<'py>, metric: &str) -> PyResult<Bound<'py, PyAny>> {
+    crate::convert::py_from(py, &Metric::parse(metric).map_err(err)?.flags())
 }
 
 /// Periodogram, amplitude of the expected spectrum and variance of the spectrum of a

@@ -29,34 +29,10 @@ pub(crate) fn settings(given: Option<&Bound<'_, PyDict>>) -> PyResult<samplab_re
     let mut named = serde_json::Map::new();
     for (key, value) in given.into_iter().flat_map(|d| d.iter()) {
         let key: String = key.extract()?;
-        let value = json_of(&value).map_err(|e| err(format!("{key}: {e}")))?;
+        let value = crate::convert::json_of(&value).map_err(|e| err(format!("{key}: {e}")))?;
         named.insert(key, value);
     }
     samplab_render::settings::from_named(named).map_err(err)
-}
-
-/// A keyword's value as JSON: None, a bool, a whole number, a float, a string, or a
-/// list or tuple of them.
-fn json_of(value: &Bound<'_, PyAny>) -> PyResult<serde_json::Value> {
-    use pyo3::types::{PyBool, PyFloat, PyString};
-    use serde_json::Value;
-    Ok(if value.is_none() {
-        Value::Null
-    } else if value.is_instance_of::<PyBool>() {
-        Value::Bool(value.extract()?)
-    } else if let Ok(i) = value.extract::<i64>() {
-        Value::from(i)
-    } else if let Ok(u) = value.extract::<u64>() {
-        Value::from(u)
-    } else if value.is_instance_of::<PyFloat>() {
-        serde_json::Number::from_f64(value.extract()?).map_or(Value::Null, Value::Number)
-    } else if value.is_instance_of::<PyString>() {
-        Value::String(value.extract()?)
-    } else if let Ok(items) = value.try_iter() {
-        Value::Array(items.map(|v| json_of(&v?)).collect::<PyResult<_>>()?)
-    } else {
-        return Err(err(format!("{} is not a number, a string or a list of them", value.repr()?)));
-    })
 }
 
 /// An image as a dictionary: rgb (h, w, 3) and visibility (h, w) float32 arrays.
@@ -128,15 +104,15 @@ pub(crate) fn image_of(
 /// --json` reports them; `penumbra` restricts them to the reference's 0 < V < 1.
 #[pyfunction]
 #[pyo3(signature = (rgb, reference_rgb, reference_visibility=None, penumbra=false))]
-pub(crate) fn image_errors(
-    rgb: PyReadonlyArray3<f32>,
+pub(crate) fn image_errors<'py>(
+    rgb: PyReadonlyArray3<'py, f32>,
     reference_rgb: PyReadonlyArray3<f32>,
     reference_visibility: Option<PyReadonlyArray2<f32>>,
     penumbra: bool,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     let image = image_of(&rgb, None)?;
     let reference = image_of(&reference_rgb, reference_visibility.as_ref())?;
-    serde_json::to_string(&image.errors(&reference, penumbra).map_err(err)?).map_err(err)
+    crate::convert::py_from(rgb.py(), &image.errors(&reference, penumbra).map_err(err)?)
 }
 
 /// The screen measures of error images (frames, height, width) (`samplab image-metrics
@@ -144,12 +120,12 @@ pub(crate) fn image_errors(
 /// more, or with `spp` (one count per image) their convergence.
 #[pyfunction]
 #[pyo3(signature = (errors, sigmas, spp=None))]
-pub(crate) fn image_metrics(
-    py: Python<'_>,
+pub(crate) fn image_metrics<'py>(
+    py: Python<'py>,
     errors: PyReadonlyArray3<f64>,
     sigmas: Vec<f64>,
     spp: Option<Vec<f64>>,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     let [frames, h, w] = [0, 1, 2].map(|k| errors.shape()[k]);
     if w == 0 || h == 0 {
         return Err(err(format!("an empty image, {w}x{h} pixels")));
@@ -178,7 +154,7 @@ pub(crate) fn image_metrics(
             })
         })
         .map_err(err)?;
-    serde_json::to_string(&result).map_err(err)
+    crate::convert::py_from(py, &result)
 }
 
 /// Read an OpenEXR image (as `samplab render` writes them).

@@ -14,15 +14,15 @@ use std::sync::{Mutex, PoisonError};
 #[pyfunction]
 #[pyo3(signature = (out, full=false, only=None, seed=None, force=false, progress=None))]
 #[allow(clippy::too_many_arguments)] // the keywords of samplab.reproduce
-pub(crate) fn reproduce(
-    py: Python<'_>,
+pub(crate) fn reproduce<'py>(
+    py: Python<'py>,
     out: &str,
     full: bool,
     only: Option<Vec<String>>,
     seed: Option<u64>,
     force: bool,
     progress: Option<Py<PyAny>>,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     let papers = samplab_report::paper::all();
     let chosen: Vec<&samplab_report::Paper> = match &only {
         None => papers.iter().collect(),
@@ -68,7 +68,7 @@ pub(crate) fn reproduce(
         .iter()
         .map(|(paper, c)| serde_json::json!({ "paper": paper, "id": c.id, "verdict": c.verdict() }))
         .collect();
-    serde_json::to_string(&list).map_err(err)
+    crate::convert::py_from(py, &list)
 }
 
 /// What a Python progress callback has been told of one running experiment.

@@ -12,8 +12,8 @@ use std::sync::atomic::AtomicBool;
 
 /// Every study kind's parameters, as JSON ([`samplab_render::study::KINDS`]).
 #[pyfunction]
-pub(crate) fn study_kinds() -> PyResult<String> {
-    serde_json::to_string(samplab_render::study::KINDS).map_err(err)
+pub(crate) fn study_kinds(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    crate::convert::py_from(py, &samplab_render::study::KINDS)
 }
 
 /// A study's chunk list: the constructor's arguments (JSON, `{"kind": ..., arguments}`,
@@ -102,15 +102,15 @@ pub(crate) fn study_merge<'py>(
 
 /// An integration study, as `samplab integrate --json` prints it: {"rows": [...], "fits": [...]}.
 #[pyfunction]
-pub(crate) fn integrate(
-    py: Python<'_>,
+pub(crate) fn integrate<'py>(
+    py: Python<'py>,
     samplers: Vec<String>,
     integrand: &str,
     ns: Vec<usize>,
     sets: usize,
     instances: usize,
     seed: u64,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     let d = samplab::study::Description::Integrate {
         samplers,
         integrand: integrand.into(),
@@ -121,21 +121,22 @@ pub(crate) fn integrate(
         d: None,
         exact: None,
     };
-    Ok(interruptible(py, usize::MAX, |stop| d.run(&Progress::until(stop)))?.json)
+    let merged = interruptible(py, usize::MAX, |stop| d.run(&Progress::until(stop)))?;
+    crate::convert::py_from_text(py, &merged.json)
 }
 
 /// An integration study of a callable of `dims` dimensions with integral `exact` (every
 /// instance the same function), as [`integrate`] returns it.
 #[pyfunction]
-pub(crate) fn integrate_given(
-    py: Python<'_>,
+pub(crate) fn integrate_given<'py>(
+    py: Python<'py>,
     samplers: Vec<String>,
     f: Bound<'_, PyAny>,
     ns: Vec<usize>,
     sets: usize,
     seed: u64,
     given: (usize, f64),
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     let (dims, exact) = given;
     let (given, name) = crate::integrand::Given::from_python(&f, seed, dims, Some(exact))?;
     let study = samplab::study::Description::Integrate {
@@ -154,7 +155,7 @@ pub(crate) fn integrate_given(
     if let Some(e) = given.failure() {
         return Err(e);
     }
-    Ok(merged?.json)
+    crate::convert::py_from_text(py, &merged?.json)
 }
 
 /// A prediction study, as `samplab predict --json` prints it: {"rows", "ranking", ...};
@@ -163,8 +164,8 @@ pub(crate) fn integrate_given(
 /// `exact`, in order, needed to measure).
 #[pyfunction]
 #[allow(clippy::too_many_arguments)] // the keywords of samplab.predict, checked there
-pub(crate) fn predict(
-    py: Python<'_>,
+pub(crate) fn predict<'py>(
+    py: Python<'py>,
     samplers: Vec<String>,
     integrands: Vec<Bound<'_, PyAny>>,
     ns: Vec<usize>,
@@ -175,7 +176,7 @@ pub(crate) fn predict(
     dims: usize,
     exact: Vec<f64>,
     cache: bool,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     let mut exact = exact.into_iter();
     let mut given = Vec::new();
     for value in &integrands {
@@ -214,5 +215,5 @@ pub(crate) fn predict(
     if let Some(e) = given.iter().find_map(|(g, _)| g.failure()) {
         return Err(e);
     }
-    serde_json::to_string(&outcome?).map_err(err)
+    crate::convert::py_from(py, &outcome?)
 }

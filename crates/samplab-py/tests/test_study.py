@@ -259,7 +259,7 @@ def test_constructors_are_generated_from_the_library_kinds():
     TypeError for a missing or unknown argument."""
     import inspect
 
-    kinds = json.loads(samplab._samplab.study_kinds())
+    kinds = samplab._samplab.study_kinds()
     assert [k["kind"] for k in kinds] == ["integrate", "spectrum", "discrepancy", "render"]
     for k in kinds:
         make = getattr(Study, k["kind"])
@@ -360,7 +360,7 @@ def test_every_kind_gives_one_process_bytes_on_a_pool_dask_and_the_job_array_cli
 
     from samplab import _samplab
 
-    kinds = [k["kind"] for k in json.loads(_samplab.study_kinds())]
+    kinds = [k["kind"] for k in _samplab.study_kinds()]
     assert sorted(kinds) == sorted(EVERY_KIND), "a study kind without an example here"
     with ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("spawn")) as pool:
         for kind, arguments in EVERY_KIND.items():

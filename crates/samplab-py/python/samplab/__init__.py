@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import functools
 import inspect
-import json
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -591,7 +590,7 @@ def image_metrics(
     single = error.ndim == 2
     frames = np.ascontiguousarray(error[None] if single else error)
     counts = None if spp is None else _reals("spp", spp, finite=True)
-    result = json.loads(_samplab.image_metrics(frames, _reals("sigma", sigma, finite=True), counts))
+    result = _samplab.image_metrics(frames, _reals("sigma", sigma, finite=True), counts)
     return result["frames"][0] if single and spp is None else result
 
 
@@ -820,7 +819,7 @@ def t_values(
     >>> [max(p["t"]) for p in table["projections"]]
     [0, 1, 2]
     """
-    text = _samplab.t_values(
+    return _samplab.t_values(
         spec,
         _count("dims", dims),
         _count("m", m),
@@ -829,7 +828,6 @@ def t_values(
         _seed(seed),
         None if max_work is None else _real("max_work", max_work),
     )
-    return json.loads(text)
 
 
 def conform(
@@ -911,11 +909,10 @@ def conform(
         if np.ndim(res) != 1 or len(res) != 2:
             raise Error(f"res = {res!r}: expected (width, height)")
         res = (word("width", res[0]), word("height", res[1]))
-    text = _samplab.conform(
+    return _samplab.conform(
         a, as_, None if seed is None else _seed(seed), res, word("frame", frame), bool(single), _count("ulps", ulps),
         word("frames", frames),
     )
-    return json.loads(text)
 
 
 def discrepancy_flags(metric: str) -> Dict[str, Any]:
@@ -937,7 +934,7 @@ def discrepancy_flags(metric: str) -> Dict[str, Any]:
     >>> samplab.discrepancy_flags("wraparound")["toroidal_shift_invariant"]
     True
     """
-    return json.loads(_samplab.metric_flags(metric))
+    return _samplab.metric_flags(metric)
 
 
 def spectrum(points: Any, res: int = 128, direct: bool = False, tolerance: float = 1e-9) -> Dict[str, np.ndarray]:
@@ -1080,18 +1077,14 @@ def integrate(
         if d is None:
             raise Error("a callable integrand needs d= (its dimension)")
         given = (_count("d", d), _real("exact", reference(integrand, d) if exact is None else exact, finite=True))
-        return json.loads(
-            _samplab.integrate_given(names, integrand, _counts("n", n), _count("sets", sets), _seed(seed), given)
-        )
-    return json.loads(
-        _samplab.integrate(
-            names,
-            integrand,
-            _counts("n", n),
-            _count("sets", sets),
-            _count("instances", instances),
-            _seed(seed),
-        )
+        return _samplab.integrate_given(names, integrand, _counts("n", n), _count("sets", sets), _seed(seed), given)
+    return _samplab.integrate(
+        names,
+        integrand,
+        _counts("n", n),
+        _count("sets", sets),
+        _count("instances", instances),
+        _seed(seed),
     )
 
 
@@ -1177,7 +1170,7 @@ def cubature(
     if seed is not None:
         given["seed"] = _seed(seed)
     dims = 0 if d is None else _count("d", d)
-    return json.loads(_samplab.cubature(integrand, dims, None if exact is None else _real("exact", exact, finite=True), json.dumps(given)))
+    return _samplab.cubature(integrand, dims, None if exact is None else _real("exact", exact, finite=True), given)
 
 
 def predict(
@@ -1248,19 +1241,17 @@ def predict(
     given = [np.ascontiguousarray(g, dtype=np.float64) if isinstance(g, np.ndarray) else g for g in given]
     integrals = [] if exact is None else [exact] if isinstance(exact, (int, float)) else list(exact)
     measured = None if measure is None else (_count("measure", measure), bool(shift))
-    return json.loads(
-        _samplab.predict(
-            names,
-            given,
-            _counts("n", n),
-            _count("res", res),
-            _count("sets", sets),
-            measured,
-            _seed(seed),
-            _count("d", d),
-            _reals("exact", integrals, finite=True),
-            bool(cache),
-        )
+    return _samplab.predict(
+        names,
+        given,
+        _counts("n", n),
+        _count("res", res),
+        _count("sets", sets),
+        measured,
+        _seed(seed),
+        _count("d", d),
+        _reals("exact", integrals, finite=True),
+        bool(cache),
     )
 
 
@@ -1338,7 +1329,7 @@ def reproduce(
     if progress is not None and not callable(progress):
         raise Error(f"progress: {progress!r} is not callable")
     keys = None if only is None else [only] if isinstance(only, str) else list(only)
-    return json.loads(_samplab.reproduce(str(out), bool(full), keys, None if seed is None else _seed(seed), bool(force), progress))
+    return _samplab.reproduce(str(out), bool(full), keys, None if seed is None else _seed(seed), bool(force), progress)
 
 
 def render(scene: str, light: Optional[str] = None, reference_samples: Optional[int] = None, allow_paths_outside_scene: bool = False, **settings: Any) -> Dict[str, Any]:
@@ -1434,7 +1425,7 @@ def image_errors(image: Any, reference: Any, penumbra: bool = False) -> Dict[str
 
     rgb, _ = parts(image, "image")
     ref_rgb, ref_vis = parts(reference, "reference")
-    return json.loads(_samplab.image_errors(rgb, ref_rgb, ref_vis, bool(penumbra)))
+    return _samplab.image_errors(rgb, ref_rgb, ref_vis, bool(penumbra))
 
 
 def read_exr(path: str) -> Dict[str, Any]:

@@ -57,7 +57,7 @@ def _plain(value: Any) -> Any:
 def _constructor(kind: str) -> Any:
     """``Study.<kind>(...)``, its parameters, defaults and documentation those the library
     declares for the kind (``samplab_render::study::KINDS``), which also reads the values."""
-    info = next(k for k in json.loads(_samplab.study_kinds()) if k["kind"] == kind)
+    info = next(k for k in _samplab.study_kinds() if k["kind"] == kind)
     params, (chunk_name, chunk_default), rest = info["parameters"], info["per_chunk"], info["rest"]
     P = inspect.Parameter
     signature = [P("cls", P.POSITIONAL_ONLY)]
