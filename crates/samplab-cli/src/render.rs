@@ -147,7 +147,7 @@ pub fn run(a: &Args) -> anyhow::Result<()> {
     rendered.image.stage(&mut outputs, &a.output)?;
     let rays = rendered.camera_rays + rendered.shadow_rays;
     // a pixel sampler draws every dimension, the light samples too
-    let sampler = options.pixels.as_ref().map_or_else(|| options.light.spec(), |p| p.spec());
+    let sampler = options.light_source();
     let mut summary = serde_json::json!({
         "scene": a.scene, "sampler": sampler, "n": settings.n, "spp": settings.spp, "mode": settings.mode,
         "pixel": options.footprint.name(), "width": width, "height": height, "seed": settings.seed, "seconds": seconds,

@@ -15,7 +15,7 @@ fn options(light: &str, n: usize, spp: usize, mode: Mode) -> Options {
     o.mode = mode;
     if mode == Mode::Direct {
         o.footprint = Footprint::Area;
-        o.pattern = Pattern::PerPixel;
+        o.strategies_mut().expect("strategies").pattern = Pattern::PerPixel;
     }
     o
 }

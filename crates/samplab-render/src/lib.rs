@@ -29,6 +29,6 @@ pub mod study;
 pub use error::{Error, Result};
 pub use filter::Footprint;
 pub use image::{Errors, Image};
-pub use render::{Mode, Options, Pattern, Rendered, render};
+pub use render::{Mode, Options, Pattern, Rendered, Sampling, Strategies, render};
 pub use scene::Scene;
 pub use settings::Settings;

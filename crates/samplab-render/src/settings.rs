@@ -11,7 +11,7 @@ use crate::error::Result;
 use crate::filter::Footprint;
 use crate::light::DiskMap;
 use crate::mitsuba::Paths;
-use crate::render::{Mode, Options, Pattern};
+use crate::render::{Mode, Options, Pattern, Sampling, Strategies};
 use crate::scene::Scene;
 use crate::scenes::{LightKind, builtin};
 
@@ -288,8 +288,26 @@ impl Settings {
         let (width, height) = self.res.unwrap_or(scene.resolution);
         let pixels = self.pixels(scene, width, height)?;
         self.unread(self.mode(scene)?, pixels.as_ref().map(samplab::pixel::Pixels::spec))?;
+        let pattern = choose("pattern", &self.pattern, &PATTERNS)?;
+        let sampling = match pixels {
+            Some(sampler) if pattern == Pattern::PerPixel || self.interleave.is_some() => {
+                let reason = "draws each estimate's samples from its own dimensions: it takes patterns per estimate \
+                              and no interleaving";
+                return Err(crate::error::setting("pixel_sampler", sampler.spec(), reason));
+            }
+            Some(sampler) => Sampling::Pixels { sampler: Box::new(sampler), frame: 0 },
+            None => Sampling::Strategies(Box::new(Strategies {
+                light: sampler("sampler", &self.sampler)?,
+                area: sampler("area_sampler", &self.area_sampler)?,
+                lens: sampler("lens_sampler", &self.lens_sampler)?,
+                time: sampler("time_sampler", &self.time_sampler)?,
+                gloss: sampler("gloss_sampler", &self.gloss_sampler)?,
+                pattern,
+                interleave: self.interleave,
+            })),
+        };
         let options = Options {
-            light: sampler("sampler", &self.sampler)?,
+            sampling,
             n: self.n,
             spp: self.spp,
             mode: self.mode(scene)?,
@@ -297,19 +315,11 @@ impl Settings {
                 Some(word) => choose("pixel", word, &FOOTPRINTS)?,
                 None => scene.footprint.unwrap_or(Footprint::Centre),
             },
-            area: sampler("area_sampler", &self.area_sampler)?,
-            lens: sampler("lens_sampler", &self.lens_sampler)?,
-            time: sampler("time_sampler", &self.time_sampler)?,
-            gloss: sampler("gloss_sampler", &self.gloss_sampler)?,
-            pattern: choose("pattern", &self.pattern, &PATTERNS)?,
             disk_map: self.disk_map.as_deref().map(|m| choose("disk_map", m, &DiskMap::ALL)).transpose()?,
             range: self.range,
-            interleave: self.interleave,
             width,
             height,
             seed: Seed(self.seed),
-            pixels,
-            frame: 0,
         };
         options.check(scene)?;
         Ok(options)

@@ -8,7 +8,7 @@
 
 use samplab::Seed;
 use samplab_render::scenes::builtin;
-use samplab_render::{Footprint, Mode, Options, Scene, render};
+use samplab_render::{Footprint, Mode, Options, Sampling, Scene, render};
 
 /// The Mitsuba fixture (scripts/mitsuba/path_reference.py).
 struct Reference {
@@ -55,7 +55,10 @@ fn options(
         spp,
         footprint: Footprint::Area,
         seed: Seed(seed),
-        pixels: Some(samplab::pixel::prepare(sampler, film, Seed(seed)).unwrap()),
+        sampling: Sampling::Pixels {
+            sampler: Box::new(samplab::pixel::prepare(sampler, film, Seed(seed)).unwrap()),
+            frame: 0,
+        },
         ..Options::new("random", 1, width, height).unwrap()
     }
 }

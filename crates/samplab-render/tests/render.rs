@@ -15,7 +15,7 @@ use samplab_render::geometry::Plane;
 use samplab_render::light::{DiskMap, Light, LightShape};
 use samplab_render::scene::{Finish, Material, Texture};
 use samplab_render::scenes::{LightKind, builtin};
-use samplab_render::{Image, Mode, Options, Scene, render};
+use samplab_render::{Image, Mode, Options, Sampling, Scene, render};
 
 /// A white ground seen straight down through one pixel at the origin, under `light`.
 fn ground_point(light: Light) -> Scene {
@@ -201,9 +201,10 @@ fn images_do_not_depend_on_the_thread_count() {
     assert_eq!(a, render(&motion, &o, &Progress::SILENT).unwrap().image);
     // one pattern per pixel dealt to the estimates; pixels whose first estimate misses
     // every surface still deal the rest
-    o.pattern = samplab_render::Pattern::PerPixel;
+    let s = o.strategies_mut().unwrap();
+    s.pattern = samplab_render::Pattern::PerPixel;
+    s.light = samplab::sampler::build("jitter").unwrap();
     o.n = 1;
-    o.light = samplab::sampler::build("jitter").unwrap();
     let ball = builtin("ball", None).unwrap();
     let a = one.install(|| render(&ball, &o, &Progress::SILENT).unwrap().image);
     assert_eq!(a, render(&ball, &o, &Progress::SILENT).unwrap().image);
@@ -218,7 +219,7 @@ fn counts_a_strategy_cannot_make_are_refused_before_any_work() {
     let mut o = Options::new("jitter", 16, 8, 8).unwrap();
     o.footprint = samplab_render::Footprint::Area;
     o.spp = 3;
-    o.area = samplab::sampler::build("jitter").unwrap();
+    o.strategies_mut().unwrap().area = samplab::sampler::build("jitter").unwrap();
     assert!(render(&scene, &o, &Progress::SILENT).is_err());
 }
 
@@ -264,8 +265,9 @@ fn an_interleaving_tile_of_regular_points_is_the_regular_pattern_per_pixel() {
         let mut o = Options::new("jitter", 1, 24, 16).unwrap();
         o.footprint = samplab_render::Footprint::Area;
         o.spp = 16;
-        o.area = samplab::sampler::build("regular").unwrap();
-        o.interleave = interleave;
+        let s = o.strategies_mut().unwrap();
+        s.area = samplab::sampler::build("regular").unwrap();
+        s.interleave = interleave;
         render(&scene, &o, &Progress::SILENT).unwrap().image
     };
     assert_eq!(area(Some((2, 2))), area(None));
@@ -273,11 +275,12 @@ fn an_interleaving_tile_of_regular_points_is_the_regular_pattern_per_pixel() {
     let mut o = Options::new("jitter", 1, 8, 8).unwrap();
     o.footprint = samplab_render::Footprint::Area;
     o.spp = 16;
-    o.area = samplab::sampler::build("halton").unwrap();
-    o.interleave = Some((2, 2));
+    let s = o.strategies_mut().unwrap();
+    s.area = samplab::sampler::build("halton").unwrap();
+    s.interleave = Some((2, 2));
     let e = render(&scene, &o, &Progress::new(&|_| panic!("no row may start"))).unwrap_err().to_string();
     assert!(e.contains("17 of its 64 points") && e.contains("2x2"), "{e}");
-    o.interleave = Some((4, 1));
+    o.strategies_mut().unwrap().interleave = Some((4, 1));
     assert!(render(&scene, &o, &Progress::SILENT).is_ok(), "Halton's base-2 axis splits 64 points 16 per pixel");
 }
 
@@ -318,7 +321,10 @@ fn a_pixel_sampler_draws_every_dimension_and_converges_to_the_reference() {
     let with = |scene: &Scene, spec: &str, spp: usize, seed: u64| {
         let dims = samplab_render::render::pixel_dims(n, scene.lights.len(), Mode::Direct) as u32;
         let film = Film { width: w as u32, height: h as u32, spp: spp as u32, dims };
-        Options { pixels: Some(prepare(spec, film, Seed(seed)).unwrap()), ..options(spp) }
+        Options {
+            sampling: Sampling::Pixels { sampler: Box::new(prepare(spec, film, Seed(seed)).unwrap()), frame: 0 },
+            ..options(spp)
+        }
     };
     // the film and light dimensions everywhere; the lens (defocus), the shutter (motion),
     // two lights (ball)

@@ -134,7 +134,7 @@ pub(super) fn deal(setup: &Setup, px: Pixel, s: &mut Scratch) {
 pub(super) fn try_deal(setup: &Setup, px: Pixel, s: &mut Scratch) -> samplab::Result<()> {
     let Setup { options: o, lights, keys, plans, .. } = *setup;
     let spp = o.spp;
-    if let Some(p) = &o.pixels {
+    if let Some((p, _)) = o.pixel_sampler() {
         if o.footprint.spreads() {
             s.pixel.clear();
             s.pixel.extend((0..spp as u32).flat_map(|e| [0, 1].map(|d| p.sample(px.at(), px.frame, e, d))));
@@ -169,7 +169,7 @@ pub(super) fn try_deal(setup: &Setup, px: Pixel, s: &mut Scratch) -> samplab::Re
     if let Some(plan) = &plans.gloss {
         s.gloss.deal(plan, spp, keys.gloss.derive(px.index), deal_key("gloss"))?;
     }
-    if o.pattern == Pattern::PerPixel {
+    if o.pattern() == Pattern::PerPixel {
         s.shared.resize_with(lights.len(), Default::default);
         for (l, plan) in plans.light.iter().enumerate() {
             let key = keys.light.derive(px.index).derive(l as u64);

@@ -214,7 +214,7 @@ pub(super) fn obscure_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
     for k in 0..m {
         let e = s.ends.estimate[k] as usize;
         let (x, normal) = (lane(&s.ends.position, k), lane(&s.ends.normal, k));
-        match &o.pixels {
+        match o.pixel_sampler().map(|(p, _)| p) {
             Some(pixels) => light_samples(pixels, px, e, 0, o.n, 2, &mut s.light),
             None => {
                 s.light.resize(o.n * 2, 0.0);

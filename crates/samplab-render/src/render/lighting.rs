@@ -247,7 +247,7 @@ pub(super) fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
                 Mode::Direct | Mode::Obscurance | Mode::Path { .. } => 1.0,
             };
         }
-        if o.pattern == Pattern::PerPixel && o.n == 1 {
+        if o.pattern() == Pattern::PerPixel && o.n == 1 {
             // one sample per end (Cook's pairing of a pixel's samples): end k's in lane k, a
             // rejected or unlit one a dead lane
             let (dealt, points) = (&s.shared[l], &s.shared_points[l]);
@@ -266,10 +266,10 @@ pub(super) fn light_ends(setup: &Setup, px: Pixel, s: &mut Scratch) -> u64 {
                 if sums.unoccluded[k] <= 0.0 {
                     continue;
                 }
-                let (points, range) = match o.pattern {
+                let (points, range) = match o.pattern() {
                     Pattern::PerEstimate => {
                         let (dims, key) = (p.light.dims(), keys.light.derive(px.index).derive(l as u64));
-                        match &o.pixels {
+                        match o.pixel_sampler().map(|(p, _)| p) {
                             Some(pixels) => light_samples(pixels, px, e, l, o.n, dims, &mut s.light),
                             None => {
                                 s.light.resize(o.n * dims, 0.0);

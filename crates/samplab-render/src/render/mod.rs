@@ -31,7 +31,7 @@
 //! pixels repeated over the image: each pixel takes the spp points in its cell of the tile.
 //!
 //! Or every dimension of every estimate comes from one pixel sampler
-//! ([`samplab::pixel`], [`Options::pixels`]), as a production renderer draws them: estimate
+//! ([`samplab::pixel`], [`Sampling::Pixels`]), as a production renderer draws them: estimate
 //! e of pixel (x, y) is sample e, and its dimensions are laid out as [`pixel_dims`] says.
 
 use crate::error::Result;
@@ -66,7 +66,7 @@ pub enum Mode {
     /// Obscurance: no lights; the strategy's pattern gives cosine-weighted directions.
     Obscurance,
     /// Path tracing with next-event estimation ([`crate::path`]), every dimension from a
-    /// pixel sampler ([`Options::pixels`]).
+    /// pixel sampler ([`Sampling::Pixels`]).
     Path {
         /// Most segments of a path (Mitsuba's `max_depth`: 2 is direct lighting).
         max_depth: u32,
@@ -88,8 +88,8 @@ pub enum Pattern {
 /// How to render.
 #[derive(Debug)]
 pub struct Options {
-    /// The strategy of the light samples.
-    pub light: Sampler,
+    /// Where each estimate's samples come from.
+    pub sampling: Sampling,
     /// Light samples per estimate and light.
     pub n: usize,
     /// Secondary estimates per pixel.
@@ -98,6 +98,43 @@ pub struct Options {
     pub mode: Mode,
     /// Pixel centre or area.
     pub footprint: Footprint,
+    /// Disk map override for every disk light (None: each light's own).
+    pub disk_map: Option<DiskMap>,
+    /// Obscurance mode: the distance beyond which a surface no longer obscures.
+    pub range: f64,
+    /// Image width.
+    pub width: usize,
+    /// Image height.
+    pub height: usize,
+    /// Seed of every random choice.
+    pub seed: Seed,
+}
+
+/// Where each estimate's samples come from: a point-set strategy per purpose, or one pixel
+/// sampler for every dimension, as a production renderer draws them (the two exclude each
+/// other).
+#[derive(Debug)]
+#[non_exhaustive]
+pub enum Sampling {
+    /// A strategy per purpose.
+    Strategies(Box<Strategies>),
+    /// A pixel sampler that draws every dimension of every estimate, prepared for this
+    /// image, `spp` and at least [`pixel_dims`] dimensions (patterns per estimate, no
+    /// interleaving).
+    Pixels {
+        /// The prepared pixel sampler.
+        sampler: Box<samplab::pixel::Pixels>,
+        /// The frame it draws (an animation's frame number: each frame its own samples, as
+        /// the sampler decorrelates them).
+        frame: u32,
+    },
+}
+
+/// A point-set strategy per purpose of a render's samples.
+#[derive(Debug)]
+pub struct Strategies {
+    /// The strategy of the light samples.
+    pub light: Sampler,
     /// Strategy over the pixel area (`spp` points).
     pub area: Sampler,
     /// Strategy over the lens (`spp` points), used when the camera has an aperture; dealt
@@ -112,29 +149,51 @@ pub struct Options {
     pub gloss: Sampler,
     /// Grouping of light samples.
     pub pattern: Pattern,
-    /// Disk map override for every disk light (None: each light's own).
-    pub disk_map: Option<DiskMap>,
-    /// Obscurance mode: the distance beyond which a surface no longer obscures.
-    pub range: f64,
     /// Interleaved pixel sampling over tiles of (w, h) pixels (area footprint); None: a
     /// pattern per pixel.
     pub interleave: Option<(usize, usize)>,
-    /// Image width.
-    pub width: usize,
-    /// Image height.
-    pub height: usize,
-    /// Seed of every random choice.
-    pub seed: Seed,
-    /// A pixel sampler that draws every dimension instead of the strategies above
-    /// (`light`, `area`, `lens`, `time`, `gloss`), prepared for this image, `spp` and at
-    /// least [`pixel_dims`] dimensions; it takes patterns per estimate and no interleaving.
-    pub pixels: Option<samplab::pixel::Pixels>,
-    /// The frame the pixel sampler draws (an animation's frame number: each frame its own
-    /// samples, as the sampler decorrelates them).
-    pub frame: u32,
 }
 
-/// The dimensions of an estimate drawn from a pixel sampler ([`Options::pixels`]): 0-1 the
+impl Options {
+    /// The strategies, where the render draws from them.
+    pub fn strategies(&self) -> Option<&Strategies> {
+        match &self.sampling {
+            Sampling::Strategies(s) => Some(s),
+            Sampling::Pixels { .. } => None,
+        }
+    }
+
+    /// The strategies, to change them (None where a pixel sampler draws every dimension).
+    pub fn strategies_mut(&mut self) -> Option<&mut Strategies> {
+        match &mut self.sampling {
+            Sampling::Strategies(s) => Some(s),
+            Sampling::Pixels { .. } => None,
+        }
+    }
+
+    /// The pixel sampler and its frame, where one draws every dimension.
+    pub fn pixel_sampler(&self) -> Option<(&samplab::pixel::Pixels, u32)> {
+        match &self.sampling {
+            Sampling::Pixels { sampler, frame } => Some((sampler, *frame)),
+            Sampling::Strategies(_) => None,
+        }
+    }
+
+    /// The spec of what draws the light samples: the light strategy, or the pixel sampler.
+    pub fn light_source(&self) -> &str {
+        match &self.sampling {
+            Sampling::Strategies(s) => s.light.spec(),
+            Sampling::Pixels { sampler, .. } => sampler.spec(),
+        }
+    }
+
+    /// The grouping of light samples (per estimate where a pixel sampler draws them).
+    pub fn pattern(&self) -> Pattern {
+        self.strategies().map_or(Pattern::PerEstimate, |s| s.pattern)
+    }
+}
+
+/// The dimensions of an estimate drawn from a pixel sampler ([`Sampling::Pixels`]): 0-1 the
 /// film position in the pixel, 2-3 the lens, 4 the shutter time, 5 unused, 6-7 the first
 /// glossy bounce, then 2 per light sample from [`FIRST_LIGHT_DIM`] on (light l's sample j
 /// at 8 + 2 (l n + j), its first `dims` used), or per obscurance direction. Returns how
@@ -200,7 +259,8 @@ pub fn render(scene: &Scene, options: &Options, progress: &Progress) -> Result<R
         .collect();
     let frame = scene.camera.frame(w, h);
     let emitters = crate::path::Emitter::all(scene, options.disk_map);
-    let path = options.pixels.as_ref().filter(|_| matches!(options.mode, Mode::Path { .. })).map(|pixels| {
+    let animation_frame = options.pixel_sampler().map_or(0, |(_, frame)| frame);
+    let path = options.pixel_sampler().filter(|_| matches!(options.mode, Mode::Path { .. })).map(|(pixels, _)| {
         crate::path::Context {
             scene,
             frame: &frame,
@@ -210,7 +270,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &Progress) -> Result<R
             height: h,
             spp: options.spp,
             max_depth: crate::path::Context::depth(options.mode),
-            animation_frame: options.frame,
+            animation_frame,
             footprint: options.footprint,
         }
     });
@@ -233,7 +293,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &Progress) -> Result<R
     // its place on the light (with the flag of whether it is kept), and the pixel, lens,
     // shutter and lobe points of every estimate
     let (n, spp) = (options.n as u128, options.spp as u128);
-    let light_points = if options.pattern == Pattern::PerPixel { n * spp } else { n };
+    let light_points = if options.pattern() == Pattern::PerPixel { n * spp } else { n };
     let per_point = 8 * 3 + std::mem::size_of::<crate::light::LightPoint>() as u128 + 1;
     let per_thread = per_point * light_points * scene.lights.len().max(1) as u128 + 8 * 7 * spp;
     let threads = rayon::current_num_threads() as u128;
@@ -254,7 +314,7 @@ pub fn render(scene: &Scene, options: &Options, progress: &Progress) -> Result<R
             let mut rays = (0u64, 0u64);
             for col in 0..w {
                 progress.check()?;
-                let pixel = Pixel { index: (row * w + col) as u64, col, row, frame: options.frame };
+                let pixel = Pixel { index: (row * w + col) as u64, col, row, frame: animation_frame };
                 let (radiance, visible, r) = match setup.path {
                     Some(c) => wide(
                         #[inline(always)]

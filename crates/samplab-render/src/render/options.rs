@@ -1,7 +1,7 @@
 //! The checks of a render's options and the plans of its samplers, made once before any
 //! pixel: counts, the tile of interleaved sampling, a pixel sampler's film.
 
-use super::{MAX_SIDE, Mode, Options, Pattern, pixel_dims};
+use super::{MAX_SIDE, Mode, Options, Pattern, Sampling, Strategies, pixel_dims};
 use crate::error::{Error, Result, setting};
 use crate::filter::Footprint;
 use crate::scene::Scene;
@@ -18,24 +18,24 @@ impl Options {
     pub fn new(light: &str, n: usize, width: usize, height: usize) -> Result<Options> {
         let sobol = || samplab::sampler::build("sobol.owen");
         Ok(Options {
-            light: samplab::sampler::build(light)?,
+            sampling: Sampling::Strategies(Box::new(Strategies {
+                light: samplab::sampler::build(light)?,
+                area: sobol()?,
+                lens: sobol()?,
+                time: sobol()?,
+                gloss: sobol()?,
+                pattern: Pattern::PerEstimate,
+                interleave: None,
+            })),
             n,
             spp: 1,
             mode: Mode::Visibility,
             footprint: Footprint::Centre,
-            area: sobol()?,
-            lens: sobol()?,
-            time: sobol()?,
-            gloss: sobol()?,
-            pattern: Pattern::PerEstimate,
             disk_map: None,
             range: 1.0,
-            interleave: None,
             width,
             height,
             seed: Seed::DEFAULT,
-            pixels: None,
-            frame: 0,
         })
     }
 
@@ -77,7 +77,8 @@ impl Options {
                 spp: side(light_samples),
                 dims: side(crate::path::dims(max_depth as usize)),
             };
-            o.pixels = Some(samplab::pixel::prepare("sobol", film, o.seed)?);
+            o.sampling =
+                Sampling::Pixels { sampler: Box::new(samplab::pixel::prepare("sobol", film, o.seed)?), frame: 0 };
             return Ok(o);
         }
         let needs_estimates = self.footprint.spreads() || scene.camera.aperture > 0.0 || scene.moving();
@@ -107,7 +108,7 @@ impl Options {
                 return Err(setting(name, v, format!("{what} must be at least 1")));
             }
         }
-        let per_pattern = match self.pattern {
+        let per_pattern = match self.pattern() {
             Pattern::PerEstimate => self.n,
             Pattern::PerPixel => {
                 self.n.checked_mul(self.spp).ok_or_else(|| setting("spp", self.spp, "n x spp overflows"))?
@@ -117,40 +118,41 @@ impl Options {
             if !(self.range.is_finite() && self.range > 0.0) {
                 return Err(setting("range", self.range, "the obscurance range must be a positive number"));
             }
-            if self.pattern == Pattern::PerPixel {
+            if self.pattern() == Pattern::PerPixel {
                 return Err(setting("pattern", "pixel", "obscurance takes a pattern per estimate"));
             }
         }
         if let Mode::Path { max_depth } = self.mode {
             crate::path::check_depth(max_depth as usize)?;
-            if self.pixels.is_none() {
+            if self.pixel_sampler().is_none() {
                 return Err(setting("pixel_sampler", "none", "path mode draws every dimension from a pixel sampler"));
             }
         }
-        if let Some(p) = &self.pixels {
-            return self.pixel_sampler_plans(p, scene);
-        }
+        let s = match &self.sampling {
+            Sampling::Pixels { sampler, .. } => return self.pixel_sampler_plans(sampler, scene),
+            Sampling::Strategies(s) => s,
+        };
         let light = if self.mode == Mode::Obscurance {
-            vec![self.light.plan(self.n, 2)?]
+            vec![s.light.plan(self.n, 2)?]
         } else {
-            scene.lights.iter().map(|l| self.light.plan(per_pattern, l.dims())).collect::<samplab::Result<_>>()?
+            scene.lights.iter().map(|l| s.light.plan(per_pattern, l.dims())).collect::<samplab::Result<_>>()?
         };
         let mut pixel = None;
         if self.footprint.spreads() {
-            if self.interleave.is_none() {
-                pixel = Some(self.area.plan(self.spp, 2)?);
+            if s.interleave.is_none() {
+                pixel = Some(s.area.plan(self.spp, 2)?);
             }
-        } else if let Some((w, h)) = self.interleave {
+        } else if let Some((w, h)) = s.interleave {
             let reason = "interleaved sampling spreads samples over pixel areas: it needs the area footprint";
             return Err(setting("interleave", format!("{w}x{h}"), reason));
         }
         Ok(Plans {
             light,
             pixel,
-            tile: self.tile()?,
-            lens: plan_if(scene.camera.aperture > 0.0, &self.lens, self.spp, 2)?,
-            time: plan_if(scene.moving(), &self.time, self.spp, 1)?,
-            gloss: plan_if(scene.glossy(), &self.gloss, self.spp, 2)?,
+            tile: self.tile(s)?,
+            lens: plan_if(scene.camera.aperture > 0.0, &s.lens, self.spp, 2)?,
+            time: plan_if(scene.moving(), &s.time, self.spp, 1)?,
+            gloss: plan_if(scene.glossy(), &s.gloss, self.spp, 2)?,
         })
     }
 }
@@ -159,11 +161,6 @@ impl Options {
     /// The checks of a render whose every dimension comes from the pixel sampler `p`; no
     /// strategy is planned.
     pub(super) fn pixel_sampler_plans(&self, p: &samplab::pixel::Pixels, scene: &Scene) -> Result<Plans> {
-        if self.pattern == Pattern::PerPixel || self.interleave.is_some() {
-            let reason = "draws each estimate's samples from its own dimensions: it takes patterns per estimate and no \
-                          interleaving";
-            return Err(setting("pixel_sampler", p.spec(), reason));
-        }
         let film = p.film();
         let need = pixel_dims(self.n, scene.lights.len(), self.mode);
         if (film.width as usize, film.height as usize, film.spp as usize) != (self.width, self.height, self.spp)
@@ -217,14 +214,14 @@ impl Tile {
 }
 
 impl Options {
-    /// The interleaving tile, its pattern drawn once from the pixel strategy (None without
-    /// interleaving).
+    /// The interleaving tile of the strategies `s`, its pattern drawn once from the pixel
+    /// strategy (None without interleaving).
     ///
     /// # Errors
     /// A tile side out of 1..=[`MAX_TILE`], or a pattern that does not put exactly `spp`
     /// points in every pixel of the tile.
-    pub(super) fn tile(&self) -> Result<Option<Tile>> {
-        let Some((width, height)) = self.interleave else { return Ok(None) };
+    pub(super) fn tile(&self, s: &Strategies) -> Result<Option<Tile>> {
+        let Some((width, height)) = s.interleave else { return Ok(None) };
         if !(1..=MAX_TILE).contains(&width) || !(1..=MAX_TILE).contains(&height) {
             return Err(setting(
                 "interleave",
@@ -234,7 +231,7 @@ impl Options {
         }
         let cells = width * height;
         let total = self.spp * cells;
-        let pattern = self.area.plan(total, 2)?.generate(self.seed.derive_str("pixel"))?.into_vec();
+        let pattern = s.area.plan(total, 2)?.generate(self.seed.derive_str("pixel"))?.into_vec();
         let mut by_cell: Vec<Vec<f64>> = vec![Vec::with_capacity(2 * self.spp); cells];
         for p in pattern.chunks_exact(2) {
             let (x, y) = (p[0] * width as f64, p[1] * height as f64);
@@ -250,7 +247,7 @@ impl Options {
                 i / width,
                 self.spp
             );
-            return Err(setting("area_sampler", self.area.spec(), reason));
+            return Err(setting("area_sampler", s.area.spec(), reason));
         }
         Ok(Some(Tile { width, height, spp: self.spp, points: by_cell.concat() }))
     }

@@ -6,7 +6,7 @@ use samplab::progress::Progress;
 use samplab::seed::Seed;
 use samplab_render::light::DiskMap;
 use samplab_render::scenes::{LightKind, builtin};
-use samplab_render::{Errors, Footprint, Image, Mode, Options, Pattern, Scene, render};
+use samplab_render::{Errors, Footprint, Image, Mode, Options, Pattern, Sampling, Scene, Strategies, render};
 
 use crate::{Error, Figure};
 
@@ -62,16 +62,18 @@ impl<'a> Setup<'a> {
     fn options(&self, light: &str, n: usize, spp: usize, seed: Seed) -> Result<Options, Error> {
         let build = |spec: &str| samplab::sampler::build(spec).map_err(Error::from);
         let mut o = Options::new("sobol.owen", n, self.size.0, self.size.1).map_err(render_error)?;
-        o.light = build(light)?;
-        o.area = build(self.pixel)?;
-        o.lens = build(self.lens)?;
-        o.time = build(self.time)?;
-        o.gloss = build(self.gloss)?;
+        o.sampling = Sampling::Strategies(Box::new(Strategies {
+            light: build(light)?,
+            area: build(self.pixel)?,
+            lens: build(self.lens)?,
+            time: build(self.time)?,
+            gloss: build(self.gloss)?,
+            pattern: self.pattern,
+            interleave: self.interleave,
+        }));
         o.spp = spp;
         o.mode = self.mode;
         o.footprint = self.footprint;
-        o.pattern = self.pattern;
-        o.interleave = self.interleave;
         o.range = self.range;
         o.disk_map = Some(self.disk_map);
         o.seed = seed;

@@ -11,7 +11,7 @@ use samplab::screen::{
 };
 use samplab_render::image::Srgb8;
 use samplab_render::scenes::builtin;
-use samplab_render::{Footprint, Image, Mode, Options, Scene, render};
+use samplab_render::{Footprint, Image, Mode, Options, Sampling, Scene, render};
 
 use super::{fades, families, look};
 use crate::criteria::{self, Estimate};
@@ -77,16 +77,16 @@ fn prepared(name: &str, size: usize, spp: usize, seed: samplab::Seed) -> Result<
 fn render_with(ctx: &Ctx, case: &Case, pixels: Pixels, frame: u32) -> Result<(Image, Pixels), Error> {
     let film = pixels.film();
     let (w, h) = (film.width as usize, film.height as usize);
-    let mut o = Options {
+    let o = Options {
         mode: case.mode,
         spp: film.spp as usize,
         footprint: Footprint::Area,
-        pixels: Some(pixels),
-        frame,
+        sampling: Sampling::Pixels { sampler: Box::new(pixels), frame },
         ..Options::new("random", 1, w, h).map_err(render_error)?
     };
     let image = render(&case.scene, &o, &Progress::until(ctx.stop)).map_err(render_error)?.image;
-    Ok((image, o.pixels.take().expect("set above")))
+    let Sampling::Pixels { sampler, .. } = o.sampling else { unreachable!("set above") };
+    Ok((image, *sampler))
 }
 
 /// The luminance error of `img` against the reference's luminance.
