@@ -8,9 +8,10 @@ use serde_json::Value;
 
 use crate::errors::err;
 
-/// A keyword's value as JSON: None, a bool, a whole number, a float, a string, or a list,
-/// tuple or dict (of string keys) of them.
-pub(crate) fn json_of(value: &Bound<'_, PyAny>) -> PyResult<Value> {
+/// A keyword's value as JSON: None, a bool, a whole number, a finite float (NaN and the
+/// infinities are refused: JSON has none), a string, or a list, tuple or dict (of string
+/// keys) of them; a refusal names the keyword `name`.
+pub(crate) fn json_of(name: &str, value: &Bound<'_, PyAny>) -> PyResult<Value> {
     Ok(if value.is_none() {
         Value::Null
     } else if value.is_instance_of::<PyBool>() {
@@ -20,19 +21,22 @@ pub(crate) fn json_of(value: &Bound<'_, PyAny>) -> PyResult<Value> {
     } else if let Ok(u) = value.extract::<u64>() {
         Value::from(u)
     } else if value.is_instance_of::<PyFloat>() {
-        serde_json::Number::from_f64(value.extract()?).map_or(Value::Null, Value::Number)
+        let x: f64 = value.extract()?;
+        Value::Number(
+            serde_json::Number::from_f64(x).ok_or_else(|| err(format!("{name}: {x} is not a finite number")))?,
+        )
     } else if value.is_instance_of::<PyString>() {
         Value::String(value.extract()?)
     } else if let Ok(d) = value.cast::<PyDict>() {
         let mut map = serde_json::Map::new();
         for (k, v) in d.iter() {
-            map.insert(k.extract()?, json_of(&v)?);
+            map.insert(k.extract()?, json_of(name, &v)?);
         }
         Value::Object(map)
     } else if let Ok(items) = value.try_iter() {
-        Value::Array(items.map(|v| json_of(&v?)).collect::<PyResult<_>>()?)
+        Value::Array(items.map(|v| json_of(name, &v?)).collect::<PyResult<_>>()?)
     } else {
-        return Err(err(format!("{} is not a number, a string, or a list or dict of them", value.repr()?)));
+        return Err(err(format!("{name}: {} is not a number, a string, or a list or dict of them", value.repr()?)));
     })
 }
 

@@ -175,8 +175,9 @@ pub(crate) fn cubature<'py>(
     exact: Option<f64>,
     settings: Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let settings: samplab::cubature::Settings = serde_json::from_value(crate::convert::json_of(&settings)?)
-        .map_err(|e| err(format!("cubature settings: {e}")))?;
+    let settings: samplab::cubature::Settings =
+        serde_json::from_value(crate::convert::json_of("cubature settings", &settings)?)
+            .map_err(|e| err(format!("cubature settings: {e}")))?;
     let (given, name) = Given::from_python(&integrand, settings.seed.0, dims, exact)?;
     let f = given.integrand();
     let flags: Vec<&AtomicBool> = given.stop().into_iter().collect();

@@ -29,7 +29,7 @@ pub(crate) fn settings(given: Option<&Bound<'_, PyDict>>) -> PyResult<samplab_re
     let mut named = serde_json::Map::new();
     for (key, value) in given.into_iter().flat_map(|d| d.iter()) {
         let key: String = key.extract()?;
-        let value = crate::convert::json_of(&value).map_err(|e| err(format!("{key}: {e}")))?;
+        let value = crate::convert::json_of(&key, &value)?;
         named.insert(key, value);
     }
     samplab_render::settings::from_named(named).map_err(err)

@@ -55,6 +55,9 @@ def test_reference_and_errors_equal_the_cli(cli, tmp_path):
         (lambda: samplab.render("spheres", n=15), "9 and 16"),
         (lambda: samplab.render("nosuch"), "unknown scene"),
         (lambda: samplab.render("spheres", colour="red"), "unknown render setting 'colour'"),
+        # keywords are read through the library's one table of settings, by its types
+        (lambda: samplab.render("spheres", range=float("nan")), "range: NaN is not a finite number"),
+        (lambda: samplab.render("spheres", n=4.5), "render settings: invalid type: floating point `4.5`, expected usize"),
         (lambda: samplab.render("spheres", res=(0, 10)), r"res = 0x10: each side must be in 1\.\.="),
         (lambda: samplab.render("glossy-box", mode="path", max_depth=0), "max_depth = 0: the most segments"),
         (lambda: samplab.render("glossy-box", mode="path", pixel_sampler="jitter"), "a set, not a sequence"),
