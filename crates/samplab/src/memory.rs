@@ -151,6 +151,8 @@ pub(crate) fn filled<T: Copy + Send + Sync>(len: usize, value: T) -> Vec<T> {
         return vec![value; len];
     }
     let mut v = Vec::with_capacity(len);
+    #[cfg(target_os = "linux")]
+    huge_pages(v.spare_capacity_mut());
     v.par_extend(rayon::iter::repeat_n(value, len));
     v
 }

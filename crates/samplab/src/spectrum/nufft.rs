@@ -28,9 +28,11 @@ use crate::points::PointSet;
 /// FFT task.
 const TILE: usize = 16;
 
-/// The real rows of a band of the 2D grid: a band's 8 complex rows (256 KiB at R = 1024)
-/// stay in a core's cache from spreading to FFT.
-const BAND: usize = 16;
+/// The bytes of a band of the 2D grid's complex rows: a band stays in a core's cache from
+/// spreading to FFT. Its real rows are the most that fit, a power of two from 16 to 64
+/// (16 rows are 256 KiB at R = 1024); a point meets two bands when its w rows cross a
+/// border, so wider bands spread fewer points twice.
+const BAND_BYTES: usize = 1 << 17;
 
 /// A planned transform for one resolution and tolerance (reusable across sets).
 pub struct Nufft {
@@ -61,7 +63,8 @@ struct Scratch {
 #[derive(Default)]
 struct Bands {
     start: Vec<usize>,
-    members: Vec<usize>,
+    /// Each member's (x, y, weight).
+    members: Vec<[f64; 3]>,
 }
 
 impl std::fmt::Debug for Nufft {
@@ -118,18 +121,32 @@ impl Nufft {
     /// (the first w the kernel's, the rest 0).
     #[inline(always)]
     fn weights(&self, x: f64) -> (i64, [f64; 16]) {
-        let g = x * self.grid as f64;
-        let first = (g - self.width as f64 / 2.0).ceil();
+        let [out] = self.weights_of::<1, 16>([x]);
+        out
+    }
+
+    /// [`Nufft::weights`] of N coordinates at once, the first L >= w values only (the rest
+    /// 0): their Horner steps interleaved, so that the N chains of dependent
+    /// multiplications and additions overlap.
+    #[inline(always)]
+    fn weights_of<const N: usize, const L: usize>(&self, xs: [f64; N]) -> [(i64, [f64; 16]); N] {
+        let half = self.width as f64 / 2.0;
+        let first = xs.map(|x| (x * self.grid as f64 - half).ceil());
         // the offset of the first index, first - g + w/2 in [0, 1), mapped to [-1, 1]
-        let v = 2.0 * (first - g + self.width as f64 / 2.0) - 1.0;
+        let v: [f64; N] = std::array::from_fn(|i| 2.0 * (first[i] - xs[i] * self.grid as f64 + half) - 1.0);
         let (top, rest) = self.kernel.split_last().expect("a kernel polynomial");
-        let mut out = *top;
+        let mut out = [[0.0; 16]; N];
+        for o in &mut out {
+            o[..L].copy_from_slice(&top[..L]);
+        }
         for c in rest.iter().rev() {
-            for (o, &ck) in out.iter_mut().zip(c) {
-                *o = *o * v + ck;
+            for (o, &v) in out.iter_mut().zip(&v) {
+                for (o, &ck) in o[..L].iter_mut().zip(&c[..L]) {
+                    *o = *o * v + ck;
+                }
             }
         }
-        (first as i64, out)
+        std::array::from_fn(|i| (first[i] as i64, out[i]))
     }
 
     /// S(w) = (1/N) sum_j exp(-2 pi i w.x_j) at the centred frequencies, row-major.
@@ -201,7 +218,8 @@ impl Nufft {
         out: &mut Vec<Complex>,
     ) {
         let g = self.grid;
-        let wrap = |i: i64| i.rem_euclid(g as i64) as usize;
+        // the grid's side is a power of two: an index wraps around the torus by a mask
+        let wrap = |i: i64| (i & (g as i64 - 1)) as usize;
         let Scratch { real, rows, bands } = scratch;
         let inv = 1.0 / points.len() as f64;
         let half = (self.res / 2) as i64;
@@ -287,18 +305,22 @@ impl Nufft {
     /// complex FFT (A_k = (Z_k + conj Z_-k) / 2 and B_k = (Z_k - conj Z_-k) / 2i are
     /// unpacked later, for the R kept columns only).
     ///
-    /// The grid is made band by band (BAND real rows, a parallel task each): the points
-    /// whose w rows meet the band are listed in index order (a counting sort), spread onto
-    /// the band's complex rows (each point's 16 values y-wise as one contiguous update of
-    /// 16 complex cells, zero in the other part, where they do not cross the seam), and
-    /// the band's rows are transformed while they are still in the core's cache. Every
-    /// cell gets the same additions in the same order as from a whole grid filled point by
-    /// point (adding a zero leaves a sum that starts at +0 unchanged), so the bits do not
-    /// depend on the bands nor the threads.
+    /// The grid is made band by band (16 to 64 real rows, a parallel task each): the points
+    /// whose w rows meet the band are copied, in index order, into the band's list (a
+    /// counting sort, so that a band reads its points from contiguous memory), and spread
+    /// onto the band's complex rows: a point's two real rows 2p and 2p + 1 are one update
+    /// of complex row p, 16 cells y-wise at once where they do not cross the seam (real
+    /// part c u_2p v_k, imaginary part c u_2p+1 v_k; a row the point does not meet adds
+    /// zeros). The band's rows are then transformed while they are still in the core's
+    /// cache. Every cell gets the same additions in the same order as from a whole grid
+    /// filled point by point (adding a zero leaves a sum that starts at +0 unchanged), so
+    /// the bits do not depend on the bands nor the threads.
     fn spread_rows(&self, points: &PointSet, weights: Option<&[f64]>, rows: &mut Vec<C64<f64>>, bands: &mut Bands) {
         let (g, w) = (self.grid, self.width);
-        let band = BAND.min(g);
-        let wrap = |i: i64| i.rem_euclid(g as i64) as usize;
+        let row_bytes = g * std::mem::size_of::<C64<f64>>();
+        let band = (2 * BAND_BYTES / row_bytes).clamp(16, 64).min(g);
+        // the grid's side is a power of two: an index wraps around the torus by a mask
+        let wrap = |i: i64| (i & (g as i64 - 1)) as usize;
         // the bands met by each point's rows: at most two, as a band is at least w rows
         // (or the whole grid)
         let met = |p: &[f64]| {
@@ -320,12 +342,13 @@ impl Nufft {
             start[b] += start[b - 1];
         }
         members.clear();
-        members.resize(start[g / band], 0);
+        members.resize(start[g / band], [0.0; 3]);
         let mut next = start.clone();
         for (j, p) in points.iter().enumerate() {
             let (b0, b1) = met(p);
+            let c = weights.map_or(1.0, |wt| wt[j]);
             for b in std::iter::once(b0).chain(b1) {
-                members[next[b]] = j;
+                members[next[b]] = [p[0], p[1], c];
                 next[b] += 1;
             }
         }
@@ -339,51 +362,68 @@ impl Nufft {
                 chunk.fill(C64::new(0.0, 0.0));
                 let r0 = (b * band) as i64;
                 let list = &members[start[b]..start[b + 1]];
+                // the kernel's lanes rounded up to a vector of 4: zeros beyond w cost nothing
                 crate::simd::wide(
                     #[inline(always)]
-                    || {
-                        for &j in list {
-                            let p = points.point(j);
-                            let c = weights.map_or(1.0, |wt| wt[j]);
-                            let (fx, wx) = self.weights(p[0]);
-                            let (fy, wy) = self.weights(p[1]);
-                            // the 16 values in the real (even rows) or imaginary (odd rows)
-                            // parts of 16 complex cells
-                            let mut parts = [[0.0f64; 32]; 2];
-                            for (k, &v) in wy.iter().enumerate() {
-                                parts[0][2 * k] = v;
-                                parts[1][2 * k + 1] = v;
-                            }
-                            let inner = fy >= 0 && fy as usize + 16 <= g;
-                            for (a, &u) in wx[..w].iter().enumerate() {
-                                let r = wrap(fx + a as i64) as i64 - r0;
-                                if !(0..band as i64).contains(&r) {
-                                    continue;
-                                }
-                                let (cu, r) = (c * u, r as usize);
-                                let row = &mut chunk[r / 2 * g..(r / 2 + 1) * g];
-                                if inner {
-                                    let cells = as_reals(&mut row[fy as usize..fy as usize + 16]);
-                                    for (cell, &v) in cells.iter_mut().zip(&parts[r % 2]) {
-                                        *cell += cu * v;
-                                    }
-                                } else {
-                                    for (k, &v) in wy[..w].iter().enumerate() {
-                                        let cell = &mut row[wrap(fy + k as i64)];
-                                        if r % 2 == 0 {
-                                            cell.re += cu * v;
-                                        } else {
-                                            cell.im += cu * v;
-                                        }
-                                    }
-                                }
-                            }
-                        }
+                    || match self.width.next_multiple_of(4) {
+                        ..=4 => self.spread_band::<4>(list, chunk, r0, band),
+                        5..=8 => self.spread_band::<8>(list, chunk, r0, band),
+                        9..=12 => self.spread_band::<12>(list, chunk, r0, band),
+                        _ => self.spread_band::<16>(list, chunk, r0, band),
                     },
                 );
                 self.fft.process_with_scratch(chunk, scratch);
             },
         );
+    }
+
+    /// Spread a band's points (x, y, weight) onto its complex rows `chunk` (real rows r0..
+    /// r0 + band): L of each point's 16 kernel values y-wise (L >= w; the rest are zero).
+    #[inline(always)]
+    fn spread_band<const L: usize>(&self, list: &[[f64; 3]], chunk: &mut [C64<f64>], r0: i64, band: usize) {
+        let (g, w) = (self.grid, self.width);
+        let wrap = |i: i64| (i & (g as i64 - 1)) as usize;
+        for &[x, y, c] in list {
+            let [(fx, wx), (fy, wy)] = self.weights_of::<2, L>([x, y]);
+            // the point's weights c u_a on the band's real rows, paired as (real part,
+            // imaginary part) of each complex row q met: its rows are consecutive, so each
+            // q is met by one or two consecutive a
+            let mut pairs = [(0usize, [0.0f64; 2]); 9];
+            let mut met = 0;
+            for (a, &u) in wx[..w].iter().enumerate() {
+                let r = wrap(fx + a as i64) as i64 - r0;
+                if (0..band as i64).contains(&r) {
+                    let (q, part) = (r as usize / 2, r as usize % 2);
+                    if met == 0 || pairs[met - 1].0 != q {
+                        pairs[met] = (q, [0.0; 2]);
+                        met += 1;
+                    }
+                    pairs[met - 1].1[part] = c * u;
+                }
+            }
+            // the L values y-wise, each twice (real and imaginary parts)
+            let mut twice = [0.0f64; 32];
+            for (k, &v) in wy[..L].iter().enumerate() {
+                twice[2 * k] = v;
+                twice[2 * k + 1] = v;
+            }
+            let inner = fy >= 0 && fy as usize + 16 <= g;
+            for &(q, pair) in &pairs[..met] {
+                let row = &mut chunk[q * g..(q + 1) * g];
+                if inner {
+                    let cells = as_reals(&mut row[fy as usize..fy as usize + 16]);
+                    for (i, (cell, &v)) in cells[..2 * L].iter_mut().zip(&twice[..2 * L]).enumerate() {
+                        *cell += pair[i % 2] * v;
+                    }
+                } else {
+                    for (k, &v) in wy[..w].iter().enumerate() {
+                        let cell = &mut row[wrap(fy + k as i64)];
+                        cell.re += pair[0] * v;
+                        cell.im += pair[1] * v;
+                    }
+                }
+            }
+        }
     }
 }
 
