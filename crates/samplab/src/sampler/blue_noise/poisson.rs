@@ -384,10 +384,12 @@ impl Occupancy for DiskGrid {
     }
     #[inline]
     fn prefetch(&self, p: &[f64]) {
-        // the five rows of the 5 x 5 neighbourhood, each 80 bytes: its two ends
+        // the middle three rows of the 5 x 5 neighbourhood, each 80 bytes: its two ends (a
+        // test reads the outer two only when the middle ones hold no conflict; loading them
+        // for every candidate kept memory busier than waiting for them: 8% slower at 10^6)
         let (rows, c) = (self.around(self.cell(p[0])), self.cell(p[1]));
         let (lo, hi) = (c.saturating_sub(2), (c + 2).min(self.g - 1));
-        for r in rows.into_iter().filter(|&r| r != usize::MAX) {
+        for r in rows[1..4].iter().copied().filter(|&r| r != usize::MAX) {
             crate::simd::prefetch(&self.slots[r * self.g + lo]);
             crate::simd::prefetch(&self.slots[r * self.g + hi]);
         }
