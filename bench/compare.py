@@ -9,10 +9,14 @@ Usage: bench/compare [--quick] [SECTION...]
   the Rust core, scipy.stats.qmc and QMCPy. --quick: PoissonDisk at n = 10^4 instead of 10^5 (minutes less).
   `bench/compare goals` (only when named) prints the speed issue's goal table: each row timed
   here and by its criterion benchmark in the same run, beside its anchor (about 25 minutes).
+  `bench/compare x86` (only when named) prints the x86 issue's table: spectra against FINUFFT
+  on one and two threads, in-process and through the CLI, and dart throwing at 10^6 (about
+  two minutes). Every run prints the machine first: processor, cores, vector width.
 """
 import json
 import math
 import os
+import shutil
 import statistics
 import subprocess
 import sys
@@ -22,7 +26,7 @@ import time
 import numpy as np
 from scipy.stats import qmc
 
-from timing import median_time
+from timing import machine, median_time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXAMPLE = os.path.join(ROOT, "target", "release", "examples", "throughput")
@@ -30,6 +34,9 @@ DISCREPANCY = os.path.join(ROOT, "target", "release", "examples", "discrepancy_t
 SAMPLAB = os.path.join(ROOT, "target", "release", "samplab")
 QUICK = "--quick" in sys.argv
 SECTIONS = [a for a in sys.argv[1:] if not a.startswith("--")]
+
+
+print(machine(), flush=True)
 
 
 def want(section):
@@ -103,9 +110,9 @@ def l2_against_scipy(metric, n):
 SPECTRUM_CELLS = [(n, 2, res) for n in (256, 4096, 65536, 1_000_000) for res in (128, 512, 2048)] + [(100_000, 2, 256), (4096, 20, 512)]
 
 
-def spectrum_against_finufft(cells):
-    """[(n, sets, R, FINUFFT seconds, samplab seconds)], one thread each. FINUFFT (pip, eps
-    1e-9) does the same work per set: a 2D type-1 transform of n random points to R x R
+def spectrum_against_finufft(cells, threads=1):
+    """[(n, sets, R, FINUFFT seconds, samplab seconds)], `threads` threads each. FINUFFT (pip,
+    eps 1e-9) does the same work per set: a 2D type-1 transform of n random points to R x R
     frequencies and the periodogram's and mean's running sums, plan made once per cell;
     medians of 3."""
     import finufft
@@ -116,7 +123,7 @@ def spectrum_against_finufft(cells):
         ones = np.ones(n, dtype=np.complex128)
 
         def run():
-            plan = finufft.Plan(1, (res, res), 1, eps=1e-9, isign=-1, nthreads=1)
+            plan = finufft.Plan(1, (res, res), 1, eps=1e-9, isign=-1, nthreads=threads)
             power, mean = np.zeros((res, res)), np.zeros((res, res), complex)
             for p in sets:
                 plan.setpts(2 * np.pi * p[:, 0], 2 * np.pi * p[:, 1])
@@ -126,7 +133,7 @@ def spectrum_against_finufft(cells):
         return median_time(run, min_runs=3, min_seconds=0.0)
 
     out = subprocess.run([os.path.join(ROOT, "target", "release", "examples", "spectrum_timing")] + ["%d:%d:%d" % c for c in cells],
-                         check=True, capture_output=True, text=True, env=dict(os.environ, RAYON_NUM_THREADS="1")).stdout
+                         check=True, capture_output=True, text=True, env=dict(os.environ, RAYON_NUM_THREADS=str(threads))).stdout
     rows = []
     for line in out.strip().splitlines():
         r = json.loads(line)
@@ -287,6 +294,33 @@ def criterion(bench, pattern):
                 found[os.path.relpath(os.path.dirname(path), base)] = json.load(f)["median"]["point_estimate"] / 1e9
     return found
 
+
+if "x86" in SECTIONS:
+    # the x86 issue's acceptance (issue 98) on the machine the header names, in one run
+    # (about two minutes): spectra against FINUFFT in-process (one and two threads) and
+    # through the CLI net of its start, dart throwing at 10^6 on two threads
+    def cli_seconds(args, threads=2, runs=5):
+        env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
+        return median_time(lambda: subprocess.run([SAMPLAB] + args, check=True, capture_output=True, env=env),
+                           min_runs=runs)
+
+    start = cli_seconds(["--version"], runs=9)
+    print("\n| work | peer | samplab | ratio (peer / samplab) |\n|---|---|---|---|")
+    for threads in [1, 2]:
+        for n, m, res, theirs, ours in spectrum_against_finufft([(100_000, 2, 256), (1_000_000, 2, 1024)], threads):
+            print("| spectrum statistics, %d sets of %d points, %d^2, %d thread%s, in-process | FINUFFT %.4f s | %.4f s | %.2fx |"
+                  % (m, n, res, threads, "" if threads == 1 else "s", theirs, ours, theirs / ours), flush=True)
+    out = tempfile.mkdtemp()
+    for threads in [1, 2]:
+        cli = cli_seconds(["spectrum", "--sampler", "random", "-n", "100000", "--sets", "2", "--res", "256",
+                           "--seed", "1", "-o", os.path.join(out, "spectrum"), "--force"], threads) - start
+        theirs = spectrum_against_finufft([(100_000, 2, 256)], threads)[0][3]
+        print("| `samplab spectrum --sampler random -n 100000 --sets 2 --res 256`, %d thread%s, net of the CLI's start (%.3f s; the CLI also writes 3 CSV files and 3 PNG images) | FINUFFT %.4f s | %.4f s | %.2fx |"
+              % (threads, "" if threads == 1 else "s", start, theirs, cli, theirs / cli), flush=True)
+    dart = cli_seconds(["generate", "poisson", "-n", "1000000", "-o", os.path.join(out, "poisson.npy")])
+    print("| `samplab generate poisson -n 1000000`, two threads (the goal: under 1 s) | | %.3f s (%.3f s net of the start) | |"
+          % (dart, dart - start), flush=True)
+    shutil.rmtree(out)
 
 if "goals" in SECTIONS:
     # the speed issue's goal table in one run: each operation timed by this script (one thread

@@ -65,6 +65,8 @@ import sys
 import tempfile
 import time
 
+from timing import machine
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SAMPLAB = os.environ.get("SAMPLAB_BIN", os.path.join(ROOT, "target", "release", "samplab"))
 
@@ -362,6 +364,7 @@ def main():
                              "linux-perf): the serial fraction of their busy-thread windows and "
                              "the functions a lone busy thread was in")
     opts = parser.parse_args()
+    print(machine(), flush=True)
     if opts.rounds < 1:
         parser.error("--rounds must be at least 1, not %d" % opts.rounds)
     if not opts.seconds >= 0 or math.isinf(opts.seconds):
