@@ -816,7 +816,19 @@ fn every_instruction_set_makes_the_same_bytes() {
     let (folder, image) = (dir.join("out"), dir.join("out.exr"));
     let (folder_arg, image_arg) = (folder.to_str().unwrap(), image.to_str().unwrap());
     let tiers: Vec<Tier> = Tier::ALL.into_iter().filter(|&t| t <= Tier::detected()).collect();
-    let commands: [(&[&str], &std::path::Path); 6] = [
+    // the spreading's kernel lanes, 4, 8 and 16 (12 at the default tolerance above)
+    let spectrum_at = |tolerance: &'static str| -> [&str; 15] {
+        let args = ["spectrum", "--sampler", "jitter", "-n", "3025", "--sets", "2", "--res", "32", "--tolerance"];
+        let mut out = [""; 15];
+        out[..10].copy_from_slice(&args);
+        out[10..].copy_from_slice(&[tolerance, "--seed", "3", "-o", folder_arg]);
+        out
+    };
+    let lanes = [spectrum_at("0.1"), spectrum_at("1e-4"), spectrum_at("1e-14")];
+    let commands: [(&[&str], &std::path::Path); 9] = [
+        (&lanes[0], &folder),
+        (&lanes[1], &folder),
+        (&lanes[2], &folder),
         (&["generate", "sobol.owen", "-n", "4096", "-d", "9", "--seed", "5", "--format", "json"], &folder),
         (&["generate", "sobol", "-n", "1000", "-d", "5", "--sets", "2", "--seed", "5", "--format", "json"], &folder),
         (
